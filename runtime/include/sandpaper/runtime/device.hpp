@@ -1,0 +1,30 @@
+#pragma once
+// What the servo loop needs of a force-feedback device. Functions ending _rt run on the servo
+// thread and must not allocate, lock, log or do I/O; _nonrt ones run anywhere else.
+#include <string>
+
+#include <glm/vec2.hpp>
+
+namespace sandpaper::runtime {
+
+// Device limits as data, SI units (compare CHAI3D's cHapticDeviceInfo).
+struct DeviceLimits {
+  std::string name;              // e.g. "sim"
+  double max_force_N = 10.0;     // magnitude of the lateral force vector never exceeds this
+  double min_rate_hz = 900.0;    // servo rates the device supports
+  double max_rate_hz = 10000.0;
+  double workspace_radius_m = 0.1143;  // thesis Table 2: 9 inch circle
+};
+
+class Device {
+ public:
+  virtual ~Device() = default;
+  virtual const DeviceLimits& limits() const noexcept = 0;
+  // Position of the handle (m, patch coordinates) at servo time t_s (s since the loop started).
+  // Returns false if the device could not be read.
+  virtual bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept = 0;
+  // Commands the lateral force (N) for this tick. Returns false on a device fault.
+  virtual bool write_force_rt(glm::dvec2 force_N) noexcept = 0;
+};
+
+}  // namespace sandpaper::runtime

@@ -1,0 +1,29 @@
+#pragma once
+// Evaluates a patch program at the hand's state: sums the terms' forces (N). Built off the servo
+// thread from a PatchProgram; force_rt() neither allocates nor locks.
+#include <glm/vec2.hpp>
+
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::runtime {
+
+struct HandState {
+  glm::dvec2 position_m{0, 0};       // relative to the patch centre
+  glm::dvec2 velocity_m_s{0, 0};     // filtered from positions
+  glm::dvec2 acceleration_m_s2{0, 0};
+};
+
+class PatchEvaluator {
+ public:
+  // Keeps a reference: `program` must outlive the evaluator.
+  explicit PatchEvaluator(const schema::PatchProgram& program);
+  // Sum of every term's force at `hand`; zero outside the patch rectangle (Appendix B: only the
+  // patch under the cursor sends force). Grating tables: linear interpolation with wrap-around;
+  // height fields: bilinear interpolation of the gradient grid.
+  glm::dvec2 force_rt(const HandState& hand) const noexcept;
+
+ private:
+  const schema::PatchProgram& program_;
+};
+
+}  // namespace sandpaper::runtime

@@ -1,0 +1,37 @@
+#pragma once
+// Time for the servo loop. The real clock sleeps on absolute deadlines (clock_nanosleep,
+// CLOCK_MONOTONIC, TIMER_ABSTIME) so that lateness never accumulates; the virtual clock jumps to
+// each deadline at once, so tests play seconds of servo time in milliseconds, deterministically.
+#include <cstdint>
+
+namespace sandpaper::runtime {
+
+class ServoClock {
+ public:
+  virtual ~ServoClock() = default;
+  virtual std::int64_t now_ns() noexcept = 0;
+  virtual void sleep_until_ns(std::int64_t deadline_ns) noexcept = 0;
+};
+
+class MonotonicClock final : public ServoClock {
+ public:
+  std::int64_t now_ns() noexcept override;
+  void sleep_until_ns(std::int64_t deadline_ns) noexcept override;
+};
+
+class VirtualClock final : public ServoClock {
+ public:
+  // `compute_ns`: how much time each tick's work is taken to use (now advances by it on every
+  // now_ns() call after a sleep), so overrun handling can be tested.
+  explicit VirtualClock(std::int64_t start_ns = 0) : now_(start_ns) {}
+  std::int64_t now_ns() noexcept override { return now_; }
+  void sleep_until_ns(std::int64_t deadline_ns) noexcept override {
+    if (deadline_ns > now_) now_ = deadline_ns;
+  }
+  void advance_ns(std::int64_t dt) noexcept { now_ += dt; }
+
+ private:
+  std::int64_t now_;
+};
+
+}  // namespace sandpaper::runtime

@@ -1,0 +1,57 @@
+#pragma once
+// The simulated 2-axis joystick: a scripted hand moves the handle (position-controlled, so the
+// forces do not deflect it) and every tick's time, position and commanded force are recorded
+// into storage reserved before the loop starts.
+#include <cstddef>
+#include <vector>
+
+#include "sandpaper/runtime/device.hpp"
+
+namespace sandpaper::runtime {
+
+enum class HandPath {
+  Scan,    // back and forth along the x axis through the patch centre, constant speed, turning at +-amplitude
+  Circle,  // a circle of radius `amplitude` about the patch centre at constant speed
+};
+
+struct HandScript {
+  HandPath path = HandPath::Scan;
+  double speed_m_s = 0.05;        // along the path
+  double amplitude_m = 0.03;      // scan half-width, or circle radius
+  double direction_rad = 0;       // scan direction (0 = along x)
+};
+
+struct TickRecord {
+  double t_s;
+  glm::dvec2 position_m;
+  glm::dvec2 force_N;
+};
+
+class SimJoystick final : public Device {
+ public:
+  // `capacity_ticks`: how many ticks to record; ticks beyond it are played but not recorded.
+  SimJoystick(DeviceLimits limits, HandScript script, std::size_t capacity_ticks);
+  const DeviceLimits& limits() const noexcept override { return limits_; }
+  bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override;
+  bool write_force_rt(glm::dvec2 force_N) noexcept override;
+
+  // Where the script puts the hand at time t (s). Pure; used by read_position_rt and tests.
+  glm::dvec2 hand_position(double t_s) const noexcept;
+  // Records of the ticks played so far (read after the loop has stopped).
+  const std::vector<TickRecord>& records() const noexcept { return records_; }
+  std::size_t ticks_played() const noexcept { return ticks_; }
+
+ private:
+  DeviceLimits limits_;
+  HandScript script_;
+  std::vector<TickRecord> records_;  // reserved up front; push_back never reallocates on the servo thread
+  std::size_t ticks_ = 0;
+  double last_t_ = 0;
+  glm::dvec2 last_position_{0, 0};
+};
+
+// The sim device's limits (calibration/devices/sim.toml restates them): 10 N maximum force as the
+// thesis joystick (Table 2), 900 Hz - 10 kHz, 9-inch circular workspace.
+DeviceLimits sim_device_limits();
+
+}  // namespace sandpaper::runtime

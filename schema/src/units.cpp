@@ -1,0 +1,73 @@
+#include "sandpaper/schema/units.hpp"
+
+#include <array>
+#include <string>
+
+namespace sandpaper::schema {
+namespace {
+constexpr double kStandardGravity = 9.80665;          // m/s^2, ISO 80000-4
+constexpr double kGramForce = 1e-3 * kStandardGravity;  // N
+constexpr double kOunceForce = 28.349523125 * kGramForce;
+constexpr double kPi = 3.14159265358979323846;
+
+constexpr std::array kUnits{
+    UnitDef{"m", Dimension::Length, 1.0},
+    UnitDef{"cm", Dimension::Length, 1e-2},
+    UnitDef{"mm", Dimension::Length, 1e-3},
+    UnitDef{"um", Dimension::Length, 1e-6},
+    UnitDef{"in", Dimension::Length, 25.4e-3},
+    UnitDef{"N", Dimension::Force, 1.0},
+    UnitDef{"mN", Dimension::Force, 1e-3},
+    UnitDef{"gf", Dimension::Force, kGramForce},
+    UnitDef{"ozf", Dimension::Force, kOunceForce},
+    UnitDef{"N/m", Dimension::Stiffness, 1.0},
+    UnitDef{"N/mm", Dimension::Stiffness, 1e3},
+    UnitDef{"N*s/m", Dimension::Damping, 1.0},
+    UnitDef{"deg", Dimension::Angle, kPi / 180.0},
+    UnitDef{"%", Dimension::Fraction, 1e-2},
+};
+}  // namespace
+
+std::string_view si_unit_name(Dimension d) {
+  switch (d) {
+    case Dimension::Length: return "m";
+    case Dimension::Force: return "N";
+    case Dimension::Stiffness: return "N/m";
+    case Dimension::Damping: return "N*s/m";
+    case Dimension::Angle: return "rad";
+    case Dimension::Fraction: return "1";
+  }
+  return "?";
+}
+
+std::string_view dimension_name(Dimension d) {
+  switch (d) {
+    case Dimension::Length: return "length";
+    case Dimension::Force: return "force";
+    case Dimension::Stiffness: return "stiffness";
+    case Dimension::Damping: return "damping";
+    case Dimension::Angle: return "angle";
+    case Dimension::Fraction: return "fraction";
+  }
+  return "?";
+}
+
+std::span<const UnitDef> all_units() { return kUnits; }
+
+std::optional<UnitDef> find_unit(std::string_view name) {
+  for (const auto& u : kUnits)
+    if (u.name == name) return u;
+  return std::nullopt;
+}
+
+std::string units_of(Dimension d) {
+  std::string out;
+  for (const auto& u : kUnits) {
+    if (u.dimension != d) continue;
+    if (!out.empty()) out += ", ";
+    out += u.name;
+  }
+  return out;
+}
+
+}  // namespace sandpaper::schema
