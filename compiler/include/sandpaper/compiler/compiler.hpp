@@ -1,0 +1,55 @@
+#pragma once
+// The compiler's public API: material text -> patch program, with diagnostics.
+//
+//   sandpaper::compiler::Compiler c({});                 // shipped library and calibration
+//   auto r = c.compile_file("corduroy.hmat");
+//   if (!r.ok()) std::cerr << format_diagnostics(r.diagnostics);
+//   else sandpaper::schema::write_patch_file("corduroy.patch", *r.program);
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/compiler/library.hpp"
+#include "sandpaper/compiler/resolved.hpp"
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::compiler {
+
+struct CompileOptions {
+  std::string device = "sim";               // a device calibration in calibration/devices/
+  std::filesystem::path library_dir;        // empty: default_library_dir()
+  std::filesystem::path calibration_dir;    // empty: calibration::default_calibration_dir()
+};
+
+struct CompileResult {
+  Diagnostics diagnostics;
+  std::optional<ResolvedMaterial> material;     // set when resolution succeeded
+  std::optional<schema::PatchProgram> program;  // set only if there were no errors at all
+  bool ok() const { return program.has_value() && !diagnostics.has_errors(); }
+};
+
+class Compiler {
+ public:
+  // Throws calibration::CalibrationError if the calibration data cannot be read, and
+  // std::invalid_argument for an unknown device (the message lists the known ones).
+  explicit Compiler(CompileOptions options);
+
+  // `path` is shown in diagnostics as given. A missing file is a diagnostic, not an exception.
+  CompileResult compile_file(const std::filesystem::path& path) const;
+  // One-line expressions (`-e`): statements separated by ';', or a bare library name.
+  CompileResult compile_text(const std::string& text, const std::string& display_name = "<-e>") const;
+
+  const calibration::CalibrationSet& calibration() const { return calibration_; }
+  const calibration::DeviceCalibration& device() const { return *device_; }
+  const Library& library() const { return library_; }
+
+ private:
+  CompileOptions options_;
+  calibration::CalibrationSet calibration_;
+  const calibration::DeviceCalibration* device_ = nullptr;
+  Library library_;
+};
+
+}  // namespace sandpaper::compiler

@@ -1,0 +1,58 @@
+#pragma once
+// Diagnostics are data: a stable code, a severity, where, what, and how to fix it. User errors
+// (bad material files) are Diagnostics; internal errors (bugs) are exceptions of type
+// InternalError and are never shown as the user's fault.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sandpaper/compiler/source.hpp"
+
+namespace sandpaper::compiler {
+
+enum class Severity { Error, Warning, Note };
+
+struct DiagnosticNote {
+  SourceLocation location;
+  std::string message;
+};
+
+struct Diagnostic {
+  std::string code;        // "E0202"; codes are listed in schema/LANGUAGE.md, "Diagnostics"
+  Severity severity = Severity::Error;
+  SourceLocation location;
+  std::string message;     // what is wrong, one line
+  std::string suggestion;  // how to fix it, e.g. "did you mean `corduroy`?"; may be empty
+  std::vector<DiagnosticNote> notes;  // other places involved, e.g. the first of two conflicting lines
+};
+
+// Collects diagnostics in the order they were found.
+class Diagnostics {
+ public:
+  Diagnostic& error(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
+  Diagnostic& warning(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
+  void append(const Diagnostics& other);
+  bool has_errors() const noexcept { return errors_ > 0; }
+  const std::vector<Diagnostic>& all() const noexcept { return list_; }
+
+ private:
+  std::vector<Diagnostic> list_;
+  int errors_ = 0;
+};
+
+// Clang-style text: "file:line:col: error[E0202]: message", the source line, a caret under the
+// offending text, then "help: suggestion" and any notes, each with its own caret.
+std::string format_diagnostic(const Diagnostic& d);
+std::string format_diagnostics(const Diagnostics& ds);
+
+// A bug in Sandpaper, not in the user's input.
+struct InternalError : std::logic_error {
+  using std::logic_error::logic_error;
+};
+
+// Levenshtein distance, for "did you mean" suggestions.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+// The candidate closest to `word` if it is close enough to be a likely typo; empty otherwise.
+std::string closest_match(std::string_view word, const std::vector<std::string>& candidates);
+
+}  // namespace sandpaper::compiler

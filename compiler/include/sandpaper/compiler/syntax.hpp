@@ -1,0 +1,70 @@
+#pragma once
+// Phase 2 output: the syntax of one material, statement by statement, with every quantity's value
+// already in SI and every statement's location kept for later diagnostics.
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "sandpaper/compiler/source.hpp"
+#include "sandpaper/schema/units.hpp"
+
+namespace sandpaper::compiler {
+
+// A number with its unit, e.g. "3.2 mm" -> value 3.2, unit "mm", si 0.0032.
+struct Quantity {
+  double value = 0;
+  std::string unit;
+  double si = 0;
+  SourceLocation location;  // spans the number and the unit
+  std::string text() const;  // "3.2 mm"
+};
+
+// Representative: the intent, kept verbatim in the output (thesis 1.5.2).
+struct DescribesStmt { std::string text; };
+// Representative: start from a library entry.
+struct LikeStmt { std::string name; SourceLocation name_location; };
+// Perceptual: ratio-scale roughness (a number) or a named level ("coarse").
+struct RoughnessStmt {
+  std::optional<double> value;
+  std::string level;
+  SourceLocation value_location;
+};
+// Physical: a grating (thesis 3.5.2 version-2 recipe).
+struct GratingStmt {
+  Quantity period;
+  std::optional<Quantity> hill, amplitude, orientation, smoothing;
+};
+// Physical: an image read as a height field (thesis 3.2.2, 3.4).
+struct HeightmapStmt {
+  std::string path;
+  SourceLocation path_location;
+  Quantity width;
+  std::optional<Quantity> height, smoothing, amplitude;
+  bool repeat = false;
+};
+struct SpringStmt { Quantity stiffness; };
+struct DamperStmt { Quantity damping; };
+struct SizeStmt { Quantity width; std::optional<Quantity> height; };
+// Permits roughness above 1, beyond the strongest calibrated stimulus.
+struct ExtrapolateStmt {};
+
+using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, GratingStmt, HeightmapStmt, SpringStmt,
+                                   DamperStmt, SizeStmt, ExtrapolateStmt>;
+
+struct Statement {
+  StatementNode node;
+  std::string keyword;       // "grating"
+  SourceLocation location;   // the keyword
+  std::string text;          // the statement as written, for provenance ("grating period 3.2 mm hill 50%")
+};
+
+struct MaterialSyntax {
+  std::string name;  // from `material "name" { }`; empty for a bare statement list
+  SourceLocation name_location;
+  std::vector<Statement> statements;
+  std::shared_ptr<const SourceFile> file;
+};
+
+}  // namespace sandpaper::compiler

@@ -1,0 +1,96 @@
+#include "sandpaper/compiler/codegen.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "sandpaper/compiler/textures.hpp"
+
+namespace sandpaper::compiler {
+namespace {
+
+std::string num(double v, int precision = 4) {
+  std::ostringstream os;
+  os.precision(precision);
+  os << v;
+  return os.str();
+}
+
+void record(schema::PatchProgram& out, const std::string& parameter, const Param& p, const char* si_unit) {
+  out.provenance.push_back({parameter, p.si, si_unit, p.stated, layer_name(p.layer), p.source});
+}
+
+}  // namespace
+
+bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
+              const calibration::DeviceCalibration& device, schema::PatchProgram& out, Diagnostics& diags) {
+  const auto& map = cal.roughness_map();
+  out = {};
+  out.name = m.name;
+  out.describes = m.describes;
+  out.device = device.name;
+  out.size_m[0] = m.size_width.si;
+  out.size_m[1] = m.size_height.si;
+  out.roughness_map = map.id;
+  record(out, "patch.width", m.size_width, "m");
+  record(out, "patch.height", m.size_height, "m");
+
+  bool has_texture = !std::holds_alternative<std::monostate>(m.texture);
+  if (has_texture) {
+    if (!m.max_lateral_force) throw InternalError("codegen: texture without a force after resolution");
+    const Param& force = *m.max_lateral_force;
+    if (force.si > device.max_force_N) {
+      double best = map.roughness_of(device.max_force_N);
+      diags.error("E0310", force.location,
+                  "this material asks for " + num(force.si) + " N of lateral force (" + force.stated + "); device '" +
+                      device.name + "' reaches " + num(device.max_force_N) + " N at most",
+                  "this device reaches roughness " + num(best, 3) + " at most; lower the roughness or amplitude");
+      return false;
+    }
+    record(out, "texture.max_lateral_force", force, "N");
+    if (m.roughness) record(out, "texture.roughness_target", *m.roughness, "1");
+
+    if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
+      Param sigma = g->smoothing ? *g->smoothing
+                                 : Param{g->period.si * kSeedSigmaPerPeriod,
+                                         "6/256 of the period (thesis 3.5.2 seed, Gaussian kernel 24 of 256 px)",
+                                         Layer::Default, "default", {}};
+      // Below 1/512 of the period the walls are steeper than the 1024-sample table can hold.
+      if (sigma.si < g->period.si / 512) {
+        diags.error("E0304", sigma.location.file ? sigma.location : g->location,
+                    "grating smoothing " + num(sigma.si * 1e3) + " mm is too sharp to display: the walls would be vertical",
+                    "use a smoothing of at least " + num(g->period.si / 512 * 1e3) + " mm (1/512 of the period)");
+        return false;
+      }
+      out.terms.emplace_back(make_grating(g->period.si, g->hill.si, g->orientation.si, sigma.si, force.si));
+      record(out, "texture.period", g->period, "m");
+      record(out, "texture.hill", g->hill, "1");
+      record(out, "texture.orientation", g->orientation, "rad");
+      record(out, "texture.smoothing", sigma, "m");
+    } else if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture)) {
+      schema::HeightFieldTerm field;
+      std::string summary;
+      if (!make_height_field(*h, force.si, field, diags, summary)) return false;
+      out.terms.emplace_back(std::move(field));
+      out.provenance.push_back({"texture.image", 0, "", h->stated_path + " (" + summary + ")", "physical", h->source});
+      record(out, "texture.image_width", h->width, "m");
+      record(out, "texture.image_height", h->height, "m");
+      if (h->smoothing) record(out, "texture.smoothing", *h->smoothing, "m");
+    }
+    out.max_lateral_force_N = force.si;
+    out.roughness = map.roughness_of(force.si);
+    out.provenance.push_back({"texture.roughness", out.roughness, "1",
+                              "(F / " + num(map.reference_force_N) + " N)^" + num(map.slope, 6), "derived",
+                              map.id + " (" + map.source + ")"});
+  }
+  if (m.spring) {
+    out.terms.emplace_back(schema::SpringTerm{m.spring->si, {0, 0}});
+    record(out, "spring.stiffness", *m.spring, "N/m");
+  }
+  if (m.damper) {
+    out.terms.emplace_back(schema::DamperTerm{m.damper->si});
+    record(out, "damper.damping", *m.damper, "N*s/m");
+  }
+  return true;
+}
+
+}  // namespace sandpaper::compiler

@@ -1,0 +1,66 @@
+#include "sandpaper/compiler/compiler.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "sandpaper/compiler/codegen.hpp"
+#include "sandpaper/compiler/lexer.hpp"
+#include "sandpaper/compiler/parser.hpp"
+#include "sandpaper/compiler/resolver.hpp"
+
+namespace sandpaper::compiler {
+namespace {
+
+CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Library& lib,
+                             const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device) {
+  CompileResult r;
+  auto tokens = lex(file, r.diagnostics);
+  auto syntax = parse(tokens, file, r.diagnostics);
+  ResolveContext ctx{lib, cal, {}};
+  ResolvedMaterial m = resolve(syntax, ctx, r.diagnostics);
+  // Never use the output of a failed phase: stop at the first phase with errors.
+  if (r.diagnostics.has_errors()) return r;
+  r.material = m;
+  schema::PatchProgram program;
+  if (!generate(m, cal, device, program, r.diagnostics)) return r;
+  for (const auto& d : r.diagnostics.all())
+    if (d.severity == Severity::Warning) program.warnings.push_back({d.code, d.location.str() + ": " + d.message});
+  r.program = std::move(program);
+  return r;
+}
+
+}  // namespace
+
+Compiler::Compiler(CompileOptions options)
+    : options_(std::move(options)),
+      calibration_(calibration::CalibrationSet::load(
+          options_.calibration_dir.empty() ? calibration::default_calibration_dir() : options_.calibration_dir)),
+      library_(options_.library_dir.empty() ? default_library_dir() : options_.library_dir) {
+  device_ = calibration_.find_device(options_.device);
+  if (!device_) {
+    std::string names;
+    for (const auto& d : calibration_.devices()) names += (names.empty() ? "" : ", ") + d.name;
+    throw std::invalid_argument("unknown device '" + options_.device + "'; known devices: " + names);
+  }
+}
+
+CompileResult Compiler::compile_file(const std::filesystem::path& path) const {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path)) {
+    CompileResult r;
+    auto f = std::make_shared<const SourceFile>(path.string(), "");
+    r.diagnostics.error("E0001", SourceLocation{f, 0, 0, 1}, "cannot open material file '" + path.string() + "'",
+                        "check the path; material files end in .hmat");
+    return r;
+  }
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return compile_source(std::make_shared<const SourceFile>(path.string(), ss.str()), library_, calibration_, *device_);
+}
+
+CompileResult Compiler::compile_text(const std::string& text, const std::string& display_name) const {
+  return compile_source(std::make_shared<const SourceFile>(display_name, text), library_, calibration_, *device_);
+}
+
+}  // namespace sandpaper::compiler

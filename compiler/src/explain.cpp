@@ -1,0 +1,73 @@
+#include "sandpaper/compiler/explain.hpp"
+
+#include <iomanip>
+#include <sstream>
+
+#include "sandpaper/schema/patch_json.hpp"
+
+namespace sandpaper::compiler {
+namespace {
+
+std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s + " " : s + std::string(w - s.size(), ' '); }
+
+}  // namespace
+
+std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& p,
+                         const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device) {
+  const auto& map = cal.roughness_map();
+  std::ostringstream os;
+  os << std::setprecision(4);
+  os << "material  " << p.name << "\n";
+  if (!p.describes.empty()) os << "describes \"" << p.describes << "\"\n";
+  os << "device    " << device.name << " (maximum force " << device.max_force_N << " N)\n\n";
+
+  os << "layers (resolved in this order; what a file says beats what it inherits)\n";
+  os << "  representative  ";
+  if (m.like_chain.empty()) os << "none\n";
+  else {
+    for (std::size_t i = 0; i < m.like_chain.size(); ++i) os << (i ? " -> like " : "like ") << m.like_chain[i];
+    os << "  (library/" << m.like_chain.front() << ".hmat)\n";
+  }
+  os << "  perceptual      ";
+  if (m.roughness)
+    os << m.roughness->stated << " [" << layer_name(m.roughness->layer) << ", " << m.roughness->source << "]\n"
+       << "                  -> maximum lateral force F = " << map.reference_force_N << " N * r^(1/" << map.slope
+       << ") = " << m.max_lateral_force->si << " N  (" << map.id << ": " << map.source << ")\n";
+  else os << "none\n";
+  os << "  physical        ";
+  if (const auto* g = std::get_if<ResolvedGrating>(&m.texture))
+    os << "grating, period " << g->period.stated << " [" << g->period.source << "]\n";
+  else if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture))
+    os << "height map \"" << h->stated_path << "\" [" << h->source << "]\n";
+  else os << "no texture\n";
+  if (m.spring) os << "                  spring " << m.spring->stated << " [" << m.spring->source << "]\n";
+  if (m.damper) os << "                  damper " << m.damper->stated << " [" << m.damper->source << "]\n";
+
+  os << "\nparameters\n";
+  os << "  " << pad("parameter", 28) << pad("value", 14) << pad("layer", 16) << "source (as stated)\n";
+  for (const auto& pv : p.provenance) {
+    std::string value = pv.si_unit.empty() ? "" : schema::display_value(pv.value_si, pv.si_unit);
+    os << "  " << pad(pv.parameter, 28) << pad(value, 14) << pad(pv.layer, 16) << pv.source;
+    if (!pv.stated.empty()) os << "  (" << pv.stated << ")";
+    os << "\n";
+  }
+
+  os << "\nresult\n";
+  if (p.max_lateral_force_N > 0) {
+    os << "  maximum lateral force " << p.max_lateral_force_N << " N (" << p.max_lateral_force_N / 9.80665e-3
+       << " gf) over the patch less its rim\n";
+    os << "  predicted roughness   " << p.roughness << " on the ratio scale (1 = " << map.reference_force_N
+       << " N; " << map.id << ", R^2 = " << map.r_squared << ")\n";
+  } else {
+    os << "  no texture: no lateral-force roughness\n";
+  }
+  os << "  patch                 " << p.size_m[0] * 1e3 << " mm x " << p.size_m[1] * 1e3 << " mm, " << p.terms.size()
+     << " force term" << (p.terms.size() == 1 ? "" : "s") << "\n";
+  if (!p.warnings.empty()) {
+    os << "\nwarnings\n";
+    for (const auto& w : p.warnings) os << "  " << w.code << " " << w.message << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace sandpaper::compiler

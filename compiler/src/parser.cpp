@@ -1,0 +1,383 @@
+#include "sandpaper/compiler/parser.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace sandpaper::compiler {
+
+using schema::Dimension;
+
+std::string Quantity::text() const {
+  std::ostringstream os;
+  os << value;
+  return unit == "%" ? os.str() + "%" : os.str() + " " + unit;
+}
+
+const std::vector<std::string>& statement_keywords() {
+  static const std::vector<std::string> k{"describes", "like",   "roughness", "grating",    "heightmap",
+                                          "spring",    "damper", "size",      "extrapolate"};
+  return k;
+}
+
+namespace {
+
+// Thrown inside a statement to abandon it; the diagnostic has already been recorded.
+struct StatementError {};
+
+class Parser {
+ public:
+  Parser(const std::vector<Token>& tokens, std::shared_ptr<const SourceFile> file, Diagnostics& diags)
+      : toks_(tokens), file_(std::move(file)), diags_(diags) {}
+
+  // file := End* (material_block | statement_list) End* Eof
+  MaterialSyntax file() {
+    MaterialSyntax m;
+    m.file = file_;
+    skip_ends();
+    if (peek().kind == TokenKind::Word && peek().text == "material") {
+      material_block(m);
+      skip_ends();
+      if (peek().kind != TokenKind::Eof)
+        diags_.error("E0208", peek().location, "text after the material block",
+                     "a file holds one material; move this into the block or into a file of its own");
+    } else {
+      statement_list(m, /*in_block=*/false);
+    }
+    // A bare name as the whole expression means `like <name>` (`sandpaper run -e corduroy`).
+    return m;
+  }
+
+ private:
+  // material_block := 'material' STRING '{' End* (statement End+)* '}'
+  void material_block(MaterialSyntax& m) {
+    next();  // 'material'
+    if (peek().kind != TokenKind::String) {
+      diags_.error("E0201", peek().location, std::string("expected the material's name as a string, found ") + describe(peek()),
+                   "write material \"name\" { ... }");
+    } else {
+      m.name = peek().text;
+      m.name_location = peek().location;
+      next();
+    }
+    if (peek().kind != TokenKind::LBrace) {
+      diags_.error("E0201", peek().location, std::string("expected '{' after the material name, found ") + describe(peek()),
+                   "open the material's body with '{'");
+      // Read the statements anyway so that their errors are reported too.
+    } else {
+      next();
+    }
+    statement_list(m, /*in_block=*/true);
+    if (peek().kind == TokenKind::RBrace) {
+      next();
+    } else {
+      diags_.error("E0207", m.name_location.file ? m.name_location : peek().location,
+                   "the material block is not closed", "add '}' after its last statement");
+    }
+  }
+
+  // statement_list := (statement? End)*   -- stops at '}' (in a block) or end of file
+  void statement_list(MaterialSyntax& m, bool in_block) {
+    while (true) {
+      skip_ends();
+      const Token& t = peek();
+      if (t.kind == TokenKind::Eof) return;
+      if (t.kind == TokenKind::RBrace) {
+        if (in_block) return;
+        diags_.error("E0201", t.location, "unexpected '}' with no open material block", "remove it");
+        next();
+        continue;
+      }
+      try {
+        auto st = statement(m.statements.empty());
+        expect_end(st.keyword);
+        m.statements.push_back(std::move(st));
+      } catch (const StatementError&) {
+        recover(in_block);
+      }
+    }
+  }
+
+  // statement := describes | like | roughness | grating | heightmap | spring | damper | size | extrapolate
+  //            | NAME            (a lone name as the whole input: like NAME)
+  Statement statement(bool first) {
+    const Token& kw = peek();
+    if (kw.kind != TokenKind::Word) {
+      diags_.error("E0201", kw.location, std::string("expected a statement, found ") + describe(kw),
+                   "statements start with a word such as grating, roughness or like");
+      throw StatementError{};
+    }
+    Statement st;
+    st.keyword = kw.text;
+    st.location = kw.location;
+    std::size_t start = pos_;
+    next();
+    const std::string& k = kw.text;
+    if (k == "describes") st.node = describes();
+    else if (k == "like") st.node = like();
+    else if (k == "roughness") st.node = roughness();
+    else if (k == "grating") st.node = grating();
+    else if (k == "heightmap") st.node = heightmap();
+    else if (k == "spring") st.node = SpringStmt{quantity(Dimension::Stiffness, "the spring's stiffness")};
+    else if (k == "damper") st.node = DamperStmt{quantity(Dimension::Damping, "the damper's damping")};
+    else if (k == "size") st.node = size();
+    else if (k == "extrapolate") st.node = ExtrapolateStmt{};
+    else if (first && at_end_of_input()) {
+      // The whole input is one name: a representative description.
+      st.keyword = "like";
+      st.node = LikeStmt{k, kw.location};
+    } else {
+      std::string guess = closest_match(k, statement_keywords());
+      diags_.error("E0202", kw.location, "unknown statement '" + k + "'",
+                   guess.empty() ? "statements are: describes, like, roughness, grating, heightmap, spring, damper, size, extrapolate"
+                                 : "did you mean `" + guess + "`?");
+      throw StatementError{};
+    }
+    st.text = span_text(start, pos_);
+    return st;
+  }
+
+  // describes := 'describes' STRING
+  DescribesStmt describes() {
+    if (peek().kind != TokenKind::String) {
+      diags_.error("E0201", peek().location, std::string("expected a quoted description, found ") + describe(peek()),
+                   "write describes \"what this material is meant to feel like\"");
+      throw StatementError{};
+    }
+    return DescribesStmt{next().text};
+  }
+
+  // like := 'like' NAME
+  LikeStmt like() {
+    if (peek().kind != TokenKind::Word) {
+      diags_.error("E0201", peek().location, std::string("expected a library entry's name, found ") + describe(peek()),
+                   "write like corduroy (see `sandpaper library` for the names)");
+      throw StatementError{};
+    }
+    const Token& t = next();
+    return LikeStmt{t.text, t.location};
+  }
+
+  // roughness := 'roughness' (NUMBER | LEVEL)
+  RoughnessStmt roughness() {
+    const Token& t = peek();
+    if (t.kind == TokenKind::Number) {
+      next();
+      if (pos_ < toks_.size() && peek().kind == TokenKind::Word && schema::find_unit(peek().text)) {
+        diags_.error("E0205", peek().location, "roughness is a ratio-scale number and takes no unit",
+                     "write roughness 0.6, or give a force with amplitude (e.g. grating ... amplitude 2 N)");
+        throw StatementError{};
+      }
+      return RoughnessStmt{t.number, {}, t.location};
+    }
+    if (t.kind == TokenKind::Word) {
+      next();
+      return RoughnessStmt{std::nullopt, t.text, t.location};
+    }
+    diags_.error("E0201", t.location, std::string("expected a roughness number or level, found ") + describe(t),
+                 "write roughness 0.6 (ratio scale, 1 = 3.746 N) or roughness coarse");
+    throw StatementError{};
+  }
+
+  // grating := 'grating' 'period' LENGTH ( 'hill' FRACTION | 'amplitude' FORCE | 'orientation' ANGLE
+  //                                       | 'smoothing' LENGTH )*
+  GratingStmt grating() {
+    GratingStmt g;
+    if (!(peek().kind == TokenKind::Word && peek().text == "period")) {
+      diags_.error("E0201", peek().location, std::string("expected `period`, found ") + describe(peek()),
+                   "write grating period 2.5 mm [hill 50%] [amplitude 2 N] [orientation 0 deg]");
+      throw StatementError{};
+    }
+    next();
+    g.period = quantity(Dimension::Length, "the grating period");
+    static const std::vector<std::string> opts{"hill", "amplitude", "orientation", "smoothing"};
+    while (peek().kind == TokenKind::Word) {
+      const Token& o = next();
+      if (o.text == "hill") set_once(g.hill, o, Dimension::Fraction, "the hill fraction");
+      else if (o.text == "amplitude") set_once(g.amplitude, o, Dimension::Force, "the force amplitude");
+      else if (o.text == "orientation") set_once(g.orientation, o, Dimension::Angle, "the grating orientation");
+      else if (o.text == "smoothing") set_once(g.smoothing, o, Dimension::Length, "the smoothing");
+      else unknown_option("grating", o, opts);
+    }
+    return g;
+  }
+
+  // heightmap := 'heightmap' STRING 'size' LENGTH ['x' LENGTH] ( 'smoothing' LENGTH | 'amplitude' FORCE | 'repeat' )*
+  HeightmapStmt heightmap() {
+    HeightmapStmt h;
+    if (peek().kind != TokenKind::String) {
+      diags_.error("E0201", peek().location, std::string("expected the image file as a quoted path, found ") + describe(peek()),
+                   "write heightmap \"gravel.png\" size 80 mm");
+      throw StatementError{};
+    }
+    h.path = peek().text;
+    h.path_location = next().location;
+    if (!(peek().kind == TokenKind::Word && peek().text == "size")) {
+      diags_.error("E0201", peek().location, std::string("expected `size`, found ") + describe(peek()),
+                   "an image has no physical scale: say how large it is, e.g. size 80 mm or size 80 mm x 60 mm");
+      throw StatementError{};
+    }
+    next();
+    h.width = quantity(Dimension::Length, "the image width");
+    if (peek().kind == TokenKind::Word && peek().text == "x") {
+      next();
+      h.height = quantity(Dimension::Length, "the image height");
+    }
+    static const std::vector<std::string> opts{"smoothing", "amplitude", "repeat"};
+    while (peek().kind == TokenKind::Word) {
+      const Token& o = next();
+      if (o.text == "smoothing") set_once(h.smoothing, o, Dimension::Length, "the smoothing");
+      else if (o.text == "amplitude") set_once(h.amplitude, o, Dimension::Force, "the force amplitude");
+      else if (o.text == "repeat") h.repeat = true;
+      else unknown_option("heightmap", o, opts);
+    }
+    return h;
+  }
+
+  // size := 'size' LENGTH ['x' LENGTH]
+  SizeStmt size() {
+    SizeStmt s;
+    s.width = quantity(Dimension::Length, "the patch width");
+    if (peek().kind == TokenKind::Word && peek().text == "x") {
+      next();
+      s.height = quantity(Dimension::Length, "the patch height");
+    }
+    return s;
+  }
+
+  // quantity := NUMBER UNIT, UNIT of the dimension the statement needs
+  Quantity quantity(Dimension dim, const char* what) {
+    const Token& n = peek();
+    std::string units = schema::units_of(dim);
+    if (n.kind != TokenKind::Number) {
+      diags_.error("E0201", n.location, std::string("expected ") + what + " (a number and a " +
+                   std::string(schema::dimension_name(dim)) + " unit), found " + describe(n),
+                   "for example " + example(dim));
+      throw StatementError{};
+    }
+    next();
+    const Token& u = peek();
+    if (u.kind != TokenKind::Word) {
+      diags_.error("E0203", n.location, std::string("`") + n.text + "` has no unit; " + what + " is a " +
+                   std::string(schema::dimension_name(dim)),
+                   "add a unit: " + units + " (e.g. " + example(dim) + ")");
+      throw StatementError{};
+    }
+    auto def = schema::find_unit(u.text);
+    if (!def) {
+      std::vector<std::string> names;
+      for (const auto& x : schema::all_units()) names.emplace_back(x.name);
+      std::string guess = closest_match(u.text, names);
+      diags_.error("E0204", u.location, "unknown unit '" + u.text + "'",
+                   guess.empty() ? std::string(what) + " takes " + units : "did you mean `" + guess + "`?");
+      throw StatementError{};
+    }
+    if (def->dimension != dim) {
+      diags_.error("E0205", u.location, "`" + u.text + "` is a " + std::string(schema::dimension_name(def->dimension)) +
+                   " unit, but " + what + " is a " + std::string(schema::dimension_name(dim)),
+                   "use one of: " + units);
+      throw StatementError{};
+    }
+    next();
+    if (!std::isfinite(n.number)) {
+      diags_.error("E0103", n.location, "number out of range '" + n.text + "'", "use a finite number");
+      throw StatementError{};
+    }
+    SourceLocation span = n.location;
+    span.length = u.location.column + u.location.length - n.location.column;
+    if (u.location.line != n.location.line) span.length = n.location.length;
+    return Quantity{n.number, u.text, n.number * def->to_si, span};
+  }
+
+  void set_once(std::optional<Quantity>& slot, const Token& opt, Dimension dim, const char* what) {
+    if (slot) {
+      diags_.error("E0206", opt.location, "`" + opt.text + "` is given twice in one statement",
+                   "keep one of them");
+      throw StatementError{};
+    }
+    slot = quantity(dim, what);
+  }
+
+  [[noreturn]] void unknown_option(const char* stmt, const Token& o, const std::vector<std::string>& opts) {
+    std::string guess = closest_match(o.text, opts);
+    std::string list;
+    for (const auto& x : opts) list += (list.empty() ? "" : ", ") + x;
+    diags_.error("E0209", o.location, std::string("unknown ") + stmt + " option '" + o.text + "'",
+                 guess.empty() ? std::string(stmt) + " takes: " + list : "did you mean `" + guess + "`?");
+    throw StatementError{};
+  }
+
+  void expect_end(const std::string& keyword) {
+    const Token& t = peek();
+    if (t.kind == TokenKind::End || t.kind == TokenKind::Eof || t.kind == TokenKind::RBrace) return;
+    diags_.error("E0210", t.location, std::string("unexpected ") + describe(t) + " after the " + keyword + " statement",
+                 "put one statement on each line, or separate statements with ';'");
+    throw StatementError{};
+  }
+
+  // Skip to the end of the statement; leave a '}' for the block to see.
+  void recover(bool in_block) {
+    while (peek().kind != TokenKind::End && peek().kind != TokenKind::Eof && !(in_block && peek().kind == TokenKind::RBrace))
+      next();
+  }
+
+  bool at_end_of_input() const {
+    std::size_t i = pos_;
+    while (i < toks_.size() && toks_[i].kind == TokenKind::End) ++i;
+    return i >= toks_.size() || toks_[i].kind == TokenKind::Eof;
+  }
+
+  static std::string example(Dimension d) {
+    switch (d) {
+      case Dimension::Length: return "2.5 mm";
+      case Dimension::Force: return "1.5 N";
+      case Dimension::Stiffness: return "200 N/m";
+      case Dimension::Damping: return "2 N*s/m";
+      case Dimension::Angle: return "30 deg";
+      case Dimension::Fraction: return "50%";
+    }
+    return "";
+  }
+
+  static std::string describe(const Token& t) {
+    switch (t.kind) {
+      case TokenKind::Word: return "'" + t.text + "'";
+      case TokenKind::Number: return "the number " + t.text;
+      case TokenKind::String: return "the string \"" + t.text + "\"";
+      default: return token_kind_name(t.kind);
+    }
+  }
+
+  std::string span_text(std::size_t b, std::size_t e) const {
+    std::string out;
+    for (std::size_t i = b; i < e; ++i) {
+      if (!out.empty() && toks_[i].text != "%") out += ' ';
+      out += toks_[i].kind == TokenKind::String ? "\"" + toks_[i].text + "\"" : toks_[i].text;
+    }
+    return out;
+  }
+
+  const Token& peek() const { return toks_[pos_]; }
+  const Token& next() {
+    const Token& t = toks_[pos_];
+    if (pos_ + 1 < toks_.size()) ++pos_;
+    return t;
+  }
+  void skip_ends() {
+    while (peek().kind == TokenKind::End) next();
+  }
+
+  const std::vector<Token>& toks_;
+  std::shared_ptr<const SourceFile> file_;
+  Diagnostics& diags_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+MaterialSyntax parse(const std::vector<Token>& tokens, const std::shared_ptr<const SourceFile>& file,
+                     Diagnostics& diags) {
+  if (tokens.empty()) throw InternalError("parse: token stream without Eof");
+  return Parser(tokens, file, diags).file();
+}
+
+}  // namespace sandpaper::compiler

@@ -1,0 +1,377 @@
+#include "sandpaper/compiler/resolver.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "sandpaper/compiler/lexer.hpp"
+#include "sandpaper/compiler/parser.hpp"
+
+namespace sandpaper::compiler {
+
+const char* layer_name(Layer l) {
+  switch (l) {
+    case Layer::Representative: return "representative";
+    case Layer::Perceptual: return "perceptual";
+    case Layer::Physical: return "physical";
+    case Layer::Default: return "default";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string fmt_num(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
+Param stated_param(const Quantity& q, Layer layer) {
+  return Param{q.si, q.text(), layer, q.location.str(), q.location};
+}
+
+Param default_param(double si, std::string why) { return Param{si, std::move(why), Layer::Default, "default", {}}; }
+
+// Marks everything a library entry resolved to as inherited through `like <entry>`.
+void inherit(Param& p, const std::string& entry) {
+  if (p.layer == Layer::Default) return;  // a default stays a default, wherever it came through
+  p.source = "library " + entry + " (" + (p.location.file ? p.location.str() : p.source) + ")";
+  p.layer = Layer::Representative;
+}
+void inherit(std::optional<Param>& p, const std::string& entry) {
+  if (p) inherit(*p, entry);
+}
+
+ResolvedMaterial defaults() {
+  ResolvedMaterial m;
+  m.size_width = default_param(kDefaultPatchSize_m, "95 mm (thesis 5.2.3: stimuli were 9.5 cm squares)");
+  m.size_height = m.size_width;
+  return m;
+}
+
+// The quantities a statement sets, for the one-statement-per-quantity rule.
+std::vector<std::string> quantities_set(const Statement& st) {
+  return std::visit(
+      [](const auto& n) -> std::vector<std::string> {
+        using T = std::decay_t<decltype(n)>;
+        if constexpr (std::is_same_v<T, DescribesStmt>) return {"the description"};
+        else if constexpr (std::is_same_v<T, LikeStmt>) return {"the library entry to start from"};
+        else if constexpr (std::is_same_v<T, RoughnessStmt>) return {"the maximum lateral force"};
+        else if constexpr (std::is_same_v<T, GratingStmt>) {
+          std::vector<std::string> q{"the texture"};
+          if (n.amplitude) q.push_back("the maximum lateral force");
+          return q;
+        } else if constexpr (std::is_same_v<T, HeightmapStmt>) {
+          std::vector<std::string> q{"the texture"};
+          if (n.amplitude) q.push_back("the maximum lateral force");
+          return q;
+        } else if constexpr (std::is_same_v<T, SpringStmt>) return {"the spring stiffness"};
+        else if constexpr (std::is_same_v<T, DamperStmt>) return {"the damping"};
+        else if constexpr (std::is_same_v<T, SizeStmt>) return {"the patch size"};
+        else return {};
+      },
+      st.node);
+}
+
+class Resolver {
+ public:
+  Resolver(const MaterialSyntax& syn, ResolveContext& ctx, Diagnostics& diags) : syn_(syn), ctx_(ctx), diags_(diags) {}
+
+  ResolvedMaterial run() {
+    std::vector<const Statement*> kept = check_conflicts();
+    ResolvedMaterial m = defaults();
+    // Representative layer.
+    for (const auto* st : kept)
+      if (const auto* like = std::get_if<LikeStmt>(&st->node)) m = from_library(*like);
+    for (const auto* st : kept)
+      if (const auto* d = std::get_if<DescribesStmt>(&st->node)) m.describes = d->text;
+    if (!syn_.name.empty()) m.name = syn_.name;
+    for (const auto* st : kept)
+      if (std::holds_alternative<ExtrapolateStmt>(st->node)) m.extrapolate = true;
+    // Perceptual layer.
+    for (const auto* st : kept)
+      if (const auto* r = std::get_if<RoughnessStmt>(&st->node)) roughness(*r, *st, m);
+    // Physical layer.
+    for (const auto* st : kept) physical(*st, m);
+    finish(m);
+    return m;
+  }
+
+ private:
+  std::vector<const Statement*> check_conflicts() {
+    std::map<std::string, const Statement*> first;
+    std::vector<const Statement*> kept;
+    for (const auto& st : syn_.statements) {
+      bool clash = false;
+      for (const auto& q : quantities_set(st)) {
+        auto [it, inserted] = first.emplace(q, &st);
+        if (inserted) continue;
+        const Statement& a = *it->second;
+        auto& d = diags_.error("E0302", st.location,
+                               "`" + st.text + "` sets " + q + ", which line " + std::to_string(a.location.line) +
+                                   " already sets (`" + a.text + "`)",
+                               "keep one of the two statements");
+        d.notes.push_back({a.location, q + " is first set here"});
+        clash = true;
+      }
+      if (!clash) kept.push_back(&st);
+    }
+    return kept;
+  }
+
+  ResolvedMaterial from_library(const LikeStmt& like) {
+    ResolvedMaterial base = defaults();
+    auto path = ctx_.library.find(like.name);
+    if (!path) {
+      std::string guess = closest_match(like.name, ctx_.library.names());
+      diags_.error("E0301", like.name_location, "no library entry named '" + like.name + "'",
+                   guess.empty() ? "`sandpaper library` lists the entries" : "did you mean `" + guess + "`?");
+      return base;
+    }
+    for (const auto& e : ctx_.entry_stack)
+      if (e == like.name) {
+        diags_.error("E0305", like.name_location, "library entry '" + like.name + "' is built on itself (`like` cycle)",
+                     "break the cycle: an entry must not, through `like`, start from itself");
+        return base;
+      }
+    std::ifstream in(*path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    auto file = std::make_shared<const SourceFile>("library/" + like.name + ".hmat", ss.str());
+    Diagnostics sub;
+    auto toks = lex(file, sub);
+    auto syn = parse(toks, file, sub);
+    ctx_.entry_stack.push_back(like.name);
+    ResolvedMaterial entry = resolve(syn, ctx_, sub);
+    ctx_.entry_stack.pop_back();
+    if (sub.has_errors()) {
+      auto& d = diags_.error("E0306", like.name_location, "library entry '" + like.name + "' has errors",
+                             "fix " + file->name + " (its errors follow)");
+      for (const auto& s : sub.all())
+        if (s.severity == Severity::Error) d.notes.push_back({s.location, s.message});
+      return base;
+    }
+    // Inherit everything the entry resolved to; this file's statements override below.
+    ResolvedMaterial m = entry;
+    if (auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
+      inherit(g->period, like.name);
+      inherit(g->hill, like.name);
+      inherit(g->orientation, like.name);
+      inherit(g->smoothing, like.name);
+    } else if (auto* h = std::get_if<ResolvedHeightmap>(&m.texture)) {
+      inherit(h->width, like.name);
+      inherit(h->height, like.name);
+      inherit(h->smoothing, like.name);
+      h->source = "library " + like.name + " (" + h->source + ")";
+    }
+    inherit(m.max_lateral_force, like.name);
+    inherit(m.roughness, like.name);
+    inherit(m.spring, like.name);
+    inherit(m.damper, like.name);
+    if (m.size_width.layer != Layer::Default) inherit(m.size_width, like.name);
+    if (m.size_height.layer != Layer::Default) inherit(m.size_height, like.name);
+    m.like_chain.insert(m.like_chain.begin(), like.name);
+    if (m.name.empty()) m.name = like.name;
+    return m;
+  }
+
+  void roughness(const RoughnessStmt& r, const Statement& st, ResolvedMaterial& m) {
+    const auto& map = ctx_.calibration.roughness_map();
+    double value = 0;
+    std::string stated;
+    if (r.value) {
+      value = *r.value;
+      stated = "roughness " + fmt_num(value);
+      if (value < 0) {
+        diags_.error("E0304", r.value_location, "roughness " + fmt_num(value) + " is negative",
+                     "roughness runs from 0 (no lateral force) to 1 (3.746 N, the strongest calibrated stimulus)");
+        return;
+      }
+    } else {
+      const auto* lv = ctx_.calibration.find_level(r.level);
+      if (!lv) {
+        std::vector<std::string> names;
+        for (const auto& l : ctx_.calibration.roughness_levels()) names.push_back(l.name);
+        std::string guess = closest_match(r.level, names);
+        std::string all;
+        for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
+        diags_.error("E0307", r.value_location, "unknown roughness level '" + r.level + "'",
+                     guess.empty() ? "levels are: " + all + " (or give a number, e.g. roughness 0.6)"
+                                   : "did you mean `" + guess + "`?");
+        return;
+      }
+      value = lv->roughness;
+      stated = "roughness " + r.level + " (= " + fmt_num(value) + ")";
+    }
+    if (value > 1.0 && !m.extrapolate) {
+      diags_.error("E0303", r.value_location,
+                   "roughness " + fmt_num(value) + " is above 1, the strongest calibrated stimulus (382 gf = 3.746 N)",
+                   "use a value up to 1, or add the statement `extrapolate` to go beyond the measured range");
+      return;
+    }
+    double force = map.force_for(value);
+    m.roughness = Param{value, stated, Layer::Perceptual, r.value_location.str(), r.value_location};
+    m.max_lateral_force = Param{force, stated, Layer::Perceptual,
+                                r.value_location.str() + " via " + map.id, r.value_location};
+    (void)st;
+    if (value > 1.0)
+      diags_.warning("W0303", r.value_location,
+                     "roughness " + fmt_num(value) + " extrapolates the " + map.id + " map beyond its strongest stimulus (3.746 N)");
+    else if (value > 0 && force < map.domain_force_min_N * (1 - 1e-9))
+      diags_.warning("W0301", r.value_location,
+                     "roughness " + fmt_num(value) + " is below the weakest calibrated stimulus (roughness " +
+                         fmt_num(map.min_calibrated_roughness()) + ", 18 gf); the " + map.id + " map extrapolates",
+                     "the prediction is less certain here");
+  }
+
+  void physical(const Statement& st, ResolvedMaterial& m) {
+    if (const auto* g = std::get_if<GratingStmt>(&st.node)) grating(*g, st, m);
+    else if (const auto* h = std::get_if<HeightmapStmt>(&st.node)) heightmap(*h, st, m);
+    else if (const auto* s = std::get_if<SpringStmt>(&st.node)) {
+      if (non_negative(s->stiffness, "spring stiffness", "a negative spring pushes the hand away; that is Bump (issue 3)"))
+        m.spring = stated_param(s->stiffness, Layer::Physical);
+    } else if (const auto* d = std::get_if<DamperStmt>(&st.node)) {
+      if (non_negative(d->damping, "damping", "negative damping injects energy (AntiViscous, thesis App. B) and is not supported yet"))
+        m.damper = stated_param(d->damping, Layer::Physical);
+    } else if (const auto* z = std::get_if<SizeStmt>(&st.node)) {
+      if (!positive(z->width, "patch width")) return;
+      m.size_width = stated_param(z->width, Layer::Physical);
+      m.size_height = m.size_width;
+      if (z->height) {
+        if (!positive(*z->height, "patch height")) return;
+        m.size_height = stated_param(*z->height, Layer::Physical);
+      }
+    }
+  }
+
+  void grating(const GratingStmt& g, const Statement& st, ResolvedMaterial& m) {
+    bool ok = positive(g.period, "grating period");
+    if (g.hill && !(g.hill->si > 0 && g.hill->si < 1)) {
+      diags_.error("E0304", g.hill->location, "hill " + g.hill->text() + " is outside 0-100 %",
+                   "the hill is the fraction of each period that is raised: use a value between 0% and 100%, e.g. 50%");
+      ok = false;
+    }
+    if (g.smoothing) ok = non_negative(*g.smoothing, "smoothing", "") && ok;
+    if (g.amplitude) ok = non_negative(*g.amplitude, "force amplitude", "") && ok;
+    if (!ok) return;
+    // What this statement leaves out it inherits from an inherited grating, else the defaults.
+    ResolvedGrating r;
+    const auto* base = std::get_if<ResolvedGrating>(&m.texture);
+    r.period = stated_param(g.period, Layer::Physical);
+    r.hill = g.hill ? stated_param(*g.hill, Layer::Physical)
+                    : base ? base->hill : default_param(0.5, "50% (thesis 3.5.2: hill 128 px, valley 128 px)");
+    r.orientation = g.orientation ? stated_param(*g.orientation, Layer::Physical)
+                                  : base ? base->orientation : default_param(0.0, "0 deg (ribs across x)");
+    if (g.smoothing) r.smoothing = stated_param(*g.smoothing, Layer::Physical);
+    else if (base) r.smoothing = base->smoothing;
+    r.location = st.location;
+    m.texture = r;
+    if (g.amplitude) m.max_lateral_force = stated_param(*g.amplitude, Layer::Physical);
+  }
+
+  void heightmap(const HeightmapStmt& h, const Statement& st, ResolvedMaterial& m) {
+    bool ok = positive(h.width, "image width");
+    if (h.height) ok = positive(*h.height, "image height") && ok;
+    if (h.smoothing) ok = non_negative(*h.smoothing, "smoothing", "") && ok;
+    if (h.amplitude) ok = non_negative(*h.amplitude, "force amplitude", "") && ok;
+    if (!ok) return;
+    ResolvedHeightmap r;
+    std::filesystem::path p(h.path);
+    if (p.is_relative() && syn_.file) {
+      // Relative to the material file's folder; for -e text, to the working directory.
+      std::filesystem::path dir;
+      if (syn_.file->name.rfind("library/", 0) == 0) dir = ctx_.library.directory();
+      else if (syn_.file->name != "<-e>") dir = std::filesystem::path(syn_.file->name).parent_path();
+      p = dir / p;
+    }
+    r.path = p.string();
+    r.stated_path = h.path;
+    r.width = stated_param(h.width, Layer::Physical);
+    r.height = h.height ? stated_param(*h.height, Layer::Physical) : r.width;
+    if (h.smoothing) r.smoothing = stated_param(*h.smoothing, Layer::Physical);
+    r.repeat = h.repeat;
+    r.source = h.path_location.str();
+    r.location = h.path_location;
+    m.texture = r;
+    (void)st;
+    if (h.amplitude) m.max_lateral_force = stated_param(*h.amplitude, Layer::Physical);
+  }
+
+  void finish(ResolvedMaterial& m) {
+    if (m.name.empty()) m.name = syn_.file ? syn_.file->name : "material";
+    // An image without `repeat` sets the patch's size unless something else did.
+    if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture); h && !h->repeat) {
+      if (m.size_width.layer == Layer::Default) {
+        m.size_width = h->width;
+        m.size_height = h->height;
+      }
+    }
+    bool has_texture = !std::holds_alternative<std::monostate>(m.texture);
+    if (has_texture && !m.max_lateral_force) {
+      SourceLocation at = texture_location(m);
+      diags_.error("E0308", at, "the texture has no force: nothing says how strong its lateral force is",
+                   "add a perceptual `roughness 0.5` (or `roughness medium`), or a physical `amplitude 1.5 N` on the texture");
+    }
+    if (!has_texture && m.max_lateral_force && m.max_lateral_force->layer != Layer::Representative)
+      diags_.error("E0309", m.max_lateral_force->location, "roughness or amplitude given, but there is no texture to carry it",
+                   "add a texture, e.g. `grating period 2.5 mm`, or start from one with `like corduroy`");
+    if (!has_texture && !m.spring && !m.damper && !diags_.has_errors())
+      diags_.warning("W0305", syn_.name_location.file ? syn_.name_location : SourceLocation{syn_.file, 1, 1, 1},
+                     "the material has no force terms; it will feel like nothing",
+                     "add a texture, a spring or a damper");
+    // The roughness map's domain: warn where a roughness target extrapolates it.
+    const auto& map = ctx_.calibration.roughness_map();
+    if (m.roughness && m.roughness->layer == Layer::Perceptual) {
+      if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
+        double p = g->period.si;
+        if (p < map.domain_period_min_m * (1 - 1e-9) || p > map.domain_period_max_m * (1 + 1e-9))
+          diags_.warning("W0302", m.roughness->location,
+                         "grating period " + fmt_num(p * 1e3) + " mm is outside the periods the " + map.id +
+                             " map was measured on (0.7-10 mm); the roughness extrapolates",
+                         "periods from 0.7 mm to 10 mm keep the prediction inside the data");
+      } else if (std::holds_alternative<ResolvedHeightmap>(m.texture)) {
+        diags_.warning("W0304", m.roughness->location,
+                       "the " + map.id + " map was measured on gratings; for an image texture the roughness extrapolates",
+                       "treat the roughness of image textures as approximate");
+      }
+    }
+  }
+
+  SourceLocation texture_location(const ResolvedMaterial& m) const {
+    if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) return g->location;
+    if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture)) return h->location;
+    return {};
+  }
+
+  bool positive(const Quantity& q, const char* what) {
+    if (q.si > 0) return true;
+    diags_.error("E0304", q.location, std::string(what) + " " + q.text() + " must be greater than zero",
+                 "give a positive " + std::string(what));
+    return false;
+  }
+
+  bool non_negative(const Quantity& q, const char* what, const char* why) {
+    if (q.si >= 0) return true;
+    diags_.error("E0304", q.location, std::string(what) + " " + q.text() + " is negative",
+                 *why ? std::string(why) : "give zero or a positive " + std::string(what));
+    return false;
+  }
+
+  const MaterialSyntax& syn_;
+  ResolveContext& ctx_;
+  Diagnostics& diags_;
+};
+
+}  // namespace
+
+ResolvedMaterial resolve(const MaterialSyntax& syntax, ResolveContext& ctx, Diagnostics& diags) {
+  (void)kPi;
+  return Resolver(syntax, ctx, diags).run();
+}
+
+}  // namespace sandpaper::compiler

@@ -1,0 +1,18 @@
+#pragma once
+// JSON views of a patch program (for `sandpaper compile|explain|inspect --json`). Key names carry
+// their units (`max_lateral_force_N`, `period_m`); see docs/PATCH_FORMAT.md.
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::schema {
+
+// Summary of the program: material, device, size, max force, roughness, warnings, per-parameter
+// provenance (an object keyed by parameter), and one entry per term with its parameters.
+// `with_tables` adds the force tables themselves (large).
+nlohmann::json to_json(const PatchProgram& p, bool with_tables = false);
+
+// Display form of an SI value: metres as mm, radians as deg, fractions as %, others as is.
+std::string display_value(double value_si, const std::string& si_unit);
+
+}  // namespace sandpaper::schema

@@ -1,0 +1,59 @@
+#include <iostream>
+
+#include "cli.hpp"
+#include "sandpaper/compiler/explain.hpp"
+#include "sandpaper/schema/patch_io.hpp"
+#include "sandpaper/schema/patch_json.hpp"
+
+namespace sandpaper::cli {
+
+int cmd_compile(const CommonOptions& o, const std::string& output, bool explain) {
+  auto c = make_compiler(o);
+  auto in = load_input(o, c, /*allow_patch=*/false);
+  if (!in) return kExitBadInput;
+  const auto& prog = in->program;
+  std::string out_path = output;
+  if (!explain && out_path.empty() && o.expression.empty())
+    out_path = std::filesystem::path(o.file).replace_extension(".patch").string();
+  if (!explain && !out_path.empty()) schema::write_patch_file(out_path, prog);
+
+  if (o.json) {
+    auto j = schema::to_json(prog);
+    j["ok"] = true;
+    j["diagnostics"] = diagnostics_json(in->compile->diagnostics);
+    if (!explain) j["output"] = out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(out_path);
+    std::cout << j.dump(2) << "\n";
+  } else if (explain) {
+    std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device());
+  } else {
+    std::cout << prog.name << ": maximum lateral force " << prog.max_lateral_force_N << " N, roughness " << prog.roughness
+              << ", " << prog.terms.size() << " term(s) for device " << prog.device;
+    if (!out_path.empty()) std::cout << " -> " << out_path;
+    std::cout << "\n";
+  }
+  return kExitOk;
+}
+
+int cmd_library(const CommonOptions& o) {
+  auto c = make_compiler(o);
+  nlohmann::json arr = nlohmann::json::array();
+  int bad = 0;
+  for (const auto& name : c.library().names()) {
+    auto r = c.compile_text(name, "<library " + name + ">");
+    if (!r.ok()) {
+      ++bad;
+      std::cerr << compiler::format_diagnostics(r.diagnostics);
+      continue;
+    }
+    const auto& p = *r.program;
+    if (o.json)
+      arr.push_back({{"name", name}, {"describes", p.describes}, {"max_lateral_force_N", p.max_lateral_force_N}, {"roughness", p.roughness}});
+    else
+      std::cout << name << std::string(name.size() < 16 ? 16 - name.size() : 1, ' ') << "roughness " << p.roughness
+                << "  \"" << p.describes << "\"\n";
+  }
+  if (o.json) std::cout << arr.dump(2) << "\n";
+  return bad ? kExitBadInput : kExitOk;
+}
+
+}  // namespace sandpaper::cli

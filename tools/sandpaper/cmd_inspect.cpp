@@ -1,0 +1,34 @@
+#include <iostream>
+
+#include "cli.hpp"
+#include "sandpaper/schema/patch_io.hpp"
+#include "sandpaper/schema/patch_json.hpp"
+
+namespace sandpaper::cli {
+
+int cmd_inspect(const std::string& file, bool json, bool tables) {
+  auto p = schema::read_patch_file(file);
+  auto j = schema::to_json(p, tables);
+  if (json) {
+    std::cout << j.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::cout << file << ": Sandpaper patch program, format version " << schema::kPatchFormatVersion << "\n";
+  std::cout << "  material   " << p.name << "\n";
+  if (!p.describes.empty()) std::cout << "  describes  \"" << p.describes << "\"\n";
+  std::cout << "  device     " << p.device << "\n";
+  std::cout << "  size       " << p.size_m[0] * 1e3 << " mm x " << p.size_m[1] * 1e3 << " mm\n";
+  std::cout << "  maximum lateral force " << p.max_lateral_force_N << " N, roughness " << p.roughness << " ("
+            << p.roughness_map << ")\n";
+  std::cout << "  terms\n";
+  for (const auto& t : j["terms"]) std::cout << "    " << t.dump() << "\n";
+  std::cout << "  provenance\n";
+  for (const auto& pv : p.provenance)
+    std::cout << "    " << pv.parameter << " = "
+              << (pv.si_unit.empty() ? pv.stated : schema::display_value(pv.value_si, pv.si_unit)) << "  [" << pv.layer
+              << "; " << pv.source << "]\n";
+  for (const auto& w : p.warnings) std::cout << "  warning " << w.code << ": " << w.message << "\n";
+  return kExitOk;
+}
+
+}  // namespace sandpaper::cli

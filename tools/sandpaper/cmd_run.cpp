@@ -1,0 +1,152 @@
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "cli.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/runtime/sim_joystick.hpp"
+#include "sandpaper/schema/atomic_file.hpp"
+
+namespace sandpaper::cli {
+namespace {
+
+// A row of block characters: |F| over the first `span_s` seconds, so the forces felt are visible.
+std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max_force, std::size_t width) {
+  static const char* bars[] = {" ", "▁", "▂", "▃", "▄", "▅", "▆", "▇", "█"};
+  if (recs.empty() || !(max_force > 0)) return {};
+  std::string out;
+  std::size_t per = std::max<std::size_t>(1, recs.size() / width);
+  for (std::size_t i = 0; i + per <= recs.size() && out.size() < width * 3; i += per) {
+    double m = 0;
+    for (std::size_t k = i; k < i + per; ++k) m = std::max(m, std::hypot(recs[k].force_N.x, recs[k].force_N.y));
+    out += bars[static_cast<int>(std::lround(8 * m / max_force))];
+  }
+  return out;
+}
+
+}  // namespace
+
+int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
+            double amplitude_mm, const std::string& trace, bool virtual_clock) {
+  auto c = make_compiler(o);
+  if (o.device != "sim") {
+    std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim runs\n";
+    return kExitUsage;
+  }
+  const auto& dev = c.device();
+  runtime::DeviceLimits limits;
+  limits.name = dev.name;
+  limits.max_force_N = dev.max_force_N;
+  limits.min_rate_hz = dev.min_rate_hz;
+  limits.max_rate_hz = dev.max_rate_hz;
+  limits.workspace_radius_m = dev.workspace_radius_m;
+
+  runtime::ServoConfig cfg;
+  cfg.rate_hz = rate_hz;
+  cfg.duration_s = duration_s;
+  try {
+    runtime::validate_config(cfg, limits);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  if (!(speed_mm_s > 0) || !(amplitude_mm > 0) || !std::isfinite(speed_mm_s) || !std::isfinite(amplitude_mm)) {
+    std::cerr << "sandpaper: error: --speed and --amplitude must be positive (mm/s, mm)\n";
+    return kExitUsage;
+  }
+  if (amplitude_mm * 1e-3 > limits.workspace_radius_m) {
+    std::cerr << "sandpaper: error: --amplitude " << amplitude_mm << " mm leaves the " << limits.workspace_radius_m * 1e3
+              << " mm workspace radius of device '" << limits.name << "'\n";
+    return kExitUsage;
+  }
+
+  auto in = load_input(o, c, /*allow_patch=*/true);
+  if (!in) return kExitBadInput;
+  const auto& prog = in->program;
+  if (prog.device != o.device) {
+    std::cerr << "sandpaper: error: " << o.file << " was compiled for device '" << prog.device << "', not '" << o.device
+              << "'; recompile it with --device " << o.device << "\n";
+    return kExitUsage;
+  }
+
+  runtime::HandScript script;
+  script.path = hand == "circle" ? runtime::HandPath::Circle : runtime::HandPath::Scan;
+  script.speed_m_s = speed_mm_s * 1e-3;
+  script.amplitude_m = amplitude_mm * 1e-3;
+  auto ticks = static_cast<std::size_t>(std::llround(duration_s * rate_hz));
+  runtime::SimJoystick joystick(limits, script, ticks);
+  runtime::PatchEvaluator evaluator(prog);
+
+  if (!o.json)
+    std::cout << fmt::format("playing {} on {}: {:g} Hz for {:g} s, hand {} at {:g} mm/s, {} {:g} mm{}\n", prog.name,
+                             limits.name, rate_hz, duration_s, hand, speed_mm_s,
+                             hand == "circle" ? "radius" : "turning at +-", amplitude_mm,
+                             virtual_clock ? " (virtual clock)" : "");
+  runtime::ServoReport rep;
+  if (virtual_clock) {
+    runtime::VirtualClock clock;
+    rep = runtime::run_servo_loop(joystick, evaluator, clock, cfg);
+  } else {
+    rep = runtime::run_servo_thread_nonrt(joystick, evaluator, cfg);
+  }
+  const auto& map = c.calibration().roughness_map();
+  double roughness = map.roughness_of(rep.max_lateral_force_N);
+  const auto& recs = joystick.records();
+  double mean_force = 0;
+  for (const auto& r : recs) mean_force += std::hypot(r.force_N.x, r.force_N.y);
+  if (!recs.empty()) mean_force /= static_cast<double>(recs.size());
+
+  if (!trace.empty()) {
+    std::ostringstream csv;
+    csv.precision(9);
+    csv << "t_s,x_m,y_m,force_x_N,force_y_N\n";
+    for (const auto& r : recs)
+      csv << r.t_s << "," << r.position_m.x << "," << r.position_m.y << "," << r.force_N.x << "," << r.force_N.y << "\n";
+    schema::write_file_atomically(trace, csv.str());
+  }
+
+  if (o.json) {
+    nlohmann::json j{{"material", prog.name},
+                     {"device", limits.name},
+                     {"ticks", rep.ticks},
+                     {"rate_hz", rep.rate_hz},
+                     {"rate_hz_target", rate_hz},
+                     {"duration_s", duration_s},
+                     {"period_us", {{"p50", rep.period_p50_us}, {"p99", rep.period_p99_us}, {"max", rep.period_max_us}, {"min", rep.period_min_us}}},
+                     {"jitter_us", rep.jitter_us},
+                     {"compute_us", {{"p50", rep.compute_p50_us}, {"p99", rep.compute_p99_us}, {"max", rep.compute_max_us}}},
+                     {"overruns", rep.overruns},
+                     {"max_lateral_force_N", rep.max_lateral_force_N},
+                     {"mean_lateral_force_N", mean_force},
+                     {"roughness", roughness},
+                     {"roughness_map", map.id},
+                     {"compiled_max_lateral_force_N", prog.max_lateral_force_N},
+                     {"clamped_ticks", rep.clamped_ticks},
+                     {"stop_reason", rep.stop_reason},
+                     {"realtime_scheduling", rep.realtime_scheduling},
+                     {"clock", virtual_clock ? "virtual" : "monotonic"},
+                     {"hand", {{"path", hand}, {"speed_mm_s", speed_mm_s}, {"amplitude_mm", amplitude_mm}}},
+                     {"trace", trace.empty() ? nlohmann::json(nullptr) : nlohmann::json(trace)}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us; "
+                             "jitter {:.2f} us (sd); overruns {}\n",
+                             rep.ticks, rep.rate_hz, rep.period_p50_us, rep.period_p99_us, rep.period_max_us,
+                             rep.jitter_us, rep.overruns);
+    std::cout << fmt::format("  compute  p50 {:.2f} us, p99 {:.2f} us, max {:.2f} us per tick\n", rep.compute_p50_us,
+                             rep.compute_p99_us, rep.compute_max_us);
+    std::cout << fmt::format("  felt     max lateral force {:.4f} N (compiled {:.4f} N), mean {:.4f} N, clamped ticks {}\n",
+                             rep.max_lateral_force_N, prog.max_lateral_force_N, mean_force, rep.clamped_ticks);
+    std::cout << fmt::format("  percept  roughness {:.3f} predicted from the measured force ({})\n", roughness, map.id);
+    std::cout << "  |F|      " << force_strip(recs, std::max(rep.max_lateral_force_N, 1e-9), 64) << "  (whole run, 0 to max)\n";
+    std::cout << "  servo    " << (virtual_clock ? "virtual clock" : rep.realtime_scheduling ? "SCHED_FIFO, memory locked"
+                                                                   : "normal priority (SCHED_FIFO not permitted here)")
+              << "; stopped: " << rep.stop_reason << "\n";
+    if (!trace.empty()) std::cout << "  trace    " << trace << " (" << recs.size() << " ticks)\n";
+  }
+  return rep.stop_reason == "completed" ? kExitOk : kExitBadInput;
+}
+
+}  // namespace sandpaper::cli

@@ -1,0 +1,49 @@
+#include <iostream>
+
+#include "cli.hpp"
+#include "sandpaper/schema/patch_io.hpp"
+
+namespace sandpaper::cli {
+
+compiler::Compiler make_compiler(const CommonOptions& o) {
+  compiler::CompileOptions co;
+  co.device = o.device;
+  if (!o.library_dir.empty()) co.library_dir = o.library_dir;
+  if (!o.calibration_dir.empty()) co.calibration_dir = o.calibration_dir;
+  return compiler::Compiler(co);
+}
+
+nlohmann::json diagnostics_json(const compiler::Diagnostics& ds) {
+  auto arr = nlohmann::json::array();
+  for (const auto& d : ds.all()) {
+    nlohmann::json j{{"code", d.code},
+                     {"severity", d.severity == compiler::Severity::Error ? "error" : "warning"},
+                     {"location", d.location.str()},
+                     {"line", d.location.line},
+                     {"column", d.location.column},
+                     {"message", d.message},
+                     {"suggestion", d.suggestion}};
+    for (const auto& n : d.notes) j["notes"].push_back({{"location", n.location.str()}, {"message", n.message}});
+    arr.push_back(std::move(j));
+  }
+  return arr;
+}
+
+std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Compiler& c, bool allow_patch) {
+  LoadedInput in;
+  if (o.expression.empty() && allow_patch && schema::looks_like_patch_file(o.file)) {
+    in.program = schema::read_patch_file(o.file);  // PatchFormatError is reported by main
+    return in;
+  }
+  auto r = o.expression.empty() ? c.compile_file(o.file) : c.compile_text(o.expression);
+  std::cerr << compiler::format_diagnostics(r.diagnostics);
+  if (!r.ok()) {
+    if (o.json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}.dump(2) << "\n";
+    return std::nullopt;
+  }
+  in.program = *r.program;
+  in.compile = std::move(r);
+  return in;
+}
+
+}  // namespace sandpaper::cli

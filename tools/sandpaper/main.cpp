@@ -1,0 +1,90 @@
+// sandpaper: compile, explain, run and inspect haptic materials. `sandpaper --help` lists the
+// commands; schema/LANGUAGE.md describes material files.
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli.hpp"
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/schema/patch_io.hpp"
+
+namespace {
+
+void add_common(CLI::App* sub, sandpaper::cli::CommonOptions& o, bool input) {
+  if (input) {
+    sub->add_option("file", o.file, "material file (.hmat)");
+    sub->add_option("-e,--expression", o.expression, "material as one line: statements separated by ';', or a library name");
+  }
+  sub->add_option("--device", o.device, "device calibration to compile for (calibration/devices/)")->capture_default_str();
+  sub->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY or the shipped library/)");
+  sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+  sub->add_flag("--json", o.json, "print one JSON object instead of text");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace sandpaper::cli;
+  CLI::App app{"Sandpaper: compile perceptual material descriptions into patch programs and play them on a force-feedback joystick"};
+  app.require_subcommand(1);
+  CommonOptions o;
+  std::string output;
+  double rate = 1000, duration = 2, speed = 50, amplitude = 30;
+  std::string hand = "scan", trace;
+  bool virtual_clock = false, tables = false;
+
+  auto* compile = app.add_subcommand("compile", "compile a material into a patch program");
+  add_common(compile, o, true);
+  compile->add_option("-o,--output", output, "patch program to write (default: the input with .patch)");
+  auto* explain = app.add_subcommand("explain", "show how each layer of a material resolved, with units and sources");
+  add_common(explain, o, true);
+  auto* run = app.add_subcommand("run", "play a material or patch program on a device");
+  add_common(run, o, true);
+  run->add_option("--rate", rate, "servo rate, Hz (900 to 10000)")->capture_default_str();
+  run->add_option("--duration", duration, "how long to play, s")->capture_default_str();
+  run->add_option("--hand", hand, "simulated hand path")->check(CLI::IsMember({"scan", "circle"}))->capture_default_str();
+  run->add_option("--speed", speed, "hand speed, mm/s")->capture_default_str();
+  run->add_option("--amplitude", amplitude, "scan half-width or circle radius, mm")->capture_default_str();
+  run->add_option("--trace", trace, "write every tick's time, position and force to this CSV file");
+  run->add_flag("--virtual-clock", virtual_clock, "run on simulated time, as fast as possible (deterministic)");
+  auto* inspect = app.add_subcommand("inspect", "print a patch program");
+  std::string patch_file;
+  inspect->add_option("file", patch_file, "patch program (.patch)")->required();
+  inspect->add_flag("--json", o.json, "print JSON");
+  inspect->add_flag("--tables", tables, "include the force tables (with --json)");
+  auto* library = app.add_subcommand("library", "list the library's entries");
+  add_common(library, o, false);
+
+  CLI11_PARSE(app, argc, argv);
+  auto needs_input = [&](CLI::App* sub) {
+    if (o.file.empty() == o.expression.empty()) {
+      std::cerr << "sandpaper " << sub->get_name() << ": give a material file or -e '<expression>' (one of the two)\n";
+      return false;
+    }
+    return true;
+  };
+  try {
+    if (compile->parsed()) return needs_input(compile) ? cmd_compile(o, output, false) : kExitUsage;
+    if (explain->parsed()) return needs_input(explain) ? cmd_compile(o, "", true) : kExitUsage;
+    if (run->parsed())
+      return needs_input(run) ? cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock) : kExitUsage;
+    if (inspect->parsed()) return cmd_inspect(patch_file, o.json, tables);
+    if (library->parsed()) return cmd_library(o);
+  } catch (const sandpaper::schema::PatchFormatError& e) {
+    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const sandpaper::calibration::CalibrationError& e) {
+    std::cerr << "sandpaper: calibration error: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::logic_error& e) {
+    std::cerr << "sandpaper: internal error (a bug in Sandpaper, please report it): " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  return kExitUsage;
+}
