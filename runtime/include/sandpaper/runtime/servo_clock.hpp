@@ -21,8 +21,8 @@ class MonotonicClock final : public ServoClock {
 
 class VirtualClock final : public ServoClock {
  public:
-  // `compute_ns`: how much time each tick's work is taken to use (now advances by it on every
-  // now_ns() call after a sleep), so overrun handling can be tested.
+  // Time stands still except when slept forward or advanced: advance_ns() stands in for work or a
+  // stall taking time, so overrun handling can be tested.
   explicit VirtualClock(std::int64_t start_ns = 0) : now_(start_ns) {}
   std::int64_t now_ns() noexcept override { return now_; }
   void sleep_until_ns(std::int64_t deadline_ns) noexcept override {

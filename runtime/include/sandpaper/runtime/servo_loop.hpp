@@ -33,16 +33,20 @@ struct ServoReport {
 };
 
 // Throws std::invalid_argument for a rate outside 900 Hz - 10 kHz or outside the device's limits,
-// or a non-positive duration.
+// a non-positive or non-finite duration, a run shorter than one tick or longer than 10 million
+// ticks, or a non-positive velocity filter cutoff.
 void validate_config(const ServoConfig& config, const DeviceLimits& limits);
 
 // Plays `evaluator` on `device` on the calling thread with `clock`; returns when done.
-// Everything the ticks need is allocated before the first tick.
+// Everything the ticks need is allocated before the first tick. Stops at the first device fault or
+// non-finite force; in every case a zero force is written once after the last tick.
+// Calls validate_config first (and so may throw).
 ServoReport run_servo_loop(Device& device, const PatchEvaluator& evaluator, ServoClock& clock,
                            const ServoConfig& config);
 
 // Runs run_servo_loop on a new thread (SCHED_FIFO and locked memory when the platform allows it;
-// otherwise it runs with normal priority and says so in the report) and joins it.
+// otherwise it runs with normal priority and says so in the report) and joins it. Uses the
+// MonotonicClock. Never prints: the caller decides how to report a missing real-time priority.
 ServoReport run_servo_thread_nonrt(Device& device, const PatchEvaluator& evaluator, const ServoConfig& config);
 
 }  // namespace sandpaper::runtime

@@ -10,8 +10,10 @@
 namespace sandpaper::runtime {
 
 enum class HandPath {
-  Scan,    // back and forth along the x axis through the patch centre, constant speed, turning at +-amplitude
-  Circle,  // a circle of radius `amplitude` about the patch centre at constant speed
+  Scan,    // back and forth through the patch centre along `direction_rad`, constant speed, turning at
+           // +-amplitude; starts on the centre at t = 0 heading toward +direction
+  Circle,  // a circle of radius `amplitude` about the patch centre at constant speed, counter-clockwise
+           // from (amplitude, 0)
 };
 
 struct HandScript {
@@ -33,6 +35,8 @@ class SimJoystick final : public Device {
   SimJoystick(DeviceLimits limits, HandScript script, std::size_t capacity_ticks);
   const DeviceLimits& limits() const noexcept override { return limits_; }
   bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override;
+  // Records {t, position, force} of the tick whose read came just before. A write with no read
+  // before it (the loop's closing zero-force command) is accepted but is not a tick.
   bool write_force_rt(glm::dvec2 force_N) noexcept override;
 
   // Where the script puts the hand at time t (s). Pure; used by read_position_rt and tests.
@@ -44,8 +48,10 @@ class SimJoystick final : public Device {
  private:
   DeviceLimits limits_;
   HandScript script_;
+  std::size_t capacity_ = 0;
   std::vector<TickRecord> records_;  // reserved up front; push_back never reallocates on the servo thread
   std::size_t ticks_ = 0;
+  bool read_pending_ = false;
   double last_t_ = 0;
   glm::dvec2 last_position_{0, 0};
 };

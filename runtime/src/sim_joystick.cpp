@@ -1,0 +1,72 @@
+#include "sandpaper/runtime/sim_joystick.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace sandpaper::runtime {
+namespace {
+
+// Signed offset along the scan line after travelling `distance`: 0 -> +A -> -A -> 0 repeats every
+// 4A of travel, so the hand starts on the patch centre heading in +direction.
+double triangle_offset(double distance, double amplitude) noexcept {
+  const double lap = 4 * amplitude;
+  double phase = std::fmod(distance, lap);
+  if (phase < 0) phase += lap;
+  if (phase < amplitude) return phase;
+  if (phase < 3 * amplitude) return 2 * amplitude - phase;
+  return phase - lap;
+}
+
+}  // namespace
+
+SimJoystick::SimJoystick(DeviceLimits limits, HandScript script, std::size_t capacity_ticks)
+    : limits_(std::move(limits)), script_(script), capacity_(capacity_ticks) {
+  records_.reserve(capacity_ticks);
+}
+
+glm::dvec2 SimJoystick::hand_position(double t_s) const noexcept {
+  const double amplitude = script_.amplitude_m;
+  if (!(amplitude > 0)) return {0, 0};  // a zero-size path is a hand held still on the centre
+  const double distance = script_.speed_m_s * t_s;
+  switch (script_.path) {
+    case HandPath::Scan: {
+      const double offset = triangle_offset(distance, amplitude);
+      return offset * glm::dvec2{std::cos(script_.direction_rad), std::sin(script_.direction_rad)};
+    }
+    case HandPath::Circle: {
+      const double angle = distance / amplitude;
+      return amplitude * glm::dvec2{std::cos(angle), std::sin(angle)};
+    }
+  }
+  return {0, 0};
+}
+
+bool SimJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexcept {
+  position_m = hand_position(t_s);
+  last_t_ = t_s;
+  last_position_ = position_m;
+  read_pending_ = true;
+  return true;
+}
+
+bool SimJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
+  // Only a write answering a read is a tick; the loop's closing zero-force command is obeyed
+  // (the sim has nothing to do) but must not show up as an extra tick in the record.
+  if (!read_pending_) return true;
+  read_pending_ = false;
+  if (records_.size() < capacity_) records_.push_back(TickRecord{last_t_, last_position_, force_N});
+  ++ticks_;
+  return true;
+}
+
+DeviceLimits sim_device_limits() {
+  DeviceLimits limits;
+  limits.name = "sim";
+  limits.max_force_N = 10.0;
+  limits.min_rate_hz = 900.0;
+  limits.max_rate_hz = 10000.0;
+  limits.workspace_radius_m = 0.1143;
+  return limits;
+}
+
+}  // namespace sandpaper::runtime

@@ -1,0 +1,179 @@
+// The servo tick must never allocate. run_servo_loop allocates its timing arrays before the first
+// tick, so this test counts every allocation a whole run makes and checks the count does not grow
+// with the number of ticks: any allocation inside the tick would add one per tick.
+//
+// Global operator new/delete are replaced for the whole runtime_tests executable; they only count
+// while the current thread has armed them.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdlib>
+#include <new>
+#include <string>
+
+#include "runtime_test_support.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/runtime/sim_joystick.hpp"
+
+namespace {
+
+thread_local bool allocation_counting_armed = false;
+std::atomic<std::size_t> counted_allocations{0};
+
+void* allocate(std::size_t size) {
+  if (allocation_counting_armed) counted_allocations.fetch_add(1, std::memory_order_relaxed);
+  return std::malloc(size == 0 ? 1 : size);
+}
+
+void* allocate_aligned(std::size_t size, std::align_val_t alignment) {
+  if (allocation_counting_armed) counted_allocations.fetch_add(1, std::memory_order_relaxed);
+  const auto align = static_cast<std::size_t>(alignment);
+  const std::size_t rounded = (size + align - 1) / align * align;  // aligned_alloc wants a multiple
+  return std::aligned_alloc(align, rounded == 0 ? align : rounded);
+}
+
+// Out of line so GCC's -Wmismatched-new-delete does not see operator delete reach free() for memory
+// from operator new: here both really are malloc/free.
+[[gnu::noinline]] void release(void* p) noexcept { std::free(p); }
+
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (void* p = allocate(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  if (void* p = allocate(size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
+void* operator new(std::size_t size, std::align_val_t alignment) {
+  if (void* p = allocate_aligned(size, alignment)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size, std::align_val_t alignment) {
+  if (void* p = allocate_aligned(size, alignment)) return p;
+  throw std::bad_alloc();
+}
+void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
+  return allocate_aligned(size, alignment);
+}
+void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
+  return allocate_aligned(size, alignment);
+}
+void operator delete(void* p) noexcept { release(p); }
+void operator delete[](void* p) noexcept { release(p); }
+void operator delete(void* p, std::size_t) noexcept { release(p); }
+void operator delete[](void* p, std::size_t) noexcept { release(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { release(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { release(p); }
+void operator delete(void* p, std::align_val_t) noexcept { release(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { release(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { release(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { release(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
+
+namespace sandpaper::runtime {
+namespace {
+
+using testing::damper;
+using testing::grating;
+using testing::program_of;
+using testing::spring;
+
+class CountedAllocations {
+ public:
+  CountedAllocations() {
+    counted_allocations = 0;
+    allocation_counting_armed = true;
+  }
+  ~CountedAllocations() { allocation_counting_armed = false; }
+  std::size_t count() const { return counted_allocations.load(); }
+};
+
+schema::HeightFieldTerm ripple_field() {
+  schema::HeightFieldTerm field;
+  field.nx = field.ny = 64;
+  field.origin_m[0] = field.origin_m[1] = -0.04;
+  field.spacing_m[0] = field.spacing_m[1] = 0.00125;
+  field.repeat = true;
+  for (std::uint32_t i = 0; i < field.nx * field.ny; ++i) {
+    field.force_x_N.push_back(static_cast<float>(i % 7) - 3.0f);
+    field.force_y_N.push_back(static_cast<float>(i % 5) - 2.0f);
+  }
+  return field;
+}
+
+// Allocations made by one complete run of `ticks` ticks, everything else built beforehand.
+std::size_t allocations_in_run(std::uint64_t ticks) {
+  std::vector<float> table(256);
+  for (std::size_t i = 0; i < table.size(); ++i) table[i] = static_cast<float>(i % 32) * 0.1f;
+  const auto program = program_of({spring(400.0), damper(2.0), grating(0.0025, 0.4, table), ripple_field()});
+  const PatchEvaluator evaluator(program);
+  SimJoystick joystick(sim_device_limits(), HandScript{HandPath::Circle, 0.08, 0.03, 0.0}, ticks);
+  VirtualClock clock;
+  ServoConfig config;
+  config.rate_hz = 1000;
+  config.duration_s = static_cast<double>(ticks) / config.rate_hz;
+
+  std::size_t count = 0;
+  {
+    CountedAllocations counting;
+    const ServoReport report = run_servo_loop(joystick, evaluator, clock, config);
+    count = counting.count();
+    // Checked after counting stops: gtest's own assertions allocate.
+    allocation_counting_armed = false;
+    EXPECT_EQ(report.ticks, ticks);
+    EXPECT_EQ(report.stop_reason, "completed");
+  }
+  EXPECT_EQ(joystick.records().size(), ticks);
+  return count;
+}
+
+TEST(ServoNoAllocation, TheCounterSeesAnAllocation) {
+  std::size_t count = 0;
+  {
+    CountedAllocations counting;
+    int* volatile probe = new int(7);
+    delete probe;
+    count = counting.count();
+  }
+  EXPECT_EQ(count, 1u);
+}
+
+TEST(ServoNoAllocation, AllocationsDoNotGrowWithTicks) {
+  const std::size_t short_run = allocations_in_run(1000);
+  const std::size_t long_run = allocations_in_run(20000);
+  EXPECT_EQ(short_run, long_run);
+  // The two timing arrays; a tick that allocated only once (a string growing on first use, say)
+  // would not grow with the ticks but would show up here.
+  EXPECT_LE(short_run, 2u);
+}
+
+TEST(ServoNoAllocation, StoppingOnAFaultDoesNotAllocateEither) {
+  // The fault paths are part of the tick too: a NaN force stops the run on its first tick.
+  const auto program = program_of({grating(0.003, 0.0, {std::nanf(""), 1.0f})});
+  const PatchEvaluator evaluator(program);
+  SimJoystick joystick(sim_device_limits(), HandScript{}, 10);
+  VirtualClock clock;
+  ServoConfig config;
+  config.duration_s = 0.01;
+  std::size_t count = 0;
+  std::string stop_reason;
+  {
+    CountedAllocations counting;
+    const ServoReport report = run_servo_loop(joystick, evaluator, clock, config);
+    count = counting.count();
+    allocation_counting_armed = false;
+    stop_reason = report.stop_reason;
+  }
+  EXPECT_EQ(stop_reason, "non-finite force");
+  EXPECT_LE(count, 3u);  // the two timing arrays and the report's stop_reason text, after the loop
+}
+
+}  // namespace
+}  // namespace sandpaper::runtime
