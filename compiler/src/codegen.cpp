@@ -80,7 +80,7 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
     out.roughness = map.roughness_of(force.si);
     out.provenance.push_back({"texture.roughness", out.roughness, "1",
                               "(F / " + num(map.reference_force_N) + " N)^" + num(map.slope, 6), "derived",
-                              map.id + " (" + map.source + ")"});
+                              "calibration " + map.id});
   }
   if (m.spring) {
     out.terms.emplace_back(schema::SpringTerm{m.spring->si, {0, 0}});

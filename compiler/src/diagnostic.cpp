@@ -90,7 +90,9 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
   std::size_t best_d = std::string::npos;
   for (const auto& c : candidates) {
     std::size_t d = edit_distance(word, c);
-    if (d < best_d) {
+    // On a tie, prefer the candidate closest in length ("N/mn" -> "N/mm", not "N/m").
+    auto len_gap = [&](const std::string& s) { return s.size() > word.size() ? s.size() - word.size() : word.size() - s.size(); };
+    if (d < best_d || (d == best_d && len_gap(c) < len_gap(best))) {
       best_d = d;
       best = c;
     }

@@ -32,7 +32,7 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   if (m.roughness)
     os << m.roughness->stated << " [" << layer_name(m.roughness->layer) << ", " << m.roughness->source << "]\n"
        << "                  -> maximum lateral force F = " << map.reference_force_N << " N * r^(1/" << map.slope
-       << ") = " << m.max_lateral_force->si << " N  (" << map.id << ": " << map.source << ")\n";
+       << ") = " << m.max_lateral_force->si << " N  (calibration " << map.id << ")\n";
   else os << "none\n";
   os << "  physical        ";
   if (const auto* g = std::get_if<ResolvedGrating>(&m.texture))

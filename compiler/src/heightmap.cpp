@@ -118,9 +118,10 @@ bool make_height_field(const ResolvedHeightmap& h, double max_force_N, schema::H
     }
 
   // The maximum is taken inside a rim (as the thesis measured gratings away from the edges):
-  // 3 sigma of smoothing plus one pixel, where clamped edges distort the slope. Tiles have no rim.
-  int rim_x = h.repeat ? 0 : static_cast<int>(std::ceil(3 * sigma / dx)) + 1;
-  int rim_y = h.repeat ? 0 : static_cast<int>(std::ceil(3 * sigma / dy)) + 1;
+  // 3 sigma of smoothing plus the two outermost pixels, whose differences touch the clamped edge
+  // (photographs often have a border row or column). Tiles wrap, so they have no rim.
+  int rim_x = h.repeat ? 0 : static_cast<int>(std::ceil(3 * sigma / dx)) + 2;
+  int rim_y = h.repeat ? 0 : static_cast<int>(std::ceil(3 * sigma / dy)) + 2;
   if (2 * rim_x >= nx || 2 * rim_y >= ny) {
     diags.error("E0304", h.location, "the smoothing is too wide for the image: nothing is left inside its rim",
                 "use a smoothing below a sixth of the image size");

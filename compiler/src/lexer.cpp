@@ -103,6 +103,8 @@ class Lexer {
     if (pos_ >= src_.size() || src_[pos_] != '"') {
       diags_.error("E0101", loc(line, col, static_cast<int>(pos_ - b)), "unterminated string",
                    "close the string with \" on the same line");
+      // Keep the text as a string so the statement around it does not report a second error.
+      push(TokenKind::String, std::move(value), line, col, static_cast<int>(pos_ - b));
       return;
     }
     advance();  // closing quote

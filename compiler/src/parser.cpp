@@ -267,6 +267,13 @@ class Parser {
       std::vector<std::string> names;
       for (const auto& x : schema::all_units()) names.emplace_back(x.name);
       std::string guess = closest_match(u.text, names);
+      // A word nothing like a unit ("amplitude") means the unit was left out.
+      if (guess.empty()) {
+        diags_.error("E0203", n.location, std::string("`") + n.text + "` has no unit; " + what + " is a " +
+                     std::string(schema::dimension_name(dim)),
+                     "add a unit: " + units + " (e.g. " + example(dim) + ")");
+        throw StatementError{};
+      }
       diags_.error("E0204", u.location, "unknown unit '" + u.text + "'",
                    guess.empty() ? std::string(what) + " takes " + units : "did you mean `" + guess + "`?");
       throw StatementError{};

@@ -152,8 +152,12 @@ class Resolver {
     if (sub.has_errors()) {
       auto& d = diags_.error("E0306", like.name_location, "library entry '" + like.name + "' has errors",
                              "fix " + file->name + " (its errors follow)");
-      for (const auto& s : sub.all())
-        if (s.severity == Severity::Error) d.notes.push_back({s.location, s.message});
+      for (const auto& s : sub.all()) {
+        if (s.severity != Severity::Error) continue;
+        d.notes.push_back({s.location, s.message});
+        // Nested entries' own notes say what is wrong deeper down (e.g. a `like` cycle).
+        for (const auto& n : s.notes) d.notes.push_back(n);
+      }
       return base;
     }
     // Inherit everything the entry resolved to; this file's statements override below.
@@ -312,12 +316,13 @@ class Resolver {
       }
     }
     bool has_texture = !std::holds_alternative<std::monostate>(m.texture);
-    if (has_texture && !m.max_lateral_force) {
+    // After an error the missing force is usually that error's echo: report it only on its own.
+    if (has_texture && !m.max_lateral_force && !diags_.has_errors()) {
       SourceLocation at = texture_location(m);
       diags_.error("E0308", at, "the texture has no force: nothing says how strong its lateral force is",
                    "add a perceptual `roughness 0.5` (or `roughness medium`), or a physical `amplitude 1.5 N` on the texture");
     }
-    if (!has_texture && m.max_lateral_force && m.max_lateral_force->layer != Layer::Representative)
+    if (!has_texture && m.max_lateral_force && m.max_lateral_force->layer != Layer::Representative && !diags_.has_errors())
       diags_.error("E0309", m.max_lateral_force->location, "roughness or amplitude given, but there is no texture to carry it",
                    "add a texture, e.g. `grating period 2.5 mm`, or start from one with `like corduroy`");
     if (!has_texture && !m.spring && !m.damper && !diags_.has_errors())

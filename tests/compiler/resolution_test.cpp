@@ -1,0 +1,183 @@
+// Layer resolution: representative, then perceptual, then physical; the file beats what it
+// inherits; one statement per quantity in a file.
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "test_support.hpp"
+
+using namespace sandpaper;
+using compiler::Severity;
+using test::provenance;
+
+TEST(Resolution, LibraryEntryIsInheritedWhole) {
+  auto r = test::shipped_compiler().compile_text("corduroy");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  const auto& p = *r.program;
+  // library/corduroy.hmat: grating period 3.2 mm hill 60%, roughness 0.45.
+  EXPECT_DOUBLE_EQ(provenance(p, "texture.period").value_si, 0.0032);
+  EXPECT_EQ(provenance(p, "texture.period").layer, "representative");
+  EXPECT_NE(provenance(p, "texture.period").source.find("library corduroy"), std::string::npos);
+  EXPECT_DOUBLE_EQ(provenance(p, "texture.hill").value_si, 0.6);
+  EXPECT_NEAR(p.max_lateral_force_N, test::expected_force_for_roughness(0.45), 1e-9);
+  EXPECT_NEAR(p.roughness, 0.45, 1e-12);
+  EXPECT_EQ(p.describes, "wide-wale cotton corduroy, ribs across the stroke");
+}
+
+TEST(Resolution, FileBeatsInheritedParameterByParameter) {
+  auto r = test::shipped_compiler().compile_text("like corduroy; grating period 2 mm");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  const auto& p = *r.program;
+  EXPECT_DOUBLE_EQ(provenance(p, "texture.period").value_si, 0.002);
+  EXPECT_EQ(provenance(p, "texture.period").layer, "physical");
+  EXPECT_DOUBLE_EQ(provenance(p, "texture.hill").value_si, 0.6);  // not stated: inherited
+  EXPECT_EQ(provenance(p, "texture.hill").layer, "representative");
+  EXPECT_NEAR(p.roughness, 0.45, 1e-12);  // force still from the library's roughness
+}
+
+TEST(Resolution, PerceptualInFileBeatsInheritedPhysical) {
+  // a10p25 states a physical amplitude (7 ozf); this file's roughness replaces it.
+  auto r = test::shipped_compiler().compile_text("like a10p25; roughness 0.3");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NEAR(r.program->max_lateral_force_N, test::expected_force_for_roughness(0.3), 1e-9);
+  EXPECT_EQ(provenance(*r.program, "texture.max_lateral_force").layer, "perceptual");
+  auto base = test::shipped_compiler().compile_text("a10p25");
+  ASSERT_TRUE(base.ok());
+  EXPECT_NEAR(base.program->max_lateral_force_N, 7 * 0.27801385095378125, 1e-9);
+}
+
+TEST(Resolution, PhysicalAmplitudeInFileBeatsInheritedRoughness) {
+  auto r = test::shipped_compiler().compile_text("like corduroy; grating period 3 mm amplitude 50 gf");
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(r.program->max_lateral_force_N, 0.4903325, 1e-12);
+  EXPECT_EQ(provenance(*r.program, "texture.max_lateral_force").layer, "physical");
+}
+
+TEST(Resolution, RoughnessLevelByName) {
+  auto r = test::shipped_compiler().compile_text("grating period 2 mm; roughness coarse");
+  ASSERT_TRUE(r.ok());
+  // calibration/levels/roughness-levels.toml: coarse = 0.5598 (178 gf).
+  EXPECT_NEAR(r.program->roughness, 0.5598, 1e-12);
+  EXPECT_NEAR(r.program->max_lateral_force_N, 178 * 9.80665e-3, 0.01);
+  auto bad = test::shipped_compiler().compile_text("grating period 2 mm; roughness corse");
+  ASSERT_EQ(test::codes(bad), std::vector<std::string>{"E0307"});
+  EXPECT_EQ(bad.diagnostics.all()[0].suggestion, "did you mean `coarse`?");
+}
+
+TEST(Resolution, SameQuantityTwiceInOneFileNamesBothLines) {
+  auto dir = test::temp_dir("conflict");
+  std::ofstream(dir + "/m.hmat") << "material \"m\" {\n  grating period 2 mm\n  roughness 0.5\n  spring 10 N/m\n"
+                                    "  grating period 3 mm amplitude 1 N\n}\n";
+  auto r = test::shipped_compiler().compile_file(dir + "/m.hmat");
+  ASSERT_EQ(test::codes(r), (std::vector<std::string>{"E0302", "E0302"}));
+  const auto& texture = r.diagnostics.all()[0];
+  EXPECT_EQ(texture.location.line, 5);
+  ASSERT_EQ(texture.notes.size(), 1u);
+  EXPECT_EQ(texture.notes[0].location.line, 2);
+  EXPECT_NE(texture.message.find("the texture"), std::string::npos);
+  const auto& force = r.diagnostics.all()[1];
+  EXPECT_EQ(force.location.line, 5);
+  EXPECT_EQ(force.notes[0].location.line, 3);
+  EXPECT_NE(force.message.find("maximum lateral force"), std::string::npos);
+  EXPECT_FALSE(r.program);
+}
+
+TEST(Resolution, UnknownLibraryEntrySuggests) {
+  auto r = test::shipped_compiler().compile_text("like corduroi");
+  ASSERT_EQ(test::codes(r), std::vector<std::string>{"E0301"});
+  EXPECT_EQ(r.diagnostics.all()[0].suggestion, "did you mean `corduroy`?");
+  auto bare = test::shipped_compiler().compile_text("velvet");
+  EXPECT_EQ(test::codes(bare), std::vector<std::string>{"E0301"});
+}
+
+TEST(Resolution, LibraryCycleIsCaught) {
+  auto dir = test::temp_dir("cycle");
+  std::ofstream(dir + "/a.hmat") << "like b\n";
+  std::ofstream(dir + "/b.hmat") << "like a\n";
+  compiler::CompileOptions o;
+  o.library_dir = dir;
+  o.calibration_dir = std::string(SANDPAPER_SOURCE_DIR) + "/calibration";
+  compiler::Compiler c(o);
+  auto r = c.compile_text("a");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(test::codes(r)[0], "E0306");
+  bool cycle = false;
+  for (const auto& n : r.diagnostics.all()[0].notes) cycle |= n.message.find("cycle") != std::string::npos;
+  EXPECT_TRUE(cycle);
+}
+
+TEST(Resolution, RoughnessAboveOneNeedsExtrapolate) {
+  auto r = test::shipped_compiler().compile_text("grating period 2 mm; roughness 1.2");
+  EXPECT_EQ(test::codes(r), std::vector<std::string>{"E0303"});
+  auto ok = test::shipped_compiler().compile_text("grating period 2 mm; extrapolate; roughness 1.2");
+  ASSERT_TRUE(ok.ok());
+  EXPECT_EQ(test::codes(ok, Severity::Warning), std::vector<std::string>{"W0303"});
+  EXPECT_NEAR(ok.program->max_lateral_force_N, test::expected_force_for_roughness(1.2), 1e-9);
+}
+
+TEST(Resolution, ExtrapolationWarnings) {
+  auto weak = test::shipped_compiler().compile_text("grating period 2 mm; roughness 0.05");
+  ASSERT_TRUE(weak.ok());
+  EXPECT_EQ(test::codes(weak, Severity::Warning), std::vector<std::string>{"W0301"});
+  auto edge = test::shipped_compiler().compile_text("grating period 2 mm; roughness 0.0983");
+  EXPECT_TRUE(test::codes(edge, Severity::Warning).empty());
+  auto fine = test::shipped_compiler().compile_text("grating period 0.5 mm; roughness 0.5");
+  EXPECT_EQ(test::codes(fine, Severity::Warning), std::vector<std::string>{"W0302"});
+  auto wide = test::shipped_compiler().compile_text("grating period 12 mm; roughness 0.5");
+  EXPECT_EQ(test::codes(wide, Severity::Warning), std::vector<std::string>{"W0302"});
+  auto inside = test::shipped_compiler().compile_text("grating period 10 mm; roughness 0.5");
+  EXPECT_TRUE(test::codes(inside, Severity::Warning).empty());
+  // Warnings travel in the patch program too.
+  ASSERT_EQ(fine.program->warnings.size(), 1u);
+  EXPECT_EQ(fine.program->warnings[0].code, "W0302");
+}
+
+TEST(Resolution, TextureNeedsAForce) {
+  auto r = test::shipped_compiler().compile_text("grating period 2 mm");
+  EXPECT_EQ(test::codes(r), std::vector<std::string>{"E0308"});
+  auto orphan = test::shipped_compiler().compile_text("roughness 0.4; spring 10 N/m");
+  EXPECT_EQ(test::codes(orphan), std::vector<std::string>{"E0309"});
+}
+
+TEST(Resolution, OutOfRangeValues) {
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("grating period -2 mm amplitude 1 N")),
+            std::vector<std::string>{"E0304"});
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("grating period 2 mm hill 100% amplitude 1 N")),
+            std::vector<std::string>{"E0304"});
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("damper -1 N*s/m")), std::vector<std::string>{"E0304"});
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("grating period 2 mm; roughness -0.1")),
+            std::vector<std::string>{"E0304"});
+}
+
+TEST(Resolution, DeviceMaximumForceIsAnErrorThatSaysTheBestReachable) {
+  auto r = test::shipped_compiler().compile_text("grating period 2 mm amplitude 12 N");
+  ASSERT_EQ(test::codes(r), std::vector<std::string>{"E0310"});
+  // sim reaches 10 N: roughness (10 / 3.746)^0.7596 = 2.11.
+  EXPECT_NE(r.diagnostics.all()[0].suggestion.find("reaches roughness 2.11"), std::string::npos)
+      << r.diagnostics.all()[0].suggestion;
+}
+
+TEST(Resolution, UnknownDeviceIsRefused) {
+  compiler::CompileOptions o;
+  o.device = "phantom";
+  o.calibration_dir = std::string(SANDPAPER_SOURCE_DIR) + "/calibration";
+  EXPECT_THROW(compiler::Compiler{o}, std::invalid_argument);
+}
+
+TEST(Resolution, EveryLibraryEntryCompilesAndSaysWhereItsNumbersComeFrom) {
+  const auto& c = test::shipped_compiler();
+  auto names = c.library().names();
+  EXPECT_GE(names.size(), 5u);
+  for (const auto& n : names) {
+    auto r = c.compile_text(n);
+    EXPECT_TRUE(r.ok()) << n << "\n" << compiler::format_diagnostics(r.diagnostics);
+    if (r.ok()) {
+      EXPECT_FALSE(r.program->describes.empty()) << n;
+      EXPECT_GT(r.program->max_lateral_force_N, 0) << n;
+    }
+    std::ifstream in(std::string(SANDPAPER_SOURCE_DIR) + "/library/" + n + ".hmat");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("# Where the numbers come from"), std::string::npos)
+        << n << ": library entries start with a note on their numbers' sources";
+  }
+}
