@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages Sandpaper builds and tests with, if any is missing.
+# Everything comes from Debian's archive; nothing is downloaded at build time.
+set -euo pipefail
+pkgs=(
+  build-essential cmake pkg-config          # toolchain (CMake >= 3.25: bookworm has 3.25.1)
+  libopenimageio-dev                        # images as height maps
+  libglm-dev                                # 2-vectors in the runtime
+  libusb-1.0-0-dev                          # USB force-feedback devices (runtime issue)
+  libcli11-dev libfmt-dev                   # command line, formatting
+  nlohmann-json3-dev libtomlplusplus-dev    # JSON output, TOML calibration files
+  zlib1g-dev                                # CRC-32 of patch programs
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo=sudo; fi
+  echo "installing: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
