@@ -12,13 +12,16 @@
 namespace sandpaper::cli {
 namespace {
 
-// A row of block characters: |F| over the first `span_s` seconds, so the forces felt are visible.
-std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max_force, std::size_t width) {
+// A row of block characters: the largest |F| in each slice of the first `span_ticks` ticks, so
+// the texture's force pattern is visible (over a whole run every slice would reach the maximum).
+std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max_force, std::size_t width,
+                        std::size_t span_ticks) {
   static const char* bars[] = {" ", "▁", "▂", "▃", "▄", "▅", "▆", "▇", "█"};
   if (recs.empty() || !(max_force > 0)) return {};
   std::string out;
-  std::size_t per = std::max<std::size_t>(1, recs.size() / width);
-  for (std::size_t i = 0; i + per <= recs.size() && out.size() < width * 3; i += per) {
+  std::size_t span = std::min(span_ticks, recs.size());
+  std::size_t per = std::max<std::size_t>(1, span / width);
+  for (std::size_t i = 0; i + per <= span; i += per) {
     double m = 0;
     for (std::size_t k = i; k < i + per; ++k) m = std::max(m, std::hypot(recs[k].force_N.x, recs[k].force_N.y));
     out += bars[static_cast<int>(std::lround(8 * m / max_force))];
@@ -140,7 +143,9 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
     std::cout << fmt::format("  felt     max lateral force {:.4f} N (compiled {:.4f} N), mean {:.4f} N, clamped ticks {}\n",
                              rep.max_lateral_force_N, prog.max_lateral_force_N, mean_force, rep.clamped_ticks);
     std::cout << fmt::format("  percept  roughness {:.3f} predicted from the measured force ({})\n", roughness, map.id);
-    std::cout << "  |F|      " << force_strip(recs, std::max(rep.max_lateral_force_N, 1e-9), 64) << "  (whole run, 0 to max)\n";
+    auto span = static_cast<std::size_t>(std::llround(0.256 * rate_hz));
+    std::cout << "  |F|      " << force_strip(recs, std::max(rep.max_lateral_force_N, 1e-9), 64, span)
+              << "  (first 256 ms; bar height 0 to " << fmt::format("{:.3g}", rep.max_lateral_force_N) << " N)\n";
     std::cout << "  servo    " << (virtual_clock ? "virtual clock" : rep.realtime_scheduling ? "SCHED_FIFO, memory locked"
                                                                    : "normal priority (SCHED_FIFO not permitted here)")
               << "; stopped: " << rep.stop_reason << "\n";
