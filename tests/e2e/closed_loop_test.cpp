@@ -10,20 +10,11 @@
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
+#include "test_support.hpp"
 
 using namespace sandpaper;
 
 namespace {
-
-const compiler::Compiler& shipped() {
-  static const compiler::Compiler c([] {
-    compiler::CompileOptions o;
-    o.library_dir = std::string(SANDPAPER_SOURCE_DIR) + "/library";
-    o.calibration_dir = std::string(SANDPAPER_SOURCE_DIR) + "/calibration";
-    return o;
-  }());
-  return c;
-}
 
 // Issue 2's ratio scale restated independently of the calibration code: roughness 1 is 382 gf.
 double target_force(double r) { return 382 * 9.80665e-3 * std::pow(r, 1 / 0.76); }
@@ -55,7 +46,7 @@ TEST_P(ClosedLoop, ScanMeasuresTheTargetForceAndRoughness) {
   auto [roughness, period_mm] = GetParam();
   std::ostringstream src;
   src << "grating period " << period_mm << " mm hill 50%; roughness " << roughness;
-  auto r = shipped().compile_text(src.str());
+  auto r = test::shipped_compiler().compile_text(src.str());
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
 
   // A slow scan (5 mm/s, 5 um per tick at 1 kHz) so that the narrowest force peaks, at 0.7 mm
@@ -83,7 +74,7 @@ INSTANTIATE_TEST_SUITE_P(CalibratedRange, ClosedLoop,
                                             ::testing::Values(0.7, 2.5, 10.0)));
 
 TEST(ClosedLoopLibrary, LibraryCorduroyOnACircle) {
-  auto r = shipped().compile_text("corduroy");
+  auto r = test::shipped_compiler().compile_text("corduroy");
   ASSERT_TRUE(r.ok());
   runtime::HandScript circle;
   circle.path = runtime::HandPath::Circle;
@@ -96,7 +87,7 @@ TEST(ClosedLoopLibrary, LibraryCorduroyOnACircle) {
 }
 
 TEST(ClosedLoopLibrary, RealPhotographStaysUnderItsCompiledMaximumInside) {
-  auto r = shipped().compile_file(std::string(SANDPAPER_SOURCE_DIR) + "/examples/gravel.hmat");
+  auto r = test::shipped_compiler().compile_file(std::string(SANDPAPER_SOURCE_DIR) + "/examples/gravel.hmat");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   runtime::HandScript scan;
   scan.speed_m_s = 0.02;
@@ -110,7 +101,7 @@ TEST(ClosedLoopLibrary, RealPhotographStaysUnderItsCompiledMaximumInside) {
 
 TEST(ClosedLoopLibrary, ForceIsSpatialNotTemporal) {
   // The same scan at two servo rates passes the same places: the peak force agrees.
-  auto r = shipped().compile_text("a10p25");
+  auto r = test::shipped_compiler().compile_text("a10p25");
   ASSERT_TRUE(r.ok());
   runtime::HandScript scan;
   scan.speed_m_s = 0.005;
