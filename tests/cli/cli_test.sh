@@ -63,6 +63,9 @@ has "$tmp/out" '"ok": false' "json failure object"
 expect_exit 2 "rate out of range" -- "$sp" run -e corduroy --device sim --rate 800
 has "$tmp/err" '900' "rate error names the range"
 expect_exit 2 "unknown device" -- "$sp" compile -e corduroy --device phantom
+expect_exit 2 "unwritable trace is refused before playing" -- "$sp" run -e corduroy --virtual-clock --trace /nonexistent-dir/t.csv
+expect_exit 0 "spring only" -- "$sp" run -e "spring 200 N/m" --device sim --virtual-clock --json
+has "$tmp/out" '"roughness": null' "no roughness without a texture"
 printf 'SNDPATCHgarbage' >"$tmp/broken.patch"
 expect_exit 1 "corrupt patch" -- "$sp" inspect "$tmp/broken.patch"
 

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include "cli.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
@@ -65,6 +66,15 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
     return kExitUsage;
   }
 
+  if (!trace.empty()) {
+    // Refuse an unwritable trace before playing, not after.
+    auto dir = std::filesystem::path(trace).parent_path();
+    if (dir.empty()) dir = ".";
+    if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
+      std::cerr << "sandpaper: error: cannot write the trace '" << trace << "': folder " << dir << " does not exist or is not writable\n";
+      return kExitUsage;
+    }
+  }
   auto in = load_input(o, c, /*allow_patch=*/true);
   if (!in) return kExitBadInput;
   const auto& prog = in->program;
@@ -95,6 +105,9 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
     rep = runtime::run_servo_thread_nonrt(joystick, evaluator, cfg);
   }
   const auto& map = c.calibration().roughness_map();
+  // Roughness is a property of textures (the map relates a texture's peak lateral force to it);
+  // for springs and dampers alone it does not apply.
+  const bool textured = prog.max_lateral_force_N > 0;
   double roughness = map.roughness_of(rep.max_lateral_force_N);
   const auto& recs = joystick.records();
   double mean_force = 0;
@@ -123,7 +136,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                      {"overruns", rep.overruns},
                      {"max_lateral_force_N", rep.max_lateral_force_N},
                      {"mean_lateral_force_N", mean_force},
-                     {"roughness", roughness},
+                     {"roughness", textured ? nlohmann::json(roughness) : nlohmann::json(nullptr)},
                      {"roughness_map", map.id},
                      {"compiled_max_lateral_force_N", prog.max_lateral_force_N},
                      {"clamped_ticks", rep.clamped_ticks},
@@ -142,7 +155,10 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                              rep.compute_p99_us, rep.compute_max_us);
     std::cout << fmt::format("  felt     max lateral force {:.4f} N (compiled {:.4f} N), mean {:.4f} N, clamped ticks {}\n",
                              rep.max_lateral_force_N, prog.max_lateral_force_N, mean_force, rep.clamped_ticks);
-    std::cout << fmt::format("  percept  roughness {:.3f} predicted from the measured force ({})\n", roughness, map.id);
+    if (textured)
+      std::cout << fmt::format("  percept  roughness {:.3f} predicted from the measured force ({})\n", roughness, map.id);
+    else
+      std::cout << "  percept  no texture: the roughness map does not apply\n";
     auto span = static_cast<std::size_t>(std::llround(0.256 * rate_hz));
     std::cout << "  |F|      " << force_strip(recs, std::max(rep.max_lateral_force_N, 1e-9), 64, span)
               << "  (first 256 ms; bar height 0 to " << fmt::format("{:.3g}", rep.max_lateral_force_N) << " N)\n";
