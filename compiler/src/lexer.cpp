@@ -20,17 +20,17 @@ class Lexer {
     while (pos_ < src_.size()) {
       char c = src_[pos_];
       if (c == '\n' || c == ';') {
-        add(TokenKind::End, std::string(1, c), pos_, 1);
+        add(TokenKind::End, std::string(1, c), 1);
         advance();
       } else if (c == ' ' || c == '\t' || c == '\r') {
         advance();
       } else if (c == '#') {
         while (pos_ < src_.size() && src_[pos_] != '\n') advance();
       } else if (c == '{') {
-        add(TokenKind::LBrace, "{", pos_, 1);
+        add(TokenKind::LBrace, "{", 1);
         advance();
       } else if (c == '}') {
-        add(TokenKind::RBrace, "}", pos_, 1);
+        add(TokenKind::RBrace, "}", 1);
         advance();
       } else if (c == '"') {
         string();
@@ -45,9 +45,8 @@ class Lexer {
         while (src_[b] != '%' && pos_ < src_.size() && is_word_char(src_[pos_])) advance();
         push(TokenKind::Word, src_.substr(b, pos_ - b), line_, col, static_cast<int>(pos_ - b));
       } else {
-        auto& d = diags_.error("E0102", loc(line_, col_, 1), std::string("unexpected character '") + c + "'",
+        diags_.error("E0102", loc(line_, col_, 1), std::string("unexpected character '") + c + "'",
                                "remove it; words, numbers with units, \"strings\", { } and ; are what a material file holds");
-        (void)d;
         advance();
       }
     }
@@ -121,7 +120,7 @@ class Lexer {
     ++pos_;
   }
   SourceLocation loc(int line, int col, int len) const { return SourceLocation{file_, line, col, len}; }
-  void add(TokenKind k, std::string text, std::size_t, int len) { push(k, std::move(text), line_, col_, len); }
+  void add(TokenKind k, std::string text, int len) { push(k, std::move(text), line_, col_, len); }
   void push(TokenKind k, std::string text, int line, int col, int len) {
     tokens_.push_back(Token{k, std::move(text), 0, loc(line, col, len)});
   }

@@ -22,8 +22,6 @@ const char* layer_name(Layer l) {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 std::string fmt_num(double v) {
   std::ostringstream os;
   os.precision(4);
@@ -95,7 +93,7 @@ class Resolver {
       if (std::holds_alternative<ExtrapolateStmt>(st->node)) m.extrapolate = true;
     // Perceptual layer.
     for (const auto* st : kept)
-      if (const auto* r = std::get_if<RoughnessStmt>(&st->node)) roughness(*r, *st, m);
+      if (const auto* r = std::get_if<RoughnessStmt>(&st->node)) roughness(*r, m);
     // Physical layer.
     for (const auto* st : kept) physical(*st, m);
     finish(m);
@@ -184,7 +182,7 @@ class Resolver {
     return m;
   }
 
-  void roughness(const RoughnessStmt& r, const Statement& st, ResolvedMaterial& m) {
+  void roughness(const RoughnessStmt& r, ResolvedMaterial& m) {
     const auto& map = ctx_.calibration.roughness_map();
     double value = 0;
     std::string stated;
@@ -222,7 +220,6 @@ class Resolver {
     m.roughness = Param{value, stated, Layer::Perceptual, r.value_location.str(), r.value_location};
     m.max_lateral_force = Param{force, stated, Layer::Perceptual,
                                 r.value_location.str() + " via " + map.id, r.value_location};
-    (void)st;
     if (value > 1.0)
       diags_.warning("W0303", r.value_location,
                      "roughness " + fmt_num(value) + " extrapolates the " + map.id + " map beyond its strongest stimulus (3.746 N)");
@@ -235,7 +232,7 @@ class Resolver {
 
   void physical(const Statement& st, ResolvedMaterial& m) {
     if (const auto* g = std::get_if<GratingStmt>(&st.node)) grating(*g, st, m);
-    else if (const auto* h = std::get_if<HeightmapStmt>(&st.node)) heightmap(*h, st, m);
+    else if (const auto* h = std::get_if<HeightmapStmt>(&st.node)) heightmap(*h, m);
     else if (const auto* s = std::get_if<SpringStmt>(&st.node)) {
       if (non_negative(s->stiffness, "spring stiffness", "a negative spring pushes the hand away; that is Bump (issue 3)"))
         m.spring = stated_param(s->stiffness, Layer::Physical);
@@ -278,7 +275,7 @@ class Resolver {
     if (g.amplitude) m.max_lateral_force = stated_param(*g.amplitude, Layer::Physical);
   }
 
-  void heightmap(const HeightmapStmt& h, const Statement& st, ResolvedMaterial& m) {
+  void heightmap(const HeightmapStmt& h, ResolvedMaterial& m) {
     bool ok = positive(h.width, "image width");
     if (h.height) ok = positive(*h.height, "image height") && ok;
     if (h.smoothing) ok = non_negative(*h.smoothing, "smoothing", "") && ok;
@@ -302,7 +299,6 @@ class Resolver {
     r.source = h.path_location.str();
     r.location = h.path_location;
     m.texture = r;
-    (void)st;
     if (h.amplitude) m.max_lateral_force = stated_param(*h.amplitude, Layer::Physical);
   }
 
@@ -375,7 +371,6 @@ class Resolver {
 }  // namespace
 
 ResolvedMaterial resolve(const MaterialSyntax& syntax, ResolveContext& ctx, Diagnostics& diags) {
-  (void)kPi;
   return Resolver(syntax, ctx, diags).run();
 }
 
