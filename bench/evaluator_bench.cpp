@@ -35,14 +35,14 @@ schema::HeightFieldTerm bench_height_field(std::uint32_t n) {
 // Walks the hand over the patch so every call lands somewhere new (no constant folding, and a
 // realistic spread of table cells for the cache).
 void play(benchmark::State& state, const schema::PatchProgram& program) {
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   HandState hand;
   hand.velocity_m_s = {0.05, -0.02};
   double t = 0;
   for (auto _ : state) {
     t += 1e-3;
     hand.position_m = {0.04 * std::sin(t * 1.3), 0.04 * std::cos(t * 0.7)};
-    benchmark::DoNotOptimize(evaluator.force_rt(hand));
+    benchmark::DoNotOptimize(evaluator.force_rt(hand, 1e-3));
   }
 }
 

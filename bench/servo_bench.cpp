@@ -16,7 +16,7 @@ void BM_ServoLoopRealTime1kHz(benchmark::State& state) {
   schema::DamperTerm damper;
   damper.damping_Ns_per_m = 1;
   program.terms = {grating, damper};
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   ServoConfig config;
   config.rate_hz = 1000;
   config.duration_s = 2.0;

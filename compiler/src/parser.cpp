@@ -341,6 +341,10 @@ class Parser {
       case Dimension::Damping: return "2 N*s/m";
       case Dimension::Angle: return "30 deg";
       case Dimension::Fraction: return "50%";
+      case Dimension::Mass: return "50 g";
+      case Dimension::Time: return "20 ms";
+      case Dimension::Energy: return "50 mJ";
+      case Dimension::Power: return "10 mW";
     }
     return "";
   }

@@ -122,7 +122,9 @@ PatchEvaluator::PatchEvaluator(const schema::PatchProgram& program) : program_(p
   }
 }
 
-glm::dvec2 PatchEvaluator::force_rt(const HandState& hand) const noexcept {
+void PatchEvaluator::reset_rt(const HandState&) noexcept {}
+
+glm::dvec2 PatchEvaluator::force_rt(const HandState& hand, double) noexcept {
   const glm::dvec2 p = hand.position_m;
   // A position the device cannot have reported is a fault; NaN makes the loop stop on it rather
   // than play the zero force the patch-rectangle test would otherwise give.

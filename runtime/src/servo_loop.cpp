@@ -119,7 +119,7 @@ void validate_config(const ServoConfig& config, const DeviceLimits& limits) {
     throw std::invalid_argument("velocity filter cutoff must be a positive, finite frequency in Hz");
 }
 
-ServoReport run_servo_loop(Device& device, const PatchEvaluator& evaluator, ServoClock& clock,
+ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& clock,
                            const ServoConfig& config) {
   const DeviceLimits& limits = device.limits();
   validate_config(config, limits);
@@ -162,8 +162,9 @@ ServoReport run_servo_loop(Device& device, const PatchEvaluator& evaluator, Serv
         hand.acceleration_m_s2 = acceleration.update(previous_velocity, hand.velocity_m_s, dt_s);
       }
       hand.position_m = position;
+      if (k == 0) source.reset_rt(hand);  // state starts under the hand's first reported position
 
-      glm::dvec2 force = evaluator.force_rt(hand);
+      glm::dvec2 force = source.force_rt(hand, dt_s);
       if (!std::isfinite(force.x) || !std::isfinite(force.y)) {
         device.write_force_rt({0, 0});
         stop = Stop::NonFiniteForce;

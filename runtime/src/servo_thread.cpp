@@ -22,7 +22,7 @@ bool request_fifo_scheduling() noexcept {
 
 }  // namespace
 
-ServoReport run_servo_thread_nonrt(Device& device, const PatchEvaluator& evaluator, const ServoConfig& config) {
+ServoReport run_servo_thread_nonrt(Device& device, ForceSource& source, const ServoConfig& config) {
   validate_config(config, device.limits());  // fail on the caller's thread, before any thread exists
 
   ServoReport report;
@@ -35,7 +35,7 @@ ServoReport run_servo_thread_nonrt(Device& device, const PatchEvaluator& evaluat
     const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
     try {
       MonotonicClock clock;
-      report = run_servo_loop(device, evaluator, clock, config);
+      report = run_servo_loop(device, source, clock, config);
     } catch (...) {
       failure = std::current_exception();
     }

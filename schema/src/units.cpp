@@ -8,6 +8,10 @@ namespace {
 constexpr double kStandardGravity = 9.80665;          // m/s^2, ISO 80000-4
 constexpr double kGramForce = 1e-3 * kStandardGravity;  // N
 constexpr double kOunceForce = 28.349523125 * kGramForce;
+// The Chebyshev (minimax relative error) fit of grams per joystick unit to Minsky 1995 Table 6's 30
+// rows; largest error 1.8 %, against the table's rounding to whole grams. Restated, with the fit, in
+// calibration/devices/sandpaper-1995.toml; a test keeps the two equal.
+constexpr double kJoystickUnit = 0.490909 * kGramForce;
 constexpr double kPi = 3.14159265358979323846;
 
 constexpr std::array kUnits{
@@ -20,11 +24,21 @@ constexpr std::array kUnits{
     UnitDef{"mN", Dimension::Force, 1e-3},
     UnitDef{"gf", Dimension::Force, kGramForce},
     UnitDef{"ozf", Dimension::Force, kOunceForce},
+    UnitDef{"ju", Dimension::Force, kJoystickUnit},
+    UnitDef{"pu", Dimension::Force, 4 * kJoystickUnit},
     UnitDef{"N/m", Dimension::Stiffness, 1.0},
     UnitDef{"N/mm", Dimension::Stiffness, 1e3},
     UnitDef{"N*s/m", Dimension::Damping, 1.0},
     UnitDef{"deg", Dimension::Angle, kPi / 180.0},
     UnitDef{"%", Dimension::Fraction, 1e-2},
+    UnitDef{"kg", Dimension::Mass, 1.0},
+    UnitDef{"g", Dimension::Mass, 1e-3},
+    UnitDef{"s", Dimension::Time, 1.0},
+    UnitDef{"ms", Dimension::Time, 1e-3},
+    UnitDef{"J", Dimension::Energy, 1.0},
+    UnitDef{"mJ", Dimension::Energy, 1e-3},
+    UnitDef{"W", Dimension::Power, 1.0},
+    UnitDef{"mW", Dimension::Power, 1e-3},
 };
 }  // namespace
 
@@ -36,6 +50,10 @@ std::string_view si_unit_name(Dimension d) {
     case Dimension::Damping: return "N*s/m";
     case Dimension::Angle: return "rad";
     case Dimension::Fraction: return "1";
+    case Dimension::Mass: return "kg";
+    case Dimension::Time: return "s";
+    case Dimension::Energy: return "J";
+    case Dimension::Power: return "W";
   }
   return "?";
 }
@@ -48,6 +66,10 @@ std::string_view dimension_name(Dimension d) {
     case Dimension::Damping: return "damping";
     case Dimension::Angle: return "angle";
     case Dimension::Fraction: return "fraction";
+    case Dimension::Mass: return "mass";
+    case Dimension::Time: return "time";
+    case Dimension::Energy: return "energy";
+    case Dimension::Power: return "power";
   }
   return "?";
 }

@@ -21,6 +21,12 @@ TEST(Units, FactorsMatchTheirDefinitions) {
       {"N/m", Dimension::Stiffness, 1},     {"N/mm", Dimension::Stiffness, 1000},
       {"N*s/m", Dimension::Damping, 1},     {"deg", Dimension::Angle, 0.017453292519943295},
       {"%", Dimension::Fraction, 0.01},
+      // The thesis joystick: 0.490909 gf per joystick unit, 4 per program unit (Table 6).
+      {"ju", Dimension::Force, 0.490909 * 0.00980665}, {"pu", Dimension::Force, 4 * 0.490909 * 0.00980665},
+      {"kg", Dimension::Mass, 1},           {"g", Dimension::Mass, 0.001},
+      {"s", Dimension::Time, 1},            {"ms", Dimension::Time, 0.001},
+      {"J", Dimension::Energy, 1},          {"mJ", Dimension::Energy, 0.001},
+      {"W", Dimension::Power, 1},           {"mW", Dimension::Power, 0.001},
   };
   for (const auto& c : cases) {
     auto u = schema::find_unit(c.name);

@@ -70,7 +70,7 @@ TEST(ServoClampProperty, NoRecordedForceExceedsTheDeviceMaximum) {
   for (int trial_index = 0; trial_index < kTrials; ++trial_index) {
     const Trial trial = random_trial(rng, true);
     const ServoConfig config = random_config(rng);
-    const PatchEvaluator evaluator(trial.program);
+    PatchEvaluator evaluator(trial.program);
     SimJoystick joystick(trial.limits, trial.script, 256);
     VirtualClock clock;
     const ServoReport report = run_servo_loop(joystick, evaluator, clock, config);
@@ -91,7 +91,7 @@ TEST(ServoClampProperty, ClampedTicksAreExactlyTheTicksThatWantedTooMuch) {
   for (int trial_index = 0; trial_index < kTrials; ++trial_index) {
     const Trial trial = random_trial(rng, false);
     const ServoConfig config = random_config(rng);
-    const PatchEvaluator evaluator(trial.program);
+    PatchEvaluator evaluator(trial.program);
     SimJoystick joystick(trial.limits, trial.script, 256);
     VirtualClock clock;
     const ServoReport report = run_servo_loop(joystick, evaluator, clock, config);
@@ -99,7 +99,7 @@ TEST(ServoClampProperty, ClampedTicksAreExactlyTheTicksThatWantedTooMuch) {
     for (const TickRecord& record : joystick.records()) {
       HandState hand;
       hand.position_m = record.position_m;
-      const glm::dvec2 wanted = evaluator.force_rt(hand);
+      const glm::dvec2 wanted = evaluator.force_rt(hand, 1e-3);
       if (std::hypot(wanted.x, wanted.y) > trial.limits.max_force_N) {
         ++wanted_too_much;
         const double scale = trial.limits.max_force_N / std::hypot(wanted.x, wanted.y);

@@ -69,7 +69,7 @@ TEST(ValidateConfig, DurationMustBePositiveFiniteAndAtMostTenMillionTicks) {
 
 TEST(ValidateConfig, RunRefusesBeforeTouchingTheDevice) {
   const auto program = program_of({spring(1.0)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   ScriptedDevice device;
   VirtualClock clock;
   EXPECT_THROW(run_servo_loop(device, evaluator, clock, config(800, 1.0)), std::invalid_argument);
@@ -79,7 +79,7 @@ TEST(ValidateConfig, RunRefusesBeforeTouchingTheDevice) {
 
 TEST(ServoFaults, NonFiniteForceStopsAfterOneTickAndLeavesZeroForce) {
   const auto program = program_of({spring(100.0), grating(0.003, 0.0, {1.0f, std::nanf("")})});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick(sim_device_limits(), HandScript{}, 100);
   VirtualClock clock;
   const ServoReport report = run_servo_loop(joystick, evaluator, clock, config(1000, 0.1));
@@ -93,7 +93,7 @@ TEST(ServoFaults, NonFiniteForceStopsAfterOneTickAndLeavesZeroForce) {
 
 TEST(ServoFaults, NonFiniteForceCommandsOnlyZero) {
   const auto program = program_of({grating(0.003, 0.0, {std::nanf(""), 1.0f})});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   ScriptedDevice device;
   VirtualClock clock;
   const ServoReport report = run_servo_loop(device, evaluator, clock, config(1000, 0.1));
@@ -105,7 +105,7 @@ TEST(ServoFaults, NonFiniteForceCommandsOnlyZero) {
 
 TEST(ServoFaults, FailedReadStopsTheLoopWithZeroForce) {
   const auto program = program_of({spring(100.0)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   ScriptedDevice device({0.01, 0.0});
   device.fail_read_at = 6;
   VirtualClock clock;
@@ -122,7 +122,7 @@ TEST(ServoFaults, FailedReadStopsTheLoopWithZeroForce) {
 
 TEST(ServoFaults, FailedWriteStopsTheLoop) {
   const auto program = program_of({spring(100.0)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   ScriptedDevice device({0.01, 0.0});
   device.fail_write_at = 3;
   VirtualClock clock;

@@ -31,7 +31,7 @@ SimJoystick scan_joystick(std::size_t capacity, double speed = 0.05, double ampl
 
 TEST(ServoLoop, PlaysDurationTimesRateTicks) {
   const auto program = program_of({grating(0.002, 0.3, {0.0f, 1.0f, 0.0f, -1.0f})});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   struct Case {
     double rate, duration;
     std::uint64_t ticks;
@@ -50,7 +50,7 @@ TEST(ServoLoop, PlaysDurationTimesRateTicks) {
 
 TEST(ServoLoop, TicksHappenExactlyAtKOverRateOnVirtualTime) {
   const auto program = program_of({spring(20.0), damper(0.5)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   for (double rate : {1000.0, 4000.0}) {
     SCOPED_TRACE(rate);
     SimJoystick joystick = scan_joystick(2000);
@@ -76,7 +76,7 @@ TEST(ServoLoop, TicksHappenExactlyAtKOverRateOnVirtualTime) {
 
 TEST(ServoLoop, LateTicksAreCountedAsOverrunsAndTheScheduleDoesNotSlip) {
   const auto program = program_of({spring(10.0)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick = scan_joystick(1000);
   // Tick 10 wakes 1.6 periods late; tick 11's deadline has then passed by 0.6 periods (also an
   // overrun); tick 12's deadline is still ahead, so the loop is back on schedule.
@@ -96,7 +96,7 @@ TEST(ServoLoop, LateTicksAreCountedAsOverrunsAndTheScheduleDoesNotSlip) {
 
 TEST(ServoLoop, HalfAPeriodLateIsNotYetAnOverrun) {
   const auto program = program_of({});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick = scan_joystick(100);
   StallingClock on_the_edge(5, 500'000);
   EXPECT_EQ(run_servo_loop(joystick, evaluator, on_the_edge, config(1000, 0.1)).overruns, 0u);
@@ -107,7 +107,7 @@ TEST(ServoLoop, HalfAPeriodLateIsNotYetAnOverrun) {
 TEST(ServoLoop, ForceMagnitudeIsClampedWithoutTurningIt) {
   // 1000 N/m over a +-30 mm scan asks for up to 30 N from a 10 N device.
   const auto program = program_of({spring(1000.0, 0.0, 0.002)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick = scan_joystick(2000);
   VirtualClock clock;
   const ServoReport report = run_servo_loop(joystick, evaluator, clock, config(1000, 2.0));
@@ -115,7 +115,7 @@ TEST(ServoLoop, ForceMagnitudeIsClampedWithoutTurningIt) {
   for (const TickRecord& record : joystick.records()) {
     HandState hand;
     hand.position_m = record.position_m;
-    const glm::dvec2 wanted = evaluator.force_rt(hand);
+    const glm::dvec2 wanted = evaluator.force_rt(hand, 1e-3);
     const double wanted_magnitude = std::hypot(wanted.x, wanted.y);
     const double magnitude = std::hypot(record.force_N.x, record.force_N.y);
     ASSERT_LE(magnitude, 10.0 + 1e-9);
@@ -138,7 +138,7 @@ TEST(ServoLoop, DamperSeesTheFilteredHandVelocity) {
   // 0.05 m/s along +x for the first 0.6 s: once the 50 Hz filter has settled the damper pushes
   // back with b v = 0.5 N. The first tick has no velocity yet.
   const auto program = program_of({damper(10.0)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick = scan_joystick(600);
   VirtualClock clock;
   run_servo_loop(joystick, evaluator, clock, config(1000, 0.6));
@@ -154,7 +154,7 @@ TEST(ServoLoop, DamperSeesTheFilteredHandVelocity) {
 
 TEST(ServoLoop, WritesZeroForceOnceAfterTheLastTick) {
   const auto program = program_of({spring(100.0)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   ScriptedDevice device({0.02, 0.0});
   VirtualClock clock;
   const ServoReport report = run_servo_loop(device, evaluator, clock, config(1000, 0.01));

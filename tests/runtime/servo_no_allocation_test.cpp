@@ -113,7 +113,7 @@ std::size_t allocations_in_run(std::uint64_t ticks) {
   std::vector<float> table(256);
   for (std::size_t i = 0; i < table.size(); ++i) table[i] = static_cast<float>(i % 32) * 0.1f;
   const auto program = program_of({spring(400.0), damper(2.0), grating(0.0025, 0.4, table), ripple_field()});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick(sim_device_limits(), HandScript{HandPath::Circle, 0.08, 0.03, 0.0}, ticks);
   VirtualClock clock;
   ServoConfig config;
@@ -157,7 +157,7 @@ TEST(ServoNoAllocation, AllocationsDoNotGrowWithTicks) {
 TEST(ServoNoAllocation, StoppingOnAFaultDoesNotAllocateEither) {
   // The fault paths are part of the tick too: a NaN force stops the run on its first tick.
   const auto program = program_of({grating(0.003, 0.0, {std::nanf(""), 1.0f})});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick(sim_device_limits(), HandScript{}, 10);
   VirtualClock clock;
   ServoConfig config;

@@ -26,7 +26,7 @@ TEST(MonotonicClock, SleepsUntilAnAbsoluteDeadline) {
 
 TEST(ServoThread, PlaysTheWholeRunOnTheMonotonicClock) {
   const auto program = program_of({spring(50.0)});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick(sim_device_limits(), HandScript{}, 100);
   ServoConfig config;
   config.rate_hz = 1000;
@@ -45,7 +45,7 @@ TEST(ServoThread, PlaysTheWholeRunOnTheMonotonicClock) {
 
 TEST(ServoThread, BadConfigurationThrowsOnTheCallersThread) {
   const auto program = program_of({});
-  const PatchEvaluator evaluator(program);
+  PatchEvaluator evaluator(program);
   SimJoystick joystick(sim_device_limits(), HandScript{}, 10);
   ServoConfig config;
   config.rate_hz = 20000;

@@ -3,17 +3,12 @@
 // thread from a PatchProgram; force_rt() neither allocates nor locks.
 #include <glm/vec2.hpp>
 
+#include "sandpaper/runtime/force_source.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
 namespace sandpaper::runtime {
 
-struct HandState {
-  glm::dvec2 position_m{0, 0};       // relative to the patch centre
-  glm::dvec2 velocity_m_s{0, 0};     // filtered from positions
-  glm::dvec2 acceleration_m_s2{0, 0};
-};
-
-class PatchEvaluator {
+class PatchEvaluator final : public ForceSource {
  public:
   // Keeps a reference: `program` must outlive the evaluator and not change while it is used.
   // Throws std::invalid_argument if the program's shape would make the tick index out of bounds
@@ -26,7 +21,8 @@ class PatchEvaluator {
   // patch under the cursor sends force). Grating tables: linear interpolation with wrap-around;
   // height fields: bilinear interpolation of the gradient grid. A non-finite position gives a NaN
   // force so that the servo loop stops on the device fault instead of playing zero.
-  glm::dvec2 force_rt(const HandState& hand) const noexcept;
+  glm::dvec2 force_rt(const HandState& hand, double dt_s) noexcept override;
+  void reset_rt(const HandState& hand) noexcept override;
 
  private:
   const schema::PatchProgram& program_;

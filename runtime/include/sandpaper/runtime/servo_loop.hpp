@@ -37,16 +37,16 @@ struct ServoReport {
 // ticks, or a non-positive velocity filter cutoff.
 void validate_config(const ServoConfig& config, const DeviceLimits& limits);
 
-// Plays `evaluator` on `device` on the calling thread with `clock`; returns when done.
+// Plays `source` on `device` on the calling thread with `clock`; returns when done.
 // Everything the ticks need is allocated before the first tick. Stops at the first device fault or
 // non-finite force; in every case a zero force is written once after the last tick.
 // Calls validate_config first (and so may throw).
-ServoReport run_servo_loop(Device& device, const PatchEvaluator& evaluator, ServoClock& clock,
+ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& clock,
                            const ServoConfig& config);
 
 // Runs run_servo_loop on a new thread (SCHED_FIFO and locked memory when the platform allows it;
 // otherwise it runs with normal priority and says so in the report) and joins it. Uses the
 // MonotonicClock. Never prints: the caller decides how to report a missing real-time priority.
-ServoReport run_servo_thread_nonrt(Device& device, const PatchEvaluator& evaluator, const ServoConfig& config);
+ServoReport run_servo_thread_nonrt(Device& device, ForceSource& source, const ServoConfig& config);
 
 }  // namespace sandpaper::runtime

@@ -9,7 +9,7 @@
 
 namespace sandpaper::schema {
 
-inline constexpr std::uint32_t kPatchFormatVersion = 1;
+inline constexpr std::uint32_t kPatchFormatVersion = 2;
 
 // F = -k (p - centre), p the hand position relative to the patch centre (thesis EQ 1, App. B Spring).
 struct SpringTerm {
@@ -43,7 +43,107 @@ struct HeightFieldTerm {
   std::vector<float> force_y_N;  // nx * ny
 };
 
-using Term = std::variant<SpringTerm, DamperTerm, GratingTerm, HeightFieldTerm>;
+// Appendix B Const: F = (fx, fy), everywhere on the patch.
+struct ConstantForceTerm {
+  double force_N[2] = {0, 0};
+};
+
+// Appendix B Nap: F_x = -b v_x, F_y = |b v_y| (direction-dependent, like velvet). Not passive:
+// the y force does work on a hand moving toward +y.
+struct NapTerm {
+  double damping_Ns_per_m = 0;
+};
+
+// Per-axis periodic force laws of position, each axis independent (u = p_x or p_y, P = period):
+//   Sine     (App. B Wave):  F = -A sin(2 pi u / P)
+//   Sawtooth (App. B Cusp):  F = A (2 frac(|u| / P) - 1)                  reading of "[|p/f| mod 2A] - A"
+//   Triangle (thesis 3.4):   F = -A (2 frac(u / P) - 1)                   force toward each local wave centre
+// docs/TEXTURES.md gives the readings.
+enum class PeriodicShape : std::uint8_t { Sine = 0, Sawtooth = 1, Triangle = 2 };
+struct PeriodicTerm {
+  PeriodicShape shape = PeriodicShape::Sine;
+  double amplitude_N = 0;
+  double period_m = 0;
+  bool on_x = true, on_y = true;
+};
+
+// Appendix B Ridge: F_x = k ((p_x mod wavelength) - ridge width), F_y = 0.
+struct RidgeTerm {
+  double stiffness_N_per_m = 0;
+  double wavelength_m = 0;
+  double ridge_width_m = 0;
+};
+
+// Appendix B Bowl (reading: a spring whose force grows as |p|^1.5): F = -k p sqrt(|p| / r), equal to
+// a linear spring of stiffness k at radius r.
+struct BowlTerm {
+  double stiffness_N_per_m = 0;
+  double radius_m = 0;
+};
+
+// Appendix B Circle and Buckle: F = g_r p + g_t R90 p, R90 p = (-p_y, p_x). Circle is (0, k);
+// Buckle is (v1, v2); Bump (F = k p) is (k, 0). A tangential gain makes the field non-conservative.
+struct LinearFieldTerm {
+  double radial_N_per_m = 0;
+  double tangential_N_per_m = 0;
+};
+
+// A linear spring (thesis 3.2.2): pulls only along the unit direction n = (cos a, sin a) toward the
+// line through `centre` normal to n: F = -k ((p - centre) . n) n.
+struct LinearSpringTerm {
+  double stiffness_N_per_m = 0;
+  double orientation_rad = 0;
+  double centre_m[2] = {0, 0};
+};
+
+// Appendix B Minus (reading: "minus mass"): F = k (m - p), m the position predicted `lead` ahead from
+// the hand's position, velocity and acceleration: m - p = v lead + a lead^2 / 2. Not passive.
+struct MinusTerm {
+  double stiffness_N_per_m = 0;
+  double lead_s = 0;
+};
+
+// Appendix B ATNSpring: F = -k (p - m), m a point that follows the hand with a first-order lag:
+// dm/dt = (p - m) / lag. State: m (runtime).
+struct FollowerSpringTerm {
+  double stiffness_N_per_m = 0;
+  double lag_s = 0;
+};
+
+// Thesis 3.2.2 physics patches: one or two point masses in a chain hand - mass 0 - mass 1, each link
+// a spring and damper; each mass also feels ground damping and a constant gravity (the brick hanging
+// from a spring: one mass, gravity (0, -9.81)). The hand feels link 0: F = -k0 (p - x0) - c0 (v - v0).
+// State: positions and velocities of the masses (runtime), starting at rest under the hand.
+struct PointMassesTerm {
+  std::uint32_t count = 1;                 // 1 or 2
+  double mass_kg[2] = {0, 0};
+  double stiffness_N_per_m[2] = {0, 0};    // link i joins mass i to the hand (i = 0) or to mass i-1
+  double damping_Ns_per_m[2] = {0, 0};     // dampers in parallel with the links
+  double ground_damping_Ns_per_m = 0;      // each mass against the ground
+  double gravity_m_s2[2] = {0, 0};
+};
+
+// Thesis 3.2.2 Attractor: a spring to a light object moving on a swirling path,
+//   q(t) = centre + radius * (1 + swirl sin(3 theta)) / (1 + swirl) * (cos theta, sin theta),
+//   theta = 2 pi t / period; F = -k (p - q(t)). State: t (runtime). Not passive: it drives the hand.
+struct AttractorTerm {
+  double stiffness_N_per_m = 0;
+  double radius_m = 0;
+  double period_s = 0;
+  double swirl = 0;  // 0 = a circle
+  double centre_m[2] = {0, 0};
+};
+
+using Term = std::variant<SpringTerm, DamperTerm, GratingTerm, HeightFieldTerm, ConstantForceTerm, NapTerm,
+                          PeriodicTerm, RidgeTerm, BowlTerm, LinearFieldTerm, LinearSpringTerm, MinusTerm,
+                          FollowerSpringTerm, PointMassesTerm, AttractorTerm>;
+
+// Whether a term can only store and return energy it took from the hand (thesis 3.2.2 calls the others
+// "non-physical"). Non-passive terms: negative damping (AntiViscous, Slick), Nap, Minus, Attractor,
+// and linear fields with a tangential gain (Circle, Buckle). The runtime bounds the energy they inject.
+bool is_passive(const Term& term);
+// Whether the runtime keeps state for the term between ticks (FollowerSpring, PointMasses, Attractor).
+bool has_state(const Term& term);
 
 // Where one number of the compiled program came from.
 struct Provenance {
@@ -69,6 +169,10 @@ struct PatchProgram {
   double max_lateral_force_N = 0;     // texture's maximum lateral force over the patch less its rim
   double roughness = 0;               // ratio-scale roughness the map predicts for that force
   std::string roughness_map;          // id of the map used, e.g. "minsky1995-fig19"
+  // Energy the non-passive terms may put into the hand: a tank of `energy_budget_J` that refills at
+  // `energy_refill_W` and with whatever those terms absorb (docs/RUNTIME.md, "Energy bound").
+  double energy_budget_J = 0;
+  double energy_refill_W = 0;
   std::vector<Provenance> provenance;
   std::vector<CompileWarning> warnings;
 };

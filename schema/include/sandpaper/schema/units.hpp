@@ -8,7 +8,7 @@
 
 namespace sandpaper::schema {
 
-enum class Dimension { Length, Force, Stiffness, Damping, Angle, Fraction };
+enum class Dimension { Length, Force, Stiffness, Damping, Angle, Fraction, Mass, Time, Energy, Power };
 
 // Name of the SI unit a dimension is stored in ("m", "N", "N/m", "N*s/m", "rad", "1").
 std::string_view si_unit_name(Dimension d);
@@ -23,6 +23,8 @@ struct UnitDef {
 
 // Every unit the language accepts. gf and ozf use standard gravity 9.80665 m/s^2 (ISO 80000-4);
 // 1 in = 25.4 mm and 1 oz = 28.349523125 g (international yard and pound, 1959).
+// `ju` and `pu` are the thesis joystick's force units (Minsky 1995 Table 6: 1 program unit = 4
+// joystick units): 1 ju = 0.490909 gf, fitted to Table 6 (calibration/devices/sandpaper-1995.toml).
 std::span<const UnitDef> all_units();
 // The unit named `name` (exact, case-sensitive: "mN" is not "MN"); nullopt if unknown.
 std::optional<UnitDef> find_unit(std::string_view name);
