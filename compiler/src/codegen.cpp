@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "sandpaper/compiler/laws.hpp"
 #include "sandpaper/compiler/textures.hpp"
 
 namespace sandpaper::compiler {
@@ -90,7 +91,7 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
     out.terms.emplace_back(schema::DamperTerm{m.damper->si});
     record(out, "damper.damping", *m.damper, "N*s/m");
   }
-  return true;
+  return generate_laws(m, device, out, diags);
 }
 
 }  // namespace sandpaper::compiler

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "sandpaper/schema/force_laws.hpp"
+
 namespace sandpaper::compiler {
 
 using schema::Dimension;
@@ -15,7 +17,8 @@ std::string Quantity::text() const {
 
 const std::vector<std::string>& statement_keywords() {
   static const std::vector<std::string> k{"describes", "like",   "roughness", "grating",    "heightmap",
-                                          "spring",    "damper", "size",      "extrapolate"};
+                                          "spring",    "damper", "size",      "extrapolate",
+                                          "force",     "physics", "energy"};
   return k;
 }
 
@@ -121,6 +124,9 @@ class Parser {
     else if (k == "damper") st.node = DamperStmt{quantity(Dimension::Damping, "the damper's damping")};
     else if (k == "size") st.node = size();
     else if (k == "extrapolate") st.node = ExtrapolateStmt{};
+    else if (k == "force") st.node = law(schema::LawFamily::Force);
+    else if (k == "physics") st.node = law(schema::LawFamily::Physics);
+    else if (k == "energy") st.node = energy();
     else if (first && at_end_of_input()) {
       // The whole input is one name: a representative description.
       st.keyword = "like";
@@ -128,7 +134,7 @@ class Parser {
     } else {
       std::string guess = closest_match(k, statement_keywords());
       diags_.error("E0202", kw.location, "unknown statement '" + k + "'",
-                   guess.empty() ? "statements are: describes, like, roughness, grating, heightmap, spring, damper, size, extrapolate"
+                   guess.empty() ? "statements are: describes, like, roughness, grating, heightmap, spring, damper, force, physics, energy, size, extrapolate"
                                  : "did you mean `" + guess + "`?");
       throw StatementError{};
     }
@@ -231,6 +237,95 @@ class Parser {
       else unknown_option("heightmap", o, opts);
     }
     return h;
+  }
+
+  // law      := ('force' | 'physics') LAW_NAME (PARAM value)*
+  // value    := NUMBER UNIT | NUMBER | 'x' | 'y' | 'xy'     -- as schema/force_laws.hpp declares PARAM
+  LawStmt law(schema::LawFamily family) {
+    const std::string keyword(schema::family_keyword(family));
+    std::vector<std::string> names;
+    for (const auto& l : schema::all_laws())
+      if (l.family == family) names.emplace_back(l.name);
+    const Token& n = peek();
+    if (n.kind != TokenKind::Word) {
+      diags_.error("E0201", n.location, "expected the name of a " + keyword + " law, found " + describe(n),
+                   "one of: " + join(names));
+      throw StatementError{};
+    }
+    const schema::LawDef* def = schema::find_law(family, n.text);
+    if (!def) {
+      std::string guess = closest_match(n.text, names);
+      diags_.error("E0211", n.location, "unknown " + keyword + " law '" + n.text + "'",
+                   guess.empty() ? keyword + " laws are: " + join(names) : "did you mean `" + guess + "`?");
+      throw StatementError{};
+    }
+    next();
+    LawStmt out{family == schema::LawFamily::Physics, std::string(def->name), n.location, {}};
+    std::vector<std::string> params;
+    for (const auto& p : def->params) params.emplace_back(p.name);
+    while (peek().kind == TokenKind::Word) {
+      const Token& o = next();
+      const schema::LawParam* param = schema::find_param(*def, o.text);
+      if (!param) {
+        if (params.empty()) {
+          diags_.error("E0209", o.location, keyword + " " + out.name + " takes no parameters", "remove '" + o.text + "'");
+          throw StatementError{};
+        }
+        unknown_option((keyword + " " + out.name).c_str(), o, params);
+      }
+      for (const auto& a : out.args)
+        if (a.name == o.text) {
+          diags_.error("E0206", o.location, "`" + o.text + "` is given twice in one statement", "keep one of them");
+          throw StatementError{};
+        }
+      LawArg arg{o.text, std::nullopt, {}, o.location};
+      const std::string what = "the " + o.text;
+      if (param->kind == schema::LawParamKind::Quantity) {
+        arg.quantity = quantity(param->dimension, what.c_str());
+      } else if (param->kind == schema::LawParamKind::Number) {
+        const Token& v = peek();
+        if (v.kind != TokenKind::Number) {
+          diags_.error("E0201", v.location, "expected " + what + " (a plain number), found " + describe(v), "for example 0.3");
+          throw StatementError{};
+        }
+        next();
+        arg.quantity = Quantity{v.number, "", v.number, v.location};
+      } else {
+        const Token& v = peek();
+        if (v.kind != TokenKind::Word || (v.text != "x" && v.text != "y" && v.text != "xy")) {
+          diags_.error("E0201", v.location, "expected the axes x, y or xy, found " + describe(v),
+                       "write axes x (force along x only), axes y, or axes xy (a grid)");
+          throw StatementError{};
+        }
+        arg.word = next().text;
+      }
+      out.args.push_back(std::move(arg));
+    }
+    return out;
+  }
+
+  // energy := 'energy' 'budget' ENERGY ['refill' POWER]
+  EnergyStmt energy() {
+    if (!(peek().kind == TokenKind::Word && peek().text == "budget")) {
+      diags_.error("E0201", peek().location, std::string("expected `budget`, found ") + describe(peek()),
+                   "write energy budget 50 mJ [refill 10 mW]");
+      throw StatementError{};
+    }
+    next();
+    EnergyStmt e{quantity(Dimension::Energy, "the energy budget"), std::nullopt};
+    static const std::vector<std::string> opts{"refill"};
+    while (peek().kind == TokenKind::Word) {
+      const Token& o = next();
+      if (o.text == "refill") set_once(e.refill, o, Dimension::Power, "the refill power");
+      else unknown_option("energy", o, opts);
+    }
+    return e;
+  }
+
+  static std::string join(const std::vector<std::string>& xs) {
+    std::string out;
+    for (const auto& x : xs) out += (out.empty() ? "" : ", ") + x;
+    return out;
   }
 
   // size := 'size' LENGTH ['x' LENGTH]

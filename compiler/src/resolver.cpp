@@ -7,6 +7,7 @@
 
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
+#include "sandpaper/schema/force_laws.hpp"
 
 namespace sandpaper::compiler {
 
@@ -71,6 +72,7 @@ std::vector<std::string> quantities_set(const Statement& st) {
         } else if constexpr (std::is_same_v<T, SpringStmt>) return {"the spring stiffness"};
         else if constexpr (std::is_same_v<T, DamperStmt>) return {"the damping"};
         else if constexpr (std::is_same_v<T, SizeStmt>) return {"the patch size"};
+        else if constexpr (std::is_same_v<T, EnergyStmt>) return {"the energy budget"};
         else return {};
       },
       st.node);
@@ -94,7 +96,11 @@ class Resolver {
     // Perceptual layer.
     for (const auto* st : kept)
       if (const auto* r = std::get_if<RoughnessStmt>(&st->node)) roughness(*r, m);
-    // Physical layer.
+    // Physical layer. The file's force laws, if it has any, replace the inherited ones.
+    bool own_laws = false;
+    for (const auto* st : kept)
+      if (std::holds_alternative<LawStmt>(st->node)) own_laws = true;
+    if (own_laws) m.laws.clear();
     for (const auto* st : kept) physical(*st, m);
     finish(m);
     return m;
@@ -175,6 +181,10 @@ class Resolver {
     inherit(m.roughness, like.name);
     inherit(m.spring, like.name);
     inherit(m.damper, like.name);
+    for (auto& law : m.laws)
+      for (auto& [name, p] : law.params) inherit(p, like.name);
+    inherit(m.energy_budget, like.name);
+    inherit(m.energy_refill, like.name);
     if (m.size_width.layer != Layer::Default) inherit(m.size_width, like.name);
     if (m.size_height.layer != Layer::Default) inherit(m.size_height, like.name);
     m.like_chain.insert(m.like_chain.begin(), like.name);
@@ -232,12 +242,17 @@ class Resolver {
 
   void physical(const Statement& st, ResolvedMaterial& m) {
     if (const auto* g = std::get_if<GratingStmt>(&st.node)) grating(*g, st, m);
+    else if (const auto* l = std::get_if<LawStmt>(&st.node)) law(*l, st, m);
+    else if (const auto* e = std::get_if<EnergyStmt>(&st.node)) {
+      if (non_negative(e->budget, "energy budget", "")) m.energy_budget = stated_param(e->budget, Layer::Physical);
+      if (e->refill && non_negative(*e->refill, "refill power", "")) m.energy_refill = stated_param(*e->refill, Layer::Physical);
+    }
     else if (const auto* h = std::get_if<HeightmapStmt>(&st.node)) heightmap(*h, m);
     else if (const auto* s = std::get_if<SpringStmt>(&st.node)) {
-      if (non_negative(s->stiffness, "spring stiffness", "a negative spring pushes the hand away; that is Bump (issue 3)"))
+      if (non_negative(s->stiffness, "spring stiffness", "a negative spring pushes the hand away: write `force Bump stiffness ...`"))
         m.spring = stated_param(s->stiffness, Layer::Physical);
     } else if (const auto* d = std::get_if<DamperStmt>(&st.node)) {
-      if (non_negative(d->damping, "damping", "negative damping injects energy (AntiViscous, thesis App. B) and is not supported yet"))
+      if (non_negative(d->damping, "damping", "negative damping injects energy: write `force AntiViscous damping ...` (its energy is bounded)"))
         m.damper = stated_param(d->damping, Layer::Physical);
     } else if (const auto* z = std::get_if<SizeStmt>(&st.node)) {
       if (!positive(z->width, "patch width")) return;
@@ -273,6 +288,74 @@ class Resolver {
     r.location = st.location;
     m.texture = r;
     if (g.amplitude) m.max_lateral_force = stated_param(*g.amplitude, Layer::Physical);
+  }
+
+  // Fills every parameter of the law: stated, or the table's default. Magnitudes must be positive
+  // (optional dampings may be zero); signed parameters (Const, Buckle) take any finite value.
+  void law(const LawStmt& l, const Statement& st, ResolvedMaterial& m) {
+    const auto family = l.physics ? schema::LawFamily::Physics : schema::LawFamily::Force;
+    const schema::LawDef* def = schema::find_law(family, l.name);
+    if (!def) throw InternalError("resolver: law '" + l.name + "' passed the parser but is not in the table");
+    ResolvedLaw r;
+    r.physics = l.physics;
+    r.name = l.name;
+    r.text = st.text;
+    r.location = l.name_location;
+    bool ok = true;
+    for (const auto& p : def->params) {
+      const LawArg* arg = nullptr;
+      for (const auto& a : l.args)
+        if (a.name == p.name) arg = &a;
+      if (!arg) {
+        if (p.required) {
+          diags_.error("E0311", l.name_location,
+                       std::string(schema::family_keyword(family)) + " " + l.name + " needs its " + std::string(p.name),
+                       "add " + std::string(p.name) + " <value>, e.g. `" + std::string(schema::family_keyword(family)) +
+                           " " + l.name + " " + example_args(*def) + "`");
+          ok = false;
+          continue;
+        }
+        if (p.kind == schema::LawParamKind::Axes) continue;
+        r.params.emplace_back(std::string(p.name), default_param(p.default_si, std::string(p.default_text)));
+        continue;
+      }
+      if (p.kind == schema::LawParamKind::Axes) {
+        r.axes = arg->word == "x" ? 1 : arg->word == "y" ? 2 : 3;
+        continue;
+      }
+      const Quantity& q = *arg->quantity;
+      const std::string what = l.name + " " + std::string(p.name);
+      if (!p.any_sign) {
+        const bool zero_ok = !p.required && p.default_si == 0;
+        if (zero_ok ? !non_negative(q, what.c_str(), "") : !positive(q, what.c_str())) {
+          ok = false;
+          continue;
+        }
+      }
+      Param v = stated_param(q, Layer::Physical);
+      if (q.unit.empty()) v.stated = fmt_num(q.value);
+      r.params.emplace_back(std::string(p.name), v);
+    }
+    if (ok) m.laws.push_back(std::move(r));
+  }
+
+  static std::string example_args(const schema::LawDef& def) {
+    std::string out;
+    for (const auto& p : def.params) {
+      if (!p.required) continue;
+      if (!out.empty()) out += ' ';
+      out += std::string(p.name) + " ";
+      switch (p.dimension) {
+        case schema::Dimension::Stiffness: out += "200 N/m"; break;
+        case schema::Dimension::Damping: out += "2 N*s/m"; break;
+        case schema::Dimension::Force: out += "0.5 N"; break;
+        case schema::Dimension::Length: out += "5 mm"; break;
+        case schema::Dimension::Mass: out += "50 g"; break;
+        case schema::Dimension::Time: out += "20 ms"; break;
+        default: out += "1"; break;
+      }
+    }
+    return out;
   }
 
   void heightmap(const HeightmapStmt& h, ResolvedMaterial& m) {
@@ -321,7 +404,10 @@ class Resolver {
     if (!has_texture && m.max_lateral_force && m.max_lateral_force->layer != Layer::Representative && !diags_.has_errors())
       diags_.error("E0309", m.max_lateral_force->location, "roughness or amplitude given, but there is no texture to carry it",
                    "add a texture, e.g. `grating period 2.5 mm`, or start from one with `like corduroy`");
-    if (!has_texture && !m.spring && !m.damper && !diags_.has_errors())
+    bool has_force_law = false;
+    for (const auto& l : m.laws)
+      if (l.name != "Nothing" && l.name != "Null") has_force_law = true;
+    if (!has_texture && !m.spring && !m.damper && !has_force_law && !diags_.has_errors())
       diags_.warning("W0305", syn_.name_location.file ? syn_.name_location : SourceLocation{syn_.file, 1, 1, 1},
                      "the material has no force terms; it will feel like nothing",
                      "add a texture, a spring or a damper");

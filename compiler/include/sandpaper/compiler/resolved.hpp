@@ -40,6 +40,22 @@ struct ResolvedHeightmap {
   SourceLocation location;   // the path in the heightmap statement
 };
 
+// One `force` or `physics` statement with every parameter resolved (defaults filled in from
+// schema/force_laws.hpp), in the law's declared parameter order.
+struct ResolvedLaw {
+  bool physics = false;
+  std::string name;                                   // "AntiViscous"
+  std::vector<std::pair<std::string, Param>> params;  // ("stiffness", 200 N/m), ...
+  int axes = 3;                                       // periodic laws: 1 = x, 2 = y, 3 = both
+  std::string text;                                   // the statement as written
+  SourceLocation location;                            // the law's name
+  const Param* find(const std::string& param) const {
+    for (const auto& [n, p] : params)
+      if (n == param) return &p;
+    return nullptr;
+  }
+};
+
 struct ResolvedMaterial {
   std::string name;
   std::string describes;
@@ -49,6 +65,9 @@ struct ResolvedMaterial {
   std::optional<Param> roughness;          // the ratio-scale roughness asked for, if any
   std::optional<Param> spring;             // N/m
   std::optional<Param> damper;             // N*s/m
+  std::vector<ResolvedLaw> laws;           // force laws and physics models, summed in order
+  std::optional<Param> energy_budget;      // J, for non-passive laws
+  std::optional<Param> energy_refill;      // W
   Param size_width, size_height;           // m
   bool extrapolate = false;
 };

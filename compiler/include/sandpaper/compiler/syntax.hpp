@@ -49,9 +49,28 @@ struct DamperStmt { Quantity damping; };
 struct SizeStmt { Quantity width; std::optional<Quantity> height; };
 // Permits roughness above 1, beyond the strongest calibrated stimulus.
 struct ExtrapolateStmt {};
+// Physical: one of Sandpaper's force laws or physics models (Appendix B, 3.2.2), by its name, with
+// named parameters checked against schema/force_laws.hpp.
+struct LawArg {
+  std::string name;            // "stiffness"
+  std::optional<Quantity> quantity;  // for quantity and plain-number parameters (unit "" for a number)
+  std::string word;            // for axes: "x", "y", "xy"
+  SourceLocation location;     // the parameter's name
+};
+struct LawStmt {
+  bool physics = false;        // `physics` (a model with state) rather than `force`
+  std::string name;            // "AntiViscous"
+  SourceLocation name_location;
+  std::vector<LawArg> args;
+};
+// Physical: the energy the material's non-passive laws may inject (docs/RUNTIME.md, "Energy bound").
+struct EnergyStmt {
+  Quantity budget;
+  std::optional<Quantity> refill;
+};
 
 using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, GratingStmt, HeightmapStmt, SpringStmt,
-                                   DamperStmt, SizeStmt, ExtrapolateStmt>;
+                                   DamperStmt, SizeStmt, ExtrapolateStmt, LawStmt, EnergyStmt>;
 
 struct Statement {
   StatementNode node;

@@ -145,6 +145,13 @@ bool is_passive(const Term& term);
 // Whether the runtime keeps state for the term between ticks (FollowerSpring, PointMasses, Attractor).
 bool has_state(const Term& term);
 
+// Substeps of the point-mass integrator (semi-implicit Euler) for one tick of `dt_s` seconds: enough
+// that each substep h keeps h * omega <= 0.25 and h * c / m <= 0.5, with omega and c / m bounded by
+// Gershgorin's theorem from the chain's stiffness and damping. The runtime caps it at
+// kMaxPointMassSubsteps; the compiler refuses materials that need more at the device's slowest rate.
+inline constexpr std::uint32_t kMaxPointMassSubsteps = 64;
+std::uint32_t point_mass_substeps(const PointMassesTerm& term, double dt_s);
+
 // Where one number of the compiled program came from.
 struct Provenance {
   std::string parameter;  // dotted name: "texture.period", "texture.max_lateral_force", "spring.stiffness"
