@@ -12,6 +12,7 @@ using schema::Dimension;
 std::string Quantity::text() const {
   std::ostringstream os;
   os << value;
+  if (unit.empty()) return os.str();  // a plain number (e.g. the Attractor's swirl)
   return unit == "%" ? os.str() + "%" : os.str() + " " + unit;
 }
 
@@ -279,7 +280,7 @@ class Parser {
           throw StatementError{};
         }
       LawArg arg{o.text, std::nullopt, {}, o.location};
-      const std::string what = "the " + o.text;
+      const std::string what = "the " + out.name + " " + o.text;
       if (param->kind == schema::LawParamKind::Quantity) {
         arg.quantity = quantity(param->dimension, what.c_str());
       } else if (param->kind == schema::LawParamKind::Number) {

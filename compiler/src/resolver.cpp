@@ -326,7 +326,7 @@ class Resolver {
       const Quantity& q = *arg->quantity;
       const std::string what = l.name + " " + std::string(p.name);
       if (!p.any_sign) {
-        const bool zero_ok = !p.required && p.default_si == 0;
+        const bool zero_ok = (!p.required && p.default_si == 0) || p.kind == schema::LawParamKind::Number;
         if (zero_ok ? !non_negative(q, what.c_str(), "") : !positive(q, what.c_str())) {
           ok = false;
           continue;
