@@ -26,8 +26,13 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
   } else if (explain) {
     std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device());
   } else {
-    std::cout << prog.name << ": maximum lateral force " << prog.max_lateral_force_N << " N, roughness " << prog.roughness
-              << ", " << prog.terms.size() << " term(s) for device " << prog.device;
+    std::cout << prog.name << ": ";
+    // Without a texture there is no lateral-force roughness to report (issue 2's rule for `run`).
+    if (prog.max_lateral_force_N > 0)
+      std::cout << "maximum lateral force " << prog.max_lateral_force_N << " N, roughness " << prog.roughness << ", ";
+    else
+      std::cout << "no texture, ";
+    std::cout << prog.terms.size() << " term(s) for device " << prog.device;
     if (!out_path.empty()) std::cout << " -> " << out_path;
     std::cout << "\n";
   }

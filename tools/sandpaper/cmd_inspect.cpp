@@ -18,8 +18,13 @@ int cmd_inspect(const std::string& file, bool json, bool tables) {
   if (!p.describes.empty()) std::cout << "  describes  \"" << p.describes << "\"\n";
   std::cout << "  device     " << p.device << "\n";
   std::cout << "  size       " << p.size_m[0] * 1e3 << " mm x " << p.size_m[1] * 1e3 << " mm\n";
-  std::cout << "  maximum lateral force " << p.max_lateral_force_N << " N, roughness " << p.roughness << " ("
-            << p.roughness_map << ")\n";
+  if (p.max_lateral_force_N > 0)
+    std::cout << "  maximum lateral force " << p.max_lateral_force_N << " N, roughness " << p.roughness << " ("
+              << p.roughness_map << ")\n";
+  else
+    std::cout << "  no texture (no lateral-force roughness)\n";
+  if (p.energy_budget_J > 0 || p.energy_refill_W > 0)
+    std::cout << "  energy bound " << p.energy_budget_J * 1e3 << " mJ, refill " << p.energy_refill_W * 1e3 << " mW\n";
   std::cout << "  terms\n";
   for (const auto& t : j["terms"]) std::cout << "    " << t.dump() << "\n";
   std::cout << "  provenance\n";
