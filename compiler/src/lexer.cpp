@@ -14,7 +14,8 @@ bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
 class Lexer {
  public:
-  Lexer(const std::shared_ptr<const SourceFile>& file, Diagnostics& diags) : file_(file), src_(file->text), diags_(diags) {}
+  Lexer(const std::shared_ptr<const SourceFile>& file, Diagnostics& diags, LexOptions options)
+      : file_(file), src_(file->text), diags_(diags), options_(options) {}
 
   std::vector<Token> run() {
     while (pos_ < src_.size()) {
@@ -31,6 +32,9 @@ class Lexer {
         advance();
       } else if (c == '}') {
         add(TokenKind::RBrace, "}", 1);
+        advance();
+      } else if (c == ',' && options_.commas) {
+        add(TokenKind::Comma, ",", 1);
         advance();
       } else if (c == '"') {
         string();
@@ -128,6 +132,7 @@ class Lexer {
   std::shared_ptr<const SourceFile> file_;
   const std::string& src_;
   Diagnostics& diags_;
+  LexOptions options_;
   std::vector<Token> tokens_;
   std::size_t pos_ = 0;
   int line_ = 1;
@@ -136,8 +141,8 @@ class Lexer {
 
 }  // namespace
 
-std::vector<Token> lex(const std::shared_ptr<const SourceFile>& file, Diagnostics& diags) {
-  return Lexer(file, diags).run();
+std::vector<Token> lex(const std::shared_ptr<const SourceFile>& file, Diagnostics& diags, LexOptions options) {
+  return Lexer(file, diags, options).run();
 }
 
 const char* token_kind_name(TokenKind k) {
@@ -147,6 +152,7 @@ const char* token_kind_name(TokenKind k) {
     case TokenKind::String: return "a string";
     case TokenKind::LBrace: return "'{'";
     case TokenKind::RBrace: return "'}'";
+    case TokenKind::Comma: return "','";
     case TokenKind::End: return "the end of the statement";
     case TokenKind::Eof: return "the end of the file";
   }

@@ -69,5 +69,61 @@ has "$tmp/out" '"roughness": null' "no roughness without a texture"
 printf 'SNDPATCHgarbage' >"$tmp/broken.patch"
 expect_exit 1 "corrupt patch" -- "$sp" inspect "$tmp/broken.patch"
 
+# Workspaces of patches (thesis Appendix B): compile, explain, play on the simulated joystick.
+expect_exit 0 "compile workspace" -- "$sp" compile examples/workspace/sampler.hws -o "$tmp/ws.json"
+has "$tmp/ws.json" '"format": "sandpaper-workspace"' "workspace JSON format"
+has "$tmp/ws.json" '"patch_count": 7' "workspace JSON patch count"
+has "$tmp/ws.json" '"material": "a10p25"' "workspace JSON holds the patch programs"
+expect_exit 0 "compile workspace --json" -- "$sp" compile examples/workspace/periods.hws -o "$tmp/p.json" --json
+has "$tmp/out" '"ok": true' "workspace compile --json"
+expect_exit 0 "explain workspace" -- "$sp" explain examples/workspace/sampler.hws
+has "$tmp/out" 'patch 7 +"roughness 0.3; grating period 5 mm" +at 0 mm, 0 mm' "explain lists the patches"
+has "$tmp/out" 'material a10p25; maximum lateral force 1.946 N' "explain gives each patch's force"
+expect_exit 0 "run workspace (virtual clock)" -- "$sp" run examples/workspace/sampler.hws --device sim --virtual-clock --json --trace "$tmp/ws.csv"
+for key in '"touched_patches": 7' '"patch_count": 7' '"stop_reason": "completed"' '"direction_deg": 0.0' '"ticks": [0-9]+'; do
+  has "$tmp/out" "$key" "run workspace --json"
+done
+has "$tmp/ws.csv" '^t_s,x_m,y_m,force_x_N,force_y_N,patch$' "workspace trace header"
+has "$tmp/ws.csv" ',7$' "the trace names the front patch"
+expect_exit 0 "run workspace, circle hand" -- "$sp" run examples/workspace/sampler.hws --device sim --virtual-clock --hand circle --amplitude 60 --duration 2
+has "$tmp/out" 'patches +[1-7] of 7 touched' "run reports the patches touched"
+has "$tmp/out" 'max \|F\|' "run reports the force per patch"
+expect_exit 0 "run workspace (real time)" -- "$sp" run examples/workspace/cloths.hws --device sim --duration 0.3
+has "$tmp/out" 'achieved' "workspace real-time run"
+expect_exit 1 "workspace with a patch outside" -- "$sp" compile tests/golden/workspace/outside.hws -o "$tmp/bad.json"
+has "$tmp/err" 'outside.hws:4:23: error\[E0507\]' "outside diagnostic"
+[ ! -e "$tmp/bad.json" ] && ok || bad "a failed workspace compile wrote its output"
+expect_exit 1 "workspace material error --json" -- "$sp" run tests/golden/workspace/material-error.hws --json
+has "$tmp/out" '"ok": false' "workspace json failure object"
+has "$tmp/err" 'note: in the material of patch 1' "material errors point at the patch"
+
+# Movies and shuffles (thesis Appendix B).
+expect_exit 0 "movie show" -- "$sp" movie show examples/workspace/session.movie
+has "$tmp/out" '3 frames' "movie show counts the frames"
+expect_exit 0 "movie shuffle" -- "$sp" movie shuffle examples/workspace/session.movie --seed 7 --date 1995-06-01 --time 14:30:00 -o "$tmp/a.shuffle"
+"$sp" movie shuffle examples/workspace/session.movie --seed 7 --date 1995-06-01 --time 14:30:00 -o "$tmp/b.shuffle" >/dev/null 2>&1
+cmp -s "$tmp/a.shuffle" "$tmp/b.shuffle" && ok || bad "the same seed gave different shuffles"
+has "$tmp/a.shuffle" '^Movie: .*examples/workspace/session.movie$' "shuffle header names the movie"
+has "$tmp/a.shuffle" '^Date: 1995-06-01$' "shuffle date"
+has "$tmp/a.shuffle" '^Time: 14:30:00$' "shuffle time"
+[ "$(sed -n 4p "$tmp/a.shuffle")" = "" ] && ok || bad "a blank line must follow the header"
+[ "$(tail -n +5 "$tmp/a.shuffle" | awk '{print $1}' | sort | tr '\n' ' ')" = "1 2 3 " ] && ok || bad "shuffle indices are not 1..3"
+expect_exit 0 "movie show shuffle" -- "$sp" movie show "$tmp/a.shuffle"
+has "$tmp/out" 'matches the movie' "a shuffle is checked against its movie"
+mkdir -p "$tmp/m" && cp examples/workspace/*.hws examples/workspace/session.movie "$tmp/m/"
+expect_exit 0 "movie shuffle, default name" -- "$sp" movie shuffle "$tmp/m/session.movie" --seed 3 --date 2024-02-29 --time 09:05:00
+[ -s "$tmp/m/session-20240229-090500.shuffle" ] && ok || bad "default shuffle name"
+has "$tmp/m/session-20240229-090500.shuffle" '^Movie: session.movie$' "shuffle beside its movie names it plainly"
+sed -i 's/^1 /9 /' "$tmp/m/session-20240229-090500.shuffle"
+expect_exit 1 "a damaged shuffle" -- "$sp" movie show "$tmp/m/session-20240229-090500.shuffle"
+has "$tmp/err" 'E0523' "damaged shuffle diagnostic"
+expect_exit 2 "bad --date" -- "$sp" movie shuffle examples/workspace/session.movie --seed 1 --date 1995-02-30 -o "$tmp/x.shuffle"
+for i in $(seq 1 101); do echo "sampler.hws"; done >"$tmp/m/long.movie"
+expect_exit 1 "a movie over 100 frames" -- "$sp" movie show "$tmp/m/long.movie"
+has "$tmp/err" 'long.movie:101:1: error\[E0511\]' "frame limit diagnostic"
+echo "nowhere.hws" >"$tmp/m/missing.movie"
+expect_exit 1 "a movie naming a missing workspace" -- "$sp" movie shuffle "$tmp/m/missing.movie" --seed 1
+has "$tmp/err" 'E0512' "missing frame diagnostic"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,6 +1,7 @@
 #pragma once
-// The `sandpaper` command line: compile, explain, run, inspect, library. Exit codes: 0 success,
+// The `sandpaper` command line: compile, explain, run, inspect, library, movie. Exit codes: 0 success,
 // 1 the input is wrong (diagnostics printed), 2 usage or environment errors, 3 internal errors.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -42,5 +43,34 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
             double amplitude_mm, const std::string& trace, bool virtual_clock);
 int cmd_inspect(const std::string& file, bool json, bool tables);
 int cmd_library(const CommonOptions& o);
+
+// Workspaces (.hws, thesis Appendix B). Options left unset take workspace defaults: a scan through
+// the centre in the direction that crosses the most patches, out to the furthest, for one lap.
+struct WorkspaceRunOptions {
+  double rate_hz = 1000;
+  std::optional<double> duration_s;
+  std::optional<std::string> hand;
+  double speed_mm_s = 50;
+  std::optional<double> amplitude_mm;
+  std::string trace;
+  bool virtual_clock = false;
+  double crossfade_ms = 2;
+};
+// True when the input is a workspace file rather than a material.
+inline bool is_workspace_input(const CommonOptions& o) {
+  return o.expression.empty() && std::filesystem::path(o.file).extension() == ".hws";
+}
+int cmd_workspace_compile(const CommonOptions& o, const std::string& output, bool explain);
+int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro);
+
+// Movies and shuffles (thesis Appendix B).
+struct MovieShuffleOptions {
+  std::string movie;
+  std::uint64_t seed = 0;
+  std::string output;       // empty: <movie stem>-<YYYYMMDD>-<HHMMSS>.shuffle beside the movie
+  std::string date, time;   // empty: the system clock's
+};
+int cmd_movie_shuffle(const MovieShuffleOptions& m, bool json);
+int cmd_movie_show(const std::string& file, bool json);
 
 }  // namespace sandpaper::cli

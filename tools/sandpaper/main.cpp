@@ -12,7 +12,7 @@ namespace {
 
 void add_common(CLI::App* sub, sandpaper::cli::CommonOptions& o, bool input) {
   if (input) {
-    sub->add_option("file", o.file, "material file (.hmat)");
+    sub->add_option("file", o.file, "material file (.hmat) or workspace (.hws)");
     sub->add_option("-e,--expression", o.expression, "material as one line: statements separated by ';', or a library name");
   }
   sub->add_option("--device", o.device, "device calibration to compile for (calibration/devices/)")->capture_default_str();
@@ -52,8 +52,24 @@ int main(int argc, char** argv) {
   inspect->add_option("file", patch_file, "patch program (.patch)")->required();
   inspect->add_flag("--json", o.json, "print JSON");
   inspect->add_flag("--tables", tables, "include the force tables (with --json)");
+  double crossfade_ms = 2;
+  run->add_option("--crossfade", crossfade_ms, "workspaces: crossfade time at patch edges, ms")->capture_default_str();
   auto* library = app.add_subcommand("library", "list the library's entries");
   add_common(library, o, false);
+  auto* movie = app.add_subcommand("movie", "movie files (lists of workspaces) and their shuffles (thesis Appendix B)");
+  movie->require_subcommand(1);
+  MovieShuffleOptions shuffle_opts;
+  auto* shuffle = movie->add_subcommand("shuffle", "write a shuffle file: the movie's frames in a seeded random order");
+  shuffle->add_option("movie", shuffle_opts.movie, "movie file")->required();
+  shuffle->add_option("--seed", shuffle_opts.seed, "random seed; the same seed gives the same order everywhere")->required();
+  shuffle->add_option("-o,--output", shuffle_opts.output, "shuffle file to write (default: <movie>-<YYYYMMDD>-<HHMMSS>.shuffle beside the movie)");
+  shuffle->add_option("--date", shuffle_opts.date, "date to record, YYYY-MM-DD (default: today)");
+  shuffle->add_option("--time", shuffle_opts.time, "time to record, HH:MM:SS (default: now)");
+  shuffle->add_flag("--json", o.json, "print JSON");
+  std::string show_file;
+  auto* show = movie->add_subcommand("show", "list a movie's frames, or a shuffle's (checked against its movie)");
+  show->add_option("file", show_file, "movie or shuffle file")->required();
+  show->add_flag("--json", o.json, "print JSON");
 
   CLI11_PARSE(app, argc, argv);
   auto needs_input = [&](CLI::App* sub) {
@@ -64,10 +80,32 @@ int main(int argc, char** argv) {
     return true;
   };
   try {
-    if (compile->parsed()) return needs_input(compile) ? cmd_compile(o, output, false) : kExitUsage;
-    if (explain->parsed()) return needs_input(explain) ? cmd_compile(o, "", true) : kExitUsage;
-    if (run->parsed())
-      return needs_input(run) ? cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock) : kExitUsage;
+    if (compile->parsed()) {
+      if (!needs_input(compile)) return kExitUsage;
+      return is_workspace_input(o) ? cmd_workspace_compile(o, output, false) : cmd_compile(o, output, false);
+    }
+    if (explain->parsed()) {
+      if (!needs_input(explain)) return kExitUsage;
+      return is_workspace_input(o) ? cmd_workspace_compile(o, "", true) : cmd_compile(o, "", true);
+    }
+    if (run->parsed()) {
+      if (!needs_input(run)) return kExitUsage;
+      if (is_workspace_input(o)) {
+        WorkspaceRunOptions ro;
+        ro.rate_hz = rate;
+        if (run->count("--duration")) ro.duration_s = duration;
+        if (run->count("--hand")) ro.hand = hand;
+        ro.speed_mm_s = speed;
+        if (run->count("--amplitude")) ro.amplitude_mm = amplitude;
+        ro.trace = trace;
+        ro.virtual_clock = virtual_clock;
+        ro.crossfade_ms = crossfade_ms;
+        return cmd_workspace_run(o, ro);
+      }
+      return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock);
+    }
+    if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);
+    if (show->parsed()) return cmd_movie_show(show_file, o.json);
     if (inspect->parsed()) return cmd_inspect(patch_file, o.json, tables);
     if (library->parsed()) return cmd_library(o);
   } catch (const sandpaper::schema::PatchFormatError& e) {

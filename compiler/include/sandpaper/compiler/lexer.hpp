@@ -15,6 +15,7 @@ enum class TokenKind {
   String,     // "..." with \" and \\ escapes; `text` holds the unescaped contents
   LBrace,
   RBrace,
+  Comma,      // only with LexOptions::commas (workspace files: `at -60 mm, 0 mm`)
   End,        // end of a statement: newline or ';'
   Eof,
 };
@@ -26,7 +27,12 @@ struct Token {
   SourceLocation location;
 };
 
-std::vector<Token> lex(const std::shared_ptr<const SourceFile>& file, Diagnostics& diags);
+struct LexOptions {
+  // ',' is a token (workspace files) rather than an unexpected character (material files).
+  bool commas = false;
+};
+
+std::vector<Token> lex(const std::shared_ptr<const SourceFile>& file, Diagnostics& diags, LexOptions options = {});
 
 const char* token_kind_name(TokenKind k);
 

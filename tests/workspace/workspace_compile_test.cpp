@@ -1,0 +1,171 @@
+// The workspace compiler: .hws text -> WorkspaceProgram, with diagnostics E05xx, the unit rules,
+// materials compiled through the material compiler, and placement checks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include "sandpaper/compiler/workspace.hpp"
+#include "sandpaper/schema/workspace_json.hpp"
+#include "test_support.hpp"
+
+namespace sandpaper {
+namespace {
+
+namespace fs = std::filesystem;
+
+compiler::WorkspaceResult compile(const std::string& text, const fs::path& base = ".") {
+  return compiler::compile_workspace_text(test::shipped_compiler(), text, "<test.hws>", base);
+}
+
+std::vector<std::string> codes(const compiler::Diagnostics& d, compiler::Severity s = compiler::Severity::Error) {
+  std::vector<std::string> out;
+  for (const auto& x : d.all())
+    if (x.severity == s) out.push_back(x.code);
+  return out;
+}
+
+TEST(WorkspaceCompile, TheExampleSamplerCompiles) {
+  auto r = compiler::compile_workspace_file(test::shipped_compiler(), "examples/workspace/sampler.hws");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  const auto& ws = *r.program;
+  EXPECT_EQ(ws.name, "thesis sampler");
+  EXPECT_DOUBLE_EQ(ws.size_m[0], 228.6e-3);
+  ASSERT_EQ(ws.patches.size(), 7u);
+  // File order is painting order; positions and sizes in SI; the placed size replaces the material's.
+  EXPECT_EQ(ws.patches[0].source, "silk-satin");
+  EXPECT_DOUBLE_EQ(ws.patches[0].centre_m[0], -0.090);
+  EXPECT_DOUBLE_EQ(ws.patches[0].centre_m[1], 0.0);
+  EXPECT_DOUBLE_EQ(ws.patches[0].size_m[0], 0.032);
+  EXPECT_DOUBLE_EQ(ws.patches[0].size_m[1], 0.060);
+  for (const auto& p : ws.patches) {
+    EXPECT_EQ(p.program.size_m[0], p.size_m[0]);
+    EXPECT_EQ(p.program.size_m[1], p.size_m[1]);
+  }
+  EXPECT_EQ(ws.patches[3].program.name, "a10p25");
+  EXPECT_EQ(ws.patches[6].source, "roughness 0.3; grating period 5 mm");
+  EXPECT_DOUBLE_EQ(ws.patches[6].size_m[1], 0.020);  // `size 20 mm`: square
+}
+
+TEST(WorkspaceCompile, PatchesKeepWhatTheMaterialCompilerGives) {
+  auto r = compile("workspace \"w\" {\n  patch \"a10p25\" at 10 mm, -20 mm size 30 mm x 40 mm\n}\n");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  auto direct = test::shipped_compiler().compile_text("a10p25");
+  ASSERT_TRUE(direct.ok());
+  const auto& placed = r.program->patches.at(0).program;
+  EXPECT_EQ(placed.name, direct.program->name);
+  EXPECT_EQ(placed.max_lateral_force_N, direct.program->max_lateral_force_N);
+  EXPECT_EQ(placed.terms.size(), direct.program->terms.size());
+  // Table 8: A10 P25 is 7.0 oz of force = 7 x 28.349523125 g x 9.80665 m/s^2.
+  EXPECT_NEAR(placed.max_lateral_force_N, 7.0 * 28.349523125e-3 * 9.80665, 1e-3);
+}
+
+TEST(WorkspaceCompile, DefaultsAreTheThesisWorkspaceAndTheMaterialsOwnSize) {
+  auto r = compile("workspace \"w\" { \n patch \"corduroy\" at 0 mm, 0 mm\n}");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_DOUBLE_EQ(r.program->size_m[0], 9 * 0.0254);  // Table 2: 9 in
+  EXPECT_DOUBLE_EQ(r.program->size_m[1], 9 * 0.0254);
+  auto direct = test::shipped_compiler().compile_text("corduroy");
+  EXPECT_EQ(r.program->patches[0].size_m[0], direct.program->size_m[0]);
+}
+
+TEST(WorkspaceCompile, MaterialFilesAreRelativeToTheWorkspace) {
+  const fs::path dir = test::temp_dir("ws-relative");
+  fs::create_directories(dir / "sub");
+  std::ofstream(dir / "sub" / "ribs.hmat") << "grating period 4 mm amplitude 1 N\n";
+  std::ofstream(dir / "w.hws") << "workspace \"w\" {\n  patch \"sub/ribs.hmat\" at 0 mm, 0 mm size 20 mm\n}\n";
+  auto r = compiler::compile_workspace_file(test::shipped_compiler(), dir / "w.hws");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NEAR(r.program->patches[0].program.max_lateral_force_N, 1.0, 1e-9);
+  EXPECT_EQ(r.program->patches[0].source, "sub/ribs.hmat");
+}
+
+TEST(WorkspaceCompile, MaterialErrorsCarryANoteAtThePatch) {
+  auto r = compile("workspace \"w\" {\n  patch \"roughness 5; grating period 2 mm\" at 0 mm, 0 mm size 20 mm\n}\n");
+  EXPECT_FALSE(r.ok());
+  EXPECT_FALSE(r.program.has_value());
+  ASSERT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0303"});
+  const auto& d = r.diagnostics.all().front();
+  ASSERT_FALSE(d.notes.empty());
+  EXPECT_EQ(d.notes.back().location.str(), "<test.hws>:2:9");
+  EXPECT_NE(d.notes.back().message.find("patch 1"), std::string::npos);
+}
+
+TEST(WorkspaceCompile, ASharedMaterialIsReportedOnceWithEveryPatch) {
+  auto r = compile("workspace \"w\" {\n  patch \"velvet\" at 0 mm, 0 mm size 20 mm\n  patch \"velvet\" at 30 mm, 0 mm size 20 mm\n}\n");
+  ASSERT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0301"});
+  EXPECT_EQ(r.diagnostics.all().front().notes.size(), 2u);
+}
+
+TEST(WorkspaceCompile, UnitsAreRequired) {
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0, 0 mm size 20 mm\n}\n").diagnostics),
+            std::vector<std::string>{"E0203"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm, 0 mm size 20 N\n}\n").diagnostics),
+            std::vector<std::string>{"E0205"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  size 20 mn\n}\n").diagnostics), std::vector<std::string>{"E0204"});
+}
+
+TEST(WorkspaceCompile, SyntaxErrors) {
+  EXPECT_EQ(codes(compile("patch \"corduroy\" at 0 mm, 0 mm\n").diagnostics), std::vector<std::string>{"E0501"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm 0 mm\n}\n").diagnostics),
+            std::vector<std::string>{"E0501"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  pach \"corduroy\" at 0 mm, 0 mm\n}\n").diagnostics),
+            std::vector<std::string>{"E0502"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm, 0 mm\n").diagnostics),
+            std::vector<std::string>{"E0503"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n}\nsize 1 m\n").diagnostics), std::vector<std::string>{"E0504"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  size 1 m\n  size 2 m\n}\n").diagnostics), std::vector<std::string>{"E0505"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm, 0 mm size -2 mm\n}\n").diagnostics),
+            std::vector<std::string>{"E0506"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"  \" at 0 mm, 0 mm size 2 mm\n}\n").diagnostics),
+            std::vector<std::string>{"E0508"});
+  // Every error in the file, not just the first.
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  pach 1\n  patch \"a\" at 0, 0 mm\n  size 2 N\n}\n").diagnostics),
+            (std::vector<std::string>{"E0502", "E0203", "E0205"}));
+}
+
+TEST(WorkspaceCompile, APatchOutsideTheWorkspaceIsAnError) {
+  // 9 in workspace: x within +-114.3 mm. A 40 mm patch at 100 mm reaches 120 mm.
+  auto r = compile("workspace \"w\" {\n  patch \"corduroy\" at 100 mm, 0 mm size 40 mm\n}\n");
+  EXPECT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0507"});
+  EXPECT_FALSE(r.program.has_value());
+  // Flush with the edge is inside.
+  EXPECT_TRUE(compile("workspace \"w\" {\n  size 100 mm\n  patch \"corduroy\" at 30 mm, -30 mm size 40 mm\n}\n").ok());
+  EXPECT_FALSE(compile("workspace \"w\" {\n  size 100 mm x 50 mm\n  patch \"corduroy\" at 0 mm, 10 mm size 40 mm\n}\n").ok());
+}
+
+TEST(WorkspaceCompile, HiddenPatchesAndEmptyWorkspacesWarn) {
+  auto r = compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm, 0 mm size 10 mm\n  patch \"denim-twill\" at 0 mm, 0 mm size 30 mm\n}\n");
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(codes(r.diagnostics, compiler::Severity::Warning), std::vector<std::string>{"W0502"});
+  auto e = compile("workspace \"w\" {\n}\n");
+  ASSERT_TRUE(e.ok());
+  EXPECT_EQ(codes(e.diagnostics, compiler::Severity::Warning), std::vector<std::string>{"W0501"});
+}
+
+TEST(WorkspaceCompile, CommasStayErrorsInMaterials) {
+  auto r = test::shipped_compiler().compile_text("grating period 2 mm, hill 50%; roughness 0.3");
+  EXPECT_EQ(test::codes(r).front(), "E0102");
+}
+
+TEST(WorkspaceCompile, JsonHasEveryPatchWithUnits) {
+  auto r = compiler::compile_workspace_file(test::shipped_compiler(), "examples/workspace/sampler.hws");
+  ASSERT_TRUE(r.ok());
+  const auto j = schema::to_json(*r.program);
+  EXPECT_EQ(j["workspace"], "thesis sampler");
+  ASSERT_EQ(j["patches"].size(), 7u);
+  EXPECT_EQ(j["patches"][3]["index"], 3);
+  EXPECT_DOUBLE_EQ(j["patches"][3]["centre_m"][0].get<double>(), 0.018);
+  EXPECT_DOUBLE_EQ(j["patches"][3]["size_m"][1].get<double>(), 0.060);
+  EXPECT_EQ(j["patches"][3]["program"]["material"], "a10p25");
+  EXPECT_EQ(j["patches"][3]["source"], "a10p25");
+}
+
+TEST(WorkspaceCompile, MissingFile) {
+  auto r = compiler::compile_workspace_file(test::shipped_compiler(), "no/such/workspace.hws");
+  EXPECT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0500"});
+}
+
+}  // namespace
+}  // namespace sandpaper

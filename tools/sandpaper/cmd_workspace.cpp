@@ -1,0 +1,284 @@
+// `sandpaper compile|explain|run ws.hws`: workspaces of patches (thesis Appendix B).
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "cli.hpp"
+#include "sandpaper/compiler/workspace.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/runtime/sim_joystick.hpp"
+#include "sandpaper/runtime/workspace_evaluator.hpp"
+#include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/workspace_json.hpp"
+
+namespace sandpaper::cli {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::optional<schema::WorkspaceProgram> load_workspace(const CommonOptions& o, const compiler::Compiler& c,
+                                                       compiler::Diagnostics& diags) {
+  auto r = compiler::compile_workspace_file(c, o.file);
+  std::cerr << compiler::format_diagnostics(r.diagnostics);
+  diags = r.diagnostics;
+  if (!r.ok()) {
+    if (o.json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}.dump(2) << "\n";
+    return std::nullopt;
+  }
+  return std::move(*r.program);
+}
+
+std::string patch_line(const schema::WorkspaceProgram& ws, std::size_t i) {
+  const auto& p = ws.patches[i];
+  return fmt::format("patch {:<3} {:<24} at {:g} mm, {:g} mm  size {:g} x {:g} mm", i + 1, "\"" + p.source + "\"",
+                     p.centre_m[0] * 1e3, p.centre_m[1] * 1e3, p.size_m[0] * 1e3, p.size_m[1] * 1e3);
+}
+
+runtime::DeviceLimits limits_of(const compiler::Compiler& c) {
+  const auto& dev = c.device();
+  runtime::DeviceLimits limits;
+  limits.name = dev.name;
+  limits.max_force_N = dev.max_force_N;
+  limits.min_rate_hz = dev.min_rate_hz;
+  limits.max_rate_hz = dev.max_rate_hz;
+  limits.workspace_radius_m = dev.workspace_radius_m;
+  return limits;
+}
+
+// The default hand: a scan through the workspace centre along the direction (of 16) that crosses
+// the most patches, turning just beyond the furthest patch it meets (within the device's reach).
+struct ScanChoice {
+  double direction_rad = 0;
+  double amplitude_m = 0.03;
+  std::size_t crossed = 0;
+};
+
+ScanChoice choose_scan(const runtime::WorkspaceEvaluator& ev, double reach_m) {
+  ScanChoice best;
+  constexpr int kDirections = 16;
+  constexpr double kStep_m = 0.25e-3;
+  const int steps = static_cast<int>(reach_m / kStep_m);
+  for (int k = 0; k < kDirections; ++k) {
+    const double a = kPi * k / kDirections;
+    const glm::dvec2 dir{std::cos(a), std::sin(a)};
+    std::vector<bool> hit(ev.patch_count(), false);
+    std::size_t crossed = 0;
+    double furthest = 0;
+    for (int s = -steps; s <= steps; ++s) {
+      const double d = s * kStep_m;
+      const auto id = ev.patch_at(d * dir);
+      if (id == runtime::WorkspaceEvaluator::kNoPatch) continue;
+      furthest = std::max(furthest, std::abs(d));
+      if (!hit[id]) {
+        hit[id] = true;
+        ++crossed;
+      }
+    }
+    if (crossed > best.crossed) best = {a, std::min(reach_m, furthest + 1e-3), crossed};
+  }
+  return best;
+}
+
+}  // namespace
+
+int cmd_workspace_compile(const CommonOptions& o, const std::string& output, bool explain) {
+  auto c = make_compiler(o);
+  compiler::Diagnostics diags;
+  auto ws = load_workspace(o, c, diags);
+  if (!ws) return kExitBadInput;
+  std::string out_path = output;
+  if (!explain && out_path.empty()) out_path = std::filesystem::path(o.file).replace_extension(".json").string();
+  const auto j = schema::to_json(*ws);
+  if (!explain) schema::write_file_atomically(out_path, j.dump(2) + "\n");
+
+  if (o.json) {
+    auto out = j;
+    out["ok"] = true;
+    out["diagnostics"] = diagnostics_json(diags);
+    if (!explain) out["output"] = out_path;
+    std::cout << out.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::cout << fmt::format("workspace \"{}\": {:g} mm x {:g} mm, {} patch{} for device {}", ws->name, ws->size_m[0] * 1e3,
+                           ws->size_m[1] * 1e3, ws->patches.size(), ws->patches.size() == 1 ? "" : "es", o.device);
+  if (!explain) {
+    std::cout << " -> " << out_path << "\n";
+    return kExitOk;
+  }
+  std::cout << "\n  painting order: patch 1 is at the back, each later patch lies in front; only the frontmost patch\n"
+               "  under the hand sends force (thesis Appendix B). Positions are patch centres, origin at the workspace centre.\n";
+  for (std::size_t i = 0; i < ws->patches.size(); ++i) {
+    const auto& p = ws->patches[i].program;
+    std::cout << "  " << patch_line(*ws, i) << "\n";
+    std::cout << fmt::format("      material {}; maximum lateral force {:.4g} N, roughness {:.3g}; {} term{}\n", p.name,
+                             p.max_lateral_force_N, p.roughness, p.terms.size(), p.terms.size() == 1 ? "" : "s");
+    if (!p.describes.empty()) std::cout << "      describes \"" << p.describes << "\"\n";
+  }
+  return kExitOk;
+}
+
+int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
+  auto c = make_compiler(o);
+  if (o.device != "sim") {
+    std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim runs\n";
+    return kExitUsage;
+  }
+  const runtime::DeviceLimits limits = limits_of(c);
+  if (!(ro.speed_mm_s > 0) || !std::isfinite(ro.speed_mm_s) ||
+      (ro.amplitude_mm && (!(*ro.amplitude_mm > 0) || !std::isfinite(*ro.amplitude_mm)))) {
+    std::cerr << "sandpaper: error: --speed and --amplitude must be positive (mm/s, mm)\n";
+    return kExitUsage;
+  }
+  if (ro.amplitude_mm && *ro.amplitude_mm * 1e-3 > limits.workspace_radius_m) {
+    std::cerr << "sandpaper: error: --amplitude " << *ro.amplitude_mm << " mm leaves the " << limits.workspace_radius_m * 1e3
+              << " mm workspace radius of device '" << limits.name << "'\n";
+    return kExitUsage;
+  }
+  if (!std::isfinite(ro.crossfade_ms) || ro.crossfade_ms < 0) {
+    std::cerr << "sandpaper: error: --crossfade must be a time >= 0 ms\n";
+    return kExitUsage;
+  }
+  if (!ro.trace.empty()) {
+    auto dir = std::filesystem::path(ro.trace).parent_path();
+    if (dir.empty()) dir = ".";
+    if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
+      std::cerr << "sandpaper: error: cannot write the trace '" << ro.trace << "': folder " << dir
+                << " does not exist or is not writable\n";
+      return kExitUsage;
+    }
+  }
+  compiler::Diagnostics diags;
+  auto ws = load_workspace(o, c, diags);
+  if (!ws) return kExitBadInput;
+  runtime::WorkspaceEvaluator evaluator(*ws, ro.crossfade_ms * 1e-3);
+
+  const std::string hand = ro.hand.value_or("scan");
+  runtime::HandScript script;
+  script.path = hand == "circle" ? runtime::HandPath::Circle : runtime::HandPath::Scan;
+  script.speed_m_s = ro.speed_mm_s * 1e-3;
+  const ScanChoice scan = choose_scan(evaluator, limits.workspace_radius_m);
+  // An explicit --hand keeps the single-patch behaviour (scan along x); the default aims at the patches.
+  script.direction_rad = ro.hand ? 0.0 : scan.direction_rad;
+  script.amplitude_m = ro.amplitude_mm ? *ro.amplitude_mm * 1e-3 : scan.amplitude_m;
+  // By default one whole lap of the path: out to one end, across to the other and back to the centre.
+  const double lap_m = hand == "circle" ? 2 * kPi * script.amplitude_m : 4 * script.amplitude_m;
+  const double duration_s = ro.duration_s.value_or(lap_m / script.speed_m_s);
+
+  runtime::ServoConfig cfg;
+  cfg.rate_hz = ro.rate_hz;
+  cfg.duration_s = duration_s;
+  try {
+    runtime::validate_config(cfg, limits);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  const auto ticks = static_cast<std::size_t>(std::llround(duration_s * ro.rate_hz));
+  runtime::SimJoystick joystick(limits, script, ticks);
+  if (!o.json)
+    std::cout << fmt::format("playing workspace \"{}\" ({} patches) on {}: {:g} Hz for {:g} s, hand {}{} at {:g} mm/s, {} {:g} mm{}\n",
+                             ws->name, ws->patches.size(), limits.name, ro.rate_hz, duration_s, hand,
+                             script.path == runtime::HandPath::Scan ? fmt::format(" along {:g} deg", script.direction_rad * 180 / kPi) : "",
+                             ro.speed_mm_s, script.path == runtime::HandPath::Circle ? "radius" : "turning at +-",
+                             script.amplitude_m * 1e3, ro.virtual_clock ? " (virtual clock)" : "");
+  runtime::ServoReport rep;
+  if (ro.virtual_clock) {
+    runtime::VirtualClock clock;
+    rep = runtime::run_servo_loop(joystick, evaluator, clock, cfg);
+  } else {
+    rep = runtime::run_servo_thread_nonrt(joystick, evaluator, cfg);
+  }
+
+  // Which patch each tick was over, found again from the recorded positions (off the servo thread).
+  const auto& recs = joystick.records();
+  std::vector<std::uint64_t> ticks_on(ws->patches.size(), 0);
+  std::vector<double> max_force(ws->patches.size(), 0.0);
+  for (const auto& r : recs) {
+    const auto id = evaluator.patch_at(r.position_m);
+    if (id == runtime::WorkspaceEvaluator::kNoPatch) continue;
+    ++ticks_on[id];
+    max_force[id] = std::max(max_force[id], std::hypot(r.force_N.x, r.force_N.y));
+  }
+  std::size_t touched = 0;
+  for (auto t : ticks_on) touched += t > 0;
+
+  if (!ro.trace.empty()) {
+    std::ostringstream csv;
+    csv.precision(9);
+    csv << "t_s,x_m,y_m,force_x_N,force_y_N,patch\n";
+    for (const auto& r : recs) {
+      const auto id = evaluator.patch_at(r.position_m);
+      csv << r.t_s << "," << r.position_m.x << "," << r.position_m.y << "," << r.force_N.x << "," << r.force_N.y << ","
+          << (id == runtime::WorkspaceEvaluator::kNoPatch ? 0 : id + 1) << "\n";
+    }
+    schema::write_file_atomically(ro.trace, csv.str());
+  }
+
+  if (o.json) {
+    nlohmann::json patches = nlohmann::json::array();
+    for (std::size_t i = 0; i < ws->patches.size(); ++i)
+      patches.push_back({{"patch", i + 1},
+                         {"source", ws->patches[i].source},
+                         {"material", ws->patches[i].program.name},
+                         {"touched", ticks_on[i] > 0},
+                         {"ticks", ticks_on[i]},
+                         {"max_lateral_force_N", max_force[i]},
+                         {"compiled_max_lateral_force_N", ws->patches[i].program.max_lateral_force_N}});
+    nlohmann::json j{{"workspace", ws->name},
+                     {"device", limits.name},
+                     {"ticks", rep.ticks},
+                     {"rate_hz", rep.rate_hz},
+                     {"rate_hz_target", ro.rate_hz},
+                     {"duration_s", duration_s},
+                     {"period_us", {{"p50", rep.period_p50_us}, {"p99", rep.period_p99_us}, {"max", rep.period_max_us}, {"min", rep.period_min_us}}},
+                     {"jitter_us", rep.jitter_us},
+                     {"compute_us", {{"p50", rep.compute_p50_us}, {"p99", rep.compute_p99_us}, {"max", rep.compute_max_us}}},
+                     {"overruns", rep.overruns},
+                     {"max_lateral_force_N", rep.max_lateral_force_N},
+                     {"clamped_ticks", rep.clamped_ticks},
+                     {"stop_reason", rep.stop_reason},
+                     {"realtime_scheduling", rep.realtime_scheduling},
+                     {"clock", ro.virtual_clock ? "virtual" : "monotonic"},
+                     {"crossfade_ms", ro.crossfade_ms},
+                     {"hand", {{"path", hand}, {"direction_deg", script.direction_rad * 180 / kPi}, {"speed_mm_s", ro.speed_mm_s},
+                               {"amplitude_mm", script.amplitude_m * 1e3}}},
+                     {"patch_count", ws->patches.size()},
+                     {"touched_patches", touched},
+                     {"patches", patches},
+                     {"trace", ro.trace.empty() ? nlohmann::json(nullptr) : nlohmann::json(ro.trace)}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us; "
+                             "jitter {:.2f} us (sd); overruns {}\n",
+                             rep.ticks, rep.rate_hz, rep.period_p50_us, rep.period_p99_us, rep.period_max_us, rep.jitter_us,
+                             rep.overruns);
+    std::cout << fmt::format("  compute  p50 {:.2f} us, p99 {:.2f} us, max {:.2f} us per tick\n", rep.compute_p50_us,
+                             rep.compute_p99_us, rep.compute_max_us);
+    std::cout << fmt::format("  felt     max lateral force {:.4f} N, clamped ticks {}; crossfade {:g} ms at patch edges\n",
+                             rep.max_lateral_force_N, rep.clamped_ticks, ro.crossfade_ms);
+    std::cout << fmt::format("  patches  {} of {} touched (patch 1 at the back)\n", touched, ws->patches.size());
+    // A big workspace lists only the patches the hand touched.
+    const bool list_all = ws->patches.size() <= 24;
+    for (std::size_t i = 0; i < ws->patches.size(); ++i) {
+      if (ticks_on[i] == 0) {
+        if (list_all) std::cout << "    " << patch_line(*ws, i) << "  not touched\n";
+        continue;
+      }
+      std::cout << "    " << patch_line(*ws, i)
+                << fmt::format("  {} ticks, max |F| {:.4f} N (compiled {:.4f} N)\n", ticks_on[i], max_force[i],
+                               ws->patches[i].program.max_lateral_force_N);
+    }
+    if (!list_all && touched < ws->patches.size())
+      std::cout << "    (" << ws->patches.size() - touched << " patches not touched)\n";
+    std::cout << "  servo    " << (ro.virtual_clock ? "virtual clock" : rep.realtime_scheduling ? "SCHED_FIFO, memory locked"
+                                                                   : "normal priority (SCHED_FIFO not permitted here)")
+              << "; stopped: " << rep.stop_reason << "\n";
+    if (!ro.trace.empty()) std::cout << "  trace    " << ro.trace << " (" << recs.size() << " ticks)\n";
+  }
+  return rep.stop_reason == "completed" ? kExitOk : kExitBadInput;
+}
+
+}  // namespace sandpaper::cli
