@@ -87,7 +87,10 @@ bool read_depth_file(const HeightImageRequest& r, RawImage& raw, HeightImageErro
 }
 
 bool read_picture(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
-  auto in = OIIO::ImageInput::open(r.path);
+  // Heights are the values as stored: no premultiplying by alpha (PNG, TIFF and others would).
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(r.path, &config);
   if (!in) {
     std::string why = OIIO::geterror();
     return fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + (why.empty() ? "unreadable" : why),
@@ -196,7 +199,7 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
     std::ostringstream v;
     v << img.lo;
     fail(e, "E0403",
-         "image '" + r.shown_path + "' is all one value (" + v.str() + " by " + how + "): it has no slope, so no lateral force",
+         "image '" + r.shown_path + "' is all one height (" + v.str() + ", from its " + how + "): it has no slope, so no lateral force",
          raw.nc > 1 && r.channel.empty() ? "use an image with some variation, or pick a channel that varies with `channel NAME`"
                                          : "use an image with some variation in grey level");
     return std::nullopt;
@@ -232,8 +235,10 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
     }
     if (tx != raw.nx || ty != raw.ny) {
       OIIO::ImageBuf src(OIIO::ImageSpec(raw.nx, raw.ny, 1, OIIO::TypeDesc::FLOAT), img.values.data());
-      // OpenImageIO's default filters: Lanczos-3 to shrink, Blackman-Harris to enlarge.
-      OIIO::ImageBuf dst = OIIO::ImageBufAlgo::resize(src, "", 0.0f, OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1));
+      // Lanczos-3 to shrink (OpenImageIO's default); to enlarge, Catmull-Rom, an interpolating
+      // cubic: it keeps a ramp's slope, where the default Blackman-Harris bump ripples it.
+      const char* filter = tx > raw.nx || ty > raw.ny ? "catmull-rom" : "lanczos3";
+      OIIO::ImageBuf dst = OIIO::ImageBufAlgo::resize(src, filter, 0.0f, OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1));
       std::vector<float> resized(static_cast<std::size_t>(tx) * ty);
       if (dst.has_error() || !dst.get_pixels(OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, resized.data()))
         throw InternalError("resize of '" + r.shown_path + "' failed: " + dst.geterror());

@@ -1,5 +1,5 @@
 #pragma once
-// The `sandpaper` command line: compile, explain, run, inspect, library. Exit codes: 0 success,
+// The `sandpaper` command line: compile, explain, run, inspect, library, array. Exit codes: 0 success,
 // 1 the input is wrong (diagnostics printed), 2 usage or environment errors, 3 internal errors.
 #include <filesystem>
 #include <optional>
@@ -42,5 +42,12 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
             double amplitude_mm, const std::string& trace, bool virtual_clock);
 int cmd_inspect(const std::string& file, bool json, bool tables);
 int cmd_library(const CommonOptions& o);
+
+// `sandpaper array`: lengths as text with units ("80mm", "80x60mm", "0.37mm"); empty = not given.
+struct ArrayOptions {
+  std::string image, size, sampling, channel, depth, output, shade;
+  bool invert = false;
+};
+int cmd_array(const ArrayOptions& o);
 
 }  // namespace sandpaper::cli
