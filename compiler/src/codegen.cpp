@@ -1,6 +1,7 @@
 #include "sandpaper/compiler/codegen.hpp"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "sandpaper/compiler/laws.hpp"
@@ -37,14 +38,29 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
 
   bool has_texture = !std::holds_alternative<std::monostate>(m.texture);
   if (has_texture) {
-    if (!m.max_lateral_force) throw InternalError("codegen: texture without a force after resolution");
-    const Param& force = *m.max_lateral_force;
+    // A height map read as a stylus relief (depth + press) has no target: its force is computed
+    // from the image, so the field is built first and its maximum takes the target's place.
+    const auto* hm = std::get_if<ResolvedHeightmap>(&m.texture);
+    std::optional<HeightFieldBuild> field;
+    std::optional<Param> computed;
+    if (hm && hm->stylus() && !m.max_lateral_force) {
+      field = make_height_field(*hm, std::nullopt, diags);
+      if (!field) return false;
+      computed = Param{field->max_lateral_force_N,
+                       "press " + hm->press->stated + " x steepest slope " + num(field->steepest_slope) + " (depth " +
+                           hm->depth->stated + ")",
+                       Layer::Physical, hm->press->source, hm->press->location};
+    }
+    if (!m.max_lateral_force && !computed) throw InternalError("codegen: texture without a force after resolution");
+    const Param& force = computed ? *computed : *m.max_lateral_force;
     if (force.si > device.max_force_N) {
       double best = map.roughness_of(device.max_force_N);
       diags.error("E0310", force.location,
                   "this material asks for " + num(force.si) + " N of lateral force (" + force.stated + "); device '" +
                       device.name + "' reaches " + num(device.max_force_N) + " N at most",
-                  "this device reaches roughness " + num(best, 3) + " at most; lower the roughness or amplitude");
+                  computed ? "lower press or depth, or add smoothing: the image's steepest slope times press must stay below " +
+                                 num(device.max_force_N) + " N"
+                           : "this device reaches roughness " + num(best, 3) + " at most; lower the roughness or amplitude");
       return false;
     }
     record(out, "texture.max_lateral_force", force, "N");
@@ -68,14 +84,16 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
       record(out, "texture.orientation", g->orientation, "rad");
       record(out, "texture.smoothing", sigma, "m");
     } else if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture)) {
-      schema::HeightFieldTerm field;
-      std::string summary;
-      if (!make_height_field(*h, force.si, field, diags, summary)) return false;
-      out.terms.emplace_back(std::move(field));
-      out.provenance.push_back({"texture.image", 0, "", h->stated_path + " (" + summary + ")", "physical", h->source});
+      if (!field) field = make_height_field(*h, force.si, diags);
+      if (!field) return false;
+      out.terms.emplace_back(std::move(field->term));
+      out.provenance.push_back({"texture.image", 0, "", h->stated_path + " (" + field->summary + ")", "physical", h->source});
       record(out, "texture.image_width", h->width, "m");
       record(out, "texture.image_height", h->height, "m");
       if (h->smoothing) record(out, "texture.smoothing", *h->smoothing, "m");
+      if (h->sampling) record(out, "texture.sampling", *h->sampling, "m");
+      if (h->depth) record(out, "texture.depth", *h->depth, "m");
+      if (h->press) record(out, "texture.press", *h->press, "N");
     }
     out.max_lateral_force_N = force.si;
     out.roughness = map.roughness_of(force.si);

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <sstream>
 
-#include <OpenImageIO/imageio.h>
-
 #include "sandpaper/compiler/textures.hpp"
 
 namespace sandpaper::compiler {
@@ -41,60 +39,36 @@ void blur_axis(std::vector<float>& img, int nx, int ny, double sigma_px, bool al
 
 }  // namespace
 
-bool make_height_field(const ResolvedHeightmap& h, double max_force_N, schema::HeightFieldTerm& out,
-                       Diagnostics& diags, std::string& summary) {
-  auto in = OIIO::ImageInput::open(h.path);
-  if (!in) {
-    std::string why = OIIO::geterror();
-    diags.error("E0401", h.location, "cannot read image '" + h.stated_path + "': " + (why.empty() ? "unreadable" : why),
-                "check the path (relative to the material file's folder) and that the file is an image");
-    return false;
+std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, std::optional<double> target_force_N,
+                                                  Diagnostics& diags) {
+  if (!target_force_N && !h.stylus()) throw InternalError("make_height_field: neither a target force nor depth + press");
+  HeightImageRequest req;
+  req.path = h.path;
+  req.shown_path = h.stated_path;
+  req.channel = h.channel;
+  req.invert = h.invert;
+  if (h.sampling) req.sampling_m = h.sampling->si;
+  req.width_m = h.width.si;
+  req.height_m = h.height.si;
+  HeightImageError err;
+  auto img = load_height_image(req, err);
+  if (!img) {
+    diags.error(err.code, h.location, err.message, err.suggestion);
+    return std::nullopt;
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  long long pixels = static_cast<long long>(spec.width) * spec.height;
-  if (spec.width < 3 || spec.height < 3 || spec.nchannels < 1) {
-    diags.error("E0402", h.location, "image '" + h.stated_path + "' is " + std::to_string(spec.width) + " x " +
-                                         std::to_string(spec.height) + " px; a height map needs at least 3 x 3",
-                "use a larger image");
-    return false;
-  }
-  if (pixels > kMaxImagePixels) {
-    diags.error("E0402", h.location, "image '" + h.stated_path + "' has " + std::to_string(pixels) +
-                                         " px, more than the limit of 4096 x 4096",
-                "scale the image down before using it");
-    return false;
-  }
-  const int nx = spec.width, ny = spec.height, nc = spec.nchannels;
-  std::vector<float> raw(static_cast<std::size_t>(pixels) * static_cast<std::size_t>(nc));
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
-    diags.error("E0401", h.location, "cannot read image '" + h.stated_path + "': " + in->geterror(),
-                "the file may be truncated or corrupt");
-    return false;
-  }
-  in->close();
-
-  // Grey level is height. Colour images: Rec. 709 luminance of R, G, B; alpha is ignored.
-  // Image row 0 is the top edge, which is +y in patch coordinates, so rows are flipped.
-  std::vector<float> height(static_cast<std::size_t>(pixels));
+  const int nx = img->nx, ny = img->ny;
+  // Image row 0 is the top edge, which is +y in patch coordinates, so rows are flipped. The stylus
+  // reading maps the source's height range to 0..depth metres; otherwise heights keep the image's
+  // unit, and the gain below absorbs it.
+  const double to_height = h.stylus() ? h.depth->si / (static_cast<double>(img->hi) - img->lo) : 1.0;
+  const double base = h.stylus() ? img->lo : 0.0;
+  std::vector<float> height(img->values.size());
   for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x) {
-      const float* p = &raw[(static_cast<std::size_t>(y) * nx + x) * static_cast<std::size_t>(nc)];
-      float v = nc >= 3 ? 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2] : p[0];
-      height[static_cast<std::size_t>(ny - 1 - y) * nx + x] = v;
-    }
-  auto [lo, hi] = std::minmax_element(height.begin(), height.end());
-  if (!std::isfinite(*lo) || !std::isfinite(*hi)) {
-    diags.error("E0403", h.location, "image '" + h.stated_path + "' holds non-finite values (NaN or infinity)",
-                "replace them before using the image as a height map");
-    return false;
-  }
-  if (*hi - *lo <= 0) {
-    diags.error("E0403", h.location, "image '" + h.stated_path + "' is all one value: it has no slope, so no lateral force",
-                "use an image with some variation in grey level");
-    return false;
-  }
+    for (int x = 0; x < nx; ++x)
+      height[static_cast<std::size_t>(ny - 1 - y) * nx + x] =
+          static_cast<float>(to_height * (img->values[static_cast<std::size_t>(y) * nx + x] - base));
 
-  const double dx = h.width.si / nx, dy = h.height.si / ny;  // m per pixel
+  const double dx = h.width.si / nx, dy = h.height.si / ny;  // m per sample
   const double sigma = h.smoothing ? h.smoothing->si : 0.0;
   blur_axis(height, nx, ny, sigma / dx, true, h.repeat);
   blur_axis(height, nx, ny, sigma / dy, false, h.repeat);
@@ -125,7 +99,7 @@ bool make_height_field(const ResolvedHeightmap& h, double max_force_N, schema::H
   if (2 * rim_x >= nx || 2 * rim_y >= ny) {
     diags.error("E0304", h.location, "the smoothing is too wide for the image: nothing is left inside its rim",
                 "use a smoothing below a sixth of the image size");
-    return false;
+    return std::nullopt;
   }
   double peak = 0;
   for (int y = rim_y; y < ny - rim_y; ++y)
@@ -136,9 +110,14 @@ bool make_height_field(const ResolvedHeightmap& h, double max_force_N, schema::H
   if (!(peak > 0)) {
     diags.error("E0403", h.location, "image '" + h.stated_path + "' has no slope inside its rim, so no lateral force",
                 "use an image with variation away from its edges, or less smoothing");
-    return false;
+    return std::nullopt;
   }
-  const double gain = max_force_N / peak;  // k in F = -k grad h, N per unit slope
+  // k in F = -k grad h: N per unit slope. The stylus: F = press tan(theta) (EQ 5-11).
+  const double gain = target_force_N ? *target_force_N / peak : h.press->si;
+  HeightFieldBuild b;
+  b.max_lateral_force_N = gain * peak;
+  if (!target_force_N) b.steepest_slope = peak;
+  auto& out = b.term;
   out.nx = static_cast<std::uint32_t>(nx);
   out.ny = static_cast<std::uint32_t>(ny);
   out.spacing_m[0] = dx;
@@ -153,10 +132,9 @@ bool make_height_field(const ResolvedHeightmap& h, double max_force_N, schema::H
     out.force_y_N[i] = static_cast<float>(-gain * gy[i]);
   }
   std::ostringstream os;
-  os << nx << " x " << ny << " px, " << nc << " channel" << (nc > 1 ? "s" : "") << " (" << spec.format.c_str()
-     << "), " << dx * 1e3 << " mm per pixel";
-  summary = os.str();
-  return true;
+  os << img->description << ", " << dx * 1e3 << " mm per sample";
+  b.summary = os.str();
+  return b;
 }
 
 }  // namespace sandpaper::compiler

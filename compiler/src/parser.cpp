@@ -208,7 +208,9 @@ class Parser {
     return g;
   }
 
-  // heightmap := 'heightmap' STRING 'size' LENGTH ['x' LENGTH] ( 'smoothing' LENGTH | 'amplitude' FORCE | 'repeat' )*
+  // heightmap := 'heightmap' STRING 'size' LENGTH ['x' LENGTH]
+  //              ( 'smoothing' LENGTH | 'amplitude' FORCE | 'repeat' | 'channel' (NAME | STRING)
+  //              | 'sampling' LENGTH | 'invert' | 'depth' LENGTH | 'press' FORCE )*
   HeightmapStmt heightmap() {
     HeightmapStmt h;
     if (peek().kind != TokenKind::String) {
@@ -229,13 +231,37 @@ class Parser {
       next();
       h.height = quantity(Dimension::Length, "the image height");
     }
-    static const std::vector<std::string> opts{"smoothing", "amplitude", "repeat"};
+    static const std::vector<std::string> opts{"smoothing", "amplitude", "repeat", "channel", "sampling",
+                                               "invert",    "depth",     "press"};
+    bool channel_seen = false;
     while (peek().kind == TokenKind::Word) {
       const Token& o = next();
       if (o.text == "smoothing") set_once(h.smoothing, o, Dimension::Length, "the smoothing");
       else if (o.text == "amplitude") set_once(h.amplitude, o, Dimension::Force, "the force amplitude");
       else if (o.text == "repeat") h.repeat = true;
-      else unknown_option("heightmap", o, opts);
+      else if (o.text == "invert") h.invert = true;
+      else if (o.text == "sampling") set_once(h.sampling, o, Dimension::Length, "the sampling");
+      else if (o.text == "depth") set_once(h.depth, o, Dimension::Length, "the relief depth");
+      else if (o.text == "press") set_once(h.press, o, Dimension::Force, "the downward force");
+      else if (o.text == "channel") {
+        if (channel_seen) {
+          diags_.error("E0206", o.location, "`channel` is given twice in one statement", "keep one of them");
+          throw StatementError{};
+        }
+        channel_seen = true;
+        if (peek().kind != TokenKind::Word && peek().kind != TokenKind::String) {
+          diags_.error("E0201", peek().location, std::string("expected a channel name, found ") + describe(peek()),
+                       "write channel R, or channel \"Z\" for a name that is not a word");
+          throw StatementError{};
+        }
+        if (peek().text.empty()) {
+          diags_.error("E0201", peek().location, "the channel name is empty",
+                       "name a channel, e.g. channel R, or leave `channel` out for the luminance rule");
+          throw StatementError{};
+        }
+        h.channel = peek().text;
+        h.channel_location = next().location;
+      } else unknown_option("heightmap", o, opts);
     }
     return h;
   }

@@ -67,7 +67,8 @@ std::vector<std::string> quantities_set(const Statement& st) {
           return q;
         } else if constexpr (std::is_same_v<T, HeightmapStmt>) {
           std::vector<std::string> q{"the texture"};
-          if (n.amplitude) q.push_back("the maximum lateral force");
+          // depth + press set the force through the stylus reading (thesis 3.4).
+          if (n.amplitude || n.depth || n.press) q.push_back("the maximum lateral force");
           return q;
         } else if constexpr (std::is_same_v<T, SpringStmt>) return {"the spring stiffness"};
         else if constexpr (std::is_same_v<T, DamperStmt>) return {"the damping"};
@@ -175,6 +176,9 @@ class Resolver {
       inherit(h->width, like.name);
       inherit(h->height, like.name);
       inherit(h->smoothing, like.name);
+      inherit(h->sampling, like.name);
+      inherit(h->depth, like.name);
+      inherit(h->press, like.name);
       h->source = "library " + like.name + " (" + h->source + ")";
     }
     inherit(m.max_lateral_force, like.name);
@@ -363,6 +367,26 @@ class Resolver {
     if (h.height) ok = positive(*h.height, "image height") && ok;
     if (h.smoothing) ok = non_negative(*h.smoothing, "smoothing", "") && ok;
     if (h.amplitude) ok = non_negative(*h.amplitude, "force amplitude", "") && ok;
+    if (h.sampling) ok = positive(*h.sampling, "sampling") && ok;
+    if (h.depth) ok = positive(*h.depth, "relief depth") && ok;
+    if (h.press) ok = positive(*h.press, "downward force (press)") && ok;
+    if (h.amplitude && (h.depth || h.press)) {
+      const Quantity& other = h.depth ? *h.depth : *h.press;
+      auto& d = diags_.error("E0302", h.amplitude->location,
+                             "`amplitude " + h.amplitude->text() + "` and `" + std::string(h.depth ? "depth " : "press ") +
+                                 other.text() + "` both set the maximum lateral force of this height map",
+                             "keep amplitude (a target force) or depth and press (the stylus reading), not both");
+      d.notes.push_back({other.location, "the stylus reading sets the force here"});
+      ok = false;
+    } else if (h.depth.has_value() != h.press.has_value()) {
+      const Quantity& given = h.depth ? *h.depth : *h.press;
+      diags_.error("E0407", given.location,
+                   h.depth ? "`depth " + given.text() + "` without `press`: the relief alone gives no force"
+                           : "`press " + given.text() + "` without `depth`: the force needs the relief's height",
+                   "give both, e.g. depth 0.5 mm press 1 N (lateral force = press x slope, thesis 3.4), "
+                   "or a target force with roughness or amplitude");
+      ok = false;
+    }
     if (!ok) return;
     ResolvedHeightmap r;
     std::filesystem::path p(h.path);
@@ -378,11 +402,21 @@ class Resolver {
     r.width = stated_param(h.width, Layer::Physical);
     r.height = h.height ? stated_param(*h.height, Layer::Physical) : r.width;
     if (h.smoothing) r.smoothing = stated_param(*h.smoothing, Layer::Physical);
+    if (h.sampling) r.sampling = stated_param(*h.sampling, Layer::Physical);
+    if (h.depth) r.depth = stated_param(*h.depth, Layer::Physical);
+    if (h.press) r.press = stated_param(*h.press, Layer::Physical);
+    r.channel = h.channel;
     r.repeat = h.repeat;
+    r.invert = h.invert;
     r.source = h.path_location.str();
     r.location = h.path_location;
     m.texture = r;
     if (h.amplitude) m.max_lateral_force = stated_param(*h.amplitude, Layer::Physical);
+    if (r.stylus()) {
+      // The file's stylus reading beats an inherited roughness or amplitude.
+      m.max_lateral_force.reset();
+      m.roughness.reset();
+    }
   }
 
   void finish(ResolvedMaterial& m) {
@@ -394,9 +428,16 @@ class Resolver {
         m.size_height = h->height;
       }
     }
+    // A height map's stylus reading (depth + press) is its force; a target this file gives beats
+    // an inherited stylus reading.
+    bool stylus = false;
+    if (auto* h = std::get_if<ResolvedHeightmap>(&m.texture); h && h->stylus()) {
+      if (m.max_lateral_force) h->depth.reset(), h->press.reset();
+      else stylus = true;
+    }
     bool has_texture = !std::holds_alternative<std::monostate>(m.texture);
     // After an error the missing force is usually that error's echo: report it only on its own.
-    if (has_texture && !m.max_lateral_force && !diags_.has_errors()) {
+    if (has_texture && !m.max_lateral_force && !stylus && !diags_.has_errors()) {
       SourceLocation at = texture_location(m);
       diags_.error("E0308", at, "the texture has no force: nothing says how strong its lateral force is",
                    "add a perceptual `roughness 0.5` (or `roughness medium`), or a physical `amplitude 1.5 N` on the texture");

@@ -124,6 +124,30 @@ has "$tmp/err" 'long.movie:101:1: error\[E0511\]' "frame limit diagnostic"
 echo "nowhere.hws" >"$tmp/m/missing.movie"
 expect_exit 1 "a movie naming a missing workspace" -- "$sp" movie shuffle "$tmp/m/missing.movie" --seed 1
 has "$tmp/err" 'E0512' "missing frame diagnostic"
+# Real images: the stylus-relief and grass examples play; `array` writes Sandpaper's array files.
+expect_exit 0 "run brick-relief (depth + press)" -- "$sp" run examples/brick-relief.hmat --device sim --virtual-clock --hand circle --speed 20 --amplitude 30 --json
+has "$tmp/out" '"material": "brick-relief"' "brick-relief run"
+has "$tmp/out" '"stop_reason": "completed"' "brick-relief completes"
+expect_exit 0 "explain brick-relief" -- "$sp" explain examples/brick-relief.hmat
+has "$tmp/out" 'texture.max_lateral_force.*press 2 N x steepest slope' "the stylus force is computed and explained"
+expect_exit 0 "run grass" -- "$sp" run examples/grass.hmat --device sim --duration 0.3
+expect_exit 0 "array with shade" -- "$sp" array library/images/brick.png --size 80mm --sampling 0.4mm --invert -o "$tmp/b.depth" --shade "$tmp/b.shade"
+[ "$(wc -c <"$tmp/b.depth")" -eq $((200 * 200 + 4)) ] && ok || bad ".depth should be 200 x 200 + 4 bytes"
+[ "$(wc -c <"$tmp/b.shade")" -eq $((200 * 200 + 4)) ] && ok || bad ".shade should be 200 x 200 + 4 bytes"
+[ "$(head -c 4 "$tmp/b.depth" | od -An -tx1 | tr -d ' \n')" = 00c800c8 ] && ok || bad ".depth header is big-endian 200, 200"
+expect_exit 0 "compile the written .depth" -- "$sp" compile -e "heightmap \"$tmp/b.depth\" size 80 mm depth 0.5 mm press 2 N" --json
+has "$tmp/out" '"ok": true' ".depth compiles as a height map"
+expect_exit 1 ".shade is not heights" -- "$sp" compile -e "heightmap \"$tmp/b.shade\" size 80 mm amplitude 1 N"
+has "$tmp/err" 'E0406' ".shade refused"
+cp "$tmp/b.depth" "$tmp/keep.depth"
+expect_exit 1 "array of a missing image" -- "$sp" array no/such.png --size 80mm -o "$tmp/b.depth"
+has "$tmp/err" "E0401.*no/such.png" "array names the unreadable file"
+cmp -s "$tmp/b.depth" "$tmp/keep.depth" && ok || bad "a failed array changed its output"
+expect_exit 1 "array of an unknown channel" -- "$sp" array tests/golden/diagnostics/images/channels.exr --size 10mm --channel Z -o "$tmp/c.depth"
+has "$tmp/err" "its channels are R, G, B, height" "array lists the channels"
+expect_exit 2 "array output not .depth" -- "$sp" array library/images/brick.png --size 80mm -o "$tmp/b.png"
+expect_exit 2 "array size without unit" -- "$sp" array library/images/brick.png --size 80 -o "$tmp/b.depth"
+[ "$(ls -A "$tmp" | grep -c tmp-)" -eq 0 ] && ok || bad "temporary files left behind"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,10 +1,15 @@
-// Images as height fields: gradient direction and scale, pixel formats, and unusable images.
+// Images as height fields: gradient direction and scale, pixel formats and channels, sampling,
+// inversion, the stylus reading (depth + press), .depth files, and unusable images. Expected forces
+// are computed here from the images' own formulas (a ramp has one slope), not from the compiler.
 #include <cmath>
 #include <fstream>
+#include <sstream>
+#include <tuple>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include "sandpaper/schema/array_file.hpp"
 #include "test_support.hpp"
 
 using namespace sandpaper;
@@ -17,6 +22,7 @@ void write_image(const std::string& path, int w, int h, OIIO::TypeDesc type, F f
   auto out = OIIO::ImageOutput::create(path);
   ASSERT_TRUE(out) << OIIO::geterror();
   OIIO::ImageSpec spec(w, h, channels, type);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // store colour as given, not divided by alpha
   ASSERT_TRUE(out->open(path, spec)) << out->geterror();
   std::vector<float> px(static_cast<std::size_t>(w) * h * channels);
   for (int y = 0; y < h; ++y)
@@ -130,4 +136,250 @@ TEST(Heightmap, RealPhotographCompiles) {
     peak = std::max(peak, std::hypot(f.force_x_N[i], f.force_y_N[i]));
   }
   EXPECT_GE(peak, r.program->max_lateral_force_N * 0.9999);
+}
+
+namespace {
+
+compiler::CompileResult compile(const std::string& text) { return test::shipped_compiler().compile_text(text); }
+
+std::string first_error(const compiler::CompileResult& r) {
+  auto c = test::codes(r);
+  return c.empty() ? "none" : c.front();
+}
+
+std::string message_of(const compiler::CompileResult& r) {
+  for (const auto& d : r.diagnostics.all())
+    if (d.severity == compiler::Severity::Error) return d.message + " | " + d.suggestion;
+  return "";
+}
+
+// Roughness for a force, restated from Minsky 1995 Fig. 19: r = (F / 382 gf)^0.759593.
+double roughness_for(double force_N) { return std::pow(force_N / (382 * 9.80665e-3), 0.759593); }
+
+}  // namespace
+
+// Every pixel type and channel count. Heights: a ramp along x, exact in the pixel type; a second
+// ramp along y sits in the channels that must be ignored (alpha) or that luminance weighs, so the
+// expected force is known from the weights alone.
+class PixelTypes : public ::testing::TestWithParam<std::tuple<int, int>> {};
+
+TEST_P(PixelTypes, RampGivesTheExpectedConstantForce) {
+  auto [type_index, channels] = GetParam();
+  struct Type {
+    OIIO::TypeDesc type;
+    const char* ext;
+    float step;  // per pixel, exact in the type: 5/255 and 1285/65535 are k/51; 1/4 is exact in half
+    float offset;
+  };
+  const Type types[] = {{OIIO::TypeDesc::UINT8, "png", 1.0f / 51, 0},
+                        {OIIO::TypeDesc::UINT16, "tif", 1.0f / 51, 0},
+                        {OIIO::TypeDesc::HALF, "exr", 0.25f, 3.0f},  // heights 3..15.75: not 0..1
+                        {OIIO::TypeDesc::FLOAT, "tif", 0.25f, -7.0f}};
+  const Type& t = types[type_index];
+  const int w = 52, h = 20;
+  auto dir = test::temp_dir("px");
+  std::string path = dir + "/ramp." + t.ext;
+  // Channel roles: 1 = grey; 2 = grey + alpha; 3 = R, G, B; 4 = R, G, B, A.
+  // Grey and R ramp along x; G ramps down the rows; alpha ramps along y steeply (must be ignored).
+  write_image(path, w, h, t.type, [&](float x, float y, int c) {
+    if (channels <= 2) return c == 0 ? t.offset + t.step * x : 5.0f * y / h;
+    if (c == 0) return t.offset + t.step * x;
+    if (c == 1) return t.offset + t.step * y;
+    if (c == 2) return t.offset;
+    return 5.0f * y / h;
+  }, channels);
+  auto r = compile("heightmap \"" + path + "\" size 52 mm x 20 mm amplitude 1 N");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  const auto& f = field_of(r);
+  ASSERT_EQ(f.nx, 52u);
+  ASSERT_EQ(f.ny, 20u);
+  // Slope in image units per metre (1 mm pixels): x from the ramp; y (up = toward row 0) from G.
+  double sx = channels <= 2 ? t.step / 1e-3 : 0.2126 * t.step / 1e-3;
+  double sy = channels <= 2 ? 0.0 : -0.7152 * t.step / 1e-3;
+  double k = 1.0 / std::hypot(sx, sy);  // amplitude 1 N over the largest slope, which is everywhere
+  for (std::size_t i = 0; i < f.force_x_N.size(); ++i) {
+    ASSERT_NEAR(f.force_x_N[i], -k * sx, 1e-4) << i;
+    ASSERT_NEAR(f.force_y_N[i], -k * sy, 1e-4) << i;
+  }
+}
+
+std::string pixel_type_name(const ::testing::TestParamInfo<std::tuple<int, int>>& p) {
+  static const char* const kTypes[] = {"uint8", "uint16", "half", "float"};
+  return std::string(kTypes[std::get<0>(p.param)]) + "_" + std::to_string(std::get<1>(p.param)) + "ch";
+}
+
+INSTANTIATE_TEST_SUITE_P(Heightmap, PixelTypes,
+                         ::testing::Combine(::testing::Values(0, 1, 2, 3), ::testing::Values(1, 2, 3, 4)), pixel_type_name);
+
+TEST(Heightmap, InvertFlipsTheForce) {
+  auto dir = test::temp_dir("invert");
+  // A ramp with a bump, so that inverting is not the same as mirroring.
+  write_image(dir + "/bump.tif", 30, 30, OIIO::TypeDesc::FLOAT,
+              [](float x, float y, int) { return 0.02f * x + std::exp(-((x - 12) * (x - 12) + (y - 15) * (y - 15)) / 20.0f); });
+  auto plain = compile("heightmap \"" + dir + "/bump.tif\" size 30 mm amplitude 1 N");
+  auto inv = compile("heightmap \"" + dir + "/bump.tif\" size 30 mm amplitude 1 N invert");
+  ASSERT_TRUE(plain.ok() && inv.ok()) << compiler::format_diagnostics(inv.diagnostics);
+  const auto &a = field_of(plain), &b = field_of(inv);
+  for (std::size_t i = 0; i < a.force_x_N.size(); ++i) {
+    ASSERT_NEAR(b.force_x_N[i], -a.force_x_N[i], 1e-5) << i;  // lo + hi - v rounds in float
+    ASSERT_NEAR(b.force_y_N[i], -a.force_y_N[i], 1e-5) << i;
+  }
+}
+
+TEST(Heightmap, DepthAndPressGiveTheStylusForce) {
+  auto dir = test::temp_dir("stylus");
+  // Grey 0..1 over 52 px (51 steps, exact in 16 bits) on a 104 mm patch: 2 mm pixels. The range
+  // maps to 0..1.02 mm, so the slope is 1.02 mm / (51 x 2 mm) = 0.01 and F = 3 N x 0.01 = 0.03 N.
+  write_image(dir + "/ramp.png", 52, 10, OIIO::TypeDesc::UINT16, [](float x, float, int) { return x / 51.0f; });
+  auto r = compile("heightmap \"" + dir + "/ramp.png\" size 104 mm x 20 mm depth 1.02 mm press 3 N");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  const double expected = 3.0 * 1.02e-3 / (51 * 2e-3);
+  const auto& f = field_of(r);
+  for (std::size_t i = 0; i < f.force_x_N.size(); ++i) {
+    ASSERT_NEAR(f.force_x_N[i], -expected, 1e-6) << i;
+    ASSERT_NEAR(f.force_y_N[i], 0.0, 1e-9) << i;
+  }
+  // The force is computed, not targeted, and reported with the roughness the map predicts for it.
+  EXPECT_NEAR(r.program->max_lateral_force_N, expected, 1e-6);
+  EXPECT_NEAR(r.program->roughness, roughness_for(expected), 1e-6);
+  EXPECT_EQ(test::provenance(*r.program, "texture.press").value_si, 3.0);
+  EXPECT_DOUBLE_EQ(test::provenance(*r.program, "texture.depth").value_si, 1.02e-3);
+  EXPECT_EQ(test::codes(r, compiler::Severity::Error).size(), 0u);  // no E0308 "texture with no force"
+
+  // Doubling the press doubles the force; the same image inverted pushes the other way.
+  auto twice = compile("heightmap \"" + dir + "/ramp.png\" size 104 mm x 20 mm depth 1.02 mm press 6 N invert");
+  ASSERT_TRUE(twice.ok());
+  EXPECT_NEAR(field_of(twice).force_x_N[5 * 52 + 20], 2 * expected, 1e-6);
+}
+
+TEST(Heightmap, StylusForceAboveTheDeviceIsRefused) {
+  auto dir = test::temp_dir("stylus-strong");
+  write_image(dir + "/ramp.png", 10, 10, OIIO::TypeDesc::UINT8, [](float x, float, int) { return x / 9.0f; });
+  // Slope 9 mm / 9 mm = 1: 50 N of press gives 50 N, above the sim's 10 N.
+  auto r = compile("heightmap \"" + dir + "/ramp.png\" size 10 mm depth 9 mm press 50 N");
+  EXPECT_EQ(first_error(r), "E0310");
+  EXPECT_NE(message_of(r).find("lower press or depth"), std::string::npos) << message_of(r);
+}
+
+TEST(Heightmap, StylusConflictsAndHalves) {
+  const std::string img = "heightmap \"library/images/brick.png\" size 90 mm ";
+  EXPECT_EQ(first_error(compile(img + "depth 0.5 mm")), "E0407");
+  EXPECT_EQ(first_error(compile(img + "press 1 N")), "E0407");
+  auto both = compile(img + "amplitude 2 N depth 0.5 mm press 1 N");
+  EXPECT_EQ(first_error(both), "E0302");
+  EXPECT_NE(message_of(both).find("amplitude 2 N"), std::string::npos);
+  EXPECT_NE(message_of(both).find("depth 0.5 mm"), std::string::npos);
+  EXPECT_EQ(first_error(compile("roughness 0.5; " + img + "depth 0.5 mm press 1 N")), "E0302");
+  EXPECT_EQ(first_error(compile(img + "depth 0 mm press 1 N")), "E0304");
+  EXPECT_EQ(first_error(compile(img + "depth 1 mm press 1 N sampling -1 mm")), "E0304");
+}
+
+TEST(Heightmap, StylusBeatsAnInheritedRoughnessAndARoughnessBeatsAnInheritedStylus) {
+  // library gravel says `roughness coarse`; this file's stylus reading replaces it.
+  auto r = compile("like gravel; heightmap \"library/images/brick.png\" size 90 mm depth 0.5 mm press 1 N");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_GT(std::abs(r.program->max_lateral_force_N - test::expected_force_for_roughness(0.5598)), 0.01);
+  for (const auto& pv : r.program->provenance) EXPECT_NE(pv.parameter, "texture.roughness_target");
+
+  // A library entry that reads an image as a stylus relief, then a file that asks for a roughness.
+  auto lib = test::temp_dir("stylus-lib");
+  std::ofstream(lib + "/relief.hmat") << "heightmap \"" << SANDPAPER_SOURCE_DIR
+                                      << "/library/images/brick.png\" size 90 mm depth 0.5 mm press 1 N\n";
+  compiler::CompileOptions o;
+  o.library_dir = lib;
+  o.calibration_dir = std::string(SANDPAPER_SOURCE_DIR) + "/calibration";
+  compiler::Compiler c(o);
+  auto inherited = c.compile_text("like relief");
+  ASSERT_TRUE(inherited.ok()) << compiler::format_diagnostics(inherited.diagnostics);
+  EXPECT_EQ(test::provenance(*inherited.program, "texture.press").layer, "representative");
+  auto targeted = c.compile_text("like relief; roughness 0.5");
+  ASSERT_TRUE(targeted.ok()) << compiler::format_diagnostics(targeted.diagnostics);
+  EXPECT_NEAR(targeted.program->max_lateral_force_N, test::expected_force_for_roughness(0.5), 1e-9);
+  for (const auto& pv : targeted.program->provenance) EXPECT_NE(pv.parameter, "texture.press");
+}
+
+TEST(Heightmap, NamedChannel) {
+  auto dir = test::temp_dir("channel");
+  // R ramps along x, G down the rows, B is flat: `channel G` reads only G.
+  write_image(dir + "/rgb.png", 20, 20, OIIO::TypeDesc::UINT8,
+              [](float x, float y, int c) { return c == 0 ? x / 19.0f : c == 1 ? y / 19.0f : 0.5f; }, 3);
+  auto g = compile("heightmap \"" + dir + "/rgb.png\" size 20 mm channel G amplitude 1 N");
+  ASSERT_TRUE(g.ok()) << compiler::format_diagnostics(g.diagnostics);
+  EXPECT_NEAR(field_of(g).force_x_N[210], 0.0, 1e-6);
+  EXPECT_NEAR(field_of(g).force_y_N[210], 1.0, 1e-4);  // brighter toward the bottom: downhill is +y
+  auto red = compile("heightmap \"" + dir + "/rgb.png\" size 20 mm channel \"R\" amplitude 1 N");
+  ASSERT_TRUE(red.ok());
+  EXPECT_NEAR(field_of(red).force_x_N[210], -1.0, 1e-4);
+  EXPECT_NEAR(field_of(red).force_y_N[210], 0.0, 1e-6);
+
+  auto missing = compile("heightmap \"" + dir + "/rgb.png\" size 20 mm channel Z amplitude 1 N");
+  EXPECT_EQ(first_error(missing), "E0404");
+  EXPECT_NE(message_of(missing).find("its channels are R, G, B"), std::string::npos) << message_of(missing);
+  auto lower = compile("heightmap \"" + dir + "/rgb.png\" size 20 mm channel g amplitude 1 N");
+  EXPECT_NE(message_of(lower).find("did you mean `channel G`?"), std::string::npos) << message_of(lower);
+  // A flat channel of a varied image: no slope.
+  EXPECT_EQ(first_error(compile("heightmap \"" + dir + "/rgb.png\" size 20 mm channel B amplitude 1 N")), "E0403");
+}
+
+TEST(Heightmap, SamplingResamplesTheGrid) {
+  auto dir = test::temp_dir("sampling");
+  // 41 x 21 px, grey 0..1 along x over 40 px steps, on 82 mm x 42 mm (2 mm pixels).
+  write_image(dir + "/ramp.tif", 41, 21, OIIO::TypeDesc::FLOAT, [](float x, float, int) { return x / 40.0f; });
+  const std::string head = "heightmap \"" + dir + "/ramp.tif\" size 82 mm x 42 mm depth 0.8 mm press 3 N ";
+  // Slope of the surface: 0.8 mm over 40 x 2 mm, whatever the sampling.
+  const double expected = 3.0 * 0.8e-3 / 80e-3;
+  for (double s_mm : {0.5, 1.0, 3.0}) {
+    std::ostringstream src;
+    src << head << "sampling " << s_mm << " mm";
+    auto r = compile(src.str());
+    ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+    const auto& f = field_of(r);
+    EXPECT_EQ(f.nx, static_cast<std::uint32_t>(std::lround(82 / s_mm))) << s_mm;
+    EXPECT_EQ(f.ny, static_cast<std::uint32_t>(std::lround(42 / s_mm))) << s_mm;
+    EXPECT_NEAR(f.spacing_m[0], 82e-3 / f.nx, 1e-12);
+    // Away from the edges (where the resampling filter meets the clamped border) the slope holds.
+    std::size_t mid = static_cast<std::size_t>(f.ny / 2) * f.nx + f.nx / 2;
+    EXPECT_NEAR(f.force_x_N[mid], -expected, 0.01 * expected) << s_mm;
+    EXPECT_NEAR(f.force_y_N[mid], 0.0, 0.01 * expected) << s_mm;
+  }
+  EXPECT_EQ(first_error(compile(head + "sampling 0.01 mm")), "E0402");  // 8200 x 4200 samples
+  EXPECT_EQ(first_error(compile(head + "sampling 20 mm")), "E0402");    // 4 x 2 samples
+}
+
+TEST(Heightmap, DepthFilesReadAsHeights) {
+  auto dir = test::temp_dir("depthfile");
+  // Appendix B: row 0 at the top; values rise down the rows by 5 a row (0..255 over 52 rows), so
+  // the surface falls toward +y and the force points to +y.
+  schema::ArrayFile a;
+  a.width = 12;
+  a.height = 52;
+  for (int y = 0; y < 52; ++y)
+    for (int x = 0; x < 12; ++x) a.values.push_back(static_cast<std::uint8_t>(5 * y));
+  schema::write_depth_file(dir + "/slope.depth", a);
+  auto r = compile("heightmap \"" + dir + "/slope.depth\" size 12 mm x 52 mm depth 1.02 mm press 2 N");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  // 1.02 mm over 51 rows of 1 mm: slope 0.02, F = 2 N x 0.02.
+  const auto& f = field_of(r);
+  for (std::size_t i = 0; i < f.force_y_N.size(); ++i) ASSERT_NEAR(f.force_y_N[i], 0.04, 1e-6) << i;
+
+  std::ofstream(dir + "/short.depth", std::ios::binary) << std::string("\x00\x0a\x00\x0a", 4) << std::string(99, 'a');
+  auto wrong = compile("heightmap \"" + dir + "/short.depth\" size 10 mm amplitude 1 N");
+  EXPECT_EQ(first_error(wrong), "E0405");
+  EXPECT_NE(message_of(wrong).find("103 bytes"), std::string::npos) << message_of(wrong);
+  EXPECT_NE(message_of(wrong).find("104 bytes"), std::string::npos) << message_of(wrong);
+  EXPECT_EQ(first_error(compile("heightmap \"" + dir + "/none.depth\" size 10 mm amplitude 1 N")), "E0401");
+  schema::write_shade_file(dir + "/slope.shade", a);
+  EXPECT_EQ(first_error(compile("heightmap \"" + dir + "/slope.shade\" size 10 mm amplitude 1 N")), "E0406");
+}
+
+TEST(Heightmap, RealPhotographsCompileAsExamples) {
+  for (const char* file : {"examples/brick-relief.hmat", "examples/grass.hmat"}) {
+    auto r = test::shipped_compiler().compile_file(file);
+    ASSERT_TRUE(r.ok()) << file << "\n" << compiler::format_diagnostics(r.diagnostics);
+    EXPECT_GT(r.program->max_lateral_force_N, 0.1) << file;
+    EXPECT_NEAR(r.program->roughness, roughness_for(r.program->max_lateral_force_N), 1e-9) << file;
+  }
+  auto brick = test::shipped_compiler().compile_file("examples/brick-relief.hmat");
+  // sampling 0.2 mm over 90 mm: the grid is 450 x 450, not the photograph's 512 x 512.
+  EXPECT_EQ(field_of(brick).nx, 450u);
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The `sandpaper` command line: compile, explain, run, inspect, library, movie. Exit codes: 0 success,
+// The `sandpaper` command line: compile, explain, run, inspect, library, movie, array. Exit codes: 0 success,
 // 1 the input is wrong (diagnostics printed), 2 usage or environment errors, 3 internal errors.
 #include <cstdint>
 #include <filesystem>
@@ -72,5 +72,11 @@ struct MovieShuffleOptions {
 };
 int cmd_movie_shuffle(const MovieShuffleOptions& m, bool json);
 int cmd_movie_show(const std::string& file, bool json);
+// `sandpaper array`: lengths as text with units ("80mm", "80x60mm", "0.37mm"); empty = not given.
+struct ArrayOptions {
+  std::string image, size, sampling, channel, depth, output, shade;
+  bool invert = false;
+};
+int cmd_array(const ArrayOptions& o);
 
 }  // namespace sandpaper::cli

@@ -1,5 +1,5 @@
-// sandpaper: compile, explain, run and inspect haptic materials. `sandpaper --help` lists the
-// commands; schema/LANGUAGE.md describes material files.
+// sandpaper: compile, explain, run and inspect haptic materials; write Sandpaper's array files.
+// `sandpaper --help` lists the commands; schema/LANGUAGE.md describes material files.
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -71,6 +71,17 @@ int main(int argc, char** argv) {
   show->add_option("file", show_file, "movie or shuffle file")->required();
   show->add_flag("--json", o.json, "print JSON");
 
+  auto* array = app.add_subcommand("array", "write Sandpaper's array files: an image's 8-bit heights (.depth) and a shaded picture (.shade)");
+  ArrayOptions ao;
+  array->add_option("image", ao.image, "picture to read as heights (any format OpenImageIO reads, or a .depth file)")->required();
+  array->add_option("--size", ao.size, "physical size W[xH] with a unit, e.g. 80mm or 80x60mm")->required();
+  array->add_option("--sampling", ao.sampling, "spacing of the array's items, e.g. 0.37mm (default: one per pixel)");
+  array->add_option("--channel", ao.channel, "read this channel as the height (default: the luminance rule)");
+  array->add_flag("--invert", ao.invert, "dark = high");
+  array->add_option("--depth", ao.depth, "relief for the shading, e.g. 0.5mm (default: steepest slope 45 deg)");
+  array->add_option("-o,--output", ao.output, "height array to write (.depth)")->required();
+  array->add_option("--shade", ao.shade, "also write the shaded picture, lit from the upper left (.shade)");
+
   CLI11_PARSE(app, argc, argv);
   auto needs_input = [&](CLI::App* sub) {
     if (o.file.empty() == o.expression.empty()) {
@@ -108,6 +119,7 @@ int main(int argc, char** argv) {
     if (show->parsed()) return cmd_movie_show(show_file, o.json);
     if (inspect->parsed()) return cmd_inspect(patch_file, o.json, tables);
     if (library->parsed()) return cmd_library(o);
+    if (array->parsed()) return cmd_array(ao);
   } catch (const sandpaper::schema::PatchFormatError& e) {
     std::cerr << "sandpaper: error: " << e.what() << "\n";
     return kExitBadInput;

@@ -35,9 +35,16 @@ struct ResolvedHeightmap {
   std::string stated_path;   // as written
   Param width, height;       // m
   std::optional<Param> smoothing;  // Gaussian sigma, m
+  std::optional<Param> sampling;   // resampling spacing, m; none: one sample per pixel
+  // Stylus reading (thesis 3.4, F = m g tan(theta)): the image's height range is `depth` m of relief
+  // and `press` N presses down, so F = -press grad h. Both or neither; then no target force.
+  std::optional<Param> depth, press;
+  std::string channel;       // channel name; empty: the luminance rule (docs/TEXTURES.md)
   bool repeat = false;
+  bool invert = false;       // dark = high
   std::string source;
   SourceLocation location;   // the path in the heightmap statement
+  bool stylus() const { return depth && press; }
 };
 
 // One `force` or `physics` statement with every parameter resolved (defaults filled in from

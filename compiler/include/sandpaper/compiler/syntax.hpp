@@ -42,7 +42,12 @@ struct HeightmapStmt {
   SourceLocation path_location;
   Quantity width;
   std::optional<Quantity> height, smoothing, amplitude;
+  std::optional<Quantity> sampling;      // resample to this spacing
+  std::optional<Quantity> depth, press;  // stylus reading (thesis 3.4 EQ 5-11): relief and downward force
+  std::string channel;                   // empty: the luminance rule
+  SourceLocation channel_location;
   bool repeat = false;
+  bool invert = false;                   // dark = high
 };
 struct SpringStmt { Quantity stiffness; };
 struct DamperStmt { Quantity damping; };

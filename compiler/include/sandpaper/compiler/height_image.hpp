@@ -1,0 +1,46 @@
+#pragma once
+// Reading a picture as heights (thesis 3.2.2 "textures from real-world data", 3.5.3): any image
+// OpenImageIO reads, or Sandpaper's own .depth array file (Appendix B), reduced to one height per
+// sample by the documented channel rule (docs/TEXTURES.md, "Real images"), optionally inverted and
+// resampled. Shared by the heightmap statement and `sandpaper array`.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sandpaper::compiler {
+
+// Largest height grid accepted, in samples (width * height), before and after resampling.
+inline constexpr long long kMaxImagePixels = 4096LL * 4096LL;
+
+struct HeightImageRequest {
+  std::string path;        // file to open
+  std::string shown_path;  // as the user wrote it, for messages
+  std::string channel;     // a channel name; empty: the luminance rule
+  bool invert = false;     // dark = high
+  // Resampling to a spacing of `sampling_m` over a width_m x height_m patch (OpenImageIO resize);
+  // without it, one sample per pixel.
+  std::optional<double> sampling_m;
+  double width_m = 0, height_m = 0;
+};
+
+// Heights in the image's own unit: integer pixels 0..1 (OpenImageIO's normalisation), float pixels
+// as stored, .depth items value / 255. Row-major, row 0 = the picture's top edge.
+struct HeightImage {
+  int nx = 0, ny = 0;
+  std::vector<float> values;
+  float lo = 0, hi = 0;        // range of the source's heights (after inversion, before resampling)
+  int source_nx = 0, source_ny = 0;
+  std::string description;     // "512 x 512 px, 1 channel Y (uint8), ...", for provenance
+};
+
+// A picture that cannot be used: code (E0401-E0406, schema/LANGUAGE.md), what, how to fix it.
+struct HeightImageError {
+  std::string code, message, suggestion;
+};
+
+// Returns nullopt and fills `error` for a file that is unreadable (E0401), of no or too many
+// samples (E0402), flat or non-finite (E0403), without the named channel (E0404), a .depth of the
+// wrong size (E0405) or a .shade picture (E0406).
+std::optional<HeightImage> load_height_image(const HeightImageRequest& request, HeightImageError& error);
+
+}  // namespace sandpaper::compiler
