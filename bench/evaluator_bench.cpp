@@ -1,8 +1,13 @@
 // Cost of one PatchEvaluator::force_rt call: the servo tick's budget is ~1 ms at 1 kHz and
-// 100 us at 10 kHz, shared with the device I/O.
+// 100 us at 10 kHz, shared with the device I/O. BM_Term/<kind> plays a program of that one term kind
+// (tick cost per force term, state advance and energy metering included).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "sandpaper/runtime/patch_evaluator.hpp"
@@ -70,6 +75,127 @@ void BM_ForceFourTerms(benchmark::State& state) {
   play(state, program);
 }
 BENCHMARK(BM_ForceFourTerms);
+
+// One term of one kind, played with an energy budget that never runs dry so the tank's metering is
+// timed but never scales.
+void BM_Term(benchmark::State& state, schema::Term term) {
+  if (const auto* masses = std::get_if<schema::PointMassesTerm>(&term))
+    state.counters["substeps"] = std::min(PatchEvaluator::substeps_for(*masses, 1e-3), kMaxPointMassSubsteps);
+  schema::PatchProgram program;
+  program.terms.push_back(std::move(term));
+  program.energy_budget_J = 1e12;
+  play(state, program);
+}
+
+schema::PointMassesTerm bench_masses(std::uint32_t count, double k0) {
+  schema::PointMassesTerm m;
+  m.count = count;
+  m.mass_kg[0] = 0.05;
+  m.mass_kg[1] = 0.03;
+  m.stiffness_N_per_m[0] = k0;
+  m.stiffness_N_per_m[1] = 150;
+  m.damping_Ns_per_m[0] = 0.5;
+  m.damping_Ns_per_m[1] = 0.3;
+  m.ground_damping_Ns_per_m = 0.1;
+  m.gravity_m_s2[1] = -9.81;
+  return m;
+}
+
+schema::SpringTerm bench_spring() {
+  schema::SpringTerm t;
+  t.stiffness_N_per_m = 150;
+  return t;
+}
+schema::DamperTerm bench_damper() {
+  schema::DamperTerm t;
+  t.damping_Ns_per_m = 2;
+  return t;
+}
+schema::ConstantForceTerm bench_constant() {
+  schema::ConstantForceTerm t;
+  t.force_N[0] = 0.3;
+  return t;
+}
+schema::NapTerm bench_nap() {
+  schema::NapTerm t;
+  t.damping_Ns_per_m = 2;
+  return t;
+}
+schema::PeriodicTerm bench_periodic(schema::PeriodicShape shape) {
+  schema::PeriodicTerm t;
+  t.shape = shape;
+  t.amplitude_N = 0.8;
+  t.period_m = 0.004;
+  return t;
+}
+schema::RidgeTerm bench_ridge() {
+  schema::RidgeTerm t;
+  t.stiffness_N_per_m = 300;
+  t.wavelength_m = 0.006;
+  t.ridge_width_m = 0.002;
+  return t;
+}
+schema::BowlTerm bench_bowl() {
+  schema::BowlTerm t;
+  t.stiffness_N_per_m = 150;
+  t.radius_m = 0.03;
+  return t;
+}
+schema::LinearFieldTerm bench_linear_field() {
+  schema::LinearFieldTerm t;
+  t.radial_N_per_m = -50;
+  t.tangential_N_per_m = 40;
+  return t;
+}
+schema::LinearSpringTerm bench_linear_spring() {
+  schema::LinearSpringTerm t;
+  t.stiffness_N_per_m = 200;
+  t.orientation_rad = 0.7;
+  return t;
+}
+schema::MinusTerm bench_minus() {
+  schema::MinusTerm t;
+  t.stiffness_N_per_m = 100;
+  t.lead_s = 0.02;
+  return t;
+}
+schema::FollowerSpringTerm bench_follower() {
+  schema::FollowerSpringTerm t;
+  t.stiffness_N_per_m = 150;
+  t.lag_s = 0.05;
+  return t;
+}
+schema::AttractorTerm bench_attractor() {
+  schema::AttractorTerm t;
+  t.stiffness_N_per_m = 80;
+  t.radius_m = 0.02;
+  t.period_s = 1.5;
+  t.swirl = 0.3;
+  return t;
+}
+
+BENCHMARK_CAPTURE(BM_Term, spring, bench_spring());
+BENCHMARK_CAPTURE(BM_Term, damper, bench_damper());
+BENCHMARK_CAPTURE(BM_Term, grating_1024, bench_grating(1024));
+BENCHMARK_CAPTURE(BM_Term, height_field_512, bench_height_field(512));
+BENCHMARK_CAPTURE(BM_Term, constant_force, bench_constant());
+BENCHMARK_CAPTURE(BM_Term, nap, bench_nap());
+BENCHMARK_CAPTURE(BM_Term, periodic_sine, bench_periodic(schema::PeriodicShape::Sine));
+BENCHMARK_CAPTURE(BM_Term, periodic_sawtooth, bench_periodic(schema::PeriodicShape::Sawtooth));
+BENCHMARK_CAPTURE(BM_Term, periodic_triangle, bench_periodic(schema::PeriodicShape::Triangle));
+BENCHMARK_CAPTURE(BM_Term, ridge, bench_ridge());
+BENCHMARK_CAPTURE(BM_Term, bowl, bench_bowl());
+BENCHMARK_CAPTURE(BM_Term, linear_field, bench_linear_field());
+BENCHMARK_CAPTURE(BM_Term, linear_spring, bench_linear_spring());
+BENCHMARK_CAPTURE(BM_Term, minus, bench_minus());
+BENCHMARK_CAPTURE(BM_Term, follower_spring, bench_follower());
+BENCHMARK_CAPTURE(BM_Term, point_masses_1, bench_masses(1, 200));
+BENCHMARK_CAPTURE(BM_Term, point_masses_2, bench_masses(2, 200));
+// Stiff enough (omega = 20000 rad/s) to need the 64-substep cap at the 1 ms tick: the most a
+// point-masses term can cost per tick.
+BENCHMARK_CAPTURE(BM_Term, point_masses_2_at_cap, bench_masses(2, 2e7));
+BENCHMARK_CAPTURE(BM_Term, attractor, bench_attractor());
+
 
 }  // namespace
 }  // namespace sandpaper::runtime

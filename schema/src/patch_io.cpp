@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <type_traits>
+#include <variant>
 
 #include <zlib.h>
 
@@ -21,7 +22,24 @@ constexpr std::uint64_t kMaxPayload = 1ull << 31;
 static_assert(std::endian::native == std::endian::little, "patch I/O assumes a little-endian host");
 
 // Payload tags: one per term kind; stable across versions (docs/PATCH_FORMAT.md).
-enum : std::uint32_t { kTagSpring = 1, kTagDamper = 2, kTagGrating = 3, kTagHeightField = 4 };
+enum : std::uint32_t {
+  kTagSpring = 1,
+  kTagDamper = 2,
+  kTagGrating = 3,
+  kTagHeightField = 4,
+  kTagConstantForce = 5,
+  kTagNap = 6,
+  kTagPeriodic = 7,
+  kTagRidge = 8,
+  kTagBowl = 9,
+  kTagLinearField = 10,
+  kTagLinearSpring = 11,
+  kTagMinus = 12,
+  kTagFollowerSpring = 13,
+  kTagPointMasses = 14,
+  kTagAttractor = 15,
+};
+static_assert(std::variant_size_v<Term> == 15, "a new term kind needs a tag, a writer and a reader here");
 
 class Writer {
  public:
@@ -120,6 +138,67 @@ void write_term(Writer& w, const Term& term) {
     w.pod<std::uint8_t>(h->repeat ? 1 : 0);
     w.floats(h->force_x_N);
     w.floats(h->force_y_N);
+  } else if (const auto* c = std::get_if<ConstantForceTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagConstantForce);
+    w.pod(c->force_N[0]);
+    w.pod(c->force_N[1]);
+  } else if (const auto* n = std::get_if<NapTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagNap);
+    w.pod(n->damping_Ns_per_m);
+  } else if (const auto* pe = std::get_if<PeriodicTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagPeriodic);
+    w.pod<std::uint8_t>(static_cast<std::uint8_t>(pe->shape));
+    w.pod(pe->amplitude_N);
+    w.pod(pe->period_m);
+    w.pod<std::uint8_t>(pe->on_x ? 1 : 0);
+    w.pod<std::uint8_t>(pe->on_y ? 1 : 0);
+  } else if (const auto* r = std::get_if<RidgeTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagRidge);
+    w.pod(r->stiffness_N_per_m);
+    w.pod(r->wavelength_m);
+    w.pod(r->ridge_width_m);
+  } else if (const auto* b = std::get_if<BowlTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagBowl);
+    w.pod(b->stiffness_N_per_m);
+    w.pod(b->radius_m);
+  } else if (const auto* lf = std::get_if<LinearFieldTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagLinearField);
+    w.pod(lf->radial_N_per_m);
+    w.pod(lf->tangential_N_per_m);
+  } else if (const auto* ls = std::get_if<LinearSpringTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagLinearSpring);
+    w.pod(ls->stiffness_N_per_m);
+    w.pod(ls->orientation_rad);
+    w.pod(ls->centre_m[0]);
+    w.pod(ls->centre_m[1]);
+  } else if (const auto* mi = std::get_if<MinusTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagMinus);
+    w.pod(mi->stiffness_N_per_m);
+    w.pod(mi->lead_s);
+  } else if (const auto* fs = std::get_if<FollowerSpringTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagFollowerSpring);
+    w.pod(fs->stiffness_N_per_m);
+    w.pod(fs->lag_s);
+  } else if (const auto* pm = std::get_if<PointMassesTerm>(&term)) {
+    // Both slots are written whatever the count, so the record has one fixed size.
+    w.pod<std::uint32_t>(kTagPointMasses);
+    w.pod(pm->count);
+    for (int i = 0; i < 2; ++i) {
+      w.pod(pm->mass_kg[i]);
+      w.pod(pm->stiffness_N_per_m[i]);
+      w.pod(pm->damping_Ns_per_m[i]);
+    }
+    w.pod(pm->ground_damping_Ns_per_m);
+    w.pod(pm->gravity_m_s2[0]);
+    w.pod(pm->gravity_m_s2[1]);
+  } else if (const auto* a = std::get_if<AttractorTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagAttractor);
+    w.pod(a->stiffness_N_per_m);
+    w.pod(a->radius_m);
+    w.pod(a->period_s);
+    w.pod(a->swirl);
+    w.pod(a->centre_m[0]);
+    w.pod(a->centre_m[1]);
   }
 }
 
@@ -164,6 +243,93 @@ Term read_term(Reader& r) {
         throw PatchFormatError("height-field term whose grid does not match its size");
       return h;
     }
+    case kTagConstantForce: {
+      ConstantForceTerm c;
+      c.force_N[0] = r.pod<double>();
+      c.force_N[1] = r.pod<double>();
+      return c;
+    }
+    case kTagNap: {
+      NapTerm n;
+      n.damping_Ns_per_m = r.pod<double>();
+      return n;
+    }
+    case kTagPeriodic: {
+      PeriodicTerm pe;
+      const auto shape = r.pod<std::uint8_t>();
+      if (shape > static_cast<std::uint8_t>(PeriodicShape::Triangle))
+        throw PatchFormatError("periodic term with unknown shape " + std::to_string(shape));
+      pe.shape = static_cast<PeriodicShape>(shape);
+      pe.amplitude_N = r.pod<double>();
+      pe.period_m = r.pod<double>();
+      pe.on_x = r.pod<std::uint8_t>() != 0;
+      pe.on_y = r.pod<std::uint8_t>() != 0;
+      return pe;
+    }
+    case kTagRidge: {
+      RidgeTerm ri;
+      ri.stiffness_N_per_m = r.pod<double>();
+      ri.wavelength_m = r.pod<double>();
+      ri.ridge_width_m = r.pod<double>();
+      return ri;
+    }
+    case kTagBowl: {
+      BowlTerm b;
+      b.stiffness_N_per_m = r.pod<double>();
+      b.radius_m = r.pod<double>();
+      return b;
+    }
+    case kTagLinearField: {
+      LinearFieldTerm lf;
+      lf.radial_N_per_m = r.pod<double>();
+      lf.tangential_N_per_m = r.pod<double>();
+      return lf;
+    }
+    case kTagLinearSpring: {
+      LinearSpringTerm ls;
+      ls.stiffness_N_per_m = r.pod<double>();
+      ls.orientation_rad = r.pod<double>();
+      ls.centre_m[0] = r.pod<double>();
+      ls.centre_m[1] = r.pod<double>();
+      return ls;
+    }
+    case kTagMinus: {
+      MinusTerm mi;
+      mi.stiffness_N_per_m = r.pod<double>();
+      mi.lead_s = r.pod<double>();
+      return mi;
+    }
+    case kTagFollowerSpring: {
+      FollowerSpringTerm fs;
+      fs.stiffness_N_per_m = r.pod<double>();
+      fs.lag_s = r.pod<double>();
+      return fs;
+    }
+    case kTagPointMasses: {
+      PointMassesTerm pm;
+      pm.count = r.pod<std::uint32_t>();
+      if (pm.count != 1 && pm.count != 2)
+        throw PatchFormatError("point-masses term with " + std::to_string(pm.count) + " masses (1 or 2)");
+      for (int i = 0; i < 2; ++i) {
+        pm.mass_kg[i] = r.pod<double>();
+        pm.stiffness_N_per_m[i] = r.pod<double>();
+        pm.damping_Ns_per_m[i] = r.pod<double>();
+      }
+      pm.ground_damping_Ns_per_m = r.pod<double>();
+      pm.gravity_m_s2[0] = r.pod<double>();
+      pm.gravity_m_s2[1] = r.pod<double>();
+      return pm;
+    }
+    case kTagAttractor: {
+      AttractorTerm a;
+      a.stiffness_N_per_m = r.pod<double>();
+      a.radius_m = r.pod<double>();
+      a.period_s = r.pod<double>();
+      a.swirl = r.pod<double>();
+      a.centre_m[0] = r.pod<double>();
+      a.centre_m[1] = r.pod<double>();
+      return a;
+    }
     default:
       throw PatchFormatError("unknown term tag " + std::to_string(tag) + " (made by a newer compiler?)");
   }
@@ -181,6 +347,8 @@ std::vector<unsigned char> serialize(const PatchProgram& p) {
   w.pod(p.max_lateral_force_N);
   w.pod(p.roughness);
   w.str(p.roughness_map);
+  w.pod(p.energy_budget_J);
+  w.pod(p.energy_refill_W);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(p.terms.size()));
   for (const auto& t : p.terms) write_term(w, t);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(p.provenance.size()));
@@ -237,6 +405,8 @@ PatchProgram deserialize(const std::vector<unsigned char>& bytes) {
   p.max_lateral_force_N = r.pod<double>();
   p.roughness = r.pod<double>();
   p.roughness_map = r.str();
+  p.energy_budget_J = r.pod<double>();
+  p.energy_refill_W = r.pod<double>();
   auto nterms = r.pod<std::uint32_t>();
   for (std::uint32_t i = 0; i < nterms; ++i) p.terms.push_back(read_term(r));
   auto nprov = r.pod<std::uint32_t>();

@@ -105,8 +105,8 @@ TEST(ForceLawsPlayed, PositionLaws) {
   expect_law("force Bump stiffness 20 N/m", [](const Tick& t) { return 20.0 * t.p; });
   expect_law("force Bowl stiffness 30 N/m radius 20 mm",
              [](const Tick& t) { return -30.0 * t.p * std::sqrt(glm::length(t.p) / 0.02); });
-  expect_law("force Circle stiffness 25 N/m", [](const Tick& t) { return 25.0 * r90(t.p); });
-  expect_law("force Buckle radial -10 N/m tangential 15 N/m",
+  expect_law("force Circle stiffness 25 N/m; energy budget 100 J", [](const Tick& t) { return 25.0 * r90(t.p); });
+  expect_law("force Buckle radial -10 N/m tangential 15 N/m; energy budget 100 J",
              [](const Tick& t) { return -10.0 * t.p + 15.0 * r90(t.p); });
   expect_law("force Const x 0.3 N y -0.2 N", [](const Tick&) { return dvec2{0.3, -0.2}; });
   expect_law("physics LinearSpring stiffness 40 N/m orientation 30 deg", [](const Tick& t) {

@@ -12,8 +12,10 @@
 #include <cstdlib>
 #include <new>
 #include <string>
+#include <variant>
 
 #include "runtime_test_support.hpp"
+#include "term_samples.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 
@@ -108,11 +110,22 @@ schema::HeightFieldTerm ripple_field() {
   return field;
 }
 
-// Allocations made by one complete run of `ticks` ticks, everything else built beforehand.
-std::size_t allocations_in_run(std::uint64_t ticks) {
+schema::PatchProgram table_program() {
   std::vector<float> table(256);
   for (std::size_t i = 0; i < table.size(); ++i) table[i] = static_cast<float>(i % 32) * 0.1f;
-  const auto program = program_of({spring(400.0), damper(2.0), grating(0.0025, 0.4, table), ripple_field()});
+  return program_of({spring(400.0), damper(2.0), grating(0.0025, 0.4, table), ripple_field()});
+}
+
+// One term of every kind, stateful ones included, with a tank small enough to run dry and scale.
+schema::PatchProgram every_kind_program() {
+  auto program = program_of(testing::every_term_kind());
+  program.energy_budget_J = 0.001;
+  program.energy_refill_W = 0.002;
+  return program;
+}
+
+// Allocations made by one complete run of `ticks` ticks, everything else built beforehand.
+std::size_t allocations_in_run(const schema::PatchProgram& program, std::uint64_t ticks) {
   PatchEvaluator evaluator(program);
   SimJoystick joystick(sim_device_limits(), HandScript{HandPath::Circle, 0.08, 0.03, 0.0}, ticks);
   VirtualClock clock;
@@ -146,11 +159,23 @@ TEST(ServoNoAllocation, TheCounterSeesAnAllocation) {
 }
 
 TEST(ServoNoAllocation, AllocationsDoNotGrowWithTicks) {
-  const std::size_t short_run = allocations_in_run(1000);
-  const std::size_t long_run = allocations_in_run(20000);
+  const auto program = table_program();
+  const std::size_t short_run = allocations_in_run(program, 1000);
+  const std::size_t long_run = allocations_in_run(program, 20000);
   EXPECT_EQ(short_run, long_run);
   // The two timing arrays; a tick that allocated only once (a string growing on first use, say)
   // would not grow with the ticks but would show up here.
+  EXPECT_LE(short_run, 2u);
+}
+
+// Every term kind: the stateful ones advance state in slots the constructor allocated, and the
+// energy tank meters the non-passive ones, all without allocating.
+TEST(ServoNoAllocation, EveryTermKindRunsWithoutAllocating) {
+  const auto program = every_kind_program();
+  ASSERT_EQ(program.terms.size(), std::variant_size_v<schema::Term>);
+  const std::size_t short_run = allocations_in_run(program, 1000);
+  const std::size_t long_run = allocations_in_run(program, 20000);
+  EXPECT_EQ(short_run, long_run);
   EXPECT_LE(short_run, 2u);
 }
 

@@ -67,7 +67,8 @@ struct PeriodicTerm {
   bool on_x = true, on_y = true;
 };
 
-// Appendix B Ridge: F_x = k ((p_x mod wavelength) - ridge width), F_y = 0.
+// Appendix B Ridge: F_x = k ((p_x mod wavelength) - ridge width), F_y = 0. The modulo is floored, into
+// [0, wavelength), so the ridges repeat alike on both sides of the centre. wavelength > 0.
 struct RidgeTerm {
   double stiffness_N_per_m = 0;
   double wavelength_m = 0;
@@ -75,7 +76,7 @@ struct RidgeTerm {
 };
 
 // Appendix B Bowl (reading: a spring whose force grows as |p|^1.5): F = -k p sqrt(|p| / r), equal to
-// a linear spring of stiffness k at radius r.
+// a linear spring of stiffness k at radius r (> 0).
 struct BowlTerm {
   double stiffness_N_per_m = 0;
   double radius_m = 0;
@@ -97,14 +98,15 @@ struct LinearSpringTerm {
 };
 
 // Appendix B Minus (reading: "minus mass"): F = k (m - p), m the position predicted `lead` ahead from
-// the hand's position, velocity and acceleration: m - p = v lead + a lead^2 / 2. Not passive.
+// the hand's position, velocity and acceleration: m - p = v lead + a lead^2 / 2 (lead >= 0). Not passive.
 struct MinusTerm {
   double stiffness_N_per_m = 0;
   double lead_s = 0;
 };
 
 // Appendix B ATNSpring: F = -k (p - m), m a point that follows the hand with a first-order lag:
-// dm/dt = (p - m) / lag. State: m (runtime).
+// dm/dt = (p - m) / lag, lag > 0. State: m (runtime). Passive (a spring in series with a damper) for
+// k >= 0, which the runtime requires.
 struct FollowerSpringTerm {
   double stiffness_N_per_m = 0;
   double lag_s = 0;
@@ -113,7 +115,8 @@ struct FollowerSpringTerm {
 // Thesis 3.2.2 physics patches: one or two point masses in a chain hand - mass 0 - mass 1, each link
 // a spring and damper; each mass also feels ground damping and a constant gravity (the brick hanging
 // from a spring: one mass, gravity (0, -9.81)). The hand feels link 0: F = -k0 (p - x0) - c0 (v - v0).
-// State: positions and velocities of the masses (runtime), starting at rest under the hand.
+// State: positions and velocities of the masses (runtime), starting at rest hanging from the hand under
+// gravity. Masses > 0; springs and dampers >= 0 (else the chain itself is unstable).
 struct PointMassesTerm {
   std::uint32_t count = 1;                 // 1 or 2
   double mass_kg[2] = {0, 0};
@@ -126,6 +129,7 @@ struct PointMassesTerm {
 // Thesis 3.2.2 Attractor: a spring to a light object moving on a swirling path,
 //   q(t) = centre + radius * (1 + swirl sin(3 theta)) / (1 + swirl) * (cos theta, sin theta),
 //   theta = 2 pi t / period; F = -k (p - q(t)). State: t (runtime). Not passive: it drives the hand.
+//   period > 0, radius >= 0, swirl > -1 (the radius divides by 1 + swirl).
 struct AttractorTerm {
   double stiffness_N_per_m = 0;
   double radius_m = 0;

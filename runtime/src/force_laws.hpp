@@ -1,0 +1,78 @@
+#pragma once
+// The closed-form force laws of Appendix B and thesis 3.2.2, one function per term kind. Each gives
+// the force (N) at hand position p (m, from the patch centre), velocity v (m/s) and acceleration
+// a (m/s^2). The laws are stated in schema/include/sandpaper/schema/patch_program.hpp; the
+// evaluator checked the parameters (periods > 0 and so on) before the first tick.
+#include <cmath>
+#include <numbers>
+
+#include <glm/vec2.hpp>
+
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::runtime::laws {
+
+inline double frac(double x) noexcept { return x - std::floor(x); }
+
+inline glm::dvec2 constant_force(const schema::ConstantForceTerm& t) noexcept { return {t.force_N[0], t.force_N[1]}; }
+
+// Appendix B Nap: like viscosity along x, always toward +y along y (velvet's nap).
+inline glm::dvec2 nap(const schema::NapTerm& t, glm::dvec2 v) noexcept {
+  return {-t.damping_Ns_per_m * v.x, std::abs(t.damping_Ns_per_m * v.y)};
+}
+
+// One axis of a periodic law at coordinate u (m).
+inline double periodic_axis(const schema::PeriodicTerm& t, double u) noexcept {
+  switch (t.shape) {
+    case schema::PeriodicShape::Sine: return -t.amplitude_N * std::sin(2 * std::numbers::pi * u / t.period_m);
+    case schema::PeriodicShape::Sawtooth: return t.amplitude_N * (2 * frac(std::abs(u) / t.period_m) - 1);
+    case schema::PeriodicShape::Triangle: return -t.amplitude_N * (2 * frac(u / t.period_m) - 1);
+  }
+  return 0;
+}
+
+inline glm::dvec2 periodic(const schema::PeriodicTerm& t, glm::dvec2 p) noexcept {
+  return {t.on_x ? periodic_axis(t, p.x) : 0.0, t.on_y ? periodic_axis(t, p.y) : 0.0};
+}
+
+// Appendix B Ridge, with a floored modulo so that the ridges repeat the same way on both sides of
+// the centre.
+inline glm::dvec2 ridge(const schema::RidgeTerm& t, glm::dvec2 p) noexcept {
+  return {t.stiffness_N_per_m * (t.wavelength_m * frac(p.x / t.wavelength_m) - t.ridge_width_m), 0.0};
+}
+
+inline glm::dvec2 bowl(const schema::BowlTerm& t, glm::dvec2 p) noexcept {
+  return -t.stiffness_N_per_m * std::sqrt(std::hypot(p.x, p.y) / t.radius_m) * p;
+}
+
+inline glm::dvec2 linear_field(const schema::LinearFieldTerm& t, glm::dvec2 p) noexcept {
+  return t.radial_N_per_m * p + t.tangential_N_per_m * glm::dvec2{-p.y, p.x};
+}
+
+inline glm::dvec2 linear_spring(const schema::LinearSpringTerm& t, glm::dvec2 p) noexcept {
+  const glm::dvec2 n{std::cos(t.orientation_rad), std::sin(t.orientation_rad)};
+  const double along = (p.x - t.centre_m[0]) * n.x + (p.y - t.centre_m[1]) * n.y;
+  return -t.stiffness_N_per_m * along * n;
+}
+
+// Appendix B Minus: a spring to where the hand will be `lead` from now, m - p = v lead + a lead^2 / 2.
+inline glm::dvec2 minus(const schema::MinusTerm& t, glm::dvec2 v, glm::dvec2 a) noexcept {
+  return t.stiffness_N_per_m * (t.lead_s * v + (0.5 * t.lead_s * t.lead_s) * a);
+}
+
+inline glm::dvec2 follower_spring(const schema::FollowerSpringTerm& t, glm::dvec2 p, glm::dvec2 follower_m) noexcept {
+  return -t.stiffness_N_per_m * (p - follower_m);
+}
+
+// Where the attractor's light object is at time t_s on its swirling path (thesis 3.2.2).
+inline glm::dvec2 attractor_point(const schema::AttractorTerm& t, double t_s) noexcept {
+  const double theta = 2 * std::numbers::pi * t_s / t.period_s;
+  const double r = t.radius_m * (1 + t.swirl * std::sin(3 * theta)) / (1 + t.swirl);
+  return {t.centre_m[0] + r * std::cos(theta), t.centre_m[1] + r * std::sin(theta)};
+}
+
+inline glm::dvec2 attractor(const schema::AttractorTerm& t, glm::dvec2 p, double t_s) noexcept {
+  return -t.stiffness_N_per_m * (p - attractor_point(t, t_s));
+}
+
+}  // namespace sandpaper::runtime::laws

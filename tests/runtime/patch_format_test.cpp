@@ -1,0 +1,211 @@
+// Patch format 2 (docs/PATCH_FORMAT.md): every term kind and the energy fields survive the file
+// round trip, each kind has the tag the document gives, bad enumerations are refused, and the JSON
+// view names each parameter with its unit.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <variant>
+
+#include <zlib.h>
+
+#include "runtime_test_support.hpp"
+#include "sandpaper/schema/patch_io.hpp"
+#include "sandpaper/schema/patch_json.hpp"
+#include "term_samples.hpp"
+
+namespace sandpaper::runtime {
+namespace {
+
+using namespace testing;
+using namespace schema;
+
+bool same(const double (&a)[2], const double (&b)[2]) { return a[0] == b[0] && a[1] == b[1]; }
+
+// Field-by-field equality, written out per kind so that a field the file forgets shows up.
+bool same(const Term& x, const Term& y) {
+  if (x.index() != y.index()) return false;
+  if (const auto* a = std::get_if<SpringTerm>(&x)) {
+    const auto& b = std::get<SpringTerm>(y);
+    return a->stiffness_N_per_m == b.stiffness_N_per_m && same(a->centre_m, b.centre_m);
+  }
+  if (const auto* a = std::get_if<DamperTerm>(&x)) return a->damping_Ns_per_m == std::get<DamperTerm>(y).damping_Ns_per_m;
+  if (const auto* a = std::get_if<GratingTerm>(&x)) {
+    const auto& b = std::get<GratingTerm>(y);
+    return a->period_m == b.period_m && a->orientation_rad == b.orientation_rad && a->force_N == b.force_N;
+  }
+  if (const auto* a = std::get_if<HeightFieldTerm>(&x)) {
+    const auto& b = std::get<HeightFieldTerm>(y);
+    return a->nx == b.nx && a->ny == b.ny && same(a->origin_m, b.origin_m) && same(a->spacing_m, b.spacing_m) &&
+           a->repeat == b.repeat && a->force_x_N == b.force_x_N && a->force_y_N == b.force_y_N;
+  }
+  if (const auto* a = std::get_if<ConstantForceTerm>(&x)) return same(a->force_N, std::get<ConstantForceTerm>(y).force_N);
+  if (const auto* a = std::get_if<NapTerm>(&x)) return a->damping_Ns_per_m == std::get<NapTerm>(y).damping_Ns_per_m;
+  if (const auto* a = std::get_if<PeriodicTerm>(&x)) {
+    const auto& b = std::get<PeriodicTerm>(y);
+    return a->shape == b.shape && a->amplitude_N == b.amplitude_N && a->period_m == b.period_m && a->on_x == b.on_x &&
+           a->on_y == b.on_y;
+  }
+  if (const auto* a = std::get_if<RidgeTerm>(&x)) {
+    const auto& b = std::get<RidgeTerm>(y);
+    return a->stiffness_N_per_m == b.stiffness_N_per_m && a->wavelength_m == b.wavelength_m &&
+           a->ridge_width_m == b.ridge_width_m;
+  }
+  if (const auto* a = std::get_if<BowlTerm>(&x)) {
+    const auto& b = std::get<BowlTerm>(y);
+    return a->stiffness_N_per_m == b.stiffness_N_per_m && a->radius_m == b.radius_m;
+  }
+  if (const auto* a = std::get_if<LinearFieldTerm>(&x)) {
+    const auto& b = std::get<LinearFieldTerm>(y);
+    return a->radial_N_per_m == b.radial_N_per_m && a->tangential_N_per_m == b.tangential_N_per_m;
+  }
+  if (const auto* a = std::get_if<LinearSpringTerm>(&x)) {
+    const auto& b = std::get<LinearSpringTerm>(y);
+    return a->stiffness_N_per_m == b.stiffness_N_per_m && a->orientation_rad == b.orientation_rad &&
+           same(a->centre_m, b.centre_m);
+  }
+  if (const auto* a = std::get_if<MinusTerm>(&x)) {
+    const auto& b = std::get<MinusTerm>(y);
+    return a->stiffness_N_per_m == b.stiffness_N_per_m && a->lead_s == b.lead_s;
+  }
+  if (const auto* a = std::get_if<FollowerSpringTerm>(&x)) {
+    const auto& b = std::get<FollowerSpringTerm>(y);
+    return a->stiffness_N_per_m == b.stiffness_N_per_m && a->lag_s == b.lag_s;
+  }
+  if (const auto* a = std::get_if<PointMassesTerm>(&x)) {
+    const auto& b = std::get<PointMassesTerm>(y);
+    return a->count == b.count && same(a->mass_kg, b.mass_kg) && same(a->stiffness_N_per_m, b.stiffness_N_per_m) &&
+           same(a->damping_Ns_per_m, b.damping_Ns_per_m) && a->ground_damping_Ns_per_m == b.ground_damping_Ns_per_m &&
+           same(a->gravity_m_s2, b.gravity_m_s2);
+  }
+  const auto& a = std::get<AttractorTerm>(x);
+  const auto& b = std::get<AttractorTerm>(y);
+  return a.stiffness_N_per_m == b.stiffness_N_per_m && a.radius_m == b.radius_m && a.period_s == b.period_s &&
+         a.swirl == b.swirl && same(a.centre_m, b.centre_m);
+}
+
+TEST(PatchFormat, EveryTermKindRoundTrips) {
+  const auto kinds = every_term_kind();
+  ASSERT_EQ(kinds.size(), std::variant_size_v<Term>);
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    SCOPED_TRACE(i);
+    auto program = program_of({kinds[i]});
+    const auto back = deserialize(serialize(program));
+    ASSERT_EQ(back.terms.size(), 1u);
+    EXPECT_TRUE(same(back.terms[0], kinds[i]));
+  }
+  // All at once, with the other shapes and a one-mass chain whose unused slot is kept as written.
+  auto all = kinds;
+  all.push_back(periodic(PeriodicShape::Sine, -0.5, 0.01, false, true));
+  all.push_back(periodic(PeriodicShape::Triangle, 0.5, 0.02, true, true));
+  auto one = one_mass(0.2, 80, 0.3, 0.05, -9.81);
+  one.mass_kg[1] = 7;
+  all.push_back(one);
+  const auto back = deserialize(serialize(program_of(all)));
+  ASSERT_EQ(back.terms.size(), all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) EXPECT_TRUE(same(back.terms[i], all[i])) << i;
+}
+
+TEST(PatchFormat, EnergyFieldsRoundTrip) {
+  auto program = program_of({damper(-2)});
+  program.energy_budget_J = 0.0125;
+  program.energy_refill_W = 0.003;
+  const auto back = deserialize(serialize(program));
+  EXPECT_EQ(back.energy_budget_J, 0.0125);
+  EXPECT_EQ(back.energy_refill_W, 0.003);
+}
+
+// With empty strings the first term's tag sits at a fixed offset: header 32, three empty strings 12,
+// size 16, force and roughness 16, empty map name 4, energy 16, term count 4.
+constexpr std::size_t kFirstTagOffset = 32 + 12 + 16 + 16 + 4 + 16 + 4;
+
+schema::PatchProgram bare(std::vector<Term> terms) {
+  schema::PatchProgram program;
+  program.terms = std::move(terms);
+  return program;
+}
+
+TEST(PatchFormat, TagsAreTheDocumentedOnes) {
+  const auto kinds = every_term_kind();
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    const auto bytes = serialize(bare({kinds[i]}));
+    std::uint32_t tag = 0;
+    std::memcpy(&tag, bytes.data() + kFirstTagOffset, 4);
+    EXPECT_EQ(tag, i + 1) << "docs/PATCH_FORMAT.md numbers the kinds 1..15 in the variant's order";
+  }
+}
+
+// Rewrites one payload byte and fixes the checksum, so that the reader's own checks are what refuse it.
+std::vector<unsigned char> patched(std::vector<unsigned char> bytes, std::size_t offset, unsigned char value) {
+  bytes[offset] = value;
+  const auto crc = static_cast<std::uint32_t>(crc32(crc32(0L, Z_NULL, 0), bytes.data() + 32, static_cast<uInt>(bytes.size() - 32)));
+  std::memcpy(bytes.data() + 24, &crc, 4);
+  return bytes;
+}
+
+TEST(PatchFormat, UnknownShapesAndCountsAreRefused) {
+  const auto wave = serialize(bare({periodic(PeriodicShape::Sine, 1, 0.01)}));
+  EXPECT_NO_THROW(deserialize(patched(wave, kFirstTagOffset + 4, 2)));
+  EXPECT_THROW(deserialize(patched(wave, kFirstTagOffset + 4, 3)), PatchFormatError);
+  const auto masses = serialize(bare({one_mass(0.1, 100, 0.1)}));
+  EXPECT_NO_THROW(deserialize(patched(masses, kFirstTagOffset + 4, 2)));
+  EXPECT_THROW(deserialize(patched(masses, kFirstTagOffset + 4, 3)), PatchFormatError);
+  EXPECT_THROW(deserialize(patched(masses, kFirstTagOffset + 4, 0)), PatchFormatError);
+  EXPECT_THROW(deserialize(patched(masses, kFirstTagOffset, 16)), PatchFormatError);  // no tag 16
+}
+
+TEST(PatchFormat, JsonNamesEveryParameterWithItsUnit) {
+  auto program = program_of(every_term_kind());
+  program.energy_budget_J = 0.02;
+  program.energy_refill_W = 0.005;
+  const auto j = to_json(program);
+  EXPECT_EQ(j["energy_budget_J"], 0.02);
+  EXPECT_EQ(j["energy_refill_W"], 0.005);
+  const auto& t = j["terms"];
+  ASSERT_EQ(t.size(), std::variant_size_v<Term>);
+  EXPECT_EQ(t[4]["kind"], "constant_force");
+  EXPECT_EQ(t[4]["force_N"], nlohmann::json({0.3, -0.2}));
+  EXPECT_EQ(t[5]["kind"], "nap");
+  EXPECT_EQ(t[5]["damping_Ns_per_m"], 2.0);
+  EXPECT_EQ(t[5]["passive"], false);
+  EXPECT_EQ(t[6]["kind"], "periodic");
+  EXPECT_EQ(t[6]["shape"], "sawtooth");
+  EXPECT_EQ(t[6]["amplitude_N"], 0.8);
+  EXPECT_EQ(t[6]["period_m"], 0.004);
+  EXPECT_EQ(t[6]["on_x"], true);
+  EXPECT_EQ(t[6]["on_y"], false);
+  EXPECT_EQ(t[6]["passive"], true);
+  EXPECT_EQ(t[7]["kind"], "ridge");
+  EXPECT_EQ(t[7]["wavelength_m"], 0.006);
+  EXPECT_EQ(t[7]["ridge_width_m"], 0.002);
+  EXPECT_EQ(t[7]["stiffness_N_per_m"], 300.0);
+  EXPECT_EQ(t[8]["kind"], "bowl");
+  EXPECT_EQ(t[8]["radius_m"], 0.03);
+  EXPECT_EQ(t[9]["kind"], "linear_field");
+  EXPECT_EQ(t[9]["radial_N_per_m"], -50.0);
+  EXPECT_EQ(t[9]["tangential_N_per_m"], 40.0);
+  EXPECT_EQ(t[9]["passive"], false);
+  EXPECT_EQ(t[10]["kind"], "linear_spring");
+  EXPECT_EQ(t[10]["orientation_rad"], 0.7);
+  EXPECT_EQ(t[10]["centre_m"], nlohmann::json({0.001, -0.002}));
+  EXPECT_EQ(t[11]["kind"], "minus");
+  EXPECT_EQ(t[11]["lead_s"], 0.02);
+  EXPECT_EQ(t[12]["kind"], "follower_spring");
+  EXPECT_EQ(t[12]["lag_s"], 0.05);
+  EXPECT_EQ(t[12]["passive"], true);
+  EXPECT_EQ(t[13]["kind"], "point_masses");
+  EXPECT_EQ(t[13]["count"], 2);
+  EXPECT_EQ(t[13]["mass_kg"], nlohmann::json({0.05, 0.03}));
+  EXPECT_EQ(t[13]["stiffness_N_per_m"], nlohmann::json({200.0, 150.0}));
+  EXPECT_EQ(t[13]["damping_Ns_per_m"], nlohmann::json({0.5, 0.3}));
+  EXPECT_EQ(t[13]["ground_damping_Ns_per_m"], 0.1);
+  EXPECT_EQ(t[13]["gravity_m_s2"], nlohmann::json({0.0, -9.81}));
+  EXPECT_EQ(t[14]["kind"], "attractor");
+  EXPECT_EQ(t[14]["period_s"], 1.5);
+  EXPECT_EQ(t[14]["swirl"], 0.3);
+  EXPECT_EQ(t[14]["radius_m"], 0.02);
+  EXPECT_EQ(t[14]["passive"], false);
+}
+
+}  // namespace
+}  // namespace sandpaper::runtime
