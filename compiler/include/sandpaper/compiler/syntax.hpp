@@ -44,6 +44,22 @@ struct HeightmapStmt {
   std::optional<Quantity> height, smoothing, amplitude;
   bool repeat = false;
 };
+// A plain number with no unit (a count, a seed, a kernel size in pixels), as written.
+struct PlainNumber {
+  double value = 0;
+  std::string text;
+  SourceLocation location;
+};
+// Physical: a version-1 synthetic height map (thesis 3.5.1, Ch. 4): bars, grid, perlin, noise or
+// stripes, generated at the pixel pitch and read through the lateral-force gradient.
+struct PatternStmt {
+  std::string kind;  // "bars", "grid", "perlin", "noise", "stripes"
+  SourceLocation kind_location;
+  std::optional<Quantity> valley, hill, offset, feature, pixel, amplitude;
+  std::optional<PlainNumber> kernel, refilter, seed, count;
+};
+// Heights rounded to `bits` bits before the gradient (thesis 3.6.1: the thesis' arrays were 8-bit).
+struct QuantizeStmt { PlainNumber bits; };
 struct SpringStmt { Quantity stiffness; };
 struct DamperStmt { Quantity damping; };
 struct SizeStmt { Quantity width; std::optional<Quantity> height; };
@@ -51,7 +67,7 @@ struct SizeStmt { Quantity width; std::optional<Quantity> height; };
 struct ExtrapolateStmt {};
 
 using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, GratingStmt, HeightmapStmt, SpringStmt,
-                                   DamperStmt, SizeStmt, ExtrapolateStmt>;
+                                   DamperStmt, SizeStmt, ExtrapolateStmt, PatternStmt, QuantizeStmt>;
 
 struct Statement {
   StatementNode node;
