@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "sandpaper/compiler/laws.hpp"
+#include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/compiler/textures.hpp"
 
 namespace sandpaper::compiler {
@@ -19,6 +20,42 @@ std::string num(double v, int precision = 4) {
 
 void record(schema::PatchProgram& out, const std::string& parameter, const Param& p, const char* si_unit) {
   out.provenance.push_back({parameter, p.si, si_unit, p.stated, layer_name(p.layer), p.source});
+}
+
+// The version-2 grating the thesis' way (3.5.2): the 256 px seed, quantized, repeated per period.
+bool generate_seed_grating(const ResolvedGrating& g, int bits, const Param& force, schema::PatchProgram& out) {
+  Param sigma = g.smoothing ? *g.smoothing
+                            : Param{g.period.si * kSeedSigmaPerPeriod,
+                                    "6/256 of the period (thesis 3.5.2 seed, Gaussian kernel 24 of 256 px)",
+                                    Layer::Default, "default", {}};
+  const double sigma_seed_px = sigma.si / g.period.si * kSeedPixels;
+  out.terms.emplace_back(make_seed_grating(g.period.si, g.hill.si, g.orientation.si, sigma_seed_px, bits, force.si));
+  record(out, "texture.period", g.period, "m");
+  record(out, "texture.hill", g.hill, "1");
+  record(out, "texture.orientation", g.orientation, "rad");
+  record(out, "texture.smoothing", sigma, "m");
+  out.provenance.push_back({"texture.seed_grating", kSeedPixels, "px",
+                            "256 px per period, hill " + num(std::round(g.hill.si * kSeedPixels)) + " px, sigma " +
+                                num(sigma_seed_px) + " px, gradient h(i+1) - h(i-1) of " + std::to_string(bits) +
+                                "-bit heights",
+                            "derived", "thesis 3.5.2 seed, Appendix B Waves"});
+  return true;
+}
+
+void record_pattern(schema::PatchProgram& out, const ResolvedPattern& p, const std::string& summary) {
+  out.provenance.push_back({"texture.pattern", 0, "", summary, "physical", p.location.str()});
+  record(out, "texture.pixel", p.pixel, "m");
+  const auto px = [&](const std::optional<Param>& q, const char* name, const char* unit) {
+    if (q) record(out, name, *q, unit);
+  };
+  px(p.valley, "texture.valley", "m");
+  px(p.hill, "texture.hill", "m");
+  px(p.offset, "texture.offset", "m");
+  px(p.feature, "texture.feature", "m");
+  px(p.kernel, "texture.kernel", "px");
+  px(p.refilter, "texture.refilter", "px");
+  px(p.seed, "texture.seed", "1");
+  px(p.count, "texture.count", "1");
 }
 
 }  // namespace
@@ -66,7 +103,18 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
     record(out, "texture.max_lateral_force", force, "N");
     if (m.roughness) record(out, "texture.roughness_target", *m.roughness, "1");
 
-    if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
+    const int bits = m.quantize_bits ? static_cast<int>(m.quantize_bits->si) : 0;
+    if (m.quantize_bits) record(out, "texture.quantization", *m.quantize_bits, "bit");
+    if (const auto* seed = std::get_if<ResolvedGrating>(&m.texture); seed && bits > 0) {
+      if (!generate_seed_grating(*seed, bits, force, out)) return false;
+    } else if (const auto* pt = std::get_if<ResolvedPattern>(&m.texture)) {
+      schema::HeightFieldTerm pattern_field;
+      std::string summary;
+      if (!make_pattern_field(*pt, m.size_width.si, m.size_height.si, bits, force.si, pattern_field, diags, summary))
+        return false;
+      out.terms.emplace_back(std::move(pattern_field));
+      record_pattern(out, *pt, summary);
+    } else if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
       Param sigma = g->smoothing ? *g->smoothing
                                  : Param{g->period.si * kSeedSigmaPerPeriod,
                                          "6/256 of the period (thesis 3.5.2 seed, Gaussian kernel 24 of 256 px)",

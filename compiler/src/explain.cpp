@@ -3,6 +3,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "sandpaper/compiler/force_levels.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::compiler {
@@ -26,7 +27,8 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   if (m.like_chain.empty()) os << "none\n";
   else {
     for (std::size_t i = 0; i < m.like_chain.size(); ++i) os << (i ? " -> like " : "like ") << m.like_chain[i];
-    os << "  (library/" << m.like_chain.front() << ".hmat)\n";
+    os << "  (" << (m.like_origins.empty() ? "library/" + m.like_chain.front() + ".hmat" : m.like_origins.front())
+       << ")\n";
   }
   os << "  perceptual      ";
   if (m.roughness)
@@ -39,6 +41,8 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
     os << "grating, period " << g->period.stated << " [" << g->period.source << "]\n";
   else if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture))
     os << "height map \"" << h->stated_path << "\" [" << h->source << "]\n";
+  else if (const auto* pt = std::get_if<ResolvedPattern>(&m.texture))
+    os << "pattern " << pattern_kind_name(pt->kind) << " [" << pt->location.str() << "]\n";
   else os << "no texture\n";
   if (m.spring) os << "                  spring " << m.spring->stated << " [" << m.spring->source << "]\n";
   if (m.damper) os << "                  damper " << m.damper->stated << " [" << m.damper->source << "]\n";
@@ -61,6 +65,10 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   } else {
     os << "  no texture: no lateral-force roughness\n";
   }
+  if (auto levels = count_force_levels(p); levels.tables > 0)
+    os << "  force levels          " << levels.magnitudes << " distinct magnitudes |F| (zero excluded), "
+       << levels.signed_values << " distinct signed values; " << levels.samples << " samples in " << levels.tables
+       << " force table" << (levels.tables == 1 ? "" : "s") << "\n";
   os << "  patch                 " << p.size_m[0] * 1e3 << " mm x " << p.size_m[1] * 1e3 << " mm, " << p.terms.size()
      << " force term" << (p.terms.size() == 1 ? "" : "s") << "\n";
   if (!p.warnings.empty()) {

@@ -1,5 +1,6 @@
 #include "sandpaper/compiler/parser.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -17,9 +18,9 @@ std::string Quantity::text() const {
 }
 
 const std::vector<std::string>& statement_keywords() {
-  static const std::vector<std::string> k{"describes", "like",   "roughness", "grating",    "heightmap",
-                                          "spring",    "damper", "size",      "extrapolate",
-                                          "force",     "physics", "energy"};
+  static const std::vector<std::string> k{"describes", "like",    "roughness", "grating",     "heightmap", "pattern",
+                                          "quantize",  "spring",  "damper",    "force",       "physics",   "energy",
+                                          "size",      "extrapolate"};
   return k;
 }
 
@@ -101,10 +102,13 @@ class Parser {
     }
   }
 
-  // statement := describes | like | roughness | grating | heightmap | spring | damper | size | extrapolate
+  // statement := describes | like | roughness | grating | heightmap | pattern | quantize | spring | damper | size
+  //            | extrapolate
   //            | NAME            (a lone name as the whole input: like NAME)
   Statement statement(bool first) {
     const Token& kw = peek();
+    if (first && (kw.kind == TokenKind::Number || kw.kind == TokenKind::Word) && adjacent_name_is_whole_input())
+      return bare_joined_name();
     if (kw.kind != TokenKind::Word) {
       diags_.error("E0201", kw.location, std::string("expected a statement, found ") + describe(kw),
                    "statements start with a word such as grating, roughness or like");
@@ -128,6 +132,8 @@ class Parser {
     else if (k == "force") st.node = law(schema::LawFamily::Force);
     else if (k == "physics") st.node = law(schema::LawFamily::Physics);
     else if (k == "energy") st.node = energy();
+    else if (k == "pattern") st.node = pattern();
+    else if (k == "quantize") st.node = quantize();
     else if (first && at_end_of_input()) {
       // The whole input is one name: a representative description.
       st.keyword = "like";
@@ -135,7 +141,8 @@ class Parser {
     } else {
       std::string guess = closest_match(k, statement_keywords());
       diags_.error("E0202", kw.location, "unknown statement '" + k + "'",
-                   guess.empty() ? "statements are: describes, like, roughness, grating, heightmap, spring, damper, force, physics, energy, size, extrapolate"
+                   guess.empty() ? "statements are: describes, like, roughness, grating, heightmap, pattern, quantize, spring, "
+                                   "damper, force, physics, energy, size, extrapolate"
                                  : "did you mean `" + guess + "`?");
       throw StatementError{};
     }
@@ -154,14 +161,59 @@ class Parser {
   }
 
   // like := 'like' NAME
+  // NAME := (WORD | NUMBER)+ written together: thesis stimulus names such as 2StripesWeak and
+  // barsB2W2_.25 lex as numbers and words with no space between them.
   LikeStmt like() {
-    if (peek().kind != TokenKind::Word) {
-      diags_.error("E0201", peek().location, std::string("expected a library entry's name, found ") + describe(peek()),
-                   "write like corduroy (see `sandpaper library` for the names)");
-      throw StatementError{};
+    const Token& t = peek();
+    if (t.kind == TokenKind::Word || (t.kind == TokenKind::Number && touches_next(pos_))) {
+      SourceLocation at = t.location;
+      std::string name = joined_name();
+      at.length = static_cast<int>(name.size());
+      return LikeStmt{name, at};
     }
-    const Token& t = next();
-    return LikeStmt{t.text, t.location};
+    diags_.error("E0201", peek().location, std::string("expected a library entry's name, found ") + describe(peek()),
+                 "write like corduroy (see `sandpaper library` for the names)");
+    throw StatementError{};
+  }
+
+  // Whether token i ends where token i + 1 starts, on the same line.
+  bool touches_next(std::size_t i) const {
+    if (i + 1 >= toks_.size()) return false;
+    const Token& a = toks_[i];
+    const Token& b = toks_[i + 1];
+    if (b.kind != TokenKind::Word && b.kind != TokenKind::Number) return false;
+    return a.location.line == b.location.line && a.location.column + a.location.length == b.location.column;
+  }
+
+  std::string joined_name() {
+    std::string name = peek().text;
+    while (touches_next(pos_)) {
+      next();
+      name += peek().text;
+    }
+    next();
+    return name;
+  }
+
+  // A name starting with a digit (2StripesWeak) as the whole input: like NAME.
+  bool adjacent_name_is_whole_input() const {
+    std::size_t i = pos_;
+    if (!touches_next(i)) return false;
+    while (touches_next(i)) ++i;
+    while (i + 1 < toks_.size() && toks_[i + 1].kind == TokenKind::End) ++i;
+    return i + 1 >= toks_.size() || toks_[i + 1].kind == TokenKind::Eof;
+  }
+
+  Statement bare_joined_name() {
+    Statement st;
+    st.keyword = "like";
+    st.location = peek().location;
+    SourceLocation at = peek().location;
+    std::string name = joined_name();
+    at.length = static_cast<int>(name.size());
+    st.node = LikeStmt{name, at};
+    st.text = name;
+    return st;
   }
 
   // roughness := 'roughness' (NUMBER | LEVEL)
@@ -353,6 +405,106 @@ class Parser {
     std::string out;
     for (const auto& x : xs) out += (out.empty() ? "" : ", ") + x;
     return out;
+  }
+
+  // pattern := 'pattern' KIND pattern_option*
+  // KIND := 'bars' | 'grid' | 'perlin' | 'noise' | 'stripes'
+  // pattern_option := 'valley' LENGTH | 'hill' LENGTH | 'offset' LENGTH | 'feature' LENGTH | 'pixel' LENGTH
+  //                 | 'kernel' NUMBER | 'refilter' NUMBER | 'seed' NUMBER | 'count' NUMBER | 'amplitude' FORCE
+  // Which options each kind takes, and which it needs: `kinds` below (schema/LANGUAGE.md).
+  PatternStmt pattern() {
+    struct KindRule { const char* kind; std::vector<std::string> options; std::vector<std::string> required; const char* example; };
+    static const std::vector<KindRule> kinds{
+        {"bars", {"valley", "hill", "kernel", "refilter", "pixel", "amplitude"}, {"valley", "hill"},
+         "pattern bars valley 5.55 mm hill 7.4 mm kernel 2"},
+        {"grid", {"valley", "hill", "offset", "kernel", "refilter", "pixel", "amplitude"}, {"valley", "hill"},
+         "pattern grid valley 5.55 mm hill 7.4 mm kernel 2"},
+        {"perlin", {"feature", "seed", "pixel", "amplitude"}, {"feature"}, "pattern perlin feature 5.55 mm seed 1"},
+        {"noise", {"feature", "seed", "pixel", "amplitude"}, {}, "pattern noise seed 1"},
+        {"stripes", {"count", "kernel", "pixel", "amplitude"}, {"count"}, "pattern stripes count 2"},
+    };
+    const Token& k = peek();
+    const KindRule* rule = nullptr;
+    if (k.kind == TokenKind::Word)
+      for (const auto& r : kinds)
+        if (k.text == r.kind) rule = &r;
+    if (!rule) {
+      std::vector<std::string> names;
+      for (const auto& r : kinds) names.emplace_back(r.kind);
+      std::string guess = k.kind == TokenKind::Word ? closest_match(k.text, names) : "";
+      diags_.error("E0201", k.location, std::string("expected a pattern kind, found ") + describe(k),
+                   guess.empty() ? "pattern kinds are: bars, grid, perlin, noise, stripes" : "did you mean `" + guess + "`?");
+      throw StatementError{};
+    }
+    PatternStmt p;
+    p.kind = k.text;
+    p.kind_location = next().location;
+    const std::string stmt = "pattern " + p.kind;
+    while (peek().kind == TokenKind::Word) {
+      const Token& o = next();
+      if (std::find(rule->options.begin(), rule->options.end(), o.text) == rule->options.end())
+        unknown_option(stmt.c_str(), o, rule->options);
+      if (o.text == "valley") set_once(p.valley, o, Dimension::Length, "the valley width");
+      else if (o.text == "hill") set_once(p.hill, o, Dimension::Length, "the hill width");
+      else if (o.text == "offset") set_once(p.offset, o, Dimension::Length, "the row offset");
+      else if (o.text == "feature") set_once(p.feature, o, Dimension::Length, "the feature size");
+      else if (o.text == "pixel") set_once(p.pixel, o, Dimension::Length, "the pixel pitch");
+      else if (o.text == "amplitude") set_once(p.amplitude, o, Dimension::Force, "the force amplitude");
+      else if (o.text == "kernel") set_once(p.kernel, o, "the Gaussian kernel size in pixels", "kernel 2");
+      else if (o.text == "refilter") set_once(p.refilter, o, "the second pass's kernel size in pixels", "refilter 1");
+      else if (o.text == "seed") set_once(p.seed, o, "the random seed", "seed 1");
+      else if (o.text == "count") set_once(p.count, o, "the number of stripes", "count 2");
+    }
+    for (const auto& req : rule->required) {
+      bool have = (req == "valley" && p.valley) || (req == "hill" && p.hill) || (req == "feature" && p.feature) ||
+                  (req == "count" && p.count);
+      if (!have) {
+        diags_.error("E0201", p.kind_location, stmt + " needs `" + req + "`", std::string("for example ") + rule->example);
+        throw StatementError{};
+      }
+    }
+    return p;
+  }
+
+  // quantize := 'quantize' NUMBER ('bit' | 'bits')
+  QuantizeStmt quantize() {
+    QuantizeStmt q{plain_number("the number of bits", "quantize 8 bit")};
+    if (!(peek().kind == TokenKind::Word && (peek().text == "bit" || peek().text == "bits"))) {
+      diags_.error("E0201", peek().location, std::string("expected `bit` after the number of bits, found ") + describe(peek()),
+                   "write quantize 8 bit");
+      throw StatementError{};
+    }
+    next();
+    return q;
+  }
+
+  // A number that takes no unit: a count, a seed, a kernel size in pixels.
+  PlainNumber plain_number(const char* what, const char* example_text) {
+    const Token& n = peek();
+    if (n.kind != TokenKind::Number) {
+      diags_.error("E0201", n.location, std::string("expected ") + what + " (a plain number), found " + describe(n),
+                   std::string("for example ") + example_text);
+      throw StatementError{};
+    }
+    next();
+    if (peek().kind == TokenKind::Word && schema::find_unit(peek().text)) {
+      diags_.error("E0205", peek().location, std::string(what) + " is a plain number and takes no unit",
+                   std::string("write it without a unit, e.g. ") + example_text);
+      throw StatementError{};
+    }
+    if (!std::isfinite(n.number)) {
+      diags_.error("E0103", n.location, "number out of range '" + n.text + "'", "use a finite number");
+      throw StatementError{};
+    }
+    return PlainNumber{n.number, n.text, n.location};
+  }
+
+  void set_once(std::optional<PlainNumber>& slot, const Token& opt, const char* what, const char* example_text) {
+    if (slot) {
+      diags_.error("E0206", opt.location, "`" + opt.text + "` is given twice in one statement", "keep one of them");
+      throw StatementError{};
+    }
+    slot = plain_number(what, example_text);
   }
 
   // size := 'size' LENGTH ['x' LENGTH]

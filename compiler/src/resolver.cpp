@@ -8,8 +8,21 @@
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/schema/force_laws.hpp"
+#include "sandpaper/compiler/patterns.hpp"
+#include "sandpaper/compiler/thesis_stimuli.hpp"
 
 namespace sandpaper::compiler {
+
+const char* pattern_kind_name(PatternKind k) {
+  switch (k) {
+    case PatternKind::Bars: return "bars";
+    case PatternKind::Grid: return "grid";
+    case PatternKind::Perlin: return "perlin";
+    case PatternKind::Noise: return "noise";
+    case PatternKind::Stripes: return "stripes";
+  }
+  return "?";
+}
 
 const char* layer_name(Layer l) {
   switch (l) {
@@ -36,14 +49,15 @@ Param stated_param(const Quantity& q, Layer layer) {
 
 Param default_param(double si, std::string why) { return Param{si, std::move(why), Layer::Default, "default", {}}; }
 
-// Marks everything a library entry resolved to as inherited through `like <entry>`.
-void inherit(Param& p, const std::string& entry) {
+// Marks everything a library entry resolved to as inherited through `like <entry>`; `label` is
+// "library corduroy" or "thesis stimulus barsB15W20_2".
+void inherit(Param& p, const std::string& label) {
   if (p.layer == Layer::Default) return;  // a default stays a default, wherever it came through
-  p.source = "library " + entry + " (" + (p.location.file ? p.location.str() : p.source) + ")";
+  p.source = label + " (" + (p.location.file ? p.location.str() : p.source) + ")";
   p.layer = Layer::Representative;
 }
-void inherit(std::optional<Param>& p, const std::string& entry) {
-  if (p) inherit(*p, entry);
+void inherit(std::optional<Param>& p, const std::string& label) {
+  if (p) inherit(*p, label);
 }
 
 ResolvedMaterial defaults() {
@@ -70,7 +84,12 @@ std::vector<std::string> quantities_set(const Statement& st) {
           // depth + press set the force through the stylus reading (thesis 3.4).
           if (n.amplitude || n.depth || n.press) q.push_back("the maximum lateral force");
           return q;
-        } else if constexpr (std::is_same_v<T, SpringStmt>) return {"the spring stiffness"};
+        } else if constexpr (std::is_same_v<T, PatternStmt>) {
+          std::vector<std::string> q{"the texture"};
+          if (n.amplitude) q.push_back("the maximum lateral force");
+          return q;
+        } else if constexpr (std::is_same_v<T, QuantizeStmt>) return {"the height quantization"};
+        else if constexpr (std::is_same_v<T, SpringStmt>) return {"the spring stiffness"};
         else if constexpr (std::is_same_v<T, DamperStmt>) return {"the damping"};
         else if constexpr (std::is_same_v<T, SizeStmt>) return {"the patch size"};
         else if constexpr (std::is_same_v<T, EnergyStmt>) return {"the energy budget"};
@@ -132,10 +151,18 @@ class Resolver {
   ResolvedMaterial from_library(const LikeStmt& like) {
     ResolvedMaterial base = defaults();
     auto path = ctx_.library.find(like.name);
-    if (!path) {
+    // No file: the name may be one of the thesis' stimuli, generated from the name.
+    ThesisLookup generated;
+    if (!path) generated = find_thesis_stimulus(like.name, ctx_.library.directory());
+    if (!path && !generated.stimulus) {
       std::string guess = closest_match(like.name, ctx_.library.names());
-      diags_.error("E0301", like.name_location, "no library entry named '" + like.name + "'",
-                   guess.empty() ? "`sandpaper library` lists the entries" : "did you mean `" + guess + "`?");
+      diags_.error("E0301", like.name_location,
+                   "no library entry named '" + like.name + "'" +
+                       (generated.error.empty() ? "" : ", and no thesis stimulus can be made from the name"),
+                   !generated.error.empty() ? generated.error
+                   : guess.empty()          ? "`sandpaper library` lists the entries; thesis stimuli are named as in "
+                                              "schema/LANGUAGE.md (barsB15W20_2, perlin10, a10p25, ...)"
+                                            : "did you mean `" + guess + "`?");
       return base;
     }
     for (const auto& e : ctx_.entry_stack)
@@ -144,10 +171,20 @@ class Resolver {
                      "break the cycle: an entry must not, through `like`, start from itself");
         return base;
       }
-    std::ifstream in(*path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    auto file = std::make_shared<const SourceFile>("library/" + like.name + ".hmat", ss.str());
+    std::string text, origin, label;
+    if (path) {
+      std::ifstream in(*path, std::ios::binary);
+      std::stringstream ss;
+      ss << in.rdbuf();
+      text = ss.str();
+      origin = "library/" + like.name + ".hmat";
+      label = "library " + like.name;
+    } else {
+      text = generated.stimulus->source_text;
+      origin = generated.stimulus->origin;
+      label = "thesis stimulus " + like.name;
+    }
+    auto file = std::make_shared<const SourceFile>(path ? origin : "<thesis stimulus " + like.name + ">", text);
     Diagnostics sub;
     auto toks = lex(file, sub);
     auto syn = parse(toks, file, sub);
@@ -155,8 +192,11 @@ class Resolver {
     ResolvedMaterial entry = resolve(syn, ctx_, sub);
     ctx_.entry_stack.pop_back();
     if (sub.has_errors()) {
-      auto& d = diags_.error("E0306", like.name_location, "library entry '" + like.name + "' has errors",
-                             "fix " + file->name + " (its errors follow)");
+      auto& d = diags_.error("E0306", like.name_location,
+                             (path ? "library entry '" : "thesis stimulus '") + like.name + "' has errors",
+                             path ? "fix " + file->name + " (its errors follow)"
+                                  : "the generated text does not compile in this build (its errors follow); "
+                                    "see compiler/src/thesis_stimuli.cpp");
       for (const auto& s : sub.all()) {
         if (s.severity != Severity::Error) continue;
         d.notes.push_back({s.location, s.message});
@@ -168,30 +208,34 @@ class Resolver {
     // Inherit everything the entry resolved to; this file's statements override below.
     ResolvedMaterial m = entry;
     if (auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
-      inherit(g->period, like.name);
-      inherit(g->hill, like.name);
-      inherit(g->orientation, like.name);
-      inherit(g->smoothing, like.name);
+      inherit(g->period, label);
+      inherit(g->hill, label);
+      inherit(g->orientation, label);
+      inherit(g->smoothing, label);
     } else if (auto* h = std::get_if<ResolvedHeightmap>(&m.texture)) {
-      inherit(h->width, like.name);
-      inherit(h->height, like.name);
-      inherit(h->smoothing, like.name);
-      inherit(h->sampling, like.name);
-      inherit(h->depth, like.name);
-      inherit(h->press, like.name);
-      h->source = "library " + like.name + " (" + h->source + ")";
+      inherit(h->width, label);
+      inherit(h->height, label);
+      inherit(h->smoothing, label);
+      inherit(h->sampling, label);
+      inherit(h->depth, label);
+      inherit(h->press, label);
+      h->source = label + " (" + h->source + ")";
+    } else if (auto* pt = std::get_if<ResolvedPattern>(&m.texture)) {
+      inherit_pattern(*pt, label);
     }
-    inherit(m.max_lateral_force, like.name);
-    inherit(m.roughness, like.name);
-    inherit(m.spring, like.name);
-    inherit(m.damper, like.name);
+    inherit(m.max_lateral_force, label);
+    inherit(m.roughness, label);
+    inherit(m.spring, label);
+    inherit(m.damper, label);
+    inherit(m.quantize_bits, label);
     for (auto& law : m.laws)
-      for (auto& [name, p] : law.params) inherit(p, like.name);
-    inherit(m.energy_budget, like.name);
-    inherit(m.energy_refill, like.name);
-    if (m.size_width.layer != Layer::Default) inherit(m.size_width, like.name);
-    if (m.size_height.layer != Layer::Default) inherit(m.size_height, like.name);
+      for (auto& [name, p] : law.params) inherit(p, label);
+    inherit(m.energy_budget, label);
+    inherit(m.energy_refill, label);
+    if (m.size_width.layer != Layer::Default) inherit(m.size_width, label);
+    if (m.size_height.layer != Layer::Default) inherit(m.size_height, label);
     m.like_chain.insert(m.like_chain.begin(), like.name);
+    m.like_origins.insert(m.like_origins.begin(), origin);
     if (m.name.empty()) m.name = like.name;
     return m;
   }
@@ -258,6 +302,10 @@ class Resolver {
     } else if (const auto* d = std::get_if<DamperStmt>(&st.node)) {
       if (non_negative(d->damping, "damping", "negative damping injects energy: write `force AntiViscous damping ...` (its energy is bounded)"))
         m.damper = stated_param(d->damping, Layer::Physical);
+    } else if (const auto* pt = std::get_if<PatternStmt>(&st.node)) {
+      pattern(*pt, st, m);
+    } else if (const auto* q = std::get_if<QuantizeStmt>(&st.node)) {
+      quantize(*q, m);
     } else if (const auto* z = std::get_if<SizeStmt>(&st.node)) {
       if (!positive(z->width, "patch width")) return;
       m.size_width = stated_param(z->width, Layer::Physical);
@@ -362,6 +410,94 @@ class Resolver {
     return out;
   }
 
+  static void inherit_pattern(ResolvedPattern& p, const std::string& label) {
+    inherit(p.pixel, label);
+    for (auto* o : {&p.valley, &p.hill, &p.offset, &p.feature, &p.kernel, &p.refilter, &p.seed, &p.count}) inherit(*o, label);
+  }
+
+  // A length of a pattern as a whole number of pixels (at least `min_px`); the value keeps the
+  // rounded length, the statement keeps what was written.
+  std::optional<Param> whole_pixels(const Quantity& q, double pixel_m, int min_px, const char* what) {
+    double px = std::round(q.si / pixel_m);
+    if (!(q.si >= 0) || px < min_px || px > kMaxPatternPixels) {
+      diags_.error("E0304", q.location,
+                   std::string(what) + " " + q.text() + " is " + fmt_num(q.si / pixel_m) + " pixels of " +
+                       fmt_num(pixel_m * 1e3) + " mm",
+                   "give " + std::string(what) + " of " + (min_px > 0 ? "at least one pixel" : "zero or more pixels") +
+                       " and at most " + std::to_string(kMaxPatternPixels) + " pixels");
+      return std::nullopt;
+    }
+    Param p = stated_param(q, Layer::Physical);
+    p.si = px * pixel_m;
+    if (std::abs(q.si / pixel_m - px) > 1e-6) p.stated += " (rounded to " + fmt_num(px) + " px)";
+    return p;
+  }
+
+  // A plain number that must be a whole number in [lo, hi] (`integer`) or any number in it.
+  std::optional<Param> plain(const PlainNumber& n, double lo, double hi, bool integer, const char* what,
+                             const std::string& stated_prefix) {
+    bool whole = std::floor(n.value) == n.value;
+    if (n.value < lo || n.value > hi || (integer && !whole)) {
+      diags_.error("E0304", n.location, std::string(what) + " " + n.text + " is out of range",
+                   std::string("give ") + (integer ? "a whole number" : "a number") + " from " + fmt_num(lo) + " to " +
+                       fmt_num(hi));
+      return std::nullopt;
+    }
+    return Param{n.value, stated_prefix + " " + n.text, Layer::Physical, n.location.str(), n.location};
+  }
+
+  void pattern(const PatternStmt& p, const Statement& st, ResolvedMaterial& m) {
+    ResolvedPattern r;
+    if (p.kind == "bars") r.kind = PatternKind::Bars;
+    else if (p.kind == "grid") r.kind = PatternKind::Grid;
+    else if (p.kind == "perlin") r.kind = PatternKind::Perlin;
+    else if (p.kind == "noise") r.kind = PatternKind::Noise;
+    else r.kind = PatternKind::Stripes;
+    r.location = st.location;
+    if (p.pixel) {
+      if (!positive(*p.pixel, "pixel pitch")) return;
+      r.pixel = stated_param(*p.pixel, Layer::Physical);
+    } else {
+      r.pixel = default_param(kThesisPixel_m, "0.37 mm (thesis 3.5.1 and Appendix A: 1 pixel = .37 mm)");
+    }
+    const double px = r.pixel.si;
+    bool ok = true;
+    auto length = [&](const std::optional<Quantity>& q, std::optional<Param>& slot, int min_px, const char* what) {
+      if (!q) return;
+      slot = whole_pixels(*q, px, min_px, what);
+      ok = ok && slot.has_value();
+    };
+    length(p.valley, r.valley, 1, "the valley width");
+    length(p.hill, r.hill, 1, "the hill width");
+    length(p.offset, r.offset, 0, "the row offset");
+    length(p.feature, r.feature, 1, "the feature size");
+    auto number = [&](const std::optional<PlainNumber>& n, std::optional<Param>& slot, double lo, double hi, bool integer,
+                      const char* what, const char* prefix) {
+      if (!n) return;
+      slot = plain(*n, lo, hi, integer, what, prefix);
+      ok = ok && slot.has_value();
+    };
+    number(p.kernel, r.kernel, 0, kMaxPatternKernel, false, "the kernel size", "kernel");
+    number(p.refilter, r.refilter, 0, kMaxPatternKernel, false, "the second pass's kernel size", "refilter");
+    number(p.seed, r.seed, 0, 9007199254740991.0, true, "the seed", "seed");  // 2^53 - 1: exact in a double
+    number(p.count, r.count, 1, 64, true, "the stripe count", "count");
+    if (p.amplitude) ok = non_negative(*p.amplitude, "force amplitude", "") && ok;
+    if (!ok) return;
+    if (r.kind == PatternKind::Noise && !r.feature)
+      r.feature = default_param(px, "one pixel (thesis 4.3: Noise alternates high forces closely)");
+    if ((r.kind == PatternKind::Perlin || r.kind == PatternKind::Noise) && !r.seed)
+      r.seed = default_param(1, "1 (thesis 4.3: the Perlins share one seed pattern)");
+    m.texture = r;
+    if (p.amplitude) m.max_lateral_force = stated_param(*p.amplitude, Layer::Physical);
+  }
+
+  void quantize(const QuantizeStmt& q, ResolvedMaterial& m) {
+    if (auto bits = plain(q.bits, 1, 16, true, "the number of bits", "quantize")) {
+      bits->stated += " bit";
+      m.quantize_bits = bits;
+    }
+  }
+
   void heightmap(const HeightmapStmt& h, ResolvedMaterial& m) {
     bool ok = positive(h.width, "image width");
     if (h.height) ok = positive(*h.height, "image height") && ok;
@@ -436,6 +572,10 @@ class Resolver {
       else stylus = true;
     }
     bool has_texture = !std::holds_alternative<std::monostate>(m.texture);
+    if (m.quantize_bits && m.quantize_bits->layer == Layer::Physical && std::holds_alternative<ResolvedHeightmap>(m.texture))
+      diags_.error("E0304", m.quantize_bits->location,
+                   "quantize applies to grating and pattern textures; an image's heights are its pixel values already",
+                   "remove `quantize`, or save the image with fewer grey levels");
     // After an error the missing force is usually that error's echo: report it only on its own.
     if (has_texture && !m.max_lateral_force && !stylus && !diags_.has_errors()) {
       SourceLocation at = texture_location(m);
@@ -466,6 +606,10 @@ class Resolver {
         diags_.warning("W0304", m.roughness->location,
                        "the " + map.id + " map was measured on gratings; for an image texture the roughness extrapolates",
                        "treat the roughness of image textures as approximate");
+      } else if (std::holds_alternative<ResolvedPattern>(m.texture)) {
+        diags_.warning("W0304", m.roughness->location,
+                       "the " + map.id + " map was measured on version-2 gratings; for a pattern texture the roughness extrapolates",
+                       "treat the roughness of pattern textures as approximate, or give the force with `amplitude`");
       }
     }
   }
@@ -473,6 +617,7 @@ class Resolver {
   SourceLocation texture_location(const ResolvedMaterial& m) const {
     if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) return g->location;
     if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture)) return h->location;
+    if (const auto* p = std::get_if<ResolvedPattern>(&m.texture)) return p->location;
     return {};
   }
 

@@ -78,7 +78,7 @@ expect_exit 0 "compile workspace --json" -- "$sp" compile examples/workspace/per
 has "$tmp/out" '"ok": true' "workspace compile --json"
 expect_exit 0 "explain workspace" -- "$sp" explain examples/workspace/sampler.hws
 has "$tmp/out" 'patch 7 +"roughness 0.3; grating period 5 mm" +at 0 mm, 0 mm' "explain lists the patches"
-has "$tmp/out" 'material a10p25; maximum lateral force 1.946 N' "explain gives each patch's force"
+has "$tmp/out" 'material a10p25; maximum lateral force 1.926 N' "explain gives each patch's force"
 expect_exit 0 "run workspace (virtual clock)" -- "$sp" run examples/workspace/sampler.hws --device sim --virtual-clock --json --trace "$tmp/ws.csv"
 for key in '"touched_patches": 7' '"patch_count": 7' '"stop_reason": "completed"' '"direction_deg": 0.0' '"ticks": [0-9]+'; do
   has "$tmp/out" "$key" "run workspace --json"

@@ -36,14 +36,14 @@ TEST(Resolution, FileBeatsInheritedParameterByParameter) {
 }
 
 TEST(Resolution, PerceptualInFileBeatsInheritedPhysical) {
-  // a10p25 states a physical amplitude (7 ozf); this file's roughness replaces it.
+  // a10p25 states a physical amplitude (400 ju, Table 8); this file's roughness replaces it.
   auto r = test::shipped_compiler().compile_text("like a10p25; roughness 0.3");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_NEAR(r.program->max_lateral_force_N, test::expected_force_for_roughness(0.3), 1e-9);
   EXPECT_EQ(provenance(*r.program, "texture.max_lateral_force").layer, "perceptual");
   auto base = test::shipped_compiler().compile_text("a10p25");
   ASSERT_TRUE(base.ok());
-  EXPECT_NEAR(base.program->max_lateral_force_N, 7 * 0.27801385095378125, 1e-9);
+  EXPECT_NEAR(base.program->max_lateral_force_N, 400 * 0.490909 * 0.00980665, 1e-9);  // 400 ju of 0.490909 gf
 }
 
 TEST(Resolution, PhysicalAmplitudeInFileBeatsInheritedRoughness) {

@@ -110,5 +110,5 @@ TEST(ClosedLoopLibrary, ForceIsSpatialNotTemporal) {
   auto b = play(*r.program, scan, 4.0, 4000);
   EXPECT_EQ(b.report.ticks, 4 * a.report.ticks);
   EXPECT_NEAR(a.report.max_lateral_force_N, b.report.max_lateral_force_N, 0.01 * b.report.max_lateral_force_N);
-  EXPECT_NEAR(b.report.max_lateral_force_N, 7 * 0.27801385095378125, 0.005);
+  EXPECT_NEAR(b.report.max_lateral_force_N, 400 * 0.490909 * 0.00980665, 0.005);  // a10p25: 400 ju (Table 8)
 }

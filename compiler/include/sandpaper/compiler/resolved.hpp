@@ -63,11 +63,30 @@ struct ResolvedLaw {
   }
 };
 
+// A version-1 synthetic height map (thesis 3.5.1). Lengths are whole pixels of `pixel`; kernel
+// sizes are in pixels, the Gaussian spanning +-2 sigma (sigma = kernel / 4 px; docs/TEXTURES.md).
+enum class PatternKind { Bars, Grid, Perlin, Noise, Stripes };
+const char* pattern_kind_name(PatternKind k);
+struct ResolvedPattern {
+  PatternKind kind = PatternKind::Bars;
+  Param pixel;                             // m, the array's pitch (thesis: 0.37 mm)
+  std::optional<Param> valley, hill;       // m, whole pixels (bars, grid)
+  std::optional<Param> offset;             // m, whole pixels: alternate rows of grid bumps shift by this
+  std::optional<Param> feature;            // m: Perlin lattice size; noise cell size
+  std::optional<Param> kernel, refilter;   // px: Gaussian kernel size of the first and of a second pass
+  std::optional<Param> seed;               // perlin, noise
+  std::optional<Param> count;              // stripes: how many hills
+  SourceLocation location;                 // the pattern statement
+};
+
 struct ResolvedMaterial {
   std::string name;
   std::string describes;
   std::vector<std::string> like_chain;  // library entries, nearest first
-  std::variant<std::monostate, ResolvedGrating, ResolvedHeightmap> texture;
+  // Where each like_chain entry came from: "library/corduroy.hmat", or the thesis stimulus generator.
+  std::vector<std::string> like_origins;
+  std::variant<std::monostate, ResolvedGrating, ResolvedHeightmap, ResolvedPattern> texture;
+  std::optional<Param> quantize_bits;      // heights rounded to this many bits before the gradient
   std::optional<Param> max_lateral_force;  // N: the texture's target maximum lateral force
   std::optional<Param> roughness;          // the ratio-scale roughness asked for, if any
   std::optional<Param> spring;             // N/m

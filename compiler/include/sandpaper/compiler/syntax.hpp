@@ -49,6 +49,22 @@ struct HeightmapStmt {
   bool repeat = false;
   bool invert = false;                   // dark = high
 };
+// A plain number with no unit (a count, a seed, a kernel size in pixels), as written.
+struct PlainNumber {
+  double value = 0;
+  std::string text;
+  SourceLocation location;
+};
+// Physical: a version-1 synthetic height map (thesis 3.5.1, Ch. 4): bars, grid, perlin, noise or
+// stripes, generated at the pixel pitch and read through the lateral-force gradient.
+struct PatternStmt {
+  std::string kind;  // "bars", "grid", "perlin", "noise", "stripes"
+  SourceLocation kind_location;
+  std::optional<Quantity> valley, hill, offset, feature, pixel, amplitude;
+  std::optional<PlainNumber> kernel, refilter, seed, count;
+};
+// Heights rounded to `bits` bits before the gradient (thesis 3.6.1: the thesis' arrays were 8-bit).
+struct QuantizeStmt { PlainNumber bits; };
 struct SpringStmt { Quantity stiffness; };
 struct DamperStmt { Quantity damping; };
 struct SizeStmt { Quantity width; std::optional<Quantity> height; };
@@ -75,7 +91,8 @@ struct EnergyStmt {
 };
 
 using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, GratingStmt, HeightmapStmt, SpringStmt,
-                                   DamperStmt, SizeStmt, ExtrapolateStmt, LawStmt, EnergyStmt>;
+                                   DamperStmt, SizeStmt, ExtrapolateStmt, LawStmt, EnergyStmt, PatternStmt,
+                                   QuantizeStmt>;
 
 struct Statement {
   StatementNode node;

@@ -1,0 +1,44 @@
+#pragma once
+// The thesis' 8-bit texture pipelines: version-1 synthetic height maps (Minsky 1995, 3.5.1, Ch. 4:
+// bars, grids, Perlin noise, and the non-textural Noise and Stripes) and the version-2 seed grating
+// (3.5.2), both read through the lateral-force gradient F = -k (h(i+1) - h(i-1)) (3.4, EQ 12-13).
+// Quantization to whole height steps is optional; it is what makes the thesis' forces take only a
+// handful of levels (3.6.1). docs/TEXTURES.md gives the readings.
+#include <string>
+
+#include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/compiler/resolved.hpp"
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::compiler {
+
+// One pixel of the version-1 arrays (thesis 3.5.1, Appendix A: "1 pixel = .37 mm", 27 samples/cm).
+inline constexpr double kThesisPixel_m = 0.37e-3;
+// Largest pattern array or tile side, pixels; largest kernel size, pixels.
+inline constexpr int kMaxPatternPixels = 4096;
+inline constexpr double kMaxPatternKernel = 256;
+// The version-2 seed (3.5.2): 256 px per period, smoothed by a Gaussian of kernel 24.
+inline constexpr int kSeedPixels = 256;
+inline constexpr double kSeedKernel_px = 24;
+
+// Gaussian sigma, pixels, of a kernel of size n pixels. Reading (docs/TEXTURES.md): the kernel
+// spans +-2 sigma, so sigma = n / 4 (the version-2 seed's kernel 24 -> sigma 6 px).
+constexpr double kernel_sigma_px(double kernel_px) { return kernel_px / 4.0; }
+
+// The pattern's lateral-force field at its pixel pitch, scaled so that max |F| = max_force_N.
+// Bars and grids are one tile repeated over the patch; perlin, noise and stripes cover the patch
+// (patch_width_m x patch_height_m, rounded to whole pixels), each sample a central difference.
+// `bits` = 0: float heights; otherwise heights are rounded to `bits` bits after generation and
+// after each smoothing pass. Errors (array too large, no slope) go to `diags` at the statement.
+bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double patch_height_m, int bits,
+                        double max_force_N, schema::HeightFieldTerm& out, Diagnostics& diags, std::string& summary);
+
+// The version-2 grating built the thesis' way (3.5.2, Appendix B "Waves"): one period is the
+// 256 px seed (hill = round(256 hill) px centred on u = 0, the rest valley), smoothed by a
+// Gaussian of sigma_seed_px seed pixels (wrapped: the seed repeats), heights rounded to `bits`
+// bits, gradient h(i+1) - h(i-1) over the seed's samples. The table has 256 samples per period;
+// its largest |F| is max_force_N.
+schema::GratingTerm make_seed_grating(double period_m, double hill, double orientation_rad, double sigma_seed_px,
+                                      int bits, double max_force_N);
+
+}  // namespace sandpaper::compiler

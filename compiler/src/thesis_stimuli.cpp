@@ -1,0 +1,271 @@
+// The thesis' stimuli by name (Minsky 1995, 3.5, 4.3, Table 8, Appendix A): name -> material text.
+#include "sandpaper/compiler/thesis_stimuli.hpp"
+
+#include <cmath>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+#include <toml++/toml.h>
+
+#include "sandpaper/schema/units.hpp"
+
+namespace sandpaper::compiler {
+namespace {
+
+constexpr const char* kDataFile = "thesis/version1.toml";
+constexpr int kJoystickUnitsPerLevel = 40;  // Table 8: level 1 = 40, 3 = 120, 10 = 400, 19 = 760 ju
+constexpr int kJoystickFullScale = 2048;    // Table 8: "command amplitude (range 0-2048)"
+
+// Readings from version1.toml.
+struct Version1Data {
+  double base_pu = 0, fless_pu = 0, fmore_pu = 0, fmost_pu = 0;
+  double stripes_weak_pu = 0, stripes_strong_pu = 0;
+  double stripes_kernel_px = 0, seed = 0, patch_px = 0;
+  double law_force_pu = 0, law_at_mm = 0, law_at_m_per_s = 0;
+};
+
+double number_at(const toml::table& t, const char* section, const char* key, const std::string& file) {
+  auto v = t[section][key].value<double>();
+  if (!v) throw std::runtime_error(file + ": [" + section + "] " + key + " is missing or not a number");
+  return *v;
+}
+
+toml::table parse_data(const std::filesystem::path& library_dir, std::string& file) {
+  auto path = library_dir / kDataFile;
+  file = path.string();
+  try {
+    return toml::parse_file(file);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << file << ": " << e.description();
+    throw std::runtime_error(os.str());
+  }
+}
+
+Version1Data load_data(const std::filesystem::path& library_dir) {
+  std::string file;
+  toml::table t = parse_data(library_dir, file);
+  Version1Data d;
+  d.base_pu = number_at(t, "forces", "base_pu", file);
+  d.fless_pu = number_at(t, "forces", "Fless_pu", file);
+  d.fmore_pu = number_at(t, "forces", "Fmore_pu", file);
+  d.fmost_pu = number_at(t, "forces", "Fmost_pu", file);
+  d.stripes_weak_pu = number_at(t, "forces", "stripes_weak_pu", file);
+  d.stripes_strong_pu = number_at(t, "forces", "stripes_strong_pu", file);
+  d.stripes_kernel_px = number_at(t, "patterns", "stripes_kernel_px", file);
+  d.seed = number_at(t, "patterns", "seed", file);
+  d.patch_px = number_at(t, "patterns", "patch_px", file);
+  d.law_force_pu = number_at(t, "laws", "force_pu", file);
+  d.law_at_mm = number_at(t, "laws", "at_displacement_mm", file);
+  d.law_at_m_per_s = number_at(t, "laws", "at_speed_m_per_s", file);
+  return d;
+}
+
+// A length of `px` thesis pixels (0.37 mm) in mm, exactly as the decimal it is: 15 -> "5.55".
+std::string px_mm(long long px) {
+  long long hundredths = px * 37;
+  std::string s = std::to_string(hundredths / 100);
+  long long frac = hundredths % 100;
+  if (frac) s += (frac % 10 ? "." + std::string(frac < 10 ? "0" : "") + std::to_string(frac) : "." + std::to_string(frac / 10));
+  return s + " mm";
+}
+
+std::string sig(double v, int digits = 6) {
+  std::ostringstream os;
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
+
+std::string force_suffix_pu(const std::string& suffix, const Version1Data& d, double& pu) {
+  if (suffix == "Fless") pu = d.fless_pu;
+  else if (suffix == "Fmore") pu = d.fmore_pu;
+  else if (suffix == "Fmost") pu = d.fmost_pu;
+  else pu = d.base_pu;
+  return suffix.empty() ? "base force" : suffix;
+}
+
+const char* kVersion1Origin =
+    "thesis stimulus generator (Minsky 1995, 3.5.1 and ch. 4; force a reading from library/thesis/version1.toml)";
+
+std::string version1_text(const std::string& name, const std::string& describes, const std::string& statement,
+                          double pu, const std::string& force_note, const Version1Data& d) {
+  std::ostringstream os;
+  os << "# " << name << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
+     << "# Force: " << sig(pu) << " pu (" << force_note << "), a reading: the OCR loses each version-1\n"
+     << "# stimulus's force (library/thesis/version1.toml, docs/TEXTURES.md).\n"
+     << "material \"" << name << "\" {\n"
+     << "  describes \"" << describes << "\"\n"
+     << "  " << statement << (statement.rfind("force ", 0) == 0 ? "" : " amplitude " + sig(pu) + " pu") << "\n";
+  if (statement.rfind("pattern ", 0) == 0) os << "  quantize 8 bit\n";
+  os << "  size " << px_mm(static_cast<long long>(d.patch_px)) << "\n}\n";
+  return os.str();
+}
+
+// Kernel as spelled in a name: "2", ".25", "0.25" (Appendix A's fine patterns), or none.
+std::string kernel_options(const std::string& k1, const std::string& k2) {
+  std::string s;
+  auto spelled = [](const std::string& k) { return k[0] == '.' ? "0" + k : k; };
+  if (!k1.empty()) s += " kernel " + spelled(k1);
+  if (!k2.empty()) s += " refilter " + spelled(k2);
+  return s;
+}
+
+std::string kernel_words(const std::string& k1, const std::string& k2) {
+  if (k1.empty()) return "unsmoothed";
+  std::string s = "Gaussian kernel " + k1;
+  if (!k2.empty()) s += ", refiltered with kernel " + k2;
+  return s;
+}
+
+ThesisLookup make(ThesisStimulus s) { return ThesisLookup{std::move(s), {}}; }
+ThesisLookup fail(std::string why) { return ThesisLookup{std::nullopt, std::move(why)}; }
+
+}  // namespace
+
+const std::vector<std::string>& thesis_table8_names() {
+  static const std::vector<std::string> names{"a1p7",   "a3p7",    "a3p12",   "a3p25",   "a3p50",   "a3p100",
+                                              "a10p7",  "a10p12",  "a10p25",  "a10p50",  "a10p100", "a19p100"};
+  return names;
+}
+
+ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem::path& library_dir) {
+  static const std::string K = R"((\d+(?:\.\d+)?|\.\d+))";
+  static const std::regex bars("bars" R"(B(\d+)W(\d+))" "(?:_" + K + ")?(?:_" + K + ")?" "(Fless|Fmore|Fmost)?");
+  static const std::regex grid("grid" R"(B(\d+)W(\d+)(?:off(\d+))?)" "(?:_" + K + ")?(?:_" + K + ")?" "(Fless|Fmore|Fmost)?");
+  static const std::regex perlin(R"(perlin(\d+)(Fless|Fmore|Fmost)?)");
+  static const std::regex noise(R"(Noise(\d+))");
+  static const std::regex stripes(R"(2Stripes(Weak|Strong))");
+  static const std::regex law(R"(Nothing|Bump|Slick|Spring|Viscous)");
+  static const std::regex table8(R"([aA](\d+)[pP](\d+))");
+  std::smatch m;
+
+  if (std::regex_match(name, m, table8)) {
+    // Version-2 (3.5.2, Table 8): level l commands 40 l joystick units; the period is in 0.1 mm.
+    long long level = std::stoll(m[1].str().substr(0, 9)), tenths = std::stoll(m[2].str().substr(0, 9));
+    if (level < 1 || level * kJoystickUnitsPerLevel > kJoystickFullScale)
+      return fail(name + ": force level " + m[1].str() + " commands " + std::to_string(level * kJoystickUnitsPerLevel) +
+                  " joystick units; Table 8's levels run from 1 to 51 (40 to 2040 of the joystick's 2048)");
+    if (tenths < 1) return fail(name + ": the period is in tenths of a millimetre and must be at least 1 (0.1 mm)");
+    std::ostringstream os;
+    const std::string period = sig(static_cast<double>(tenths) / 10.0) + " mm";
+    const long long ju = level * kJoystickUnitsPerLevel;
+    os << "# " << name << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
+       << "# Minsky 1995 Table 8: force level " << level << " = command amplitude " << ju
+       << " joystick units; equal hill and valley widths;\n"
+       << "# the version-2 seed grating (3.5.2), 8-bit, repeated every " << period << ".\n"
+       << "material \"" << name << "\" {\n"
+       << "  describes \"Minsky 1995 version-2 grating " << name << ": force level " << level << " (" << ju
+       << " ju), period " << period << "\"\n"
+       << "  grating period " << period << " hill 50% amplitude " << ju << " ju\n"
+       << "  quantize 8 bit\n}\n";
+    return make({name, os.str(), "thesis stimulus generator (Minsky 1995, 3.5.2 and Table 8)"});
+  }
+
+  enum class Kind { None, Bars, Grid, Perlin, Noise, Stripes, Law };
+  Kind kind = Kind::None;
+  if (std::regex_match(name, m, bars)) kind = Kind::Bars;
+  else if (std::regex_match(name, m, grid)) kind = Kind::Grid;
+  else if (std::regex_match(name, m, perlin)) kind = Kind::Perlin;
+  else if (std::regex_match(name, m, noise)) kind = Kind::Noise;
+  else if (std::regex_match(name, m, stripes)) kind = Kind::Stripes;
+  else if (std::regex_match(name, m, law)) kind = Kind::Law;
+  if (kind == Kind::None) return {};
+
+  Version1Data d;
+  try {
+    d = load_data(library_dir);
+  } catch (const std::exception& e) {
+    return fail(std::string("`") + name + "` is a thesis stimulus, but its data file cannot be read: " + e.what());
+  }
+  auto px = [&](const std::ssub_match& s) { return std::stoll(s.str().substr(0, 6)); };
+
+  if (kind == Kind::Bars || kind == Kind::Grid) {
+    const bool is_grid = kind == Kind::Grid;
+    const long long valley = px(m[1]), hill = px(m[2]);
+    const long long offset = is_grid && m[3].matched ? px(m[3]) : 0;
+    const std::string k1 = m[is_grid ? 4 : 3].str(), k2 = m[is_grid ? 5 : 4].str(), suffix = m[is_grid ? 6 : 5].str();
+    if (valley < 1 || hill < 1) return fail(name + ": valley and hill need at least one pixel each");
+    double pu = 0;
+    std::string force_note = force_suffix_pu(suffix, d, pu);
+    std::string stmt = std::string("pattern ") + (is_grid ? "grid" : "bars") + " valley " + px_mm(valley) + " hill " +
+                       px_mm(hill) + (offset ? " offset " + px_mm(offset) : "") + kernel_options(k1, k2);
+    std::string describes = std::string("Minsky 1995 version-1 ") + (is_grid ? "grid " : "grating ") + name + ": valley " +
+                            std::to_string(valley) + " px, hill " + std::to_string(hill) + " px" +
+                            (offset ? ", rows offset " + std::to_string(offset) + " px" : "") + ", " +
+                            kernel_words(k1, k2) + ", " + force_note + "; 1 px = 0.37 mm";
+    return make({name, version1_text(name, describes, stmt, pu, force_note, d), kVersion1Origin});
+  }
+  if (kind == Kind::Perlin) {
+    const long long feature = px(m[1]);
+    if (feature < 1) return fail(name + ": the feature size needs at least one pixel");
+    double pu = 0;
+    std::string force_note = force_suffix_pu(m[2].str(), d, pu);
+    std::string stmt = "pattern perlin feature " + px_mm(feature) + " seed " + sig(d.seed);
+    std::string describes = "Minsky 1995 version-1 Perlin texture " + name + ": lattice " + std::to_string(feature) +
+                            " px, " + force_note + "; 1 px = 0.37 mm";
+    return make({name, version1_text(name, describes, stmt, pu, force_note, d), kVersion1Origin});
+  }
+  if (kind == Kind::Noise) {
+    const double pu = static_cast<double>(px(m[1]));
+    if (pu < 1) return fail(name + ": the force, in program units, must be at least 1");
+    std::string stmt = "pattern noise seed " + sig(d.seed);
+    std::string describes = "Minsky 1995 non-textural " + name + ": random heights pixel by pixel, high forces "
+                            "alternating closely (jitter), " + sig(pu) + " pu";
+    return make({name, version1_text(name, describes, stmt, pu, "the name's number", d), kVersion1Origin});
+  }
+  if (kind == Kind::Stripes) {
+    const bool strong = m[1].str() == "Strong";
+    const double pu = strong ? d.stripes_strong_pu : d.stripes_weak_pu;
+    std::string stmt = "pattern stripes count 2 kernel " + sig(d.stripes_kernel_px);
+    std::string describes = "Minsky 1995 non-textural " + name + ": two very wide stripes across the patch, " +
+                            (strong ? "strong" : "weak") + " force";
+    return make({name, version1_text(name, describes, stmt, pu, strong ? "strong" : "weak", d), kVersion1Origin});
+  }
+  // Non-textural force laws (4.3, Appendix B); constants are readings ([laws] in the data file).
+  const double force_N = d.law_force_pu * schema::find_unit("pu")->to_si;
+  const double k = force_N / (d.law_at_mm * 1e-3), b = force_N / d.law_at_m_per_s;
+  const std::string n = m[0].str();
+  std::string stmt, describes;
+  if (n == "Nothing") {
+    stmt = "force Nothing";
+    describes = "Minsky 1995 non-textural Nothing: no force";
+  } else if (n == "Spring" || n == "Bump") {
+    stmt = "force " + n + " stiffness " + sig(k) + " N/m";
+    describes = "Minsky 1995 non-textural " + n + (n == "Spring" ? ": F = -k p, a bowl" : ": F = k p, a dome") + ", " +
+                sig(d.law_force_pu) + " pu at " + sig(d.law_at_mm) + " mm from the centre";
+  } else {
+    stmt = std::string("force ") + (n == "Slick" ? "AntiViscous" : "Viscous") + " damping " + sig(b) + " N*s/m";
+    describes = "Minsky 1995 non-textural " + n + (n == "Slick" ? ": F = +b v, like ice" : ": F = -b v, like oil") + ", " +
+                sig(d.law_force_pu) + " pu at " + sig(d.law_at_m_per_s) + " m/s";
+  }
+  std::ostringstream os;
+  os << "# " << n << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
+     << "# Constants are readings ([laws] in library/thesis/version1.toml): the thesis gives none.\n"
+     << "material \"" << n << "\" {\n"
+     << "  describes \"" << describes << "\"\n"
+     << "  " << stmt << "\n"
+     << "  size " << px_mm(static_cast<long long>(d.patch_px)) << "\n}\n";
+  return make({n, os.str(),
+               "thesis stimulus generator (Minsky 1995, 4.3 and Appendix B; constants a reading from "
+               "library/thesis/version1.toml)"});
+}
+
+std::vector<ListedStimulus> thesis_version1_list(const std::filesystem::path& library_dir) {
+  std::string file;
+  toml::table t = parse_data(library_dir, file);
+  const auto* arr = t["stimulus"].as_array();
+  if (!arr) throw std::runtime_error(file + ": no [[stimulus]] entries");
+  std::vector<ListedStimulus> out;
+  for (const auto& e : *arr) {
+    const auto* s = e.as_table();
+    auto name = s ? (*s)["name"].value<std::string>() : std::nullopt;
+    auto from = s ? (*s)["read_from"].value<std::string>() : std::nullopt;
+    if (!name || !from) throw std::runtime_error(file + ": a [[stimulus]] without name or read_from");
+    out.push_back({*name, *from, (*s)["note"].value_or(std::string())});
+  }
+  return out;
+}
+
+}  // namespace sandpaper::compiler
