@@ -37,7 +37,20 @@ cmp -s "$tmp/c.patch" "$tmp/c2.patch" && ok || bad "compiling twice gave differe
 # A library entry by name and the real photograph, each compiled and played in real time.
 expect_exit 0 "run -e corduroy (real time)" -- "$sp" run -e corduroy --device sim --duration 0.3
 has "$tmp/out" 'achieved' "run prints the achieved rate"
-has "$tmp/out" 'max lateral force' "run prints the forces felt"
+has "$tmp/out" 'max force [0-9.]+ N \(texture compiled [0-9.]+ N\)' "run prints the forces felt"
+
+# Force laws and physics models (Appendix B, 3.2.2), and thesis stimuli by name.
+expect_exit 0 "run the Slick example" -- "$sp" run examples/laws/slick.hmat --device sim --duration 0.5 --hand circle --virtual-clock
+has "$tmp/err" 'W0306' "a non-passive law warns"
+has "$tmp/out" 'no texture: the roughness map does not apply' "no roughness for force laws"
+expect_exit 0 "run the brick" -- "$sp" run examples/laws/brick-on-a-spring.hmat --device sim --duration 0.5 --virtual-clock --json
+has "$tmp/out" '"stop_reason": "completed"' "the brick plays to the end"
+expect_exit 0 "explain a version-1 stimulus by name" -- "$sp" explain -e barsB15W20_2Fmore
+has "$tmp/out" 'thesis stimulus' "explain names the generator"
+has "$tmp/out" 'force levels' "explain counts the distinct force levels"
+expect_exit 1 "an unknown force law" -- "$sp" compile -e "force Bumpp stiffness 10 N/m"
+has "$tmp/err" 'E0211.*Bumpp' "unknown law named"
+has "$tmp/err" 'did you mean `Bump`' "law suggestion"
 expect_exit 0 "run gravel example" -- "$sp" run examples/gravel.hmat --device sim --duration 0.3 --hand circle --speed 30 --amplitude 20 --json
 has "$tmp/out" '"material": "gravel-path"' "gravel run"
 expect_exit 0 "explain --json" -- "$sp" explain -e "like denim-twill; roughness coarse" --json

@@ -46,11 +46,6 @@ float table_max(const schema::PatchProgram& p) {
   return m;
 }
 
-bool language_has_force_statements() {
-  const auto& k = compiler::statement_keywords();
-  return std::find(k.begin(), k.end(), "force") != k.end();
-}
-
 std::filesystem::path library_dir() { return std::filesystem::path(SANDPAPER_SOURCE_DIR) / "library"; }
 
 }  // namespace
@@ -147,17 +142,10 @@ TEST(ThesisStimuli, TheHundredAndTwoOfChapterFour) {
 }
 
 TEST(ThesisStimuli, AllHundredAndTwoCompile) {
-  const bool force_statements = language_has_force_statements();
-  int compiled = 0, awaiting_force = 0;
+  int compiled = 0;
   for (const auto& s : compiler::thesis_version1_list(library_dir())) {
     auto made = compiler::find_thesis_stimulus(s.name, library_dir());
     ASSERT_TRUE(made.stimulus) << s.name << ": " << made.error;
-    if (!force_statements && made.stimulus->source_text.find("\n  force ") != std::string::npos) {
-      // Nothing, Bump, Slick, Spring, Viscous are written with the `force` statement, which this
-      // build's language does not have yet; they compile once it does.
-      ++awaiting_force;
-      continue;
-    }
     auto r = test::shipped_compiler().compile_text(s.name);
     ASSERT_TRUE(r.ok()) << s.name << "\n" << compiler::format_diagnostics(r.diagnostics);
     if (s.name != "Nothing") {
@@ -165,8 +153,7 @@ TEST(ThesisStimuli, AllHundredAndTwoCompile) {
     }
     ++compiled;
   }
-  EXPECT_EQ(compiled + awaiting_force, 102);
-  EXPECT_EQ(awaiting_force, force_statements ? 0 : 5);
+  EXPECT_EQ(compiled, 102);
 }
 
 TEST(ThesisStimuli, Version2NamesAtEveryPeriod) {

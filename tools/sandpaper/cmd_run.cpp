@@ -153,8 +153,10 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                              rep.jitter_us, rep.overruns);
     std::cout << fmt::format("  compute  p50 {:.2f} us, p99 {:.2f} us, max {:.2f} us per tick\n", rep.compute_p50_us,
                              rep.compute_p99_us, rep.compute_max_us);
-    std::cout << fmt::format("  felt     max lateral force {:.4f} N (compiled {:.4f} N), mean {:.4f} N, clamped ticks {}\n",
-                             rep.max_lateral_force_N, prog.max_lateral_force_N, mean_force, rep.clamped_ticks);
+    // Only a texture has a compiled maximum lateral force to compare with; force laws have none.
+    const std::string compiled = textured ? fmt::format(" (texture compiled {:.4f} N)", prog.max_lateral_force_N) : "";
+    std::cout << fmt::format("  felt     max force {:.4f} N{}, mean {:.4f} N, clamped ticks {}\n", rep.max_lateral_force_N,
+                             compiled, mean_force, rep.clamped_ticks);
     if (textured)
       std::cout << fmt::format("  percept  roughness {:.3f} predicted from the measured force ({})\n", roughness, map.id);
     else
