@@ -2,8 +2,8 @@
 // tick, so this test counts every allocation a whole run makes and checks the count does not grow
 // with the number of ticks: any allocation inside the tick would add one per tick.
 //
-// Global operator new/delete are replaced for the whole runtime_tests executable; they only count
-// while the current thread has armed them.
+// Allocations are counted by tests/support/allocation_counter (global operator new replaced for
+// this executable, counting only on the thread that armed it).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -14,88 +14,21 @@
 #include <string>
 #include <variant>
 
+#include "allocation_counter.hpp"
 #include "runtime_test_support.hpp"
 #include "term_samples.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 
-namespace {
-
-thread_local bool allocation_counting_armed = false;
-std::atomic<std::size_t> counted_allocations{0};
-
-void* allocate(std::size_t size) {
-  if (allocation_counting_armed) counted_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size == 0 ? 1 : size);
-}
-
-void* allocate_aligned(std::size_t size, std::align_val_t alignment) {
-  if (allocation_counting_armed) counted_allocations.fetch_add(1, std::memory_order_relaxed);
-  const auto align = static_cast<std::size_t>(alignment);
-  const std::size_t rounded = (size + align - 1) / align * align;  // aligned_alloc wants a multiple
-  return std::aligned_alloc(align, rounded == 0 ? align : rounded);
-}
-
-// Out of line so GCC's -Wmismatched-new-delete does not see operator delete reach free() for memory
-// from operator new: here both really are malloc/free.
-[[gnu::noinline]] void release(void* p) noexcept { std::free(p); }
-
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (void* p = allocate(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  if (void* p = allocate(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
-void* operator new(std::size_t size, std::align_val_t alignment) {
-  if (void* p = allocate_aligned(size, alignment)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t alignment) {
-  if (void* p = allocate_aligned(size, alignment)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  return allocate_aligned(size, alignment);
-}
-void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  return allocate_aligned(size, alignment);
-}
-void operator delete(void* p) noexcept { release(p); }
-void operator delete[](void* p) noexcept { release(p); }
-void operator delete(void* p, std::size_t) noexcept { release(p); }
-void operator delete[](void* p, std::size_t) noexcept { release(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { release(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { release(p); }
-void operator delete(void* p, std::align_val_t) noexcept { release(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { release(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { release(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { release(p); }
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
-
 namespace sandpaper::runtime {
 namespace {
+
+using sandpaper::test::CountedAllocations;
 
 using testing::damper;
 using testing::grating;
 using testing::program_of;
 using testing::spring;
-
-class CountedAllocations {
- public:
-  CountedAllocations() {
-    counted_allocations = 0;
-    allocation_counting_armed = true;
-  }
-  ~CountedAllocations() { allocation_counting_armed = false; }
-  std::size_t count() const { return counted_allocations.load(); }
-};
 
 schema::HeightFieldTerm ripple_field() {
   schema::HeightFieldTerm field;
@@ -137,9 +70,7 @@ std::size_t allocations_in_run(const schema::PatchProgram& program, std::uint64_
   {
     CountedAllocations counting;
     const ServoReport report = run_servo_loop(joystick, evaluator, clock, config);
-    count = counting.count();
-    // Checked after counting stops: gtest's own assertions allocate.
-    allocation_counting_armed = false;
+    count = counting.stop();  // before the checks: gtest's own assertions allocate
     EXPECT_EQ(report.ticks, ticks);
     EXPECT_EQ(report.stop_reason, "completed");
   }
@@ -153,7 +84,7 @@ TEST(ServoNoAllocation, TheCounterSeesAnAllocation) {
     CountedAllocations counting;
     int* volatile probe = new int(7);
     delete probe;
-    count = counting.count();
+    count = counting.stop();
   }
   EXPECT_EQ(count, 1u);
 }
@@ -192,8 +123,7 @@ TEST(ServoNoAllocation, StoppingOnAFaultDoesNotAllocateEither) {
   {
     CountedAllocations counting;
     const ServoReport report = run_servo_loop(joystick, evaluator, clock, config);
-    count = counting.count();
-    allocation_counting_armed = false;
+    count = counting.stop();
     stop_reason = report.stop_reason;
   }
   EXPECT_EQ(stop_reason, "non-finite force");

@@ -1,7 +1,6 @@
 // WorkspaceEvaluator::force_rt runs on the servo thread, so it must never allocate: not when the
 // hand stays on a patch, not when it crosses into another or onto none (crossfades, patch resets).
-// As in tests/runtime/servo_no_allocation_test.cpp, the global operator new/delete are replaced for
-// this executable and count only while the current thread has armed them.
+// Allocations are counted by tests/support/allocation_counter, as in the servo loop's test.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -13,81 +12,13 @@
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/runtime/workspace_evaluator.hpp"
+#include "allocation_counter.hpp"
 #include "workspace_test_support.hpp"
-
-namespace {
-
-thread_local bool allocation_counting_armed = false;
-std::atomic<std::size_t> counted_allocations{0};
-
-void* allocate(std::size_t size) {
-  if (allocation_counting_armed) counted_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(size == 0 ? 1 : size);
-}
-
-void* allocate_aligned(std::size_t size, std::align_val_t alignment) {
-  if (allocation_counting_armed) counted_allocations.fetch_add(1, std::memory_order_relaxed);
-  const auto align = static_cast<std::size_t>(alignment);
-  const std::size_t rounded = (size + align - 1) / align * align;
-  return std::aligned_alloc(align, rounded == 0 ? align : rounded);
-}
-
-[[gnu::noinline]] void release(void* p) noexcept { std::free(p); }
-
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (void* p = allocate(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) {
-  if (void* p = allocate(size)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
-void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return allocate(size); }
-void* operator new(std::size_t size, std::align_val_t alignment) {
-  if (void* p = allocate_aligned(size, alignment)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t size, std::align_val_t alignment) {
-  if (void* p = allocate_aligned(size, alignment)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  return allocate_aligned(size, alignment);
-}
-void* operator new[](std::size_t size, std::align_val_t alignment, const std::nothrow_t&) noexcept {
-  return allocate_aligned(size, alignment);
-}
-void operator delete(void* p) noexcept { release(p); }
-void operator delete[](void* p) noexcept { release(p); }
-void operator delete(void* p, std::size_t) noexcept { release(p); }
-void operator delete[](void* p, std::size_t) noexcept { release(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { release(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { release(p); }
-void operator delete(void* p, std::align_val_t) noexcept { release(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { release(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { release(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { release(p); }
-void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
-void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
 
 namespace sandpaper::runtime {
 namespace {
 
-class CountedAllocations {
- public:
-  CountedAllocations() {
-    counted_allocations = 0;
-    allocation_counting_armed = true;
-  }
-  ~CountedAllocations() { allocation_counting_armed = false; }
-  std::size_t stop() {
-    allocation_counting_armed = false;
-    return counted_allocations.load();
-  }
-};
+using sandpaper::test::CountedAllocations;
 
 // A 10 x 10 tiling with gaps between patches (so the hand also crosses onto no patch), patches of
 // gratings, springs and dampers, and one big patch in front of part of it.
