@@ -1,5 +1,6 @@
 #include "sandpaper/compiler/codegen.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -16,6 +17,19 @@ std::string num(double v, int precision = 4) {
   os.precision(precision);
   os << v;
   return os.str();
+}
+
+// `v` (> 0) rounded DOWN to three significant digits: a reachable limit must stay reachable as shown.
+std::string num_up(double v) {
+  if (!(v > 0)) return num(v);
+  const double scale = std::pow(10.0, 2 - std::floor(std::log10(v)));
+  return num(std::ceil(v * scale) / scale, 6);
+}
+
+std::string num_down(double v) {
+  if (!(v > 0)) return num(v);
+  const double scale = std::pow(10.0, 2 - std::floor(std::log10(v)));
+  return num(std::floor(v * scale) / scale, 6);
 }
 
 void record(schema::PatchProgram& out, const std::string& parameter, const Param& p, const char* si_unit) {
@@ -58,6 +72,56 @@ void record_pattern(schema::PatchProgram& out, const ResolvedPattern& p, const s
   px(p.count, "texture.count", "1");
 }
 
+// The device the program is compiled for: its command scale travels with the program, and the
+// provenance names the device file every device-dependent number comes from.
+void record_device(schema::PatchProgram& out, const calibration::DeviceCalibration& device) {
+  out.command.device_file = device.file;
+  out.command.command_unit = device.command_unit;
+  out.command.command_max = device.command_max;
+  out.command.max_force_N = device.max_force_N;
+  out.command.calibrated = device.calibrated();
+  for (int a = 0; a < 2; ++a) out.command.newtons_per_command_unit[a] = device.axis_scale(a).step_N(0);
+  out.provenance.push_back({"device.max_force", device.max_force_N, "N", device.name + " maximum continuous force",
+                            "device", device.file});
+  const bool in_newtons = device.command_unit == "N";
+  out.provenance.push_back({"device.command_scale", out.command.newtons_per_command_unit[0], "N",
+                            in_newtons ? "commanded in newtons"
+                                       : num(out.command.newtons_per_command_unit[0], 6) + " N per " + device.command_unit +
+                                             " on x, " + num(out.command.newtons_per_command_unit[1], 6) + " N on y" +
+                                             (device.calibrated() ? "" : " (UNCALIBRATED: assumed)"),
+                            "device", device.file});
+}
+
+// The texture's maximum lateral force in the device's command units, rounded as the device rounds.
+void record_command(schema::PatchProgram& out, const calibration::DeviceCalibration& device, double force_N) {
+  for (int a = 0; a < 2; ++a) out.command.newtons_per_command_unit[a] = device.axis_scale(a).step_N(force_N);
+  const double units = device.command_units(0, force_N);
+  const double commanded = device.quantize_N(0, force_N);
+  std::string stated = device.command_unit == "N"
+                           ? "commanded as " + num(commanded, 6) + " N"
+                           : num(device.quantized() ? std::round(units) : units, 6) + " " + device.command_unit + " = " +
+                                 num(commanded, 6) + " N";
+  out.provenance.push_back({"texture.max_force_command", device.quantized() ? std::round(units) : units, "",
+                            stated, "device", device.file});
+}
+
+// A device too coarse to resolve this force to one JND (thesis 5.4.2) cannot show the roughness
+// differences the map promises around it: warn, and say the least force it resolves to a JND.
+void check_resolution(const Param& force, const calibration::PsychophysicalMap& map,
+                      const calibration::ForceJndData& jnd, const calibration::DeviceCalibration& device, Diagnostics& diags) {
+  if (!device.quantized() || !(force.si > 0)) return;
+  const double step = std::max(device.force_step_N(0, force.si), device.force_step_N(1, force.si));
+  if (step <= jnd.jnd_at(force.si)) return;
+  // Least force whose JND is at least one command step: F_min = step / weber.
+  const double f_min = step / jnd.weber_fraction;
+  diags.warning("W0311", force.location,
+                "device '" + device.name + "' commands force in steps of " + num(step * 1e3) + " mN, coarser than one JND (" +
+                    num(jnd.weber_fraction * 100, 3) + " %, " + jnd.file + ") of this material's " + num(force.si * 1e3) +
+                    " mN: neighbouring roughness values blur together here",
+                "this device resolves roughness to one JND from roughness " + num_up(map.percept_of(f_min)) + " (" +
+                    num(f_min * 1e3) + " mN) up; ask for that or more");
+}
+
 }  // namespace
 
 bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
@@ -70,6 +134,20 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
   out.size_m[0] = m.size_width.si;
   out.size_m[1] = m.size_height.si;
   out.roughness_map = map.id;
+  out.roughness_map_file = map.file;
+  record_device(out, device);
+  if (!device.calibrated()) {
+    // Anchor the warning where the material asks for force: its texture, spring, damper or first law.
+    SourceLocation at = m.max_lateral_force ? m.max_lateral_force->location
+                        : m.spring          ? m.spring->location
+                        : m.damper          ? m.damper->location
+                        : !m.laws.empty()   ? m.laws.front().location
+                                            : SourceLocation{};
+    diags.warning("W0331", at,
+                  "device '" + device.name + "' is uncalibrated: its scale of " + num(device.axis_scale(0).step_N(0), 6) +
+                      " N per command unit is assumed (" + device.file + "), so the newtons at the hand are not known",
+                  "measure it with a force gauge and `sandpaper calibrate device readings.csv --base " + device.file + "`");
+  }
   record(out, "patch.width", m.size_width, "m");
   record(out, "patch.height", m.size_height, "m");
 
@@ -91,15 +169,17 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
     if (!m.max_lateral_force && !computed) throw InternalError("codegen: texture without a force after resolution");
     const Param& force = computed ? *computed : *m.max_lateral_force;
     if (force.si > device.max_force_N) {
-      double best = map.percept_of(device.max_force_N);
+      const std::string best = num_down(map.percept_of(device.max_force_N));
       diags.error("E0310", force.location,
                   "this material asks for " + num(force.si) + " N of lateral force (" + force.stated + "); device '" +
-                      device.name + "' reaches " + num(device.max_force_N) + " N at most",
+                      device.name + "' reaches " + num(device.max_force_N) + " N at most, i.e. roughness " + best +
+                      " (" + map.id + "; " + device.file + ")",
                   computed ? "lower press or depth, or add smoothing: the image's steepest slope times press must stay below " +
                                  num(device.max_force_N) + " N"
-                           : "this device reaches roughness " + num(best, 3) + " at most; lower the roughness or amplitude");
+                           : "this device reaches roughness " + best + " at most; ask for that or less, or compile for a stronger device");
       return false;
     }
+    check_resolution(force, map, cal.knowledge().force_jnd, device, diags);
     record(out, "texture.max_lateral_force", force, "N");
     if (m.roughness) record(out, "texture.roughness_target", *m.roughness, "1");
 
@@ -147,7 +227,8 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
     out.roughness = map.percept_of(force.si);
     out.provenance.push_back({"texture.roughness", out.roughness, "1",
                               "(F / " + num(map.reference_si) + " N)^" + num(map.slope, 6), "derived",
-                              "calibration " + map.id});
+                              map.provenance()});
+    record_command(out, device, force.si);
   }
   if (m.spring) {
     out.terms.emplace_back(schema::SpringTerm{m.spring->si, {0, 0}});

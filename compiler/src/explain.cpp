@@ -9,6 +9,12 @@
 namespace sandpaper::compiler {
 namespace {
 
+std::string num_text(double v) {
+  std::ostringstream os;
+  os << std::setprecision(4) << v;
+  return os.str();
+}
+
 std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s + " " : s + std::string(w - s.size(), ' '); }
 
 }  // namespace
@@ -20,7 +26,14 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   os << std::setprecision(4);
   os << "material  " << p.name << "\n";
   if (!p.describes.empty()) os << "describes \"" << p.describes << "\"\n";
-  os << "device    " << device.name << " (maximum force " << device.max_force_N << " N)\n\n";
+  os << "device    " << device.name << " (" << device.file << "): maximum force " << device.max_force_N << " N, "
+     << (device.command_unit == "N" ? std::string("commanded in newtons")
+                                    : num_text(device.axis_scale(0).step_N(0)) + " N per " + device.command_unit)
+     << (device.quantized() ? ", commands up to " + std::to_string(device.command_max) : std::string(", continuous")) << ", "
+     << (device.status == calibration::CalibrationStatus::Calibrated ? "calibrated"
+         : device.status == calibration::CalibrationStatus::Definition ? "exact by definition"
+                                                                    : "UNCALIBRATED (scale assumed)")
+     << "\n\n";
 
   os << "layers (resolved in this order; what a file says beats what it inherits)\n";
   os << "  representative  ";
@@ -34,7 +47,7 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   if (m.roughness)
     os << m.roughness->stated << " [" << layer_name(m.roughness->layer) << ", " << m.roughness->source << "]\n"
        << "                  -> maximum lateral force F = " << map.reference_si << " N * r^(1/" << map.slope
-       << ") = " << m.max_lateral_force->si << " N  (calibration " << map.id << ")\n";
+       << ") = " << m.max_lateral_force->si << " N  (" << map.provenance() << ")\n";
   else os << "none\n";
   os << "  physical        ";
   if (const auto* g = std::get_if<ResolvedGrating>(&m.texture))

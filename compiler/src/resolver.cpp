@@ -277,7 +277,7 @@ class Resolver {
     double force = map.value_for(value);
     m.roughness = Param{value, stated, Layer::Perceptual, r.value_location.str(), r.value_location};
     m.max_lateral_force = Param{force, stated, Layer::Perceptual,
-                                r.value_location.str() + " via " + map.id, r.value_location};
+                                r.value_location.str() + " via " + map.provenance(), r.value_location};
     if (value > 1.0)
       diags_.warning("W0303", r.value_location,
                      "roughness " + fmt_num(value) + " extrapolates the " + map.id + " map beyond its strongest stimulus (" + fmt_num(map.reference_si) + " N)");

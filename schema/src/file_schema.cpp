@@ -178,7 +178,7 @@ class Validator {
       else if (closed) {
         std::string known;
         for (const auto& [p, unused] : props.items()) known += (known.empty() ? "" : ", ") + p;
-        report(v, join(key, name), "unknown key `" + name + "`; expected one of: " + known);
+        report_key(k, join(key, name), "unknown key `" + name + "`; expected one of: " + known);
       }
     }
   }
@@ -196,6 +196,10 @@ class Validator {
 
   void report(const toml::node& n, const std::string& key, const std::string& message) {
     const auto& src = n.source();
+    out_.push_back({key, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column), message});
+  }
+  void report_key(const toml::key& k, const std::string& key, const std::string& message) {
+    const auto& src = k.source();
     out_.push_back({key, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column), message});
   }
   // A missing key has no position of its own; point at the table that should hold it.

@@ -122,6 +122,20 @@ nlohmann::json to_json(const PatchProgram& p, bool with_tables) {
   j["max_lateral_force_N"] = p.max_lateral_force_N;
   j["roughness"] = p.roughness;
   j["roughness_map"] = p.roughness_map;
+  j["roughness_map_file"] = p.roughness_map_file;
+  j["device_file"] = p.command.device_file;
+  const auto& c = p.command;
+  j["command"] = {{"unit", c.command_unit},
+                  {"newtons_per_command_unit", {c.newtons_per_command_unit[0], c.newtons_per_command_unit[1]}},
+                  {"command_max", c.command_max},
+                  {"max_force_N", c.max_force_N},
+                  {"calibrated", c.calibrated}};
+  // The texture's maximum lateral force as each axis would command it, rounded as a quantized device rounds.
+  auto commands = [&](int a) {
+    double u = p.max_lateral_force_N / c.newtons_per_command_unit[a];
+    return c.command_max > 0 ? std::round(u) : u;
+  };
+  j["max_lateral_force_command_units"] = {commands(0), commands(1)};
   j["energy_budget_J"] = p.energy_budget_J;
   j["energy_refill_W"] = p.energy_refill_W;
   j["warnings"] = json::array();

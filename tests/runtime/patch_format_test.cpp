@@ -116,8 +116,24 @@ TEST(PatchFormat, EnergyFieldsRoundTrip) {
 }
 
 // With empty strings the first term's tag sits at a fixed offset: header 32, three empty strings 12,
-// size 16, force and roughness 16, empty map name 4, energy 16, term count 4.
-constexpr std::size_t kFirstTagOffset = 32 + 12 + 16 + 16 + 4 + 16 + 4;
+// command scale (two empty strings 8, two factors 16, command_max 8, max force 8, calibrated 1),
+// size 16, force and roughness 16, empty map id and file 8, energy 16, term count 4.
+constexpr std::size_t kFirstTagOffset = 32 + 12 + (8 + 16 + 8 + 8 + 1) + 16 + 16 + 8 + 16 + 4;
+
+TEST(PatchFormat, CommandScaleAndMapFileRoundTrip) {
+  auto program = program_of({damper(2)});
+  program.command = {"calibration/devices/sandpaper-1995.toml", "ju", {0.0048, 0.0049}, 2048, 10.0, false};
+  program.roughness_map_file = "calibration/maps/minsky1995-fig19.toml";
+  const auto back = deserialize(serialize(program));
+  EXPECT_EQ(back.command.device_file, program.command.device_file);
+  EXPECT_EQ(back.command.command_unit, "ju");
+  EXPECT_EQ(back.command.newtons_per_command_unit[0], 0.0048);
+  EXPECT_EQ(back.command.newtons_per_command_unit[1], 0.0049);
+  EXPECT_EQ(back.command.command_max, 2048);
+  EXPECT_EQ(back.command.max_force_N, 10.0);
+  EXPECT_FALSE(back.command.calibrated);
+  EXPECT_EQ(back.roughness_map_file, program.roughness_map_file);
+}
 
 schema::PatchProgram bare(std::vector<Term> terms) {
   schema::PatchProgram program;

@@ -1,4 +1,6 @@
+#include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include "cli.hpp"
 #include "sandpaper/compiler/explain.hpp"
@@ -6,6 +8,19 @@
 #include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::cli {
+
+namespace {
+
+// The texture's maximum lateral force in the device's command units, as the device would round it.
+std::string command_units(const schema::PatchProgram& p) {
+  double u = p.max_lateral_force_N / p.command.newtons_per_command_unit[0];
+  if (p.command.command_max > 0) u = std::round(u);
+  std::ostringstream os;
+  os << u << " " << p.command.command_unit;
+  return os.str();
+}
+
+}  // namespace
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain) {
   auto c = make_compiler(o);
@@ -29,7 +44,8 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     std::cout << prog.name << ": ";
     // Without a texture there is no lateral-force roughness to report (issue 2's rule for `run`).
     if (prog.max_lateral_force_N > 0)
-      std::cout << "maximum lateral force " << prog.max_lateral_force_N << " N, roughness " << prog.roughness << ", ";
+      std::cout << "maximum lateral force " << prog.max_lateral_force_N << " N (" << command_units(prog) << "), roughness "
+                << prog.roughness << ", ";
     else
       std::cout << "no texture, ";
     std::cout << prog.terms.size() << " term(s) for device " << prog.device;

@@ -96,7 +96,7 @@ struct DeviceCalibration {
   std::string name;                  // "sandpaper-1995": what --device takes
   std::string file;                  // "calibration/devices/sandpaper-1995.toml"
   std::string description;
-  std::string command_unit;          // what a command counts, in words
+  std::string command_unit;          // symbol of what a command counts: "ju", "N", "PID magnitude"
   double max_force_N = 0;            // maximum continuous lateral force per axis
   long command_max = 0;              // largest command magnitude; 0: continuous commands (no quantization)
   int resolution_bits = 0;           // 0 if not stated

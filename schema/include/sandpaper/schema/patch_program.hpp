@@ -9,7 +9,7 @@
 
 namespace sandpaper::schema {
 
-inline constexpr std::uint32_t kPatchFormatVersion = 2;
+inline constexpr std::uint32_t kPatchFormatVersion = 3;
 
 // F = -k (p - centre), p the hand position relative to the patch centre (thesis EQ 1, App. B Spring).
 struct SpringTerm {
@@ -171,15 +171,30 @@ struct CompileWarning {
   std::string message;
 };
 
+// The device's command scale the program was compiled against (calibration/devices/<name>.toml).
+// Forces in the program stay in newtons; a device driver turns them into commands with this scale
+// (thesis 7.6.3: compiling is device-dependent). For a device whose scale is a table, the factors
+// are the table's local slope at the program's maximum lateral force.
+struct CommandScale {
+  std::string device_file;                       // "calibration/devices/sandpaper-1995.toml"
+  std::string command_unit;                      // "ju"
+  double newtons_per_command_unit[2] = {1, 1};   // x, y
+  std::int64_t command_max = 0;                  // largest command magnitude; 0: continuous (no quantization)
+  double max_force_N = 0;                        // the device's maximum continuous force per axis
+  bool calibrated = true;                        // false: the scale is assumed, not measured
+};
+
 struct PatchProgram {
   std::string name;        // material name, e.g. "corduroy/wide-wale"
   std::string describes;   // the representative intent, kept verbatim (thesis 1.5.2)
   std::string device;      // device calibration the program was compiled for, e.g. "sim"
+  CommandScale command;    // that device's command scale
   double size_m[2] = {0.095, 0.095};  // patch width, height; centred on (0, 0)
   std::vector<Term> terms;            // summed each tick, in order
   double max_lateral_force_N = 0;     // texture's maximum lateral force over the patch less its rim
   double roughness = 0;               // ratio-scale roughness the map predicts for that force
   std::string roughness_map;          // id of the map used, e.g. "minsky1995-fig19"
+  std::string roughness_map_file;     // its file, e.g. "calibration/maps/minsky1995-fig19.toml"
   // Energy the non-passive terms may put into the hand: a tank of `energy_budget_J` that refills at
   // `energy_refill_W` and with whatever those terms absorb (docs/RUNTIME.md, "Energy bound").
   double energy_budget_J = 0;

@@ -1,0 +1,266 @@
+// The calibration data as shipped: every file loads and validates against its schema in
+// schema/files/, the comparison maps hold the thesis' numbers, and broken files are refused with
+// every problem at its file:line:col.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/schema/file_schema.hpp"
+#include "test_support.hpp"
+
+namespace sandpaper {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kShipped = fs::path(SANDPAPER_SOURCE_DIR) / "calibration";
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write(const fs::path& p, const std::string& text) {
+  std::ofstream out(p);
+  out << text;
+}
+
+// A copy of the shipped calibration directory to break one file of.
+fs::path copy_of_shipped(const std::string& tag) {
+  fs::path dir = fs::path(test::temp_dir(tag)) / "calibration";
+  fs::copy(kShipped, dir, fs::copy_options::recursive);
+  return dir;
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << "fixture text not found: " << from;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  return s;
+}
+
+// The load error for a directory; empty if it loads.
+std::string load_error(const fs::path& dir) {
+  try {
+    calibration::CalibrationSet::load(dir);
+  } catch (const calibration::CalibrationError& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(CalibrationFiles, EveryShippedFileNamesItsSchemaAndLoads) {
+  auto cal = calibration::CalibrationSet::load(kShipped);
+  EXPECT_GE(cal.maps().size(), 3u);
+  EXPECT_EQ(cal.devices().size(), 3u);
+  // Each file's `schema` key names a shipped schema whose const it satisfies.
+  std::map<std::string, std::string> folder_schema = {
+      {"maps", "sandpaper-map/1"}, {"devices", "sandpaper-device/1"}, {"levels", "sandpaper-levels/1"}};
+  for (const auto& [folder, tag] : folder_schema)
+    for (const auto& e : fs::directory_iterator(kShipped / folder)) {
+      if (e.path().extension() != ".toml") continue;
+      EXPECT_NE(read(e.path()).find("schema = \"" + tag + "\""), std::string::npos) << e.path();
+    }
+}
+
+TEST(CalibrationFiles, SchemasAreJsonSchemaDocuments) {
+  auto names = schema::file_schema_names();
+  for (const char* want : {"map", "device", "levels", "force-jnd"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  for (const auto& n : names) {
+    auto j = nlohmann::json::parse(schema::file_schema_text(n));
+    EXPECT_EQ(j.value("$schema", ""), "http://json-schema.org/draft-07/schema#") << n;
+    EXPECT_EQ(j.value("type", ""), "object") << n;
+    // The binary carries the same text as the file editors use.
+    EXPECT_EQ(std::string(schema::file_schema_text(n)),
+              read(fs::path(SANDPAPER_SOURCE_DIR) / "schema/files" / (n + ".schema.json")))
+        << n;
+  }
+}
+
+TEST(CalibrationFiles, Figure20ShowsPeriodAddsNothing) {
+  auto cal = calibration::CalibrationSet::load(kShipped);
+  const auto* m = cal.find_map("minsky1995-fig20");
+  ASSERT_NE(m, nullptr);
+  EXPECT_FALSE(m->for_compile);
+  const auto* amp = m->predictor("force");
+  const auto* per = m->predictor("period");
+  ASSERT_TRUE(amp && per);
+  EXPECT_DOUBLE_EQ(amp->coefficient, 0.514422);
+  EXPECT_DOUBLE_EQ(*amp->se, 0.0489);
+  EXPECT_DOUBLE_EQ(per->coefficient, -0.056435);
+  // Not significant: |t| < 2 and the stated p, and the t-ratio is coefficient / s.e.
+  EXPECT_LT(std::abs(*per->t), 2.0);
+  EXPECT_NEAR(*per->t, per->coefficient / *per->se, 0.01);
+  EXPECT_NEAR(*amp->t, amp->coefficient / *amp->se, 0.05);
+  EXPECT_GT(*per->p, 0.05);
+  EXPECT_EQ(*m->degrees_of_freedom, 28);
+  EXPECT_FALSE(m->intercept.has_value());  // a regression through the origin
+  ASSERT_TRUE(m->period.has_value());
+  EXPECT_NEAR(m->period->min, 0.7e-3, 1e-12);
+}
+
+TEST(CalibrationFiles, Lederman1972IsAFingertipComparisonNeverCompiledThrough) {
+  auto cal = calibration::CalibrationSet::load(kShipped);
+  const auto* m = cal.find_map("lederman1972");
+  ASSERT_NE(m, nullptr);
+  EXPECT_FALSE(m->for_compile);
+  EXPECT_EQ(m->predictors.at(0).coefficient, 0.25);
+  EXPECT_NE(m->effector.find("fingertip"), std::string::npos);
+  EXPECT_NE(cal.compile_map("roughness")->id, "lederman1972");
+  ASSERT_TRUE(m->force.has_value());
+  EXPECT_NEAR(m->force->max / m->force->min, 25.0, 1e-9);  // 1 to 25 oz (thesis 5.3.1)
+}
+
+TEST(CalibrationFiles, Figure19StatisticsAreConsistent) {
+  const auto& m = calibration::CalibrationSet::load(kShipped).roughness_map();
+  // t = coefficient / s.e. as printed (28.1 and -11.0), and F = t^2 for one predictor.
+  const auto& f = m.predictors.at(0);
+  EXPECT_NEAR(f.coefficient / *f.se, *f.t, 0.05);
+  EXPECT_NEAR(*m.intercept / *m.intercept_se, -11.0, 0.05);
+  EXPECT_NEAR(*f.t * *f.t, *m.f_ratio, 0.01 * *m.f_ratio);
+  // Adjusted R^2 from R^2, n = 30 stimuli and one predictor.
+  EXPECT_NEAR(1 - (1 - *m.r_squared) * (30 - 1) / (30 - 2), *m.r_squared_adjusted, 0.001);
+}
+
+TEST(CalibrationFiles, DeviceFilesInSIUnits) {
+  auto cal = calibration::CalibrationSet::load(kShipped);
+  const auto* thesis = cal.find_device("sandpaper-1995");
+  ASSERT_NE(thesis, nullptr);
+  EXPECT_NEAR(thesis->workspace_radius_m, 0.1143, 1e-9);  // 9 inch circle
+  EXPECT_NEAR(thesis->position_resolution_m, 0.2286 / 4096, 1e-7);  // 12 bit
+  EXPECT_EQ(thesis->command_max, 2048);
+  EXPECT_EQ(thesis->resolution_bits, 12);
+  EXPECT_EQ(thesis->min_rate_hz, 900);
+  EXPECT_NEAR(thesis->axis_scale(0).newtons(1), 4.814e-3, 1e-6);  // "about 4.8 mN" per joystick unit
+  EXPECT_TRUE(thesis->calibrated());
+  const auto* usb = cal.find_device("openffboard-2axis");
+  ASSERT_NE(usb, nullptr);
+  EXPECT_FALSE(usb->calibrated());
+  EXPECT_FALSE(usb->workspace_circle);
+  EXPECT_EQ(usb->file, "calibration/devices/openffboard-2axis.toml");
+  const auto* sim = cal.find_device("sim");
+  ASSERT_NE(sim, nullptr);
+  EXPECT_FALSE(sim->quantized());
+  EXPECT_EQ(sim->quantize_N(0, 0.123456), 0.123456);
+}
+
+TEST(AxisScale, TableInterpolatesBothWaysAndMirrorsNegativeCommands) {
+  calibration::AxisScale s;
+  s.table = {{0, 0}, {100, 0.5}, {200, 1.2}, {400, 2.0}};
+  EXPECT_NEAR(s.newtons(50), 0.25, 1e-12);
+  EXPECT_NEAR(s.newtons(150), 0.85, 1e-12);
+  EXPECT_NEAR(s.newtons(-150), -0.85, 1e-12);
+  EXPECT_NEAR(s.newtons(300), 1.6, 1e-12);
+  for (double c : {0.0, 10.0, 99.0, 150.0, 399.0, -250.0}) EXPECT_NEAR(s.command(s.newtons(c)), c, 1e-9) << c;
+  EXPECT_NEAR(s.step_N(0.85), 0.007, 1e-12);  // slope of the 100-200 segment
+  calibration::AxisScale linear;
+  linear.newtons_per_command_unit = 0.002;
+  EXPECT_NEAR(linear.command(1.0), 500, 1e-9);
+  EXPECT_NEAR(linear.step_N(3.0), 0.002, 1e-15);
+}
+
+// --- broken files: refused with file:line:col, all problems in one report -------------------
+
+TEST(CalibrationFiles, MissingRequiredKeyIsReportedAtItsTable) {
+  auto dir = copy_of_shipped("cal-missing");
+  auto f = dir / "devices/sandpaper-1995.toml";
+  write(f, replace(read(f), "max_continuous = \"10 N\"", "# max_continuous removed"));
+  auto err = load_error(dir);
+  EXPECT_NE(err.find("calibration/devices/sandpaper-1995.toml:"), std::string::npos) << err;
+  EXPECT_NE(err.find("missing required key `max_continuous`"), std::string::npos) << err;
+  EXPECT_NE(err.find("schema/files/device.schema.json"), std::string::npos) << err;
+}
+
+TEST(CalibrationFiles, WrongDimensionAndTyposAreReportedWithPositions) {
+  auto dir = copy_of_shipped("cal-dimension");
+  auto f = dir / "devices/sandpaper-1995.toml";
+  std::string text = read(f);
+  text = replace(text, "max_continuous = \"10 N\"", "max_continuous = \"10 mm\"");
+  text = replace(text, "resolution_bits = 12", "resolution_bitz = 12");
+  write(f, text);
+  auto err = load_error(dir);
+  // Line and column of the offending values, counted in the fixture itself.
+  int line = 0, dim_line = 0, typo_line = 0;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) {
+    ++line;
+    if (l.find("\"10 mm\"") != std::string::npos) dim_line = line;
+    if (l.find("resolution_bitz") != std::string::npos) typo_line = line;
+  }
+  EXPECT_NE(err.find("sandpaper-1995.toml:" + std::to_string(dim_line) + ":18: error: `force.max_continuous`: \"10 mm\" is a length, expected a force"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("sandpaper-1995.toml:" + std::to_string(typo_line) + ":1: error: `force.resolution_bitz`: unknown key"),
+            std::string::npos)
+      << err;
+  EXPECT_NE(err.find("expected one of: "), std::string::npos) << err;
+}
+
+TEST(CalibrationFiles, ProblemsInSeveralFilesComeInOneReport) {
+  auto dir = copy_of_shipped("cal-several");
+  auto dev = dir / "devices/openffboard-2axis.toml";
+  write(dev, replace(read(dev), "[force.x]\nnewtons_per_command_unit = 0.001", "[force.x]"));
+  auto map = dir / "maps/minsky1995-fig19.toml";
+  write(map, replace(read(map), "status = \"measured\"", "status = \"guessed\""));
+  auto err = load_error(dir);
+  EXPECT_NE(err.find("openffboard-2axis.toml"), std::string::npos) << err;
+  EXPECT_NE(err.find("give `newtons_per_command_unit` or a `table`"), std::string::npos) << err;
+  EXPECT_NE(err.find("minsky1995-fig19.toml"), std::string::npos) << err;
+  EXPECT_NE(err.find("must be one of \"measured\", \"provisional\""), std::string::npos) << err;
+}
+
+TEST(CalibrationFiles, ConsistencyRulesBeyondTheSchema) {
+  {
+    // A second roughness compile map: ambiguous.
+    auto dir = copy_of_shipped("cal-two-compile");
+    auto f = dir / "maps/minsky1995-fig20.toml";
+    write(f, replace(replace(read(f), "use = \"comparison\"", "use = \"compile\""), "[domain]",
+                     "[ratio_scale]\npredictor = \"force\"\nreference = \"382 gf\"\n\n[domain]"));
+    auto err = load_error(dir);
+    EXPECT_NE(err.find("a compile map has exactly one predictor"), std::string::npos) << err;
+    EXPECT_NE(err.find("2 maps have percept = \"roughness\" and use = \"compile\""), std::string::npos) << err;
+  }
+  {
+    // Levels on a map that does not exist.
+    auto dir = copy_of_shipped("cal-levels");
+    auto f = dir / "levels/roughness-levels.toml";
+    write(f, replace(read(f), "map = \"minsky1995-fig19\"", "map = \"minsky1995-fig99\""));
+    EXPECT_NE(load_error(dir).find("levels refer to map `minsky1995-fig99`"), std::string::npos);
+  }
+  {
+    // A compile map without its ratio scale.
+    auto dir = copy_of_shipped("cal-ratio");
+    auto f = dir / "maps/minsky1995-fig19.toml";
+    std::string text = read(f);
+    auto from = text.find("[ratio_scale]");
+    auto to = text.find("[domain]");
+    text.erase(from, to - from);
+    write(f, text);
+    EXPECT_NE(load_error(dir).find("needs a [ratio_scale]"), std::string::npos);
+  }
+  {
+    // A force table that falls.
+    auto dir = copy_of_shipped("cal-table");
+    auto f = dir / "devices/openffboard-2axis.toml";
+    write(f, replace(read(f), "[force.y]\nnewtons_per_command_unit = 0.001",
+                     "[force.y]\ntable = [{command = 0, force = \"0 N\"}, {command = 5000, force = \"6 N\"}, "
+                     "{command = 10000, force = \"5 N\"}]"));
+    EXPECT_NE(load_error(dir).find("force.y.table must rise"), std::string::npos);
+  }
+}
+
+TEST(CalibrationFiles, UnchangedCopyLoads) {
+  // The fixtures above fail because of their edits, not because of the copying.
+  EXPECT_EQ(load_error(copy_of_shipped("cal-unchanged")), "");
+}
+
+}  // namespace
+}  // namespace sandpaper
