@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -54,8 +55,14 @@ void copy_table(std::string& out, const toml::table& base, const char* name) {
   const auto* t = base[name].as_table();
   if (!t) return;
   out += fmt::format("\n[{}]\n", name);
+  // In the base's order (toml++ keeps keys sorted; the source lines say where each was written).
+  std::vector<std::pair<std::string, const toml::node*>> keys;
   for (const auto& [k, v] : *t)
-    if (!v.is_table()) out += fmt::format("{} = {}\n", k.str(), value_text(v));
+    if (!v.is_table()) keys.emplace_back(std::string(k.str()), &v);
+  std::stable_sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) {
+    return a.second->source().begin.line < b.second->source().begin.line;
+  });
+  for (const auto& [k, v] : keys) out += fmt::format("{} = {}\n", k, value_text(*v));
 }
 
 std::string axis_summary(const AxisFit& a) {
@@ -89,6 +96,7 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   const auto base_max = force_of(base["force"]["max_continuous"].value_or(std::string()));
   const auto command_max = base["force"]["command_max"].value<std::int64_t>();
   std::optional<double> max_continuous = base_max;
+  bool max_rounded_down = false;
   std::string max_note;
   if (command_max) {
     const double reach = std::min(ax->gain_N_per_unit, ay->gain_N_per_unit) * static_cast<double>(*command_max);
@@ -96,6 +104,7 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
       max_note = fmt::format("   # lowered from the base's {}: command_max gives {:.4g} N at the weaker axis",
                              base["force"]["max_continuous"].value_or(std::string("(none)")), reach);
       max_continuous = reach;
+      max_rounded_down = true;
     }
   }
   if (!max_continuous)
@@ -113,7 +122,10 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   out += "description = " + toml_string(description) + "\n";
   out += "command_unit = " + toml_string(base["command_unit"].value_or(std::string("command unit"))) + "\n";
   out += "\n[force]\n";
-  out += "max_continuous = " + toml_string(fmt::format("{:.4g} N", *max_continuous)) + max_note + "\n";
+  std::string max_text = fmt::format("{:.4g}", *max_continuous);
+  if (max_rounded_down && std::stod(max_text) > *max_continuous)  // never claim more than command_max gives
+    max_text = fmt::format("{:.4g}", *max_continuous * (1 - 5e-4));
+  out += "max_continuous = " + toml_string(max_text + " N") + max_note + "\n";
   if (command_max) out += fmt::format("command_max = {}\n", *command_max);
   if (auto bits = base["force"]["resolution_bits"].value<std::int64_t>()) out += fmt::format("resolution_bits = {}\n", *bits);
   out += "[force.x]\nnewtons_per_command_unit = " + toml_float(ax->gain_N_per_unit, 9) + "\n";

@@ -48,7 +48,7 @@ std::string regression_table(const RegressionResult& r, const std::string& depen
                      r.df_regression + r.df_residual);
   out += fmt::format("{:<12}{:>14}{:>16}{:>10}{:>10}\n", "Variable", "Coefficient", "s.e. of Coeff", "t-ratio", "prob");
   for (const auto& c : r.coefficients)
-    out += fmt::format("{:<12}{:>14.6g}{:>16.4g}{:>10.4g}{:>10}\n", c.name == "constant" ? "Constant" : c.name, c.value, c.se,
+    out += fmt::format("{:<12}{:>14.6g}{:>16.4g}{:>10.2f}{:>10}\n", c.name == "constant" ? "Constant" : c.name, c.value, c.se,
                        c.t, p_text(c.p));
   return out;
 }
@@ -134,7 +134,10 @@ int run_fit(const CalibrateOptions& o) {
                 {"verdict", period_verdict(c)},
                 {"unit", "mm"},
                 {"regression", regression_json(fp)}};
-      if (fit.force_period_origin) p["through_origin"] = regression_json(*fit.force_period_origin);
+      if (fit.force_period_origin) {
+        p["through_origin"] = regression_json(*fit.force_period_origin);
+        p["through_origin"]["note"] = "Figure 20's form, for comparison only: without a constant the coefficients depend on the units (N, mm)";
+      }
       j["period"] = p;
     } else {
       j["period"] = {{"fitted", false}, {"reason", fit.period_note}};
@@ -173,15 +176,16 @@ int run_fit(const CalibrateOptions& o) {
     std::cout << "\n" << period_verdict(fit.force_period->coefficient("log period")) << ".\n";
     if (fit.force_period_origin) {
       const auto& c = fit.force_period_origin->coefficient("log period");
-      std::cout << fmt::format("(Through the origin, as the thesis fitted Figure 20: log period {:.4g}, s.e. {:.3g}, t {:.3g}, p {}.)\n",
+      std::cout << fmt::format("(Through the origin, as the thesis fitted Figure 20: log period {:.4g}, s.e. {:.3g}, t {:.3g}, p {};\n"
+                               " not a test of period: without a constant the coefficients depend on the units, here N and mm.)\n",
                                c.value, c.se, c.t, p_text(c.p));
     }
   } else {
     std::cout << "\nlog period: " << fit.period_note << "\n";
   }
   if (fit.between.subjects >= 2)
-    std::cout << fmt::format("\nSubjects' own slopes: mean {:.4g}, sd {:.3g}, s.e. of the mean {:.3g} ({} subjects); the s.e.\n"
-                             "above is of these subjects' mean slope, this one also of people in general.\n",
+    std::cout << fmt::format("\nSubjects' own slopes: mean {:.4g}, sd {:.3g}, s.e. of the mean {:.3g} ({} subjects). The\n"
+                             "regression's s.e. is for these subjects; for people in general, mind this one too.\n",
                              fit.between.slope_mean, fit.between.slope_sd, fit.between.slope_se, fit.between.subjects);
   if (!o.output.empty()) std::cout << "\nwrote " << o.output << "\n";
   return kExitOk;
