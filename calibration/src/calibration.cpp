@@ -3,125 +3,364 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <set>
 
-#include <toml++/toml.h>
+#include "file_reading.hpp"
+#include "sandpaper/schema/units.hpp"
 
 namespace sandpaper::calibration {
 namespace {
 
-constexpr double kGramForce = 9.80665e-3;  // N, standard gravity (ISO 80000-4)
+using detail::Problems;
+using detail::Toml;
 
-toml::table parse_file(const std::filesystem::path& p) {
-  if (!std::filesystem::exists(p)) throw CalibrationError("calibration file missing: " + p.string());
-  try {
-    return toml::parse_file(p.string());
-  } catch (const toml::parse_error& e) {
-    throw CalibrationError(p.string() + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+Range range_of(const toml::node_view<const toml::node>& v) {
+  const auto* a = v.as_array();
+  return {detail::quantity_si(*a->get(0)), detail::quantity_si(*a->get(1))};
+}
+
+std::optional<Range> optional_range(const toml::table& doc, const char* key) {
+  auto v = doc["domain"][key];
+  if (!v.as_array()) return std::nullopt;
+  return range_of(v);
+}
+
+template <typename T>
+std::optional<T> optional_value(const toml::node_view<const toml::node>& v) {
+  if (auto x = v.value<T>()) return *x;
+  return std::nullopt;
+}
+
+PsychophysicalMap read_map(const Toml& f, Problems& problems) {
+  const toml::table& c = f.doc;
+  PsychophysicalMap m;
+  m.file = f.shown_as;
+  m.id = *c["id"].value<std::string>();
+  m.percept = *c["percept"].value<std::string>();
+  m.provisional = *c["status"].value<std::string>() == "provisional";
+  m.for_compile = *c["use"].value<std::string>() == "compile";
+  m.description = *c["description"].value<std::string>();
+  for (const auto& node : *c["predictor"].as_array()) {
+    const toml::table& p = *node.as_table();
+    Predictor pr;
+    pr.name = *p["name"].value<std::string>();
+    pr.quantity = *p["quantity"].value<std::string>();
+    pr.unit = *p["unit"].value<std::string>();
+    pr.coefficient = *p["coefficient"].value<double>();
+    pr.se = optional_value<double>(p["se"]);
+    pr.t = optional_value<double>(p["t"]);
+    pr.p = optional_value<double>(p["p"]);
+    if (auto u = schema::find_unit(pr.unit)) pr.unit_si = u->to_si;
+    else problems.add(f, *p["unit"].node(), "unknown unit `" + pr.unit + "` for predictor " + pr.name,
+                      "use a unit of schema/LANGUAGE.md, e.g. N, gf, pu, mm");
+    m.predictors.push_back(std::move(pr));
   }
-}
+  m.intercept = optional_value<double>(c["intercept"]["value"]);
+  m.intercept_se = optional_value<double>(c["intercept"]["se"]);
+  m.r_squared = optional_value<double>(c["fit"]["r_squared"]);
+  m.r_squared_adjusted = optional_value<double>(c["fit"]["r_squared_adjusted"]);
+  m.residual_sd = optional_value<double>(c["fit"]["residual_sd"]);
+  m.f_ratio = optional_value<double>(c["fit"]["f_ratio"]);
+  m.degrees_of_freedom = optional_value<int>(c["fit"]["degrees_of_freedom"]);
+  m.stimuli = optional_value<int>(c["fit"]["stimuli"]);
+  m.subjects = optional_value<int>(c["fit"]["subjects"]);
+  m.runs = optional_value<int>(c["fit"]["runs"]);
+  m.normalisation = c["fit"]["normalisation"].value_or(std::string());
+  m.force = optional_range(c, "force");
+  m.period = optional_range(c, "period");
+  m.feature = optional_range(c, "feature");
+  m.damping = optional_range(c, "damping");
+  m.stiffness = optional_range(c, "stiffness");
+  m.domain_texture = c["domain"]["texture"].value_or(std::string());
+  m.domain_device = c["domain"]["device"].value_or(std::string());
+  m.effector = c["domain"]["effector"].value_or(std::string());
+  m.citation = *c["source"]["citation"].value<std::string>();
+  m.where = *c["source"]["where"].value<std::string>();
 
-double need_number(const toml::node_view<const toml::node>& v, const std::filesystem::path& p, const char* key) {
-  auto x = v.value<double>();
-  if (!x || !std::isfinite(*x)) throw CalibrationError(p.string() + ": missing or non-numeric `" + key + "`");
-  return *x;
-}
+  for (const auto* r : {&m.force, &m.period, &m.feature, &m.damping, &m.stiffness})
+    if (*r && !((*r)->min > 0 && (*r)->min < (*r)->max))
+      problems.add(f, *c["domain"].node(), "a domain range must be positive and ascending, [low, high]", "");
 
-std::string need_string(const toml::node_view<const toml::node>& v, const std::filesystem::path& p, const char* key) {
-  auto x = v.value<std::string>();
-  if (!x || x->empty()) throw CalibrationError(p.string() + ": missing `" + key + "`");
-  return *x;
-}
-
-RoughnessMap load_map(const std::filesystem::path& p) {
-  auto t = parse_file(p);
-  const toml::table& c = t;
-  RoughnessMap m;
-  m.path = p.string();
-  m.id = need_string(c["id"], p, "id");
-  if (need_string(c["law"], p, "law") != "power")
-    throw CalibrationError(p.string() + ": only `law = \"power\"` maps are understood");
-  m.slope = need_number(c["fit"]["slope"], p, "fit.slope");
-  m.slope_se = need_number(c["fit"]["slope_se"], p, "fit.slope_se");
-  m.intercept = need_number(c["fit"]["intercept"], p, "fit.intercept");
-  m.intercept_se = need_number(c["fit"]["intercept_se"], p, "fit.intercept_se");
-  m.r_squared = need_number(c["fit"]["r_squared"], p, "fit.r_squared");
-  m.reference_force_N = need_number(c["ratio_scale"]["reference_force_gf"], p, "ratio_scale.reference_force_gf") * kGramForce;
-  m.domain_force_min_N = need_number(c["domain"]["force_min_gf"], p, "domain.force_min_gf") * kGramForce;
-  m.domain_force_max_N = need_number(c["domain"]["force_max_gf"], p, "domain.force_max_gf") * kGramForce;
-  m.domain_period_min_m = need_number(c["domain"]["period_min_mm"], p, "domain.period_min_mm") * 1e-3;
-  m.domain_period_max_m = need_number(c["domain"]["period_max_mm"], p, "domain.period_max_mm") * 1e-3;
-  m.domain_texture = need_string(c["domain"]["texture"], p, "domain.texture");
-  m.source = need_string(c["source"]["citation"], p, "source.citation") + ", " +
-             need_string(c["source"]["where"], p, "source.where");
-  if (!(m.slope > 0) || !(m.reference_force_N > 0) || !(m.domain_force_min_N < m.domain_force_max_N))
-    throw CalibrationError(p.string() + ": slope, reference force and force domain must be positive and ordered");
+  if (m.for_compile) {
+    if (!c["ratio_scale"].as_table()) {
+      problems.add(f, c, "a map with use = \"compile\" needs a [ratio_scale] (predictor and reference)",
+                   "add [ratio_scale] with predictor = \"force\" and reference = \"382 gf\"");
+      return m;
+    }
+    m.ratio_predictor = *c["ratio_scale"]["predictor"].value<std::string>();
+    const Predictor* rp = m.predictor(m.ratio_predictor);
+    const auto& ref_node = *c["ratio_scale"]["reference"].node();
+    if (!rp) {
+      problems.add(f, *c["ratio_scale"]["predictor"].node(),
+                   "ratio_scale.predictor `" + m.ratio_predictor + "` is not one of the map's predictors", "");
+      return m;
+    }
+    if (m.predictors.size() != 1)
+      problems.add(f, *c["predictor"].node(), "a compile map has exactly one predictor (its ratio scale is a power of it)",
+                   "move multiple-regression maps to use = \"comparison\"");
+    m.slope = rp->coefficient;
+    m.slope_se = rp->se.value_or(0);
+    auto q = schema::parse_quantity(*ref_node.value<std::string>());
+    if (!q || q->unit.to_si <= 0 || !(q->si() > 0))
+      problems.add(f, ref_node, "ratio_scale.reference must be a positive quantity with a unit, e.g. \"382 gf\"", "");
+    else if (auto u = schema::find_unit(rp->unit); u && u->dimension != q->unit.dimension)
+      problems.add(f, ref_node, "ratio_scale.reference's unit does not measure the same thing as the predictor's `" +
+                                    rp->unit + "`", "");
+    else m.reference_si = q->si();
+    if (m.slope == 0) problems.add(f, *c["predictor"].node(), "a compile map's slope must not be zero", "");
+  }
   return m;
 }
 
-std::vector<RoughnessLevel> load_levels(const std::filesystem::path& p) {
-  auto t = parse_file(p);
-  std::vector<RoughnessLevel> out;
-  auto* arr = t["level"].as_array();
-  if (!arr || arr->empty()) throw CalibrationError(p.string() + ": no [[level]] entries");
-  for (const auto& node : *arr) {
-    auto* lt = node.as_table();
-    if (!lt) throw CalibrationError(p.string() + ": [[level]] must be a table");
-    const toml::table& l = *lt;
-    RoughnessLevel lv;
-    lv.name = need_string(l["name"], p, "level.name");
-    lv.roughness = need_number(l["roughness"], p, "level.roughness");
-    lv.rationale = need_string(l["rationale"], p, "level.rationale");
-    out.push_back(std::move(lv));
+std::vector<Level> read_levels(const Toml& f, std::string& percept, std::string& map) {
+  const toml::table& c = f.doc;
+  percept = *c["percept"].value<std::string>();
+  map = *c["map"].value<std::string>();
+  std::vector<Level> out;
+  for (const auto& node : *c["level"].as_array()) {
+    const toml::table& l = *node.as_table();
+    out.push_back({*l["name"].value<std::string>(), *l["value"].value<double>(), *l["rationale"].value<std::string>()});
   }
   return out;
 }
 
-DeviceCalibration load_device(const std::filesystem::path& p) {
-  auto t = parse_file(p);
-  const toml::table& c = t;
+AxisScale read_axis(const toml::node_view<const toml::node>& v) {
+  AxisScale a;
+  a.newtons_per_command_unit = v["newtons_per_command_unit"].value_or(0.0);
+  if (const auto* t = v["table"].as_array())
+    for (const auto& row : *t) {
+      const toml::table& r = *row.as_table();
+      a.table.emplace_back(*r["command"].value<double>(), detail::quantity_si(*r["force"].node()));
+    }
+  return a;
+}
+
+DeviceCalibration read_device(const Toml& f, Problems& problems) {
+  const toml::table& c = f.doc;
   DeviceCalibration d;
-  d.path = p.string();
-  d.name = need_string(c["name"], p, "name");
-  d.max_force_N = need_number(c["max_force_N"], p, "max_force_N");
-  d.newtons_per_command_unit = need_number(c["newtons_per_command_unit"], p, "newtons_per_command_unit");
-  d.min_rate_hz = need_number(c["servo_rate_hz"]["min"], p, "servo_rate_hz.min");
-  d.max_rate_hz = need_number(c["servo_rate_hz"]["max"], p, "servo_rate_hz.max");
-  d.workspace_radius_m = need_number(c["workspace"]["radius_mm"], p, "workspace.radius_mm") * 1e-3;
-  d.calibrated_by = need_string(c["calibrated_by"], p, "calibrated_by");
-  if (!(d.max_force_N > 0) || !(d.min_rate_hz > 0) || !(d.min_rate_hz <= d.max_rate_hz))
-    throw CalibrationError(p.string() + ": max force and servo rates must be positive and ordered");
+  d.file = f.shown_as;
+  d.name = *c["name"].value<std::string>();
+  d.description = *c["description"].value<std::string>();
+  d.command_unit = *c["command_unit"].value<std::string>();
+  d.max_force_N = detail::quantity_si(*c["force"]["max_continuous"].node());
+  d.command_max = c["force"]["command_max"].value_or(std::int64_t{0});
+  d.resolution_bits = static_cast<int>(c["force"]["resolution_bits"].value_or(std::int64_t{0}));
+  d.axis[0] = read_axis(c["force"]["x"]);
+  d.axis[1] = read_axis(c["force"]["y"]);
+  for (int a = 0; a < 2; ++a) {
+    const auto& t = d.axis_scale(a).table;
+    const char* name = a == 0 ? "x" : "y";
+    for (std::size_t i = 1; i < t.size(); ++i)
+      if (!(t[i].first > t[i - 1].first && t[i].second > t[i - 1].second)) {
+        problems.add(f, *c["force"][name]["table"].node(),
+                     std::string("force.") + name + ".table must rise: commands and forces both ascending", "");
+        break;
+      }
+  }
+  if (auto r = c["position"]["resolution"].node()) d.position_resolution_m = detail::quantity_si(*r);
+  d.workspace_circle = *c["workspace"]["shape"].value<std::string>() == "circle";
+  if (d.workspace_circle) {
+    if (auto dia = c["workspace"]["diameter"].node()) {
+      double diameter = detail::quantity_si(*dia);
+      d.workspace_radius_m = diameter / 2;
+      d.workspace_size_m[0] = d.workspace_size_m[1] = diameter;
+    } else problems.add(f, *c["workspace"].node(), "a circular workspace needs `diameter`", "add diameter = \"9 in\"");
+  } else {
+    auto w = c["workspace"]["width"].node(), h = c["workspace"]["height"].node();
+    if (w && h) {
+      d.workspace_size_m[0] = detail::quantity_si(*w);
+      d.workspace_size_m[1] = detail::quantity_si(*h);
+      d.workspace_radius_m = std::min(d.workspace_size_m[0], d.workspace_size_m[1]) / 2;
+    } else problems.add(f, *c["workspace"].node(), "a rectangular workspace needs `width` and `height`", "");
+  }
+  d.min_rate_hz = *c["servo_rate_hz"]["min"].value<double>();
+  d.max_rate_hz = *c["servo_rate_hz"]["max"].value<double>();
+  if (d.min_rate_hz > d.max_rate_hz)
+    problems.add(f, *c["servo_rate_hz"].node(), "servo_rate_hz.min is above servo_rate_hz.max", "");
+  const std::string status = *c["calibration"]["status"].value<std::string>();
+  d.status = status == "calibrated"  ? CalibrationStatus::Calibrated
+             : status == "definition" ? CalibrationStatus::Definition
+                                      : CalibrationStatus::Uncalibrated;
+  d.calibration_method = *c["calibration"]["method"].value<std::string>();
+  d.calibration_source = *c["calibration"]["source"].value<std::string>();
   return d;
+}
+
+std::vector<std::filesystem::path> toml_files(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+    if (e.path().extension() == ".toml") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 }  // namespace
 
-double RoughnessMap::roughness_of(double force_N) const {
-  if (!(force_N > 0)) return 0;
-  return std::pow(force_N / reference_force_N, slope);
+double PsychophysicalMap::percept_of(double x_si) const {
+  if (!(x_si > 0) || !(reference_si > 0)) return 0;
+  return std::pow(x_si / reference_si, slope);
 }
 
-double RoughnessMap::force_for(double r) const {
-  if (!(r > 0)) return 0;
-  return reference_force_N * std::pow(r, 1.0 / slope);
+double PsychophysicalMap::value_for(double p) const {
+  if (!(p > 0) || slope == 0) return 0;
+  return reference_si * std::pow(p, 1.0 / slope);
+}
+
+const Predictor* PsychophysicalMap::predictor(const std::string& name) const {
+  for (const auto& p : predictors)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+double AxisScale::newtons(double command) const {
+  if (table.empty()) return command * newtons_per_command_unit;
+  const double c = std::abs(command);
+  std::size_t i = 1;
+  while (i + 1 < table.size() && c > table[i].first) ++i;
+  const auto& [c0, f0] = table[i - 1];
+  const auto& [c1, f1] = table[i];
+  const double f = f0 + (c - c0) * (f1 - f0) / (c1 - c0);
+  return std::copysign(f, command);
+}
+
+double AxisScale::command(double newtons_) const {
+  if (table.empty()) return newtons_ / newtons_per_command_unit;
+  const double n = std::abs(newtons_);
+  std::size_t i = 1;
+  while (i + 1 < table.size() && n > table[i].second) ++i;
+  const auto& [c0, f0] = table[i - 1];
+  const auto& [c1, f1] = table[i];
+  const double c = c0 + (n - f0) * (c1 - c0) / (f1 - f0);
+  return std::copysign(c, newtons_);
+}
+
+double AxisScale::step_N(double newtons_) const {
+  if (table.empty()) return newtons_per_command_unit;
+  const double c = command(newtons_);
+  return std::abs(newtons(c + 0.5) - newtons(c - 0.5));
+}
+
+double DeviceCalibration::force_step_N(int a, double newtons) const {
+  return quantized() ? axis_scale(a).step_N(newtons) : 0.0;
+}
+
+double DeviceCalibration::quantize_N(int a, double newtons) const {
+  if (!quantized()) return newtons;
+  const auto& s = axis_scale(a);
+  return s.newtons(std::round(s.command(newtons)));
+}
+
+double ForceJndData::steps_between(double f1_N, double f2_N) const {
+  if (!(f1_N > 0) || !(f2_N > 0) || !(weber_fraction > 0)) return 0;
+  return std::log(f2_N / f1_N) / std::log1p(weber_fraction);
+}
+
+PsychophysicalMap load_map_file(const std::filesystem::path& path, const std::string& shown_as) {
+  Problems problems;
+  auto f = detail::read_validated(path, shown_as.empty() ? path.string() : shown_as, "map", problems);
+  PsychophysicalMap m;
+  if (f) m = read_map(*f, problems);
+  problems.throw_if_any();
+  return m;
+}
+
+DeviceCalibration load_device_file(const std::filesystem::path& path, const std::string& shown_as) {
+  Problems problems;
+  auto f = detail::read_validated(path, shown_as.empty() ? path.string() : shown_as, "device", problems);
+  DeviceCalibration d;
+  if (f) d = read_device(*f, problems);
+  problems.throw_if_any();
+  return d;
 }
 
 CalibrationSet CalibrationSet::load(const std::filesystem::path& dir) {
   CalibrationSet s;
   s.dir_ = dir;
-  s.map_ = load_map(dir / "roughness" / "minsky1995-fig19.toml");
-  s.levels_ = load_levels(dir / "levels" / "roughness-levels.toml");
-  std::vector<std::filesystem::path> files;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(dir / "devices", ec))
-    if (e.path().extension() == ".toml") files.push_back(e.path());
-  std::sort(files.begin(), files.end());
-  for (const auto& f : files) s.devices_.push_back(load_device(f));
-  if (s.devices_.empty()) throw CalibrationError((dir / "devices").string() + ": no device calibrations");
+  Problems problems;
+  // Paths as users see them: relative to the calibration directory's parent ("calibration/maps/x.toml").
+  const auto shown = [&](const std::filesystem::path& p) {
+    auto parent = dir.lexically_normal().parent_path();
+    auto rel = p.lexically_normal().lexically_relative(parent.empty() ? "." : parent);
+    return rel.empty() ? p.string() : rel.string();
+  };
+  std::map<std::string, std::string> map_ids;  // id -> file
+  for (const auto& p : toml_files(dir / "maps")) {
+    auto f = detail::read_validated(p, shown(p), "map", problems);
+    if (!f) continue;
+    auto m = read_map(*f, problems);
+    if (auto [it, fresh] = map_ids.emplace(m.id, m.file); !fresh)
+      problems.add(*f, *f->doc["id"].node(), "map id `" + m.id + "` is also used by " + it->second, "give each map its own id");
+    s.maps_.push_back(std::move(m));
+  }
+  std::map<std::string, int> compile_maps;
+  for (const auto& m : s.maps_)
+    if (m.for_compile) ++compile_maps[m.percept];
+  for (const auto& [percept, n] : compile_maps)
+    if (n > 1) problems.add_plain(shown(dir / "maps") + ": " + std::to_string(n) + " maps have percept = \"" + percept +
+                                  "\" and use = \"compile\"; the compiler needs exactly one (mark the others use = \"comparison\")");
+  if (!compile_maps.count("roughness"))
+    problems.add_plain(shown(dir / "maps") + ": no map with percept = \"roughness\" and use = \"compile\"");
+
+  for (const auto& p : toml_files(dir / "levels")) {
+    auto f = detail::read_validated(p, shown(p), "levels", problems);
+    if (!f) continue;
+    std::string percept, map;
+    auto levels = read_levels(*f, percept, map);
+    const PsychophysicalMap* m = nullptr;
+    for (const auto& x : s.maps_)
+      if (x.id == map) m = &x;
+    if (!m) problems.add(*f, *f->doc["map"].node(), "levels refer to map `" + map + "`, which calibration/maps/ lacks", "");
+    else if (m->percept != percept)
+      problems.add(*f, *f->doc["percept"].node(), "levels are for percept `" + percept + "` but map `" + map + "` is for `" +
+                                                      m->percept + "`", "");
+    std::set<std::string> names;
+    for (const auto& l : levels) {
+      if (!names.insert(l.name).second)
+        problems.add(*f, *f->doc["level"].node(), "level `" + l.name + "` is named twice", "");
+      s.levels_.emplace_back(percept, l);
+      if (percept == "roughness") s.roughness_levels_.push_back(l);
+    }
+  }
+
+  std::set<std::string> device_names;
+  for (const auto& p : toml_files(dir / "devices")) {
+    auto f = detail::read_validated(p, shown(p), "device", problems);
+    if (!f) continue;
+    auto d = read_device(*f, problems);
+    if (!device_names.insert(d.name).second)
+      problems.add(*f, *f->doc["name"].node(), "device name `" + d.name + "` is used by two files", "");
+    s.devices_.push_back(std::move(d));
+  }
+  if (s.devices_.empty() && !problems.any()) problems.add_plain(shown(dir / "devices") + ": no device calibrations");
+
+  detail::load_knowledge(dir / "knowledge", shown, s.knowledge_, problems);
+  problems.throw_if_any();
   return s;
 }
 
-const RoughnessLevel* CalibrationSet::find_level(const std::string& name) const {
-  for (const auto& l : levels_)
+const PsychophysicalMap* CalibrationSet::compile_map(const std::string& percept) const {
+  for (const auto& m : maps_)
+    if (m.for_compile && m.percept == percept) return &m;
+  return nullptr;
+}
+
+const PsychophysicalMap* CalibrationSet::find_map(const std::string& id) const {
+  for (const auto& m : maps_)
+    if (m.id == id) return &m;
+  return nullptr;
+}
+
+std::vector<const Level*> CalibrationSet::levels(const std::string& percept) const {
+  std::vector<const Level*> out;
+  for (const auto& [p, l] : levels_)
+    if (p == percept) out.push_back(&l);
+  return out;
+}
+
+const Level* CalibrationSet::find_level(const std::string& name) const {
+  for (const auto& l : roughness_levels_)
     if (l.name == name) return &l;
   return nullptr;
 }

@@ -91,7 +91,7 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
     if (!m.max_lateral_force && !computed) throw InternalError("codegen: texture without a force after resolution");
     const Param& force = computed ? *computed : *m.max_lateral_force;
     if (force.si > device.max_force_N) {
-      double best = map.roughness_of(device.max_force_N);
+      double best = map.percept_of(device.max_force_N);
       diags.error("E0310", force.location,
                   "this material asks for " + num(force.si) + " N of lateral force (" + force.stated + "); device '" +
                       device.name + "' reaches " + num(device.max_force_N) + " N at most",
@@ -144,9 +144,9 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
       if (h->press) record(out, "texture.press", *h->press, "N");
     }
     out.max_lateral_force_N = force.si;
-    out.roughness = map.roughness_of(force.si);
+    out.roughness = map.percept_of(force.si);
     out.provenance.push_back({"texture.roughness", out.roughness, "1",
-                              "(F / " + num(map.reference_force_N) + " N)^" + num(map.slope, 6), "derived",
+                              "(F / " + num(map.reference_si) + " N)^" + num(map.slope, 6), "derived",
                               "calibration " + map.id});
   }
   if (m.spring) {

@@ -33,7 +33,7 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   os << "  perceptual      ";
   if (m.roughness)
     os << m.roughness->stated << " [" << layer_name(m.roughness->layer) << ", " << m.roughness->source << "]\n"
-       << "                  -> maximum lateral force F = " << map.reference_force_N << " N * r^(1/" << map.slope
+       << "                  -> maximum lateral force F = " << map.reference_si << " N * r^(1/" << map.slope
        << ") = " << m.max_lateral_force->si << " N  (calibration " << map.id << ")\n";
   else os << "none\n";
   os << "  physical        ";
@@ -60,8 +60,8 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   if (p.max_lateral_force_N > 0) {
     os << "  maximum lateral force " << p.max_lateral_force_N << " N (" << p.max_lateral_force_N / 9.80665e-3
        << " gf) over the patch less its rim\n";
-    os << "  predicted roughness   " << p.roughness << " on the ratio scale (1 = " << map.reference_force_N
-       << " N; " << map.id << ", R^2 = " << map.r_squared << ")\n";
+    os << "  predicted roughness   " << p.roughness << " on the ratio scale (1 = " << map.reference_si
+       << " N; " << map.id << ", R^2 = " << map.r_squared.value_or(0) << ")\n";
   } else {
     os << "  no texture: no lateral-force roughness\n";
   }

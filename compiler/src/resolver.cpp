@@ -249,7 +249,7 @@ class Resolver {
       stated = "roughness " + fmt_num(value);
       if (value < 0) {
         diags_.error("E0304", r.value_location, "roughness " + fmt_num(value) + " is negative",
-                     "roughness runs from 0 (no lateral force) to 1 (3.746 N, the strongest calibrated stimulus)");
+                     "roughness runs from 0 (no lateral force) to 1 (" + fmt_num(map.reference_si) + " N, the strongest calibrated stimulus)");
         return;
       }
     } else {
@@ -265,26 +265,26 @@ class Resolver {
                                    : "did you mean `" + guess + "`?");
         return;
       }
-      value = lv->roughness;
+      value = lv->value;
       stated = "roughness " + r.level + " (= " + fmt_num(value) + ")";
     }
     if (value > 1.0 && !m.extrapolate) {
       diags_.error("E0303", r.value_location,
-                   "roughness " + fmt_num(value) + " is above 1, the strongest calibrated stimulus (382 gf = 3.746 N)",
+                   "roughness " + fmt_num(value) + " is above 1, the strongest calibrated stimulus (" + fmt_num(map.reference_si) + " N = " + fmt_num(map.reference_si / 9.80665e-3) + " gf)",
                    "use a value up to 1, or add the statement `extrapolate` to go beyond the measured range");
       return;
     }
-    double force = map.force_for(value);
+    double force = map.value_for(value);
     m.roughness = Param{value, stated, Layer::Perceptual, r.value_location.str(), r.value_location};
     m.max_lateral_force = Param{force, stated, Layer::Perceptual,
                                 r.value_location.str() + " via " + map.id, r.value_location};
     if (value > 1.0)
       diags_.warning("W0303", r.value_location,
-                     "roughness " + fmt_num(value) + " extrapolates the " + map.id + " map beyond its strongest stimulus (3.746 N)");
-    else if (value > 0 && force < map.domain_force_min_N * (1 - 1e-9))
+                     "roughness " + fmt_num(value) + " extrapolates the " + map.id + " map beyond its strongest stimulus (" + fmt_num(map.reference_si) + " N)");
+    else if (value > 0 && map.force && force < map.force->min * (1 - 1e-9))
       diags_.warning("W0301", r.value_location,
                      "roughness " + fmt_num(value) + " is below the weakest calibrated stimulus (roughness " +
-                         fmt_num(map.min_calibrated_roughness()) + ", 18 gf); the " + map.id + " map extrapolates",
+                         fmt_num(map.percept_of(map.force->min)) + ", " + fmt_num(map.force->min) + " N = " + fmt_num(map.force->min / 9.80665e-3) + " gf); the " + map.id + " map extrapolates",
                      "the prediction is less certain here");
   }
 
@@ -597,7 +597,7 @@ class Resolver {
     if (m.roughness && m.roughness->layer == Layer::Perceptual) {
       if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
         double p = g->period.si;
-        if (p < map.domain_period_min_m * (1 - 1e-9) || p > map.domain_period_max_m * (1 + 1e-9))
+        if (map.period && !map.period->contains(p))
           diags_.warning("W0302", m.roughness->location,
                          "grating period " + fmt_num(p * 1e3) + " mm is outside the periods the " + map.id +
                              " map was measured on (0.7-10 mm); the roughness extrapolates",

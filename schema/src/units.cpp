@@ -1,6 +1,9 @@
 #include "sandpaper/schema/units.hpp"
 
 #include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <string>
 
 namespace sandpaper::schema {
@@ -90,6 +93,41 @@ std::string units_of(Dimension d) {
     out += u.name;
   }
   return out;
+}
+
+}  // namespace sandpaper::schema
+
+namespace sandpaper::schema {
+
+std::optional<ParsedQuantity> parse_quantity(std::string_view text) {
+  auto trim = [](std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+    return s;
+  };
+  text = trim(text);
+  // The number ends where the unit starts: at the first letter other than an exponent's e/E
+  // followed by a digit or sign, or at '%'.
+  std::size_t i = 0;
+  while (i < text.size()) {
+    char c = text[i];
+    bool exponent = (c == 'e' || c == 'E') && i > 0 && i + 1 < text.size() &&
+                    (std::isdigit(static_cast<unsigned char>(text[i + 1])) || text[i + 1] == '-' || text[i + 1] == '+');
+    if (std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+' || exponent) {
+      i += exponent ? 2 : 1;
+      continue;
+    }
+    break;
+  }
+  std::string number(text.substr(0, i));
+  std::string_view unit = trim(text.substr(i));
+  if (number.empty() || unit.empty()) return std::nullopt;
+  char* end = nullptr;
+  double v = std::strtod(number.c_str(), &end);
+  if (end != number.c_str() + number.size() || !std::isfinite(v)) return std::nullopt;
+  auto u = find_unit(unit);
+  if (!u) return std::nullopt;
+  return ParsedQuantity{v, *u};
 }
 
 }  // namespace sandpaper::schema

@@ -108,7 +108,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
   // Roughness is a property of textures (the map relates a texture's peak lateral force to it);
   // for springs and dampers alone it does not apply.
   const bool textured = prog.max_lateral_force_N > 0;
-  double roughness = map.roughness_of(rep.max_lateral_force_N);
+  double roughness = map.percept_of(rep.max_lateral_force_N);
   const auto& recs = joystick.records();
   double mean_force = 0;
   for (const auto& r : recs) mean_force += std::hypot(r.force_N.x, r.force_N.y);

@@ -1,81 +1,165 @@
 #pragma once
-// Calibration data the compiler reads: the psychophysical roughness map, the named roughness
-// levels, and device calibrations. All of it lives in calibration/ as TOML with its sources;
-// none of these numbers are constants in code.
+// Calibration data the compiler reads: psychophysical maps, named levels and device calibrations.
+// All of it lives in calibration/ as TOML with its sources, validated against schema/files/ on
+// load; none of these numbers are constants in code. Formats: docs/CALIBRATION.md.
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "sandpaper/calibration/knowledge.hpp"
 
 namespace sandpaper::calibration {
 
-// Thrown for a calibration file that is missing, malformed or inconsistent; names the file.
+// Thrown for a calibration file that is missing, malformed or inconsistent. what() holds one line
+// per problem, each "file:line:col: error: message".
 struct CalibrationError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A power-law map from maximum lateral force to perceived roughness, log10 R = slope log10 F + b,
-// and the ratio scale built on it: r = R / R(F_ref) = (F / F_ref)^slope (the intercept cancels).
-// Minsky 1995, 5.3.1, Figure 19.
-struct RoughnessMap {
-  std::string id;               // "minsky1995-fig19"
-  std::string path;             // file it was read from
-  double slope = 0, slope_se = 0;
-  double intercept = 0, intercept_se = 0;
-  double r_squared = 0;
-  double reference_force_N = 0;  // F_ref: roughness 1 on the ratio scale
-  double domain_force_min_N = 0, domain_force_max_N = 0;    // forces the map was measured on
-  double domain_period_min_m = 0, domain_period_max_m = 0;  // grating periods it was measured on
-  std::string domain_texture;   // "grating"
-  std::string source;           // publication, section, figure
-
-  // Ratio-scale roughness of a patch whose maximum lateral force is `force_N` (>= 0).
-  double roughness_of(double force_N) const;
-  // Maximum lateral force (N) that the map says gives ratio-scale roughness `r` (>= 0).
-  double force_for(double r) const;
-  // Roughness at the weakest calibrated stimulus (below it the compiler extrapolates).
-  double min_calibrated_roughness() const { return roughness_of(domain_force_min_N); }
+// A closed range of a physical quantity, SI units.
+struct Range {
+  double min = 0, max = 0;
+  bool contains(double v, double rel_tol = 1e-9) const { return v >= min * (1 - rel_tol) && v <= max * (1 + rel_tol); }
 };
 
-// A named point on the roughness scale ("coarse"), with why it sits where it does.
-struct RoughnessLevel {
+// One term of a log-linear map: coefficient * log10(x / unit).
+struct Predictor {
+  std::string name;            // "force", "period", "feature", "damping", "stiffness"
+  std::string quantity;        // in words
+  std::string unit;            // unit inside the logarithm, e.g. "pu"
+  double unit_si = 1;          // that unit in SI
+  double coefficient = 0;
+  std::optional<double> se, t, p;
+};
+
+// A psychophysical map, log10 P = intercept + sum_i c_i log10(x_i / unit_i) (Minsky 1995 Figures
+// 19-20), and the ratio scale built on its ratio predictor: P = (x / x_ref)^c, P = 1 at x_ref.
+struct PsychophysicalMap {
+  std::string id;              // "minsky1995-fig19"
+  std::string file;            // as shown to users: "calibration/maps/minsky1995-fig19.toml"
+  std::string percept;         // "roughness"
+  bool provisional = false;    // status = "provisional": not measured; every use must warn
+  bool for_compile = false;    // use = "compile" (else a comparison map)
+  std::string description;
+  std::vector<Predictor> predictors;
+  std::optional<double> intercept, intercept_se;
+  // Goodness of fit, where the source gives it.
+  std::optional<double> r_squared, r_squared_adjusted, residual_sd, f_ratio;
+  std::optional<int> degrees_of_freedom, stimuli, subjects, runs;
+  std::string normalisation;
+  // Ratio scale (compile maps): the predictor's name, its coefficient and reference value (SI).
+  std::string ratio_predictor;
+  double slope = 0, slope_se = 0;
+  double reference_si = 0;
+  // Measured domain, SI; absent quantities were not reported.
+  std::optional<Range> force, period, feature, damping, stiffness;
+  std::string domain_texture, domain_device, effector;
+  std::string citation, where;
+
+  // Ratio-scale percept of a patch whose ratio predictor is `x_si` (>= 0); 0 for x <= 0.
+  double percept_of(double x_si) const;
+  // The ratio predictor's value (SI) that gives ratio-scale percept `p` (>= 0); 0 for p <= 0.
+  double value_for(double p) const;
+  // "minsky1995-fig19 (calibration/maps/minsky1995-fig19.toml)"
+  std::string provenance() const { return id + " (" + file + ")"; }
+  // "M. Minsky, ..., section 5.3.1, Figure 19"
+  std::string source() const { return citation + ", " + where; }
+  const Predictor* predictor(const std::string& name) const;
+};
+
+// A named point on a percept's ratio scale ("coarse"), with why it sits where it does.
+struct Level {
   std::string name;
-  double roughness = 0;
+  double value = 0;
   std::string rationale;
 };
 
-// A device's limits and command scale, SI units (issue 4 grows this).
+// One axis of a device's command scale: newtons at the handle per command unit, or a table of
+// force-gauge readings (command, newtons) interpolated linearly and mirrored for negative commands.
+struct AxisScale {
+  double newtons_per_command_unit = 0;               // when `table` is empty
+  std::vector<std::pair<double, double>> table;      // (command >= 0, force N >= 0), ascending
+  double newtons(double command) const;
+  double command(double newtons) const;
+  // Newtons of one command unit near `newtons` (the local slope of the table).
+  double step_N(double newtons) const;
+};
+
+enum class CalibrationStatus { Calibrated, Uncalibrated, Definition };
+
+// A device's limits and command scale, SI units (docs/CALIBRATION.md; CHAI3D-style limits as data).
 struct DeviceCalibration {
-  std::string name;                  // "sim"
-  std::string path;
-  double max_force_N = 0;            // maximum continuous lateral force
-  double newtons_per_command_unit = 1;
+  std::string name;                  // "sandpaper-1995": what --device takes
+  std::string file;                  // "calibration/devices/sandpaper-1995.toml"
+  std::string description;
+  std::string command_unit;          // what a command counts, in words
+  double max_force_N = 0;            // maximum continuous lateral force per axis
+  long command_max = 0;              // largest command magnitude; 0: continuous commands (no quantization)
+  int resolution_bits = 0;           // 0 if not stated
+  std::array<AxisScale, 2> axis;     // x, y
+  double position_resolution_m = 0;  // 0 if continuous or not stated
+  bool workspace_circle = true;
+  double workspace_radius_m = 0;     // circle: radius; rectangle: half the smaller side
+  double workspace_size_m[2] = {0, 0};  // rectangle width, height (circle: the diameter twice)
   double min_rate_hz = 0, max_rate_hz = 0;
-  double workspace_radius_m = 0;
-  std::string calibrated_by;         // how the numbers were obtained
+  CalibrationStatus status = CalibrationStatus::Uncalibrated;
+  std::string calibration_method, calibration_source;
+
+  bool quantized() const { return command_max > 0; }
+  bool calibrated() const { return status != CalibrationStatus::Uncalibrated; }
+  // Newtons of one command unit on axis `a` (0 = x, 1 = y) near `newtons`; 0 for a continuous device.
+  double force_step_N(int a, double newtons = 0) const;
+  // `newtons` on axis `a` rounded to the nearest force the device can command (unchanged when continuous).
+  double quantize_N(int a, double newtons) const;
+  // Command units for `newtons` on axis `a` (not rounded).
+  double command_units(int a, double newtons) const { return axis_scale(a).command(newtons); }
+  const AxisScale& axis_scale(int a) const { return axis[static_cast<std::size_t>(a)]; }
 };
 
 class CalibrationSet {
  public:
-  // Reads <dir>/roughness/minsky1995-fig19.toml, <dir>/levels/roughness-levels.toml and
-  // <dir>/devices/*.toml. Throws CalibrationError.
+  // Reads <dir>/maps/*.toml, <dir>/levels/*.toml, <dir>/devices/*.toml and <dir>/knowledge/*.toml,
+  // each validated against its schema in schema/files/. Throws CalibrationError listing every
+  // problem found (file:line:col), so one run shows them all.
   static CalibrationSet load(const std::filesystem::path& dir);
 
-  const RoughnessMap& roughness_map() const { return map_; }
-  const std::vector<RoughnessLevel>& roughness_levels() const { return levels_; }
-  // nullptr if no level has that name.
-  const RoughnessLevel* find_level(const std::string& name) const;
+  const std::vector<PsychophysicalMap>& maps() const { return maps_; }
+  // The map the compiler resolves `percept` through (use = "compile"); nullptr if none.
+  const PsychophysicalMap* compile_map(const std::string& percept) const;
+  // The roughness compile map (minsky1995-fig19); always present after load().
+  const PsychophysicalMap& roughness_map() const { return *compile_map("roughness"); }
+  const PsychophysicalMap* find_map(const std::string& id) const;
+
+  // Named levels of a percept, in file order.
+  std::vector<const Level*> levels(const std::string& percept) const;
+  const std::vector<Level>& roughness_levels() const { return roughness_levels_; }
+  // nullptr if no roughness level has that name.
+  const Level* find_level(const std::string& name) const;
+
   // nullptr if no device calibration has that name.
   const DeviceCalibration* find_device(const std::string& name) const;
   const std::vector<DeviceCalibration>& devices() const { return devices_; }
+
+  const Knowledge& knowledge() const { return knowledge_; }
   const std::filesystem::path& directory() const { return dir_; }
 
  private:
   std::filesystem::path dir_;
-  RoughnessMap map_;
-  std::vector<RoughnessLevel> levels_;
+  std::vector<PsychophysicalMap> maps_;
+  std::vector<std::pair<std::string, Level>> levels_;  // (percept, level)
+  std::vector<Level> roughness_levels_;
   std::vector<DeviceCalibration> devices_;
+  Knowledge knowledge_;
 };
+
+// One file, validated against its schema; `shown_as` is the path used in messages and provenance
+// (default: the path itself). Throw CalibrationError. For tools (`sandpaper calibrate`) and tests.
+PsychophysicalMap load_map_file(const std::filesystem::path& path, const std::string& shown_as = {});
+DeviceCalibration load_device_file(const std::filesystem::path& path, const std::string& shown_as = {});
 
 // The calibration directory: $SANDPAPER_CALIBRATION if set, else the source tree's calibration/.
 std::filesystem::path default_calibration_dir();

@@ -32,3 +32,17 @@ std::optional<UnitDef> find_unit(std::string_view name);
 std::string units_of(Dimension d);
 
 }  // namespace sandpaper::schema
+
+namespace sandpaper::schema {
+
+// A quantity written as text with its unit, "382 gf", "2.5 mm", "-0.5N": a number, optional spaces,
+// a unit from all_units(). nullopt if the text is not of that form or the unit is unknown. Used for
+// quantities in data files (calibration, library), where the unit travels with the number.
+struct ParsedQuantity {
+  double value = 0;   // as written
+  UnitDef unit;
+  double si() const { return value * unit.to_si; }
+};
+std::optional<ParsedQuantity> parse_quantity(std::string_view text);
+
+}  // namespace sandpaper::schema

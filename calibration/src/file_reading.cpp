@@ -1,0 +1,53 @@
+#include "file_reading.hpp"
+
+#include "sandpaper/schema/file_schema.hpp"
+#include "sandpaper/schema/units.hpp"
+
+namespace sandpaper::calibration::detail {
+
+void Problems::add(const Toml& f, const toml::node& at, const std::string& message, const std::string& help) {
+  const auto& src = at.source();
+  add_at(f.shown_as, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column),
+         message + (help.empty() ? "" : "; " + help));
+}
+
+void Problems::add_at(const std::string& file, int line, int column, const std::string& message) {
+  if (line <= 0) line = column = 1;
+  lines_.push_back(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": error: " + message);
+}
+
+void Problems::throw_if_any() const {
+  if (lines_.empty()) return;
+  std::string all;
+  for (const auto& l : lines_) all += (all.empty() ? "" : "\n") + l;
+  throw CalibrationError(all);
+}
+
+std::optional<Toml> read_validated(const std::filesystem::path& path, const std::string& shown_as,
+                                   const std::string& schema_name, Problems& problems) {
+  if (!std::filesystem::exists(path)) {
+    problems.add_plain(shown_as + ": error: calibration file missing");
+    return std::nullopt;
+  }
+  Toml f{shown_as, {}};
+  try {
+    f.doc = toml::parse_file(path.string());
+  } catch (const toml::parse_error& e) {
+    problems.add_at(shown_as, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column),
+                    "not valid TOML: " + std::string(e.description()));
+    return std::nullopt;
+  }
+  auto violations = schema::validate_file(f.doc, schema_name);
+  for (const auto& v : violations)
+    problems.add_at(shown_as, v.line, v.column,
+                    (v.key.empty() ? "" : "`" + v.key + "`: ") + v.message + " (schema/files/" + schema_name + ".schema.json)");
+  if (!violations.empty()) return std::nullopt;
+  return f;
+}
+
+double quantity_si(const toml::node& n) {
+  auto q = schema::parse_quantity(*n.value<std::string>());
+  return q ? q->si() : 0.0;
+}
+
+}  // namespace sandpaper::calibration::detail

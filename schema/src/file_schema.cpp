@@ -1,0 +1,233 @@
+#include "sandpaper/schema/file_schema.hpp"
+
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/schema/units.hpp"
+
+// Generated at build time from schema/files/*.schema.json (schema/CMakeLists.txt), so the binary
+// carries the schemas it validates with and cannot drift from the files editors use.
+namespace sandpaper::schema::generated {
+extern const std::map<std::string, std::string_view>& file_schemas();
+}
+
+namespace sandpaper::schema {
+namespace {
+
+using nlohmann::json;
+
+const json& parsed(std::string_view name) {
+  static const std::map<std::string, json> all = [] {
+    std::map<std::string, json> m;
+    for (const auto& [n, text] : generated::file_schemas()) m.emplace(n, json::parse(text));
+    return m;
+  }();
+  auto it = all.find(std::string(name));
+  if (it == all.end()) throw std::out_of_range("no file schema named '" + std::string(name) + "'");
+  return it->second;
+}
+
+std::string type_of(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "object";
+    case toml::node_type::array: return "array";
+    case toml::node_type::string: return "string";
+    case toml::node_type::integer: return "integer";
+    case toml::node_type::floating_point: return "number";
+    case toml::node_type::boolean: return "boolean";
+    default: return "date/time";
+  }
+}
+
+bool type_matches(const toml::node& n, const std::string& want) {
+  std::string t = type_of(n);
+  return t == want || (want == "number" && t == "integer");
+}
+
+std::string describe(const toml::node& n) {
+  if (auto s = n.value<std::string>(); s && n.is_string()) return "\"" + *s + "\"";
+  if (auto d = n.value<double>()) {
+    std::ostringstream os;
+    os << *d;
+    return os.str();
+  }
+  return type_of(n);
+}
+
+std::optional<Dimension> dimension_named(const std::string& name) {
+  for (Dimension d : {Dimension::Length, Dimension::Force, Dimension::Stiffness, Dimension::Damping, Dimension::Angle,
+                      Dimension::Fraction, Dimension::Mass, Dimension::Time, Dimension::Energy, Dimension::Power})
+    if (dimension_name(d) == name) return d;
+  return std::nullopt;
+}
+
+class Validator {
+ public:
+  Validator(const json& root, std::vector<SchemaViolation>& out) : root_(root), out_(out) {}
+
+  void check(const toml::node& n, const json& schema, const std::string& key, const toml::node* parent) {
+    const json& s = resolve(schema);
+    if (s.contains("anyOf")) {
+      bool any = false;
+      std::vector<SchemaViolation> first;
+      for (const auto& branch : s["anyOf"]) {
+        std::vector<SchemaViolation> v;
+        Validator(root_, v).check(n, branch, key, parent);
+        if (v.empty()) any = true;
+        else if (first.empty()) first = std::move(v);
+      }
+      if (!any) {
+        std::string alt = s.value("x-anyOf-message", std::string());
+        if (!alt.empty()) report(n, key, alt);
+        else out_.insert(out_.end(), first.begin(), first.end());
+      }
+    }
+    if (s.contains("type")) {
+      const std::string want = s["type"];
+      if (!type_matches(n, want)) {
+        report(n, key, "expected " + article(want) + ", found " + describe(n));
+        return;
+      }
+    }
+    if (s.contains("const") && !equals(n, s["const"]))
+      report(n, key, "must be " + s["const"].dump() + ", found " + describe(n));
+    if (s.contains("enum")) {
+      bool ok = false;
+      std::string all;
+      for (const auto& e : s["enum"]) {
+        ok = ok || equals(n, e);
+        all += (all.empty() ? "" : ", ") + e.dump();
+      }
+      if (!ok) report(n, key, "must be one of " + all + ", found " + describe(n));
+    }
+    if (n.is_number()) numeric(*n.value<double>(), s, n, key);
+    if (n.is_string() && s.contains("x-dimension")) quantity(*n.value<std::string>(), s, n, key);
+    if (const auto* t = n.as_table()) object(*t, s, key);
+    if (const auto* a = n.as_array()) array(*a, s, key);
+  }
+
+ private:
+  const json& resolve(const json& s) const {
+    if (!s.contains("$ref")) return s;
+    std::string ref = s["$ref"];
+    const std::string prefix = "#/definitions/";
+    if (ref.rfind(prefix, 0) != 0) throw std::logic_error("file schema: unsupported $ref " + ref);
+    return resolve(root_.at("definitions").at(ref.substr(prefix.size())));
+  }
+
+  static std::string article(const std::string& t) {
+    return (t == "object" || t == "array" || t == "integer") ? "an " + t : "a " + t;
+  }
+
+  static bool equals(const toml::node& n, const json& j) {
+    if (j.is_string()) return n.is_string() && *n.value<std::string>() == j.get<std::string>();
+    if (j.is_boolean()) return n.is_boolean() && *n.value<bool>() == j.get<bool>();
+    if (j.is_number()) return n.is_number() && *n.value<double>() == j.get<double>();
+    return false;
+  }
+
+  void numeric(double v, const json& s, const toml::node& n, const std::string& key) {
+    if (!std::isfinite(v)) report(n, key, "must be a finite number");
+    if (s.contains("minimum") && v < s["minimum"].get<double>())
+      report(n, key, "must be at least " + s["minimum"].dump() + ", found " + describe(n));
+    if (s.contains("exclusiveMinimum") && !(v > s["exclusiveMinimum"].get<double>()))
+      report(n, key, "must be greater than " + s["exclusiveMinimum"].dump() + ", found " + describe(n));
+    if (s.contains("maximum") && v > s["maximum"].get<double>())
+      report(n, key, "must be at most " + s["maximum"].dump() + ", found " + describe(n));
+  }
+
+  void quantity(const std::string& text, const json& s, const toml::node& n, const std::string& key) {
+    const std::string dim = s["x-dimension"];
+    auto want = dimension_named(dim);
+    if (!want) throw std::logic_error("file schema: unknown x-dimension " + dim);
+    auto q = parse_quantity(text);
+    if (!q) {
+      report(n, key, "expected a " + dim + " with its unit, e.g. \"2.5 " + std::string(si_unit_name(*want)) +
+                         "\" (units: " + units_of(*want) + "), found \"" + text + "\"");
+      return;
+    }
+    if (q->unit.dimension != *want) {
+      report(n, key, "\"" + text + "\" is a " + std::string(dimension_name(q->unit.dimension)) + ", expected a " + dim +
+                         " (units: " + units_of(*want) + ")");
+      return;
+    }
+    if (s.contains("exclusiveMinimum") && !(q->value > s["exclusiveMinimum"].get<double>()))
+      report(n, key, "must be greater than " + s["exclusiveMinimum"].dump() + ", found \"" + text + "\"");
+    if (s.contains("minimum") && q->value < s["minimum"].get<double>())
+      report(n, key, "must be at least " + s["minimum"].dump() + ", found \"" + text + "\"");
+  }
+
+  void object(const toml::table& t, const json& s, const std::string& key) {
+    const json empty = json::object();
+    const json& props = s.contains("properties") ? s["properties"] : empty;
+    if (s.contains("required"))
+      for (const auto& r : s["required"]) {
+        const std::string name = r;
+        if (!t.contains(name)) report_missing(t, join(key, name), "missing required key `" + name + "`");
+      }
+    const bool closed = s.contains("additionalProperties") && s["additionalProperties"].is_boolean() &&
+                        !s["additionalProperties"].get<bool>();
+    for (const auto& [k, v] : t) {
+      const std::string name(k.str());
+      if (props.contains(name)) check(v, props[name], join(key, name), &t);
+      else if (closed) {
+        std::string known;
+        for (const auto& [p, unused] : props.items()) known += (known.empty() ? "" : ", ") + p;
+        report(v, join(key, name), "unknown key `" + name + "`; expected one of: " + known);
+      }
+    }
+  }
+
+  void array(const toml::array& a, const json& s, const std::string& key) {
+    if (s.contains("minItems") && a.size() < s["minItems"].get<std::size_t>())
+      report(a, key, "needs at least " + s["minItems"].dump() + " item(s), found " + std::to_string(a.size()));
+    if (s.contains("maxItems") && a.size() > s["maxItems"].get<std::size_t>())
+      report(a, key, "takes at most " + s["maxItems"].dump() + " item(s), found " + std::to_string(a.size()));
+    if (s.contains("items"))
+      for (std::size_t i = 0; i < a.size(); ++i) check(a[i], s["items"], key + "[" + std::to_string(i) + "]", &a);
+  }
+
+  static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
+
+  void report(const toml::node& n, const std::string& key, const std::string& message) {
+    const auto& src = n.source();
+    out_.push_back({key, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column), message});
+  }
+  // A missing key has no position of its own; point at the table that should hold it.
+  void report_missing(const toml::table& t, const std::string& key, const std::string& message) {
+    const auto& src = t.source();
+    out_.push_back({key, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column), message});
+  }
+
+  const json& root_;
+  std::vector<SchemaViolation>& out_;
+};
+
+}  // namespace
+
+std::vector<std::string> file_schema_names() {
+  std::vector<std::string> names;
+  for (const auto& [n, text] : generated::file_schemas()) names.push_back(n);
+  return names;
+}
+
+std::string_view file_schema_text(std::string_view name) {
+  const auto& all = generated::file_schemas();
+  auto it = all.find(std::string(name));
+  if (it == all.end()) throw std::out_of_range("no file schema named '" + std::string(name) + "'");
+  return it->second;
+}
+
+std::vector<SchemaViolation> validate_file(const toml::table& doc, std::string_view name) {
+  const json& root = parsed(name);
+  std::vector<SchemaViolation> out;
+  Validator(root, out).check(doc, root, "", nullptr);
+  return out;
+}
+
+}  // namespace sandpaper::schema
