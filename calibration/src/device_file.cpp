@@ -1,6 +1,5 @@
 // Writes a calibrated device file (schema/files/device.schema.json) from a fit and a base file.
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -20,16 +19,9 @@ using detail::toml_string;
 
 // "10 N", "382 gf" -> newtons; nullopt if not a force quantity.
 std::optional<double> force_of(std::string_view text) {
-  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
-  double v = 0;
-  auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc()) return std::nullopt;
-  std::string_view unit = text.substr(static_cast<std::size_t>(p - text.data()));
-  while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
-  while (!unit.empty() && unit.back() == ' ') unit.remove_suffix(1);
-  auto u = schema::find_unit(unit);
-  if (!u || u->dimension != schema::Dimension::Force) return std::nullopt;
-  return v * u->to_si;
+  const auto q = schema::parse_quantity(text);
+  if (!q || q->unit.dimension != schema::Dimension::Force) return std::nullopt;
+  return q->si();
 }
 
 // A TOML value as text; tables are written by the caller.
