@@ -194,6 +194,10 @@ int run_fit(const CalibrateOptions& o) {
 int run_device(const CalibrateOptions& o) {
   std::optional<toml::table> base;
   if (!o.base.empty()) {
+    if (!std::filesystem::is_regular_file(o.base)) {
+      std::cerr << o.base << ": error: cannot read the base device file (does it exist?)\n";
+      return kExitBadInput;
+    }
     try {
       base = toml::parse_file(o.base);
     } catch (const toml::parse_error& e) {
