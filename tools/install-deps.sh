@@ -4,7 +4,7 @@
 set -euo pipefail
 pkgs=(
   build-essential cmake pkg-config          # toolchain (CMake >= 3.25: bookworm has 3.25.1)
-  libopenimageio-dev                        # images as height maps
+  libopenimageio-dev openimageio-tools      # images as height maps (OpenImageIOConfig.cmake checks its tools exist)
   libglm-dev                                # 2-vectors in the runtime
   libusb-1.0-0-dev                          # USB force-feedback devices (runtime issue)
   libcli11-dev libfmt-dev                   # command line, formatting

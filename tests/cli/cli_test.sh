@@ -162,5 +162,51 @@ expect_exit 2 "array output not .depth" -- "$sp" array library/images/brick.png 
 expect_exit 2 "array size without unit" -- "$sp" array library/images/brick.png --size 80 -o "$tmp/b.depth"
 [ "$(ls -A "$tmp" | grep -c tmp-)" -eq 0 ] && ok || bad "temporary files left behind"
 
+# Calibration fits (issue 4): a map from magnitude estimates, a device file from force-gauge readings
+# (the examples are synthetic; examples/calibration/ says how they were made).
+expect_exit 0 "calibrate fit" -- "$sp" calibrate fit examples/calibration/roughness-responses.csv
+has "$tmp/out" '^R squared = [0-9.]+%   R squared \(adjusted\) = [0-9.]+%$' "fit reports R^2 as Figure 19"
+has "$tmp/out" '^s = [0-9.]+ with 30 - 2 = 28 degrees of freedom$' "fit reports s and df"
+has "$tmp/out" '^log force +0\.[0-9]+ ' "fit reports the slope"
+has "$tmp/out" '^log period (adds nothing significant|is significant)' "fit says whether period adds anything"
+expect_exit 0 "calibrate fit --json -o" -- "$sp" calibrate fit examples/calibration/roughness-responses.csv --json -o "$tmp/fitted.toml"
+for key in slope slope_se intercept intercept_se r2 r2_adj s df f n_stimuli n_subjects period; do
+  has "$tmp/out" "^  \"$key\": " "fit --json has $key"
+done
+has "$tmp/out" '"df": 28,' "fit --json df"
+has "$tmp/fitted.toml" '^schema = "sandpaper-map/1"$' "fitted map schema"
+has "$tmp/fitted.toml" '^reference = "3\.7358 N"$' "fitted map ratio scale at the strongest stimulus"
+mkdir -p "$tmp/cal" && cp -r calibration/* "$tmp/cal/" && sed -i 's/^use = "compile"/use = "comparison"/' "$tmp/cal/maps/minsky1995-fig19.toml"
+cp "$tmp/fitted.toml" "$tmp/cal/maps/fitted.toml"
+expect_exit 0 "compile through the fitted map" -- "$sp" explain -e "roughness 0.5; grating period 2 mm" --calibration "$tmp/cal"
+has "$tmp/out" 'calibration fitted\)' "the fitted map is the compile map"
+printf 'subject,stimulus,force_N,period_mm,response\nA,s1,0.2,1,2\nA,s2,0.8,2,-5\nA,s3,3.2,5,9\n' >"$tmp/neg.csv"
+cp "$tmp/fitted.toml" "$tmp/fitted.keep"
+expect_exit 1 "calibrate fit refuses a negative estimate" -- "$sp" calibrate fit "$tmp/neg.csv" -o "$tmp/fitted.toml"
+has "$tmp/err" 'neg.csv:3: error: response is -5' "refusal names file:line"
+cmp -s "$tmp/fitted.toml" "$tmp/fitted.keep" && ok || bad "a refused fit changed its output file"
+printf 'subject,stimulus,force_N,period_mm,response\nA,s1,0.2,1,2\nA,s2,0.8,2,5\n' >"$tmp/two.csv"
+expect_exit 1 "calibrate fit refuses two stimuli" -- "$sp" calibrate fit "$tmp/two.csv" --json -o "$tmp/two.toml"
+has "$tmp/err" 'too few stimuli: 2 distinct stimuli; .*at least 3' "too few stimuli says what is missing"
+has "$tmp/out" '"ok": false' "refusal --json object"
+[ ! -e "$tmp/two.toml" ] && ok || bad "a refused fit created its output"
+expect_exit 1 "calibrate fit of a missing file" -- "$sp" calibrate fit no/such.csv
+expect_exit 0 "calibrate device" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv --base calibration/devices/openffboard-2axis.toml -o "$tmp/cal/devices/openffboard-2axis.toml" --json
+for key in newtons_per_command_unit offset_N r2 max_residual_percent_fs residuals; do
+  has "$tmp/out" "\"$key\": " "device --json has $key"
+done
+has "$tmp/cal/devices/openffboard-2axis.toml" '^status = "calibrated"$' "device file is calibrated"
+expect_exit 0 "compile for the calibrated device" -- "$sp" explain -e corduroy --device openffboard-2axis --calibration "$tmp/cal"
+has "$tmp/out" 'openffboard-2axis \(maximum force 8\.333 N\)' "the calibrated device's reach"
+expect_exit 0 "calibrate device, text" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv
+has "$tmp/out" 'largest residual [0-9.]+ N = [0-9.]+ % of full scale' "device linearity"
+expect_exit 2 "calibrate device -o needs --base" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv -o "$tmp/d.toml"
+printf 'command,force_N\n1000,0.85\n1000,0.86\n1000,0.84\n' >"$tmp/one.csv"
+cp "$tmp/cal/devices/openffboard-2axis.toml" "$tmp/dev.keep"
+expect_exit 1 "calibrate device refuses one command level" -- "$sp" calibrate device "$tmp/one.csv" --base calibration/devices/openffboard-2axis.toml -o "$tmp/cal/devices/openffboard-2axis.toml"
+has "$tmp/err" 'one.csv:2: error: .*one command level' "one command level says what is missing"
+cmp -s "$tmp/cal/devices/openffboard-2axis.toml" "$tmp/dev.keep" && ok || bad "a refused device fit changed its output file"
+[ "$(find "$tmp" -name '*tmp-*' | wc -l)" -eq 0 ] && ok || bad "calibrate left temporary files behind"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

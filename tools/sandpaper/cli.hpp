@@ -80,3 +80,24 @@ struct ArrayOptions {
 int cmd_array(const ArrayOptions& o);
 
 }  // namespace sandpaper::cli
+
+// `sandpaper calibrate fit|device` (issue 4): psychophysical maps and device files fitted from
+// measurements (cmd_calibrate.cpp; docs/CALIBRATION.md, "Fitting").
+namespace CLI {
+class App;
+}
+namespace sandpaper::cli {
+struct CalibrateOptions {
+  std::string input;             // responses.csv or readings.csv
+  std::string output;            // map or device file to write; empty: report only
+  std::string percept = "roughness", id;   // fit
+  std::string name, base, date;  // device
+  bool json = false;
+  CLI::App* fit = nullptr;       // set by add_calibrate_command
+  CLI::App* device = nullptr;
+};
+// Registers `calibrate` with its two subcommands on `app`; options land in `o`.
+void add_calibrate_command(CLI::App& app, CalibrateOptions& o);
+// Runs whichever subcommand was parsed; -1 if neither was. Exit codes as above.
+int cmd_calibrate(const CalibrateOptions& o);
+}  // namespace sandpaper::cli

@@ -82,6 +82,9 @@ int main(int argc, char** argv) {
   array->add_option("-o,--output", ao.output, "height array to write (.depth)")->required();
   array->add_option("--shade", ao.shade, "also write the shaded picture, lit from the upper left (.shade)");
 
+  CalibrateOptions calibrate_opts;
+  add_calibrate_command(app, calibrate_opts);
+
   CLI11_PARSE(app, argc, argv);
   auto needs_input = [&](CLI::App* sub) {
     if (o.file.empty() == o.expression.empty()) {
@@ -120,6 +123,7 @@ int main(int argc, char** argv) {
     if (inspect->parsed()) return cmd_inspect(patch_file, o.json, tables);
     if (library->parsed()) return cmd_library(o);
     if (array->parsed()) return cmd_array(ao);
+    if (const int rc = cmd_calibrate(calibrate_opts); rc >= 0) return rc;
   } catch (const sandpaper::schema::PatchFormatError& e) {
     std::cerr << "sandpaper: error: " << e.what() << "\n";
     return kExitBadInput;

@@ -1,0 +1,113 @@
+// Writes a fitted map in the format of docs/CALIBRATION.md (schema/files/map.schema.json).
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "sandpaper/calibration/fit.hpp"
+#include "toml_text.hpp"
+
+namespace sandpaper::calibration {
+namespace {
+
+using detail::toml_float;
+using detail::toml_string;
+
+// `value` written with 6 significant digits, rounded outward (down for a range's low end, up for
+// its high end) so that the written domain still contains every stimulus.
+std::string bound_text(double value, const char* unit, bool upper) {
+  double v = value;
+  for (int i = 0; i < 4; ++i) {
+    const std::string s = fmt::format("{:.6g}", v);
+    const double back = std::stod(s);
+    if (upper ? back >= value : back <= value) return s + " " + unit;
+    v = upper ? v * (1 + 1e-6) : v * (1 - 1e-6);
+  }
+  return fmt::format("{:.17g} {}", value, unit);
+}
+
+void coefficient_lines(std::string& out, const Coefficient& c) {
+  out += fmt::format("se = {}\nt = {}\np = {}\n", toml_float(c.se), toml_float(c.t, 4), toml_float(c.p, 3));
+}
+
+}  // namespace
+
+std::string quantity_text(double value, const char* unit) { return fmt::format("{:.6g} {}", value, unit); }
+
+std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOptions& o) {
+  const auto& r = fit.force;
+  const auto& slope = r.coefficient("log force");
+  const auto& constant = r.coefficient("constant");
+  double fmin = fit.stimuli.front().force_N, fmax = fmin, pmin = fit.stimuli.front().period_m, pmax = pmin;
+  for (const auto& s : fit.stimuli) {
+    fmin = std::min(fmin, s.force_N);
+    fmax = std::max(fmax, s.force_N);
+    pmin = std::min(pmin, s.period_m);
+    pmax = std::max(pmax, s.period_m);
+  }
+  const std::string id = o.id.empty() ? "fitted-" + o.percept : o.id;
+  const std::string description =
+      o.description.empty() ? "perceived " + o.percept + " against maximum lateral force, fitted by sandpaper calibrate fit"
+                            : o.description;
+  const bool normalised = fit.normalisation == Normalisation::GeometricMean;
+  const std::string normalisation =
+      normalised ? "free-modulus magnitude estimation; each subject's estimates divided by their geometric mean and "
+                   "multiplied by the grand geometric mean (Lane, Catania & Stevens 1961); geometric mean per stimulus "
+                   "over subjects and runs"
+                 : "none: raw estimates; geometric mean per stimulus over subjects and runs";
+
+  std::string out;
+  out += fmt::format("# Fitted by `sandpaper calibrate fit` from the magnitude estimates in {}:\n", fit.path);
+  out += fmt::format("# {} trials ({} answered), {} subjects, {} stimuli, {} runs. log10 mean estimate regressed on\n",
+                     fit.trials, fit.answered, fit.subjects.size(), fit.stimuli.size(), fit.runs);
+  out += "# log10(force / 1 N) with a constant, the form of Minsky 1995 Figure 19 (docs/CALIBRATION.md, \"Fitting\").\n";
+  out += fmt::format("# Sums of squares: regression {:.6g} (df {}), residual {:.6g} (df {}); F-ratio p = {:.3g}.\n",
+                     r.ss_regression, r.df_regression, r.ss_residual, r.df_residual, r.f_p);
+  if (fit.force_period) {
+    const auto& c = fit.force_period->coefficient("log period");
+    out += fmt::format("# Log period beside log force (Figure 20 form, with a constant): coefficient {:.4g}, s.e. {:.3g},\n"
+                       "# t {:.3g}, p {:.3g}: {}.\n",
+                       c.value, c.se, c.t, c.p,
+                       c.p < 0.05 ? "period is significant at the 5 % level; this one-predictor map leaves it out"
+                                  : "period adds nothing significant at the 5 % level");
+  } else {
+    out += "# Log period: " + fit.period_note + ".\n";
+  }
+  if (fit.between.subjects >= 2)
+    out += fmt::format("# Subjects' own slopes: mean {:.4g}, sd {:.3g}, s.e. of the mean {:.3g} ({} subjects).\n",
+                       fit.between.slope_mean, fit.between.slope_sd, fit.between.slope_se, fit.between.subjects);
+  out += "schema = \"sandpaper-map/1\"\n";
+  out += "id = " + toml_string(id) + "\n";
+  out += "percept = " + toml_string(o.percept) + "\n";
+  out += "status = \"measured\"\n";
+  out += "use = \"compile\"\n";
+  out += "law = \"log-linear\"\n";
+  out += "description = " + toml_string(description) + "\n\n";
+  out += "[[predictor]]\nname = \"force\"\nquantity = \"maximum lateral force of the stimulus\"\nunit = \"N\"\n";
+  out += "coefficient = " + toml_float(slope.value) + "\n";
+  coefficient_lines(out, slope);
+  out += "\n[intercept]                  # log10 estimate at 1 N, on the normalised estimates' scale\n";
+  out += "value = " + toml_float(constant.value) + "\n";
+  coefficient_lines(out, constant);
+  out += "\n[fit]\n";
+  out += fmt::format("r_squared = {}\nr_squared_adjusted = {}\nresidual_sd = {}         # s, log10 units\n",
+                     toml_float(r.r_squared), toml_float(r.r_squared_adjusted), toml_float(r.s));
+  out += fmt::format("degrees_of_freedom = {}\nf_ratio = {}\nstimuli = {}\nsubjects = {}\nruns = {}\n", r.df_residual,
+                     toml_float(r.f_ratio), fit.stimuli.size(), fit.subjects.size(), fit.runs);
+  out += "normalisation = " + toml_string(normalisation) + "\n";
+  out += "\n[ratio_scale]                # ratio-scale percept 1 at the strongest stimulus\n";
+  out += "predictor = \"force\"\nreference = " + toml_string(bound_text(fmax, "N", true)) + "\n";
+  out += "\n[domain]                     # the stimuli the fit saw\n";
+  out += "force = [" + toml_string(bound_text(fmin, "N", false)) + ", " + toml_string(bound_text(fmax, "N", true)) + "]\n";
+  out += "period = [" + toml_string(bound_text(pmin * 1e3, "mm", false)) + ", " +
+         toml_string(bound_text(pmax * 1e3, "mm", true)) + "]\n";
+  out += "\n[source]\n";
+  out += "citation = " + toml_string("magnitude-estimation data in " + fit.path) + "\n";
+  out += "where = " + toml_string(fmt::format("fitted by sandpaper calibrate fit: {} stimuli, {} subjects, {} runs",
+                                              fit.stimuli.size(), fit.subjects.size(), fit.runs)) +
+         "\n";
+  return out;
+}
+
+}  // namespace sandpaper::calibration

@@ -1,0 +1,125 @@
+// Device calibration from force-gauge readings: the gain is recovered, linearity is reported, and
+// the written device file holds the fit and the base's other fields.
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <toml++/toml.h>
+
+#include "sandpaper/calibration/device_fit.hpp"
+#include "sandpaper/calibration/fit_error.hpp"
+#include "synthetic.hpp"
+
+using namespace sandpaper::calibration;
+
+namespace {
+
+// A base in the format of calibration/devices/openffboard-2axis.toml (uncalibrated, 10000 command
+// units assumed to give 10 N).
+toml::table openffboard_base() {
+  return toml::parse(R"toml(schema = "sandpaper-device/1"
+name = "openffboard-2axis"
+description = "OpenFFBoard 2-axis force-feedback joystick over USB HID PID (uncalibrated)"
+command_unit = "HID PID constant-force magnitude"
+[force]
+max_continuous = "10 N"
+command_max = 10000
+[force.x]
+newtons_per_command_unit = 0.001
+[force.y]
+newtons_per_command_unit = 0.001
+[position]
+resolution = "0.01 mm"
+[workspace]
+shape = "rectangle"
+width = "100 mm"
+height = "100 mm"
+[servo_rate_hz]
+min = 900
+max = 1000
+[calibration]
+status = "uncalibrated"
+method = "none yet"
+source = "USB HID PID class definition 1.0"
+)toml");
+}
+
+}  // namespace
+
+// Readings worked by hand: commands 0, 1000, 2000, 3000 -> 0.1, 1.0, 2.1, 2.9 N. About the means
+// 1500 and 1.525: Sxx = 5e6, Sxy = 4750, so gain 0.00095 N/unit and offset 1.525 - 1.425 = 0.1 N;
+// fitted 0.1, 1.05, 2.0, 2.95; residuals 0, -0.05, 0.1, -0.05 (ss 0.015).
+TEST(DeviceFit, HandWorkedLine) {
+  const auto f = fit_device(parse_device_readings_csv("command,force_N\n0,0.1\n1000,1.0\n2000,2.1\n3000,2.9\n", "g.csv"));
+  ASSERT_EQ(f.axes.size(), 1u);
+  const auto& a = f.axes[0];
+  EXPECT_EQ(a.axis, 0);
+  EXPECT_EQ(a.readings, 4);
+  EXPECT_EQ(a.command_levels, 4);
+  EXPECT_NEAR(a.gain_N_per_unit, 0.00095, 1e-12);
+  EXPECT_NEAR(a.offset_N, 0.1, 1e-12);
+  EXPECT_NEAR(a.regression.ss_residual, 0.015, 1e-12);
+  EXPECT_NEAR(a.gain_se, std::sqrt(0.015 / 2 / 5e6), 1e-12);
+  EXPECT_NEAR(a.offset_se, std::sqrt(0.015 / 2 * (0.25 + 1500.0 * 1500 / 5e6)), 1e-12);
+  EXPECT_NEAR(a.max_abs_residual_N, 0.1, 1e-12);
+  EXPECT_NEAR(a.full_scale_N, 2.95, 1e-12);
+  EXPECT_NEAR(a.max_residual_percent, 100 * 0.1 / 2.95, 1e-9);
+}
+
+// Synthetic readings with a known gain per axis, an offset, 2 % saturation and noise: the gain is
+// recovered within 2 % (the saturation bends the line by about that), and the saturation shows as
+// a residual of some tenths of a percent of full scale.
+TEST(DeviceFit, RecoversGainsPerAxis) {
+  synthetic::GaugeOptions o;
+  const auto f = fit_device(synthetic::simulate_gauge(o));
+  ASSERT_EQ(f.axes.size(), 2u);
+  EXPECT_EQ(f.axes[0].axis, 'x');
+  EXPECT_EQ(f.axes[1].axis, 'y');
+  EXPECT_NEAR(f.axes[0].gain_N_per_unit, o.gain_x, 0.02 * o.gain_x);
+  EXPECT_NEAR(f.axes[1].gain_N_per_unit, o.gain_y, 0.02 * o.gain_y);
+  for (const auto& a : f.axes) {
+    EXPECT_EQ(a.readings, 22);
+    EXPECT_EQ(a.command_levels, 11);
+    EXPECT_GT(a.regression.r_squared, 0.999);
+    EXPECT_GT(a.max_residual_percent, 0.1);
+    EXPECT_LT(a.max_residual_percent, 3.0);
+  }
+}
+
+TEST(DeviceFit, DeviceFileKeepsTheBaseAndStoresTheGain) {
+  const auto f = fit_device(synthetic::simulate_gauge({}));
+  const auto text = device_file_text(f, openffboard_base(), {"", "calibration/devices/openffboard-2axis.toml", "2026-11-21"});
+  const auto doc = toml::parse(text);
+  EXPECT_EQ(doc["schema"].value_or(std::string()), "sandpaper-device/1");
+  EXPECT_EQ(doc["name"].value_or(std::string()), "openffboard-2axis");
+  EXPECT_EQ(doc["description"].value_or(std::string()).find("uncalibrated"), std::string::npos);
+  EXPECT_NEAR(doc["force"]["x"]["newtons_per_command_unit"].value_or(0.0), f.axes[0].gain_N_per_unit, 1e-8 * f.axes[0].gain_N_per_unit);
+  EXPECT_NEAR(doc["force"]["y"]["newtons_per_command_unit"].value_or(0.0), f.axes[1].gain_N_per_unit, 1e-8 * f.axes[1].gain_N_per_unit);
+  EXPECT_EQ(doc["force"]["command_max"].value_or(0), 10000);
+  // 10000 x 0.00085 N is about 8.4 N < the base's assumed 10 N: max_continuous comes down to it.
+  const auto max = doc["force"]["max_continuous"].value_or(std::string());
+  EXPECT_NEAR(std::stod(max), f.axes[0].gain_N_per_unit * 10000, 0.01) << max;
+  EXPECT_EQ(doc["workspace"]["shape"].value_or(std::string()), "rectangle");
+  EXPECT_EQ(doc["workspace"]["width"].value_or(std::string()), "100 mm");
+  EXPECT_EQ(doc["servo_rate_hz"]["min"].value_or(0), 900);
+  EXPECT_EQ(doc["position"]["resolution"].value_or(std::string()), "0.01 mm");
+  EXPECT_EQ(doc["calibration"]["status"].value_or(std::string()), "calibrated");
+  EXPECT_EQ(doc["calibration"]["date"].value_or(std::string()), "2026-11-21");
+  EXPECT_NE(doc["calibration"]["method"].value_or(std::string()).find("offset"), std::string::npos);
+  EXPECT_NE(doc["calibration"]["source"].value_or(std::string()).find(f.path), std::string::npos);
+  EXPECT_TRUE(doc["calibration"]["residual_max"].is_string());
+}
+
+// One fit without an axis column serves both axes; with an axis column both must be measured.
+TEST(DeviceFit, AxesTheFileNeeds) {
+  const auto both = fit_device(parse_device_readings_csv("command,force_N\n0,0\n5000,4.3\n10000,8.4\n", "g.csv"));
+  const auto doc = toml::parse(device_file_text(both, openffboard_base(), {}));
+  EXPECT_EQ(doc["force"]["x"]["newtons_per_command_unit"].value_or(0.0), doc["force"]["y"]["newtons_per_command_unit"].value_or(-1.0));
+  const auto x_only =
+      fit_device(parse_device_readings_csv("command,force_N,axis\n0,0,x\n5000,4.3,x\n10000,8.4,x\n", "g.csv"));
+  try {
+    (void)device_file_text(x_only, openffboard_base(), {});
+    FAIL();
+  } catch (const FitError& e) {
+    EXPECT_NE(e.message.find("no rows for axis y"), std::string::npos) << e.what();
+  }
+}
