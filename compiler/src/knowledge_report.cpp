@@ -324,8 +324,12 @@ nlohmann::json knowledge_json(const KnowledgeReport& k, const CalibrationSet& ca
 nlohmann::json maps_json(const CalibrationSet& cal) {
   nlohmann::json arr = nlohmann::json::array();
   const auto& compile = cal.roughness_map();
-  for (const auto& m : cal.maps()) {
-    if (m.percept != compile.percept || (!m.for_compile && m.provisional)) continue;
+  // The compile map first, then the comparisons beside it, as in the text.
+  std::vector<const calibration::PsychophysicalMap*> shown{&compile};
+  for (const auto& m : cal.maps())
+    if (!m.for_compile && !m.provisional && m.percept == compile.percept) shown.push_back(&m);
+  for (const auto* mp : shown) {
+    const auto& m = *mp;
     nlohmann::json preds = nlohmann::json::array();
     for (const auto& pr : m.predictors) {
       nlohmann::json p{{"name", pr.name}, {"unit", pr.unit}, {"coefficient", pr.coefficient}};
