@@ -24,6 +24,7 @@ class Problems {
   void add_at(const std::string& file, int line, int column, const std::string& message);
   void add_plain(const std::string& message) { lines_.push_back(message); }
   bool any() const { return !lines_.empty(); }
+  std::size_t count() const { return lines_.size(); }
   void throw_if_any() const;
 
  private:

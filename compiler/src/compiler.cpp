@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "sandpaper/compiler/codegen.hpp"
+#include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/compiler/resolver.hpp"
@@ -24,6 +25,8 @@ CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Libra
   r.material = m;
   schema::PatchProgram program;
   if (!generate(m, cal, device, program, r.diagnostics)) return r;
+  // What the thesis found about textures like this one (Ch. 4): needs the compiled force.
+  warn_believability(m, program, cal, r.diagnostics);
   for (const auto& d : r.diagnostics.all())
     if (d.severity == Severity::Warning) program.warnings.push_back({d.code, d.location.str() + ": " + d.message});
   r.program = std::move(program);

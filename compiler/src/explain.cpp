@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "sandpaper/compiler/force_levels.hpp"
+#include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::compiler {
@@ -84,6 +85,9 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
        << " force table" << (levels.tables == 1 ? "" : "s") << "\n";
   os << "  patch                 " << p.size_m[0] * 1e3 << " mm x " << p.size_m[1] * 1e3 << " mm, " << p.terms.size()
      << " force term" << (p.terms.size() == 1 ? "" : "s") << "\n";
+  if (auto k = knowledge_text(assess_knowledge(m, p, cal), cal); !k.empty())
+    os << "\nknowledge (what Minsky 1995 found; calibration/knowledge/)\n" << k;
+  os << "\nmaps (" << map.percept << ": the map compiled through, and the comparisons beside it)\n" << maps_text(cal);
   if (!p.warnings.empty()) {
     os << "\nwarnings\n";
     for (const auto& w : p.warnings) os << "  " << w.code << " " << w.message << "\n";

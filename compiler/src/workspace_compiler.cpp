@@ -1,8 +1,10 @@
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/compiler/workspace_parser.hpp"
 
@@ -57,6 +59,53 @@ void report_material(const CompiledMaterial& cm, const WorkspaceSyntax& syntax, 
       annotated.warning(d.code, d.location, d.message, d.suggestion).notes = d.notes;
   }
   out.append(annotated);
+}
+
+std::string sig(double v, int precision) {
+  std::ostringstream os;
+  os.precision(precision);
+  os << v;
+  return os.str();
+}
+std::string newtons(double f) { return sig(f, 4) + " N"; }
+
+// W0503: two textured materials whose maximum lateral forces differ by less than one force JND
+// (5.4.2) feel equally rough, whatever else differs. Exactly equal forces are the same roughness
+// asked for on purpose (Table 8's one level at five periods, examples/workspace/periods.hws) and
+// are not warned about.
+void warn_within_one_jnd(const Compiler& compiler, const WorkspaceSyntax& syntax,
+                         const std::vector<CompiledMaterial>& materials, Diagnostics& diags) {
+  const auto& jnd = compiler.calibration().knowledge().force_jnd;
+  const auto& map = compiler.calibration().roughness_map();
+  struct Textured {
+    std::size_t patch;
+    double force;
+  };
+  std::vector<Textured> textured;
+  for (const auto& cm : materials)
+    if (cm.result.ok() && cm.result.program->max_lateral_force_N > 0 && !cm.patches.empty())
+      textured.push_back({cm.patches.front(), cm.result.program->max_lateral_force_N});
+  std::sort(textured.begin(), textured.end(), [](const auto& a, const auto& b) { return a.patch < b.patch; });
+  auto label = [&](const Textured& t) {
+    return "patch " + std::to_string(t.patch + 1) + " (\"" + syntax.patches[t.patch].material + "\", " + newtons(t.force) + ")";
+  };
+  for (std::size_t j = 1; j < textured.size(); ++j)
+    for (std::size_t i = 0; i < j; ++i) {
+      const double lo = std::min(textured[i].force, textured[j].force), hi = std::max(textured[i].force, textured[j].force);
+      if (hi <= lo * (1 + 1e-9)) continue;
+      const double steps = jnd.steps_between(lo, hi);
+      if (steps >= 1) continue;
+      const double apart = lo * (1 + jnd.weber_fraction);
+      auto& d = diags.warning(
+          "W0503", syntax.patches[textured[j].patch].material_location,
+          label(textured[j]) + " and " + label(textured[i]) + " differ by " + sig(steps, 2) +
+              " force JND in maximum lateral force: they will feel equally rough (one JND at " + newtons(lo) + " is " +
+              newtons(jnd.jnd_at(lo)) + ", " + jnd_source(jnd) + ")",
+          "make the stronger one at least " + newtons(apart) + " (roughness " +
+              sig(map.percept_of(apart), 3) + "), or give both patches the same material");
+      d.notes.push_back({syntax.patches[textured[i].patch].material_location,
+                         "patch " + std::to_string(textured[i].patch + 1) + "'s material"});
+    }
 }
 
 WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& syntax, const fs::path& base_dir,
@@ -144,12 +193,27 @@ WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& 
       break;
     }
   }
+  warn_within_one_jnd(compiler, syntax, materials, diags);
   r.diagnostics = std::move(diags);
   r.program = std::move(ws);
   return r;
 }
 
 }  // namespace
+
+std::vector<RoughnessStep> roughness_order(const schema::WorkspaceProgram& ws, const calibration::ForceJndData& jnd) {
+  std::vector<RoughnessStep> out;
+  for (std::size_t i = 0; i < ws.patches.size(); ++i) {
+    const auto& p = ws.patches[i];
+    if (!(p.program.max_lateral_force_N > 0)) continue;
+    bool seen = false;
+    for (const auto& s : out) seen = seen || s.material == p.source;
+    if (!seen) out.push_back({i, p.source, p.program.name, p.program.max_lateral_force_N, p.program.roughness, 0});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.force_N < b.force_N; });
+  for (std::size_t i = 0; i + 1 < out.size(); ++i) out[i].jnd_to_next = jnd.steps_between(out[i].force_N, out[i + 1].force_N);
+  return out;
+}
 
 bool is_workspace_path(const fs::path& path) { return path.extension() == ".hws"; }
 

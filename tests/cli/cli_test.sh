@@ -58,6 +58,27 @@ has "$tmp/out" '"texture.period"' "explain provenance"
 has "$tmp/out" '"layer": "perceptual"' "explain layers"
 expect_exit 0 "explain text" -- "$sp" explain examples/corduroy.hmat
 has "$tmp/out" 'representative +like corduroy' "explain shows the representative layer"
+
+# What the thesis found (calibration/knowledge/): believable region, 2.5 mm class, group, JND steps.
+expect_exit 0 "explain a Table 8 stimulus" -- "$sp" explain -e a3p25
+has "$tmp/out" 'believable +yes: grating' "explain: believable region"
+has "$tmp/out" 'period class +transitional .*goes with the textural elements' "explain: the 2.5 mm class"
+has "$tmp/out" 'group +flat textured surfaces .*sometimes sorted as rolling hills' "explain: the 6.3.7 group"
+has "$tmp/out" 'force JND +[0-9.]+ JND above fine \([0-9.]+ gf\), [0-9.]+ JND below medium' "explain: JND steps to the named levels"
+has "$tmp/out" 'force-jnd\.toml' "explain: the JND's source"
+has "$tmp/out" 'comparison +minsky1995-fig20 .*p 0\.33.*adds nothing' "explain: what Figure 20 says the period adds"
+has "$tmp/out" 'comparison +lederman1972 +slope 0\.25' "explain: Lederman's fingertip slope"
+expect_exit 0 "explain --json knowledge" -- "$sp" explain -e a19p100 --json
+has "$tmp/out" '"group": "moguls"' "explain --json: the group"
+has "$tmp/out" '"believable": true' "explain --json: believability"
+has "$tmp/out" '"level_below": \{' "explain --json: the JND neighbours"
+expect_exit 0 "explain a wide grating outside Table 8" -- "$sp" explain -e "grating period 20 mm hill 50% amplitude 400 ju"
+has "$tmp/out" 'group +moguls' "a grating beyond 10 mm still gets a group"
+has "$tmp/out" 'the grouping extrapolates' "explain says when the grouping extrapolates"
+expect_exit 0 "a weak wide grating warns" -- "$sp" compile -e "grating period 12 mm amplitude 20 pu"
+has "$tmp/err" 'W0330.*low confidence' "W0330 outside the believable region"
+expect_exit 0 "explain Noise35" -- "$sp" explain -e Noise35
+has "$tmp/out" 'confidence +thesis non-textural Noise35: mean 65 % \(\+/- 38 %\)' "explain: a non-textural's confidence"
 expect_exit 0 "library" -- "$sp" library
 
 # Bad input: a clear diagnostic, non-zero exit, and the existing output untouched.
@@ -86,12 +107,16 @@ expect_exit 1 "corrupt patch" -- "$sp" inspect "$tmp/broken.patch"
 expect_exit 0 "compile workspace" -- "$sp" compile examples/workspace/sampler.hws -o "$tmp/ws.json"
 has "$tmp/ws.json" '"format": "sandpaper-workspace"' "workspace JSON format"
 has "$tmp/ws.json" '"patch_count": 7' "workspace JSON patch count"
-has "$tmp/ws.json" '"material": "a10p25"' "workspace JSON holds the patch programs"
+has "$tmp/ws.json" '"material": "a19p100"' "workspace JSON holds the patch programs"
 expect_exit 0 "compile workspace --json" -- "$sp" compile examples/workspace/periods.hws -o "$tmp/p.json" --json
 has "$tmp/out" '"ok": true' "workspace compile --json"
 expect_exit 0 "explain workspace" -- "$sp" explain examples/workspace/sampler.hws
 has "$tmp/out" 'patch 7 +"roughness 0.3; grating period 5 mm" +at 0 mm, 0 mm' "explain lists the patches"
-has "$tmp/out" 'material a10p25; maximum lateral force 1.926 N' "explain gives each patch's force"
+has "$tmp/out" 'material a19p100; maximum lateral force 3.659 N' "explain gives each patch's force"
+has "$tmp/out" 'roughness order' "explain lists the workspace's roughness order"
+has "$tmp/out" '^ +[0-9]+\.[0-9]+ JND$' "explain gives JND steps between neighbours"
+expect_exit 0 "a workspace with two materials within one JND" -- "$sp" compile tests/golden/workspace/within-one-jnd.hws -o "$tmp/close.json"
+has "$tmp/err" 'W0503.*patch 2.*patch 1.*force JND' "W0503 names both patches"
 expect_exit 0 "run workspace (virtual clock)" -- "$sp" run examples/workspace/sampler.hws --device sim --virtual-clock --json --trace "$tmp/ws.csv"
 for key in '"touched_patches": 7' '"patch_count": 7' '"stop_reason": "completed"' '"direction_deg": 0.0' '"ticks": [0-9]+'; do
   has "$tmp/out" "$key" "run workspace --json"

@@ -43,7 +43,7 @@ TEST(WorkspaceCompile, TheExampleSamplerCompiles) {
     EXPECT_EQ(p.program.size_m[0], p.size_m[0]);
     EXPECT_EQ(p.program.size_m[1], p.size_m[1]);
   }
-  EXPECT_EQ(ws.patches[3].program.name, "a10p25");
+  EXPECT_EQ(ws.patches[3].program.name, "a19p100");
   EXPECT_EQ(ws.patches[6].source, "roughness 0.3; grating period 5 mm");
   EXPECT_DOUBLE_EQ(ws.patches[6].size_m[1], 0.020);  // `size 20 mm`: square
 }
@@ -158,8 +158,8 @@ TEST(WorkspaceCompile, JsonHasEveryPatchWithUnits) {
   EXPECT_EQ(j["patches"][3]["index"], 3);
   EXPECT_DOUBLE_EQ(j["patches"][3]["centre_m"][0].get<double>(), 0.018);
   EXPECT_DOUBLE_EQ(j["patches"][3]["size_m"][1].get<double>(), 0.060);
-  EXPECT_EQ(j["patches"][3]["program"]["material"], "a10p25");
-  EXPECT_EQ(j["patches"][3]["source"], "a10p25");
+  EXPECT_EQ(j["patches"][3]["program"]["material"], "a19p100");
+  EXPECT_EQ(j["patches"][3]["source"], "a19p100");
 }
 
 TEST(WorkspaceCompile, MissingFile) {

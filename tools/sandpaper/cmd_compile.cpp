@@ -4,6 +4,7 @@
 
 #include "cli.hpp"
 #include "sandpaper/compiler/explain.hpp"
+#include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 
@@ -37,6 +38,11 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     j["ok"] = true;
     j["diagnostics"] = diagnostics_json(in->compile->diagnostics);
     if (!explain) j["output"] = out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(out_path);
+    if (explain) {
+      j["knowledge"] = compiler::knowledge_json(compiler::assess_knowledge(*in->compile->material, prog, c.calibration()),
+                                                c.calibration());
+      j["maps"] = compiler::maps_json(c.calibration());
+    }
     std::cout << j.dump(2) << "\n";
   } else if (explain) {
     std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device());

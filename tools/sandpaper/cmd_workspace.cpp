@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "cli.hpp"
+#include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
@@ -94,11 +95,25 @@ int cmd_workspace_compile(const CommonOptions& o, const std::string& output, boo
   const auto j = schema::to_json(*ws);
   if (!explain) schema::write_file_atomically(out_path, j.dump(2) + "\n");
 
+  const auto& jnd = c.calibration().knowledge().force_jnd;
+  const auto order = compiler::roughness_order(*ws, jnd);
   if (o.json) {
     auto out = j;
     out["ok"] = true;
     out["diagnostics"] = diagnostics_json(diags);
     if (!explain) out["output"] = out_path;
+    if (explain) {
+      nlohmann::json steps = nlohmann::json::array();
+      for (std::size_t i = 0; i < order.size(); ++i)
+        steps.push_back({{"patch", order[i].patch + 1},
+                         {"material", order[i].material},
+                         {"name", order[i].name},
+                         {"max_lateral_force_N", order[i].force_N},
+                         {"roughness", order[i].roughness},
+                         {"jnd_steps_to_next", i + 1 < order.size() ? nlohmann::json(order[i].jnd_to_next) : nlohmann::json(nullptr)}});
+      out["roughness_order"] = steps;
+      out["force_jnd"] = {{"weber_fraction", jnd.weber_fraction}, {"source", compiler::jnd_source(jnd)}, {"file", jnd.file}};
+    }
     std::cout << out.dump(2) << "\n";
     return kExitOk;
   }
@@ -116,6 +131,20 @@ int cmd_workspace_compile(const CommonOptions& o, const std::string& output, boo
     std::cout << fmt::format("      material {}; maximum lateral force {:.4g} N, roughness {:.3g}; {} term{}\n", p.name,
                              p.max_lateral_force_N, p.roughness, p.terms.size(), p.terms.size() == 1 ? "" : "s");
     if (!p.describes.empty()) std::cout << "      describes \"" << p.describes << "\"\n";
+  }
+  if (!order.empty()) {
+    std::cout << "  roughness order: the textured materials by maximum lateral force, with the force JNDs between\n"
+                 "  neighbours (one JND = " << compiler::jnd_source(jnd) << ")\n";
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      std::cout << fmt::format("    {:<28} patch {:<3} {:.4g} N, roughness {:.3g}\n", "\"" + order[i].material + "\"",
+                               order[i].patch + 1, order[i].force_N, order[i].roughness);
+      if (i + 1 == order.size()) continue;
+      const double steps = order[i].jnd_to_next;
+      if (order[i + 1].force_N <= order[i].force_N * (1 + 1e-9))
+        std::cout << "      same force, equally rough (W0503 warns only for forces that differ, by less than one JND)\n";
+      else
+        std::cout << fmt::format("      {:.2f} JND{}\n", steps, steps < 1 ? " (less than one: they feel equally rough, W0503)" : "");
+    }
   }
   return kExitOk;
 }

@@ -1,6 +1,8 @@
 #pragma once
 // Human-readable account of a compile: how each layer resolved, every parameter with its unit,
-// layer and source, the predicted roughness, and the warnings (`sandpaper explain`).
+// layer and source, the predicted roughness, what the thesis' knowledge says about it (believable
+// region, roughness groups, force JNDs to the named levels; knowledge_report.hpp), the compile and
+// comparison maps, and the warnings (`sandpaper explain`).
 #include <string>
 
 #include "sandpaper/calibration/calibration.hpp"

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/schema/workspace_program.hpp"
@@ -19,6 +20,19 @@ struct WorkspaceResult {
   std::optional<schema::WorkspaceProgram> program;  // set only if there were no errors at all
   bool ok() const { return program.has_value() && !diagnostics.has_errors(); }
 };
+
+// The textured materials of a workspace in order of maximum lateral force (the roughness scale),
+// each with the force JNDs to the next stronger one (Minsky 1995 5.4.2; calibration/knowledge/
+// force-jnd.toml). Patches with the same material text are one material.
+struct RoughnessStep {
+  std::size_t patch = 0;        // the first patch (0-based) with this material
+  std::string material;         // the patch's material as written
+  std::string name;             // the compiled material's name
+  double force_N = 0;           // maximum lateral force
+  double roughness = 0;
+  double jnd_to_next = 0;       // force JNDs to the next material in the order; 0 for the last
+};
+std::vector<RoughnessStep> roughness_order(const schema::WorkspaceProgram& ws, const calibration::ForceJndData& jnd);
 
 // Whether `path` names a workspace file (extension .hws).
 bool is_workspace_path(const std::filesystem::path& path);
