@@ -43,13 +43,6 @@ std::optional<calibration::Range> ratio_domain(const calibration::Psychophysical
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(4);
-  os << v;
-  return os.str();
-}
-
 // "damper.damping" -> "damper.viscosity_target"
 std::string target_parameter(const PerceptTarget& t) {
   return t.parameter.substr(0, t.parameter.find('.')) + "." + t.percept + "_target";
@@ -95,7 +88,7 @@ std::string explain_percepts(const ResolvedMaterial& m, const calibration::Calib
     if (!w || !map) continue;
     double value_si = map->value_for(t.value.si);
     os << "                  -> " << w->what << " = " << schema::display_value(map->reference_si, w->si_unit) << " * "
-       << t.percept << "^(1/" << num(map->slope) << ") = " << schema::display_value(value_si, w->si_unit) << "  ("
+       << t.percept << "^(1/" << schema::display_value(map->slope, "1") << ") = " << schema::display_value(value_si, w->si_unit) << "  ("
        << (t.provisional ? "PROVISIONAL map " : "calibration ") << map->id << ", " << map->file << ")\n";
   }
   return os.str();

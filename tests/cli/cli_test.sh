@@ -65,32 +65,6 @@ echo keep >"$tmp/out.patch"
 expect_exit 1 "conflicting file" -- "$sp" compile tests/golden/diagnostics/conflict.hmat -o "$tmp/out.patch"
 has "$tmp/err" 'conflict.hmat:4:3: error\[E0302\]' "diagnostic with file:line:col"
 [ "$(cat "$tmp/out.patch")" = keep ] && ok || bad "a failed compile changed its output file"
-
-# Perceptual words beyond roughness (issue 4): every output that uses a provisional map says so.
-expect_exit 0 "compile perceptual words --json" -- "$sp" compile examples/perceptual-words.hmat -o "$tmp/pw.patch" --json
-has "$tmp/out" '"code": "W0320"' "compile --json carries the provisional warning"
-has "$tmp/out" 'provisional map viscosity-provisional \(calibration/maps/viscosity-provisional.toml\)' "the warning names map and file"
-has "$tmp/out" '"source": "[^"]* via softness-provisional \(calibration/maps/softness-provisional.toml\)"' "provenance names map and file"
-has "$tmp/err" 'warning\[W0320\]: `bumpiness 0.6`' "compile prints the warning"
-expect_exit 0 "inspect the perceptual patch" -- "$sp" inspect "$tmp/pw.patch"
-has "$tmp/out" 'warning W0320' "the patch file keeps the warning"
-expect_exit 0 "explain slipperiness" -- "$sp" explain -e "slipperiness 0.3"
-has "$tmp/out" 'PROVISIONAL map slipperiness-provisional' "explain names the provisional map"
-has "$tmp/out" 'W0320 .*slipperiness-provisional' "explain lists the warning"
-has "$tmp/out" 'W0306' "slipperiness is not passive"
-expect_exit 0 "run viscosity on sim" -- "$sp" run -e "viscosity 0.5" --device sim --virtual-clock --duration 0.5 --hand circle --json
-has "$tmp/err" 'W0320.*viscosity-provisional' "run shows the provisional warning"
-has "$tmp/out" '"stop_reason": "completed"' "viscosity plays"
-expect_exit 0 "roughness alone" -- "$sp" compile -e "grating period 2 mm; roughness 0.5" --json
-if grep -q W0320 "$tmp/out" "$tmp/err"; then bad "the measured roughness map warned provisional"; else ok; fi
-expect_exit 1 "viscosity above its map" -- "$sp" compile -e "viscosity 1.5"
-has "$tmp/err" 'E0303.*top of the viscosity-provisional' "above the domain is an error"
-has "$tmp/err" 'extrapolate' "the error says how to go beyond"
-expect_exit 1 "misspelt perceptual word" -- "$sp" compile -e "stickyness 0.3"
-has "$tmp/err" 'did you mean `stickiness`' "perceptual word suggestion"
-expect_exit 1 "softness and spring in one file" -- "$sp" compile -e "softness 0.5; spring 40 N/m"
-has "$tmp/err" 'E0302' "perceptual and physical for one parameter conflict"
-
 [ "$(ls -A "$tmp" | grep -c tmp-)" -eq 0 ] && ok || bad "temporary files left behind"
 expect_exit 1 "unknown name" -- "$sp" run -e velvet --device sim
 has "$tmp/err" 'E0301' "unknown library entry"
@@ -195,6 +169,8 @@ has "$tmp/out" '"source": "[^"]* via softness-provisional \(calibration/maps/sof
 has "$tmp/err" 'warning\[W0320\]: `bumpiness 0.6`' "compile prints the warning"
 expect_exit 0 "inspect the perceptual patch" -- "$sp" inspect "$tmp/pw.patch"
 has "$tmp/out" 'warning W0320' "the patch file keeps the warning"
+expect_exit 0 "run the perceptual patch" -- "$sp" run "$tmp/pw.patch" --device sim --virtual-clock --duration 0.2
+has "$tmp/err" 'warning\[W0320\]: .*softness-provisional' "run of a .patch shows its provisional warnings"
 expect_exit 0 "explain slipperiness" -- "$sp" explain -e "slipperiness 0.3"
 has "$tmp/out" 'PROVISIONAL map slipperiness-provisional' "explain names the provisional map"
 has "$tmp/out" 'W0320 .*slipperiness-provisional' "explain lists the warning"
