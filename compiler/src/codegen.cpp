@@ -7,6 +7,7 @@
 
 #include "sandpaper/compiler/laws.hpp"
 #include "sandpaper/compiler/patterns.hpp"
+#include "sandpaper/compiler/percepts.hpp"
 #include "sandpaper/compiler/textures.hpp"
 
 namespace sandpaper::compiler {
@@ -238,6 +239,7 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
     out.terms.emplace_back(schema::DamperTerm{m.damper->si});
     record(out, "damper.damping", *m.damper, "N*s/m");
   }
+  generate_percepts(m, out, diags);  // slipperiness's anti-viscous term; perceptual targets (compiler/percepts.hpp)
   return generate_laws(m, device, out, diags);
 }
 

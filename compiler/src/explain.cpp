@@ -5,6 +5,7 @@
 
 #include "sandpaper/compiler/force_levels.hpp"
 #include "sandpaper/compiler/knowledge_report.hpp"
+#include "sandpaper/compiler/percepts.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::compiler {
@@ -49,7 +50,8 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
     os << m.roughness->stated << " [" << layer_name(m.roughness->layer) << ", " << m.roughness->source << "]\n"
        << "                  -> maximum lateral force F = " << map.reference_si << " N * r^(1/" << map.slope
        << ") = " << m.max_lateral_force->si << " N  (" << map.provenance() << ")\n";
-  else os << "none\n";
+  else if (m.percepts.empty()) os << "none\n";
+  os << explain_percepts(m, cal, /*inline_first=*/!m.roughness);
   os << "  physical        ";
   if (const auto* g = std::get_if<ResolvedGrating>(&m.texture))
     os << "grating, period " << g->period.stated << " [" << g->period.source << "]\n";

@@ -2,6 +2,7 @@
 // thesis 3.2.2 dynamic modules) become patch-program terms, in the order written.
 #include "sandpaper/compiler/laws.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -94,7 +95,8 @@ const char* si_unit_of(const schema::LawDef& def, const std::string& param) {
 bool generate_laws(const ResolvedMaterial& m, const calibration::DeviceCalibration& device, schema::PatchProgram& out,
                    Diagnostics& diags) {
   bool ok = true;
-  bool any_non_passive = false;
+  // Terms generated before the laws (slipperiness's anti-viscous damping) need the energy bound too.
+  bool any_non_passive = std::any_of(out.terms.begin(), out.terms.end(), [](const auto& t) { return !schema::is_passive(t); });
   for (const auto& law : m.laws) {
     const auto family = law.physics ? schema::LawFamily::Physics : schema::LawFamily::Force;
     const schema::LawDef* def = schema::find_law(family, law.name);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "sandpaper/compiler/percepts.hpp"
 #include "sandpaper/schema/force_laws.hpp"
 
 namespace sandpaper::compiler {
@@ -18,9 +19,12 @@ std::string Quantity::text() const {
 }
 
 const std::vector<std::string>& statement_keywords() {
-  static const std::vector<std::string> k{"describes", "like",    "roughness", "grating",     "heightmap", "pattern",
-                                          "quantize",  "spring",  "damper",    "force",       "physics",   "energy",
-                                          "size",      "extrapolate"};
+  static const std::vector<std::string> k = [] {
+    std::vector<std::string> words{"describes", "like",   "roughness", "grating", "heightmap", "pattern",    "quantize",
+                                   "spring",    "damper", "force",     "physics", "energy",    "size",       "extrapolate"};
+    for (const auto& w : percept_words()) words.emplace_back(w.word);
+    return words;
+  }();
   return k;
 }
 
@@ -102,8 +106,8 @@ class Parser {
     }
   }
 
-  // statement := describes | like | roughness | grating | heightmap | pattern | quantize | spring | damper | size
-  //            | extrapolate
+  // statement := describes | like | roughness | percept | grating | heightmap | pattern | quantize | spring | damper
+  //            | size | extrapolate
   //            | NAME            (a lone name as the whole input: like NAME)
   Statement statement(bool first) {
     const Token& kw = peek();
@@ -123,6 +127,7 @@ class Parser {
     if (k == "describes") st.node = describes();
     else if (k == "like") st.node = like();
     else if (k == "roughness") st.node = roughness();
+    else if (const PerceptWord* w = find_percept_word(k)) st.node = percept(*w);
     else if (k == "grating") st.node = grating();
     else if (k == "heightmap") st.node = heightmap();
     else if (k == "spring") st.node = SpringStmt{quantity(Dimension::Stiffness, "the spring's stiffness")};
@@ -141,9 +146,7 @@ class Parser {
     } else {
       std::string guess = closest_match(k, statement_keywords());
       diags_.error("E0202", kw.location, "unknown statement '" + k + "'",
-                   guess.empty() ? "statements are: describes, like, roughness, grating, heightmap, pattern, quantize, spring, "
-                                   "damper, force, physics, energy, size, extrapolate"
-                                 : "did you mean `" + guess + "`?");
+                   guess.empty() ? "statements are: " + join(statement_keywords()) : "did you mean `" + guess + "`?");
       throw StatementError{};
     }
     st.text = span_text(start, pos_);
@@ -234,6 +237,33 @@ class Parser {
     }
     diags_.error("E0201", t.location, std::string("expected a roughness number or level, found ") + describe(t),
                  "write roughness 0.6 (ratio scale, 1 = 3.746 N) or roughness coarse");
+    throw StatementError{};
+  }
+
+  // percept := ('viscosity' | 'stickiness' | 'slipperiness' | 'softness' | 'springiness' | 'bumpiness')
+  //            (NUMBER | LEVEL)
+  PerceptStmt percept(const PerceptWord& w) {
+    const Token& t = peek();
+    if (t.kind == TokenKind::Number) {
+      next();
+      if (peek().kind == TokenKind::Word && schema::find_unit(peek().text)) {
+        diags_.error("E0205", peek().location, std::string(w.word) + " is a ratio-scale number and takes no unit",
+                     std::string("write ") + w.word + " " + t.text + ", or give it physically: " + w.physical);
+        throw StatementError{};
+      }
+      if (!std::isfinite(t.number)) {
+        diags_.error("E0103", t.location, "number out of range '" + t.text + "'", "use a finite number");
+        throw StatementError{};
+      }
+      return PerceptStmt{w.word, t.number, {}, t.location};
+    }
+    if (t.kind == TokenKind::Word) {
+      next();
+      return PerceptStmt{w.word, std::nullopt, t.text, t.location};
+    }
+    diags_.error("E0201", t.location, std::string("expected a ") + w.word + " number or level, found " + describe(t),
+                 std::string("write ") + w.word + " 0.5 (a ratio-scale number, 1 at the top of its map), or give it "
+                     "physically: " + w.physical);
     throw StatementError{};
   }
 

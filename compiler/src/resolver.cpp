@@ -1,5 +1,6 @@
 #include "sandpaper/compiler/resolver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -9,7 +10,9 @@
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/schema/force_laws.hpp"
 #include "sandpaper/compiler/patterns.hpp"
+#include "sandpaper/compiler/percepts.hpp"
 #include "sandpaper/compiler/thesis_stimuli.hpp"
+#include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::compiler {
 
@@ -53,7 +56,10 @@ Param default_param(double si, std::string why) { return Param{si, std::move(why
 // "library corduroy" or "thesis stimulus barsB15W20_2".
 void inherit(Param& p, const std::string& label) {
   if (p.layer == Layer::Default) return;  // a default stays a default, wherever it came through
-  p.source = label + " (" + (p.location.file ? p.location.str() : p.source) + ")";
+  // A value that came through a map keeps naming it ("... via viscosity-provisional (calibration/...)").
+  const auto via = p.source.find(" via ");
+  const std::string map = p.location.file && via != std::string::npos ? p.source.substr(via) : "";
+  p.source = label + " (" + (p.location.file ? p.location.str() : p.source) + ")" + map;
   p.layer = Layer::Representative;
 }
 void inherit(std::optional<Param>& p, const std::string& label) {
@@ -75,6 +81,10 @@ std::vector<std::string> quantities_set(const Statement& st) {
         if constexpr (std::is_same_v<T, DescribesStmt>) return {"the description"};
         else if constexpr (std::is_same_v<T, LikeStmt>) return {"the library entry to start from"};
         else if constexpr (std::is_same_v<T, RoughnessStmt>) return {"the maximum lateral force"};
+        else if constexpr (std::is_same_v<T, PerceptStmt>) {
+          const PerceptWord* w = find_percept_word(n.word);
+          return {w ? w->quantity : n.word};
+        }
         else if constexpr (std::is_same_v<T, GratingStmt>) {
           std::vector<std::string> q{"the texture"};
           if (n.amplitude) q.push_back("the maximum lateral force");
@@ -114,8 +124,10 @@ class Resolver {
     for (const auto* st : kept)
       if (std::holds_alternative<ExtrapolateStmt>(st->node)) m.extrapolate = true;
     // Perceptual layer.
-    for (const auto* st : kept)
+    for (const auto* st : kept) {
       if (const auto* r = std::get_if<RoughnessStmt>(&st->node)) roughness(*r, m);
+      else if (const auto* p = std::get_if<PerceptStmt>(&st->node)) percept(*p, *st, m);
+    }
     // Physical layer. The file's force laws, if it has any, replace the inherited ones.
     bool own_laws = false;
     for (const auto* st : kept)
@@ -227,6 +239,8 @@ class Resolver {
     inherit(m.roughness, label);
     inherit(m.spring, label);
     inherit(m.damper, label);
+    inherit(m.antiviscous, label);
+    for (auto& t : m.percepts) inherit(t.value, label);
     inherit(m.quantize_bits, label);
     for (auto& law : m.laws)
       for (auto& [name, p] : law.params) inherit(p, label);
@@ -288,7 +302,114 @@ class Resolver {
                      "the prediction is less certain here");
   }
 
+  // A perceptual word through its percept's compile map (compiler/percepts.hpp): the ratio-scale
+  // value, checked against the map's domain, becomes the SI parameter the word sets. Range rules as
+  // for roughness: negative is E0304, above the top of the map's domain E0303 unless `extrapolate`
+  // (then W0303), below its bottom W0301.
+  void percept(const PerceptStmt& s, const Statement& st, ResolvedMaterial& m) {
+    const PerceptWord* w = find_percept_word(s.word);
+    if (!w) throw InternalError("resolver: perceptual word '" + s.word + "' passed the parser but is not in the table");
+    const calibration::PsychophysicalMap* map = ctx_.calibration.compile_map(w->percept);
+    if (!map) {
+      diags_.error("E0320", st.location,
+                   "no map to compile `" + s.word + "` through: the calibration has no map with percept = \"" +
+                       w->percept + "\" and use = \"compile\"",
+                   std::string("add one to calibration/maps/ (docs/CALIBRATION.md), or give it physically: ") + w->physical);
+      return;
+    }
+    double value = 0;
+    std::string stated;
+    if (s.value) {
+      value = *s.value;
+      stated = s.word + " " + fmt_num(value);
+    } else {
+      const calibration::Level* level = nullptr;
+      std::vector<std::string> names;
+      for (const auto* l : ctx_.calibration.levels(w->percept)) {
+        names.push_back(l->name);
+        if (l->name == s.level) level = l;
+      }
+      if (!level) {
+        std::string guess = closest_match(s.level, names), all;
+        for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
+        const std::string number = "give a number, e.g. " + s.word + " 0.5";
+        diags_.error("E0307", s.value_location, "unknown " + s.word + " level '" + s.level + "'",
+                     !guess.empty()  ? "did you mean `" + guess + "`?"
+                     : names.empty() ? s.word + " has no named levels (calibration/levels/ has none for " + w->percept +
+                                           "): " + number
+                                     : "levels are: " + all + " (or " + number + ")");
+        return;
+      }
+      value = level->value;
+      stated = s.word + " " + s.level + " (= " + fmt_num(value) + ")";
+    }
+    const auto shown = [&](double si) { return schema::display_value(si, w->si_unit); };
+    double top = 1, bottom = 0;
+    if (const auto domain = ratio_domain(*map)) {
+      const double a = map->percept_of(domain->min), b = map->percept_of(domain->max);
+      top = std::max(a, b);
+      bottom = std::min(a, b);
+    }
+    const std::string scale = "1 is " + shown(map->reference_si) + " on the " + map->id + " map";
+    if (value < 0 || (value == 0 && w->zero_refused)) {
+      diags_.error("E0304", s.value_location,
+                   s.word + " " + fmt_num(value) + (value < 0 ? " is negative" : std::string(" ") + w->zero_refused),
+                   "give a " + s.word + " above 0 (" + scale + "), or give it physically: " + w->physical);
+      return;
+    }
+    if (value > top * (1 + 1e-9) && !m.extrapolate) {
+      diags_.error("E0303", s.value_location,
+                   s.word + " " + fmt_num(value) + " is above " + fmt_num(top) + ", the top of the " + map->id +
+                       " map's domain (" + shown(map->value_for(top)) + ")",
+                   "use a value up to " + fmt_num(top) + ", or add the statement `extrapolate` to go beyond the map's domain");
+      return;
+    }
+    Param p{map->value_for(value), stated, Layer::Perceptual, s.value_location.str() + " via " + map->provenance(),
+            s.value_location};
+    if (value > top * (1 + 1e-9))
+      diags_.warning("W0303", s.value_location,
+                     s.word + " " + fmt_num(value) + " (" + shown(p.si) + ") extrapolates the " + map->id +
+                         " map beyond the top of its domain (" + shown(map->value_for(top)) + ")");
+    else if (value > 0 && value < bottom * (1 - 1e-9))
+      diags_.warning("W0301", s.value_location,
+                     s.word + " " + fmt_num(value) + " (" + shown(p.si) + ") is below the bottom of the " + map->id +
+                         " map's domain (" + s.word + " " + fmt_num(bottom) + ", " + shown(map->value_for(bottom)) +
+                         "); the map extrapolates",
+                     "the prediction is less certain here");
+    const std::string param = w->parameter;
+    drop_targets(m, param);
+    if (param == "damper.damping") m.damper = p;
+    else if (param == "antiviscous.damping") m.antiviscous = p;
+    else if (param == "spring.stiffness") m.spring = p;
+    else if (param == "texture.period") {
+      // The period of the grating this file inherits (its other parameters kept), or a new grating.
+      ResolvedGrating g;
+      if (const auto* base = std::get_if<ResolvedGrating>(&m.texture)) g = *base;
+      else {
+        g.hill = default_param(0.5, "50% (thesis 3.5.2: hill 128 px, valley 128 px)");
+        g.orientation = default_param(0.0, "0 deg (ribs across x)");
+      }
+      g.period = p;
+      g.location = st.location;
+      m.texture = g;
+    } else throw InternalError("resolver: no parameter '" + param + "' for perceptual word '" + s.word + "'");
+    m.percepts.push_back({s.word, w->percept, param,
+                          Param{value, stated, Layer::Perceptual, s.value_location.str(), s.value_location}, map->id,
+                          map->file, map->provisional});
+  }
+
+  // Forgets the perceptual targets that set `parameter`, when something else now sets it.
+  static void drop_targets(ResolvedMaterial& m, const std::string& parameter) {
+    std::erase_if(m.percepts, [&](const PerceptTarget& t) { return t.parameter == parameter; });
+  }
+
   void physical(const Statement& st, ResolvedMaterial& m) {
+    // What the file states physically beats a perceptual target it inherits for the same parameter.
+    if (std::holds_alternative<SpringStmt>(st.node)) drop_targets(m, "spring.stiffness");
+    else if (std::holds_alternative<DamperStmt>(st.node)) drop_targets(m, "damper.damping");
+    else if (std::holds_alternative<GratingStmt>(st.node) || std::holds_alternative<HeightmapStmt>(st.node) ||
+             std::holds_alternative<PatternStmt>(st.node))
+      drop_targets(m, "texture.period");
     if (const auto* g = std::get_if<GratingStmt>(&st.node)) grating(*g, st, m);
     else if (const auto* l = std::get_if<LawStmt>(&st.node)) law(*l, st, m);
     else if (const auto* e = std::get_if<EnergyStmt>(&st.node)) {
@@ -588,7 +709,7 @@ class Resolver {
     bool has_force_law = false;
     for (const auto& l : m.laws)
       if (l.name != "Nothing" && l.name != "Null") has_force_law = true;
-    if (!has_texture && !m.spring && !m.damper && !has_force_law && !diags_.has_errors())
+    if (!has_texture && !m.spring && !m.damper && !m.antiviscous && !has_force_law && !diags_.has_errors())
       diags_.warning("W0305", syn_.name_location.file ? syn_.name_location : SourceLocation{syn_.file, 1, 1, 1},
                      "the material has no force terms; it will feel like nothing",
                      "add a texture, a spring or a damper");

@@ -185,6 +185,34 @@ expect_exit 1 "array of an unknown channel" -- "$sp" array tests/golden/diagnost
 has "$tmp/err" "its channels are R, G, B, height" "array lists the channels"
 expect_exit 2 "array output not .depth" -- "$sp" array library/images/brick.png --size 80mm -o "$tmp/b.png"
 expect_exit 2 "array size without unit" -- "$sp" array library/images/brick.png --size 80 -o "$tmp/b.depth"
+
+# Perceptual words beyond roughness (issue 4): every output that uses a provisional map says so.
+expect_exit 0 "compile perceptual words --json" -- "$sp" compile examples/perceptual-words.hmat -o "$tmp/pw.patch" --json
+has "$tmp/out" '"code": "W0320"' "compile --json carries the provisional warning"
+has "$tmp/out" 'provisional map viscosity-provisional \(calibration/maps/viscosity-provisional.toml\)' "the warning names map and file"
+has "$tmp/out" '"source": "[^"]* via softness-provisional \(calibration/maps/softness-provisional.toml\)"' "provenance names map and file"
+has "$tmp/err" 'warning\[W0320\]: `bumpiness 0.6`' "compile prints the warning"
+expect_exit 0 "inspect the perceptual patch" -- "$sp" inspect "$tmp/pw.patch"
+has "$tmp/out" 'warning W0320' "the patch file keeps the warning"
+expect_exit 0 "run the perceptual patch" -- "$sp" run "$tmp/pw.patch" --device sim --virtual-clock --duration 0.2
+has "$tmp/err" 'warning\[W0320\]: .*softness-provisional' "run of a .patch shows its provisional warnings"
+expect_exit 0 "explain slipperiness" -- "$sp" explain -e "slipperiness 0.3"
+has "$tmp/out" 'PROVISIONAL map slipperiness-provisional' "explain names the provisional map"
+has "$tmp/out" 'W0320 .*slipperiness-provisional' "explain lists the warning"
+has "$tmp/out" 'W0306' "slipperiness is not passive"
+expect_exit 0 "run viscosity on sim" -- "$sp" run -e "viscosity 0.5" --device sim --virtual-clock --duration 0.5 --hand circle --json
+has "$tmp/err" 'W0320.*viscosity-provisional' "run shows the provisional warning"
+has "$tmp/out" '"stop_reason": "completed"' "viscosity plays"
+expect_exit 0 "roughness alone" -- "$sp" compile -e "grating period 2 mm; roughness 0.5" --json
+if grep -q W0320 "$tmp/out" "$tmp/err"; then bad "the measured roughness map warned provisional"; else ok; fi
+expect_exit 1 "viscosity above its map" -- "$sp" compile -e "viscosity 1.5"
+has "$tmp/err" 'E0303.*top of the viscosity-provisional' "above the domain is an error"
+has "$tmp/err" 'extrapolate' "the error says how to go beyond"
+expect_exit 1 "misspelt perceptual word" -- "$sp" compile -e "stickyness 0.3"
+has "$tmp/err" 'did you mean `stickiness`' "perceptual word suggestion"
+expect_exit 1 "softness and spring in one file" -- "$sp" compile -e "softness 0.5; spring 40 N/m"
+has "$tmp/err" 'E0302' "perceptual and physical for one parameter conflict"
+
 [ "$(ls -A "$tmp" | grep -c tmp-)" -eq 0 ] && ok || bad "temporary files left behind"
 
 # Calibration fits (issue 4): a map from magnitude estimates, a device file from force-gauge readings

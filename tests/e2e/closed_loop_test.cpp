@@ -112,3 +112,35 @@ TEST(ClosedLoopLibrary, ForceIsSpatialNotTemporal) {
   EXPECT_NEAR(a.report.max_lateral_force_N, b.report.max_lateral_force_N, 0.01 * b.report.max_lateral_force_N);
   EXPECT_NEAR(b.report.max_lateral_force_N, 400 * 0.490909 * 0.00980665, 0.005);  // a10p25: 400 ju (Table 8)
 }
+
+// `bumpiness 0.6` is a grating whose period the bumpiness-provisional map gives: 10 mm x 0.6^2 =
+// 3.6 mm, restated from the map file's law. A slow scan finds the walls that push the hand one way
+// (force x above half its peak) and measures how far apart they lie.
+TEST(ClosedLoopPercepts, BumpinessPlaysItsSpatialPeriod) {
+  auto r = test::shipped_compiler().compile_text("bumpiness 0.6; roughness 0.4");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  runtime::HandScript scan;
+  scan.path = runtime::HandPath::Scan;
+  scan.speed_m_s = 0.005;
+  scan.amplitude_m = 0.009;
+  auto played = play(*r.program, scan, 8.0);
+  ASSERT_EQ(played.report.stop_reason, "completed");
+  const double peak = played.report.max_lateral_force_N;
+  ASSERT_GT(peak, 0);
+  // Centres of the runs of ticks with F_x > peak / 2 while the hand moves toward +x.
+  std::vector<double> centres;
+  double sum = 0;
+  int n = 0;
+  for (std::size_t k = 1; k < played.records.size(); ++k) {
+    const auto& t = played.records[k];
+    const bool in = t.force_N.x > 0.5 * peak && t.position_m.x > played.records[k - 1].position_m.x;
+    if (in) sum += t.position_m.x, ++n;
+    else if (n > 0) centres.push_back(sum / n), sum = 0, n = 0;
+  }
+  std::sort(centres.begin(), centres.end());
+  std::vector<double> walls;  // the same wall met on several sweeps is one wall
+  for (double c : centres)
+    if (walls.empty() || c - walls.back() > 0.5e-3) walls.push_back(c);
+  ASSERT_GE(walls.size(), 4u);
+  for (std::size_t i = 1; i < walls.size(); ++i) EXPECT_NEAR(walls[i] - walls[i - 1], 0.0036, 0.02e-3) << "wall " << i;
+}

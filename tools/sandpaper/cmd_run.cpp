@@ -78,6 +78,9 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
   auto in = load_input(o, c, /*allow_patch=*/true);
   if (!in) return kExitBadInput;
   const auto& prog = in->program;
+  // A compiled .patch keeps its warnings (e.g. W0320, a provisional map): show them as compiling would.
+  if (!in->compile)
+    for (const auto& w : prog.warnings) std::cerr << "warning[" << w.code << "]: " << w.message << "\n";
   if (prog.device != o.device) {
     std::cerr << "sandpaper: error: " << o.file << " was compiled for device '" << prog.device << "', not '" << o.device
               << "'; recompile it with --device " << o.device << "\n";

@@ -79,6 +79,18 @@ struct ResolvedPattern {
   SourceLocation location;                 // the pattern statement
 };
 
+// A perceptual target other than roughness (compiler/percepts.hpp): the ratio-scale value asked
+// for, the parameter it set and the map it went through.
+struct PerceptTarget {
+  std::string word;       // as written: "stickiness"
+  std::string percept;    // "viscosity"
+  std::string parameter;  // what it set: "damper.damping", "antiviscous.damping", "spring.stiffness", "texture.period"
+  Param value;            // the ratio-scale number, stated "stickiness 0.4"
+  std::string map_id;     // "viscosity-provisional"
+  std::string map_file;   // "calibration/maps/viscosity-provisional.toml"
+  bool provisional = false;  // the map is not yet measured: every output warns W0320
+};
+
 struct ResolvedMaterial {
   std::string name;
   std::string describes;
@@ -91,6 +103,8 @@ struct ResolvedMaterial {
   std::optional<Param> roughness;          // the ratio-scale roughness asked for, if any
   std::optional<Param> spring;             // N/m
   std::optional<Param> damper;             // N*s/m
+  std::optional<Param> antiviscous;        // N*s/m: b of F = +b v (`slipperiness`; Appendix B AntiViscous)
+  std::vector<PerceptTarget> percepts;     // viscosity, slipperiness, softness, bumpiness targets
   std::vector<ResolvedLaw> laws;           // force laws and physics models, summed in order
   std::optional<Param> energy_budget;      // J, for non-passive laws
   std::optional<Param> energy_refill;      // W

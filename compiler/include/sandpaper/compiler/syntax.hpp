@@ -31,6 +31,15 @@ struct RoughnessStmt {
   std::string level;
   SourceLocation value_location;
 };
+// Perceptual, through a percept's compile map (compiler/percepts.hpp): `viscosity 0.4`,
+// `stickiness 0.4`, `slipperiness 0.3`, `softness 0.5`, `springiness 0.5`, `bumpiness 0.6`; a ratio-scale
+// number or a named level of that percept.
+struct PerceptStmt {
+  std::string word;      // as written: "stickiness"
+  std::optional<double> value;
+  std::string level;
+  SourceLocation value_location;
+};
 // Physical: a grating (thesis 3.5.2 version-2 recipe).
 struct GratingStmt {
   Quantity period;
@@ -92,7 +101,7 @@ struct EnergyStmt {
 
 using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, GratingStmt, HeightmapStmt, SpringStmt,
                                    DamperStmt, SizeStmt, ExtrapolateStmt, LawStmt, EnergyStmt, PatternStmt,
-                                   QuantizeStmt>;
+                                   QuantizeStmt, PerceptStmt>;
 
 struct Statement {
   StatementNode node;

@@ -1,0 +1,336 @@
+// The perceptual words besides roughness (issue 4): viscosity/stickiness, slipperiness,
+// softness/springiness and bumpiness, each through its provisional map in calibration/maps/.
+// Resolution is checked against the map read here from its own file (calibration::load_map_file)
+// and against the law restated from the file's comments; every use of a provisional map must warn
+// W0320 in the diagnostics, the program's warnings, the JSON and explain.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "sandpaper/compiler/explain.hpp"
+#include "sandpaper/schema/patch_json.hpp"
+#include "test_support.hpp"
+
+using namespace sandpaper;
+using compiler::Severity;
+using test::provenance;
+namespace fs = std::filesystem;
+
+namespace {
+
+calibration::PsychophysicalMap map_file(const std::string& id) {
+  return calibration::load_map_file(std::string(SANDPAPER_SOURCE_DIR) + "/calibration/maps/" + id + ".toml");
+}
+
+compiler::CompileResult compile(const std::string& text) { return test::shipped_compiler().compile_text(text); }
+
+std::size_t count(const std::vector<std::string>& xs, const std::string& x) {
+  return static_cast<std::size_t>(std::count(xs.begin(), xs.end(), x));
+}
+
+struct Word {
+  const char* word;
+  const char* map;        // map id
+  const char* parameter;  // provenance name of what it sets
+  const char* target;     // provenance name of the ratio-scale target
+};
+const Word kWords[] = {
+    {"viscosity", "viscosity-provisional", "damper.damping", "damper.viscosity_target"},
+    {"stickiness", "viscosity-provisional", "damper.damping", "damper.viscosity_target"},
+    {"slipperiness", "slipperiness-provisional", "antiviscous.damping", "antiviscous.slipperiness_target"},
+    {"softness", "softness-provisional", "spring.stiffness", "spring.softness_target"},
+    {"springiness", "softness-provisional", "spring.stiffness", "spring.softness_target"},
+    {"bumpiness", "bumpiness-provisional", "texture.period", "texture.bumpiness_target"},
+};
+
+// A material text that compiles with `word value` (bumpiness needs a force for its grating).
+std::string material(const Word& w, double value) {
+  std::string text = std::string(w.word) + " " + std::to_string(value);
+  if (std::string(w.word) == "bumpiness") text += "; roughness 0.4";
+  return text;
+}
+
+}  // namespace
+
+TEST(PerceptMaps, ShippedProvisionalMapsAreTheCompileMaps) {
+  const auto& cal = test::shipped_compiler().calibration();
+  for (const char* percept : {"viscosity", "slipperiness", "softness", "bumpiness"}) {
+    SCOPED_TRACE(percept);
+    const auto* m = cal.compile_map(percept);
+    ASSERT_NE(m, nullptr);
+    EXPECT_TRUE(m->provisional);
+    EXPECT_EQ(m->id, std::string(percept) + "-provisional");
+    EXPECT_EQ(m->file, "calibration/maps/" + std::string(percept) + "-provisional.toml");
+    EXPECT_FALSE(m->citation.empty());
+    // Percept 1 lies at one end of the map's domain: the ratio scale and the domain agree.
+    const auto* d = m->damping ? &*m->damping : m->stiffness ? &*m->stiffness : m->period ? &*m->period : nullptr;
+    ASSERT_NE(d, nullptr);
+    EXPECT_NEAR(std::max(m->percept_of(d->min), m->percept_of(d->max)), 1.0, 1e-12);
+  }
+  EXPECT_FALSE(cal.roughness_map().provisional);
+}
+
+// The exponents and references, restated from the map files' comments and sources (Stevens and
+// Guirao 1964; Stevens's table, hardness 0.8 inverted; designed for slipperiness and bumpiness).
+TEST(PerceptMaps, FilesStateTheDocumentedLaws) {
+  struct Law { const char* id; double slope, reference_si; };
+  for (const Law& l : {Law{"viscosity-provisional", 0.42, 10.0}, Law{"softness-provisional", -0.8, 20.0},
+                       Law{"slipperiness-provisional", 1.0, 3.0}, Law{"bumpiness-provisional", 0.5, 0.010}}) {
+    SCOPED_TRACE(l.id);
+    const auto m = map_file(l.id);
+    EXPECT_DOUBLE_EQ(m.slope, l.slope);
+    EXPECT_NEAR(m.reference_si, l.reference_si, 1e-12 * l.reference_si);
+  }
+  // The bumpiness map's anchor: the 2.5 mm transition of thesis 6.3.6 at bumpiness 0.5.
+  EXPECT_NEAR(map_file("bumpiness-provisional").percept_of(0.0025), 0.5, 1e-12);
+}
+
+TEST(PerceptResolution, ValueBecomesTheParameterTheMapGives) {
+  for (const Word& w : kWords) {
+    const auto m = map_file(w.map);
+    for (double value : {0.3, 0.5, 0.8, 1.0}) {
+      SCOPED_TRACE(std::string(w.word) + " " + std::to_string(value));
+      auto r = compile(material(w, value));
+      ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+      const auto& pv = provenance(*r.program, w.parameter);
+      EXPECT_NEAR(pv.value_si, m.value_for(value), 1e-12 * m.value_for(value));
+      EXPECT_EQ(pv.layer, "perceptual");
+      EXPECT_NEAR(provenance(*r.program, w.target).value_si, value, 1e-12);
+    }
+  }
+}
+
+TEST(PerceptResolution, NumbersAgreeWithTheLawsRestated) {
+  auto v = compile("viscosity 0.5");
+  ASSERT_TRUE(v.ok());
+  EXPECT_NEAR(provenance(*v.program, "damper.damping").value_si, 10 * std::pow(0.5, 1 / 0.42), 1e-12);  // 1.92 N*s/m
+  auto s = compile("softness 0.5");
+  ASSERT_TRUE(s.ok());
+  EXPECT_NEAR(provenance(*s.program, "spring.stiffness").value_si, 20 * std::pow(0.5, -1 / 0.8), 1e-9);  // 47.6 N/m
+  auto b = compile("bumpiness 0.6; roughness 0.4");
+  ASSERT_TRUE(b.ok());
+  EXPECT_NEAR(provenance(*b.program, "texture.period").value_si, 0.0036, 1e-12);
+  auto sl = compile("slipperiness 0.3");
+  ASSERT_TRUE(sl.ok());
+  EXPECT_NEAR(provenance(*sl.program, "antiviscous.damping").value_si, 0.9, 1e-12);
+}
+
+TEST(PerceptResolution, AliasesAreTheSameContinuum) {
+  auto a = compile("viscosity 0.4"), b = compile("stickiness 0.4");
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_DOUBLE_EQ(provenance(*a.program, "damper.damping").value_si, provenance(*b.program, "damper.damping").value_si);
+  auto c = compile("softness 0.4"), d = compile("springiness 0.4");
+  ASSERT_TRUE(c.ok() && d.ok());
+  EXPECT_DOUBLE_EQ(provenance(*c.program, "spring.stiffness").value_si,
+                   provenance(*d.program, "spring.stiffness").value_si);
+  // Softer is a weaker spring: the map's slope is negative.
+  auto softer = compile("softness 0.8");
+  ASSERT_TRUE(softer.ok());
+  EXPECT_LT(provenance(*softer.program, "spring.stiffness").value_si, provenance(*c.program, "spring.stiffness").value_si);
+}
+
+TEST(PerceptResolution, SlipperinessIsAntiViscousDampingWithAnEnergyBound) {
+  auto r = compile("slipperiness 0.5");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  ASSERT_EQ(r.program->terms.size(), 1u);
+  const auto* d = std::get_if<schema::DamperTerm>(&r.program->terms[0]);
+  ASSERT_NE(d, nullptr);
+  EXPECT_NEAR(d->damping_Ns_per_m, -1.5, 1e-12);
+  EXPECT_FALSE(schema::is_passive(r.program->terms[0]));
+  EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0306"), 1u);
+  EXPECT_DOUBLE_EQ(r.program->energy_budget_J, 0.05);  // the defaults of docs/RUNTIME.md
+  EXPECT_DOUBLE_EQ(r.program->energy_refill_W, 0.01);
+}
+
+TEST(PerceptResolution, BumpinessSetsTheInheritedGratingsPeriodOnly) {
+  // library/corduroy.hmat: grating period 3.2 mm hill 60%, roughness 0.45.
+  auto r = compile("like corduroy; bumpiness 0.3");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NEAR(provenance(*r.program, "texture.period").value_si, 0.010 * 0.09, 1e-12);
+  EXPECT_EQ(provenance(*r.program, "texture.period").layer, "perceptual");
+  EXPECT_DOUBLE_EQ(provenance(*r.program, "texture.hill").value_si, 0.6);
+  EXPECT_EQ(provenance(*r.program, "texture.hill").layer, "representative");
+  // Without a force the grating it makes has none: the same error as a grating statement.
+  EXPECT_EQ(test::codes(compile("bumpiness 0.6")), std::vector<std::string>{"E0308"});
+}
+
+TEST(PerceptResolution, PhysicalStatementForTheSameParameterInOneFileIsAConflict) {
+  for (const char* text : {"viscosity 0.4; damper 2 N*s/m", "stickiness 0.4; viscosity 0.3", "softness 0.5; spring 50 N/m",
+                           "springiness 0.5; softness 0.5", "bumpiness 0.5; grating period 2 mm; roughness 0.3",
+                           "bumpiness 0.5; pattern perlin feature 5 mm; roughness 0.3", "slipperiness 0.2; slipperiness 0.3"}) {
+    SCOPED_TRACE(text);
+    auto r = compile(text);
+    EXPECT_EQ(test::codes(r), std::vector<std::string>{"E0302"});
+  }
+  // A force law is a term of its own and sums with slipperiness, as with `damper` and `force Viscous`.
+  EXPECT_TRUE(compile("slipperiness 0.2; force AntiViscous damping 1 N*s/m").ok());
+}
+
+TEST(PerceptResolution, FileBeatsWhatItInheritsEitherWay) {
+  auto dir = test::temp_dir("percept-library");
+  std::ofstream(dir + "/honey.hmat") << "material \"honey\" {\n  viscosity 0.8\n  softness 0.5\n}\n";
+  compiler::CompileOptions o;
+  o.library_dir = dir;
+  o.calibration_dir = std::string(SANDPAPER_SOURCE_DIR) + "/calibration";
+  compiler::Compiler c(o);
+  const auto visc = map_file("viscosity-provisional");
+
+  // Inherited: the target and its warning come along, the provenance still names the map and file.
+  auto inherited = c.compile_text("like honey");
+  ASSERT_TRUE(inherited.ok()) << compiler::format_diagnostics(inherited.diagnostics);
+  const auto& damping = provenance(*inherited.program, "damper.damping");
+  EXPECT_NEAR(damping.value_si, visc.value_for(0.8), 1e-12);
+  EXPECT_EQ(damping.layer, "representative");
+  EXPECT_NE(damping.source.find("library honey"), std::string::npos) << damping.source;
+  EXPECT_NE(damping.source.find("via viscosity-provisional (calibration/maps/viscosity-provisional.toml)"),
+            std::string::npos)
+      << damping.source;
+  EXPECT_EQ(count(test::codes(inherited, Severity::Warning), "W0320"), 2u);
+
+  // The file's physical damper beats the inherited viscosity: no viscosity target, no viscosity warning.
+  auto physical = c.compile_text("like honey; damper 2 N*s/m");
+  ASSERT_TRUE(physical.ok());
+  EXPECT_DOUBLE_EQ(provenance(*physical.program, "damper.damping").value_si, 2.0);
+  EXPECT_EQ(provenance(*physical.program, "damper.damping").layer, "physical");
+  for (const auto& pv : physical.program->provenance) EXPECT_NE(pv.parameter, "damper.viscosity_target");
+  EXPECT_EQ(count(test::codes(physical, Severity::Warning), "W0320"), 1u);  // softness is still inherited
+}
+
+TEST(PerceptResolution, FilesViscosityBeatsInheritedDamper) {
+  // library/silk-satin.hmat states damper 0.5 N*s/m.
+  auto r = compile("like silk-satin; viscosity 0.2");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NEAR(provenance(*r.program, "damper.damping").value_si, map_file("viscosity-provisional").value_for(0.2), 1e-12);
+  EXPECT_EQ(provenance(*r.program, "damper.damping").layer, "perceptual");
+}
+
+TEST(PerceptDiagnostics, OutOfRangeValuesAreErrorsThatSayWhatToWrite) {
+  struct Case { const char* text; const char* code; const char* in_message; };
+  for (const Case& c : {Case{"viscosity -0.2", "E0304", "negative"}, Case{"softness 0", "E0304", "infinitely stiff"},
+                        Case{"bumpiness 0; roughness 0.3", "E0304", "period 0"},
+                        Case{"viscosity 1.2", "E0303", "top of the viscosity-provisional map's domain"},
+                        Case{"slipperiness 2", "E0303", "above 1"}, Case{"softness 1.5", "E0303", "above 1"},
+                        Case{"viscosity thick", "E0307", "unknown viscosity level"},
+                        Case{"springiness 0.5 N/m", "E0205", "takes no unit"}, Case{"viscosty 0.4", "E0202", "viscosty"}}) {
+    SCOPED_TRACE(c.text);
+    auto r = compile(c.text);
+    ASSERT_EQ(test::codes(r), std::vector<std::string>{c.code}) << compiler::format_diagnostics(r.diagnostics);
+    EXPECT_NE(r.diagnostics.all()[0].message.find(c.in_message), std::string::npos) << r.diagnostics.all()[0].message;
+    EXPECT_FALSE(r.diagnostics.all()[0].suggestion.empty());
+  }
+  EXPECT_EQ(compile("viscosty 0.4").diagnostics.all()[0].suggestion, "did you mean `viscosity`?");
+  EXPECT_EQ(compile("slipperyness 0.4").diagnostics.all()[0].suggestion, "did you mean `slipperiness`?");
+  // Zero damping is allowed: no damper force.
+  auto zero = compile("viscosity 0");
+  ASSERT_TRUE(zero.ok());
+  EXPECT_DOUBLE_EQ(provenance(*zero.program, "damper.damping").value_si, 0.0);
+}
+
+TEST(PerceptDiagnostics, ExtrapolationWarns) {
+  auto above = compile("viscosity 1.2; extrapolate");
+  ASSERT_TRUE(above.ok());
+  EXPECT_EQ(count(test::codes(above, Severity::Warning), "W0303"), 1u);
+  EXPECT_NEAR(provenance(*above.program, "damper.damping").value_si, 10 * std::pow(1.2, 1 / 0.42), 1e-9);
+  // Below the domain: softness 0.1 is a spring stiffer than the map's 200 N/m.
+  auto below = compile("softness 0.1");
+  ASSERT_TRUE(below.ok());
+  EXPECT_EQ(count(test::codes(below, Severity::Warning), "W0301"), 1u);
+  auto inside = compile("softness 0.5");
+  ASSERT_TRUE(inside.ok());
+  EXPECT_EQ(count(test::codes(inside, Severity::Warning), "W0301"), 0u);
+}
+
+TEST(PerceptWarnings, EveryProvisionalMapWarnsInEveryOutput) {
+  const auto& c = test::shipped_compiler();
+  for (const Word& w : kWords) {
+    SCOPED_TRACE(w.word);
+    auto r = compile(material(w, 0.5));
+    ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+    const std::string file = std::string("calibration/maps/") + w.map + ".toml";
+    // Diagnostics (what `compile` prints on stderr).
+    ASSERT_EQ(count(test::codes(r, Severity::Warning), "W0320"), 1u);
+    for (const auto& d : r.diagnostics.all())
+      if (d.code == "W0320") {
+        EXPECT_NE(d.message.find(std::string("provisional map ") + w.map), std::string::npos) << d.message;
+        EXPECT_NE(d.message.find(file), std::string::npos) << d.message;
+      }
+    // The patch program's warnings, and so `compile --json`, `inspect` and `run`.
+    bool in_program = false;
+    for (const auto& pw : r.program->warnings) in_program |= pw.code == "W0320" && pw.message.find(w.map) != std::string::npos;
+    EXPECT_TRUE(in_program);
+    EXPECT_NE(schema::to_json(*r.program).dump().find("W0320"), std::string::npos);
+    // explain's text: the warning, and the map named beside the percept.
+    const auto text = compiler::explain_text(*r.material, *r.program, c.calibration(), c.device());
+    EXPECT_NE(text.find("W0320"), std::string::npos);
+    EXPECT_NE(text.find(std::string("PROVISIONAL map ") + w.map + ", " + file), std::string::npos) << text;
+    // Provenance names the map and its file.
+    EXPECT_NE(provenance(*r.program, w.parameter).source.find(std::string("via ") + w.map + " (" + file + ")"),
+              std::string::npos);
+  }
+}
+
+TEST(PerceptWarnings, RoughnessAloneDoesNotWarnProvisional) {
+  auto r = compile("grating period 2 mm; roughness 0.5");
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0320"), 0u);
+  for (const auto& w : r.program->warnings) EXPECT_NE(w.code, "W0320");
+  const auto& c = test::shipped_compiler();
+  EXPECT_EQ(compiler::explain_text(*r.material, *r.program, c.calibration(), c.device()).find("PROVISIONAL"),
+            std::string::npos);
+}
+
+// A calibration directory of our own: a copy of the shipped one, changed by `edit`.
+class PerceptCalibration : public ::testing::Test {
+ protected:
+  std::string copy_calibration() {
+    auto dir = test::temp_dir("percept-calibration");
+    fs::copy(std::string(SANDPAPER_SOURCE_DIR) + "/calibration", dir + "/calibration", fs::copy_options::recursive);
+    return dir + "/calibration";
+  }
+  compiler::Compiler compiler_on(const std::string& cal) {
+    compiler::CompileOptions o;
+    o.library_dir = std::string(SANDPAPER_SOURCE_DIR) + "/library";
+    o.calibration_dir = cal;
+    return compiler::Compiler(o);
+  }
+};
+
+TEST_F(PerceptCalibration, AWordWithoutAMapIsAnError) {
+  auto cal = copy_calibration();
+  fs::remove(cal + "/maps/viscosity-provisional.toml");
+  auto r = compiler_on(cal).compile_text("viscosity 0.4");
+  ASSERT_EQ(test::codes(r), std::vector<std::string>{"E0320"});
+  EXPECT_NE(r.diagnostics.all()[0].suggestion.find("damper 2 N*s/m"), std::string::npos);
+}
+
+TEST_F(PerceptCalibration, NamedLevelsComeFromTheLevelsFiles) {
+  auto cal = copy_calibration();
+  std::ofstream(cal + "/levels/viscosity-levels.toml")
+      << "schema = \"sandpaper-levels/1\"\npercept = \"viscosity\"\nmap = \"viscosity-provisional\"\n"
+         "[[level]]\nname = \"syrup\"\nvalue = 0.7\nrationale = \"a test level\"\n";
+  auto c = compiler_on(cal);
+  auto r = c.compile_text("stickiness syrup");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NEAR(provenance(*r.program, "damper.damping").value_si, map_file("viscosity-provisional").value_for(0.7), 1e-12);
+  auto typo = c.compile_text("viscosity syrop");
+  ASSERT_EQ(test::codes(typo), std::vector<std::string>{"E0307"});
+  EXPECT_EQ(typo.diagnostics.all()[0].suggestion, "did you mean `syrup`?");
+}
+
+TEST_F(PerceptCalibration, AMeasuredMapDoesNotWarn) {
+  auto cal = copy_calibration();
+  const std::string path = cal + "/maps/viscosity-provisional.toml";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  s.replace(s.find("status = \"provisional\""), std::string("status = \"provisional\"").size(), "status = \"measured\"");
+  std::ofstream(path) << s;
+  auto r = compiler_on(cal).compile_text("viscosity 0.4");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0320"), 0u);
+}
