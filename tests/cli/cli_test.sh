@@ -232,7 +232,7 @@ has "$tmp/fitted.toml" '^reference = "3\.7358 N"$' "fitted map ratio scale at th
 mkdir -p "$tmp/cal" && cp -r calibration/* "$tmp/cal/" && sed -i 's/^use = "compile"/use = "comparison"/' "$tmp/cal/maps/minsky1995-fig19.toml"
 cp "$tmp/fitted.toml" "$tmp/cal/maps/fitted.toml"
 expect_exit 0 "compile through the fitted map" -- "$sp" explain -e "roughness 0.5; grating period 2 mm" --calibration "$tmp/cal"
-has "$tmp/out" 'calibration fitted\)' "the fitted map is the compile map"
+has "$tmp/out" '\(fitted \(cal/maps/fitted.toml\)\)' "the fitted map is the compile map"
 printf 'subject,stimulus,force_N,period_mm,response\nA,s1,0.2,1,2\nA,s2,0.8,2,-5\nA,s3,3.2,5,9\n' >"$tmp/neg.csv"
 cp "$tmp/fitted.toml" "$tmp/fitted.keep"
 expect_exit 1 "calibrate fit refuses a negative estimate" -- "$sp" calibrate fit "$tmp/neg.csv" -o "$tmp/fitted.toml"
@@ -250,7 +250,7 @@ for key in newtons_per_command_unit offset_N r2 max_residual_percent_fs residual
 done
 has "$tmp/cal/devices/openffboard-2axis.toml" '^status = "calibrated"$' "device file is calibrated"
 expect_exit 0 "compile for the calibrated device" -- "$sp" explain -e corduroy --device openffboard-2axis --calibration "$tmp/cal"
-has "$tmp/out" 'openffboard-2axis \(maximum force 8\.333 N\)' "the calibrated device's reach"
+has "$tmp/out" 'openffboard-2axis \(cal/devices/openffboard-2axis.toml\): maximum force 8\.333 N, .*calibrated$' "the calibrated device's reach"
 expect_exit 0 "calibrate device, text" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv
 has "$tmp/out" 'largest residual [0-9.]+ N = [0-9.]+ % of full scale' "device linearity"
 expect_exit 2 "calibrate device -o needs --base" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv -o "$tmp/d.toml"
