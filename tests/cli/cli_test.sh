@@ -98,6 +98,9 @@ expect_exit 2 "rate out of range" -- "$sp" run -e corduroy --device sim --rate 8
 has "$tmp/err" '900' "rate error names the range"
 expect_exit 2 "unknown device" -- "$sp" compile -e corduroy --device phantom
 expect_exit 2 "unwritable trace is refused before playing" -- "$sp" run -e corduroy --virtual-clock --trace /nonexistent-dir/t.csv
+expect_exit 2 "a command without its subcommand is a usage error" -- "$sp" calibrate
+expect_exit 2 "an unknown option is a usage error" -- "$sp" compile -e corduroy --bogus
+expect_exit 0 "--help" -- "$sp" --help
 expect_exit 0 "spring only" -- "$sp" run -e "spring 200 N/m" --device sim --virtual-clock --json
 has "$tmp/out" '"roughness": null' "no roughness without a texture"
 printf 'SNDPATCHgarbage' >"$tmp/broken.patch"

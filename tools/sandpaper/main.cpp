@@ -85,7 +85,14 @@ int main(int argc, char** argv) {
   CalibrateOptions calibrate_opts;
   add_calibrate_command(app, calibrate_opts);
 
-  CLI11_PARSE(app, argc, argv);
+  // CLI11's own exit codes (106 for a missing subcommand, ...) are not ours: any usage error is 2,
+  // --help and --version are 0.
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitUsage;
+  }
   auto needs_input = [&](CLI::App* sub) {
     if (o.file.empty() == o.expression.empty()) {
       std::cerr << "sandpaper " << sub->get_name() << ": give a material file or -e '<expression>' (one of the two)\n";
