@@ -50,7 +50,8 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     std::cout << prog.name << ": ";
     // Without a texture there is no lateral-force roughness to report (issue 2's rule for `run`).
     if (prog.max_lateral_force_N > 0)
-      std::cout << "maximum lateral force " << prog.max_lateral_force_N << " N (" << command_units(prog) << "), roughness "
+      std::cout << "maximum lateral force " << prog.max_lateral_force_N << " N"
+                << (prog.command.command_unit == "N" ? std::string() : " (" + command_units(prog) + ")") << ", roughness "
                 << prog.roughness << ", ";
     else
       std::cout << "no texture, ";
