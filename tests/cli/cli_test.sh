@@ -264,5 +264,13 @@ has "$tmp/err" 'one.csv:2: error: .*one command level' "one command level says w
 cmp -s "$tmp/cal/devices/openffboard-2axis.toml" "$tmp/dev.keep" && ok || bad "a refused device fit changed its output file"
 [ "$(find "$tmp" -name '*tmp-*' | wc -l)" -eq 0 ] && ok || bad "calibrate left temporary files behind"
 
+# USB force-feedback devices (docs/USB_PID.md). This test machine has no USB joystick: both
+# commands must say so and exit 2 (environment), naming the devices they look for.
+expect_exit 2 "devices, none present" -- "$sp" devices
+has "$tmp/err" 'no USB force-feedback device' "devices says there is none"
+has "$tmp/err" 'known devices: openffboard-2axis \(1209:ffb0\)' "devices names the known IDs"
+expect_exit 2 "run --device usb, none present" -- "$sp" run -e corduroy --device usb --duration 0.1
+has "$tmp/err" 'run --device usb: no USB force-feedback device' "run --device usb says why"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
