@@ -252,6 +252,7 @@ for key in newtons_per_command_unit offset_N r2 max_residual_percent_fs residual
   has "$tmp/out" "\"$key\": " "device --json has $key"
 done
 has "$tmp/cal/devices/openffboard-2axis.toml" '^status = "calibrated"$' "device file is calibrated"
+has "$tmp/cal/devices/openffboard-2axis.toml" '^product_id = (65456|0xFFB0)$' "device file keeps the [usb] IDs"
 expect_exit 0 "compile for the calibrated device" -- "$sp" explain -e corduroy --device openffboard-2axis --calibration "$tmp/cal"
 has "$tmp/out" 'openffboard-2axis \(cal/devices/openffboard-2axis.toml\): maximum force 8\.333 N, .*calibrated$' "the calibrated device's reach"
 expect_exit 0 "calibrate device, text" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv
