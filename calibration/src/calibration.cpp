@@ -174,6 +174,8 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
       d.workspace_radius_m = std::min(d.workspace_size_m[0], d.workspace_size_m[1]) / 2;
     } else problems.add(f, *c["workspace"].node(), "a rectangular workspace needs `width` and `height`", "");
   }
+  d.usb_vendor_id = static_cast<int>(c["usb"]["vendor_id"].value_or(std::int64_t{-1}));
+  d.usb_product_id = static_cast<int>(c["usb"]["product_id"].value_or(std::int64_t{-1}));
   d.min_rate_hz = *c["servo_rate_hz"]["min"].value<double>();
   d.max_rate_hz = *c["servo_rate_hz"]["max"].value<double>();
   if (d.min_rate_hz > d.max_rate_hz)

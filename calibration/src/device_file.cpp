@@ -124,6 +124,7 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   out += "[force.y]\nnewtons_per_command_unit = " + toml_float(ay->gain_N_per_unit, 9) + "\n";
   copy_table(out, base, "position");
   copy_table(out, base, "workspace");
+  copy_table(out, base, "usb");
   copy_table(out, base, "servo_rate_hz");
   out += "\n[calibration]\nstatus = \"calibrated\"\n";
   std::string method = "least-squares line force = gain x command + offset fitted to force-gauge readings, per axis";

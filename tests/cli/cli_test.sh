@@ -252,6 +252,7 @@ for key in newtons_per_command_unit offset_N r2 max_residual_percent_fs residual
   has "$tmp/out" "\"$key\": " "device --json has $key"
 done
 has "$tmp/cal/devices/openffboard-2axis.toml" '^status = "calibrated"$' "device file is calibrated"
+has "$tmp/cal/devices/openffboard-2axis.toml" '^product_id = (65456|0xFFB0)$' "device file keeps the [usb] IDs"
 expect_exit 0 "compile for the calibrated device" -- "$sp" explain -e corduroy --device openffboard-2axis --calibration "$tmp/cal"
 has "$tmp/out" 'openffboard-2axis \(cal/devices/openffboard-2axis.toml\): maximum force 8\.333 N, .*calibrated$' "the calibrated device's reach"
 expect_exit 0 "calibrate device, text" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv
@@ -263,6 +264,14 @@ expect_exit 1 "calibrate device refuses one command level" -- "$sp" calibrate de
 has "$tmp/err" 'one.csv:2: error: .*one command level' "one command level says what is missing"
 cmp -s "$tmp/cal/devices/openffboard-2axis.toml" "$tmp/dev.keep" && ok || bad "a refused device fit changed its output file"
 [ "$(find "$tmp" -name '*tmp-*' | wc -l)" -eq 0 ] && ok || bad "calibrate left temporary files behind"
+
+# USB force-feedback devices (docs/USB_PID.md). This test machine has no USB joystick: both
+# commands must say so and exit 2 (environment), naming the devices they look for.
+expect_exit 2 "devices, none present" -- "$sp" devices
+has "$tmp/err" 'no USB force-feedback device' "devices says there is none"
+has "$tmp/err" 'known devices: openffboard-2axis \(1209:ffb0\)' "devices names the known IDs"
+expect_exit 2 "run --device usb, none present" -- "$sp" run -e corduroy --device usb --duration 0.1
+has "$tmp/err" 'run --device usb: no USB force-feedback device' "run --device usb says why"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -42,6 +42,9 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
             double amplitude_mm, const std::string& trace, bool virtual_clock);
 int cmd_inspect(const std::string& file, bool json, bool tables);
+// USB HID PID joysticks (cmd_devices.cpp, docs/USB_PID.md): list them; play on the first one found.
+int cmd_devices(const CommonOptions& o);
+int cmd_run_usb(const CommonOptions& o, double rate_hz, double duration_s);
 int cmd_library(const CommonOptions& o);
 
 // Workspaces (.hws, thesis Appendix B). Options left unset take workspace defaults: a scan through

@@ -34,9 +34,10 @@ std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max
 
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
             double amplitude_mm, const std::string& trace, bool virtual_clock) {
+  if (o.device == "usb") return cmd_run_usb(o, rate_hz, duration_s);
   auto c = make_compiler(o);
   if (o.device != "sim") {
-    std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim runs\n";
+    std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim and --device usb run\n";
     return kExitUsage;
   }
   const auto& dev = c.device();

@@ -15,7 +15,7 @@ void add_common(CLI::App* sub, sandpaper::cli::CommonOptions& o, bool input) {
     sub->add_option("file", o.file, "material file (.hmat) or workspace (.hws)");
     sub->add_option("-e,--expression", o.expression, "material as one line: statements separated by ';', or a library name");
   }
-  sub->add_option("--device", o.device, "device calibration to compile for (calibration/devices/)")->capture_default_str();
+  sub->add_option("--device", o.device, "device calibration to compile for (calibration/devices/); run also takes usb: the first HID PID joystick found")->capture_default_str();
   sub->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY or the shipped library/)");
   sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
   sub->add_flag("--json", o.json, "print one JSON object instead of text");
@@ -82,6 +82,9 @@ int main(int argc, char** argv) {
   array->add_option("-o,--output", ao.output, "height array to write (.depth)")->required();
   array->add_option("--shade", ao.shade, "also write the shaded picture, lit from the upper left (.shade)");
 
+  auto* devices = app.add_subcommand("devices", "list the USB force-feedback (HID PID) joysticks present");
+  devices->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+
   CalibrateOptions calibrate_opts;
   add_calibrate_command(app, calibrate_opts);
 
@@ -130,6 +133,7 @@ int main(int argc, char** argv) {
     if (inspect->parsed()) return cmd_inspect(patch_file, o.json, tables);
     if (library->parsed()) return cmd_library(o);
     if (array->parsed()) return cmd_array(ao);
+    if (devices->parsed()) return cmd_devices(o);
     if (const int rc = cmd_calibrate(calibrate_opts); rc >= 0) return rc;
   } catch (const sandpaper::schema::PatchFormatError& e) {
     std::cerr << "sandpaper: error: " << e.what() << "\n";

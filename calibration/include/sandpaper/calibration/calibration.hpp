@@ -106,6 +106,7 @@ struct DeviceCalibration {
   double workspace_radius_m = 0;     // circle: radius; rectangle: half the smaller side
   double workspace_size_m[2] = {0, 0};  // rectangle width, height (circle: the diameter twice)
   double min_rate_hz = 0, max_rate_hz = 0;
+  int usb_vendor_id = -1, usb_product_id = -1;  // [usb] table of a USB HID PID device; -1: not a USB device
   CalibrationStatus status = CalibrationStatus::Uncalibrated;
   std::string calibration_method, calibration_source;
 

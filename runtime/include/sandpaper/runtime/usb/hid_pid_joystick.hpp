@@ -1,0 +1,109 @@
+#pragma once
+// A USB HID PID force-feedback joystick (USB HID PID 1.0) as a servo-loop Device: one constant-force
+// effect per axis, streamed with Set Constant Force every tick; position from the input reports.
+// The reference device is the OpenFFBoard as a 2-axis joystick (calibration/devices/openffboard-2axis.toml).
+// Reports, order, rate and assumptions: docs/USB_PID.md.
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/runtime/device.hpp"
+#include "sandpaper/runtime/usb/hid_descriptor.hpp"
+#include "sandpaper/runtime/usb/transport.hpp"
+
+namespace sandpaper::runtime::usb {
+
+// Why the driver stopped playing; the stop report names it (to_string).
+enum class DeviceFault {
+  None,
+  ReadTimeout,   // no position report for longer than HidPidOptions::stale_limit_s
+  ReadFailed,    // the input transfer failed (not a timeout, not an unplug)
+  WriteFailed,   // a Set Constant Force transfer failed
+  Unplugged,     // the transport reported no device
+};
+const char* to_string(DeviceFault fault) noexcept;
+
+struct HidPidOptions {
+  unsigned read_timeout_ms = 1;     // longest wait for an input report per tick (a 1 kHz endpoint reports every 1 ms)
+  double stale_limit_s = 0.05;      // longest time without a position report before the read fails
+  unsigned open_read_timeout_ms = 500;  // wait for the first position report while opening
+};
+
+// Thrown when the device cannot be opened: the status names the transport's cause (NoDevice,
+// AccessDenied, ...; Other for a descriptor without the reports the driver needs). The device has
+// been given back (effects freed, interface released, kernel driver reattached) before it is thrown.
+struct HidPidError : std::runtime_error {
+  HidPidError(UsbStatus s, const std::string& what) : std::runtime_error(what), status(s) {}
+  UsbStatus status;
+};
+
+class HidPidJoystick final : public Device {
+ public:
+  // Opens the device on `transport` (which must outlive this object) and creates the effects
+  // (sequence in docs/USB_PID.md). Newtons become command units through `calibration`'s axis
+  // scales; position logical ranges map onto its workspace width and height (centre = 0 m).
+  // Throws HidPidError.
+  HidPidJoystick(UsbTransport& transport, const calibration::DeviceCalibration& calibration,
+                 HidPidOptions options = {});
+  ~HidPidJoystick() override;
+  HidPidJoystick(const HidPidJoystick&) = delete;
+  HidPidJoystick& operator=(const HidPidJoystick&) = delete;
+
+  const DeviceLimits& limits() const noexcept override { return limits_; }
+  // Reads one input report (waiting at most read_timeout_ms); returns the latest position (m).
+  // False, with fault() set, when unplugged, on a failed transfer, or when stale.
+  bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override;
+  // Sends Set Constant Force for X then Y: magnitude = calibration command units for the force (N),
+  // rounded and clamped to the Magnitude field's logical range and to +-command_max.
+  bool write_force_rt(glm::dvec2 force_N) noexcept override;
+
+  // The shutdown sequence (zero force, stop, free, stop all, disable actuators, release, reattach);
+  // best effort, each step tried whatever the previous returned. Idempotent; the destructor calls it.
+  void close() noexcept;
+
+  DeviceFault fault() const noexcept { return fault_; }
+  UsbStatus fault_status() const noexcept { return fault_status_; }
+  std::uint8_t effect_block_index(int axis) const noexcept { return block_index_[static_cast<std::size_t>(axis)]; }
+  const HidReportDescriptor& descriptor() const noexcept { return descriptor_; }
+  // Last commanded magnitudes (command units), X and Y.
+  std::array<std::int32_t, 2> last_command() const noexcept { return last_command_; }
+
+ private:
+  static constexpr std::size_t kMaxReport = 64;  // full-speed interrupt packet
+  using Buffer = std::array<std::uint8_t, kMaxReport>;
+
+  void open();
+  void device_control(std::uint32_t command_usage);
+  void create_effect(int axis);
+  std::span<const std::uint8_t> report(const Buffer& b, std::size_t bytes) const { return {b.data(), bytes}; }
+  bool send_constant_force_rt(int axis, std::int32_t magnitude) noexcept;
+  bool decode_position(std::span<const std::uint8_t> report, glm::dvec2& position_m) const noexcept;
+  [[noreturn]] void fail_open(UsbStatus status, const std::string& what);
+
+  UsbTransport& transport_;
+  calibration::DeviceCalibration calibration_;
+  HidPidOptions options_;
+  DeviceLimits limits_;
+  HidReportDescriptor descriptor_;
+  bool ids_ = false;
+
+  // Fields the driver uses, copied out of the descriptor at open.
+  HidField x_, y_;                     // input
+  HidField magnitude_, cf_block_;      // Set Constant Force
+  std::size_t cf_bytes_ = 0;
+  std::array<Buffer, 2> cf_report_{};  // preformatted per axis; only the magnitude changes per tick
+  Buffer input_{};
+
+  bool detached_ = false, claimed_ = false, closed_ = false, actuators_enabled_ = false;
+  std::array<std::uint8_t, 2> block_index_{0, 0};  // 0: no effect created
+  std::array<bool, 2> started_{false, false};
+  std::array<std::int32_t, 2> last_command_{0, 0};
+  glm::dvec2 position_m_{0, 0};
+  double last_report_t_s_ = 0;
+  bool have_time_ = false;
+  DeviceFault fault_ = DeviceFault::None;
+  UsbStatus fault_status_ = UsbStatus::Ok;
+};
+
+}  // namespace sandpaper::runtime::usb

@@ -1,0 +1,71 @@
+#pragma once
+// The UsbTransport on libusb-1.0: a device's first HID interface, its interrupt endpoints and the
+// HID class requests on its control pipe (HID 1.11 section 7.2). Also lists the HID devices present
+// for `sandpaper devices`. libusb's synchronous transfers allocate a transfer inside libusb on every
+// call, so on real hardware the tick is not allocation-free below this interface (docs/USB_PID.md).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sandpaper/runtime/usb/transport.hpp"
+
+struct libusb_context;
+struct libusb_device_handle;
+
+namespace sandpaper::runtime::usb {
+
+struct UsbHidDeviceInfo {
+  std::uint16_t vendor_id = 0, product_id = 0;
+  int bus = 0, address = 0;
+  int hid_interface = -1;
+  std::string product;          // iProduct string when the device could be opened, else empty
+  UsbStatus open_status = UsbStatus::Ok;  // AccessDenied: the udev rule is missing
+  bool descriptor_read = false; // the report descriptor was read (from sysfs, without detaching the kernel driver)
+  bool has_pid = false;         // ... and it has a Physical Interface Device (force-feedback) usage
+};
+
+struct UsbHidEnumeration {
+  UsbStatus status = UsbStatus::Ok;   // not Ok: USB could not be searched at all
+  std::string message;                // why, in words
+  std::vector<UsbHidDeviceInfo> devices;
+};
+
+// Every USB device with a HID interface. Never throws.
+UsbHidEnumeration list_usb_hid_devices();
+
+class LibusbTransport final : public UsbTransport {
+ public:
+  // Opens the first device with this vendor and product ID and finds its HID interface.
+  // Returns NoDevice if there is none, AccessDenied without permission; `message` says more.
+  static UsbStatus open(std::uint16_t vendor_id, std::uint16_t product_id, std::unique_ptr<LibusbTransport>& out,
+                        std::string& message);
+  ~LibusbTransport() override;
+
+  UsbStatus report_descriptor(std::vector<std::uint8_t>& descriptor) override;
+  UsbStatus detach_kernel_driver() override;
+  UsbStatus attach_kernel_driver() override;
+  UsbStatus claim_interface() override;
+  UsbStatus release_interface() override;
+  UsbStatus read_input_rt(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept override;
+  UsbStatus write_output_rt(std::span<const std::uint8_t> report) noexcept override;
+  UsbStatus set_feature(std::span<const std::uint8_t> report) override;
+  UsbStatus get_feature(std::uint8_t report_id, std::span<std::uint8_t> buffer, std::size_t& length) override;
+
+ private:
+  LibusbTransport() = default;
+  UsbStatus set_report(int type, std::span<const std::uint8_t> report, unsigned timeout_ms) noexcept;
+
+  libusb_context* context_ = nullptr;
+  libusb_device_handle* handle_ = nullptr;
+  int interface_ = 0;
+  unsigned char endpoint_in_ = 0, endpoint_out_ = 0;  // 0: none
+  int descriptor_length_ = 4096;
+  bool uses_report_ids_ = true;
+  bool detached_ = false;
+};
+
+// The libusb error code `code` (a negative LIBUSB_ERROR_*) as a UsbStatus.
+UsbStatus usb_status_from_libusb(int code) noexcept;
+
+}  // namespace sandpaper::runtime::usb

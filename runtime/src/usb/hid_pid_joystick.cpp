@@ -1,0 +1,343 @@
+// The HID PID driver's open, tick and shutdown sequences (docs/USB_PID.md lists them report by report).
+#include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace sandpaper::runtime::usb {
+namespace {
+
+// Reports read per tick at most: the device may interleave PID State reports with position reports.
+constexpr int kReadsPerTick = 4;
+// Reads while opening, each up to open_read_timeout_ms, before giving up on a position report.
+constexpr int kOpenReads = 16;
+
+std::string hex(std::uint32_t u) {
+  static const char* digits = "0123456789ABCDEF";
+  std::string s = "0x";
+  for (int shift = 12; shift >= 0; shift -= 4) s += digits[(u >> shift) & 0xF];
+  return s;
+}
+
+std::string usage_name(std::uint32_t u) { return "page " + hex(u >> 16) + " usage " + hex(u & 0xFFFF); }
+
+}  // namespace
+
+const char* to_string(DeviceFault fault) noexcept {
+  switch (fault) {
+    case DeviceFault::None: return "none";
+    case DeviceFault::ReadTimeout: return "device read timed out";
+    case DeviceFault::ReadFailed: return "device read failed";
+    case DeviceFault::WriteFailed: return "device write failed";
+    case DeviceFault::Unplugged: return "device unplugged";
+  }
+  return "none";
+}
+
+HidPidJoystick::HidPidJoystick(UsbTransport& transport, const calibration::DeviceCalibration& calibration,
+                               HidPidOptions options)
+    : transport_(transport), calibration_(calibration), options_(options) {
+  limits_.name = calibration.name;
+  limits_.max_force_N = calibration.max_force_N;
+  limits_.min_rate_hz = calibration.min_rate_hz;
+  limits_.max_rate_hz = calibration.max_rate_hz;
+  limits_.workspace_radius_m = calibration.workspace_radius_m;
+  open();
+}
+
+HidPidJoystick::~HidPidJoystick() { close(); }
+
+void HidPidJoystick::fail_open(UsbStatus status, const std::string& what) {
+  close();
+  throw HidPidError(status, what);
+}
+
+void HidPidJoystick::open() {
+  UsbStatus s = transport_.detach_kernel_driver();
+  if (s != UsbStatus::Ok)
+    fail_open(s, std::string("cannot detach the kernel's HID driver: ") + to_string(s));
+  detached_ = true;
+  s = transport_.claim_interface();
+  if (s != UsbStatus::Ok) fail_open(s, std::string("cannot claim the HID interface: ") + to_string(s));
+  claimed_ = true;
+
+  std::vector<std::uint8_t> bytes;
+  s = transport_.report_descriptor(bytes);
+  if (s != UsbStatus::Ok) fail_open(s, std::string("cannot read the HID report descriptor: ") + to_string(s));
+  try {
+    descriptor_ = parse_hid_report_descriptor(bytes);
+  } catch (const HidDescriptorError& e) {
+    fail_open(UsbStatus::Other, e.what());
+  }
+  ids_ = descriptor_.uses_report_ids;
+
+  const auto need = [&](ReportType type, std::uint32_t report_usage, std::uint32_t field_usage) -> const HidField& {
+    const HidField* f = descriptor_.find(type, report_usage, field_usage);
+    if (!f)
+      fail_open(UsbStatus::Other, "the HID report descriptor has no " + usage_name(field_usage) +
+                                      (report_usage ? " in the report " + usage_name(report_usage) : std::string()) +
+                                      ": not a HID PID force-feedback joystick the driver can play");
+    return *f;
+  };
+  x_ = need(ReportType::Input, 0, kUsageX);
+  y_ = need(ReportType::Input, 0, kUsageY);
+  if (x_.report_id != y_.report_id) fail_open(UsbStatus::Other, "X and Y are in different input reports");
+  magnitude_ = need(ReportType::Output, pid::kSetConstantForceReport, pid::kMagnitude);
+  cf_block_ = need(ReportType::Output, pid::kSetConstantForceReport, pid::kEffectBlockIndex);
+  need(ReportType::Output, pid::kSetEffectReport, pid::kEffectBlockIndex);
+  need(ReportType::Output, pid::kSetEffectReport, pid::kEffectType);
+  need(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
+  need(ReportType::Output, pid::kEffectOperationReport, pid::kEffectOperation);
+  need(ReportType::Output, pid::kDeviceControlReport, pid::kDeviceControlReport);
+  need(ReportType::Feature, pid::kCreateNewEffectReport, pid::kEffectType);
+  need(ReportType::Feature, pid::kBlockLoadReport, pid::kEffectBlockIndex);
+  need(ReportType::Feature, pid::kBlockLoadReport, pid::kBlockLoadStatus);
+  cf_bytes_ = descriptor_.report_bytes(ReportType::Output, magnitude_.report_id);
+  const std::size_t in_bytes = descriptor_.report_bytes(ReportType::Input, x_.report_id);
+  if (cf_bytes_ > kMaxReport || in_bytes > kMaxReport)
+    fail_open(UsbStatus::Other, "a report is longer than the 64 bytes of a full-speed interrupt packet");
+
+  // PID Pool: the device must hold two effects at once.
+  if (const HidField* max_effects = descriptor_.find(ReportType::Feature, pid::kPoolReport, pid::kSimultaneousEffectsMax)) {
+    Buffer pool{};
+    std::size_t length = 0;
+    s = transport_.get_feature(max_effects->report_id, pool, length);
+    if (s != UsbStatus::Ok) fail_open(s, std::string("cannot read the PID Pool report: ") + to_string(s));
+    const auto simultaneous = read_field({pool.data(), length}, ids_, *max_effects);
+    if (simultaneous < 2)
+      fail_open(UsbStatus::Other, "the device plays " + std::to_string(simultaneous) +
+                                      " effect(s) at once; the driver needs 2 (one constant force per axis)");
+  }
+
+  device_control(pid::kDcDeviceReset);
+  device_control(pid::kDcEnableActuators);
+  actuators_enabled_ = true;
+  create_effect(0);
+  create_effect(1);
+
+  for (int attempt = 0; attempt < kOpenReads; ++attempt) {
+    std::size_t length = 0;
+    s = transport_.read_input_rt(input_, length, options_.open_read_timeout_ms);
+    if (s == UsbStatus::Ok && decode_position({input_.data(), length}, position_m_)) return;
+    if (s != UsbStatus::Ok && s != UsbStatus::Timeout)
+      fail_open(s, std::string("cannot read the position: ") + to_string(s));
+  }
+  fail_open(UsbStatus::Timeout, "the device sent no position report while opening");
+}
+
+void HidPidJoystick::device_control(std::uint32_t command_usage) {
+  const HidField& f = *descriptor_.find(ReportType::Output, pid::kDeviceControlReport, pid::kDeviceControlReport);
+  const auto value = f.array_value(command_usage);
+  if (!value) {
+    if (command_usage == pid::kDcEnableActuators || command_usage == pid::kDcDeviceReset)
+      fail_open(UsbStatus::Other, "the Device Control report lacks " + usage_name(command_usage));
+    return;  // optional commands of the shutdown
+  }
+  Buffer b{};
+  b[0] = f.report_id;
+  write_field(b, ids_, f, *value);
+  const UsbStatus s = transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, f.report_id)));
+  if (s != UsbStatus::Ok && !closed_) fail_open(s, std::string("Device Control failed: ") + to_string(s));
+}
+
+void HidPidJoystick::create_effect(int axis) {
+  const auto a = static_cast<std::size_t>(axis);
+  // Create New Effect (feature): type Constant Force, Byte Count 0 (no custom data).
+  {
+    const HidField& type = *descriptor_.find(ReportType::Feature, pid::kCreateNewEffectReport, pid::kEffectType);
+    const auto constant = type.array_value(pid::kEtConstantForce);
+    if (!constant) fail_open(UsbStatus::Other, "the device does not offer constant-force effects");
+    Buffer b{};
+    b[0] = type.report_id;
+    write_field(b, ids_, type, *constant);
+    const UsbStatus s = transport_.set_feature(report(b, descriptor_.report_bytes(ReportType::Feature, type.report_id)));
+    if (s != UsbStatus::Ok) fail_open(s, std::string("Create New Effect failed: ") + to_string(s));
+  }
+  // Block Load (feature, read back): the effect block index the device gave the new effect.
+  {
+    const HidField& index = *descriptor_.find(ReportType::Feature, pid::kBlockLoadReport, pid::kEffectBlockIndex);
+    const HidField& status = *descriptor_.find(ReportType::Feature, pid::kBlockLoadReport, pid::kBlockLoadStatus);
+    Buffer b{};
+    std::size_t length = 0;
+    const UsbStatus s = transport_.get_feature(index.report_id, b, length);
+    if (s != UsbStatus::Ok) fail_open(s, std::string("Block Load failed: ") + to_string(s));
+    const std::span<const std::uint8_t> got{b.data(), length};
+    const std::uint32_t load = status.array_usage(static_cast<std::int32_t>(read_field(got, ids_, status)));
+    if (load != pid::kBlockLoadSuccess)
+      fail_open(UsbStatus::Other, load == pid::kBlockLoadFull ? "the device's effect memory is full (Block Load: full)"
+                                                              : "the device refused the effect (Block Load: error)");
+    const auto block = read_field(got, ids_, index);
+    if (block < 1 || block > 255) fail_open(UsbStatus::Other, "Block Load gave effect block index " + std::to_string(block));
+    block_index_[a] = static_cast<std::uint8_t>(block);
+  }
+  // Set Effect: constant force, infinite duration, full gain, no trigger, on this axis only.
+  {
+    const HidField& index = *descriptor_.find(ReportType::Output, pid::kSetEffectReport, pid::kEffectBlockIndex);
+    Buffer b{};
+    b[0] = index.report_id;
+    write_field(b, ids_, index, block_index_[a]);
+    const HidField& type = *descriptor_.find(ReportType::Output, pid::kSetEffectReport, pid::kEffectType);
+    const auto constant = type.array_value(pid::kEtConstantForce);
+    if (!constant) fail_open(UsbStatus::Other, "Set Effect does not offer constant-force effects");
+    write_field(b, ids_, type, *constant);
+    // Infinite duration: the null value, all bits set (0xFFFF for 16 bits), as HID PID 1.0 allows
+    // for Duration and as Linux's hid-pidff sends.
+    if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, pid::kDuration))
+      write_field(b, ids_, *f, -1);
+    if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, pid::kGain))
+      write_field(b, ids_, *f, f->logical_max);
+    // Trigger Button 0 lies outside its logical range 1..n: the null value, no trigger.
+    for (std::uint32_t zero : {pid::kTriggerButton, pid::kTriggerRepeatInterval, pid::kSamplePeriod, pid::kStartDelay,
+                               pid::kDirectionEnable})
+      if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, zero)) write_field(b, ids_, *f, 0);
+    if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageX)) write_field(b, ids_, *f, axis == 0);
+    if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageY)) write_field(b, ids_, *f, axis == 1);
+    // Direction ordinals stay 0: with Direction Enable clear, Axes Enable picks the axis.
+    const UsbStatus s = transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
+    if (s != UsbStatus::Ok) fail_open(s, std::string("Set Effect failed: ") + to_string(s));
+  }
+  // Set Constant Force 0, preformatted once: the tick only rewrites the magnitude.
+  cf_report_[a].fill(0);
+  cf_report_[a][0] = magnitude_.report_id;
+  write_field(cf_report_[a], ids_, cf_block_, block_index_[a]);
+  if (!send_constant_force_rt(axis, 0)) fail_open(fault_status_, std::string("Set Constant Force failed: ") + to_string(fault_status_));
+  // Effect Operation: start, loop count 1.
+  {
+    const HidField& index = *descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
+    const HidField& op = *descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectOperation);
+    const auto start = op.array_value(pid::kOpEffectStart);
+    if (!start) fail_open(UsbStatus::Other, "the Effect Operation report lacks Op Effect Start");
+    Buffer b{};
+    b[0] = index.report_id;
+    write_field(b, ids_, index, block_index_[a]);
+    write_field(b, ids_, op, *start);
+    if (const HidField* f = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kLoopCount))
+      write_field(b, ids_, *f, 1);
+    const UsbStatus s = transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
+    if (s != UsbStatus::Ok) fail_open(s, std::string("Effect Operation (start) failed: ") + to_string(s));
+    started_[a] = true;
+  }
+}
+
+bool HidPidJoystick::send_constant_force_rt(int axis, std::int32_t magnitude) noexcept {
+  const auto a = static_cast<std::size_t>(axis);
+  write_field(cf_report_[a], ids_, magnitude_, magnitude);
+  const UsbStatus s = transport_.write_output_rt({cf_report_[a].data(), cf_bytes_});
+  if (s == UsbStatus::Ok) {
+    last_command_[a] = magnitude;
+    return true;
+  }
+  if (fault_ == DeviceFault::None) {
+    fault_ = s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed;
+    fault_status_ = s;
+  }
+  return false;
+}
+
+bool HidPidJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
+  bool ok = true;
+  for (int axis = 0; axis < 2; ++axis) {
+    double units = calibration_.axis_scale(axis).command(axis == 0 ? force_N.x : force_N.y);
+    if (!std::isfinite(units)) units = 0;
+    double low = magnitude_.logical_min, high = magnitude_.logical_max;
+    if (calibration_.command_max > 0) {
+      low = std::max(low, -static_cast<double>(calibration_.command_max));
+      high = std::min(high, static_cast<double>(calibration_.command_max));
+    }
+    const auto command = static_cast<std::int32_t>(std::clamp(std::round(units), low, high));
+    // Both axes are sent even if the first failed: the other may still carry the zero.
+    ok = send_constant_force_rt(axis, command) && ok;
+  }
+  return ok;
+}
+
+bool HidPidJoystick::decode_position(std::span<const std::uint8_t> report, glm::dvec2& position_m) const noexcept {
+  if (ids_ && (report.empty() || report[0] != x_.report_id)) return false;
+  const std::size_t need = descriptor_.report_bytes(ReportType::Input, x_.report_id);
+  if (report.size() < need) return false;
+  const HidField* axes[2] = {&x_, &y_};
+  for (int a = 0; a < 2; ++a) {
+    const HidField& f = *axes[a];
+    const double centre = 0.5 * (static_cast<double>(f.logical_min) + f.logical_max);
+    const double half = 0.5 * (static_cast<double>(f.logical_max) - f.logical_min);
+    const double v = static_cast<double>(read_field(report, ids_, f));
+    position_m[a] = half > 0 ? (v - centre) / half * 0.5 * calibration_.workspace_size_m[a] : 0.0;
+  }
+  return true;
+}
+
+bool HidPidJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexcept {
+  bool fresh = false;
+  for (int attempt = 0; attempt < kReadsPerTick && !fresh; ++attempt) {
+    std::size_t length = 0;
+    const UsbStatus s = transport_.read_input_rt(input_, length, options_.read_timeout_ms);
+    if (s == UsbStatus::Timeout) break;
+    if (s != UsbStatus::Ok) {
+      if (fault_ == DeviceFault::None) {
+        fault_ = s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::ReadFailed;
+        fault_status_ = s;
+      }
+      return false;
+    }
+    fresh = decode_position({input_.data(), length}, position_m_);  // else another report (PID State): read on
+  }
+  if (fresh || !have_time_) {
+    last_report_t_s_ = t_s;
+    have_time_ = true;
+  }
+  if (t_s - last_report_t_s_ > options_.stale_limit_s) {
+    if (fault_ == DeviceFault::None) {
+      fault_ = DeviceFault::ReadTimeout;
+      fault_status_ = UsbStatus::Timeout;
+    }
+    return false;
+  }
+  position_m = position_m_;
+  return true;
+}
+
+void HidPidJoystick::close() noexcept {
+  if (closed_) return;
+  closed_ = true;
+  try {
+    for (int axis = 0; axis < 2; ++axis)
+      if (block_index_[static_cast<std::size_t>(axis)]) send_constant_force_rt(axis, 0);
+    const HidField* op_index = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
+    const HidField* op = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectOperation);
+    for (std::size_t a = 0; a < 2; ++a)
+      if (started_[a] && op_index && op && op->array_value(pid::kOpEffectStop)) {
+        Buffer b{};
+        b[0] = op->report_id;
+        write_field(b, ids_, *op_index, block_index_[a]);
+        write_field(b, ids_, *op, *op->array_value(pid::kOpEffectStop));
+        if (const HidField* f = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kLoopCount))
+          write_field(b, ids_, *f, 0);
+        transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, op->report_id)));
+        started_[a] = false;
+      }
+    if (const HidField* free_index = descriptor_.find(ReportType::Output, pid::kBlockFreeReport, pid::kEffectBlockIndex))
+      for (std::size_t a = 0; a < 2; ++a)
+        if (block_index_[a]) {
+          Buffer b{};
+          b[0] = free_index->report_id;
+          write_field(b, ids_, *free_index, block_index_[a]);
+          transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, free_index->report_id)));
+        }
+    block_index_ = {0, 0};
+    if (actuators_enabled_) {
+      device_control(pid::kDcStopAllEffects);
+      device_control(pid::kDcDisableActuators);
+      actuators_enabled_ = false;
+    }
+  } catch (...) {
+    // Building a report cannot throw; nothing above may stop the interface from being given back.
+  }
+  if (claimed_) transport_.release_interface();
+  claimed_ = false;
+  if (detached_) transport_.attach_kernel_driver();
+  detached_ = false;
+}
+
+}  // namespace sandpaper::runtime::usb

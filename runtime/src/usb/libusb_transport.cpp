@@ -1,0 +1,286 @@
+// libusb-1.0 calls behind UsbTransport. HID class requests (HID 1.11 section 7.2): GET_REPORT 0x01
+// and SET_REPORT 0x09 with wValue = (report type << 8) | report ID, type 1 input, 2 output, 3 feature;
+// the report descriptor is GET_DESCRIPTOR (0x06) of type 0x22 addressed to the interface.
+#include "sandpaper/runtime/usb/libusb_transport.hpp"
+
+#include <libusb-1.0/libusb.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+
+#include "sandpaper/runtime/usb/hid_descriptor.hpp"
+
+namespace sandpaper::runtime::usb {
+namespace {
+
+constexpr unsigned kControlTimeoutMs = 1000;
+constexpr unsigned kTickWriteTimeoutMs = 10;
+constexpr std::uint8_t kHidClass = 3;
+constexpr std::uint8_t kHidDescriptorType = 0x21, kReportDescriptorType = 0x22;
+constexpr std::uint8_t kGetReport = 0x01, kSetReport = 0x09;
+constexpr int kOutputReport = 2, kFeatureReport = 3;
+// bmRequestType: direction (bit 7), type (bits 5-6: standard 0, class 1), recipient interface (1).
+constexpr std::uint8_t kStandardInterfaceIn = 0x81, kClassInterfaceIn = 0xA1, kClassInterfaceOut = 0x21;
+
+struct HidInterface {
+  int number = -1;
+  unsigned char in = 0, out = 0;
+  int descriptor_length = 4096;
+};
+
+// The first HID interface of the active (else first) configuration.
+HidInterface find_hid_interface(libusb_device* device) {
+  HidInterface found;
+  libusb_config_descriptor* config = nullptr;
+  if (libusb_get_active_config_descriptor(device, &config) != 0 && libusb_get_config_descriptor(device, 0, &config) != 0)
+    return found;
+  for (int i = 0; i < config->bNumInterfaces && found.number < 0; ++i) {
+    const libusb_interface& itf = config->interface[i];
+    if (itf.num_altsetting < 1) continue;
+    const libusb_interface_descriptor& alt = itf.altsetting[0];
+    if (alt.bInterfaceClass != kHidClass) continue;
+    found.number = alt.bInterfaceNumber;
+    for (int e = 0; e < alt.bNumEndpoints; ++e) {
+      const libusb_endpoint_descriptor& ep = alt.endpoint[e];
+      if ((ep.bmAttributes & 3) != LIBUSB_TRANSFER_TYPE_INTERRUPT) continue;
+      if (ep.bEndpointAddress & LIBUSB_ENDPOINT_IN) found.in = ep.bEndpointAddress;
+      else found.out = ep.bEndpointAddress;
+    }
+    // The HID class descriptor (HID 1.11 6.2.1) carries the report descriptor's length at bytes 7-8.
+    const unsigned char* extra = alt.extra;
+    for (int k = 0; k + 1 < alt.extra_length && extra[k] > 0; k += extra[k])
+      if (extra[k + 1] == kHidDescriptorType && k + 8 < alt.extra_length && extra[k] >= 9)
+        found.descriptor_length = extra[k + 7] | (extra[k + 8] << 8);
+  }
+  libusb_free_config_descriptor(config);
+  return found;
+}
+
+// Linux exposes each HID interface's report descriptor in sysfs, readable without detaching the
+// kernel driver: /sys/bus/usb/devices/<bus>-<ports>:<config>.<interface>/<hid>/report_descriptor.
+bool sysfs_report_descriptor(libusb_device* device, int interface_number, std::vector<std::uint8_t>& out) {
+  std::uint8_t ports[8];
+  const int n = libusb_get_port_numbers(device, ports, 8);
+  if (n <= 0) return false;
+  std::string name = std::to_string(libusb_get_bus_number(device)) + "-";
+  for (int i = 0; i < n; ++i) name += (i ? "." : "") + std::to_string(ports[i]);
+  std::error_code ec;
+  for (const auto& dir : std::filesystem::directory_iterator("/sys/bus/usb/devices", ec)) {
+    const std::string entry = dir.path().filename().string();
+    if (entry.rfind(name + ":", 0) != 0 || !entry.ends_with("." + std::to_string(interface_number))) continue;
+    for (const auto& hid : std::filesystem::directory_iterator(dir.path(), ec)) {
+      std::ifstream in(hid.path() / "report_descriptor", std::ios::binary);
+      if (!in) continue;
+      out.assign(std::istreambuf_iterator<char>(in), {});
+      return !out.empty();
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+const char* to_string(UsbStatus status) noexcept {
+  switch (status) {
+    case UsbStatus::Ok: return "ok";
+    case UsbStatus::Timeout: return "timed out";
+    case UsbStatus::NoDevice: return "no device (unplugged or not present)";
+    case UsbStatus::AccessDenied: return "access denied (permissions)";
+    case UsbStatus::Busy: return "busy (held by another program or driver)";
+    case UsbStatus::NotSupported: return "not supported on this platform";
+    case UsbStatus::Other: return "USB error";
+  }
+  return "USB error";
+}
+
+UsbStatus usb_status_from_libusb(int code) noexcept {
+  switch (code) {
+    case LIBUSB_SUCCESS: return UsbStatus::Ok;
+    case LIBUSB_ERROR_TIMEOUT: return UsbStatus::Timeout;
+    case LIBUSB_ERROR_NO_DEVICE:
+    case LIBUSB_ERROR_NOT_FOUND: return UsbStatus::NoDevice;
+    case LIBUSB_ERROR_ACCESS: return UsbStatus::AccessDenied;
+    case LIBUSB_ERROR_BUSY: return UsbStatus::Busy;
+    case LIBUSB_ERROR_NOT_SUPPORTED: return UsbStatus::NotSupported;
+    default: return UsbStatus::Other;
+  }
+}
+
+UsbHidEnumeration list_usb_hid_devices() {
+  UsbHidEnumeration out;
+  libusb_context* context = nullptr;
+  if (const int rc = libusb_init(&context); rc != 0) {
+    out.status = usb_status_from_libusb(rc);
+    out.message = std::string("USB is not available here (libusb_init: ") + libusb_strerror(rc) + ")";
+    return out;
+  }
+  libusb_device** list = nullptr;
+  const ssize_t count = libusb_get_device_list(context, &list);
+  if (count < 0) {
+    out.status = usb_status_from_libusb(static_cast<int>(count));
+    out.message = std::string("cannot list USB devices (") + libusb_strerror(static_cast<int>(count)) + ")";
+    libusb_exit(context);
+    return out;
+  }
+  for (ssize_t i = 0; i < count; ++i) {
+    libusb_device* device = list[i];
+    libusb_device_descriptor dd{};
+    if (libusb_get_device_descriptor(device, &dd) != 0) continue;
+    const HidInterface hid = find_hid_interface(device);
+    if (hid.number < 0) continue;
+    UsbHidDeviceInfo info;
+    info.vendor_id = dd.idVendor;
+    info.product_id = dd.idProduct;
+    info.bus = libusb_get_bus_number(device);
+    info.address = libusb_get_device_address(device);
+    info.hid_interface = hid.number;
+    libusb_device_handle* handle = nullptr;
+    info.open_status = usb_status_from_libusb(libusb_open(device, &handle));
+    if (handle) {
+      unsigned char text[128];
+      if (dd.iProduct && libusb_get_string_descriptor_ascii(handle, dd.iProduct, text, sizeof text) > 0)
+        info.product = reinterpret_cast<const char*>(text);
+      libusb_close(handle);
+    }
+    std::vector<std::uint8_t> descriptor;
+    if (sysfs_report_descriptor(device, hid.number, descriptor)) {
+      try {
+        info.has_pid = parse_hid_report_descriptor(descriptor).has_pid_page();
+        info.descriptor_read = true;
+      } catch (const HidDescriptorError&) {
+      }
+    }
+    out.devices.push_back(std::move(info));
+  }
+  libusb_free_device_list(list, 1);
+  libusb_exit(context);
+  return out;
+}
+
+UsbStatus LibusbTransport::open(std::uint16_t vendor_id, std::uint16_t product_id,
+                                std::unique_ptr<LibusbTransport>& out, std::string& message) {
+  std::unique_ptr<LibusbTransport> t(new LibusbTransport());
+  if (const int rc = libusb_init(&t->context_); rc != 0) {
+    t->context_ = nullptr;
+    message = std::string("USB is not available here (libusb_init: ") + libusb_strerror(rc) + ")";
+    return usb_status_from_libusb(rc);
+  }
+  libusb_device** list = nullptr;
+  const ssize_t count = libusb_get_device_list(t->context_, &list);
+  if (count < 0) {
+    message = std::string("cannot list USB devices (") + libusb_strerror(static_cast<int>(count)) + ")";
+    return usb_status_from_libusb(static_cast<int>(count));
+  }
+  UsbStatus status = UsbStatus::NoDevice;
+  message = "no USB device with that vendor and product ID";
+  for (ssize_t i = 0; i < count && !t->handle_; ++i) {
+    libusb_device_descriptor dd{};
+    if (libusb_get_device_descriptor(list[i], &dd) != 0 || dd.idVendor != vendor_id || dd.idProduct != product_id) continue;
+    const HidInterface hid = find_hid_interface(list[i]);
+    if (hid.number < 0) {
+      message = "the device has no HID interface";
+      continue;
+    }
+    const int rc = libusb_open(list[i], &t->handle_);
+    status = usb_status_from_libusb(rc);
+    if (rc != 0) {
+      t->handle_ = nullptr;
+      message = std::string("cannot open the device (") + libusb_strerror(rc) + ")";
+      continue;
+    }
+    t->interface_ = hid.number;
+    t->endpoint_in_ = hid.in;
+    t->endpoint_out_ = hid.out;
+    t->descriptor_length_ = hid.descriptor_length;
+  }
+  libusb_free_device_list(list, 1);
+  if (!t->handle_) return status;
+  if (!t->endpoint_in_) {
+    message = "the HID interface has no interrupt IN endpoint";
+    return UsbStatus::Other;
+  }
+  message.clear();
+  out = std::move(t);
+  return UsbStatus::Ok;
+}
+
+LibusbTransport::~LibusbTransport() {
+  if (handle_) libusb_close(handle_);
+  if (context_) libusb_exit(context_);
+}
+
+UsbStatus LibusbTransport::report_descriptor(std::vector<std::uint8_t>& descriptor) {
+  descriptor.assign(static_cast<std::size_t>(descriptor_length_ > 0 ? descriptor_length_ : 4096), 0);
+  const int rc = libusb_control_transfer(handle_, kStandardInterfaceIn,
+                                         LIBUSB_REQUEST_GET_DESCRIPTOR, kReportDescriptorType << 8,
+                                         static_cast<std::uint16_t>(interface_), descriptor.data(),
+                                         static_cast<std::uint16_t>(descriptor.size()), kControlTimeoutMs);
+  if (rc < 0) return usb_status_from_libusb(rc);
+  descriptor.resize(static_cast<std::size_t>(rc));
+  try {
+    uses_report_ids_ = parse_hid_report_descriptor(descriptor).uses_report_ids;
+  } catch (const HidDescriptorError&) {
+  }
+  return UsbStatus::Ok;
+}
+
+UsbStatus LibusbTransport::detach_kernel_driver() {
+  const int active = libusb_kernel_driver_active(handle_, interface_);
+  if (active == LIBUSB_ERROR_NOT_SUPPORTED || active == 0) return UsbStatus::Ok;
+  if (active < 0) return usb_status_from_libusb(active);
+  const int rc = libusb_detach_kernel_driver(handle_, interface_);
+  if (rc == 0) detached_ = true;
+  return usb_status_from_libusb(rc);
+}
+
+UsbStatus LibusbTransport::attach_kernel_driver() {
+  if (!detached_) return UsbStatus::Ok;
+  detached_ = false;
+  return usb_status_from_libusb(libusb_attach_kernel_driver(handle_, interface_));
+}
+
+UsbStatus LibusbTransport::claim_interface() { return usb_status_from_libusb(libusb_claim_interface(handle_, interface_)); }
+UsbStatus LibusbTransport::release_interface() { return usb_status_from_libusb(libusb_release_interface(handle_, interface_)); }
+
+UsbStatus LibusbTransport::read_input_rt(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept {
+  int got = 0;
+  // libusb takes 0 as "wait forever": never pass it.
+  const int rc = libusb_interrupt_transfer(handle_, endpoint_in_, buffer.data(), static_cast<int>(buffer.size()), &got,
+                                           timeout_ms ? timeout_ms : 1);
+  length = got > 0 ? static_cast<std::size_t>(got) : 0;
+  return usb_status_from_libusb(rc);
+}
+
+UsbStatus LibusbTransport::set_report(int type, std::span<const std::uint8_t> report, unsigned timeout_ms) noexcept {
+  const std::uint8_t id = uses_report_ids_ && !report.empty() ? report[0] : 0;
+  const int rc = libusb_control_transfer(handle_, kClassInterfaceOut,
+                                         kSetReport, static_cast<std::uint16_t>((type << 8) | id),
+                                         static_cast<std::uint16_t>(interface_), const_cast<std::uint8_t*>(report.data()),
+                                         static_cast<std::uint16_t>(report.size()), timeout_ms);
+  return rc < 0 ? usb_status_from_libusb(rc) : UsbStatus::Ok;
+}
+
+UsbStatus LibusbTransport::write_output_rt(std::span<const std::uint8_t> report) noexcept {
+  if (!endpoint_out_) return set_report(kOutputReport, report, kTickWriteTimeoutMs);
+  int sent = 0;
+  const int rc = libusb_interrupt_transfer(handle_, endpoint_out_, const_cast<std::uint8_t*>(report.data()),
+                                           static_cast<int>(report.size()), &sent, kTickWriteTimeoutMs);
+  return usb_status_from_libusb(rc);
+}
+
+UsbStatus LibusbTransport::set_feature(std::span<const std::uint8_t> report) {
+  return set_report(kFeatureReport, report, kControlTimeoutMs);
+}
+
+UsbStatus LibusbTransport::get_feature(std::uint8_t report_id, std::span<std::uint8_t> buffer, std::size_t& length) {
+  const int rc = libusb_control_transfer(handle_, kClassInterfaceIn,
+                                         kGetReport, static_cast<std::uint16_t>((kFeatureReport << 8) | report_id),
+                                         static_cast<std::uint16_t>(interface_), buffer.data(),
+                                         static_cast<std::uint16_t>(buffer.size()), kControlTimeoutMs);
+  length = rc > 0 ? static_cast<std::size_t>(rc) : 0;
+  return rc < 0 ? usb_status_from_libusb(rc) : UsbStatus::Ok;
+}
+
+}  // namespace sandpaper::runtime::usb

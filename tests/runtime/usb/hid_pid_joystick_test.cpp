@@ -1,0 +1,244 @@
+// The HID PID driver through the fake transport: every byte it sends at open, per tick and at
+// shutdown; position decoding; unplug and read timeout mid-run stop the servo loop with zero force;
+// no allocation in the _rt calls.
+#include <gtest/gtest.h>
+
+#include "allocation_counter.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
+#include "usb_test_support.hpp"
+
+namespace sandpaper::runtime::usb {
+namespace {
+
+using testing::FakeTransport;
+using testing::Op;
+using Bytes = std::vector<std::uint8_t>;
+
+struct Step {
+  Op op;
+  Bytes bytes;
+};
+
+std::vector<Step> steps(const FakeTransport& t, std::size_t from = 0) {
+  std::vector<Step> out;
+  for (std::size_t i = from; i < t.log().size(); ++i) out.push_back({t.log()[i].op, t.log()[i].data()});
+  return out;
+}
+
+void expect_steps(const std::vector<Step>& got, const std::vector<Step>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    SCOPED_TRACE(::testing::Message() << "transfer " << i);
+    EXPECT_EQ(static_cast<int>(got[i].op), static_cast<int>(want[i].op));
+    EXPECT_EQ(got[i].bytes, want[i].bytes);
+  }
+}
+
+// Set Effect (report 1): block, type 1 (Constant Force), duration 0xFFFF (infinite), trigger repeat,
+// sample period and start delay 0, gain 255, trigger button 0 (none), axes enable, direction 0.
+Bytes set_effect(std::uint8_t block, std::uint8_t axes) {
+  return {0x01, block, 0x01, 0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0xFF, 0x00, axes, 0, 0, 0, 0};
+}
+
+const std::vector<Step> kOpen = {
+    {Op::Detach, {}},
+    {Op::Claim, {}},
+    {Op::Descriptor, {}},
+    {Op::GetFeature, {0x13}},              // PID Pool
+    {Op::Output, {0x0C, 0x04}},            // Device Control: Reset
+    {Op::Output, {0x0C, 0x01}},            // Device Control: Enable Actuators
+    {Op::SetFeature, {0x11, 0x01, 0, 0}},  // Create New Effect: Constant Force, byte count 0
+    {Op::GetFeature, {0x12}},              // Block Load -> block 1
+    {Op::Output, set_effect(1, 0x01)},     // Set Effect on X
+    {Op::Output, {0x05, 0x01, 0, 0}},      // Set Constant Force 0
+    {Op::Output, {0x0A, 0x01, 0x01, 0x01}},  // Effect Operation: start, loop count 1
+    {Op::SetFeature, {0x11, 0x01, 0, 0}},
+    {Op::GetFeature, {0x12}},              // -> block 2
+    {Op::Output, set_effect(2, 0x02)},     // Set Effect on Y
+    {Op::Output, {0x05, 0x02, 0, 0}},
+    {Op::Output, {0x0A, 0x02, 0x01, 0x01}},
+};
+
+const std::vector<Step> kShutdown = {
+    {Op::Output, {0x05, 0x01, 0, 0}},        // zero force
+    {Op::Output, {0x05, 0x02, 0, 0}},
+    {Op::Output, {0x0A, 0x01, 0x03, 0x00}},  // Effect Operation: stop
+    {Op::Output, {0x0A, 0x02, 0x03, 0x00}},
+    {Op::Output, {0x0B, 0x01}},              // Block Free
+    {Op::Output, {0x0B, 0x02}},
+    {Op::Output, {0x0C, 0x03}},              // Device Control: Stop All Effects
+    {Op::Output, {0x0C, 0x02}},              // Device Control: Disable Actuators
+    {Op::Release, {}},
+    {Op::Attach, {}},                        // the kernel's HID driver gets the device back
+};
+
+TEST(HidPidJoystick, OpenSendsTheEffectCreationSequence) {
+  auto t = testing::primed_transport();
+  HidPidJoystick joystick(*t, testing::openffboard());
+  expect_steps(steps(*t), kOpen);
+  EXPECT_EQ(joystick.effect_block_index(0), 1);
+  EXPECT_EQ(joystick.effect_block_index(1), 2);
+  EXPECT_FALSE(t->kernel_driver_attached());
+  EXPECT_TRUE(t->claimed());
+  EXPECT_EQ(joystick.limits().name, "openffboard-2axis");
+}
+
+TEST(HidPidJoystick, EachTickSendsSetConstantForcePerAxisScaledSignedAndClamped) {
+  auto t = testing::primed_transport();
+  HidPidJoystick joystick(*t, testing::openffboard());
+  const std::size_t start = t->log().size();
+  // 1 mN per command unit (openffboard-2axis.toml): 1.5 N -> 1500 = 0x05DC; -2.25 N -> -2250 = 0xF736.
+  ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
+  // Beyond the Magnitude field's logical range -10000..10000: clamped, sign kept.
+  ASSERT_TRUE(joystick.write_force_rt({12.0, -20.0}));
+  ASSERT_TRUE(joystick.write_force_rt({0.0004, -0.0006}));  // rounds to 0 and -1
+  expect_steps(steps(*t, start), {{Op::Output, {0x05, 0x01, 0xDC, 0x05}},
+                                  {Op::Output, {0x05, 0x02, 0x36, 0xF7}},
+                                  {Op::Output, {0x05, 0x01, 0x10, 0x27}},
+                                  {Op::Output, {0x05, 0x02, 0xF0, 0xD8}},
+                                  {Op::Output, {0x05, 0x01, 0x00, 0x00}},
+                                  {Op::Output, {0x05, 0x02, 0xFF, 0xFF}}});
+}
+
+TEST(HidPidJoystick, CloseSendsTheShutdownSequenceAndGivesTheDeviceBack) {
+  auto t = testing::primed_transport();
+  std::size_t start = 0;
+  {
+    HidPidJoystick joystick(*t, testing::openffboard());
+    ASSERT_TRUE(joystick.write_force_rt({1.0, 1.0}));
+    start = t->log().size();
+  }  // the destructor closes
+  expect_steps(steps(*t, start), kShutdown);
+  EXPECT_TRUE(t->kernel_driver_attached());
+  EXPECT_FALSE(t->claimed());
+}
+
+TEST(HidPidJoystick, InputReportsDecodeToMetresOverTheCalibratedWorkspace) {
+  auto t = testing::primed_transport();
+  // A PID State report (ID 2) first: skipped. Then X = 16384, Y = -32767 of -32767..32767 over the
+  // calibration's 100 mm x 100 mm: x = 16384 / 32767 * 50 mm, y = -50 mm.
+  t->add_input({UsbStatus::Ok, {0x02, 0x03, 0x02}});
+  t->add_input({UsbStatus::Ok, testing::position_report(16384, -32767)});
+  HidPidJoystick joystick(*t, testing::openffboard());
+  glm::dvec2 p{9, 9};
+  ASSERT_TRUE(joystick.read_position_rt(0.0, p));
+  EXPECT_NEAR(p.x, 16384.0 / 32767.0 * 0.05, 1e-12);
+  EXPECT_NEAR(p.y, -0.05, 1e-12);
+  EXPECT_EQ(joystick.fault(), DeviceFault::None);
+}
+
+TEST(HidPidJoystick, OpenFailsCleanlyWhenTheDeviceHasNoRoomAndGivesItBack) {
+  auto t = std::make_unique<FakeTransport>(testing::test_descriptor());
+  t->add_feature_reply(0x13, {0x13, 0x00, 0x10, 0x04, 0x01});
+  t->add_feature_reply(0x12, {0x12, 0x00, 0x02, 0x00, 0x00});  // Block Load: full
+  try {
+    HidPidJoystick joystick(*t, testing::openffboard());
+    FAIL() << "opened a device whose effect memory is full";
+  } catch (const HidPidError& e) {
+    EXPECT_NE(std::string(e.what()).find("full"), std::string::npos) << e.what();
+  }
+  const auto got = steps(*t);
+  ASSERT_GE(got.size(), 4u);
+  // Stop all, disable actuators, release, reattach.
+  EXPECT_EQ(got[got.size() - 4].bytes, (Bytes{0x0C, 0x03}));
+  EXPECT_EQ(got[got.size() - 3].bytes, (Bytes{0x0C, 0x02}));
+  EXPECT_EQ(static_cast<int>(got[got.size() - 2].op), static_cast<int>(Op::Release));
+  EXPECT_EQ(static_cast<int>(got.back().op), static_cast<int>(Op::Attach));
+  EXPECT_TRUE(t->kernel_driver_attached());
+}
+
+// A force source that always asks for the same force.
+class ConstantForce final : public ForceSource {
+ public:
+  explicit ConstantForce(glm::dvec2 f) : f_(f) {}
+  glm::dvec2 force_rt(const HandState&, double) noexcept override { return f_; }
+  void reset_rt(const HandState&) noexcept override {}
+
+ private:
+  glm::dvec2 f_;
+};
+
+ServoConfig config(double duration_s) {
+  ServoConfig c;
+  c.rate_hz = 1000;
+  c.duration_s = duration_s;
+  return c;
+}
+
+TEST(HidPidJoystick, UnplugMidRunStopsTheLoopAndNamesTheCause) {
+  auto t = testing::primed_transport();
+  for (int k = 0; k < 100; ++k) t->add_input({UsbStatus::Ok, testing::position_report(0, 0)});
+  HidPidJoystick joystick(*t, testing::openffboard());
+  t->unplug_after_outputs(2 * 10);  // ten ticks of two Set Constant Force reports, then gone
+  ConstantForce source({1.0, 0.5});
+  VirtualClock clock;
+  const ServoReport report = run_servo_loop(joystick, source, clock, config(0.1));
+  EXPECT_EQ(report.ticks, 11u);
+  EXPECT_EQ(report.stop_reason, "device write failed");
+  EXPECT_EQ(joystick.fault(), DeviceFault::Unplugged);
+  EXPECT_EQ(joystick.fault_status(), UsbStatus::NoDevice);
+  EXPECT_STREQ(to_string(joystick.fault()), "device unplugged");
+  // Nothing after the unplug reached the device; the last thing it got was the 10th tick's force.
+  const auto got = steps(*t);
+  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0xF4, 0x01}));
+}
+
+TEST(HidPidJoystick, ReadTimeoutStopsTheLoopWithZeroForceSent) {
+  auto t = testing::primed_transport();
+  for (int k = 0; k < 5; ++k) t->add_input({UsbStatus::Ok, testing::position_report(100, 100)});
+  // Then no more reports: every read times out.
+  HidPidOptions options;
+  options.stale_limit_s = 0.0025;  // stale after 2.5 ms without a report
+  HidPidJoystick joystick(*t, testing::openffboard(), options);
+  ConstantForce source({1.0, 0.5});
+  VirtualClock clock;
+  const std::size_t start = t->log().size();
+  const ServoReport report = run_servo_loop(joystick, source, clock, config(0.1));
+  EXPECT_EQ(report.stop_reason, "device read failed");
+  EXPECT_EQ(joystick.fault(), DeviceFault::ReadTimeout);
+  EXPECT_EQ(report.ticks, 5u + 3u);  // 5 fresh ticks, 2 within the limit, the 3rd stale (t - last > 2.5 ms)
+  const auto got = steps(*t, start);
+  ASSERT_GE(got.size(), 2u);
+  // The last two transfers are the zero force on both axes, sent when the read failed.
+  EXPECT_EQ(got[got.size() - 2].bytes, (Bytes{0x05, 0x01, 0x00, 0x00}));
+  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0x00, 0x00}));
+}
+
+TEST(HidPidJoystick, ReadErrorOtherThanTimeoutStopsAtOnce) {
+  auto t = testing::primed_transport();
+  t->add_input({UsbStatus::Ok, testing::position_report(0, 0)});
+  t->add_input({UsbStatus::Other, {}});
+  HidPidJoystick joystick(*t, testing::openffboard());
+  ConstantForce source({0.0, 0.0});
+  VirtualClock clock;
+  const ServoReport report = run_servo_loop(joystick, source, clock, config(0.1));
+  EXPECT_EQ(report.ticks, 2u);
+  EXPECT_EQ(joystick.fault(), DeviceFault::ReadFailed);
+}
+
+TEST(HidPidJoystick, TicksDoNotAllocate) {
+  auto t = testing::primed_transport();
+  for (int k = 0; k < 1000; ++k) {
+    t->add_input({UsbStatus::Ok, {0x02, 0x00, 0x00}});
+    t->add_input({UsbStatus::Ok, testing::position_report(static_cast<std::int16_t>(k), static_cast<std::int16_t>(-k))});
+  }
+  HidPidJoystick joystick(*t, testing::openffboard());
+  glm::dvec2 p{0, 0};
+  bool ok = true;
+  std::size_t count = 0;
+  {
+    sandpaper::test::CountedAllocations counting;
+    for (int k = 0; k < 1000; ++k) {
+      ok = joystick.read_position_rt(k * 1e-3, p) && ok;
+      ok = joystick.write_force_rt({k * 1e-3, -k * 1e-3}) && ok;
+    }
+    count = counting.stop();
+  }
+  EXPECT_TRUE(ok);
+  EXPECT_EQ(count, 0u);
+  EXPECT_EQ(joystick.last_command()[0], 999);
+}
+
+}  // namespace
+}  // namespace sandpaper::runtime::usb
