@@ -17,19 +17,22 @@ constexpr double kMaxRateHz = 10000.0;
 constexpr double kMaxTicks = 10'000'000.0;
 constexpr double kNsPerS = 1e9;
 
-// Strings would allocate when assigned in the tick (most reasons exceed the small-string buffer),
-// so the tick reports an enum and the text is attached after the loop.
-enum class Stop { Completed, ReadFailed, WriteFailed, NonFiniteForce };
-
-const char* stop_reason_text(Stop stop) noexcept {
-  switch (stop) {
-    case Stop::Completed: return "completed";
-    case Stop::ReadFailed: return "device read failed";
-    case Stop::WriteFailed: return "device write failed";
-    case Stop::NonFiniteForce: return "non-finite force";
+StopCause read_fault_cause(DeviceFault fault) noexcept {
+  switch (fault) {
+    case DeviceFault::ReadTimedOut: return StopCause::DeviceReadTimeout;
+    case DeviceFault::Unplugged: return StopCause::DeviceUnplugged;
+    case DeviceFault::WriteFailed: return StopCause::DeviceWriteFailed;
+    case DeviceFault::None:
+    case DeviceFault::ReadFailed: break;
   }
-  return "completed";
+  return StopCause::DeviceReadFailed;
 }
+
+StopCause write_fault_cause(DeviceFault fault) noexcept {
+  return fault == DeviceFault::Unplugged ? StopCause::DeviceUnplugged : StopCause::DeviceWriteFailed;
+}
+
+bool finite(glm::dvec2 v) noexcept { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 std::string hz(double rate) {
   std::ostringstream text;
@@ -100,6 +103,39 @@ std::uint64_t tick_count(const ServoConfig& config) {
 
 }  // namespace
 
+const char* stop_cause_name(StopCause cause) noexcept {
+  switch (cause) {
+    case StopCause::Completed: return "completed";
+    case StopCause::ForceNotFinite: return "force_not_finite";
+    case StopCause::PositionNotFinite: return "position_not_finite";
+    case StopCause::DeviceReadFailed: return "device_read_failed";
+    case StopCause::DeviceReadTimeout: return "device_read_timeout";
+    case StopCause::DeviceUnplugged: return "device_unplugged";
+    case StopCause::DeviceWriteFailed: return "device_write_failed";
+    case StopCause::DeadlineMissed: return "deadline_missed";
+    case StopCause::VelocityLimit: return "velocity_limit";
+    case StopCause::StopRequested: return "stop_requested";
+  }
+  return "completed";
+}
+
+// The first four are the texts reports carried before the causes had names; they stay.
+const char* stop_cause_text(StopCause cause) noexcept {
+  switch (cause) {
+    case StopCause::Completed: return "completed";
+    case StopCause::ForceNotFinite: return "non-finite force";
+    case StopCause::PositionNotFinite: return "non-finite position";
+    case StopCause::DeviceReadFailed: return "device read failed";
+    case StopCause::DeviceReadTimeout: return "device read timed out";
+    case StopCause::DeviceUnplugged: return "device unplugged";
+    case StopCause::DeviceWriteFailed: return "device write failed";
+    case StopCause::DeadlineMissed: return "servo deadline missed";
+    case StopCause::VelocityLimit: return "velocity limit exceeded";
+    case StopCause::StopRequested: return "stopped by signal";
+  }
+  return "completed";
+}
+
 void validate_config(const ServoConfig& config, const DeviceLimits& limits) {
   const double rate = config.rate_hz;
   if (!std::isfinite(rate) || rate < kMinRateHz || rate > kMaxRateHz)
@@ -117,6 +153,12 @@ void validate_config(const ServoConfig& config, const DeviceLimits& limits) {
   if (std::llround(ticks) < 1) throw std::invalid_argument("servo duration is shorter than one servo period");
   if (!std::isfinite(config.velocity_cutoff_hz) || config.velocity_cutoff_hz <= 0)
     throw std::invalid_argument("velocity filter cutoff must be a positive, finite frequency in Hz");
+  if (!std::isfinite(config.ramp_s) || config.ramp_s < 0)
+    throw std::invalid_argument("force ramp must be a finite, non-negative time in seconds");
+  if (!(config.velocity_limit_m_s > 0))
+    throw std::invalid_argument("velocity limit must be a positive speed in m/s");
+  if (!(config.max_late_s > 0))
+    throw std::invalid_argument("deadline allowance must be a positive time in seconds");
 }
 
 ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& clock,
@@ -131,30 +173,42 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
   std::vector<std::int64_t> compute_ns(ticks, 0);
 
   ServoReport report;
-  Stop stop = Stop::Completed;
+  StopCause stop = StopCause::Completed;
   FilteredDerivative velocity(config.velocity_cutoff_hz);
   FilteredDerivative acceleration(config.velocity_cutoff_hz);
   HandState hand;
   std::uint64_t played = 0;
   std::int64_t first_start = 0, previous_start = 0;
+  const double velocity_limit_sq = config.velocity_limit_m_s * config.velocity_limit_m_s;
+  const auto max_late_ns = static_cast<double>(config.max_late_s * kNsPerS);
 
   const std::int64_t start = clock.now_ns();
-  for (std::uint64_t k = 0; k < ticks && stop == Stop::Completed; ++k) {
+  for (std::uint64_t k = 0; k < ticks && stop == StopCause::Completed; ++k) {
     // Deadlines count from the start, not from the last tick, so a late tick never shifts the rest.
     const std::int64_t deadline = start + static_cast<std::int64_t>(std::llround(static_cast<double>(k) * period_ns));
     clock.sleep_until_ns(deadline);
     const std::int64_t tick_start = clock.now_ns();
-    if (static_cast<double>(tick_start - deadline) > 0.5 * period_ns) ++report.overruns;
+    const auto late_ns = static_cast<double>(tick_start - deadline);
+    const bool overrun = late_ns > 0.5 * period_ns;
+    if (overrun) ++report.overruns;
     if (k == 0) first_start = tick_start;
     periods_ns[k] = k == 0 ? 0 : tick_start - previous_start;
     const double dt_s = static_cast<double>(periods_ns[k]) / kNsPerS;
     const double t_s = static_cast<double>(tick_start - start) / kNsPerS;
     ++played;
 
+    // Each check below decides this tick's force; any fault makes it exactly zero and stops.
     glm::dvec2 position{0, 0};
-    if (!device.read_position_rt(t_s, position)) {
-      device.write_force_rt({0, 0});
-      stop = Stop::ReadFailed;
+    glm::dvec2 sent{0, 0};
+    if (config.stop_request != nullptr && config.stop_request->load(std::memory_order_relaxed)) {
+      stop = StopCause::StopRequested;
+    } else if (late_ns > max_late_ns) {
+      // The handle has held a stale force for max_late_s: whatever the hand did meanwhile was not seen.
+      stop = StopCause::DeadlineMissed;
+    } else if (!device.read_position_rt(t_s, position)) {
+      stop = read_fault_cause(device.last_fault_rt());
+    } else if (!finite(position)) {
+      stop = StopCause::PositionNotFinite;
     } else {
       if (k > 0) {
         const glm::dvec2 previous_velocity = velocity.value();
@@ -164,29 +218,58 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
       hand.position_m = position;
       if (k == 0) source.reset_rt(hand);  // state starts under the hand's first reported position
 
-      glm::dvec2 force = source.force_rt(hand, dt_s);
-      if (!std::isfinite(force.x) || !std::isfinite(force.y)) {
-        device.write_force_rt({0, 0});
-        stop = Stop::NonFiniteForce;
+      const glm::dvec2 v = hand.velocity_m_s;
+      // Checked before evaluating, so a runaway hand does not advance the material's state either.
+      const bool too_fast = v.x * v.x + v.y * v.y > velocity_limit_sq;
+      glm::dvec2 force = too_fast ? glm::dvec2{0, 0} : source.force_rt(hand, dt_s);
+      if (too_fast) {
+        stop = StopCause::VelocityLimit;
+      } else if (!finite(force)) {
+        stop = StopCause::ForceNotFinite;
       } else {
+        // Ramp up from zero at start, so a material that pushes hard at the hand's first position
+        // does not jolt it; then the clamp, so the ramp never lets more than the maximum through.
+        if (config.ramp_s > 0 && t_s < config.ramp_s) {
+          force *= t_s / config.ramp_s;
+          ++report.ramped_ticks;
+        }
         bool clamped = false;
         force = limit_magnitude(force, limits.max_force_N, clamped);
         if (clamped) ++report.clamped_ticks;
-        if (device.write_force_rt(force)) {
-          report.max_lateral_force_N = std::max(report.max_lateral_force_N, std::hypot(force.x, force.y));
-        } else {
-          stop = Stop::WriteFailed;
-        }
+        sent = force;
       }
+    }
+    if (stop == StopCause::Completed) {
+      if (device.write_force_rt(sent)) {
+        report.max_lateral_force_N = std::max(report.max_lateral_force_N, std::hypot(sent.x, sent.y));
+      } else {
+        stop = write_fault_cause(device.last_fault_rt());
+        sent = {0, 0};  // the closing write below commands zero
+      }
+    } else {
+      device.write_force_rt({0, 0});  // same tick as the fault; its own failure changes nothing now
     }
     compute_ns[k] = clock.now_ns() - tick_start;
     previous_start = tick_start;
+    if (config.telemetry != nullptr) {
+      TelemetryRecord record;
+      record.tick = k;
+      record.t_s = t_s;
+      record.period_s = dt_s;
+      record.compute_s = static_cast<double>(compute_ns[k]) / kNsPerS;
+      record.position_m = position;
+      record.force_N = sent;
+      record.overrun = overrun;
+      config.telemetry->push_rt(record);
+    }
   }
   // Whatever ended the run, leave the handle unforced rather than holding the last command.
   device.write_force_rt({0, 0});
 
   report.ticks = played;
-  report.stop_reason = stop_reason_text(stop);
+  report.stop_cause = stop;
+  report.stop_reason = stop_cause_text(stop);
+  if (config.telemetry != nullptr) report.telemetry_dropped = config.telemetry->dropped();
   if (played >= 2 && previous_start > first_start)
     report.rate_hz = static_cast<double>(played - 1) * kNsPerS / static_cast<double>(previous_start - first_start);
   const auto played_end = static_cast<std::ptrdiff_t>(played);

@@ -272,6 +272,41 @@ has "$tmp/err" 'no USB force-feedback device' "devices says there is none"
 has "$tmp/err" 'known devices: openffboard-2axis \(1209:ffb0\)' "devices names the known IDs"
 expect_exit 2 "run --device usb, none present" -- "$sp" run -e corduroy --device usb --duration 0.1
 has "$tmp/err" 'run --device usb: no USB force-feedback device' "run --device usb says why"
+# Stopping: SIGINT to a running real-time run stops it within a tick, exit 0, the cause reported.
+"$sp" run -e corduroy --device sim --duration 30 >"$tmp/sig.out" 2>"$tmp/sig.err" &
+run_pid=$!
+sleep 1
+kill -INT "$run_pid"
+start=$(date +%s)
+wait "$run_pid"; got=$?
+[ "$got" -eq 0 ] && ok || bad "SIGINT: exit $got, wanted 0"
+[ $(( $(date +%s) - start )) -le 3 ] && ok || bad "SIGINT: the run did not stop quickly"
+has "$tmp/sig.out" 'stopped: stopped by signal' "SIGINT is reported as the stop cause"
+"$sp" run -e corduroy --device sim --duration 30 --json >"$tmp/sig.out" 2>"$tmp/sig.err" &
+run_pid=$!
+sleep 1
+kill -TERM "$run_pid"
+wait "$run_pid"; got=$?
+[ "$got" -eq 0 ] && ok || bad "SIGTERM: exit $got, wanted 0"
+has "$tmp/sig.out" '"stop_cause": "stop_requested"' "SIGTERM names stop_requested"
+# Real-time priority: granted, or said once on stderr; never on the virtual clock.
+expect_exit 0 "real-time run" -- "$sp" run -e corduroy --device sim --duration 0.2 --json
+if grep -q '"realtime_scheduling": false' "$tmp/out"; then
+  [ "$(grep -c 'note: running without real-time priority' "$tmp/err")" -eq 1 ] && ok || bad "the no-real-time note must appear exactly once"
+else
+  grep -q 'note: running without real-time priority' "$tmp/err" && bad "note printed although SCHED_FIFO was granted" || ok
+fi
+expect_exit 0 "virtual clock run" -- "$sp" run -e corduroy --device sim --duration 0.2 --virtual-clock
+grep -q 'real-time priority' "$tmp/err" && bad "the virtual clock printed the real-time note" || ok
+# Live figures with --live (stderr), none without it when stderr is not a terminal.
+expect_exit 0 "run --live" -- "$sp" run -e corduroy --device sim --duration 1.5 --live
+has "$tmp/err" '^live  t [0-9.]+ s  period p50' "--live prints figures"
+expect_exit 0 "run without --live" -- "$sp" run -e corduroy --device sim --duration 0.2
+grep -q '^live' "$tmp/err" && bad "live figures without --live on a pipe" || ok
+# The trace comes from the telemetry ring, in the same format: one row per tick.
+expect_exit 0 "trace from the ring" -- "$sp" run -e corduroy --device sim --duration 0.3 --trace "$tmp/rt.csv"
+[ "$(head -1 "$tmp/rt.csv")" = "t_s,x_m,y_m,force_x_N,force_y_N" ] && ok || bad "trace header changed"
+[ "$(($(wc -l <"$tmp/rt.csv") - 1))" -eq 300 ] && ok || bad "trace should hold 300 ticks"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -40,6 +40,8 @@ std::vector<Tick> play(const std::string& text, runtime::HandScript script, doub
   runtime::ServoConfig cfg;
   cfg.rate_hz = kRate;
   cfg.duration_s = seconds;
+  // No start ramp: these checks compare each tick's force with the law's (SafetyRamp tests the ramp).
+  cfg.ramp_s = 0;
   const auto ticks = static_cast<std::size_t>(std::llround(seconds * kRate));
   runtime::SimJoystick sim(runtime::sim_device_limits(), script, ticks);
   runtime::PatchEvaluator ev(*r.program);

@@ -183,6 +183,8 @@ TEST(EnergyBound, HoldsInTheServoLoop) {
   VirtualClock clock;
   ServoConfig config;
   config.duration_s = duration;
+  // No start ramp: these checks compare each tick's force with the law's (SafetyRamp tests the ramp).
+  config.ramp_s = 0;
   ASSERT_EQ(run_servo_loop(joystick, evaluator, clock, config).stop_reason, "completed");
   const auto& ticks = joystick.records();
   double injected = 0, unbounded = 0, worst_excess = -1;

@@ -61,6 +61,8 @@ ServoConfig random_config(std::mt19937& rng) {
   ServoConfig config;
   config.rate_hz = 900.0 + static_cast<double>(rng() % 9101);
   config.duration_s = 200.0 / config.rate_hz;
+  // No start ramp: these checks compare each tick's force with the law's (SafetyRamp tests the ramp).
+  config.ramp_s = 0;
   return config;
 }
 

@@ -25,6 +25,8 @@ ServoConfig config(double rate_hz, double duration_s) {
   ServoConfig c;
   c.rate_hz = rate_hz;
   c.duration_s = duration_s;
+  // No start ramp: these checks compare each tick's force with the law's (SafetyRamp tests the ramp).
+  c.ramp_s = 0;
   return c;
 }
 

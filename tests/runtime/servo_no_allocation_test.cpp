@@ -10,8 +10,10 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <mutex>
 #include <new>
 #include <string>
+#include <thread>
 #include <variant>
 
 #include "allocation_counter.hpp"
@@ -24,6 +26,8 @@ namespace sandpaper::runtime {
 namespace {
 
 using sandpaper::test::CountedAllocations;
+using sandpaper::test::CountedRtViolations;
+using sandpaper::test::RtViolations;
 
 using testing::damper;
 using testing::grating;
@@ -108,6 +112,102 @@ TEST(ServoNoAllocation, EveryTermKindRunsWithoutAllocating) {
   const std::size_t long_run = allocations_in_run(program, 20000);
   EXPECT_EQ(short_run, long_run);
   EXPECT_LE(short_run, 2u);
+}
+
+// Wraps a force source; optionally locks a std::mutex or mallocs inside force_rt, as a careless
+// material might. The detection tests below use it to show that the counters really see these.
+class MisbehavingSource final : public ForceSource {
+ public:
+  MisbehavingSource(ForceSource& inner, std::mutex* lock_me, bool malloc_each_tick)
+      : inner_(inner), lock_me_(lock_me), malloc_(malloc_each_tick) {}
+  glm::dvec2 force_rt(const HandState& hand, double dt_s) noexcept override {
+    if (lock_me_ != nullptr) {
+      const std::lock_guard<std::mutex> guard(*lock_me_);
+      touched_ = touched_ + 1;
+    }
+    if (malloc_) {
+      void* volatile p = std::malloc(16);
+      std::free(p);
+    }
+    return inner_.force_rt(hand, dt_s);
+  }
+  void reset_rt(const HandState& hand) noexcept override { inner_.reset_rt(hand); }
+
+ private:
+  ForceSource& inner_;
+  std::mutex* lock_me_;
+  bool malloc_;
+  volatile int touched_ = 0;
+};
+
+// One run of `ticks` on a thread of its own (the servo thread), counting only there.
+RtViolations violations_in_run(ForceSource& source, std::uint64_t ticks) {
+  SimJoystick joystick(sim_device_limits(), HandScript{HandPath::Circle, 0.08, 0.03, 0.0}, ticks);
+  ServoConfig config;
+  config.duration_s = static_cast<double>(ticks) / config.rate_hz;
+  RtViolations seen;
+  ServoReport report;
+  std::thread servo([&] {
+    CountedRtViolations counting;
+    VirtualClock clock;
+    report = run_servo_loop(joystick, source, clock, config);
+    seen = counting.stop();
+  });
+  servo.join();
+  EXPECT_EQ(report.stop_reason, "completed");
+  return seen;
+}
+
+TEST(ServoNoLock, TheTickNeitherAllocatesNorLocks) {
+  const auto program = every_kind_program();
+  PatchEvaluator evaluator(program);
+  const RtViolations seen = violations_in_run(evaluator, 5000);
+  EXPECT_EQ(seen.locks, 0u);
+  EXPECT_LE(seen.allocations, 2u);  // the two timing arrays, before the first tick
+}
+
+TEST(ServoNoLock, AStdMutexLockedInForceRtIsCaught) {
+  const auto program = table_program();
+  PatchEvaluator evaluator(program);
+  std::mutex mutex;
+  MisbehavingSource locking(evaluator, &mutex, false);
+  const RtViolations seen = violations_in_run(locking, 500);
+  EXPECT_GE(seen.locks, 500u);  // one per tick at least
+  EXPECT_LE(seen.allocations, 2u);
+}
+
+TEST(ServoNoLock, AMallocInForceRtIsCaught) {
+  const auto program = table_program();
+  PatchEvaluator evaluator(program);
+  MisbehavingSource allocating(evaluator, nullptr, true);
+  const RtViolations seen = violations_in_run(allocating, 500);
+  EXPECT_GE(seen.allocations, 502u);
+  EXPECT_EQ(seen.locks, 0u);
+}
+
+TEST(ServoNoLock, OtherThreadsAreNotCounted) {
+  // Starting a thread allocates on this thread (std::thread's state, glibc's thread bookkeeping):
+  // the same for a thread that does nothing and for one that locks and allocates, as only this
+  // thread is counted.
+  std::mutex mutex;
+  const auto counted_with = [&](bool busy) {
+    CountedRtViolations counting;
+    std::thread other([&] {
+      if (!busy) return;
+      const std::lock_guard<std::mutex> guard(mutex);
+      for (int i = 0; i < 10; ++i) {
+        int* volatile p = new int(i);
+        delete p;
+      }
+    });
+    other.join();
+    return counting.stop();
+  };
+  counted_with(false);  // the first thread of a process also sets up glibc's stack cache
+  const RtViolations idle = counted_with(false);
+  const RtViolations busy = counted_with(true);
+  EXPECT_EQ(busy.locks, idle.locks);
+  EXPECT_EQ(busy.allocations, idle.allocations);
 }
 
 TEST(ServoNoAllocation, StoppingOnAFaultDoesNotAllocateEither) {

@@ -52,6 +52,8 @@ TEST(LargeWorkspace, AThousandPatchesCompileAndPlay) {
   runtime::ServoConfig cfg;
   cfg.rate_hz = 1000;
   cfg.duration_s = 3.0;
+  // No start ramp: these checks compare each tick's force with the law's (SafetyRamp tests the ramp).
+  cfg.ramp_s = 0;
   runtime::SimJoystick sim(runtime::sim_device_limits(), scan, 3000);
   runtime::VirtualClock clock;
   const auto rep = runtime::run_servo_loop(sim, ev, clock, cfg);

@@ -40,7 +40,7 @@ nlohmann::json diagnostics_json(const compiler::Diagnostics& d);
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain);
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
-            double amplitude_mm, const std::string& trace, bool virtual_clock);
+            double amplitude_mm, const std::string& trace, bool virtual_clock, bool live);
 int cmd_inspect(const std::string& file, bool json, bool tables);
 // USB HID PID joysticks (cmd_devices.cpp, docs/USB_PID.md): list them; play on the first one found.
 int cmd_devices(const CommonOptions& o);
@@ -58,6 +58,7 @@ struct WorkspaceRunOptions {
   std::string trace;
   bool virtual_clock = false;
   double crossfade_ms = 2;
+  bool live = false;  // live servo figures on stderr once a second
 };
 // True when the input is a workspace file rather than a material.
 inline bool is_workspace_input(const CommonOptions& o) {

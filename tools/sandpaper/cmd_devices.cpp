@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "cli.hpp"
+#include "play.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 #include "sandpaper/runtime/usb/libusb_transport.hpp"
@@ -135,16 +136,16 @@ int cmd_run_usb(const CommonOptions& o, double rate_hz, double duration_s) {
     runtime::PatchEvaluator evaluator(in->program);
     std::cout << fmt::format("playing {} on {} ({}): {:g} Hz for {:g} s\n", in->program.name, co.device,
                              ids(chosen->info.vendor_id, chosen->info.product_id), rate_hz, duration_s);
-    const auto rep = runtime::run_servo_thread_nonrt(joystick, evaluator, cfg);
+    // Through play(): Ctrl-C / SIGTERM stop the loop with zero force, and the device is given back below.
+    const auto rep = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/false, 0).report;
     joystick.close();
-    std::string stop = rep.stop_reason;
-    if (joystick.fault() != runtime::usb::DeviceFault::None) stop += std::string(" (") + runtime::usb::to_string(joystick.fault()) + ")";
+    const std::string stop = std::string(rep.stop_reason) + " [" + runtime::stop_cause_name(rep.stop_cause) + "]";
     std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p99 {:.1f} us; overruns {}\n", rep.ticks, rep.rate_hz,
                              rep.period_p99_us, rep.overruns)
               << fmt::format("  felt     max force {:.4f} N, clamped ticks {}\n", rep.max_lateral_force_N, rep.clamped_ticks)
               << "  servo    " << (rep.realtime_scheduling ? "SCHED_FIFO, memory locked" : "normal priority (SCHED_FIFO not permitted here)")
               << "; stopped: " << stop << "\n";
-    return rep.stop_reason == "completed" ? kExitOk : kExitBadInput;
+    return exit_status_of(rep);
   } catch (const runtime::usb::HidPidError& e) {
     std::cerr << "sandpaper run --device usb: " << e.what() << "\n";
     if (e.status == UsbStatus::AccessDenied) print_udev_help(std::cerr, chosen->info.vendor_id, chosen->info.product_id);

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "cli.hpp"
+#include "play.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
@@ -33,7 +34,7 @@ std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max
 }  // namespace
 
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
-            double amplitude_mm, const std::string& trace, bool virtual_clock) {
+            double amplitude_mm, const std::string& trace, bool virtual_clock, bool live) {
   if (o.device == "usb") return cmd_run_usb(o, rate_hz, duration_s);
   auto c = make_compiler(o);
   if (o.device != "sim") {
@@ -101,13 +102,8 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                              limits.name, rate_hz, duration_s, hand, speed_mm_s,
                              hand == "circle" ? "radius" : "turning at +-", amplitude_mm,
                              virtual_clock ? " (virtual clock)" : "");
-  runtime::ServoReport rep;
-  if (virtual_clock) {
-    runtime::VirtualClock clock;
-    rep = runtime::run_servo_loop(joystick, evaluator, clock, cfg);
-  } else {
-    rep = runtime::run_servo_thread_nonrt(joystick, evaluator, cfg);
-  }
+  const Played played = play(joystick, evaluator, cfg, virtual_clock, live, trace.empty() ? 0 : ticks);
+  const runtime::ServoReport& rep = played.report;
   const auto& map = c.calibration().roughness_map();
   // Roughness is a property of textures (the map relates a texture's peak lateral force to it);
   // for springs and dampers alone it does not apply.
@@ -122,7 +118,8 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
     std::ostringstream csv;
     csv.precision(9);
     csv << "t_s,x_m,y_m,force_x_N,force_y_N\n";
-    for (const auto& r : recs)
+    // From the telemetry ring: what the servo tick published, not the device's own record.
+    for (const auto& r : played.records)
       csv << r.t_s << "," << r.position_m.x << "," << r.position_m.y << "," << r.force_N.x << "," << r.force_N.y << "\n";
     schema::write_file_atomically(trace, csv.str());
   }
@@ -145,6 +142,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                      {"compiled_max_lateral_force_N", prog.max_lateral_force_N},
                      {"clamped_ticks", rep.clamped_ticks},
                      {"stop_reason", rep.stop_reason},
+                     {"stop_cause", runtime::stop_cause_name(rep.stop_cause)},
                      {"realtime_scheduling", rep.realtime_scheduling},
                      {"clock", virtual_clock ? "virtual" : "monotonic"},
                      {"hand", {{"path", hand}, {"speed_mm_s", speed_mm_s}, {"amplitude_mm", amplitude_mm}}},
@@ -171,9 +169,9 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
     std::cout << "  servo    " << (virtual_clock ? "virtual clock" : rep.realtime_scheduling ? "SCHED_FIFO, memory locked"
                                                                    : "normal priority (SCHED_FIFO not permitted here)")
               << "; stopped: " << rep.stop_reason << "\n";
-    if (!trace.empty()) std::cout << "  trace    " << trace << " (" << recs.size() << " ticks)\n";
+    if (!trace.empty()) std::cout << "  trace    " << trace << " (" << played.records.size() << " ticks)\n";
   }
-  return rep.stop_reason == "completed" ? kExitOk : kExitBadInput;
+  return exit_status_of(rep);
 }
 
 }  // namespace sandpaper::cli

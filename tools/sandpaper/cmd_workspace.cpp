@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "cli.hpp"
+#include "play.hpp"
 #include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
@@ -213,13 +214,8 @@ int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
                              script.path == runtime::HandPath::Scan ? fmt::format(" along {:g} deg", script.direction_rad * 180 / kPi) : "",
                              ro.speed_mm_s, script.path == runtime::HandPath::Circle ? "radius" : "turning at +-",
                              script.amplitude_m * 1e3, ro.virtual_clock ? " (virtual clock)" : "");
-  runtime::ServoReport rep;
-  if (ro.virtual_clock) {
-    runtime::VirtualClock clock;
-    rep = runtime::run_servo_loop(joystick, evaluator, clock, cfg);
-  } else {
-    rep = runtime::run_servo_thread_nonrt(joystick, evaluator, cfg);
-  }
+  const Played played = play(joystick, evaluator, cfg, ro.virtual_clock, ro.live, ro.trace.empty() ? 0 : ticks);
+  const runtime::ServoReport& rep = played.report;
 
   // Which patch each tick was over, found again from the recorded positions (off the servo thread).
   const auto& recs = joystick.records();
@@ -238,7 +234,7 @@ int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
     std::ostringstream csv;
     csv.precision(9);
     csv << "t_s,x_m,y_m,force_x_N,force_y_N,patch\n";
-    for (const auto& r : recs) {
+    for (const auto& r : played.records) {  // from the telemetry ring
       const auto id = evaluator.patch_at(r.position_m);
       csv << r.t_s << "," << r.position_m.x << "," << r.position_m.y << "," << r.force_N.x << "," << r.force_N.y << ","
           << (id == runtime::WorkspaceEvaluator::kNoPatch ? 0 : id + 1) << "\n";
@@ -269,6 +265,7 @@ int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
                      {"max_lateral_force_N", rep.max_lateral_force_N},
                      {"clamped_ticks", rep.clamped_ticks},
                      {"stop_reason", rep.stop_reason},
+                     {"stop_cause", runtime::stop_cause_name(rep.stop_cause)},
                      {"realtime_scheduling", rep.realtime_scheduling},
                      {"clock", ro.virtual_clock ? "virtual" : "monotonic"},
                      {"crossfade_ms", ro.crossfade_ms},
@@ -307,7 +304,7 @@ int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
               << "; stopped: " << rep.stop_reason << "\n";
     if (!ro.trace.empty()) std::cout << "  trace    " << ro.trace << " (" << recs.size() << " ticks)\n";
   }
-  return rep.stop_reason == "completed" ? kExitOk : kExitBadInput;
+  return exit_status_of(rep);
 }
 
 }  // namespace sandpaper::cli

@@ -1,5 +1,6 @@
 // sandpaper: compile, explain, run and inspect haptic materials; write Sandpaper's array files.
 // `sandpaper --help` lists the commands; schema/LANGUAGE.md describes material files.
+#include <unistd.h>
 #include <iostream>
 
 #include <CLI/CLI.hpp>
@@ -47,6 +48,8 @@ int main(int argc, char** argv) {
   run->add_option("--amplitude", amplitude, "scan half-width or circle radius, mm")->capture_default_str();
   run->add_option("--trace", trace, "write every tick's time, position and force to this CSV file");
   run->add_flag("--virtual-clock", virtual_clock, "run on simulated time, as fast as possible (deterministic)");
+  bool live = false;
+  run->add_flag("--live", live, "print live servo figures on stderr once a second (default when stderr is a terminal)");
   auto* inspect = app.add_subcommand("inspect", "print a patch program");
   std::string patch_file;
   inspect->add_option("file", patch_file, "patch program (.patch)")->required();
@@ -124,9 +127,10 @@ int main(int argc, char** argv) {
         ro.trace = trace;
         ro.virtual_clock = virtual_clock;
         ro.crossfade_ms = crossfade_ms;
+        ro.live = live || isatty(STDERR_FILENO);
         return cmd_workspace_run(o, ro);
       }
-      return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock);
+      return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock, live || isatty(STDERR_FILENO));
     }
     if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);
     if (show->parsed()) return cmd_movie_show(show_file, o.json);

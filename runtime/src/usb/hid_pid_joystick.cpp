@@ -28,7 +28,7 @@ std::string usage_name(std::uint32_t u) { return "page " + hex(u >> 16) + " usag
 const char* to_string(DeviceFault fault) noexcept {
   switch (fault) {
     case DeviceFault::None: return "none";
-    case DeviceFault::ReadTimeout: return "device read timed out";
+    case DeviceFault::ReadTimedOut: return "device read timed out";
     case DeviceFault::ReadFailed: return "device read failed";
     case DeviceFault::WriteFailed: return "device write failed";
     case DeviceFault::Unplugged: return "device unplugged";
@@ -289,7 +289,7 @@ bool HidPidJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexce
   }
   if (t_s - last_report_t_s_ > options_.stale_limit_s) {
     if (fault_ == DeviceFault::None) {
-      fault_ = DeviceFault::ReadTimeout;
+      fault_ = DeviceFault::ReadTimedOut;
       fault_status_ = UsbStatus::Timeout;
     }
     return false;

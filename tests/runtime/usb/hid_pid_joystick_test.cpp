@@ -163,6 +163,7 @@ ServoConfig config(double duration_s) {
   ServoConfig c;
   c.rate_hz = 1000;
   c.duration_s = duration_s;
+  c.ramp_s = 0;  // the bytes below are the full force from the first tick
   return c;
 }
 
@@ -175,7 +176,8 @@ TEST(HidPidJoystick, UnplugMidRunStopsTheLoopAndNamesTheCause) {
   VirtualClock clock;
   const ServoReport report = run_servo_loop(joystick, source, clock, config(0.1));
   EXPECT_EQ(report.ticks, 11u);
-  EXPECT_EQ(report.stop_reason, "device write failed");
+  EXPECT_EQ(report.stop_cause, StopCause::DeviceUnplugged);  // named through last_fault_rt()
+  EXPECT_STREQ(stop_cause_name(report.stop_cause), "device_unplugged");
   EXPECT_EQ(joystick.fault(), DeviceFault::Unplugged);
   EXPECT_EQ(joystick.fault_status(), UsbStatus::NoDevice);
   EXPECT_STREQ(to_string(joystick.fault()), "device unplugged");
@@ -195,8 +197,8 @@ TEST(HidPidJoystick, ReadTimeoutStopsTheLoopWithZeroForceSent) {
   VirtualClock clock;
   const std::size_t start = t->log().size();
   const ServoReport report = run_servo_loop(joystick, source, clock, config(0.1));
-  EXPECT_EQ(report.stop_reason, "device read failed");
-  EXPECT_EQ(joystick.fault(), DeviceFault::ReadTimeout);
+  EXPECT_EQ(report.stop_cause, StopCause::DeviceReadTimeout);
+  EXPECT_EQ(joystick.fault(), DeviceFault::ReadTimedOut);
   EXPECT_EQ(report.ticks, 5u + 3u);  // 5 fresh ticks, 2 within the limit, the 3rd stale (t - last > 2.5 ms)
   const auto got = steps(*t, start);
   ASSERT_GE(got.size(), 2u);
@@ -214,6 +216,7 @@ TEST(HidPidJoystick, ReadErrorOtherThanTimeoutStopsAtOnce) {
   VirtualClock clock;
   const ServoReport report = run_servo_loop(joystick, source, clock, config(0.1));
   EXPECT_EQ(report.ticks, 2u);
+  EXPECT_EQ(report.stop_cause, StopCause::DeviceReadFailed);
   EXPECT_EQ(joystick.fault(), DeviceFault::ReadFailed);
 }
 

@@ -16,6 +16,16 @@ struct DeviceLimits {
   double workspace_radius_m = 0.1143;  // thesis Table 2: 9 inch circle
 };
 
+// Why a device call failed, so that the servo loop can name the stop cause. A driver that can tell
+// (a USB driver: LIBUSB_ERROR_TIMEOUT, LIBUSB_ERROR_NO_DEVICE) overrides last_fault_rt().
+enum class DeviceFault {
+  None,          // no fault, or the driver cannot tell: the loop names the call that failed
+  ReadFailed,    // a read returned an error
+  ReadTimedOut,  // no position arrived in time
+  Unplugged,     // the device is gone (read or write)
+  WriteFailed,   // a force command was not accepted
+};
+
 class Device {
  public:
   virtual ~Device() = default;
@@ -25,6 +35,9 @@ class Device {
   virtual bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept = 0;
   // Commands the lateral force (N) for this tick. Returns false on a device fault.
   virtual bool write_force_rt(glm::dvec2 force_N) noexcept = 0;
+  // Why the last read_position_rt or write_force_rt that returned false failed. Called by the loop
+  // right after such a call, on the servo thread; must not allocate, lock or do I/O.
+  virtual DeviceFault last_fault_rt() const noexcept { return DeviceFault::None; }
 };
 
 }  // namespace sandpaper::runtime

@@ -2,6 +2,7 @@
 // The servo loop: each tick reads the device, filters velocity and acceleration, evaluates the
 // patch program, clamps the force magnitude to the device maximum, writes it, and measures its
 // period and compute time. Thesis 3.3.3: 900 Hz; textures degrade below about 1 kHz.
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "sandpaper/runtime/device.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/servo_clock.hpp"
+#include "sandpaper/runtime/telemetry.hpp"
 
 namespace sandpaper::runtime {
 
@@ -16,7 +18,36 @@ struct ServoConfig {
   double rate_hz = 1000.0;     // 900 Hz .. 10 kHz (and within the device's limits)
   double duration_s = 2.0;     // how long to play; ticks = round(duration * rate)
   double velocity_cutoff_hz = 50.0;  // first-order low-pass on finite-difference velocity and acceleration
+  // Safety (docs/RUNTIME.md, "Stop causes").
+  double ramp_s = 0.05;             // the force is scaled by t / ramp_s over the first ramp_s (0: no ramp)
+  double velocity_limit_m_s = 2.0;  // filtered hand speed above this stops the loop (VelocityLimit)
+  double max_late_s = 0.05;         // a tick starting this long after its deadline stops the loop (DeadlineMissed)
+  // Set (by a signal handler, another thread) to stop the loop at its next tick (StopRequested).
+  const std::atomic<bool>* stop_request = nullptr;
+  // Where each tick's record goes (never blocks: drops when full), or nullptr.
+  TelemetryRing* telemetry = nullptr;
 };
+
+// Why the loop stopped, with stable names (stop_cause_name) for reports and scripts, in the manner
+// of Force Dimension's DHD_FORCE_OFF_* causes. In every cause but Completed the tick that sees the
+// fault writes zero force (or, when the write itself failed, the loop's closing write does) and
+// the loop stops.
+enum class StopCause {
+  Completed,          // "completed": played the whole duration
+  ForceNotFinite,     // "force_not_finite": the force source returned NaN or infinity
+  PositionNotFinite,  // "position_not_finite": the device reported a NaN or infinite position
+  DeviceReadFailed,   // "device_read_failed"
+  DeviceReadTimeout,  // "device_read_timeout"
+  DeviceUnplugged,    // "device_unplugged"
+  DeviceWriteFailed,  // "device_write_failed"
+  DeadlineMissed,     // "deadline_missed": a tick started more than max_late_s after its deadline
+  VelocityLimit,      // "velocity_limit": filtered hand speed above velocity_limit_m_s
+  StopRequested,      // "stop_requested": stop_request was set (Ctrl-C, SIGTERM)
+};
+// Stable snake_case name ("device_unplugged"); never changes once released.
+const char* stop_cause_name(StopCause cause) noexcept;
+// The report's human-readable stop_reason ("device unplugged", "stopped by signal").
+const char* stop_cause_text(StopCause cause) noexcept;
 
 // Summary of one run. Periods are measured between successive tick starts on the loop's clock.
 struct ServoReport {
@@ -27,19 +58,25 @@ struct ServoReport {
   double compute_p50_us = 0, compute_p99_us = 0, compute_max_us = 0;
   std::uint64_t overruns = 0;   // ticks that started after their deadline plus half a period
   std::uint64_t clamped_ticks = 0;   // ticks whose force was limited to the device maximum
+  std::uint64_t ramped_ticks = 0;    // ticks whose force was scaled down by the start ramp
   double max_lateral_force_N = 0;    // largest |F| actually written
-  std::string stop_reason = "completed";  // "completed", "device read failed", "device write failed", "non-finite force"
+  StopCause stop_cause = StopCause::Completed;
+  std::string stop_reason = "completed";  // stop_cause_text(stop_cause), kept for compatibility
   bool realtime_scheduling = false;  // SCHED_FIFO obtained
+  bool memory_locked = false;        // mlockall succeeded
+  int realtime_error = 0;            // errno of the refused SCHED_FIFO request (0 if granted or not asked)
+  std::uint64_t telemetry_dropped = 0;  // records the telemetry ring had no room for
 };
 
 // Throws std::invalid_argument for a rate outside 900 Hz - 10 kHz or outside the device's limits,
 // a non-positive or non-finite duration, a run shorter than one tick or longer than 10 million
-// ticks, or a non-positive velocity filter cutoff.
+// ticks, a non-positive velocity filter cutoff, a negative or non-finite ramp, or a non-positive
+// velocity limit or deadline allowance.
 void validate_config(const ServoConfig& config, const DeviceLimits& limits);
 
 // Plays `source` on `device` on the calling thread with `clock`; returns when done.
-// Everything the ticks need is allocated before the first tick. Stops at the first device fault or
-// non-finite force; in every case a zero force is written once after the last tick.
+// Everything the ticks need is allocated before the first tick. Stops at the first StopCause; in
+// every case a zero force is written once after the last tick.
 // Calls validate_config first (and so may throw).
 ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& clock,
                            const ServoConfig& config);
@@ -48,5 +85,26 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
 // otherwise it runs with normal priority and says so in the report) and joins it. Uses the
 // MonotonicClock. Never prints: the caller decides how to report a missing real-time priority.
 ServoReport run_servo_thread_nonrt(Device& device, ForceSource& source, const ServoConfig& config);
+
+// The same on a thread the caller does not wait for: start, do other work (drain telemetry, offer
+// new materials), then join. Device, source and config (and what it points to) must outlive join.
+class ServoThread {
+ public:
+  ServoThread() = default;
+  ~ServoThread();  // joins if still running
+  ServoThread(const ServoThread&) = delete;
+  ServoThread& operator=(const ServoThread&) = delete;
+  // Validates on the caller's thread (throws std::invalid_argument), then starts the loop.
+  void start_nonrt(Device& device, ForceSource& source, const ServoConfig& config);
+  // True once the loop has returned (join_nonrt then does not wait).
+  bool finished() const noexcept { return finished_.load(std::memory_order_acquire); }
+  // Waits for the loop; rethrows what it threw. Call once per start.
+  ServoReport join_nonrt();
+
+ private:
+  struct Impl;
+  Impl* impl_ = nullptr;
+  std::atomic<bool> finished_{false};
+};
 
 }  // namespace sandpaper::runtime

@@ -14,14 +14,11 @@
 
 namespace sandpaper::runtime::usb {
 
-// Why the driver stopped playing; the stop report names it (to_string).
-enum class DeviceFault {
-  None,
-  ReadTimeout,   // no position report for longer than HidPidOptions::stale_limit_s
-  ReadFailed,    // the input transfer failed (not a timeout, not an unplug)
-  WriteFailed,   // a Set Constant Force transfer failed
-  Unplugged,     // the transport reported no device
-};
+// Why the driver stopped playing (runtime/device.hpp): ReadTimedOut when no position report came for
+// longer than HidPidOptions::stale_limit_s, ReadFailed for a failed input transfer (not a timeout,
+// not an unplug), WriteFailed for a failed Set Constant Force, Unplugged when the transport reports
+// no device. The servo loop reads it through last_fault_rt() and names the stop cause.
+using sandpaper::runtime::DeviceFault;
 const char* to_string(DeviceFault fault) noexcept;
 
 struct HidPidOptions {
@@ -63,6 +60,7 @@ class HidPidJoystick final : public Device {
   void close() noexcept;
 
   DeviceFault fault() const noexcept { return fault_; }
+  DeviceFault last_fault_rt() const noexcept override { return fault_; }
   UsbStatus fault_status() const noexcept { return fault_status_; }
   std::uint8_t effect_block_index(int axis) const noexcept { return block_index_[static_cast<std::size_t>(axis)]; }
   const HidReportDescriptor& descriptor() const noexcept { return descriptor_; }

@@ -1,0 +1,25 @@
+#pragma once
+// Plays a force source for `sandpaper run`: the servo loop on its real-time thread (or on the
+// virtual clock), Ctrl-C / SIGTERM as a stop request, telemetry drained from the lock-free ring
+// (live figures on stderr, the records kept for --trace), the real-time note printed once.
+#include <cstddef>
+#include <vector>
+
+#include "sandpaper/runtime/servo_loop.hpp"
+
+namespace sandpaper::cli {
+
+struct Played {
+  runtime::ServoReport report;
+  std::vector<runtime::TelemetryRecord> records;  // every tick, from the telemetry ring (when kept)
+};
+
+// `keep_records`: how many tick records to keep (the run's tick count for --trace, else 0).
+// `live`: print a line of figures on stderr once a second while playing (real time only).
+Played play(runtime::Device& device, runtime::ForceSource& source, runtime::ServoConfig config, bool virtual_clock,
+            bool live, std::size_t keep_records);
+
+// Exit status for a finished run: 0 when it completed or was stopped by a signal, else 1.
+int exit_status_of(const runtime::ServoReport& report);
+
+}  // namespace sandpaper::cli
