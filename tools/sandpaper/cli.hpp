@@ -39,8 +39,9 @@ std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Co
 nlohmann::json diagnostics_json(const compiler::Diagnostics& d);
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain);
+struct RunDeviceOptions;  // run_device.hpp
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
-            double amplitude_mm, const std::string& trace, bool virtual_clock);
+            double amplitude_mm, const std::string& trace, bool virtual_clock, const RunDeviceOptions& device_options);
 int cmd_inspect(const std::string& file, bool json, bool tables);
 int cmd_library(const CommonOptions& o);
 

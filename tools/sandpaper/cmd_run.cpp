@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include "cli.hpp"
+#include "run_device.hpp"
+#include "sandpaper/runtime/trace_csv.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
@@ -33,7 +35,10 @@ std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max
 }  // namespace
 
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
-            double amplitude_mm, const std::string& trace, bool virtual_clock) {
+            double amplitude_mm, const std::string& trace, bool virtual_clock, const RunDeviceOptions& device_options) {
+  std::vector<glm::dvec2> replayed;
+  if (!device_options.replay.empty())
+    if (const int rc = load_replay(device_options, rate_hz, replayed, duration_s); rc != kExitOk) return rc;
   auto c = make_compiler(o);
   if (o.device != "sim") {
     std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim runs\n";
@@ -92,7 +97,8 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
   script.speed_m_s = speed_mm_s * 1e-3;
   script.amplitude_m = amplitude_mm * 1e-3;
   auto ticks = static_cast<std::size_t>(std::llround(duration_s * rate_hz));
-  runtime::SimJoystick joystick(limits, script, ticks);
+  const auto device = make_run_device(device_options, limits, script, ticks, replayed);
+  runtime::RecordingDevice& joystick = *device;
   runtime::PatchEvaluator evaluator(prog);
 
   if (!o.json)
@@ -100,6 +106,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                              limits.name, rate_hz, duration_s, hand, speed_mm_s,
                              hand == "circle" ? "radius" : "turning at +-", amplitude_mm,
                              virtual_clock ? " (virtual clock)" : "");
+  if (!o.json) std::cout << "  device   " << describe_run_device(device_options) << "\n";
   runtime::ServoReport rep;
   if (virtual_clock) {
     runtime::VirtualClock clock;
@@ -118,12 +125,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
   if (!recs.empty()) mean_force /= static_cast<double>(recs.size());
 
   if (!trace.empty()) {
-    std::ostringstream csv;
-    csv.precision(9);
-    csv << "t_s,x_m,y_m,force_x_N,force_y_N\n";
-    for (const auto& r : recs)
-      csv << r.t_s << "," << r.position_m.x << "," << r.position_m.y << "," << r.force_N.x << "," << r.force_N.y << "\n";
-    schema::write_file_atomically(trace, csv.str());
+    schema::write_file_atomically(trace, runtime::format_trace_csv(recs));
   }
 
   if (o.json) {
@@ -147,6 +149,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                      {"realtime_scheduling", rep.realtime_scheduling},
                      {"clock", virtual_clock ? "virtual" : "monotonic"},
                      {"hand", {{"path", hand}, {"speed_mm_s", speed_mm_s}, {"amplitude_mm", amplitude_mm}}},
+                     {"hand_device", describe_run_device(device_options)},
                      {"trace", trace.empty() ? nlohmann::json(nullptr) : nlohmann::json(trace)}};
     std::cout << j.dump(2) << "\n";
   } else {

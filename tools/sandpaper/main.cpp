@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "run_device.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
@@ -47,6 +48,8 @@ int main(int argc, char** argv) {
   run->add_option("--amplitude", amplitude, "scan half-width or circle radius, mm")->capture_default_str();
   run->add_option("--trace", trace, "write every tick's time, position and force to this CSV file");
   run->add_flag("--virtual-clock", virtual_clock, "run on simulated time, as fast as possible (deterministic)");
+  RunDeviceOptions run_device;
+  add_run_device_options(run, run_device);
   auto* inspect = app.add_subcommand("inspect", "print a patch program");
   std::string patch_file;
   inspect->add_option("file", patch_file, "patch program (.patch)")->required();
@@ -112,6 +115,10 @@ int main(int argc, char** argv) {
     if (run->parsed()) {
       if (!needs_input(run)) return kExitUsage;
       if (is_workspace_input(o)) {
+        if (run->count("--hand-model") || run->count("--replay")) {
+          std::cerr << "sandpaper run: --hand-model and --replay play single materials; workspaces use the scripted hand\n";
+          return kExitUsage;
+        }
         WorkspaceRunOptions ro;
         ro.rate_hz = rate;
         if (run->count("--duration")) ro.duration_s = duration;
@@ -123,7 +130,7 @@ int main(int argc, char** argv) {
         ro.crossfade_ms = crossfade_ms;
         return cmd_workspace_run(o, ro);
       }
-      return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock);
+      return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock, run_device);
     }
     if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);
     if (show->parsed()) return cmd_movie_show(show_file, o.json);
