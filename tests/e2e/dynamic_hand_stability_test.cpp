@@ -35,13 +35,13 @@ runtime::HandScript scan() {
 
 constexpr double kSeconds = 4.0;
 
-struct Run {
+struct Played {
   runtime::ServoReport report;
   std::vector<runtime::TickRecord> ticks;
   std::vector<runtime::HandTickRecord> hand;
 };
 
-Run play(const schema::PatchProgram& program, double rate_hz, runtime::HandModel model = {}) {
+Played play(const schema::PatchProgram& program, double rate_hz, runtime::HandModel model = {}) {
   runtime::ServoConfig cfg;
   cfg.rate_hz = rate_hz;
   cfg.duration_s = kSeconds;
@@ -49,7 +49,7 @@ Run play(const schema::PatchProgram& program, double rate_hz, runtime::HandModel
   runtime::DynamicHandJoystick device(runtime::sim_device_limits(), scan(), model, n);
   runtime::PatchEvaluator evaluator(program);
   runtime::VirtualClock clock;
-  Run run{runtime::run_servo_loop(device, evaluator, clock, cfg), device.records(), device.hand_records()};
+  Played run{runtime::run_servo_loop(device, evaluator, clock, cfg), device.records(), device.hand_records()};
   return run;
 }
 
@@ -60,9 +60,12 @@ Run play(const schema::PatchProgram& program, double rate_hz, runtime::HandModel
 //      does (same script, no material) plus 1.5 x the largest force sent / hand stiffness (the static
 //      deflection, with room for the hand's resonance, Q = 1/(2 zeta) = 1.35 at the defaults) plus 1 mm;
 //  (c) no growth: the largest hand-relative energy (kinetic in the path's frame plus hand-spring
-//      potential) in the last second is at most 1.1 x that of the first second plus 10 uJ.
+//      potential) in the last second is at most 2 x that of the first second plus 10 uJ. Not 1: a
+//      random texture (library/gravel.hmat) deflects the handle differently on every lap; over 20 s
+//      its per-second maxima wander between 2.8 and 5.3 mJ without growing.
 struct Verdict {
   bool stable = true;
+  bool clamped_or_stopped = false, strayed = false, grew = false;
   std::string why;
   double max_excursion_mm = 0, allowed_excursion_mm = 0, first_J = 0, last_J = 0, max_force_N = 0;
 };
@@ -73,16 +76,18 @@ double max_excursion(const std::vector<runtime::HandTickRecord>& hand) {
   return d;
 }
 
-Verdict judge(const Run& run, const Run& free_hand, const runtime::HandModel& model = {}) {
+Verdict judge(const Played& run, const Played& free_hand, const runtime::HandModel& model = {}) {
   Verdict v;
   std::ostringstream why;
   for (const auto& t : run.ticks) v.max_force_N = std::max(v.max_force_N, glm::length(t.force_N));
   if (run.report.stop_reason != "completed") why << "stopped: " << run.report.stop_reason << "; ";
   if (run.report.clamped_ticks > 0) why << run.report.clamped_ticks << " ticks clamped at the device maximum; ";
+  v.clamped_or_stopped = run.report.stop_reason != "completed" || run.report.clamped_ticks > 0;
   const double allowed = max_excursion(free_hand.hand) + 1.5 * v.max_force_N / model.stiffness_N_per_m + 0.001;
   v.max_excursion_mm = 1e3 * max_excursion(run.hand);
   v.allowed_excursion_mm = 1e3 * allowed;
-  if (v.max_excursion_mm > v.allowed_excursion_mm)
+  v.strayed = v.max_excursion_mm > v.allowed_excursion_mm;
+  if (v.strayed)
     why << "handle strayed " << v.max_excursion_mm << " mm from the hand, allowed " << v.allowed_excursion_mm << " mm; ";
   if (!run.hand.empty()) {
     const double t_end = run.hand.back().t_s;
@@ -91,16 +96,17 @@ Verdict judge(const Run& run, const Run& free_hand, const runtime::HandModel& mo
       if (h.t_s > t_end - 1.0) v.last_J = std::max(v.last_J, h.energy_J);
     }
   }
-  if (!(v.last_J <= 1.1 * v.first_J + 10e-6))
+  v.grew = !(v.last_J <= 2 * v.first_J + 10e-6);
+  if (v.grew)
     why << "energy grew: " << v.first_J * 1e3 << " mJ in the first second, " << v.last_J * 1e3 << " mJ in the last; ";
   v.why = why.str();
   v.stable = v.why.empty();
   return v;
 }
 
-const Run& free_hand(double rate_hz) {
-  static const Run at900 = play(schema::PatchProgram{}, 900);
-  static const Run at1000 = play(schema::PatchProgram{}, 1000);
+const Played& free_hand(double rate_hz) {
+  static const Played at900 = play(schema::PatchProgram{}, 900);
+  static const Played at1000 = play(schema::PatchProgram{}, 1000);
   return rate_hz < 950 ? at900 : at1000;
 }
 
@@ -115,7 +121,7 @@ std::vector<fs::path> shipped_materials() {
 }
 
 TEST(DynamicHand, FreeHandTracksItsPathAndStartsWithNoEnergy) {
-  const Run& run = free_hand(1000);
+  const Played& run = free_hand(1000);
   ASSERT_EQ(run.report.stop_reason, "completed");
   ASSERT_EQ(run.hand.size(), 4000u);
   EXPECT_EQ(run.hand.front().energy_J, 0.0);
@@ -158,7 +164,7 @@ TEST(DynamicHand, EveryShippedMaterialIsStableAt900HzAnd1kHz) {
     auto r = test::shipped_compiler().compile_file(file);
     ASSERT_TRUE(r.ok()) << file << "\n" << compiler::format_diagnostics(r.diagnostics);
     for (double rate : {900.0, 1000.0}) {
-      const Run run = play(*r.program, rate);
+      const Played run = play(*r.program, rate);
       const Verdict v = judge(run, free_hand(rate));
       EXPECT_TRUE(v.stable) << file.filename() << " at " << rate << " Hz: " << v.why;
       std::cout << "[stability] " << file.lexically_relative(SANDPAPER_SOURCE_DIR).string() << " @ " << rate
@@ -203,12 +209,37 @@ TEST(DynamicHand, TheEnergyBoundKeepsAntiViscousFromRunningAway) {
     const Verdict held = judge(play(bounded, rate), free_hand(rate));
     EXPECT_TRUE(held.stable) << rate << " Hz, bounded: " << held.why;
     const auto unbounded = compile("force AntiViscous damping 10 N*s/m; energy budget 1000000 J refill 1000000 W");
-    const Run away = play(unbounded, rate);
+    const Played away = play(unbounded, rate);
     const Verdict ran = judge(away, free_hand(rate));
     EXPECT_FALSE(ran.stable) << rate << " Hz: AntiViscous without the bound passed";
     std::cout << "[AntiViscous 10 N*s/m @ " << rate << " Hz] bounded: energy last s " << held.last_J * 1e3
               << " mJ; unbounded: " << ran.why << "\n";
-    // The shipped slick.hmat (1.5 N*s/m, below the hand's 6.45) is stable with or without its bound.
+  }
+}
+
+// Milder: 7 N*s/m leaves the pair a net -0.55 N*s/m, a growth rate of 0.5 /s, too slow to reach the
+// device maximum in 4 s. Criterion (c) alone catches it; the default-sized bound holds it.
+TEST(DynamicHand, TheEnergyCriterionAloneCatchesASlowRunaway) {
+  auto unbounded = test::shipped_compiler().compile_text("force AntiViscous damping 7 N*s/m; energy budget 1000000 J refill 1000000 W");
+  auto bounded = test::shipped_compiler().compile_text("force AntiViscous damping 7 N*s/m; energy budget 30 mJ refill 5 mW");
+  ASSERT_TRUE(unbounded.ok() && bounded.ok());
+  for (double rate : {900.0, 1000.0}) {
+    const Verdict ran = judge(play(*unbounded.program, rate), free_hand(rate));
+    EXPECT_TRUE(ran.grew) << rate << " Hz: " << ran.why << " energy " << ran.first_J << " -> " << ran.last_J << " J";
+    EXPECT_FALSE(ran.clamped_or_stopped) << rate << " Hz: " << ran.why;
+    const Verdict held = judge(play(*bounded.program, rate), free_hand(rate));
+    EXPECT_TRUE(held.stable) << rate << " Hz: " << held.why;
+  }
+}
+
+// The shipped slick.hmat (1.5 N*s/m, below the hand's 6.45) is stable with or without its bound.
+TEST(DynamicHand, SlickIsStableEvenWithoutItsBound) {
+  auto r = test::shipped_compiler().compile_text(
+      "force AntiViscous damping 1.5 N*s/m; force Wave amplitude 0.1 N period 6 mm axes xy; energy budget 1000000 J refill 1000000 W");
+  ASSERT_TRUE(r.ok());
+  for (double rate : {900.0, 1000.0}) {
+    const Verdict v = judge(play(*r.program, rate), free_hand(rate));
+    EXPECT_TRUE(v.stable) << rate << " Hz: " << v.why;
   }
 }
 
