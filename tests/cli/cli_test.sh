@@ -264,5 +264,16 @@ has "$tmp/err" 'one.csv:2: error: .*one command level' "one command level says w
 cmp -s "$tmp/cal/devices/openffboard-2axis.toml" "$tmp/dev.keep" && ok || bad "a refused device fit changed its output file"
 [ "$(find "$tmp" -name '*tmp-*' | wc -l)" -eq 0 ] && ok || bad "calibrate left temporary files behind"
 
+# The dynamic hand and the replay device (docs/RUNTIME.md): a replayed trace reproduces every tick.
+expect_exit 0 "run on the dynamic hand" -- "$sp" run -e corduroy --virtual-clock --hand-model dynamic --duration 0.5 --trace "$tmp/dyn.csv"
+has "$tmp/out" 'device   dynamic hand \(0.554 kg, 135 N/m, 6.45 N\*s/m\)' "the dynamic hand is named"
+expect_exit 0 "replay a trace" -- "$sp" run -e corduroy --virtual-clock --replay "$tmp/dyn.csv" --trace "$tmp/again.csv"
+cmp -s "$tmp/dyn.csv" "$tmp/again.csv" && ok || bad "a replayed trace should reproduce the recorded one byte for byte"
+expect_exit 2 "replay at another rate is refused with the trace's rate" -- "$sp" run -e corduroy --virtual-clock --replay "$tmp/dyn.csv" --rate 2000
+has "$tmp/err" 'recorded at 1000 Hz, not 2000 Hz; replay it with --rate 1000' "replay names the rate to use"
+printf 'time,x\n' >"$tmp/bad.csv"
+expect_exit 1 "a malformed trace is refused" -- "$sp" run -e corduroy --replay "$tmp/bad.csv"
+expect_exit 2 "workspaces do not take --replay" -- "$sp" run examples/workspace/sampler.hws --replay "$tmp/dyn.csv"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
