@@ -11,7 +11,7 @@ out="$root/bench/results"
 mkdir -p "$out"
 day=$(date +%F)
 "$bin/sandpaper_bench" --benchmark_out="$out/$day.json" --benchmark_out_format=json \
-  --benchmark_filter='^(BM_Term|BM_HeightFieldSize|BM_GratingSize|BM_Force|BM_Workspace|BM_Compile)'
+  --benchmark_filter='^(BM_Term|BM_HeightFieldSize|BM_GratingSize|BM_Force|BM_Material|BM_Workspace|BM_Compile)'
 loops=()
 for rate in 1000 10000; do
   "$bin/sandpaper_bench_loop" --rate "$rate" --duration "$seconds" --json-out "$out/$day-loop-$rate.json" || true
