@@ -224,9 +224,12 @@ TEST(DynamicHand, TheEnergyCriterionAloneCatchesASlowRunaway) {
   auto bounded = test::shipped_compiler().compile_text("force AntiViscous damping 7 N*s/m; energy budget 30 mJ refill 5 mW");
   ASSERT_TRUE(unbounded.ok() && bounded.ok());
   for (double rate : {900.0, 1000.0}) {
-    const Verdict ran = judge(play(*unbounded.program, rate), free_hand(rate));
+    const Played run = play(*unbounded.program, rate);
+    const Verdict ran = judge(run, free_hand(rate));
     EXPECT_TRUE(ran.grew) << rate << " Hz: " << ran.why << " energy " << ran.first_J << " -> " << ran.last_J << " J";
-    EXPECT_FALSE(ran.clamped_or_stopped) << rate << " Hz: " << ran.why;
+    EXPECT_EQ(run.report.clamped_ticks, 0u) << rate << " Hz: the force reached the device maximum";
+    std::cout << "[AntiViscous 7 N*s/m unbounded @ " << rate << " Hz] energy max first s " << ran.first_J * 1e3
+              << " mJ, last s " << ran.last_J * 1e3 << " mJ\n";
     const Verdict held = judge(play(*bounded.program, rate), free_hand(rate));
     EXPECT_TRUE(held.stable) << rate << " Hz: " << held.why;
   }
