@@ -6,6 +6,7 @@
 #include <cmath>
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -195,6 +196,34 @@ BENCHMARK_CAPTURE(BM_Term, point_masses_2, bench_masses(2, 200));
 // point-masses term can cost per tick.
 BENCHMARK_CAPTURE(BM_Term, point_masses_2_at_cap, bench_masses(2, 2e7));
 BENCHMARK_CAPTURE(BM_Term, attractor, bench_attractor());
+
+// Tick cost against texture size: a height field of n x n samples (two float grids, gradient x and
+// y: 4096^2 is 128 MB), built once per size and kept, so the timing is of the lookup alone. The hand
+// wanders over the whole patch, so larger grids miss the cache more.
+const schema::PatchProgram& height_field_program(std::uint32_t n) {
+  static std::vector<std::pair<std::uint32_t, std::unique_ptr<schema::PatchProgram>>> built;
+  for (const auto& [size, program] : built)
+    if (size == n) return *program;
+  auto program = std::make_unique<schema::PatchProgram>();
+  program->terms.push_back(bench_height_field(n));
+  built.emplace_back(n, std::move(program));
+  return *built.back().second;
+}
+
+void BM_HeightFieldSize(benchmark::State& state) {
+  const auto n = static_cast<std::uint32_t>(state.range(0));
+  const auto& program = height_field_program(n);
+  state.counters["grid_MB"] = 2.0 * n * n * sizeof(float) / 1e6;
+  play(state, program);
+}
+BENCHMARK(BM_HeightFieldSize)->Arg(64)->Arg(256)->Arg(1024)->Arg(4096);
+
+void BM_GratingSize(benchmark::State& state) {
+  schema::PatchProgram program;
+  program.terms.push_back(bench_grating(static_cast<std::size_t>(state.range(0))));
+  play(state, program);
+}
+BENCHMARK(BM_GratingSize)->Arg(64)->Arg(1024)->Arg(16384);
 
 
 }  // namespace

@@ -20,18 +20,18 @@ double triangle_offset(double distance, double amplitude) noexcept {
 }  // namespace
 
 SimJoystick::SimJoystick(DeviceLimits limits, HandScript script, std::size_t capacity_ticks)
-    : limits_(std::move(limits)), script_(script), capacity_(capacity_ticks) {
-  records_.reserve(capacity_ticks);
-}
+    : RecordingDevice(capacity_ticks), limits_(std::move(limits)), script_(script) {}
 
-glm::dvec2 SimJoystick::hand_position(double t_s) const noexcept {
-  const double amplitude = script_.amplitude_m;
+glm::dvec2 SimJoystick::hand_position(double t_s) const noexcept { return scripted_hand_position(script_, t_s); }
+
+glm::dvec2 scripted_hand_position(const HandScript& script, double t_s) noexcept {
+  const double amplitude = script.amplitude_m;
   if (!(amplitude > 0)) return {0, 0};  // a zero-size path is a hand held still on the centre
-  const double distance = script_.speed_m_s * t_s;
-  switch (script_.path) {
+  const double distance = script.speed_m_s * t_s;
+  switch (script.path) {
     case HandPath::Scan: {
       const double offset = triangle_offset(distance, amplitude);
-      return offset * glm::dvec2{std::cos(script_.direction_rad), std::sin(script_.direction_rad)};
+      return offset * glm::dvec2{std::cos(script.direction_rad), std::sin(script.direction_rad)};
     }
     case HandPath::Circle: {
       const double angle = distance / amplitude;
@@ -43,19 +43,14 @@ glm::dvec2 SimJoystick::hand_position(double t_s) const noexcept {
 
 bool SimJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexcept {
   position_m = hand_position(t_s);
-  last_t_ = t_s;
-  last_position_ = position_m;
-  read_pending_ = true;
+  note_read_rt(t_s, position_m);
   return true;
 }
 
 bool SimJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
   // Only a write answering a read is a tick; the loop's closing zero-force command is obeyed
   // (the sim has nothing to do) but must not show up as an extra tick in the record.
-  if (!read_pending_) return true;
-  read_pending_ = false;
-  if (records_.size() < capacity_) records_.push_back(TickRecord{last_t_, last_position_, force_N});
-  ++ticks_;
+  note_write_rt(force_N);
   return true;
 }
 

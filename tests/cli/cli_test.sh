@@ -307,6 +307,16 @@ grep -q '^live' "$tmp/err" && bad "live figures without --live on a pipe" || ok
 expect_exit 0 "trace from the ring" -- "$sp" run -e corduroy --device sim --duration 0.3 --trace "$tmp/rt.csv"
 [ "$(head -1 "$tmp/rt.csv")" = "t_s,x_m,y_m,force_x_N,force_y_N" ] && ok || bad "trace header changed"
 [ "$(($(wc -l <"$tmp/rt.csv") - 1))" -eq 300 ] && ok || bad "trace should hold 300 ticks"
+# The dynamic hand and the replay device (docs/RUNTIME.md): a replayed trace reproduces every tick.
+expect_exit 0 "run on the dynamic hand" -- "$sp" run -e corduroy --virtual-clock --hand-model dynamic --duration 0.5 --trace "$tmp/dyn.csv"
+has "$tmp/out" 'device   dynamic hand \(0.554 kg, 135 N/m, 6.45 N\*s/m\)' "the dynamic hand is named"
+expect_exit 0 "replay a trace" -- "$sp" run -e corduroy --virtual-clock --replay "$tmp/dyn.csv" --trace "$tmp/again.csv"
+cmp -s "$tmp/dyn.csv" "$tmp/again.csv" && ok || bad "a replayed trace should reproduce the recorded one byte for byte"
+expect_exit 2 "replay at another rate is refused with the trace's rate" -- "$sp" run -e corduroy --virtual-clock --replay "$tmp/dyn.csv" --rate 2000
+has "$tmp/err" 'recorded at 1000 Hz, not 2000 Hz; replay it with --rate 1000' "replay names the rate to use"
+printf 'time,x\n' >"$tmp/bad.csv"
+expect_exit 1 "a malformed trace is refused" -- "$sp" run -e corduroy --replay "$tmp/bad.csv"
+expect_exit 2 "workspaces do not take --replay" -- "$sp" run examples/workspace/sampler.hws --replay "$tmp/dyn.csv"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

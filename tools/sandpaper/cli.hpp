@@ -39,8 +39,10 @@ std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Co
 nlohmann::json diagnostics_json(const compiler::Diagnostics& d);
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain);
+struct RunDeviceOptions;  // run_device.hpp
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
-            double amplitude_mm, const std::string& trace, bool virtual_clock, bool live);
+            double amplitude_mm, const std::string& trace, bool virtual_clock, bool live,
+            const RunDeviceOptions& device_options);
 int cmd_inspect(const std::string& file, bool json, bool tables);
 // USB HID PID joysticks (cmd_devices.cpp, docs/USB_PID.md): list them; play on the first one found.
 int cmd_devices(const CommonOptions& o);

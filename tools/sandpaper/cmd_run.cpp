@@ -7,6 +7,8 @@
 
 #include "cli.hpp"
 #include "play.hpp"
+#include "run_device.hpp"
+#include "sandpaper/runtime/trace_csv.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
@@ -34,8 +36,12 @@ std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max
 }  // namespace
 
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
-            double amplitude_mm, const std::string& trace, bool virtual_clock, bool live) {
+            double amplitude_mm, const std::string& trace, bool virtual_clock, bool live,
+            const RunDeviceOptions& device_options) {
   if (o.device == "usb") return cmd_run_usb(o, rate_hz, duration_s);
+  std::vector<glm::dvec2> replayed;
+  if (!device_options.replay.empty())
+    if (const int rc = load_replay(device_options, rate_hz, replayed, duration_s); rc != kExitOk) return rc;
   auto c = make_compiler(o);
   if (o.device != "sim") {
     std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim and --device usb run\n";
@@ -94,7 +100,8 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
   script.speed_m_s = speed_mm_s * 1e-3;
   script.amplitude_m = amplitude_mm * 1e-3;
   auto ticks = static_cast<std::size_t>(std::llround(duration_s * rate_hz));
-  runtime::SimJoystick joystick(limits, script, ticks);
+  const auto device = make_run_device(device_options, limits, script, ticks, replayed);
+  runtime::RecordingDevice& joystick = *device;
   runtime::PatchEvaluator evaluator(prog);
 
   if (!o.json)
@@ -102,6 +109,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                              limits.name, rate_hz, duration_s, hand, speed_mm_s,
                              hand == "circle" ? "radius" : "turning at +-", amplitude_mm,
                              virtual_clock ? " (virtual clock)" : "");
+  if (!o.json) std::cout << "  device   " << describe_run_device(device_options) << "\n";
   const Played played = play(joystick, evaluator, cfg, virtual_clock, live, trace.empty() ? 0 : ticks);
   const runtime::ServoReport& rep = played.report;
   const auto& map = c.calibration().roughness_map();
@@ -115,13 +123,11 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
   if (!recs.empty()) mean_force /= static_cast<double>(recs.size());
 
   if (!trace.empty()) {
-    std::ostringstream csv;
-    csv.precision(9);
-    csv << "t_s,x_m,y_m,force_x_N,force_y_N\n";
     // From the telemetry ring: what the servo tick published, not the device's own record.
-    for (const auto& r : played.records)
-      csv << r.t_s << "," << r.position_m.x << "," << r.position_m.y << "," << r.force_N.x << "," << r.force_N.y << "\n";
-    schema::write_file_atomically(trace, csv.str());
+    std::vector<runtime::TickRecord> published;
+    published.reserve(played.records.size());
+    for (const auto& r : played.records) published.push_back({r.t_s, r.position_m, r.force_N});
+    schema::write_file_atomically(trace, runtime::format_trace_csv(published));
   }
 
   if (o.json) {
@@ -146,6 +152,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                      {"realtime_scheduling", rep.realtime_scheduling},
                      {"clock", virtual_clock ? "virtual" : "monotonic"},
                      {"hand", {{"path", hand}, {"speed_mm_s", speed_mm_s}, {"amplitude_mm", amplitude_mm}}},
+                     {"hand_device", describe_run_device(device_options)},
                      {"trace", trace.empty() ? nlohmann::json(nullptr) : nlohmann::json(trace)}};
     std::cout << j.dump(2) << "\n";
   } else {

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "run_device.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
@@ -50,6 +51,8 @@ int main(int argc, char** argv) {
   run->add_flag("--virtual-clock", virtual_clock, "run on simulated time, as fast as possible (deterministic)");
   bool live = false;
   run->add_flag("--live", live, "print live servo figures on stderr once a second (default when stderr is a terminal)");
+  RunDeviceOptions run_device;
+  add_run_device_options(run, run_device);
   auto* inspect = app.add_subcommand("inspect", "print a patch program");
   std::string patch_file;
   inspect->add_option("file", patch_file, "patch program (.patch)")->required();
@@ -118,6 +121,10 @@ int main(int argc, char** argv) {
     if (run->parsed()) {
       if (!needs_input(run)) return kExitUsage;
       if (is_workspace_input(o)) {
+        if (run->count("--hand-model") || run->count("--replay")) {
+          std::cerr << "sandpaper run: --hand-model and --replay play single materials; workspaces use the scripted hand\n";
+          return kExitUsage;
+        }
         WorkspaceRunOptions ro;
         ro.rate_hz = rate;
         if (run->count("--duration")) ro.duration_s = duration;
@@ -130,7 +137,8 @@ int main(int argc, char** argv) {
         ro.live = live || isatty(STDERR_FILENO);
         return cmd_workspace_run(o, ro);
       }
-      return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock, live || isatty(STDERR_FILENO));
+      return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock, live || isatty(STDERR_FILENO),
+                     run_device);
     }
     if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);
     if (show->parsed()) return cmd_movie_show(show_file, o.json);

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "sandpaper/runtime/device.hpp"
+#include "sandpaper/runtime/recording_device.hpp"
 
 namespace sandpaper::runtime {
 
@@ -23,13 +23,11 @@ struct HandScript {
   double direction_rad = 0;       // scan direction (0 = along x)
 };
 
-struct TickRecord {
-  double t_s;
-  glm::dvec2 position_m;
-  glm::dvec2 force_N;
-};
+// Where `script` puts the hand at time t (s), m. Pure; shared by the position-controlled and the
+// dynamic-hand joysticks.
+glm::dvec2 scripted_hand_position(const HandScript& script, double t_s) noexcept;
 
-class SimJoystick final : public Device {
+class SimJoystick final : public RecordingDevice {
  public:
   // `capacity_ticks`: how many ticks to record; ticks beyond it are played but not recorded.
   SimJoystick(DeviceLimits limits, HandScript script, std::size_t capacity_ticks);
@@ -41,19 +39,10 @@ class SimJoystick final : public Device {
 
   // Where the script puts the hand at time t (s). Pure; used by read_position_rt and tests.
   glm::dvec2 hand_position(double t_s) const noexcept;
-  // Records of the ticks played so far (read after the loop has stopped).
-  const std::vector<TickRecord>& records() const noexcept { return records_; }
-  std::size_t ticks_played() const noexcept { return ticks_; }
 
  private:
   DeviceLimits limits_;
   HandScript script_;
-  std::size_t capacity_ = 0;
-  std::vector<TickRecord> records_;  // reserved up front; push_back never reallocates on the servo thread
-  std::size_t ticks_ = 0;
-  bool read_pending_ = false;
-  double last_t_ = 0;
-  glm::dvec2 last_position_{0, 0};
 };
 
 // The sim device's limits (calibration/devices/sim.toml restates them): 10 N maximum force as the
