@@ -167,6 +167,7 @@ TEST(ServoNoLock, TheTickNeitherAllocatesNorLocks) {
 }
 
 TEST(ServoNoLock, AStdMutexLockedInForceRtIsCaught) {
+  if (!test::counts_c_allocations_and_locks()) GTEST_SKIP() << "sanitizer build: malloc and mutexes belong to the sanitizer";
   const auto program = table_program();
   PatchEvaluator evaluator(program);
   std::mutex mutex;
@@ -177,6 +178,7 @@ TEST(ServoNoLock, AStdMutexLockedInForceRtIsCaught) {
 }
 
 TEST(ServoNoLock, AMallocInForceRtIsCaught) {
+  if (!test::counts_c_allocations_and_locks()) GTEST_SKIP() << "sanitizer build: malloc and mutexes belong to the sanitizer";
   const auto program = table_program();
   PatchEvaluator evaluator(program);
   MisbehavingSource allocating(evaluator, nullptr, true);
@@ -186,6 +188,7 @@ TEST(ServoNoLock, AMallocInForceRtIsCaught) {
 }
 
 TEST(ServoNoLock, OtherThreadsAreNotCounted) {
+  if (!test::counts_c_allocations_and_locks()) GTEST_SKIP() << "sanitizer build: malloc and mutexes belong to the sanitizer";
   // Starting a thread allocates on this thread (std::thread's state, glibc's thread bookkeeping):
   // the same for a thread that does nothing and for one that locks and allocates, as only this
   // thread is counted.

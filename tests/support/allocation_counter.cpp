@@ -16,6 +16,16 @@ extern "C" void* __libc_malloc(std::size_t size);
 extern "C" void* __libc_calloc(std::size_t count, std::size_t size);
 extern "C" void* __libc_realloc(void* p, std::size_t size);
 
+// Under ThreadSanitizer or AddressSanitizer the sanitizer owns malloc and the mutex functions:
+// forwarding to glibc's __libc_malloc behind its back crashes it. There only operator new is
+// counted (through std::malloc, which the sanitizer intercepts), and the C-level interposition
+// is left out; tests of it skip (sandpaper::test::counts_c_allocations_and_locks()).
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+#define SANDPAPER_COUNTER_UNDER_SANITIZER 1
+#else
+#define SANDPAPER_COUNTER_UNDER_SANITIZER 0
+#endif
+
 namespace {
 
 thread_local bool allocation_counting_armed = false;
@@ -29,7 +39,11 @@ void count_allocation() noexcept {
 
 void* allocate(std::size_t size) {
   count_allocation();
+#if SANDPAPER_COUNTER_UNDER_SANITIZER
+  return std::malloc(size == 0 ? 1 : size);
+#else
   return __libc_malloc(size == 0 ? 1 : size);  // not malloc: that would count this one twice
+#endif
 }
 
 void* allocate_aligned(std::size_t size, std::align_val_t alignment) {
@@ -60,6 +74,7 @@ std::atomic<MutexFn> next_trylock{nullptr};
 
 }  // namespace
 
+#if !SANDPAPER_COUNTER_UNDER_SANITIZER
 // C allocations (strdup, a C library's buffers, std::malloc) count as well as operator new.
 extern "C" void* malloc(std::size_t size) {
   count_allocation();
@@ -85,6 +100,7 @@ extern "C" int pthread_mutex_trylock(pthread_mutex_t* mutex) {
   if (lock_counting_armed) counted_locks.fetch_add(1, std::memory_order_relaxed);
   return next_mutex_fn(next_trylock, "pthread_mutex_trylock")(mutex);
 }
+#endif
 
 void* operator new(std::size_t size) {
   if (void* p = allocate(size)) return p;
@@ -124,6 +140,8 @@ void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept 
 void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { release(p); }
 
 namespace sandpaper::test {
+
+bool counts_c_allocations_and_locks() { return !SANDPAPER_COUNTER_UNDER_SANITIZER; }
 
 CountedAllocations::CountedAllocations() {
   counted_allocations = 0;

@@ -8,6 +8,10 @@
 
 namespace sandpaper::test {
 
+// False in sanitizer builds (TSan, ASan), where only operator new is counted: the sanitizer owns
+// malloc and the mutex functions. Tests of malloc or lock detection skip there.
+bool counts_c_allocations_and_locks();
+
 class CountedAllocations {
  public:
   CountedAllocations();   // resets the count and starts counting on this thread
