@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/runtime/device.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
 namespace sandpaper::cli {
@@ -37,6 +38,8 @@ compiler::Compiler make_compiler(const CommonOptions& o);
 // nullopt (after printing) when the input has errors.
 std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Compiler& c, bool allow_patch);
 nlohmann::json diagnostics_json(const compiler::Diagnostics& d);
+// The simulated device's limits from the compiler's device calibration (calibration/devices/<name>.toml).
+runtime::DeviceLimits limits_of(const compiler::Compiler& c);
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain);
 struct RunDeviceOptions;  // run_device.hpp

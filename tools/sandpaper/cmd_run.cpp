@@ -47,13 +47,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
     std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim and --device usb run\n";
     return kExitUsage;
   }
-  const auto& dev = c.device();
-  runtime::DeviceLimits limits;
-  limits.name = dev.name;
-  limits.max_force_N = dev.max_force_N;
-  limits.min_rate_hz = dev.min_rate_hz;
-  limits.max_rate_hz = dev.max_rate_hz;
-  limits.workspace_radius_m = dev.workspace_radius_m;
+  const runtime::DeviceLimits limits = limits_of(c);
 
   runtime::ServoConfig cfg;
   cfg.rate_hz = rate_hz;

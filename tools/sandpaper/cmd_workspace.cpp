@@ -39,16 +39,6 @@ std::string patch_line(const schema::WorkspaceProgram& ws, std::size_t i) {
                      p.centre_m[0] * 1e3, p.centre_m[1] * 1e3, p.size_m[0] * 1e3, p.size_m[1] * 1e3);
 }
 
-runtime::DeviceLimits limits_of(const compiler::Compiler& c) {
-  const auto& dev = c.device();
-  runtime::DeviceLimits limits;
-  limits.name = dev.name;
-  limits.max_force_N = dev.max_force_N;
-  limits.min_rate_hz = dev.min_rate_hz;
-  limits.max_rate_hz = dev.max_rate_hz;
-  limits.workspace_radius_m = dev.workspace_radius_m;
-  return limits;
-}
 
 // The default hand: a scan through the workspace centre along the direction (of 16) that crosses
 // the most patches, turning just beyond the furthest patch it meets (within the device's reach).
