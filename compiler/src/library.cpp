@@ -23,9 +23,4 @@ std::optional<std::filesystem::path> Library::find(const std::string& name) cons
   return std::nullopt;
 }
 
-std::filesystem::path default_library_dir() {
-  if (const char* env = std::getenv("SANDPAPER_LIBRARY"); env && *env) return env;
-  return SANDPAPER_DEFAULT_LIBRARY_DIR;
-}
-
 }  // namespace sandpaper::compiler
