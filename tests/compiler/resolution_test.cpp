@@ -14,7 +14,7 @@ TEST(Resolution, LibraryEntryIsInheritedWhole) {
   auto r = test::shipped_compiler().compile_text("corduroy");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   const auto& p = *r.program;
-  // library/corduroy.hmat: grating period 3.2 mm hill 60%, roughness 0.45.
+  // library/textiles/corduroy.hmat: grating period 3.2 mm hill 60%, roughness 0.45.
   EXPECT_DOUBLE_EQ(provenance(p, "texture.period").value_si, 0.0032);
   EXPECT_EQ(provenance(p, "texture.period").layer, "representative");
   EXPECT_NE(provenance(p, "texture.period").source.find("library corduroy"), std::string::npos);

@@ -69,7 +69,7 @@ TEST(ThesisStimuli, Table8ForcesWithinTwoPercent) {
 }
 
 TEST(ThesisStimuli, Table8NamesAreQuantizedSeedGratings) {
-  // a10p25 has a library file (library/a10p25.hmat), which wins; the others are generated.
+  // a10p25 has a library file (library/thesis-gratings/a10p25.hmat), which wins; the others are generated.
   auto r = test::shipped_compiler().compile_text("a3p12");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_EQ(test::provenance(*r.program, "texture.quantization").value_si, 8);
