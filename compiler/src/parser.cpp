@@ -18,10 +18,43 @@ std::string Quantity::text() const {
   return unit == "%" ? os.str() + "%" : os.str() + " " + unit;
 }
 
+const char* source_kind_word(SourceKind k) {
+  switch (k) {
+    case SourceKind::Measurement: return "measurement";
+    case SourceKind::Standard: return "standard";
+    case SourceKind::Publication: return "publication";
+    case SourceKind::Derived: return "derived";
+    case SourceKind::ByEar: return "by-ear";
+  }
+  return "?";
+}
+
+const char* source_kind_phrase(SourceKind k) {
+  switch (k) {
+    case SourceKind::Measurement: return "a measurement";
+    case SourceKind::Standard: return "a standard";
+    case SourceKind::Publication: return "a publication";
+    case SourceKind::Derived: return "derived";
+    case SourceKind::ByEar: return "designed by ear";
+  }
+  return "?";
+}
+
+bool is_metadata(const Statement& st) {
+  return std::holds_alternative<FamilyStmt>(st.node) || std::holds_alternative<AliasStmt>(st.node) ||
+         std::holds_alternative<LicenceStmt>(st.node) || std::holds_alternative<DeprecatedStmt>(st.node);
+}
+
+bool carries_numbers(const Statement& st) {
+  return !is_metadata(st) && !std::holds_alternative<DescribesStmt>(st.node) &&
+         !std::holds_alternative<LikeStmt>(st.node) && !std::holds_alternative<ExtrapolateStmt>(st.node);
+}
+
 const std::vector<std::string>& statement_keywords() {
   static const std::vector<std::string> k = [] {
     std::vector<std::string> words{"describes", "like",   "roughness", "grating", "heightmap", "pattern",    "quantize",
-                                   "spring",    "damper", "force",     "physics", "energy",    "size",       "extrapolate"};
+                                   "spring",    "damper", "force",     "physics", "energy",    "size",       "extrapolate",
+                                   "family",    "alias",  "licence",   "source",  "deprecated"};
     for (const auto& w : percept_words()) words.emplace_back(w.word);
     return words;
   }();
@@ -97,6 +130,11 @@ class Parser {
         continue;
       }
       try {
+        if (t.kind == TokenKind::Word && t.text == "source") {
+          source(m);
+          expect_end("source");
+          continue;
+        }
         auto st = statement(m.statements.empty());
         expect_end(st.keyword);
         m.statements.push_back(std::move(st));
@@ -139,6 +177,10 @@ class Parser {
     else if (k == "energy") st.node = energy();
     else if (k == "pattern") st.node = pattern();
     else if (k == "quantize") st.node = quantize();
+    else if (k == "family") st.node = family();
+    else if (k == "alias") st.node = alias();
+    else if (k == "licence" || k == "license") st.node = licence();
+    else if (k == "deprecated") st.node = deprecated();
     else if (first && at_end_of_input()) {
       // The whole input is one name: a representative description.
       st.keyword = "like";
@@ -151,6 +193,100 @@ class Parser {
     }
     st.text = span_text(start, pos_);
     return st;
+  }
+
+  // source := 'source' KIND STRING      -- sources the statement before it
+  // KIND := 'measurement' | 'standard' | 'publication' | 'derived' | 'by-ear'
+  void source(MaterialSyntax& m) {
+    const Token& kw = next();
+    static const std::vector<std::pair<std::string, SourceKind>> kinds{
+        {"measurement", SourceKind::Measurement}, {"standard", SourceKind::Standard},
+        {"publication", SourceKind::Publication}, {"derived", SourceKind::Derived},
+        {"by-ear", SourceKind::ByEar}};
+    std::vector<std::string> words;
+    for (const auto& [w, k] : kinds) words.push_back(w);
+    const Token& k = peek();
+    std::optional<SourceKind> kind;
+    for (const auto& [w, sk] : kinds)
+      if (k.kind == TokenKind::Word && k.text == w) kind = sk;
+    if (!kind) {
+      std::string guess = k.kind == TokenKind::Word ? closest_match(k.text, words) : "";
+      diags_.error("E0213", k.location, std::string("expected the kind of source, found ") + describe(k),
+                   guess.empty() ? "write source KIND \"text\", KIND one of " + join(words) +
+                                       " (by-ear: chosen by judgement, said plainly)"
+                                 : "did you mean `" + guess + "`?");
+      throw StatementError{};
+    }
+    next();
+    if (peek().kind != TokenKind::String) {
+      diags_.error("E0201", peek().location, std::string("expected the source as a quoted text, found ") + describe(peek()),
+                   "write source " + k.text + " \"Minsky 1995, Table 8\" (who measured it, which standard or paper, "
+                   "the arithmetic, or why it was chosen)");
+      throw StatementError{};
+    }
+    SourceNote note{*kind, next().text, kw.location};
+    if (m.statements.empty()) {
+      diags_.error("E0212", kw.location, "`source` with no statement before it to source",
+                   "write the source on the line after the statement whose numbers it explains");
+      throw StatementError{};
+    }
+    m.statements.back().sources.push_back(std::move(note));
+  }
+
+  // family := 'family' WORD
+  FamilyStmt family() {
+    if (peek().kind != TokenKind::Word) {
+      diags_.error("E0201", peek().location, std::string("expected a family name, found ") + describe(peek()),
+                   "write family textiles (the families are listed in library/library.toml)");
+      throw StatementError{};
+    }
+    const Token& t = next();
+    return FamilyStmt{t.text, t.location};
+  }
+
+  // alias := 'alias' NAME
+  AliasStmt alias() {
+    const Token& t = peek();
+    if (t.kind == TokenKind::Word || t.kind == TokenKind::Number) {
+      SourceLocation at = t.location;
+      std::string name = joined_name();
+      at.length = static_cast<int>(name.size());
+      return AliasStmt{name, at};
+    }
+    diags_.error("E0201", t.location, std::string("expected another name for the entry, found ") + describe(t),
+                 "write alias wide-wale-corduroy (words and numbers written together, no spaces)");
+    throw StatementError{};
+  }
+
+  // licence := ('licence' | 'license') STRING     -- an SPDX identifier such as "CC0-1.0"
+  LicenceStmt licence() {
+    if (peek().kind != TokenKind::String) {
+      diags_.error("E0201", peek().location, std::string("expected the licence as a quoted SPDX identifier, found ") + describe(peek()),
+                   "write licence \"CC0-1.0\" (or \"CC-BY-4.0\", ...)");
+      throw StatementError{};
+    }
+    const Token& t = next();
+    return LicenceStmt{t.text, t.location};
+  }
+
+  // deprecated := 'deprecated' 'replaced-by' NAME
+  DeprecatedStmt deprecated() {
+    if (!(peek().kind == TokenKind::Word && peek().text == "replaced-by")) {
+      diags_.error("E0201", peek().location, std::string("expected `replaced-by`, found ") + describe(peek()),
+                   "write deprecated replaced-by NAME, naming the entry to use instead");
+      throw StatementError{};
+    }
+    next();
+    const Token& t = peek();
+    if (t.kind == TokenKind::Word || t.kind == TokenKind::Number) {
+      SourceLocation at = t.location;
+      std::string name = joined_name();
+      at.length = static_cast<int>(name.size());
+      return DeprecatedStmt{name, at};
+    }
+    diags_.error("E0201", t.location, std::string("expected the replacement entry's name, found ") + describe(t),
+                 "write deprecated replaced-by NAME");
+    throw StatementError{};
   }
 
   // describes := 'describes' STRING

@@ -103,6 +103,9 @@ std::vector<std::string> quantities_set(const Statement& st) {
         else if constexpr (std::is_same_v<T, DamperStmt>) return {"the damping"};
         else if constexpr (std::is_same_v<T, SizeStmt>) return {"the patch size"};
         else if constexpr (std::is_same_v<T, EnergyStmt>) return {"the energy budget"};
+        else if constexpr (std::is_same_v<T, FamilyStmt>) return {"the family"};
+        else if constexpr (std::is_same_v<T, LicenceStmt>) return {"the licence"};
+        else if constexpr (std::is_same_v<T, DeprecatedStmt>) return {"the replacement"};
         else return {};
       },
       st.node);
@@ -116,10 +119,25 @@ class Resolver {
     std::vector<const Statement*> kept = check_conflicts();
     ResolvedMaterial m = defaults();
     // Representative layer.
+    bool has_like = false;
     for (const auto* st : kept)
-      if (const auto* like = std::get_if<LikeStmt>(&st->node)) m = from_library(*like);
+      if (const auto* like = std::get_if<LikeStmt>(&st->node)) m = from_library(*like), has_like = true;
+    if (!has_like) {
+      if (const RoughnessStmt* bare = bare_perceptual(kept)) {
+        // A bare perceptual description (`roughness 0.6`) is felt on the library's reference texture,
+        // the grating the roughness map was measured on (library/library.toml `reference`).
+        LikeStmt ref{ctx_.library.manifest().reference, bare->value_location};
+        m = from_library(ref, /*reference=*/true);
+      }
+    }
     for (const auto* st : kept)
       if (const auto* d = std::get_if<DescribesStmt>(&st->node)) m.describes = d->text;
+    for (const auto* st : kept) {
+      if (const auto* f = std::get_if<FamilyStmt>(&st->node)) m.family = f->family;
+      else if (const auto* a = std::get_if<AliasStmt>(&st->node)) m.aliases.push_back(a->name);
+      else if (const auto* l = std::get_if<LicenceStmt>(&st->node)) m.licence = l->licence;
+      else if (const auto* x = std::get_if<DeprecatedStmt>(&st->node)) m.deprecated_by = x->replacement;
+    }
     if (!syn_.name.empty()) m.name = syn_.name;
     for (const auto* st : kept)
       if (std::holds_alternative<ExtrapolateStmt>(st->node)) m.extrapolate = true;
@@ -160,8 +178,31 @@ class Resolver {
     return kept;
   }
 
-  ResolvedMaterial from_library(const LikeStmt& like) {
+  // The roughness statement of a material that has no texture and no `like` of its own, when the
+  // library names a reference texture that is not this material's own entry; nullptr otherwise.
+  const RoughnessStmt* bare_perceptual(const std::vector<const Statement*>& kept) const {
+    const std::string& ref = ctx_.library.manifest().reference;
+    if (ref.empty() || !ctx_.library.entry(ref)) return nullptr;
+    for (const auto& e : ctx_.entry_stack)
+      if (ctx_.library.canonical_name(e) == ctx_.library.canonical_name(ref)) return nullptr;
+    const RoughnessStmt* r = nullptr;
+    for (const auto* st : kept) {
+      if (std::holds_alternative<GratingStmt>(st->node) || std::holds_alternative<HeightmapStmt>(st->node) ||
+          std::holds_alternative<PatternStmt>(st->node))
+        return nullptr;
+      // `bumpiness` makes a grating of its own (bumpiness-provisional).
+      if (const auto* p = std::get_if<PerceptStmt>(&st->node)) {
+        const PerceptWord* w = find_percept_word(p->word);
+        if (w && w->percept == std::string("bumpiness")) return nullptr;
+      }
+      if (const auto* rs = std::get_if<RoughnessStmt>(&st->node)) r = rs;
+    }
+    return r;
+  }
+
+  ResolvedMaterial from_library(const LikeStmt& like, bool reference = false) {
     ResolvedMaterial base = defaults();
+    const LibraryEntry* lib_entry = ctx_.library.entry(like.name);
     auto path = ctx_.library.find(like.name);
     // No file: the name may be one of the thesis' stimuli, generated from the name.
     ThesisLookup generated;
@@ -177,9 +218,13 @@ class Resolver {
                                             : "did you mean `" + guess + "`?");
       return base;
     }
+    // Aliases name the same entry, so cycles are found on entry names.
+    const std::string entry_name = lib_entry ? lib_entry->name : like.name;
     for (const auto& e : ctx_.entry_stack)
-      if (e == like.name) {
-        diags_.error("E0305", like.name_location, "library entry '" + like.name + "' is built on itself (`like` cycle)",
+      if (e == entry_name) {
+        diags_.error("E0305", like.name_location,
+                     "library entry '" + entry_name + "'" + (entry_name != like.name ? " (as '" + like.name + "')" : "") +
+                         " is built on itself (`like` cycle)",
                      "break the cycle: an entry must not, through `like`, start from itself");
         return base;
       }
@@ -189,8 +234,13 @@ class Resolver {
       std::stringstream ss;
       ss << in.rdbuf();
       text = ss.str();
-      origin = "library/" + like.name + ".hmat";
-      label = "library " + like.name;
+      origin = "library/" + lib_entry->relative_path;
+      label = reference ? "library " + entry_name + " (the library's reference texture for bare perceptual descriptions)"
+                        : "library " + entry_name;
+      if (!lib_entry->deprecated_by.empty())
+        diags_.warning("W0340", like.name_location,
+                       "library entry '" + entry_name + "' is deprecated; use '" + lib_entry->deprecated_by + "'",
+                       "write like " + lib_entry->deprecated_by + " (library/" + lib_entry->relative_path + " says why)");
     } else {
       text = generated.stimulus->source_text;
       origin = generated.stimulus->origin;
@@ -200,7 +250,7 @@ class Resolver {
     Diagnostics sub;
     auto toks = lex(file, sub);
     auto syn = parse(toks, file, sub);
-    ctx_.entry_stack.push_back(like.name);
+    ctx_.entry_stack.push_back(entry_name);
     ResolvedMaterial entry = resolve(syn, ctx_, sub);
     ctx_.entry_stack.pop_back();
     if (sub.has_errors()) {
@@ -248,9 +298,14 @@ class Resolver {
     inherit(m.energy_refill, label);
     if (m.size_width.layer != Layer::Default) inherit(m.size_width, label);
     if (m.size_height.layer != Layer::Default) inherit(m.size_height, label);
-    m.like_chain.insert(m.like_chain.begin(), like.name);
+    m.like_chain.insert(m.like_chain.begin(), entry_name);
     m.like_origins.insert(m.like_origins.begin(), origin);
-    if (m.name.empty()) m.name = like.name;
+    // The entry's own metadata describes it, not what is built on it.
+    m.family.clear();
+    m.aliases.clear();
+    m.licence.clear();
+    m.deprecated_by.clear();
+    if (m.name.empty() || reference) m.name = reference ? std::string() : entry_name;
     return m;
   }
 
@@ -650,7 +705,8 @@ class Resolver {
     if (p.is_relative() && syn_.file) {
       // Relative to the material file's folder; for -e text, to the working directory.
       std::filesystem::path dir;
-      if (syn_.file->name.rfind("library/", 0) == 0) dir = ctx_.library.directory();
+      if (syn_.file->name.rfind("library/", 0) == 0)
+        dir = (ctx_.library.directory() / syn_.file->name.substr(8)).parent_path();
       else if (syn_.file->name != "<-e>") dir = std::filesystem::path(syn_.file->name).parent_path();
       p = dir / p;
     }

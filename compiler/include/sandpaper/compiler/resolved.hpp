@@ -110,6 +110,9 @@ struct ResolvedMaterial {
   std::optional<Param> energy_refill;      // W
   Param size_width, size_height;           // m
   bool extrapolate = false;
+  // Library metadata of this material's own file (not inherited through `like`).
+  std::string family, licence, deprecated_by;
+  std::vector<std::string> aliases;
 };
 
 }  // namespace sandpaper::compiler

@@ -99,16 +99,41 @@ struct EnergyStmt {
   std::optional<Quantity> refill;
 };
 
+// Library metadata (representative layer; schema/LANGUAGE.md "Library entries"). They describe the
+// entry itself, so they are not inherited through `like`.
+struct FamilyStmt { std::string family; SourceLocation location; };  // `family textiles`
+struct AliasStmt { std::string name; SourceLocation location; };     // `alias corduroy-wide-wale`
+struct LicenceStmt { std::string licence; SourceLocation location; };  // `licence "CC0-1.0"` (SPDX id)
+struct DeprecatedStmt { std::string replacement; SourceLocation location; };  // `deprecated replaced-by NAME`
+
 using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, GratingStmt, HeightmapStmt, SpringStmt,
                                    DamperStmt, SizeStmt, ExtrapolateStmt, LawStmt, EnergyStmt, PatternStmt,
-                                   QuantizeStmt, PerceptStmt>;
+                                   QuantizeStmt, PerceptStmt, FamilyStmt, AliasStmt, LicenceStmt, DeprecatedStmt>;
+
+// Where a statement's numbers come from: `source standard "FEPA 43-1:2006: P80 median 201 um"`, written
+// after the statement it sources (issue 6: every number in the library names its source).
+enum class SourceKind { Measurement, Standard, Publication, Derived, ByEar };
+const char* source_kind_word(SourceKind k);     // "measurement", ..., "by-ear" (as written)
+const char* source_kind_phrase(SourceKind k);   // "a measurement", ..., "designed by ear"
+struct SourceNote {
+  SourceKind kind = SourceKind::ByEar;
+  std::string text;
+  SourceLocation location;  // the `source` keyword
+};
 
 struct Statement {
   StatementNode node;
   std::string keyword;       // "grating"
   SourceLocation location;   // the keyword
   std::string text;          // the statement as written, for provenance ("grating period 3.2 mm hill 50%")
+  std::vector<SourceNote> sources;  // the `source` statements that follow it
 };
+
+// Whether the statement is library metadata (family, alias, licence, deprecated).
+bool is_metadata(const Statement& st);
+// Whether the statement carries a number that a library entry must source (roughness, percepts,
+// grating, heightmap, pattern, quantize, spring, damper, force/physics, energy, size).
+bool carries_numbers(const Statement& st);
 
 struct MaterialSyntax {
   std::string name;  // from `material "name" { }`; empty for a bare statement list
