@@ -234,7 +234,7 @@ TEST(ThesisStimuli, ExplainNamesTheGenerator) {
   // A library file of the same name wins over the generator.
   auto lib = c.compile_text("a10p25");
   ASSERT_TRUE(lib.ok());
-  EXPECT_EQ(lib.material->like_origins.at(0), "library/a10p25.hmat");
+  EXPECT_EQ(lib.material->like_origins.at(0), "library/thesis-gratings/a10p25.hmat");
 }
 
 TEST(ThesisStimuli, NonTexturalLawsReachTheBaseForceAtTheReadingsPoint) {
