@@ -87,7 +87,7 @@ expect_exit 1 "conflicting file" -- "$sp" compile tests/golden/diagnostics/confl
 has "$tmp/err" 'conflict.hmat:4:3: error\[E0302\]' "diagnostic with file:line:col"
 [ "$(cat "$tmp/out.patch")" = keep ] && ok || bad "a failed compile changed its output file"
 [ "$(ls -A "$tmp" | grep -c tmp-)" -eq 0 ] && ok || bad "temporary files left behind"
-expect_exit 1 "unknown name" -- "$sp" run -e velvet --device sim
+expect_exit 1 "unknown name" -- "$sp" run -e unobtainium --device sim
 has "$tmp/err" 'E0301' "unknown library entry"
 expect_exit 1 "missing file" -- "$sp" compile no/such/file.hmat
 expect_exit 1 "missing image" -- "$sp" compile tests/golden/diagnostics/missing-image.hmat -o "$tmp/x.patch"
