@@ -92,10 +92,6 @@ struct Checker {
           own_aliases.emplace(a->name, a->location);
         }
       }
-      if (compiler::carries_numbers(st) && st.sources.empty())
-        out.error("E0606", at(st.location), "`" + st.keyword + "` carries numbers but has no `source`",
-                  "add a line after it: source KIND \"where the numbers come from\", KIND one of measurement, standard, "
-                  "publication, derived (show the arithmetic), by-ear (designed by ear or eye, said plainly)");
     }
     std::vector<std::string> ids;
     for (const auto& f : m.families) ids.push_back(f.id);
@@ -122,6 +118,15 @@ struct Checker {
                   guess.empty() ? "check the id at https://spdx.org/licenses/ (use LicenseRef-... for a licence outside SPDX)"
                                 : "did you mean \"" + guess + "\"?");
     }
+  }
+
+  // E0606: every statement that carries a number names where it comes from.
+  void sources(const LibraryEntry& e) {
+    for (const auto& st : e.syntax.statements)
+      if (compiler::carries_numbers(st) && st.sources.empty())
+        out.error("E0606", at(st.location), "`" + st.keyword + "` carries numbers but has no `source`",
+                  "add a line after it: source KIND \"where the numbers come from\", KIND one of measurement, standard, "
+                  "publication, derived (show the arithmetic), by-ear (designed by ear or eye, said plainly)");
   }
 
   static std::string join(const std::vector<std::string>& v) {
@@ -283,7 +288,7 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
               "name the entry a bare perceptual description starts from (a grating the roughness map was measured on)");
 
   for (const auto& e : lib.entries())
-    if (e.parsed_ok) ck.metadata(e);
+    if (e.parsed_ok) ck.metadata(e), ck.sources(e);
   ck.duplicates();
   ck.deprecations();
   const auto in_cycle = ck.cycles();

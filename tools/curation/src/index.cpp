@@ -24,7 +24,8 @@ CREATE TABLE entries(
   name TEXT PRIMARY KEY, family TEXT NOT NULL, describes TEXT NOT NULL, licence TEXT NOT NULL,
   deprecated_by TEXT NOT NULL, file TEXT NOT NULL, library_version TEXT NOT NULL, likes TEXT NOT NULL,
   roughness REAL NOT NULL, max_lateral_force_N REAL NOT NULL, texture_kind TEXT NOT NULL, period_m REAL NOT NULL,
-  period_class TEXT NOT NULL, character TEXT NOT NULL, terms TEXT NOT NULL, physical TEXT NOT NULL);
+  period_class TEXT NOT NULL, character TEXT NOT NULL, terms TEXT NOT NULL, physical TEXT NOT NULL,
+  term_params TEXT NOT NULL);
 CREATE TABLE aliases(alias TEXT PRIMARY KEY, name TEXT NOT NULL REFERENCES entries(name));
 CREATE TABLE percepts(name TEXT NOT NULL REFERENCES entries(name), percept TEXT NOT NULL, value REAL NOT NULL);
 CREATE TABLE statements(name TEXT NOT NULL REFERENCES entries(name), ordinal INTEGER NOT NULL, line INTEGER NOT NULL,
@@ -88,7 +89,7 @@ void write_index(const std::filesystem::path& path, const compiler::Library& lib
   }
   static const std::regex where(R"(([^\s()]+\.hmat):(\d+):(\d+))");
 
-  sql::Stmt ent(db, "INSERT INTO entries VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
+  sql::Stmt ent(db, "INSERT INTO entries VALUES (?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?,?)");
   sql::Stmt ali(db, "INSERT OR IGNORE INTO aliases VALUES (?, ?)");
   sql::Stmt per(db, "INSERT INTO percepts VALUES (?, ?, ?)");
   sql::Stmt sta(db, "INSERT INTO statements VALUES (?, ?, ?, ?, ?)");
@@ -102,7 +103,7 @@ void write_index(const std::filesystem::path& path, const compiler::Library& lib
         .bind(6, e.relative_path).bind(7, lib.manifest().version).bind(8, join(e.likes, " "))
         .bind(9, pc.roughness).bind(10, pc.max_lateral_force_N).bind(11, pc.texture_kind).bind(12, pc.period_m)
         .bind(13, pc.period_class).bind(14, pc.character).bind(15, pc.terms).bind(16, physical_summary(c.material, c.program))
-        .run();
+        .bind(17, nlohmann::json(pc.term_params).dump()).run();
     for (const auto& a : e.aliases)
       if (a != e.name) ali.bind(1, a).bind(2, e.name).run();
     per.bind(1, e.name).bind(2, std::string("roughness")).bind(3, pc.roughness).run();

@@ -42,7 +42,7 @@ namespace {
 
 const char* kEntryColumns =
     "e.name, e.family, COALESCE(f.title, ''), e.describes, e.licence, e.deprecated_by, e.file, e.library_version, e.likes, "
-    "e.roughness, e.max_lateral_force_N, e.texture_kind, e.period_m, e.period_class, e.character, e.terms, e.physical "
+    "e.roughness, e.max_lateral_force_N, e.texture_kind, e.period_m, e.period_class, e.character, e.terms, e.physical, e.term_params "
     "FROM entries e LEFT JOIN families f ON f.id = e.family";
 
 IndexedEntry read_entry(sqlite3* db, const sql::Stmt& s) {
@@ -69,6 +69,7 @@ IndexedEntry read_entry(sqlite3* db, const sql::Stmt& s) {
   e.character = s.text(14);
   e.terms = s.text(15);
   e.physical = s.text(16);
+  for (const auto& kv : nlohmann::json::parse(s.text(17))) e.term_params.emplace_back(kv[0].get<std::string>(), kv[1].get<double>());
   sql::Stmt a(db, "SELECT alias FROM aliases WHERE name = ? ORDER BY rowid");
   a.bind(1, e.name);
   while (a.step()) e.aliases.push_back(a.text(0));

@@ -50,6 +50,20 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
   } else {
     why.push_back("neither has a texture");
   }
+  // Force laws: at a given hand speed or displacement their force scales with the parameter, so a
+  // ratio of parameters is counted in force JNDs too; opposite signs (damping vs anti-viscous) as a kind.
+  for (const auto& [k, va] : a.term_params)
+    for (const auto& [k2, vb] : b.term_params) {
+      if (k != k2 || va == 0 || vb == 0) continue;
+      if ((va < 0) != (vb < 0)) {
+        extra += kKindSteps;
+        why.push_back(k + " of opposite sign (" + num(vb) + " vs " + num(va) + ")");
+      } else if (va != vb) {
+        const double s = std::log(vb / va) / std::log1p(weber);
+        d2 += s * s;
+        why.push_back(k + " " + num(vb) + " vs " + num(va) + " (" + num(std::abs(s), 2) + " JND)");
+      }
+    }
   if (a.terms != b.terms) {
     extra += kKindSteps;
     why.push_back("terms " + (b.terms.empty() ? std::string("none") : b.terms) + " vs " + (a.terms.empty() ? std::string("none") : a.terms));

@@ -58,7 +58,13 @@ Percepts percepts_of(const compiler::ResolvedMaterial& m, const schema::PatchPro
   if (k.period_class && k.period_class->hit.group) r.period_class = k.period_class->hit.group->id;
   if (k.character && k.character->hit.group) r.character = k.character->hit.group->id;
   const auto j = schema::to_json(p);
-  for (const auto& t : j["terms"]) r.terms += (r.terms.empty() ? "" : "+") + t.value("kind", std::string("?"));
+  for (const auto& t : j["terms"]) {
+    const auto kind = t.value("kind", std::string("?"));
+    r.terms += (r.terms.empty() ? "" : "+") + kind;
+    if (kind == "grating" || kind == "height_field") continue;
+    for (const auto& [field, v] : t.items())
+      if (v.is_number()) r.term_params.emplace_back(kind + "." + field, v.get<double>());
+  }
   for (const auto& t : m.percepts) r.others.emplace_back(t.percept, t.value.si);
   return r;
 }

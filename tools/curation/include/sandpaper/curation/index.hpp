@@ -17,7 +17,7 @@ struct sqlite3;
 
 namespace sandpaper::curation {
 
-inline constexpr int kIndexSchemaVersion = 1;
+inline constexpr int kIndexSchemaVersion = 2;
 
 // $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
 std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
@@ -53,6 +53,7 @@ struct IndexedEntry {
   double roughness = 0, max_lateral_force_N = 0, period_m = 0;
   std::string texture_kind, period_class, character, terms, physical;
   std::vector<std::pair<std::string, double>> others;  // other percepts
+  std::vector<std::pair<std::string, double>> term_params;  // Percepts::term_params
 };
 
 struct IndexedStatement {

@@ -21,6 +21,8 @@ struct Percepts {
   std::string terms;               // the program's term kinds in order, '+'-joined: "grating+spring"
   // Other perceptual targets the material asked for: (percept, ratio-scale value), e.g. ("viscosity", 0.4).
   std::vector<std::pair<std::string, double>> others;
+  // The non-texture terms' scalar parameters, "<term kind>.<field with unit>": ("damper.damping_Ns_per_m", -2).
+  std::vector<std::pair<std::string, double>> term_params;
   bool has_texture() const { return max_lateral_force_N > 0; }
 };
 
