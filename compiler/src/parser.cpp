@@ -246,16 +246,21 @@ class Parser {
 
   // alias := 'alias' NAME
   AliasStmt alias() {
+    auto [name, at] = entry_name("another name for the entry", "write alias wide-wale-corduroy (words and numbers written together, no spaces)");
+    return AliasStmt{name, at};
+  }
+
+  // An entry's NAME (the `like` rule: words and numbers written together), with its location.
+  std::pair<std::string, SourceLocation> entry_name(const std::string& what, const std::string& help) {
     const Token& t = peek();
-    if (t.kind == TokenKind::Word || t.kind == TokenKind::Number) {
-      SourceLocation at = t.location;
-      std::string name = joined_name();
-      at.length = static_cast<int>(name.size());
-      return AliasStmt{name, at};
+    if (t.kind != TokenKind::Word && t.kind != TokenKind::Number) {
+      diags_.error("E0201", t.location, "expected " + what + ", found " + describe(t), help);
+      throw StatementError{};
     }
-    diags_.error("E0201", t.location, std::string("expected another name for the entry, found ") + describe(t),
-                 "write alias wide-wale-corduroy (words and numbers written together, no spaces)");
-    throw StatementError{};
+    SourceLocation at = t.location;
+    std::string name = joined_name();
+    at.length = static_cast<int>(name.size());
+    return {name, at};
   }
 
   // licence := ('licence' | 'license') STRING     -- an SPDX identifier such as "CC0-1.0"
@@ -277,16 +282,8 @@ class Parser {
       throw StatementError{};
     }
     next();
-    const Token& t = peek();
-    if (t.kind == TokenKind::Word || t.kind == TokenKind::Number) {
-      SourceLocation at = t.location;
-      std::string name = joined_name();
-      at.length = static_cast<int>(name.size());
-      return DeprecatedStmt{name, at};
-    }
-    diags_.error("E0201", t.location, std::string("expected the replacement entry's name, found ") + describe(t),
-                 "write deprecated replaced-by NAME");
-    throw StatementError{};
+    auto [name, at] = entry_name("the replacement entry's name", "write deprecated replaced-by NAME");
+    return DeprecatedStmt{name, at};
   }
 
   // describes := 'describes' STRING
