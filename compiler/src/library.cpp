@@ -91,8 +91,16 @@ LibraryManifest read_manifest(const std::filesystem::path& dir, Diagnostics& dia
       const auto& rb = b.second->source().begin;
       return ra.line != rb.line ? ra.line < rb.line : ra.column < rb.column;
     });
-    for (const auto& [id, t] : ordered)
-      m.families.push_back({id, text_of(*t, "title", true, "families." + id), text_of(*t, "describes", false, "families." + id)});
+    for (const auto& [id, t] : ordered) {
+      LibraryFamily f{id, text_of(*t, "title", true, "families." + id), text_of(*t, "describes", false, "families." + id)};
+      if (const toml::node* n = t->get("stimulus-set")) {
+        if (auto b = n->value<bool>()) f.stimulus_set = *b;
+        else
+          diags.error("E0601", manifest_location(file, n->source()), "families." + id + ": `stimulus-set` must be true or false",
+                      "write stimulus-set = true for a published stimulus set whose entries share force levels by design");
+      }
+      m.families.push_back(std::move(f));
+    }
   }
   return m;
 }

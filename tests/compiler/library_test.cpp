@@ -84,6 +84,8 @@ TEST(Library, ScansFamiliesInSubfoldersAndReadsTheManifest) {
   EXPECT_EQ(lib.manifest().reference, "ref");
   ASSERT_EQ(lib.manifest().families.size(), 2u);
   EXPECT_EQ(lib.manifest().families[0].id, "cloth");  // the file's order, not alphabetical
+  EXPECT_FALSE(lib.manifest().families[0].stimulus_set);
+  EXPECT_TRUE(lib.manifest().families[1].stimulus_set);
   const auto* rib = lib.entry("ribbed-cloth");
   ASSERT_NE(rib, nullptr);
   EXPECT_EQ(rib->name, "rib");

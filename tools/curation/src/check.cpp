@@ -376,6 +376,7 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
     const auto& a = entries[i];
     auto pa = percepts.find(a.name);
     if (pa == percepts.end() || !a.deprecated_by.empty() || a.family.empty()) continue;
+    if (const auto* fam = lib.manifest().family(a.family); fam && fam->stimulus_set) continue;
     for (std::size_t j = i + 1; j < entries.size(); ++j) {
       const auto& b = entries[j];
       auto pb = percepts.find(b.name);

@@ -17,6 +17,9 @@ struct LibraryFamily {
   std::string id;         // "textiles", as entries write `family textiles`
   std::string title;      // "Textiles"
   std::string describes;  // one line for catalogues
+  // A published stimulus set (the thesis' Table 8, ...): its entries share force levels by design,
+  // so `library check` does not warn that they are less than one force JND apart.
+  bool stimulus_set = false;
 };
 
 // library/library.toml. Missing file: everything empty (a bare folder of .hmat files still works).
