@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   run->add_option("--crossfade", crossfade_ms, "workspaces: crossfade time at patch edges, ms")->capture_default_str();
   auto* library = app.add_subcommand("library", "list the library's entries");
   add_common(library, o, false);
+  auto* library_catalog = add_library_catalog_command(*library);
   auto* movie = app.add_subcommand("movie", "movie files (lists of workspaces) and their shuffles (thesis Appendix B)");
   movie->require_subcommand(1);
   MovieShuffleOptions shuffle_opts;
@@ -143,6 +144,7 @@ int main(int argc, char** argv) {
     if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);
     if (show->parsed()) return cmd_movie_show(show_file, o.json);
     if (inspect->parsed()) return cmd_inspect(patch_file, o.json, tables);
+    if (library_catalog->parsed()) return cmd_library_catalog(o);
     if (library->parsed()) return cmd_library(o);
     if (array->parsed()) return cmd_array(ao);
     if (devices->parsed()) return cmd_devices(o);
