@@ -93,7 +93,8 @@ std::string index_page_html(const nlohmann::json& data) {
     }
     if (!e["deprecated_by"].get<std::string>().empty())
       o << "<div class=\"deprecated-tag\">deprecated: use " << html_escape(e["deprecated_by"].get<std::string>()) << "</div>";
-    o << "</td>\n<td class=\"family\">" << html_escape(e["family_title"].get<std::string>()) << "</td>\n<td class=\"num\">"
+    const std::string ftitle = e["family_title"].get<std::string>();
+    o << "</td>\n<td class=\"family\">" << (ftitle.empty() ? "<span class=\"muted\">\xE2\x80\x94</span>" : html_escape(ftitle)) << "</td>\n<td class=\"num\">"
       << (e["roughness"].is_number() ? format_number(e["roughness"].get<double>(), 3) : "\xE2\x80\x94") << "</td>\n<td>"
       << html_escape(e["describes"].get<std::string>()) << "</td>\n</tr>\n";
   }

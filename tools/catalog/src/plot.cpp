@@ -131,7 +131,7 @@ std::string polyline(const PlotAxes& a, const ForceScan& scan, const std::vector
 std::string force_plot_svg(const ForceScan& scan, const std::string& title) {
   const PlotAxes a = plot_axes(scan);
   std::ostringstream o;
-  o << "<svg class=\"force-plot\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 720 290\" role=\"img\" "
+  o << "<svg class=\"force-plot\" xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 640 296\" role=\"img\" "
        "aria-labelledby=\"plot-title\">\n<title id=\"plot-title\">"
     << html_escape(title) << "</title>\n";
   o << "<rect class=\"frame\" x=\"" << px(a.left) << "\" y=\"" << px(a.top) << "\" width=\"" << px(a.right - a.left)
@@ -156,15 +156,15 @@ std::string force_plot_svg(const ForceScan& scan, const std::string& title) {
   if (scan.has_across()) o << polyline(a, scan, scan.across_N, "force-across");
   o << polyline(a, scan, scan.along_N, "force-along");
   const std::string xlabel = scan.axis == "u" ? "position along the grating normal, u (mm)" : "position along the scan, x (mm)";
-  o << "<text class=\"axis-label x\" x=\"" << px(0.5 * (a.left + a.right)) << "\" y=\"282\" text-anchor=\"middle\">"
+  o << "<text class=\"axis-label x\" x=\"" << px(0.5 * (a.left + a.right)) << "\" y=\"288\" text-anchor=\"middle\">"
     << html_escape(xlabel) << "</text>\n";
-  o << "<text class=\"axis-label y\" transform=\"translate(16 " << px(0.5 * (a.top + a.bottom))
+  o << "<text class=\"axis-label y\" transform=\"translate(15 " << px(0.5 * (a.top + a.bottom))
     << ") rotate(-90)\" text-anchor=\"middle\">lateral force (N)</text>\n";
   if (scan.has_across())
-    o << "<g class=\"legend\"><line class=\"force-along\" x1=\"" << px(a.right - 190) << "\" y1=\"34\" x2=\""
-      << px(a.right - 170) << "\" y2=\"34\"/><text x=\"" << px(a.right - 165) << "\" y=\"38\">along the scan</text>"
-      << "<line class=\"force-across\" x1=\"" << px(a.right - 90) << "\" y1=\"34\" x2=\"" << px(a.right - 70)
-      << "\" y2=\"34\"/><text x=\"" << px(a.right - 65) << "\" y=\"38\">across it</text></g>\n";
+    o << "<g class=\"legend\"><line class=\"force-along\" x1=\"" << px(a.right - 190) << "\" y1=\"13\" x2=\""
+      << px(a.right - 170) << "\" y2=\"13\"/><text x=\"" << px(a.right - 165) << "\" y=\"17\">along the scan</text>"
+      << "<line class=\"force-across\" x1=\"" << px(a.right - 90) << "\" y1=\"13\" x2=\"" << px(a.right - 70)
+      << "\" y2=\"13\"/><text x=\"" << px(a.right - 65) << "\" y=\"17\">across it</text></g>\n";
   o << "</svg>\n";
   return o.str();
 }

@@ -24,14 +24,15 @@ struct Overloaded : F... {
 template <class... F>
 Overloaded(F...) -> Overloaded<F...>;
 
-// The texture's finest length, m, that a pixel must resolve: 16 pixels a period, one pixel a sample.
+// The texture's finest length, m, that a pixel must resolve: 64 pixels a period (so that the version-2
+// seed's edges, 12/256 of a period wide, span a few pixels), one pixel a sample.
 double finest_scale(const schema::Term& term) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   return std::visit(Overloaded{
-                        [](const schema::GratingTerm& g) { return g.period_m / 16; },
+                        [](const schema::GratingTerm& g) { return g.period_m / 64; },
                         [](const schema::HeightFieldTerm& h) { return std::min(h.spacing_m[0], h.spacing_m[1]); },
-                        [](const schema::PeriodicTerm& p) { return p.period_m / 16; },
-                        [](const schema::RidgeTerm& r) { return r.wavelength_m / 16; },
+                        [](const schema::PeriodicTerm& p) { return p.period_m / 64; },
+                        [](const schema::RidgeTerm& r) { return r.wavelength_m / 64; },
                         [&](const auto&) { return inf; },
                     },
                     term);

@@ -35,7 +35,7 @@ double half_length_inside(const double direction[2], double width_m, double heig
 // Plot geometry: data ranges and the SVG's pixel box, and the tick values (mm, N).
 struct PlotAxes {
   double x_min_mm = 0, x_max_mm = 0, y_min_N = 0, y_max_N = 0;
-  double left = 72, right = 700, top = 20, bottom = 240;  // plot box in SVG pixels (width 720, height 290)
+  double left = 66, right = 626, top = 26, bottom = 244;  // plot box in SVG pixels (viewBox 640 x 296)
   std::vector<double> x_ticks_mm, y_ticks_N;
   double x_px(double mm) const;
   double y_px(double newtons) const;

@@ -36,7 +36,7 @@ struct Picture {
 };
 
 // Shades the field of the program's Height and Potential terms over a window centred on the patch:
-// the whole patch, or a smaller window when the texture's finest scale (a grating period over 16, a
+// the whole patch, or a smaller window when the texture's finest scale (a grating period over 64, a
 // height field's sample spacing) would be below one pixel of `max_side` across the patch. Slopes are
 // -F of those terms, from runtime::PatchEvaluator at rest (no velocity, no state advanced).
 // An empty picture (with left_out filled) when no term has a surface.
