@@ -12,6 +12,7 @@ pkgs=(
   zlib1g-dev                                # CRC-32 of patch programs
   libeigen3-dev libboost-math-dev           # least squares and t/F distributions for calibration fits
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium python3                          # the library catalog's browser test (tests/catalog/browser_test.py)
 )
 missing=()
 for p in "${pkgs[@]}"; do

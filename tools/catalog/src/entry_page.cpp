@@ -17,6 +17,16 @@ using compiler::Param;
 
 std::string esc(const std::string& s) { return html_escape(s); }
 
+// Where a number came from, as shown: the library's files relative to the folder that holds the
+// library ("library/textiles/corduroy.hmat:7:3"), as the compiler names entries reached by `like`.
+std::string shown_source(const compiler::Library& lib, std::string s) {
+  std::string prefix = lib.directory().parent_path().string();
+  if (prefix.empty()) return s;
+  if (prefix.back() != '/') prefix += '/';
+  for (auto at = s.find(prefix); at != std::string::npos; at = s.find(prefix, at)) s.erase(at, prefix.size());
+  return s;
+}
+
 std::string entry_link(const compiler::Library& lib, const std::string& name) {
   if (const auto* e = lib.entry(name))
     return "<a href=\"" + url_segment(e->name) + ".html\">" + esc(name) + "</a>";
@@ -24,10 +34,14 @@ std::string entry_link(const compiler::Library& lib, const std::string& name) {
 }
 
 // One row of a layer table: what, value as written and in display units, layer, where it came from.
+// The library whose files sources are shown relative to (set per page by entry_page_html).
+thread_local const compiler::Library* shown_library = nullptr;
+
 std::string param_row(const std::string& what, const Param& p, double factor, const std::string& unit) {
-  std::string value = format_number(p.si * factor, 4) + (unit.empty() ? "" : " " + unit);
-  return "<tr><th scope=\"row\">" + esc(what) + "</th><td>" + esc(value) + "</td><td>" + esc(p.stated) + "</td><td>" +
-         esc(compiler::layer_name(p.layer)) + "</td><td class=\"src\">" + esc(p.source) + "</td></tr>\n";
+  std::string value = format_number(p.si * factor, 4) + (unit.empty() ? "" : "\xC2\xA0" + unit);
+  return "<tr><th scope=\"row\">" + esc(what) + "</th><td class=\"value\">" + esc(value) + "</td><td>" + esc(p.stated) +
+         "</td><td>" + esc(compiler::layer_name(p.layer)) + "</td><td class=\"src\">" +
+         esc(shown_library ? shown_source(*shown_library, p.source) : p.source) + "</td></tr>\n";
 }
 std::string opt_row(const std::string& what, const std::optional<Param>& p, double factor, const std::string& unit) {
   return p ? param_row(what, *p, factor, unit) : "";
@@ -56,7 +70,8 @@ std::string representative(const EntryView& v) {
   if (m.like_chain.empty()) o << "(starts from nothing: every layer is its own)";
   for (std::size_t i = 0; i < m.like_chain.size(); ++i) {
     o << (i ? " \xE2\x86\x90 " : "") << entry_link(*v.library, m.like_chain[i]);
-    if (i < m.like_origins.size()) o << " <span class=\"origin\">(" << esc(m.like_origins[i]) << ")</span>";
+    if (i < m.like_origins.size())
+      o << " <span class=\"origin\">(" << esc(shown_source(*v.library, m.like_origins[i])) << ")</span>";
   }
   o << "</dd>\n<dt>file</dt><dd><code>" << esc(e.relative_path) << "</code></dd>\n</dl>\n</section>\n";
   return o.str();
@@ -156,7 +171,8 @@ std::string provenance(const EntryView& v) {
   for (const auto& r : v.program->provenance)
     o << "<tr><td><code>" << esc(r.parameter) << "</code></td><td class=\"num\">" << esc(format_number(r.value_si, 6))
       << "</td><td>" << esc(r.si_unit) << "</td><td>" << esc(r.stated) << "</td><td>" << esc(r.layer)
-      << "</td><td class=\"src\">" << esc(r.source) << "</td><td>" << notes_html(notes_for(*v.library, r.source))
+      << "</td><td class=\"src\">" << esc(shown_source(*v.library, r.source)) << "</td><td>"
+      << notes_html(notes_for(*v.library, r.source))
       << "</td></tr>\n";
   o << "</tbody></table>\n";
   // The entry's own notes, statement by statement, including those no compiled number points at.
@@ -239,6 +255,7 @@ std::vector<compiler::SourceNote> notes_for(const compiler::Library& library, co
 std::string entry_page_html(const EntryView& v) {
   const auto& e = *v.entry;
   const auto& lib = *v.library;
+  shown_library = &lib;
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" << esc(e.name) << " \xE2\x80\x94 "

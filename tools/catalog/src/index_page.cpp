@@ -78,7 +78,7 @@ std::string index_page_html(const nlohmann::json& data) {
       << ">\n<td class=\"thumb\">";
     if (e["thumbnail"].is_string())
       o << "<a href=\"" << html_escape(page) << "\" tabindex=\"-1\"><img src=\"" << html_escape(e["thumbnail"].get<std::string>())
-        << "\" alt=\"\" loading=\"lazy\"></a>";
+        << "\" alt=\"\"></a>";
     else
       o << "<span class=\"no-thumb\" title=\"no position-dependent force to draw\">\xE2\x80\x94</span>";
     o << "</td>\n<td class=\"name\"><a href=\"" << html_escape(page) << "\">" << html_escape(n) << "</a>";

@@ -161,8 +161,8 @@ std::string force_plot_svg(const ForceScan& scan, const std::string& title) {
   o << "<text class=\"axis-label y\" transform=\"translate(15 " << px(0.5 * (a.top + a.bottom))
     << ") rotate(-90)\" text-anchor=\"middle\">lateral force (N)</text>\n";
   if (scan.has_across())
-    o << "<g class=\"legend\"><line class=\"force-along\" x1=\"" << px(a.right - 190) << "\" y1=\"13\" x2=\""
-      << px(a.right - 170) << "\" y2=\"13\"/><text x=\"" << px(a.right - 165) << "\" y=\"17\">along the scan</text>"
+    o << "<g class=\"legend\"><line class=\"force-along\" x1=\"" << px(a.right - 250) << "\" y1=\"13\" x2=\""
+      << px(a.right - 230) << "\" y2=\"13\"/><text x=\"" << px(a.right - 225) << "\" y=\"17\">along the scan</text>"
       << "<line class=\"force-across\" x1=\"" << px(a.right - 90) << "\" y1=\"13\" x2=\"" << px(a.right - 70)
       << "\" y2=\"13\"/><text x=\"" << px(a.right - 65) << "\" y=\"17\">across it</text></g>\n";
   o << "</svg>\n";
