@@ -60,7 +60,7 @@ BENCHMARK(BM_CompileImage1024)->Unit(benchmark::kMillisecond);
 void BM_CompileWholeLibrary(benchmark::State& state) {
   const auto& c = shipped();
   std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(kSource + "/library"))
+  for (const auto& e : std::filesystem::recursive_directory_iterator(kSource + "/library"))
     if (e.path().extension() == ".hmat") files.push_back(e.path());
   for (auto _ : state)
     for (const auto& f : files) {

@@ -1,4 +1,4 @@
-// Tick cost of every shipped material (library/*.hmat, examples/**/*.hmat) as compiled by the
+// Tick cost of every shipped material (library/**/*.hmat, examples/**/*.hmat) as compiled by the
 // shipped compiler: one PatchEvaluator::force_rt call, the hand wandering over the patch. Issue 5's
 // target: well under 1 us per tick for any shipped material.
 #include <benchmark/benchmark.h>

@@ -11,6 +11,7 @@ pkgs=(
   nlohmann-json3-dev libtomlplusplus-dev    # JSON output, TOML calibration files
   zlib1g-dev                                # CRC-32 of patch programs
   libeigen3-dev libboost-math-dev           # least squares and t/F distributions for calibration fits
+  libsqlite3-dev                            # the library index (`sandpaper library index`; FTS5 full text)
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium python3                          # the library catalog's browser test (tests/catalog/browser_test.py)
 )

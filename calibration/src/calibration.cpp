@@ -373,9 +373,4 @@ const DeviceCalibration* CalibrationSet::find_device(const std::string& name) co
   return nullptr;
 }
 
-std::filesystem::path default_calibration_dir() {
-  if (const char* env = std::getenv("SANDPAPER_CALIBRATION"); env && *env) return env;
-  return SANDPAPER_DEFAULT_CALIBRATION_DIR;
-}
-
 }  // namespace sandpaper::calibration

@@ -151,9 +151,4 @@ std::optional<std::string> Library::canonical_name(const std::string& name) cons
   return std::nullopt;
 }
 
-std::filesystem::path default_library_dir() {
-  if (const char* env = std::getenv("SANDPAPER_LIBRARY"); env && *env) return env;
-  return SANDPAPER_DEFAULT_LIBRARY_DIR;
-}
-
 }  // namespace sandpaper::compiler

@@ -128,6 +128,13 @@ class Resolver {
         // the grating the roughness map was measured on (library/library.toml `reference`).
         LikeStmt ref{ctx_.library.manifest().reference, bare->value_location};
         m = from_library(ref, /*reference=*/true);
+        // An unnamed one-line description is named by what it says ("roughness coarse"), not "<-e>".
+        if (syn_.name.empty() && syn_.file && syn_.file->name.rfind('<', 0) == 0 && syn_.file->text.size() <= 80) {
+          std::string t = syn_.file->text;
+          t.erase(0, t.find_first_not_of(" \t\n;"));
+          t.erase(t.find_last_not_of(" \t\n;") + 1);
+          m.name = t;
+        }
       }
     }
     for (const auto* st : kept)

@@ -87,7 +87,7 @@ expect_exit 1 "conflicting file" -- "$sp" compile tests/golden/diagnostics/confl
 has "$tmp/err" 'conflict.hmat:4:3: error\[E0302\]' "diagnostic with file:line:col"
 [ "$(cat "$tmp/out.patch")" = keep ] && ok || bad "a failed compile changed its output file"
 [ "$(ls -A "$tmp" | grep -c tmp-)" -eq 0 ] && ok || bad "temporary files left behind"
-expect_exit 1 "unknown name" -- "$sp" run -e velvet --device sim
+expect_exit 1 "unknown name" -- "$sp" run -e unobtainium --device sim
 has "$tmp/err" 'E0301' "unknown library entry"
 expect_exit 1 "missing file" -- "$sp" compile no/such/file.hmat
 expect_exit 1 "missing image" -- "$sp" compile tests/golden/diagnostics/missing-image.hmat -o "$tmp/x.patch"
@@ -317,6 +317,58 @@ has "$tmp/err" 'recorded at 1000 Hz, not 2000 Hz; replay it with --rate 1000' "r
 printf 'time,x\n' >"$tmp/bad.csv"
 expect_exit 1 "a malformed trace is refused" -- "$sp" run -e corduroy --replay "$tmp/bad.csv"
 expect_exit 2 "workspaces do not take --replay" -- "$sp" run examples/workspace/sampler.hws --replay "$tmp/dyn.csv"
+
+# Library curation (docs/LIBRARY.md) on a copy of the mini library: check, index, search, show, near.
+cp -r tests/curation/data/mini "$tmp/lib"
+L=(--library "$tmp/lib")
+I=(--index "$tmp/idx/library.sqlite")
+expect_exit 0 "library check passes on the mini library" -- "$sp" library check "${L[@]}"
+has "$tmp/err" '^checked 5 entries on 3 devices: 0 errors, 0 warnings$' "check prints its summary"
+expect_exit 0 "library check --quiet" -- "$sp" library check "${L[@]}" --quiet
+[ -s "$tmp/err" ] && bad "check --quiet printed progress" || ok
+expect_exit 0 "library check --json" -- "$sp" library check "${L[@]}" --json --quiet
+has "$tmp/out" '"ok": true' "check --json"
+expect_exit 0 "library index" -- "$sp" library index "${L[@]}" "${I[@]}"
+has "$tmp/out" '^indexed 5 entries of curation test library 0.1.0 into ' "index says what it wrote"
+expect_exit 0 "search by alias" -- "$sp" library search grit-80 "${L[@]}" "${I[@]}"
+has "$tmp/out" '^coarse-grit +abrasives +roughness 0.80 +"coarse sandpaper, sharp grains" +\(alias grit-80\)' "search names the alias"
+expect_exit 0 "search by roughness and family" -- "$sp" library search --roughness 0.4..0.6 --family textiles "${L[@]}" "${I[@]}"
+[ "$(wc -l <"$tmp/out")" -eq 1 ] && has "$tmp/out" '^ribbed-cloth ' "roughness range and family" || bad "one textile in 0.4..0.6"
+expect_exit 1 "search with no match exits 1, like grep" -- "$sp" library search velvet "${L[@]}" "${I[@]}"
+has "$tmp/err" '^no entries match$' "no match said"
+expect_exit 2 "a bad roughness range is a usage error" -- "$sp" library search --roughness 0.6 "${L[@]}" "${I[@]}"
+has "$tmp/err" 'write A\.\.B, A\.\. or \.\.B' "the range's form is given"
+expect_exit 0 "show by alias" -- "$sp" library show rib-cloth "${L[@]}" "${I[@]}"
+has "$tmp/out" '^ribbed-cloth  \(alias rib-cloth\)' "show names the entry"
+has "$tmp/out" 'source derived "8 ribs per inch: 25.4 mm / 8"' "show prints the sources"
+has "$tmp/out" 'maximum lateral force  1\.3[0-9]* N' "show prints the force"
+expect_exit 1 "show an unknown name" -- "$sp" library show ribbed-clth "${L[@]}" "${I[@]}"
+has "$tmp/err" "did you mean 'ribbed-cloth'" "show suggests a name"
+expect_exit 0 "near" -- "$sp" library near ribbed-cloth --limit 2 "${L[@]}" "${I[@]}"
+has "$tmp/out" '^ +[0-9.]+  reference-grating +[0-9.]+ JND stronger' "near lists the nearest with why"
+# The index survives a failed rebuild, and search notices a stale index and rebuilds it.
+cp "$tmp/idx/library.sqlite" "$tmp/idx.before"
+printf 'material "broken" {\n  describes "x"\n  family textiles\n  licence "CC0-1.0"\n  grating period 2 mm\n  source by-ear "x"\n  roughness 5\n  source by-ear "x"\n}\n' >"$tmp/lib/textiles/broken.hmat"
+expect_exit 1 "a failed rebuild exits 1" -- "$sp" library index "${L[@]}" "${I[@]}"
+has "$tmp/err" 'E0303' "the compiler's reason is shown"
+has "$tmp/err" 'index not written.*is unchanged' "the index is said to be unchanged"
+cmp -s "$tmp/idx/library.sqlite" "$tmp/idx.before" && ok || bad "a failed rebuild changed the index"
+expect_exit 1 "library check fails on the broken entry" -- "$sp" library check "${L[@]}" --quiet
+has "$tmp/err" 'broken.hmat:1:10: error\[E0610\]' "check names the entry that does not compile"
+rm "$tmp/lib/textiles/broken.hmat"
+printf 'material "ribbed-twin" {\n  describes "x"\n  family textiles\n  licence "CC0-1.0"\n  grating period 3 mm hill 60%%\n  source by-ear "x"\n  roughness 0.46\n  source by-ear "x"\n}\n' >"$tmp/lib/textiles/ribbed-twin.hmat"
+expect_exit 0 "a JND collision is a warning" -- "$sp" library check "${L[@]}" --quiet
+has "$tmp/err" 'warning\[W0601\]: .ribbed-twin. may feel the same as .ribbed-cloth.' "W0601 names both"
+expect_exit 1 "--werror makes warnings fail" -- "$sp" library check "${L[@]}" --werror
+has "$tmp/err" '1 warning \(--werror: warnings fail\)' "werror said"
+rm "$tmp/lib/textiles/ribbed-twin.hmat"
+sed -i 's/^  source derived "8 ribs per inch: 25.4 mm \/ 8"$//' "$tmp/lib/textiles/ribbed-cloth.hmat"
+expect_exit 1 "library check fails on a missing source" -- "$sp" library check "${L[@]}" --quiet
+has "$tmp/err" 'ribbed-cloth.hmat:6:3: error\[E0606\]: `grating` carries numbers but has no `source`' "missing source located"
+expect_exit 0 "search rebuilds a stale index" -- "$sp" library search fine-rib "${L[@]}" "${I[@]}"
+has "$tmp/err" 'is stale .* building it' "search says it rebuilds"
+expect_exit 0 "library with no subcommand still lists" -- "$sp" library
+has "$tmp/out" 'roughness' "library lists entries"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -147,7 +147,7 @@ TEST(PerceptResolution, SlipperinessIsAntiViscousDampingWithAnEnergyBound) {
 }
 
 TEST(PerceptResolution, BumpinessSetsTheInheritedGratingsPeriodOnly) {
-  // library/corduroy.hmat: grating period 3.2 mm hill 60%, roughness 0.45.
+  // library/textiles/corduroy.hmat: grating period 3.2 mm hill 60%, roughness 0.45.
   auto r = compile("like corduroy; bumpiness 0.3");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_NEAR(provenance(*r.program, "texture.period").value_si, 0.010 * 0.09, 1e-12);
@@ -201,7 +201,7 @@ TEST(PerceptResolution, FileBeatsWhatItInheritsEitherWay) {
 }
 
 TEST(PerceptResolution, FilesViscosityBeatsInheritedDamper) {
-  // library/silk-satin.hmat states damper 0.5 N*s/m.
+  // library/textiles/silk-satin.hmat states damper 0.5 N*s/m.
   auto r = compile("like silk-satin; viscosity 0.2");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_NEAR(provenance(*r.program, "damper.damping").value_si, map_file("viscosity-provisional").value_for(0.2), 1e-12);

@@ -69,7 +69,7 @@ TEST(ThesisStimuli, Table8ForcesWithinTwoPercent) {
 }
 
 TEST(ThesisStimuli, Table8NamesAreQuantizedSeedGratings) {
-  // a10p25 has a library file (library/a10p25.hmat), which wins; the others are generated.
+  // a10p25 has a library file (library/thesis-gratings/a10p25.hmat), which wins; the others are generated.
   auto r = test::shipped_compiler().compile_text("a3p12");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_EQ(test::provenance(*r.program, "texture.quantization").value_si, 8);
@@ -234,7 +234,7 @@ TEST(ThesisStimuli, ExplainNamesTheGenerator) {
   // A library file of the same name wins over the generator.
   auto lib = c.compile_text("a10p25");
   ASSERT_TRUE(lib.ok());
-  EXPECT_EQ(lib.material->like_origins.at(0), "library/a10p25.hmat");
+  EXPECT_EQ(lib.material->like_origins.at(0), "library/thesis-gratings/a10p25.hmat");
 }
 
 TEST(ThesisStimuli, NonTexturalLawsReachTheBaseForceAtTheReadingsPoint) {

@@ -61,7 +61,7 @@ Played play(const schema::PatchProgram& program, double rate_hz, runtime::HandMo
 //      deflection, with room for the hand's resonance, Q = 1/(2 zeta) = 1.35 at the defaults) plus 1 mm;
 //  (c) no growth: the largest hand-relative energy (kinetic in the path's frame plus hand-spring
 //      potential) in the last second is at most 2 x that of the first second plus 10 uJ. Not 1: a
-//      random texture (library/gravel.hmat) deflects the handle differently on every lap; over 20 s
+//      random texture (library/stones/gravel.hmat) deflects the handle differently on every lap; over 20 s
 //      its per-second maxima wander between 2.8 and 5.3 mJ without growing.
 struct Verdict {
   bool stable = true;

@@ -93,7 +93,7 @@ TEST(WorkspaceCompile, MaterialErrorsCarryANoteAtThePatch) {
 }
 
 TEST(WorkspaceCompile, ASharedMaterialIsReportedOnceWithEveryPatch) {
-  auto r = compile("workspace \"w\" {\n  patch \"velvet\" at 0 mm, 0 mm size 20 mm\n  patch \"velvet\" at 30 mm, 0 mm size 20 mm\n}\n");
+  auto r = compile("workspace \"w\" {\n  patch \"unobtainium\" at 0 mm, 0 mm size 20 mm\n  patch \"unobtainium\" at 30 mm, 0 mm size 20 mm\n}\n");
   ASSERT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0301"});
   EXPECT_EQ(r.diagnostics.all().front().notes.size(), 2u);
 }

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
+#include "cmd_library.hpp"
 #include "run_device.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
@@ -60,8 +61,10 @@ int main(int argc, char** argv) {
   inspect->add_flag("--tables", tables, "include the force tables (with --json)");
   double crossfade_ms = 2;
   run->add_option("--crossfade", crossfade_ms, "workspaces: crossfade time at patch edges, ms")->capture_default_str();
-  auto* library = app.add_subcommand("library", "list the library's entries");
+  auto* library = app.add_subcommand("library", "list the library's entries (no subcommand), or check, index, search, show, near");
   add_common(library, o, false);
+  LibraryCommandOptions library_opts;
+  add_library_commands(*library, library_opts);
   auto* library_catalog = add_library_catalog_command(*library);
   auto* movie = app.add_subcommand("movie", "movie files (lists of workspaces) and their shuffles (thesis Appendix B)");
   movie->require_subcommand(1);
@@ -145,7 +148,10 @@ int main(int argc, char** argv) {
     if (show->parsed()) return cmd_movie_show(show_file, o.json);
     if (inspect->parsed()) return cmd_inspect(patch_file, o.json, tables);
     if (library_catalog->parsed()) return cmd_library_catalog(o);
-    if (library->parsed()) return cmd_library(o);
+    if (library->parsed()) {
+      if (const int rc = cmd_library_sub(o, library_opts); rc >= 0) return rc;
+      return cmd_library(o);
+    }
     if (array->parsed()) return cmd_array(ao);
     if (devices->parsed()) return cmd_devices(o);
     if (const int rc = cmd_calibrate(calibrate_opts); rc >= 0) return rc;

@@ -71,7 +71,8 @@ class Library {
 // Reads the material file's metadata statements into `e` (family, aliases, licence, ...).
 void read_entry_metadata(LibraryEntry& e);
 
-// $SANDPAPER_LIBRARY if set, else the source tree's library/.
+// $SANDPAPER_LIBRARY if set, else the shipped library: the source tree's in a build tree,
+// <datadir>/sandpaper/library when installed (compiler/src/data_dirs.cpp).
 std::filesystem::path default_library_dir();
 
 }  // namespace sandpaper::compiler

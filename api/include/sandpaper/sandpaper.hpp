@@ -1,0 +1,153 @@
+#pragma once
+// Sandpaper for applications: a material or a roughness level by name, played on a device.
+//
+//   sandpaper::Library library;                              // the shipped library and calibration
+//   sandpaper::Material corduroy = library.compile("corduroy");
+//   sandpaper::Player player = sandpaper::Player::simulated();
+//   player.load(corduroy);
+//   player.start({.rate_hz = 1000, .duration_s = 0.5});
+//   sandpaper::runtime::ServoReport report = player.wait();
+//
+// A thin layer over sandpaper::compiler::Compiler and the runtime's servo thread; both stay
+// usable directly for anything this does not cover. docs/API.md has the whole story.
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/runtime/device.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/runtime/sim_joystick.hpp"
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper {
+
+// Base of everything this API throws for bad input or missing data; what() says how to fix it.
+struct Error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A material that did not compile. what() is the formatted diagnostics (file:line:col, the source
+// line with a caret, help), as `sandpaper compile` prints them; diagnostics() has them as data.
+class CompileError : public Error {
+ public:
+  explicit CompileError(compiler::Diagnostics diagnostics);
+  const compiler::Diagnostics& diagnostics() const noexcept { return diagnostics_; }
+
+ private:
+  compiler::Diagnostics diagnostics_;
+};
+
+// A roughness level name that calibration/levels/ does not define; what() lists the known ones.
+class UnknownLevel : public Error {
+ public:
+  UnknownLevel(std::string name, std::vector<std::string> known);
+  const std::string& name() const noexcept { return name_; }
+  const std::vector<std::string>& known() const noexcept { return known_; }
+
+ private:
+  std::string name_;
+  std::vector<std::string> known_;
+};
+
+// A compiled material: a patch program (schema/patch_program.hpp, SI units) ready to play.
+// Cheap to copy (the program is shared and immutable).
+class Material {
+ public:
+  explicit Material(schema::PatchProgram program);
+  const std::string& name() const noexcept { return program_->name; }
+  // Texture's maximum lateral force over the patch (N), as compiled for the device.
+  double max_lateral_force_N() const noexcept { return program_->max_lateral_force_N; }
+  // Ratio-scale roughness the roughness map predicts for that force (Minsky 1995, Fig. 19).
+  double roughness() const noexcept { return program_->roughness; }
+  // Compiler warnings, one line each: "file:line:col: message [W0330]".
+  std::vector<std::string> warnings() const;
+  const schema::PatchProgram& program() const noexcept { return *program_; }
+  std::shared_ptr<const schema::PatchProgram> shared_program() const noexcept { return program_; }
+
+ private:
+  std::shared_ptr<const schema::PatchProgram> program_;
+};
+
+struct LibraryOptions {
+  std::filesystem::path library_dir;      // empty: $SANDPAPER_LIBRARY, else the shipped library
+  std::filesystem::path calibration_dir;  // empty: $SANDPAPER_CALIBRATION, else the shipped calibration
+  std::string device = "sim";             // device calibration to compile for (calibration/devices/)
+};
+
+// The world haptics library with its calibration: compiles materials by name or description.
+class Library {
+ public:
+  // The shipped library and calibration (or the environment's, see LibraryOptions), device "sim".
+  Library();
+  // Another library directory (entries `<name>.hmat`), the shipped calibration, device "sim".
+  explicit Library(const std::filesystem::path& library_dir);
+  // Throws Error if a data directory is missing or unreadable (the message names it and the
+  // environment variable that overrides it), if the calibration is malformed, or the device unknown.
+  explicit Library(LibraryOptions options);
+  ~Library();
+  Library(Library&&) noexcept;
+  Library& operator=(Library&&) noexcept;
+
+  // A library name or alias ("corduroy"), or material statements separated by ';'
+  // ("like corduroy; roughness 0.6", "roughness 0.6"). Throws CompileError on any error: a failed
+  // compile never gives a Material. Warnings travel with the Material.
+  Material compile(const std::string& name_or_statements) const;
+  // A named roughness level ("coarse"; calibration/levels/roughness-levels.toml) on the library's
+  // reference texture, as `roughness coarse` in a material file. Throws UnknownLevel, CompileError.
+  Material roughness_level(const std::string& level) const;
+
+  // Entry names, sorted.
+  std::vector<std::string> names() const;
+  // Roughness level names, weakest first, and a level's ratio-scale value (throws UnknownLevel).
+  std::vector<std::string> roughness_levels() const;
+  double roughness_level_value(const std::string& level) const;
+  // The directories in use (absolute when given so), for reports.
+  const std::filesystem::path& library_dir() const noexcept;
+  const std::filesystem::path& calibration_dir() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+struct PlayOptions {
+  double rate_hz = 1000.0;  // servo rate, 900 Hz - 10 kHz and within the device's limits
+  double duration_s = 0.0;  // how long to play; 0: until stop() (at most 10 million ticks)
+};
+
+// Plays materials on one device on a servo thread of its own (runtime::ServoThread). Loading while
+// playing swaps the material without a break (runtime::SwappableSource, 5 ms crossfade).
+class Player {
+ public:
+  // The simulated joystick (runtime::SimJoystick, limits of calibration/devices/sim.toml): a
+  // scripted hand, by default scanning +-30 mm along x at 50 mm/s through the patch centre.
+  static Player simulated(runtime::HandScript hand = {});
+  // Any device (a USB HID PID joystick, a replay, your own runtime::Device); the player owns it.
+  explicit Player(std::unique_ptr<runtime::Device> device);
+  ~Player();  // stops and joins if still playing
+  Player(Player&&) noexcept;
+  Player& operator=(Player&&) noexcept;
+
+  // Plays `material` from the next start(), or at once if playing. The program is kept alive for
+  // as long as the servo thread may use it.
+  void load(const Material& material);
+  // Starts the servo thread. Throws Error if nothing is loaded or already playing, and
+  // std::invalid_argument for a rate outside the device's limits or a bad duration.
+  void start(PlayOptions options = {});
+  // Asks the servo thread to stop at its next tick, waits for it and returns its report
+  // (stop_cause StopRequested, or what stopped it first). Throws Error if not started.
+  runtime::ServoReport stop();
+  // Waits for the servo thread to finish on its own (duration, or a fault) and returns its report.
+  runtime::ServoReport wait();
+  bool playing() const noexcept;
+  runtime::Device& device() noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sandpaper

@@ -1,0 +1,81 @@
+// sandpaper::Library: the compiler with the shipped (or given) library and calibration, and the
+// two questions applications ask of it: a material by name, a roughness level by name.
+#include <system_error>
+
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/sandpaper.hpp"
+
+namespace sandpaper {
+namespace {
+
+// A missing data directory would otherwise show up later as "unknown material" or a list of
+// unreadable calibration files; say which directory and how to point elsewhere instead.
+std::filesystem::path existing_dir(std::filesystem::path dir, const char* what, const char* env) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw Error(std::string("no ") + what + " directory at " + dir.string() + "; pass one, or set " + env);
+  return dir;
+}
+
+}  // namespace
+
+struct Library::Impl {
+  std::filesystem::path library_dir, calibration_dir;
+  std::unique_ptr<compiler::Compiler> compiler;
+};
+
+Library::Library() : Library(LibraryOptions{}) {}
+
+Library::Library(const std::filesystem::path& library_dir)
+    : Library(LibraryOptions{.library_dir = library_dir, .calibration_dir = {}, .device = "sim"}) {}
+
+Library::Library(LibraryOptions options) : impl_(std::make_unique<Impl>()) {
+  impl_->library_dir = existing_dir(
+      options.library_dir.empty() ? compiler::default_library_dir() : options.library_dir, "library", "SANDPAPER_LIBRARY");
+  impl_->calibration_dir =
+      existing_dir(options.calibration_dir.empty() ? calibration::default_calibration_dir() : options.calibration_dir,
+                   "calibration", "SANDPAPER_CALIBRATION");
+  try {
+    impl_->compiler = std::make_unique<compiler::Compiler>(
+        compiler::CompileOptions{options.device, impl_->library_dir, impl_->calibration_dir});
+  } catch (const calibration::CalibrationError& e) {
+    throw Error(e.what());
+  } catch (const std::invalid_argument& e) {  // unknown device: the message lists the known ones
+    throw Error(e.what());
+  }
+}
+
+Library::~Library() = default;
+Library::Library(Library&&) noexcept = default;
+Library& Library::operator=(Library&&) noexcept = default;
+
+Material Library::compile(const std::string& name_or_statements) const {
+  compiler::CompileResult result = impl_->compiler->compile_text(name_or_statements, "<compile>");
+  if (!result.ok()) throw CompileError(std::move(result.diagnostics));
+  return Material(std::move(*result.program));
+}
+
+Material Library::roughness_level(const std::string& level) const {
+  roughness_level_value(level);  // refuse unknown names (and anything that is not a bare name) here
+  return compile("roughness " + level);
+}
+
+std::vector<std::string> Library::names() const { return impl_->compiler->library().names(); }
+
+std::vector<std::string> Library::roughness_levels() const {
+  std::vector<std::string> out;
+  for (const auto& l : impl_->compiler->calibration().roughness_levels()) out.push_back(l.name);
+  return out;
+}
+
+double Library::roughness_level_value(const std::string& level) const {
+  const calibration::Level* found = impl_->compiler->calibration().find_level(level);
+  if (!found) throw UnknownLevel(level, roughness_levels());
+  return found->value;
+}
+
+const std::filesystem::path& Library::library_dir() const noexcept { return impl_->library_dir; }
+const std::filesystem::path& Library::calibration_dir() const noexcept { return impl_->calibration_dir; }
+
+}  // namespace sandpaper

@@ -1,0 +1,136 @@
+// The application API (api/include/sandpaper/sandpaper.hpp): compiling by name, errors as data,
+// playing, stopping and swapping on the simulated joystick.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "sandpaper/sandpaper.hpp"
+
+namespace {
+
+using sandpaper::CompileError;
+using sandpaper::Library;
+using sandpaper::Player;
+using sandpaper::UnknownLevel;
+using sandpaper::runtime::StopCause;
+
+const Library& shipped() {
+  static const Library library;
+  return library;
+}
+
+TEST(Api, CompilesALibraryEntryByNameAsTheStatementsDo) {
+  auto by_name = shipped().compile("corduroy");
+  auto spelled = shipped().compile("like corduroy");
+  EXPECT_EQ(by_name.name(), "corduroy");
+  EXPECT_GT(by_name.max_lateral_force_N(), 0.0);
+  EXPECT_DOUBLE_EQ(by_name.max_lateral_force_N(), spelled.max_lateral_force_N());
+  // A roughness asked for changes the force through the map: 0.6 is rougher than corduroy's 0.45.
+  auto rougher = shipped().compile("like corduroy; roughness 0.6");
+  EXPECT_NEAR(rougher.roughness(), 0.6, 1e-6);
+  EXPECT_GT(rougher.max_lateral_force_N(), by_name.max_lateral_force_N());
+}
+
+TEST(Api, BarePerceptualDescriptionStartsFromTheReferenceTexture) {
+  auto m = shipped().compile("roughness 0.6");
+  EXPECT_NEAR(m.roughness(), 0.6, 1e-6);
+  EXPECT_GT(m.max_lateral_force_N(), 0.0);
+}
+
+TEST(Api, RoughnessLevelIsTheCalibratedLevel) {
+  auto coarse = shipped().roughness_level("coarse");
+  EXPECT_DOUBLE_EQ(shipped().roughness_level_value("coarse"), 0.5598);
+  EXPECT_NEAR(coarse.roughness(), 0.5598, 1e-6);
+  EXPECT_LT(shipped().roughness_level("fine").max_lateral_force_N(), coarse.max_lateral_force_N());
+  auto levels = shipped().roughness_levels();
+  EXPECT_EQ(levels.front(), "very-fine");
+  EXPECT_EQ(levels.back(), "very-coarse");
+}
+
+TEST(Api, UnknownLevelNamesTheKnownOnes) {
+  try {
+    shipped().roughness_level("corse");
+    FAIL() << "no exception";
+  } catch (const UnknownLevel& e) {
+    EXPECT_EQ(e.name(), "corse");
+    EXPECT_EQ(e.known(), shipped().roughness_levels());
+    std::string what = e.what();
+    EXPECT_NE(what.find("very-fine, fine, medium, coarse, very-coarse"), std::string::npos) << what;
+    EXPECT_NE(what.find("did you mean \"coarse\""), std::string::npos) << what;
+  }
+  // Not a way to smuggle statements in: only level names are accepted.
+  EXPECT_THROW(shipped().roughness_level("coarse; spring 100 N/m"), UnknownLevel);
+}
+
+TEST(Api, FailedCompileThrowsTheFormattedDiagnostics) {
+  try {
+    shipped().compile("like corduroy; roughnes 0.6");
+    FAIL() << "no exception";
+  } catch (const CompileError& e) {
+    std::string what = e.what();
+    EXPECT_NE(what.find("<compile>:1:16: error[E0202]"), std::string::npos) << what;
+    EXPECT_NE(what.find("^~~~~~~~"), std::string::npos) << what;
+    EXPECT_NE(what.find("help: did you mean `roughness`?"), std::string::npos) << what;
+    ASSERT_TRUE(e.diagnostics().has_errors());
+    EXPECT_EQ(e.diagnostics().all().front().code, "E0202");
+  }
+  EXPECT_THROW(shipped().compile("no-such-material-anywhere"), CompileError);
+}
+
+TEST(Api, MissingDataDirectoryIsNamed) {
+  try {
+    Library library("/nonexistent/sandpaper-library");
+    FAIL() << "no exception";
+  } catch (const sandpaper::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/sandpaper-library"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("SANDPAPER_LIBRARY"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Library(sandpaper::LibraryOptions{.library_dir = {}, .calibration_dir = {}, .device = "no-such-device"}),
+               sandpaper::Error);
+}
+
+TEST(Api, PlaysForTheDurationWithTheCompiledForce) {
+  auto m = shipped().compile("corduroy");
+  Player player = Player::simulated();
+  player.load(m);
+  player.start({.rate_hz = 1000, .duration_s = 0.3});
+  auto report = player.wait();
+  EXPECT_EQ(report.stop_cause, StopCause::Completed);
+  EXPECT_EQ(report.ticks, 300u);
+  EXPECT_GT(report.max_lateral_force_N, 0.5 * m.max_lateral_force_N());
+  EXPECT_LE(report.max_lateral_force_N, m.max_lateral_force_N() * (1 + 1e-9));
+  EXPECT_FALSE(player.playing());
+}
+
+TEST(Api, PlaysUntilStoppedAndSwapsWhilePlaying) {
+  Player player = Player::simulated();
+  player.load(shipped().roughness_level("very-fine"));
+  player.start();  // no duration: until stop()
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_TRUE(player.playing());
+  const auto strong = shipped().roughness_level("very-coarse");
+  player.load(strong);  // swapped on the servo thread
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  auto report = player.stop();
+  EXPECT_EQ(report.stop_cause, StopCause::StopRequested);
+  EXPECT_GT(report.ticks, 0u);
+  // Only the very-coarse material reaches above the very-fine one's maximum.
+  EXPECT_GT(report.max_lateral_force_N, shipped().roughness_level("very-fine").max_lateral_force_N() * 1.5);
+  EXPECT_FALSE(player.playing());
+}
+
+TEST(Api, PlayerRefusesToStartWithNothingLoadedOrTwice) {
+  Player player = Player::simulated();
+  EXPECT_THROW(player.start(), sandpaper::Error);
+  EXPECT_THROW(player.stop(), sandpaper::Error);
+  player.load(shipped().compile("corduroy"));
+  EXPECT_THROW(player.start({.rate_hz = 50, .duration_s = 0.1}), std::invalid_argument);  // below 900 Hz
+  player.start();
+  EXPECT_THROW(player.start(), sandpaper::Error);
+  EXPECT_EQ(player.stop().stop_cause, StopCause::StopRequested);
+}
+
+}  // namespace

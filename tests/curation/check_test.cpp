@@ -1,0 +1,200 @@
+// `library check` on copies of data/mini/ with one thing broken each: the Done-when of issue 6
+// (a missing source, a duplicate alias, a cycle, an entry that does not compile for a shipped
+// device), and the other checks. Each asserts the code, where, and that the help says how to fix it.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "curation_test_support.hpp"
+#include "sandpaper/curation/check.hpp"
+
+namespace sandpaper::test {
+namespace {
+
+using curation::CheckResult;
+
+CheckResult check(const std::filesystem::path& lib, const std::filesystem::path& cal = {}) {
+  std::ostringstream sink;
+  curation::Progress quiet("checking", 0, true, sink, false);
+  return curation::check_library({lib, cal, {}}, quiet);
+}
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// The one diagnostic of `code`, with its location ending in `where` ("textiles/x.hmat:6:3").
+const compiler::Diagnostic& only(const CheckResult& r, const std::string& code, const std::string& where) {
+  auto ds = with_code(r.diagnostics, code);
+  EXPECT_EQ(ds.size(), 1u) << compiler::format_diagnostics(r.diagnostics);
+  static const compiler::Diagnostic none;
+  if (ds.empty()) return none;
+  EXPECT_TRUE(ends_with(ds[0]->location.str(), where)) << ds[0]->location.str() << " vs " << where;
+  return *ds[0];
+}
+
+TEST(LibraryCheck, TheMiniLibraryPassesOnEveryShippedDevice) {
+  const auto lib = mini_library_copy("check-clean");
+  const auto r = check(lib);
+  EXPECT_EQ(r.errors(), 0u) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.warnings(), 0u) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.entries, 5u);
+  EXPECT_EQ(r.devices.size(), 3u);
+  EXPECT_EQ(r.summary(), "checked 5 entries on 3 devices: 0 errors, 0 warnings");
+}
+
+TEST(LibraryCheck, AMissingSourceIsAnErrorAtTheStatement) {
+  const auto lib = mini_library_copy("check-source");
+  edit(lib / "textiles/ribbed-cloth.hmat", "  source derived \"8 ribs per inch: 25.4 mm / 8\"\n", "");
+  const auto r = check(lib);
+  const auto& d = only(r, "E0606", "textiles/ribbed-cloth.hmat:6:3");
+  EXPECT_EQ(d.severity, compiler::Severity::Error);
+  EXPECT_NE(d.message.find("`grating` carries numbers but has no `source`"), std::string::npos) << d.message;
+  EXPECT_NE(d.suggestion.find("add a line after it: source KIND"), std::string::npos) << d.suggestion;
+  const auto text = compiler::format_diagnostic(d);
+  EXPECT_NE(text.find("error[E0606]"), std::string::npos);
+  EXPECT_NE(text.find("  grating period 3.2 mm hill 60%\n"), std::string::npos) << text;  // the line, then a caret
+  EXPECT_NE(text.find("^~~~~~~"), std::string::npos) << text;
+  EXPECT_EQ(r.errors(), 1u) << compiler::format_diagnostics(r.diagnostics);
+}
+
+TEST(LibraryCheck, ADuplicateAliasNamesBothPlaces) {
+  const auto lib = mini_library_copy("check-alias");
+  edit(lib / "abrasives/coarse-grit.hmat", "  alias grit-80\n", "  alias grit-80\n  alias rib-cloth\n");
+  const auto r = check(lib);
+  // Entries are checked in name order: coarse-grit claims the alias first, ribbed-cloth's is the clash.
+  const auto& d = only(r, "E0607", "textiles/ribbed-cloth.hmat:4:9");
+  EXPECT_NE(d.message.find("alias 'rib-cloth' is already an alias of 'coarse-grit'"), std::string::npos) << d.message;
+  EXPECT_NE(d.suggestion.find("remove this alias or choose another"), std::string::npos) << d.suggestion;
+  ASSERT_EQ(d.notes.size(), 1u);
+  EXPECT_TRUE(ends_with(d.notes[0].location.str(), "abrasives/coarse-grit.hmat:5:9")) << d.notes[0].location.str();
+  EXPECT_EQ(r.errors(), 1u) << compiler::format_diagnostics(r.diagnostics);
+}
+
+TEST(LibraryCheck, AnAliasThatIsAnotherEntrysNameIsADuplicate) {
+  const auto lib = mini_library_copy("check-alias-name");
+  edit(lib / "abrasives/coarse-grit.hmat", "  alias grit-80\n", "  alias grit-80\n  alias fine-rib\n");
+  const auto r = check(lib);
+  const auto& d = only(r, "E0607", "abrasives/coarse-grit.hmat:5:9");
+  EXPECT_NE(d.message.find("is already the name of textiles/fine-rib.hmat"), std::string::npos) << d.message;
+}
+
+TEST(LibraryCheck, ALikeCycleIsReportedOnceWithItsWholePathThroughAliases) {
+  const auto lib = mini_library_copy("check-cycle");
+  edit(lib / "textiles/ribbed-cloth.hmat", "  licence \"CC0-1.0\"\n", "  licence \"CC0-1.0\"\n  like fine-rib\n");
+  const auto r = check(lib);
+  const auto& d = only(r, "E0608", "textiles/fine-rib.hmat:5:8");
+  EXPECT_NE(d.message.find("`like` cycle: fine-rib -> ribbed-cloth (as 'rib-cloth') -> fine-rib"), std::string::npos) << d.message;
+  EXPECT_NE(d.suggestion.find("remove one of the `like` lines"), std::string::npos) << d.suggestion;
+  ASSERT_EQ(d.notes.size(), 1u);
+  EXPECT_TRUE(ends_with(d.notes[0].location.str(), "textiles/ribbed-cloth.hmat:6:8")) << d.notes[0].location.str();
+  // The cycle is the cause: its members are not also reported as failing to compile.
+  EXPECT_TRUE(with_code(r.diagnostics, "E0610").empty()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.errors(), 1u) << compiler::format_diagnostics(r.diagnostics);
+}
+
+TEST(LibraryCheck, AnEntryTheWeakestDeviceCannotPlayFailsWithTheCompilersReasonAsANote) {
+  const auto lib = mini_library_copy("check-device");
+  const auto cal = calibration_copy("check-device");
+  // sandpaper-1995 limited to 2 N: coarse-grit's roughness 0.8 needs about 2.8 N (Figure 19's map).
+  edit(cal / "devices/sandpaper-1995.toml", "max_continuous = \"10 N\"", "max_continuous = \"2 N\"");
+  const auto r = check(lib, cal);
+  // coarse-grit, and old-grit that starts from it; the others need under 2 N.
+  const auto fails = with_code(r.diagnostics, "E0610");
+  ASSERT_EQ(fails.size(), 2u) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.errors(), 2u) << compiler::format_diagnostics(r.diagnostics);
+  const auto& d = *fails[0];  // entries are checked by name: coarse-grit first
+  EXPECT_TRUE(ends_with(d.location.str(), "abrasives/coarse-grit.hmat:1:10")) << d.location.str();
+  EXPECT_NE(d.message.find("'coarse-grit' does not compile for device 'sandpaper-1995'"), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("calibration/devices/sandpaper-1995.toml"), std::string::npos) << d.message;
+  ASSERT_FALSE(d.notes.empty());
+  EXPECT_NE(d.notes[0].message.find("error[E0310]"), std::string::npos) << d.notes[0].message;
+  EXPECT_TRUE(ends_with(d.notes[0].location.str(), "abrasives/coarse-grit.hmat:8:13")) << d.notes[0].location.str();
+  EXPECT_NE(d.suggestion.find("every entry must play on every shipped device"), std::string::npos) << d.suggestion;
+  EXPECT_NE(d.suggestion.find("roughness"), std::string::npos) << d.suggestion;  // E0310's own help: the highest it reaches
+  EXPECT_NE(fails[1]->message.find("'old-grit' does not compile for device 'sandpaper-1995'"), std::string::npos);
+}
+
+TEST(LibraryCheck, MetadataProblemsEachSayWhatToWrite) {
+  const auto lib = mini_library_copy("check-meta");
+  edit(lib / "textiles/fine-rib.hmat", "  family textiles\n", "  family textile\n");
+  edit(lib / "textiles/ribbed-cloth.hmat", "  licence \"CC0-1.0\"\n", "");
+  edit(lib / "abrasives/coarse-grit.hmat", "  describes \"coarse sandpaper, sharp grains\"\n", "");
+  edit(lib / "abrasives/old-grit.hmat", "material \"old-grit\"", "material \"older-grit\"");
+  const auto r = check(lib);
+  const auto& fam = only(r, "E0604", "textiles/fine-rib.hmat:3:10");
+  EXPECT_NE(fam.suggestion.find("did you mean `textiles`?"), std::string::npos) << fam.suggestion;
+  const auto& lic = only(r, "E0605", "textiles/ribbed-cloth.hmat:1:10");
+  EXPECT_NE(lic.suggestion.find("add licence \"CC0-1.0\""), std::string::npos) << lic.suggestion;
+  const auto& desc = only(r, "E0603", "abrasives/coarse-grit.hmat:1:10");
+  EXPECT_NE(desc.suggestion.find("add describes"), std::string::npos);
+  const auto& name = only(r, "E0602", "abrasives/old-grit.hmat:1:10");
+  EXPECT_NE(name.message.find("material 'older-grit' is in a file named 'old-grit.hmat'"), std::string::npos) << name.message;
+}
+
+TEST(LibraryCheck, LicencesMustBeSpdxAndUnknownOnesWarn) {
+  const auto lib = mini_library_copy("check-licence");
+  edit(lib / "textiles/fine-rib.hmat", "licence \"CC0-1.0\"", "licence \"CC-BY-4\"");
+  edit(lib / "textiles/ribbed-cloth.hmat", "licence \"CC0-1.0\"", "licence \"public domain!\"");
+  const auto r = check(lib);
+  const auto& w = only(r, "W0603", "textiles/fine-rib.hmat:4:11");
+  EXPECT_EQ(w.severity, compiler::Severity::Warning);
+  EXPECT_NE(w.suggestion.find("did you mean \"CC-BY-4.0\"?"), std::string::npos) << w.suggestion;
+  only(r, "E0605", "textiles/ribbed-cloth.hmat:5:11");
+  EXPECT_TRUE(curation::known_licence("LicenseRef-museum-scan"));
+  EXPECT_TRUE(curation::well_formed_licence("MIT OR Apache-2.0"));
+  EXPECT_FALSE(curation::well_formed_licence(""));
+}
+
+TEST(LibraryCheck, DeprecationMustPointAtALiveEntry) {
+  const auto lib = mini_library_copy("check-deprecated");
+  edit(lib / "abrasives/old-grit.hmat", "replaced-by coarse-grit", "replaced-by coarse-grid");
+  const auto r = check(lib);
+  const auto& d = only(r, "E0609", "abrasives/old-grit.hmat:5:26");
+  EXPECT_NE(d.suggestion.find("did you mean `coarse-grit`?"), std::string::npos) << d.suggestion;
+
+  const auto lib2 = mini_library_copy("check-deprecated-chain");
+  edit(lib2 / "abrasives/coarse-grit.hmat", "  licence \"CC-BY-4.0\"\n", "  licence \"CC-BY-4.0\"\n  deprecated replaced-by fine-rib\n");
+  const auto r2 = check(lib2);
+  const auto& chain = only(r2, "E0609", "abrasives/old-grit.hmat:5:26");
+  EXPECT_NE(chain.message.find("is itself deprecated"), std::string::npos) << chain.message;
+  EXPECT_NE(chain.suggestion.find("deprecated replaced-by fine-rib"), std::string::npos) << chain.suggestion;
+}
+
+TEST(LibraryCheck, EntriesOfOneFamilyWithinAForceJndAndOnePeriodClassWarn) {
+  const auto lib = mini_library_copy("check-jnd");
+  const std::string twin = R"(material "ribbed-twin" {
+  describes "another ribbed cloth"
+  family textiles
+  licence "CC0-1.0"
+  grating period 3 mm hill 60%
+  source by-ear "a little finer"
+  roughness ROUGH
+  source by-ear "as rough as the ribbed cloth"
+}
+)";
+  auto with = [&](const std::string& r) {
+    auto t = twin;
+    t.replace(t.find("ROUGH"), 5, r);
+    return t;
+  };
+  write(lib / "textiles/ribbed-twin.hmat", with("0.46"));
+  auto r = check(lib);
+  const auto& w = only(r, "W0601", "textiles/ribbed-twin.hmat:1:10");
+  EXPECT_NE(w.message.find("'ribbed-twin' may feel the same as 'ribbed-cloth' (family textiles)"), std::string::npos) << w.message;
+  EXPECT_NE(w.message.find("period class 'transitional'"), std::string::npos) << w.message;  // 3.0 and 3.2 mm: 1.73-3.54 mm
+  EXPECT_EQ(r.errors(), 0u);
+  // Three force JNDs apart (roughness 0.6 vs 0.45: force x1.46): no warning.
+  write(lib / "textiles/ribbed-twin.hmat", with("0.6"));
+  EXPECT_TRUE(with_code(check(lib).diagnostics, "W0601").empty());
+}
+
+TEST(LibraryCheck, SyntaxErrorsAreReportedWithTheCompilersCodes) {
+  const auto lib = mini_library_copy("check-syntax");
+  edit(lib / "textiles/fine-rib.hmat", "grating period 1.2 mm", "grating period 1.2");
+  const auto r = check(lib);
+  EXPECT_EQ(with_code(r.diagnostics, "E0203").size(), 1u) << compiler::format_diagnostics(r.diagnostics);
+}
+
+}  // namespace
+}  // namespace sandpaper::test

@@ -1,0 +1,230 @@
+// The SQLite index: what it stores, search and near over it, and that a failed rebuild leaves the
+// previous index byte-identical.
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "curation_test_support.hpp"
+#include "sandpaper/curation/index.hpp"
+#include "sandpaper/curation/near.hpp"
+#include "sandpaper/curation/search.hpp"
+#include "test_support.hpp"
+
+namespace sandpaper::test {
+namespace {
+
+using namespace sandpaper::curation;
+
+IndexBuildResult build(const std::filesystem::path& lib, const std::filesystem::path& index) {
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  return build_index({lib, {}, index, "sim"}, quiet);
+}
+
+std::vector<std::string> names(const std::vector<SearchHit>& hits) {
+  std::vector<std::string> out;
+  for (const auto& h : hits) out.push_back(h.entry.name);
+  return out;
+}
+
+TEST(LibraryIndex, DebiansSqliteHasFts5) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(":memory:", &db), SQLITE_OK);
+  char* err = nullptr;
+  const int rc = sqlite3_exec(db, "CREATE VIRTUAL TABLE t USING fts5(x); INSERT INTO t VALUES ('ribbed cloth');", nullptr, nullptr, &err);
+  EXPECT_EQ(rc, SQLITE_OK) << (err ? err : "");
+  sqlite3_free(err);
+  sqlite3_close(db);
+}
+
+struct Built {
+  std::filesystem::path lib, index;
+};
+
+Built built(const std::string& tag) {
+  Built b{mini_library_copy(tag), {}};
+  b.index = b.lib.parent_path() / "idx" / "library.sqlite";
+  const auto r = build(b.lib, b.index);
+  EXPECT_TRUE(r.ok) << r.error << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.entries, 5u);
+  return b;
+}
+
+TEST(LibraryIndex, StoresMetadataCoordinatesAndProvenanceWithSources) {
+  const auto b = built("index-store");
+  const Index idx(b.index);
+  EXPECT_EQ(idx.meta("library_version"), "0.1.0");
+  EXPECT_EQ(idx.meta("device"), "sim");
+  const auto e = idx.entry("ribbed-cloth");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->family, "textiles");
+  EXPECT_EQ(e->family_title, "Textiles");
+  EXPECT_EQ(e->file, "textiles/ribbed-cloth.hmat");
+  EXPECT_EQ(e->aliases, std::vector<std::string>{"rib-cloth"});
+  EXPECT_NEAR(e->roughness, 0.45, 1e-6);
+  // Figure 19's ratio scale, restated: F = 382 gf * r^(1 / 0.759593).
+  EXPECT_NEAR(e->max_lateral_force_N, expected_force_for_roughness(0.45), 0.01 * expected_force_for_roughness(0.45));
+  EXPECT_EQ(e->texture_kind, "grating");
+  EXPECT_NEAR(e->period_m, 0.0032, 1e-12);
+  EXPECT_EQ(e->period_class, "transitional");
+  EXPECT_NE(e->physical.find("grating period 3.2 mm, hill 60 %"), std::string::npos) << e->physical;
+  EXPECT_EQ(idx.entry("old-grit")->deprecated_by, "coarse-grit");
+  EXPECT_EQ(idx.resolve("grit-80"), "coarse-grit");
+
+  bool period_sourced = false;
+  for (const auto& p : idx.provenance("ribbed-cloth"))
+    if (p.parameter == "texture.period") {
+      EXPECT_EQ(p.si_unit, "m");
+      EXPECT_EQ(p.layer, "physical");
+      ASSERT_FALSE(p.notes.empty());
+      EXPECT_EQ(p.notes[0].first, "derived");
+      EXPECT_EQ(p.notes[0].second, "8 ribs per inch: 25.4 mm / 8");
+      period_sourced = true;
+    }
+  EXPECT_TRUE(period_sourced);
+  // Inherited through `like`: fine-rib's hill comes from ribbed-cloth's grating, with its source.
+  bool hill_inherited = false;
+  for (const auto& p : idx.provenance("fine-rib"))
+    if (p.parameter == "texture.hill") {
+      ASSERT_FALSE(p.notes.empty()) << p.source;
+      EXPECT_EQ(p.notes[0].second, "8 ribs per inch: 25.4 mm / 8");
+      hill_inherited = true;
+    }
+  EXPECT_TRUE(hill_inherited);
+  const auto st = idx.statements("ribbed-cloth");
+  ASSERT_EQ(st.size(), 6u);  // describes, family, alias, licence, grating, roughness (sources attach)
+  EXPECT_EQ(st[4].keyword, "grating");
+  ASSERT_EQ(st[4].sources.size(), 1u);
+  EXPECT_EQ(st[4].sources[0].first, "derived");
+}
+
+TEST(LibrarySearch, ByNameAliasWordsPrefixRangeAndFamily) {
+  const auto b = built("index-search");
+  const Index idx(b.index);
+  auto q = [&](std::vector<std::string> words, std::optional<RoughnessRange> r = {}, std::string family = {}) {
+    SearchQuery s;
+    s.words = std::move(words);
+    s.roughness = r;
+    s.family = std::move(family);
+    return search(idx, s);
+  };
+  // A name first, even though other entries mention it (fine-rib's description names the ribbed cloth).
+  auto by_name = q({"ribbed-cloth"});
+  ASSERT_FALSE(by_name.empty());
+  EXPECT_EQ(by_name[0].entry.name, "ribbed-cloth");
+  EXPECT_EQ(by_name[0].why, "name");
+  auto by_alias = q({"grit-80"});
+  ASSERT_FALSE(by_alias.empty());
+  EXPECT_EQ(by_alias[0].entry.name, "coarse-grit");
+  EXPECT_EQ(by_alias[0].matched_alias, "grit-80");
+  EXPECT_EQ(names(q({"sharp", "grains"})), std::vector<std::string>{"coarse-grit"});
+  auto prefix = names(q({"sandp"}));  // the last word is a prefix: "sandpaper"
+  std::sort(prefix.begin(), prefix.end());
+  EXPECT_EQ(prefix, (std::vector<std::string>{"coarse-grit", "old-grit"}));
+  EXPECT_EQ(names(q({}, parse_roughness_range("0.4..0.6"))), (std::vector<std::string>{"ribbed-cloth", "reference-grating"}));
+  EXPECT_EQ(names(q({}, parse_roughness_range("..0.3"))), std::vector<std::string>{"fine-rib"});
+  auto fam = names(q({}, {}, "abrasives"));
+  std::sort(fam.begin(), fam.end());
+  EXPECT_EQ(fam, (std::vector<std::string>{"coarse-grit", "old-grit"}));
+  EXPECT_EQ(names(q({"ribbed"}, {}, "abrasives")), std::vector<std::string>{});
+  EXPECT_TRUE(q({"velvet"}).empty());
+  try {
+    q({}, {}, "abrasive");
+    ADD_FAILURE() << "an unknown family should throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'abrasives'?"), std::string::npos) << e.what();
+  }
+}
+
+TEST(LibrarySearch, RoughnessRangesAndTheirErrors) {
+  auto r = parse_roughness_range("0.4..0.6");
+  EXPECT_EQ(r.min, 0.4);
+  EXPECT_EQ(r.max, 0.6);
+  EXPECT_FALSE(parse_roughness_range("0.4..").max);
+  EXPECT_FALSE(parse_roughness_range("..0.6").min);
+  for (const char* bad : {"0.4", "..", "a..b", "0.6..0.4", "0.1..0.2..0.3", "-1..2"}) {
+    try {
+      parse_roughness_range(bad);
+      ADD_FAILURE() << bad << " should be refused";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("A..B"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(fts_query({"wide", "wal"}), "\"wide\" \"wal\"*");
+  EXPECT_EQ(fts_query({"say\"x"}), "\"say\"\"x\"*");
+}
+
+TEST(LibraryIndex, AFailedRebuildLeavesThePreviousIndexByteIdentical) {
+  const auto b = built("index-atomic");
+  const auto before = read(b.index);
+  ASSERT_FALSE(before.empty());
+  // An entry that does not compile (roughness above 1 without `extrapolate`: E0303).
+  write(b.lib / "textiles/too-rough.hmat", R"(material "too-rough" {
+  describes "rougher than the scale"
+  family textiles
+  licence "CC0-1.0"
+  grating period 2 mm
+  source by-ear "x"
+  roughness 5
+  source by-ear "x"
+}
+)");
+  const auto r = build(b.lib, b.index);
+  EXPECT_FALSE(r.ok);
+  ASSERT_TRUE(r.diagnostics.has_errors());
+  EXPECT_EQ(r.diagnostics.all()[0].code, "E0303");
+  EXPECT_NE(r.diagnostics.all()[0].location.str().find("textiles/too-rough.hmat:7:"), std::string::npos);
+  EXPECT_EQ(read(b.index), before);
+  for (const auto& f : std::filesystem::directory_iterator(b.index.parent_path()))
+    EXPECT_EQ(f.path().filename(), "library.sqlite") << "left behind: " << f.path();
+  const Index idx(b.index);
+  SearchQuery q;
+  q.words = {"grit-80"};
+  EXPECT_EQ(names(search(idx, q)), std::vector<std::string>{"coarse-grit"});
+  EXPECT_FALSE(idx.entry("too-rough"));
+  // An unwritable place: an I/O failure, reported, nothing written.
+  const auto blocked = b.lib.parent_path() / "file-not-dir";
+  write(blocked, "x");
+  std::filesystem::remove(b.lib / "textiles/too-rough.hmat");
+  const auto io = build(b.lib, blocked / "library.sqlite");
+  EXPECT_FALSE(io.ok);
+  EXPECT_FALSE(io.error.empty());
+}
+
+TEST(LibraryIndex, KnowsWhenItIsStale) {
+  const auto b = built("index-stale");
+  EXPECT_EQ(index_state(b.index, b.lib, calibration::default_calibration_dir()), IndexState::Fresh);
+  edit(b.lib / "textiles/fine-rib.hmat", "roughness 0.2", "roughness 0.25");
+  EXPECT_EQ(index_state(b.index, b.lib, calibration::default_calibration_dir()), IndexState::Stale);
+  EXPECT_EQ(index_state(b.index.parent_path() / "none.sqlite", b.lib, calibration::default_calibration_dir()), IndexState::Missing);
+  // Files under hidden folders (the index's own .index/) do not count.
+  write(b.lib / ".index/scratch", "x");
+  const auto fp = library_fingerprint(b.lib, calibration::default_calibration_dir());
+  write(b.lib / ".index/scratch", "y");
+  EXPECT_EQ(library_fingerprint(b.lib, calibration::default_calibration_dir()), fp);
+}
+
+TEST(LibraryNear, NearestByForceJndsPeriodAndKind) {
+  const auto b = built("index-near");
+  const Index idx(b.index);
+  const auto ns = nearest(idx, "ribbed-cloth", 10);
+  ASSERT_EQ(ns.size(), 4u);
+  // reference-grating: roughness 0.5 vs 0.45 and 2.5 vs 3.2 mm is closer than fine-rib (0.2, 1.2 mm).
+  EXPECT_EQ(ns[0].entry.name, "reference-grating");
+  EXPECT_EQ(ns.back().entry.name, "fine-rib");
+  for (std::size_t i = 1; i < ns.size(); ++i) EXPECT_LE(ns[i - 1].distance, ns[i].distance);
+  const auto from = *idx.entry("ribbed-cloth");
+  const auto to = *idx.entry("reference-grating");
+  const double steps = std::log(to.max_lateral_force_N / from.max_lateral_force_N) / std::log(1.125);
+  EXPECT_NEAR(ns[0].force_steps, steps, 1e-9);
+  EXPECT_NEAR(ns[0].period_doublings, std::log2(2.5 / 3.2), 1e-9);
+  EXPECT_NEAR(ns[0].distance, std::hypot(steps, kJndPerPeriodDoubling * std::log2(2.5 / 3.2)), 1e-9);
+  EXPECT_NE(ns[0].why.find("same kind (grating)"), std::string::npos) << ns[0].why;
+  // Symmetric in size.
+  EXPECT_NEAR(distance_between(to, from, 0.125).distance, ns[0].distance, 1e-9);
+}
+
+}  // namespace
+}  // namespace sandpaper::test

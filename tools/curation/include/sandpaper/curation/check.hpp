@@ -1,0 +1,41 @@
+#pragma once
+// `sandpaper library check` (issue 6; docs/LIBRARY.md lists the codes): validates every entry of a
+// library as data (names, metadata, sources, `like` graph) and by compiling it for every device of
+// the calibration, and warns about entries of one family the thesis' knowledge cannot tell apart.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/curation/progress.hpp"
+
+namespace sandpaper::curation {
+
+struct CheckOptions {
+  std::filesystem::path library_dir;       // empty: compiler::default_library_dir()
+  std::filesystem::path calibration_dir;   // empty: calibration::default_calibration_dir()
+  std::vector<std::string> devices;        // empty: every device of the calibration
+};
+
+struct CheckResult {
+  compiler::Diagnostics diagnostics;  // errors E06xx (and the compiler's own codes for syntax), warnings W06xx
+  std::size_t entries = 0;
+  std::vector<std::string> devices;   // the devices compiled for
+  std::size_t errors() const;
+  std::size_t warnings() const;
+  // "checked 64 entries on 3 devices: 0 errors, 2 warnings"
+  std::string summary() const;
+};
+
+// Throws calibration::CalibrationError when the calibration cannot be read and std::invalid_argument
+// for an unknown device in `devices`. Problems of the library itself are diagnostics, never exceptions.
+CheckResult check_library(const CheckOptions& options, Progress& progress);
+
+// Whether `id` is a licence the check knows (a short list of SPDX ids used for content, plus
+// LicenseRef-*); `well_formed` says whether it at least has the form of an SPDX id or expression.
+bool known_licence(const std::string& id);
+bool well_formed_licence(const std::string& id);
+const std::vector<std::string>& known_licences();
+
+}  // namespace sandpaper::curation

@@ -1,0 +1,105 @@
+#pragma once
+// The library's SQLite index (`sandpaper library index`; schema in docs/LIBRARY.md): entries,
+// aliases, perceptual coordinates, a physical summary, provenance with the `source` notes, and an
+// FTS5 table for words. Built atomically: a temp file beside the index, renamed over it only when
+// every entry compiled; any failure leaves the previous index byte-identical.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/compiler/library.hpp"
+#include "sandpaper/curation/progress.hpp"
+
+struct sqlite3;
+
+namespace sandpaper::curation {
+
+inline constexpr int kIndexSchemaVersion = 2;
+
+// $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
+std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
+
+// Hex FNV-1a 64 over every file of the library folder (relative path and bytes; hidden files and
+// folders such as .index/ left out) and over the calibration folder's files, which set the
+// roughness. It detects edits, not tampering.
+std::string library_fingerprint(const std::filesystem::path& library_dir, const std::filesystem::path& calibration_dir);
+
+struct IndexOptions {
+  std::filesystem::path library_dir;       // empty: compiler::default_library_dir()
+  std::filesystem::path calibration_dir;   // empty: calibration::default_calibration_dir()
+  std::filesystem::path index_path;        // empty: default_index_path(library_dir)
+  std::string device = "sim";              // coordinates are compiled on this device
+};
+
+struct IndexBuildResult {
+  bool ok = false;
+  compiler::Diagnostics diagnostics;  // why it failed (entries that do not compile, ...), relocated for display
+  std::string error;                  // an I/O or SQLite failure, in words
+  std::size_t entries = 0;
+  std::filesystem::path path;
+};
+
+// Compiles every entry on `device` and writes the index. Throws calibration::CalibrationError for
+// unreadable calibration; everything else is reported in the result.
+IndexBuildResult build_index(const IndexOptions& options, Progress& progress);
+
+// One row of `entries`, with its aliases and coordinates.
+struct IndexedEntry {
+  std::string name, family, family_title, describes, licence, deprecated_by, file, library_version;
+  std::vector<std::string> aliases, likes;
+  double roughness = 0, max_lateral_force_N = 0, period_m = 0;
+  std::string texture_kind, period_class, character, terms, physical;
+  std::vector<std::pair<std::string, double>> others;  // other percepts
+  std::vector<std::pair<std::string, double>> term_params;  // Percepts::term_params
+};
+
+struct IndexedStatement {
+  int line = 0;
+  std::string keyword, text;
+  std::vector<std::pair<std::string, std::string>> sources;  // (kind, text)
+};
+
+struct IndexedProvenance {
+  std::string parameter;   // "texture.period"
+  double value_si = 0;
+  std::string si_unit, stated, layer, source;
+  std::vector<std::pair<std::string, std::string>> notes;  // the stating statement's `source` notes (kind, text)
+};
+
+// A read-only open index. Throws IndexError if the file cannot be opened or is not an index of this schema.
+struct IndexError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+class Index {
+ public:
+  explicit Index(const std::filesystem::path& path);
+  ~Index();
+  Index(const Index&) = delete;
+  Index& operator=(const Index&) = delete;
+
+  std::string meta(const std::string& key) const;  // "" if absent
+  std::vector<IndexedEntry> entries() const;       // sorted by name
+  std::optional<IndexedEntry> entry(const std::string& name) const;
+  // The entry's name for a name or alias; nullopt if neither.
+  std::optional<std::string> resolve(const std::string& name_or_alias) const;
+  std::vector<std::string> names_and_aliases() const;
+  std::vector<std::string> families() const;
+  std::vector<IndexedStatement> statements(const std::string& name) const;
+  std::vector<IndexedProvenance> provenance(const std::string& name) const;
+  // FTS5 match over name, aliases, describes, family and sources: (name, bm25 rank; lower is better).
+  std::vector<std::pair<std::string, double>> full_text(const std::string& fts_query) const;
+  sqlite3* handle() const { return db_; }
+
+ private:
+  sqlite3* db_ = nullptr;
+};
+
+enum class IndexState { Missing, Stale, Fresh };
+// Missing (no file, or not an index of this schema), stale (fingerprint or schema differs), fresh.
+IndexState index_state(const std::filesystem::path& index_path, const std::filesystem::path& library_dir,
+                       const std::filesystem::path& calibration_dir);
+
+}  // namespace sandpaper::curation

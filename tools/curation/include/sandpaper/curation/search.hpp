@@ -1,0 +1,41 @@
+#pragma once
+// `sandpaper library search`: entries by name, alias, words (FTS5 bm25) and roughness range, from the index.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sandpaper/curation/index.hpp"
+
+namespace sandpaper::curation {
+
+// A closed, half-open or open roughness range: "0.4..0.6", "0.4..", "..0.6" (ratio scale, inclusive).
+struct RoughnessRange {
+  std::optional<double> min, max;
+  bool contains(double r) const { return (!min || r >= *min) && (!max || r <= *max); }
+};
+// Throws std::invalid_argument with a message that gives the form, for anything else.
+RoughnessRange parse_roughness_range(const std::string& text);
+
+struct SearchQuery {
+  std::vector<std::string> words;
+  std::optional<RoughnessRange> roughness;
+  std::string family;   // empty: any
+  std::size_t limit = 20;
+};
+
+struct SearchHit {
+  IndexedEntry entry;
+  std::string matched_alias;  // the alias the query named, if it matched by alias
+  std::string why;            // "name", "alias", "words", "all" (no words: every entry in range)
+  double rank = 0;            // bm25 for word matches (lower is better)
+};
+
+// Ranked: an exact name first, then an exact alias, then full-text matches by bm25 (the last word
+// also matches as a prefix); filtered by family and roughness. Without words: every entry in range,
+// by roughness. Throws std::invalid_argument for a family the index does not have (with "did you mean").
+std::vector<SearchHit> search(const Index& index, const SearchQuery& q);
+
+// The FTS5 query for `words`: each word quoted, the last one also as a prefix ("corduroy" "wal"*).
+std::string fts_query(const std::vector<std::string>& words);
+
+}  // namespace sandpaper::curation

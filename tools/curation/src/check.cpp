@@ -1,0 +1,402 @@
+// `library check`: each check below names its code; docs/LIBRARY.md, "What check checks", lists them.
+#include "sandpaper/curation/check.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <tuple>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/curation/display.hpp"
+#include "sandpaper/curation/percepts.hpp"
+
+namespace sandpaper::curation {
+
+using compiler::Diagnostic;
+using compiler::Diagnostics;
+using compiler::LibraryEntry;
+using compiler::SourceLocation;
+
+std::size_t CheckResult::errors() const {
+  return static_cast<std::size_t>(std::count_if(diagnostics.all().begin(), diagnostics.all().end(),
+                                                [](const Diagnostic& d) { return d.severity == compiler::Severity::Error; }));
+}
+std::size_t CheckResult::warnings() const {
+  return static_cast<std::size_t>(std::count_if(diagnostics.all().begin(), diagnostics.all().end(),
+                                                [](const Diagnostic& d) { return d.severity == compiler::Severity::Warning; }));
+}
+std::string CheckResult::summary() const {
+  auto plural = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  return "checked " + plural(entries, "entry", "entries") + " on " + plural(devices.size(), "device", "devices") + ": " +
+         plural(errors(), "error", "errors") + ", " + plural(warnings(), "warning", "warnings");
+}
+
+namespace {
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+std::string fmt(double v, int digits = 3) {
+  std::ostringstream os;
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
+
+struct Checker {
+  const compiler::Library& lib;
+  const DisplayPaths& disp;
+  Diagnostics& out;
+
+  SourceLocation at(const SourceLocation& loc) const { return disp.relocate(loc); }
+  // Where to point for something about the entry as a whole: its name, else the file's start.
+  SourceLocation entry_loc(const LibraryEntry& e) const {
+    if (e.syntax.name_location.file) return at(e.syntax.name_location);
+    SourceLocation l;
+    l.file = e.syntax.file;
+    l.line = 1;
+    l.column = 1;
+    return at(l);
+  }
+
+  void metadata(const LibraryEntry& e) {
+    const auto where = entry_loc(e);
+    if (e.syntax.name.empty()) {
+      out.error("E0602", where, "library entry " + e.relative_path + " has no `material \"" + e.name + "\" { ... }` block",
+                "wrap the statements in material \"" + e.name + "\" { ... }: a library entry is named by its file stem");
+    } else if (e.syntax.name != e.name) {
+      out.error("E0602", where, "material " + quoted(e.syntax.name) + " is in a file named " + quoted(e.name + ".hmat"),
+                "write material \"" + e.name + "\", or rename the file to " + e.syntax.name +
+                    ".hmat: an entry's name is its file stem, so `like` finds it");
+    }
+    if (e.describes.empty())
+      out.error("E0603", where, "library entry " + quoted(e.name) + " has no `describes`",
+                "add describes \"...\": one line saying what real material or stimulus it is");
+    const auto& m = lib.manifest();
+    const compiler::FamilyStmt* fam = nullptr;
+    const compiler::LicenceStmt* lic = nullptr;
+    std::map<std::string, SourceLocation> own_aliases;
+    for (const auto& st : e.syntax.statements) {
+      if (const auto* f = std::get_if<compiler::FamilyStmt>(&st.node)) fam = f;
+      if (const auto* l = std::get_if<compiler::LicenceStmt>(&st.node)) lic = l;
+      if (const auto* a = std::get_if<compiler::AliasStmt>(&st.node)) {
+        if (a->name == e.name) {
+          out.error("E0607", at(a->location), "alias " + quoted(a->name) + " repeats the entry's own name",
+                    "remove the alias: the name already finds the entry");
+        } else if (auto it = own_aliases.find(a->name); it != own_aliases.end()) {
+          auto& d = out.error("E0607", at(a->location), "alias " + quoted(a->name) + " is given twice", "remove one of the two");
+          d.notes.push_back({at(it->second), "first given here"});
+        } else {
+          own_aliases.emplace(a->name, a->location);
+        }
+      }
+    }
+    std::vector<std::string> ids;
+    for (const auto& f : m.families) ids.push_back(f.id);
+    if (!fam) {
+      out.error("E0604", where, "library entry " + quoted(e.name) + " has no `family`",
+                ids.empty() ? std::string("declare families in library.toml ([families.<id>]) and add family <id>")
+                            : "add family <id>, one of: " + join(ids));
+    } else if (!m.family(fam->family)) {
+      const auto guess = compiler::closest_match(fam->family, ids);
+      out.error("E0604", at(fam->location), "family " + quoted(fam->family) + " is not declared in library.toml",
+                guess.empty() ? (ids.empty() ? std::string("add [families.") + fam->family + "] with title and describes to library.toml"
+                                             : "use one of: " + join(ids) + ", or add [families." + fam->family + "] to library.toml")
+                              : "did you mean `" + guess + "`? (or add [families." + fam->family + "] to library.toml)");
+    }
+    if (!lic || lic->licence.empty()) {
+      out.error("E0605", lic ? at(lic->location) : where, "library entry " + quoted(e.name) + " has no licence",
+                "add licence \"CC0-1.0\" (or another SPDX id, https://spdx.org/licenses/): entries are shared");
+    } else if (!well_formed_licence(lic->licence)) {
+      out.error("E0605", at(lic->location), "licence " + quoted(lic->licence) + " is not an SPDX licence id or expression",
+                "write an SPDX id such as \"CC0-1.0\" or \"CC-BY-4.0\" (https://spdx.org/licenses/)");
+    } else if (!known_licence(lic->licence)) {
+      const auto guess = compiler::closest_match(lic->licence, known_licences());
+      out.warning("W0603", at(lic->location), "licence " + quoted(lic->licence) + " is not one library check knows",
+                  guess.empty() ? "check the id at https://spdx.org/licenses/ (use LicenseRef-... for a licence outside SPDX)"
+                                : "did you mean \"" + guess + "\"?");
+    }
+  }
+
+  // E0606: every statement that carries a number names where it comes from.
+  void sources(const LibraryEntry& e) {
+    for (const auto& st : e.syntax.statements)
+      if (compiler::carries_numbers(st) && st.sources.empty())
+        out.error("E0606", at(st.location), "`" + st.keyword + "` carries numbers but has no `source`",
+                  "add a line after it: source KIND \"where the numbers come from\", KIND one of measurement, standard, "
+                  "publication, derived (show the arithmetic), by-ear (designed by ear or eye, said plainly)");
+  }
+
+  static std::string join(const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s;
+  }
+
+  // E0607: a name or alias that another entry already uses.
+  void duplicates() {
+    struct First {
+      const LibraryEntry* entry;
+      SourceLocation loc;
+      bool alias;
+    };
+    std::map<std::string, First> seen;
+    auto claim = [&](const std::string& token, const LibraryEntry& e, const SourceLocation& loc, bool alias) {
+      auto [it, fresh] = seen.emplace(token, First{&e, loc, alias});
+      if (fresh || it->second.entry == &e) return;
+      const auto& f = it->second;
+      const std::string first_as = f.alias ? "an alias of " + quoted(f.entry->name) : "the name of " + f.entry->relative_path;
+      auto& d = out.error("E0607", at(loc),
+                          std::string(alias ? "alias " : "name ") + quoted(token) + " is already " + first_as,
+                          alias ? "names and aliases are unique across the whole library: remove this alias or choose another"
+                                : "names are unique across the whole library (not per family): rename one of the two files and "
+                                  "its material");
+      d.notes.push_back({at(f.loc), f.alias ? "the alias of " + quoted(f.entry->name) : "the other entry named " + quoted(token)});
+    };
+    // Names first (they win over aliases when `like` looks a word up), then aliases.
+    for (const auto& e : lib.entries()) claim(e.name, e, entry_loc(e), false);
+    for (const auto& e : lib.entries())
+      for (const auto& st : e.syntax.statements)
+        if (const auto* a = std::get_if<compiler::AliasStmt>(&st.node))
+          if (a->name != e.name) claim(a->name, e, a->location, true);
+  }
+
+  // E0609: `deprecated replaced-by` must name an existing entry that is not itself deprecated.
+  void deprecations() {
+    for (const auto& e : lib.entries())
+      for (const auto& st : e.syntax.statements) {
+        const auto* x = std::get_if<compiler::DeprecatedStmt>(&st.node);
+        if (!x) continue;
+        const auto* target = lib.entry(x->replacement);
+        if (!target) {
+          const auto guess = compiler::closest_match(x->replacement, lib.names());
+          out.error("E0609", at(x->location), "replacement " + quoted(x->replacement) + " is not an entry of the library",
+                    guess.empty() ? "name the entry that replaces this one (`sandpaper library` lists them)"
+                                  : "did you mean `" + guess + "`?");
+        } else if (target->name == e.name) {
+          out.error("E0609", at(x->location), "entry " + quoted(e.name) + " is deprecated in favour of itself",
+                    "name the entry that replaces it, or remove the `deprecated` line");
+        } else if (!target->deprecated_by.empty()) {
+          auto& d = out.error("E0609", at(x->location),
+                              "replacement " + quoted(target->name) + " is itself deprecated (replaced by " +
+                                  quoted(target->deprecated_by) + ")",
+                              "write deprecated replaced-by " + target->deprecated_by + ": point at an entry that is not deprecated");
+          d.notes.push_back({entry_loc(*target), quoted(target->name) + " is deprecated here"});
+        }
+      }
+  }
+
+  // E0608: `like` cycles, each reported once with its whole path (aliases as written).
+  std::set<std::string> cycles() {
+    struct Edge {
+      std::string to, as;
+      SourceLocation loc;
+    };
+    std::map<std::string, std::vector<Edge>> graph;
+    for (const auto& e : lib.entries()) {
+      if (lib.entry(e.name) != &e) continue;  // a duplicate name: E0607 already
+      for (const auto& st : e.syntax.statements)
+        if (const auto* l = std::get_if<compiler::LikeStmt>(&st.node))
+          if (auto to = lib.canonical_name(l->name)) graph[e.name].push_back({*to, l->name, l->name_location});
+    }
+    std::set<std::string> in_cycle;
+    std::set<std::vector<std::string>> reported;
+    std::map<std::string, int> state;  // 0 new, 1 on stack, 2 done
+    std::vector<std::pair<std::string, const Edge*>> stack;
+    std::function<void(const std::string&)> visit = [&](const std::string& n) {
+      state[n] = 1;
+      for (const auto& edge : graph[n]) {
+        stack.emplace_back(n, &edge);
+        if (state[edge.to] == 1) {
+          // The cycle: from where edge.to sits on the stack to here.
+          std::size_t start = 0;
+          while (stack[start].first != edge.to) ++start;
+          std::vector<std::pair<std::string, const Edge*>> cyc(stack.begin() + static_cast<std::ptrdiff_t>(start), stack.end());
+          auto smallest = std::min_element(cyc.begin(), cyc.end(), [](auto& a, auto& b) { return a.first < b.first; });
+          std::rotate(cyc.begin(), smallest, cyc.end());
+          std::vector<std::string> key;
+          for (const auto& [from, _] : cyc) key.push_back(from), in_cycle.insert(from);
+          if (reported.insert(key).second) report_cycle(cyc);
+        } else if (state[edge.to] == 0) {
+          visit(edge.to);
+        }
+        stack.pop_back();
+      }
+      state[n] = 2;
+    };
+    for (const auto& e : lib.entries())
+      if (state[e.name] == 0) visit(e.name);
+    return in_cycle;
+  }
+
+  template <typename Cycle>
+  void report_cycle(const Cycle& cyc) {
+    std::string path = cyc.front().first;
+    for (const auto& [from, edge] : cyc)
+      path += " -> " + edge->to + (edge->as != edge->to ? " (as " + quoted(edge->as) + ")" : "");
+    auto& d = out.error("E0608", at(cyc.front().second->loc), "`like` cycle: " + path,
+                        cyc.size() == 1 ? "an entry must not start from itself: remove this `like`"
+                                        : "an entry must not, through `like`, start from itself: remove one of the `like` "
+                                          "lines on this path, or point it at an entry outside the cycle");
+    for (std::size_t i = 1; i < cyc.size(); ++i)
+      d.notes.push_back({at(cyc[i].second->loc), quoted(cyc[i].first) + " starts from " + quoted(cyc[i].second->to) + " here"});
+  }
+};
+
+// A compile failure's signature, to say once for all devices that fail the same way.
+std::string signature(const Diagnostics& d) {
+  std::string s;
+  for (const auto& x : d.all())
+    if (x.severity == compiler::Severity::Error) s += x.code + ":" + x.message + "\n";
+  return s;
+}
+
+}  // namespace
+
+CheckResult check_library(const CheckOptions& options, Progress& progress) {
+  CheckResult result;
+  const auto lib_dir = options.library_dir.empty() ? compiler::default_library_dir() : options.library_dir;
+  const auto cal_dir = options.calibration_dir.empty() ? calibration::default_calibration_dir() : options.calibration_dir;
+  const auto cal = calibration::CalibrationSet::load(cal_dir);
+  if (options.devices.empty())
+    for (const auto& d : cal.devices()) result.devices.push_back(d.name);
+  else
+    result.devices = options.devices;
+  for (const auto& d : result.devices)
+    if (!cal.find_device(d)) throw std::invalid_argument("no device '" + d + "' in " + cal_dir.string() + "/devices");
+
+  const compiler::Library lib(lib_dir);
+  const DisplayPaths disp(lib_dir);
+  auto& out = result.diagnostics;
+  result.entries = lib.entries().size();
+  Checker ck{lib, disp, out};
+
+  // The manifest and the entries' syntax (E0601, the compiler's E01xx/E02xx).
+  disp.append_relocated(out, lib.scan_diagnostics());
+  const auto manifest_loc = [&] {
+    SourceLocation l;
+    l.file = std::make_shared<const compiler::SourceFile>(disp.path_of("library.toml"), "");
+    return l;
+  };
+  if (lib.manifest().file.empty())
+    out.error("E0601", manifest_loc(), "the library has no library.toml",
+              "add library.toml with name, version and [families.<id>] tables (docs/LIBRARY.md)");
+  else if (const auto& ref = lib.manifest().reference; !ref.empty() && !lib.entry(ref))
+    out.error("E0611", manifest_loc(), "library.toml's reference " + quoted(ref) + " is not an entry of the library",
+              "name the entry a bare perceptual description starts from (a grating the roughness map was measured on)");
+
+  for (const auto& e : lib.entries())
+    if (e.parsed_ok) ck.metadata(e), ck.sources(e);
+  ck.duplicates();
+  ck.deprecations();
+  const auto in_cycle = ck.cycles();
+
+  // Entries that cannot be compiled meaningfully: syntax errors, `like` cycles, and whatever starts
+  // from them (their own errors are reported already; fix those first).
+  std::set<std::string> broken = in_cycle;
+  for (const auto& e : lib.entries())
+    if (!e.parsed_ok) broken.insert(e.name);
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const auto& e : lib.entries()) {
+      if (broken.count(e.name)) continue;
+      for (const auto& l : e.likes)
+        if (auto to = lib.canonical_name(l); to && broken.count(*to)) {
+          broken.insert(e.name), grew = true;
+          break;
+        }
+    }
+  }
+
+  // E0610: every entry compiles for every device. Coordinates for the JND check come from `sim`
+  // (or the first device).
+  std::vector<compiler::Compiler> compilers;
+  for (const auto& d : result.devices) compilers.emplace_back(compiler::CompileOptions{d, lib_dir, cal_dir});
+  std::size_t coord_device = 0;
+  for (std::size_t i = 0; i < result.devices.size(); ++i)
+    if (result.devices[i] == "sim") coord_device = i;
+  std::map<std::string, Percepts> percepts;
+  for (const auto& e : lib.entries()) {
+    if (broken.count(e.name) || lib.entry(e.name) != &e) {
+      progress.step(e.name);
+      continue;
+    }
+    // (signature, devices, diagnostics) of each distinct failure.
+    std::vector<std::tuple<std::string, std::vector<std::string>, Diagnostics>> failures;
+    for (std::size_t i = 0; i < compilers.size(); ++i) {
+      const auto r = compilers[i].compile_file(disp.path_of(e.relative_path));
+      if (i == coord_device)
+        for (const auto& w : r.diagnostics.all())
+          if (w.code == "W0340") out.append([&] {
+            Diagnostics one;
+            auto moved = disp.relocate(w);
+            one.warning(moved.code, moved.location, moved.message, moved.suggestion).notes = moved.notes;
+            return one;
+          }());
+      if (r.ok()) {
+        if (i == coord_device && r.material) percepts[e.name] = percepts_of(*r.material, *r.program, cal);
+        continue;
+      }
+      const auto sig = signature(r.diagnostics);
+      auto it = std::find_if(failures.begin(), failures.end(), [&](const auto& f) { return std::get<0>(f) == sig; });
+      if (it != failures.end()) std::get<1>(*it).push_back(result.devices[i]);
+      else failures.emplace_back(sig, std::vector<std::string>{result.devices[i]}, r.diagnostics);
+    }
+    for (const auto& [sig, devices, diags] : failures) {
+      std::string which, files;
+      for (const auto& d : devices) {
+        which += (which.empty() ? "" : ", ") + quoted(d);
+        files += (files.empty() ? "" : ", ") + cal.find_device(d)->file;
+      }
+      std::string help;
+      for (const auto& x : diags.all())
+        if (x.severity == compiler::Severity::Error && !x.suggestion.empty() && help.empty()) help = x.suggestion;
+      auto& d = out.error("E0610", ck.entry_loc(e),
+                          quoted(e.name) + " does not compile for device" + (devices.size() > 1 ? "s " : " ") + which + " (" +
+                              files + ")",
+                          (help.empty() ? std::string("fix what the compiler says below") : help) +
+                              "; every entry must play on every shipped device (`sandpaper explain --device " + devices.front() +
+                              " " + disp.path_of(e.relative_path) + "` shows the details)");
+      for (const auto& x : diags.all()) {
+        if (x.severity != compiler::Severity::Error) continue;
+        const auto moved = disp.relocate(x);
+        d.notes.push_back({moved.location, "error[" + moved.code + "]: " + moved.message +
+                                               (moved.suggestion.empty() ? "" : " (help: " + moved.suggestion + ")")});
+      }
+    }
+    progress.step(e.name);
+  }
+
+  // W0601: entries of one family that the thesis' knowledge cannot tell apart.
+  const auto& jnd = cal.knowledge().force_jnd;
+  const auto& entries = lib.entries();
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const auto& a = entries[i];
+    auto pa = percepts.find(a.name);
+    if (pa == percepts.end() || !a.deprecated_by.empty() || a.family.empty()) continue;
+    for (std::size_t j = i + 1; j < entries.size(); ++j) {
+      const auto& b = entries[j];
+      auto pb = percepts.find(b.name);
+      if (pb == percepts.end() || !b.deprecated_by.empty() || b.family != a.family) continue;
+      double steps = 0;
+      if (!indistinguishable(pa->second, pb->second, jnd, &steps)) continue;
+      const auto& A = pa->second;
+      const auto& B = pb->second;
+      auto& d = out.warning(
+          "W0601", ck.entry_loc(b),
+          quoted(b.name) + " may feel the same as " + quoted(a.name) + " (family " + a.family + "): maximum lateral forces " +
+              fmt(B.max_lateral_force_N) + " and " + fmt(A.max_lateral_force_N) + " N are " + fmt(std::abs(steps), 2) +
+              " force JND apart (" + fmt(jnd.weber_fraction * 100) + " %, " + jnd.file + "; Minsky 1995 5.4.2), both " +
+              A.texture_kind + "s of period class " + quoted(A.period_class) + " (" + fmt(A.period_m * 1000) + " and " +
+              fmt(B.period_m * 1000) + " mm; 6.3.6)",
+          "make them differ by at least one force JND (a roughness further apart) or in period class, or deprecate one; "
+          "if both are wanted (the thesis' own stimuli share force levels), this warning can stay");
+      d.notes.push_back({ck.entry_loc(a), quoted(a.name) + " is here"});
+    }
+  }
+  return result;
+}
+
+}  // namespace sandpaper::curation

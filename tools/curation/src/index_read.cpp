@@ -1,0 +1,169 @@
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/curation/index.hpp"
+#include "sqlite_util.hpp"
+
+namespace sandpaper::curation {
+
+Index::Index(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw IndexError("no index at " + path.string());
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+    std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw IndexError("cannot open the index " + path.string() + ": " + msg);
+  }
+  std::string version;
+  try {
+    version = meta("schema_version");
+  } catch (const std::exception& e) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw IndexError(path.string() + " is not a library index (" + e.what() + ")");
+  }
+  if (version != std::to_string(kIndexSchemaVersion)) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw IndexError(path.string() + " is an index of schema " + (version.empty() ? "?" : version) + ", not " +
+                     std::to_string(kIndexSchemaVersion) + ": rebuild it with `sandpaper library index`");
+  }
+}
+
+Index::~Index() { sqlite3_close(db_); }
+
+std::string Index::meta(const std::string& key) const {
+  sql::Stmt s(db_, "SELECT value FROM meta WHERE key = ?");
+  s.bind(1, key);
+  return s.step() ? s.text(0) : std::string();
+}
+
+namespace {
+
+const char* kEntryColumns =
+    "e.name, e.family, COALESCE(f.title, ''), e.describes, e.licence, e.deprecated_by, e.file, e.library_version, e.likes, "
+    "e.roughness, e.max_lateral_force_N, e.texture_kind, e.period_m, e.period_class, e.character, e.terms, e.physical, e.term_params "
+    "FROM entries e LEFT JOIN families f ON f.id = e.family";
+
+IndexedEntry read_entry(sqlite3* db, const sql::Stmt& s) {
+  IndexedEntry e;
+  e.name = s.text(0);
+  e.family = s.text(1);
+  e.family_title = s.text(2);
+  e.describes = s.text(3);
+  e.licence = s.text(4);
+  e.deprecated_by = s.text(5);
+  e.file = s.text(6);
+  e.library_version = s.text(7);
+  for (std::size_t a = 0, b; a < s.text(8).size(); a = b + 1) {
+    const auto likes = s.text(8);
+    b = likes.find(' ', a);
+    if (b == std::string::npos) b = likes.size();
+    if (b > a) e.likes.push_back(likes.substr(a, b - a));
+  }
+  e.roughness = s.real(9);
+  e.max_lateral_force_N = s.real(10);
+  e.texture_kind = s.text(11);
+  e.period_m = s.real(12);
+  e.period_class = s.text(13);
+  e.character = s.text(14);
+  e.terms = s.text(15);
+  e.physical = s.text(16);
+  for (const auto& kv : nlohmann::json::parse(s.text(17))) e.term_params.emplace_back(kv[0].get<std::string>(), kv[1].get<double>());
+  sql::Stmt a(db, "SELECT alias FROM aliases WHERE name = ? ORDER BY rowid");
+  a.bind(1, e.name);
+  while (a.step()) e.aliases.push_back(a.text(0));
+  sql::Stmt p(db, "SELECT percept, value FROM percepts WHERE name = ? AND percept <> 'roughness' ORDER BY rowid");
+  p.bind(1, e.name);
+  while (p.step()) e.others.emplace_back(p.text(0), p.real(1));
+  return e;
+}
+
+}  // namespace
+
+std::vector<IndexedEntry> Index::entries() const {
+  std::vector<IndexedEntry> out;
+  sql::Stmt s(db_, std::string("SELECT ") + kEntryColumns + " ORDER BY e.name");
+  while (s.step()) out.push_back(read_entry(db_, s));
+  return out;
+}
+
+std::optional<IndexedEntry> Index::entry(const std::string& name) const {
+  sql::Stmt s(db_, std::string("SELECT ") + kEntryColumns + " WHERE e.name = ?");
+  s.bind(1, name);
+  if (!s.step()) return std::nullopt;
+  return read_entry(db_, s);
+}
+
+std::optional<std::string> Index::resolve(const std::string& name) const {
+  sql::Stmt s(db_, "SELECT name FROM entries WHERE name = ? UNION ALL SELECT name FROM aliases WHERE alias = ?");
+  s.bind(1, name).bind(2, name);
+  if (!s.step()) return std::nullopt;
+  return s.text(0);
+}
+
+std::vector<std::string> Index::names_and_aliases() const {
+  std::vector<std::string> out;
+  sql::Stmt s(db_, "SELECT name FROM entries UNION SELECT alias FROM aliases");
+  while (s.step()) out.push_back(s.text(0));
+  return out;
+}
+
+std::vector<std::string> Index::families() const {
+  std::vector<std::string> out;
+  sql::Stmt s(db_, "SELECT id FROM families ORDER BY ord");
+  while (s.step()) out.push_back(s.text(0));
+  return out;
+}
+
+std::vector<IndexedStatement> Index::statements(const std::string& name) const {
+  std::vector<IndexedStatement> out;
+  sql::Stmt s(db_, "SELECT ordinal, line, keyword, text FROM statements WHERE name = ? ORDER BY ordinal");
+  sql::Stmt src(db_, "SELECT kind, text FROM sources WHERE name = ? AND ordinal = ? ORDER BY rowid");
+  s.bind(1, name);
+  while (s.step()) {
+    IndexedStatement st{s.integer(1), s.text(2), s.text(3), {}};
+    src.bind(1, name).bind(2, s.integer(0));
+    while (src.step()) st.sources.emplace_back(src.text(0), src.text(1));
+    src.reset();
+    out.push_back(std::move(st));
+  }
+  return out;
+}
+
+std::vector<IndexedProvenance> Index::provenance(const std::string& name) const {
+  std::vector<IndexedProvenance> out;
+  sql::Stmt s(db_, "SELECT parameter, value_si, si_unit, stated, layer, source, notes FROM provenance WHERE name = ? ORDER BY ordinal");
+  s.bind(1, name);
+  while (s.step()) {
+    IndexedProvenance p{s.text(0), s.real(1), s.text(2), s.text(3), s.text(4), s.text(5), {}};
+    for (const auto& n : nlohmann::json::parse(s.text(6))) p.notes.emplace_back(n[0].get<std::string>(), n[1].get<std::string>());
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, double>> Index::full_text(const std::string& q) const {
+  std::vector<std::pair<std::string, double>> out;
+  // bm25 weights: a word in the name or an alias counts more than one in the description or sources.
+  sql::Stmt s(db_, "SELECT name, bm25(search, 10.0, 8.0, 4.0, 2.0, 1.0) AS rank FROM search WHERE search MATCH ? ORDER BY rank, name");
+  s.bind(1, q);
+  while (s.step()) out.emplace_back(s.text(0), s.real(1));
+  return out;
+}
+
+IndexState index_state(const std::filesystem::path& index_path, const std::filesystem::path& library_dir,
+                       const std::filesystem::path& calibration_dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(index_path, ec)) return IndexState::Missing;
+  try {
+    Index idx(index_path);
+    if (idx.meta("library_dir") != std::filesystem::absolute(library_dir).lexically_normal().string()) return IndexState::Stale;
+    if (idx.meta("fingerprint") != library_fingerprint(library_dir, calibration_dir)) return IndexState::Stale;
+    return IndexState::Fresh;
+  } catch (const IndexError&) {
+    return IndexState::Stale;
+  }
+}
+
+}  // namespace sandpaper::curation

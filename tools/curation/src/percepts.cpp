@@ -1,0 +1,98 @@
+#include "sandpaper/curation/percepts.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "sandpaper/compiler/knowledge_report.hpp"
+#include "sandpaper/schema/patch_json.hpp"
+
+namespace sandpaper::curation {
+
+namespace {
+
+std::string num(double v, int digits = 3) {
+  std::ostringstream os;
+  os << std::setprecision(digits) << v;
+  return os.str();
+}
+
+std::string mm(double m) { return num(m * 1000) + " mm"; }
+
+std::string texture_text(const compiler::ResolvedMaterial& m) {
+  using namespace compiler;
+  if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
+    std::string s = "grating period " + mm(g->period.si) + ", hill " + num(g->hill.si * 100) + " %";
+    if (g->orientation.si != 0) s += ", orientation " + num(g->orientation.si * 180 / M_PI) + " deg";
+    if (g->smoothing) s += ", smoothing " + mm(g->smoothing->si);
+    return s;
+  }
+  if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture)) {
+    std::string s = "height map " + h->stated_path + ", " + mm(h->width.si) + " x " + mm(h->height.si);
+    if (h->smoothing) s += ", smoothing " + mm(h->smoothing->si);
+    if (h->stylus()) s += ", stylus relief " + mm(h->depth->si) + " pressed " + num(h->press->si) + " N";
+    return s;
+  }
+  if (const auto* p = std::get_if<ResolvedPattern>(&m.texture)) {
+    std::string s = std::string("pattern ") + pattern_kind_name(p->kind) + ", pixel " + mm(p->pixel.si);
+    if (p->valley) s += ", valley " + mm(p->valley->si);
+    if (p->hill) s += ", hill " + mm(p->hill->si);
+    if (p->feature) s += ", feature " + mm(p->feature->si);
+    if (p->kernel) s += ", kernel " + num(p->kernel->si) + " px";
+    return s;
+  }
+  return "";
+}
+
+}  // namespace
+
+Percepts percepts_of(const compiler::ResolvedMaterial& m, const schema::PatchProgram& p, const calibration::CalibrationSet& cal) {
+  Percepts r;
+  r.max_lateral_force_N = p.max_lateral_force_N;
+  r.roughness = p.max_lateral_force_N > 0 ? p.roughness : 0;
+  const auto k = compiler::assess_knowledge(m, p, cal);
+  if (p.max_lateral_force_N > 0) {
+    r.texture_kind = k.texture.kind;
+    r.period_m = k.texture.period_m;
+  }
+  if (k.period_class && k.period_class->hit.group) r.period_class = k.period_class->hit.group->id;
+  if (k.character && k.character->hit.group) r.character = k.character->hit.group->id;
+  const auto j = schema::to_json(p);
+  for (const auto& t : j["terms"]) {
+    const auto kind = t.value("kind", std::string("?"));
+    r.terms += (r.terms.empty() ? "" : "+") + kind;
+    if (kind == "grating" || kind == "height_field") continue;
+    for (const auto& [field, v] : t.items())
+      if (v.is_number()) r.term_params.emplace_back(kind + "." + field, v.get<double>());
+  }
+  for (const auto& t : m.percepts) r.others.emplace_back(t.percept, t.value.si);
+  return r;
+}
+
+std::string physical_summary(const compiler::ResolvedMaterial& m, const schema::PatchProgram& p) {
+  std::vector<std::string> parts;
+  if (auto t = texture_text(m); !t.empty()) parts.push_back(t);
+  if (p.max_lateral_force_N > 0) parts.push_back("maximum lateral force " + num(p.max_lateral_force_N) + " N");
+  if (m.quantize_bits) parts.push_back("heights quantized to " + num(m.quantize_bits->si) + " bits");
+  if (m.spring) parts.push_back("spring " + num(m.spring->si) + " N/m");
+  if (m.damper) parts.push_back("damper " + num(m.damper->si) + " N*s/m");
+  if (m.antiviscous) parts.push_back("anti-viscous " + num(m.antiviscous->si) + " N*s/m");
+  for (const auto& l : m.laws) parts.push_back(l.text.empty() ? std::string(l.physics ? "physics " : "force ") + l.name : l.text);
+  if (m.energy_budget) parts.push_back("energy budget " + num(m.energy_budget->si) + " J");
+  parts.push_back("patch " + mm(p.size_m[0]) + " x " + mm(p.size_m[1]));
+  std::string s;
+  for (const auto& x : parts) s += (s.empty() ? "" : "; ") + x;
+  return s;
+}
+
+bool indistinguishable(const Percepts& a, const Percepts& b, const calibration::ForceJndData& jnd, double* steps) {
+  if (!a.has_texture() || !b.has_texture()) return false;
+  if (a.texture_kind != b.texture_kind || a.terms != b.terms) return false;
+  if (a.period_m <= 0 || b.period_m <= 0) return false;
+  if (a.period_class != b.period_class) return false;
+  const double s = jnd.steps_between(a.max_lateral_force_N, b.max_lateral_force_N);
+  if (steps) *steps = s;
+  return std::abs(s) < 1.0;
+}
+
+}  // namespace sandpaper::curation
