@@ -20,7 +20,7 @@ printf 'material "rib" {\n  family cloth\n  grating period 2 mm\n  roughness 0.4
 printf 'material "spring" {\n  spring 200 N/m\n}\n' >"$tmp/lib/spring.hmat"
 "$sp" library catalog -o "$tmp/site" --library "$tmp/lib" >"$tmp/out" 2>"$tmp/err"; check "a good library is written" 0 $?
 has "it says where" "$tmp/out" "catalog of 2 entries"
-has "progress on stderr (not a terminal: a line at the end)" "$tmp/err" "catalog: 2/2 entries"
+has "progress on stderr (not a terminal: a line at the end)" "$tmp/err" "catalog 2/2"
 [ -f "$tmp/site/index.html" ] && [ -f "$tmp/site/entries/rib.png" ] && [ -f "$tmp/site/entries/spring.html" ]
 check "index, pages and pictures exist" 0 $?
 "$sp" library catalog -o "$tmp/site" --library "$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "a catalog replaces the previous one" 0 $?

@@ -3,8 +3,8 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <fstream>
+#include <iostream>
 #include <ostream>
 #include <random>
 #include <stdexcept>
@@ -14,6 +14,7 @@
 #include "sandpaper/catalog/index_page.hpp"
 #include "sandpaper/catalog/plot.hpp"
 #include "sandpaper/catalog/render.hpp"
+#include "sandpaper/curation/progress.hpp"
 #include "sandpaper/schema/array_file.hpp"
 
 namespace sandpaper::catalog {
@@ -78,26 +79,6 @@ void swap_in(const fs::path& fresh, const fs::path& dir) {
   fs::remove_all(old, ec);
 }
 
-class Progress {
- public:
-  Progress(const CatalogOptions& o, std::size_t total) : out_(o.progress), tty_(o.progress_is_tty), total_(total) {}
-  void step(std::size_t done, const std::string& name) {
-    if (!out_) return;
-    if (tty_)
-      *out_ << "\rcatalog: " << done << "/" << total_ << " " << name << "\x1b[K" << std::flush;
-    else if (done % 10 == 0 || done == total_)
-      *out_ << "catalog: " << done << "/" << total_ << " entries\n" << std::flush;
-  }
-  void end() {
-    if (out_ && tty_) *out_ << "\n" << std::flush;
-  }
-
- private:
-  std::ostream* out_;
-  bool tty_;
-  std::size_t total_;
-};
-
 }  // namespace
 
 CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOptions& options) {
@@ -113,12 +94,12 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
   fs::create_directories(tmp.path / "entries");
   fs::create_directories(tmp.path / "assets");
 
-  Progress progress(options, library.entries().size());
+  curation::Progress progress("catalog", library.entries().size(), options.progress == nullptr,
+                              options.progress ? *options.progress : std::cerr, options.progress_is_tty);
   std::vector<IndexRow> rows;
-  std::size_t done = 0;
   for (const auto& e : library.entries()) {
     auto r = compiler.compile_file(e.file);
-    progress.step(++done, e.name);
+    progress.step(e.name);
     if (!r.ok() || !r.material) {
       report.failures.push_back({e.name, compiler::format_diagnostics(r.diagnostics)});
       continue;
@@ -162,7 +143,9 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
     row.page = "entries/" + e.name + ".html";
     rows.push_back(std::move(row));
   }
-  progress.end();
+  progress.finish(report.failures.empty() ? "catalog: " + std::to_string(rows.size()) + " entries compiled and drawn"
+                                          : "catalog: " + std::to_string(report.failures.size()) + " of " +
+                                                std::to_string(library.entries().size()) + " entries do not compile");
   if (!report.failures.empty()) return report;
 
   write_text(tmp.path / "index.html", index_page_html(index_data(library.manifest(), rows)));
