@@ -13,6 +13,7 @@ pkgs=(
   libeigen3-dev libboost-math-dev           # least squares and t/F distributions for calibration fits
   libsqlite3-dev                            # the library index (`sandpaper library index`; FTS5 full text)
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium python3                          # the library catalog's browser test (tests/catalog/browser_test.py)
 )
 missing=()
 for p in "${pkgs[@]}"; do

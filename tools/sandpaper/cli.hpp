@@ -109,4 +109,8 @@ struct CalibrateOptions {
 void add_calibrate_command(CLI::App& app, CalibrateOptions& o);
 // Runs whichever subcommand was parsed; -1 if neither was. Exit codes as above.
 int cmd_calibrate(const CalibrateOptions& o);
+// `sandpaper library catalog -o DIR` (cmd_library_catalog.cpp, docs/CATALOG.md): registers it under
+// `library`; runs it with the `library` group's options `o` filling what catalog's own leave unset.
+CLI::App* add_library_catalog_command(CLI::App& library);
+int cmd_library_catalog(const CommonOptions& o);
 }  // namespace sandpaper::cli

@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   add_common(library, o, false);
   LibraryCommandOptions library_opts;
   add_library_commands(*library, library_opts);
+  auto* library_catalog = add_library_catalog_command(*library);
   auto* movie = app.add_subcommand("movie", "movie files (lists of workspaces) and their shuffles (thesis Appendix B)");
   movie->require_subcommand(1);
   MovieShuffleOptions shuffle_opts;
@@ -146,6 +147,7 @@ int main(int argc, char** argv) {
     if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);
     if (show->parsed()) return cmd_movie_show(show_file, o.json);
     if (inspect->parsed()) return cmd_inspect(patch_file, o.json, tables);
+    if (library_catalog->parsed()) return cmd_library_catalog(o);
     if (library->parsed()) {
       if (const int rc = cmd_library_sub(o, library_opts); rc >= 0) return rc;
       return cmd_library(o);

@@ -1,0 +1,325 @@
+// The catalog's renderer, force plot and pages (tools/catalog/): the picture is the shading of the
+// compiled field lit from the upper left, the plot is the evaluator's force, the index lists every
+// entry with its compiled roughness, and a failed run leaves the previous catalog as it was.
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/catalog/catalog.hpp"
+#include "sandpaper/catalog/entry_page.hpp"
+#include "sandpaper/catalog/html.hpp"
+#include "sandpaper/catalog/index_page.hpp"
+#include "sandpaper/catalog/plot.hpp"
+#include "sandpaper/catalog/render.hpp"
+#include "sandpaper/compiler/array_export.hpp"
+#include "sandpaper/compiler/textures.hpp"
+#include "sandpaper/runtime/patch_evaluator.hpp"
+#include "test_support.hpp"
+
+namespace sandpaper {
+namespace {
+namespace fs = std::filesystem;
+
+schema::PatchProgram with_terms(std::vector<schema::Term> terms) {
+  schema::PatchProgram p;
+  p.name = "test";
+  p.terms = std::move(terms);
+  return p;
+}
+
+schema::PatchProgram grating(double orientation_rad) {
+  return with_terms({compiler::make_grating(2.5e-3, 0.5, orientation_rad, 2.5e-3 * compiler::kSeedSigmaPerPeriod, 1.5)});
+}
+
+// Luminance as the PNG shows it: 255 = white (the .shade array has 0 = white).
+int lum(const catalog::Picture& pic, int col, int row) {
+  return 255 - pic.shade.values[static_cast<std::size_t>(row) * pic.nx + col];
+}
+
+// The flat surface under a light at elevation 45 deg: 255 sin 45, rounded as the shading rounds.
+const int kFlat = 255 - static_cast<int>(std::floor(255 * (1 - std::sqrt(0.5)) + 0.5));
+
+std::string read(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(CatalogPicture, GratingAcrossXVariesAlongXOnlyAndFacesTheLightOnItsRisingEdge) {
+  const auto p = grating(0);
+  const auto pic = catalog::render_picture(p);
+  ASSERT_FALSE(pic.empty());
+  ASSERT_EQ(pic.nx, 512);
+  // 64 pixels a period: 8 periods of 2.5 mm.
+  EXPECT_NEAR(pic.window_m[0], 20e-3, 1e-9);
+  int lo = 255, hi = 0;
+  for (int col = 0; col < pic.nx; ++col) {
+    for (int row = 1; row < pic.ny; ++row) ASSERT_EQ(lum(pic, col, row), lum(pic, col, 0)) << "column " << col;
+    lo = std::min(lo, lum(pic, col, 0));
+    hi = std::max(hi, lum(pic, col, 0));
+  }
+  EXPECT_GT(hi - lo, 100);
+  // The rising edge (h increasing with x, so F = -k dh/dx < 0) faces left, toward the light: brighter
+  // than the flat (at the steepest slope, drawn at 45 deg: 255 (0.5 sin 45 + sin 45) = 218, against 180);
+  // the falling edge darker.
+  runtime::PatchEvaluator eval(p);
+  int rising = 0, falling = 0;
+  for (int col = 0; col < pic.nx; ++col) {
+    runtime::HandState h;
+    h.position_m = {-0.5 * pic.window_m[0] + (col + 0.5) * pic.pixel_m, 0};
+    const double f = eval.force_rt(h, 0).x;
+    if (f < -0.9 * 1.5) {
+      EXPECT_GT(lum(pic, col, 0), kFlat + 30) << "column " << col;
+      ++rising;
+    }
+    if (f > 0.9 * 1.5) {
+      EXPECT_LT(lum(pic, col, 0), kFlat - 30) << "column " << col;
+      ++falling;
+    }
+    if (std::abs(f) < 1e-6) {
+      EXPECT_NEAR(lum(pic, col, 0), kFlat, 1) << "column " << col;
+    }
+  }
+  EXPECT_GE(rising, 8);
+  EXPECT_GE(falling, 8);
+}
+
+TEST(CatalogPicture, GratingAcrossYVariesAlongYOnlyAndItsEdgeFacingUpIsBrighter) {
+  const auto p = grating(std::numbers::pi / 2);
+  const auto pic = catalog::render_picture(p);
+  ASSERT_FALSE(pic.empty());
+  for (int row = 0; row < pic.ny; ++row)
+    for (int col = 1; col < pic.nx; ++col) ASSERT_EQ(lum(pic, col, row), lum(pic, 0, row)) << "row " << row;
+  runtime::PatchEvaluator eval(p);
+  for (int row = 0; row < pic.ny; ++row) {
+    runtime::HandState h;
+    h.position_m = {0, 0.5 * pic.window_m[1] - (row + 0.5) * pic.pixel_m};
+    const double f = eval.force_rt(h, 0).y;
+    // F_y > 0: h falls toward +y, the slope faces up (toward the light).
+    if (f > 0.9 * 1.5) {
+      EXPECT_GT(lum(pic, 0, row), kFlat + 30) << "row " << row;
+    }
+    if (f < -0.9 * 1.5) {
+      EXPECT_LT(lum(pic, 0, row), kFlat - 30) << "row " << row;
+    }
+  }
+}
+
+TEST(CatalogPicture, ShadingIsTheArrayExportsAndTheUpperLeftSlopeIsBrightest) {
+  // A slope facing up-left (h rising to the right and falling upward), one facing down-right.
+  const std::vector<double> sx{1, -1, 0}, sy{-1, 1, 0};
+  const auto a = compiler::shade_slopes(3, 1, sx, sy, 1.0);
+  EXPECT_LT(a.values[0], a.values[2]);  // 0 = white: the lit slope is whiter than the flat
+  EXPECT_GT(a.values[1], a.values[2]);
+  EXPECT_EQ(255 - a.values[2], kFlat);
+  // shade_relief now shades through shade_slopes: a ramp rising to the right faces left and is lit.
+  compiler::HeightImage img;
+  img.nx = 4;
+  img.ny = 2;
+  img.values = {0, 1, 2, 3, 0, 1, 2, 3};
+  const auto r = compiler::shade_relief(img, 1, 1, std::nullopt);
+  EXPECT_LT(r.values[1], a.values[2]);
+}
+
+TEST(CatalogPicture, SpringIsDrawnAsItsPotentialBowlAndADamperNotAtAll) {
+  schema::SpringTerm s;
+  s.stiffness_N_per_m = 100;
+  const auto pic = catalog::render_picture(with_terms({s}));
+  ASSERT_FALSE(pic.empty());
+  EXPECT_NE(pic.caption.find("spring"), std::string::npos) << pic.caption;
+  EXPECT_NEAR(pic.window_m[0], 0.095, 1e-9);  // no texture: the whole patch
+  const int mid = pic.ny / 2;
+  EXPECT_GT(lum(pic, pic.nx - 2, mid), lum(pic, 1, mid));  // the bowl's right wall faces left, lit
+  EXPECT_LT(lum(pic, pic.nx / 2, 1), lum(pic, pic.nx / 2, pic.ny - 2));  // its bottom wall faces up, lit
+  EXPECT_NEAR(lum(pic, pic.nx / 2, mid), kFlat, 2);
+
+  schema::DamperTerm d;
+  d.damping_Ns_per_m = 2;
+  const auto none = catalog::render_picture(with_terms({d}));
+  EXPECT_TRUE(none.empty());
+  ASSERT_EQ(none.left_out.size(), 1u);
+  EXPECT_NE(none.left_out[0].find("velocity"), std::string::npos);
+}
+
+TEST(CatalogPlot, ScanIsTheEvaluatorsForceAtEachPoint) {
+  const auto p = grating(std::numbers::pi / 4);
+  const auto scan = catalog::scan_force(p, 0.01, 0.05, 801);
+  EXPECT_EQ(scan.axis, "u");
+  ASSERT_EQ(scan.s_m.size(), 801u);
+  EXPECT_DOUBLE_EQ(scan.s_m.front(), -0.01);
+  EXPECT_DOUBLE_EQ(scan.s_m.back(), 0.01);
+  runtime::PatchEvaluator eval(p);
+  const glm::dvec2 n{std::cos(std::numbers::pi / 4), std::sin(std::numbers::pi / 4)};
+  double peak = 0;
+  for (std::size_t i = 0; i < scan.s_m.size(); ++i) {
+    runtime::HandState h;
+    h.position_m = n * scan.s_m[i];
+    const glm::dvec2 f = eval.force_rt(h, 0);
+    EXPECT_NEAR(scan.along_N[i], f.x * n.x + f.y * n.y, 1e-12) << i;
+    EXPECT_NEAR(scan.across_N[i], 0, 1e-9) << i;  // a grating pushes only along its normal
+    peak = std::max(peak, std::abs(scan.along_N[i]));
+  }
+  EXPECT_NEAR(peak, 1.5, 0.05);
+  // A damper acts on the moving hand: -b v along the scan.
+  schema::DamperTerm d;
+  d.damping_Ns_per_m = 4;
+  const auto damped = catalog::scan_force(with_terms({d}), 0.02, 0.05, 11);
+  for (double f : damped.along_N) EXPECT_NEAR(f, -4 * 0.05, 1e-12);
+}
+
+TEST(CatalogPlot, SvgCurveIsTheScanOnLabelledAxes) {
+  const auto scan = catalog::scan_force(grating(0), 0.01, 0.05, 401);
+  const std::string svg = catalog::force_plot_svg(scan, "a <title>");
+  const auto axes = catalog::plot_axes(scan);
+  EXPECT_NE(svg.find("a &lt;title&gt;"), std::string::npos);
+  EXPECT_NE(svg.find(">position along the grating normal, u (mm)</text>"), std::string::npos);
+  EXPECT_NE(svg.find(">lateral force (N)</text>"), std::string::npos);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(svg, m, std::regex("class=\"force-along\" fill=\"none\" points=\"([^\"]*)\"")));
+  std::istringstream pts(m[1].str());
+  std::string pt;
+  std::size_t i = 0;
+  while (pts >> pt) {
+    ASSERT_LT(i, scan.s_m.size());
+    const auto comma = pt.find(',');
+    EXPECT_NEAR(std::stod(pt.substr(0, comma)), axes.x_px(scan.s_m[i] * 1e3), 0.006);
+    EXPECT_NEAR(std::stod(pt.substr(comma + 1)), axes.y_px(scan.along_N[i]), 0.006);
+    ++i;
+  }
+  EXPECT_EQ(i, scan.s_m.size());
+  // The y range holds the curve; the x range is the scan.
+  EXPECT_DOUBLE_EQ(axes.x_min_mm, -10);
+  EXPECT_DOUBLE_EQ(axes.x_max_mm, 10);
+  for (double f : scan.along_N) EXPECT_LE(std::abs(f), axes.y_max_N);
+  EXPECT_EQ(catalog::nice_ticks(0, 10, 5), (std::vector<double>{0, 2, 4, 6, 8, 10}));
+  EXPECT_EQ(catalog::nice_ticks(-1.5, 1.5, 6), (std::vector<double>{-1.5, -1, -0.5, 0, 0.5, 1, 1.5}));
+}
+
+TEST(CatalogHtml, EscapesTextAndKeepsScriptDataInsideItsElement) {
+  EXPECT_EQ(catalog::html_escape("<a href=\"x\">&'"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;");
+  EXPECT_EQ(catalog::url_segment("a b/c"), "a%20b%2Fc");
+  catalog::IndexRow r;
+  r.name = "x";
+  r.describes = "</script><script>alert(1)</script> & <!--";
+  r.page = "entries/x.html";
+  const auto data = catalog::index_data({}, {r});
+  const std::string html = catalog::index_page_html(data);
+  EXPECT_EQ(html.find("<script>alert"), std::string::npos);
+  EXPECT_EQ(html.find("<!--"), std::string::npos);
+  const auto start = html.find("id=\"catalog-data\">") + 18;
+  const auto end = html.find("</script>", start);
+  EXPECT_EQ(nlohmann::json::parse(html.substr(start, end - start)), data);
+}
+
+TEST(Catalog, IndexListsEveryEntryWithItsCompiledRoughness) {
+  const auto& c = test::shipped_compiler();
+  const fs::path out = fs::path(test::temp_dir("catalog")) / "site";
+  catalog::CatalogOptions o;
+  o.output = out;
+  const auto report = catalog::write_catalog(c, o);
+  ASSERT_TRUE(report.failures.empty());
+  ASSERT_EQ(report.entries, static_cast<int>(c.library().entries().size()));
+  const std::string html = read(out / "index.html");
+  const auto start = html.find("id=\"catalog-data\">") + 18;
+  const auto data = nlohmann::json::parse(html.substr(start, html.find("</script>", start) - start));
+  std::vector<std::string> names;
+  for (const auto& e : data["entries"]) {
+    const std::string name = e["name"];
+    names.push_back(name);
+    const auto r = c.compile_file(c.library().entry(name)->file);
+    ASSERT_TRUE(r.ok()) << name;
+    if (r.program->max_lateral_force_N > 0) {
+      EXPECT_DOUBLE_EQ(e["roughness"].get<double>(), r.program->roughness) << name;
+      EXPECT_TRUE(fs::is_regular_file(out / e["thumbnail"].get<std::string>())) << name;
+    } else {
+      EXPECT_TRUE(e["roughness"].is_null()) << name;
+    }
+    EXPECT_EQ(e["family"], c.library().entry(name)->family);
+    EXPECT_TRUE(fs::is_regular_file(out / e["page"].get<std::string>())) << name;
+    EXPECT_NE(html.find("data-name=\"" + catalog::html_escape(name) + "\""), std::string::npos) << name;
+  }
+  EXPECT_EQ(names, c.library().names());
+  EXPECT_TRUE(fs::is_regular_file(out / "assets" / "index.js"));
+  EXPECT_TRUE(fs::is_regular_file(out / "assets" / "catalog.css"));
+  fs::remove_all(out.parent_path());
+}
+
+TEST(Catalog, EntryPageShowsDeprecationLayersAndSourceNotes) {
+  compiler::CompileOptions opts;
+  opts.library_dir = SANDPAPER_SOURCE_DIR "/tests/compiler/data/library-small";
+  compiler::Compiler c(opts);
+  const fs::path out = fs::path(test::temp_dir("catalog-small")) / "site";
+  catalog::CatalogOptions o;
+  o.output = out;
+  ASSERT_TRUE(catalog::write_catalog(c, o).failures.empty());
+  const std::string old_page = read(out / "entries" / "old-rib.html");
+  EXPECT_NE(old_page.find("class=\"deprecated\""), std::string::npos);
+  EXPECT_NE(old_page.find("<a href=\"rib.html\">rib</a> instead"), std::string::npos);
+  const std::string rib = read(out / "entries" / "rib.html");
+  EXPECT_EQ(rib.find("class=\"deprecated\""), std::string::npos);
+  for (const char* s : {"id=\"representative\"", "id=\"perceptual\"", "id=\"physical\"", "id=\"provenance\"", "CC0-1.0",
+                        "ribbed-cloth", "kind-derived", "8 ribs per inch, 25.4 mm / 8 = 3.2 mm, rounded", "(mm)", "(N)"})
+    EXPECT_NE(rib.find(s), std::string::npos) << s;
+  // The provenance row of the period carries the grating statement's notes.
+  const auto period = rib.find("<code>texture.period</code>");
+  ASSERT_NE(period, std::string::npos);
+  const auto row_end = rib.find("</tr>", period);
+  EXPECT_NE(rib.substr(period, row_end - period).find("kind-by-ear"), std::string::npos);
+  // An entry seen through `like` finds the notes in the entry that said the number.
+  const auto notes = catalog::notes_for(c.library(), "library rib (" + c.library().entry("rib")->file.string() + ":8:3)");
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_EQ(notes[0].kind, compiler::SourceKind::Derived);
+  fs::remove_all(out.parent_path());
+}
+
+TEST(Catalog, AFailedRunLeavesThePreviousCatalogAndNamesTheEntry) {
+  const fs::path root = test::temp_dir("catalog-fail");
+  const fs::path lib = root / "lib";
+  fs::create_directories(lib);
+  std::ofstream(lib / "good.hmat") << "material \"good\" {\n  grating period 2 mm\n  roughness 0.4\n}\n";
+  const fs::path out = root / "site";
+  {
+    compiler::CompileOptions opts;
+    opts.library_dir = lib;
+    compiler::Compiler c(opts);
+    catalog::CatalogOptions o;
+    o.output = out;
+    ASSERT_EQ(catalog::write_catalog(c, o).entries, 1);
+  }
+  const std::string before = read(out / "index.html");
+  std::ofstream(lib / "bad.hmat") << "material \"bad\" {\n  grating period -2 mm\n}\n";
+  compiler::CompileOptions opts;
+  opts.library_dir = lib;
+  compiler::Compiler c(opts);
+  catalog::CatalogOptions o;
+  o.output = out;
+  const auto report = catalog::write_catalog(c, o);
+  ASSERT_EQ(report.failures.size(), 1u);
+  EXPECT_EQ(report.failures[0].name, "bad");
+  EXPECT_FALSE(report.failures[0].diagnostics.empty());
+  EXPECT_EQ(read(out / "index.html"), before);
+  EXPECT_FALSE(fs::exists(out / "entries" / "bad.html"));
+  for (const auto& e : fs::directory_iterator(root))  // no temporary folder left behind
+    EXPECT_TRUE(e.path().filename() == "lib" || e.path().filename() == "site") << e.path();
+
+  // A folder that is not a catalog is not replaced.
+  const fs::path mine = root / "mine";
+  fs::create_directories(mine);
+  std::ofstream(mine / "notes.txt") << "keep me";
+  o.output = mine;
+  fs::remove(lib / "bad.hmat");
+  compiler::Compiler c2(opts);
+  EXPECT_THROW(catalog::write_catalog(c2, o), std::invalid_argument);
+  EXPECT_EQ(read(mine / "notes.txt"), "keep me");
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace sandpaper

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# `sandpaper library catalog` as a user runs it: exit codes, progress, and that a failed run or a
+# folder that is not a catalog changes nothing. Usage: cli_catalog_test.sh path/to/sandpaper
+set -uo pipefail
+sp=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0
+check() {  # check "what" expected_status actual_status
+  if [ "$2" = "$3" ]; then echo "ok   $1"; else echo "FAIL $1 (exit $3, expected $2)"; fails=$((fails + 1)); fi
+}
+has() {  # has "what" file pattern
+  if grep -q -- "$3" "$2"; then echo "ok   $1"; else echo "FAIL $1: no '$3' in $2:"; cat "$2"; fails=$((fails + 1)); fi
+}
+
+"$sp" library catalog >"$tmp/out" 2>"$tmp/err"; check "no -o is a usage error" 2 $?
+
+mkdir -p "$tmp/lib/cloth"
+printf 'material "rib" {\n  family cloth\n  grating period 2 mm\n  roughness 0.4\n}\n' >"$tmp/lib/cloth/rib.hmat"
+printf 'material "spring" {\n  spring 200 N/m\n}\n' >"$tmp/lib/spring.hmat"
+"$sp" library catalog -o "$tmp/site" --library "$tmp/lib" >"$tmp/out" 2>"$tmp/err"; check "a good library is written" 0 $?
+has "it says where" "$tmp/out" "catalog of 2 entries"
+has "progress on stderr (not a terminal: a line at the end)" "$tmp/err" "catalog 2/2"
+[ -f "$tmp/site/index.html" ] && [ -f "$tmp/site/entries/rib.png" ] && [ -f "$tmp/site/entries/spring.html" ]
+check "index, pages and pictures exist" 0 $?
+"$sp" library catalog -o "$tmp/site" --library "$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "a catalog replaces the previous one" 0 $?
+[ ! -s "$tmp/err" ]; check "--quiet prints no progress" 0 $?
+cp "$tmp/site/index.html" "$tmp/index.before"
+
+printf 'material "broken" {\n  grating period -2 mm\n}\n' >"$tmp/lib/broken.hmat"
+"$sp" library catalog -o "$tmp/site" --library "$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "an entry that does not compile: exit 1" 1 $?
+has "the message names the entry" "$tmp/err" "do.* not compile: broken"
+cmp -s "$tmp/index.before" "$tmp/site/index.html"; check "the previous catalog is left as it was" 0 $?
+[ ! -e "$tmp/site/entries/broken.html" ]; check "nothing of the failed run is in it" 0 $?
+[ -z "$(ls -A "$tmp" | grep '^\.site\.')" ]; check "no temporary folder is left beside it" 0 $?
+rm "$tmp/lib/broken.hmat"
+
+mkdir -p "$tmp/mine" && echo keep >"$tmp/mine/notes.txt"
+"$sp" library catalog -o "$tmp/mine" --library "$tmp/lib" >"$tmp/out" 2>"$tmp/err"; check "a folder that is not a catalog is refused" 2 $?
+has "and the user is told why" "$tmp/err" "not a catalog"
+[ "$(cat "$tmp/mine/notes.txt")" = keep ]; check "its files are untouched" 0 $?
+
+exit $((fails > 0))

@@ -1,0 +1,162 @@
+// Compiles every entry and writes the catalog into a temporary folder, then swaps it in (catalog.hpp).
+#include "sandpaper/catalog/catalog.hpp"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <iostream>
+#include <ostream>
+#include <random>
+#include <stdexcept>
+
+#include "sandpaper/catalog/assets.hpp"
+#include "sandpaper/catalog/entry_page.hpp"
+#include "sandpaper/catalog/index_page.hpp"
+#include "sandpaper/catalog/plot.hpp"
+#include "sandpaper/catalog/render.hpp"
+#include "sandpaper/curation/progress.hpp"
+#include "sandpaper/schema/array_file.hpp"
+
+namespace sandpaper::catalog {
+namespace fs = std::filesystem;
+namespace {
+
+void write_text(const fs::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+// A fresh folder beside `dir`, named after it, that no other run uses.
+fs::path temp_beside(const fs::path& dir, const std::string& tag) {
+  std::random_device rd;
+  const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    fs::path p = parent / ("." + dir.filename().string() + "." + tag + "-" + std::to_string(::getpid()) + "-" +
+                           std::to_string(rd() % 1000000));
+    if (fs::create_directory(p)) return p;
+  }
+  throw std::runtime_error("cannot make a temporary folder beside " + dir.string());
+}
+
+// Removes the temporary folder unless the catalog was swapped in.
+struct TempDir {
+  fs::path path;
+  ~TempDir() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove_all(path, ec);
+  }
+};
+
+void check_replaceable(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return;
+  if (!fs::is_directory(dir, ec))
+    throw std::invalid_argument("'" + dir.string() + "' exists and is not a folder; give a folder for the catalog");
+  if (fs::is_empty(dir, ec) || fs::exists(dir / kCatalogMarker, ec)) return;
+  throw std::invalid_argument("'" + dir.string() + "' is a folder that is not a catalog (no " + kCatalogMarker +
+                              " in it), so it is not replaced; give a new or empty folder, or a previous catalog");
+}
+
+// Renames `fresh` to `dir`, moving any previous `dir` aside first and deleting it afterwards; if the
+// second rename fails the previous catalog is put back.
+void swap_in(const fs::path& fresh, const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) {
+    fs::rename(fresh, dir);
+    return;
+  }
+  const fs::path old = temp_beside(dir, "old");
+  fs::remove(old);
+  fs::rename(dir, old);
+  try {
+    fs::rename(fresh, dir);
+  } catch (...) {
+    fs::rename(old, dir, ec);
+    throw;
+  }
+  fs::remove_all(old, ec);
+}
+
+}  // namespace
+
+CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOptions& options) {
+  if (options.output.empty()) throw std::invalid_argument("give the catalog's folder with -o DIR");
+  fs::path dir = fs::absolute(options.output).lexically_normal();
+  if (!dir.has_filename()) dir = dir.parent_path();  // "out/" -> "out"
+  if (dir == dir.root_path()) throw std::invalid_argument("the catalog cannot replace the root folder");
+  check_replaceable(dir);
+  const auto& library = compiler.library();
+  CatalogReport report;
+
+  TempDir tmp{temp_beside(dir, "new")};
+  fs::create_directories(tmp.path / "entries");
+  fs::create_directories(tmp.path / "assets");
+
+  curation::Progress progress("catalog", library.entries().size(), options.progress == nullptr,
+                              options.progress ? *options.progress : std::cerr, options.progress_is_tty);
+  std::vector<IndexRow> rows;
+  for (const auto& e : library.entries()) {
+    auto r = compiler.compile_file(e.file);
+    progress.step(e.name);
+    if (!r.ok() || !r.material) {
+      report.failures.push_back({e.name, compiler::format_diagnostics(r.diagnostics)});
+      continue;
+    }
+    if (!report.failures.empty()) continue;  // nothing will be written: just find every failure
+    const auto& program = *r.program;
+    const Picture picture = render_picture(program, options.picture_side);
+    double d[2];
+    std::string axis, description;
+    scan_direction(program, d, axis, description);
+    const double half = picture.empty() ? half_length_inside(d, program.size_m[0], program.size_m[1])
+                                        : half_length_inside(d, picture.window_m[0], picture.window_m[1]);
+    const ForceScan scan = scan_force(program, half);
+
+    EntryView view;
+    view.library = &library;
+    view.entry = &e;
+    view.material = &*r.material;
+    view.program = &program;
+    view.picture = &picture;
+    view.scan = &scan;
+    IndexRow row;
+    if (!picture.empty()) {
+      view.picture_file = e.name + ".png";
+      view.shade_file = e.name + ".shade";
+      write_png(tmp.path / "entries" / view.picture_file, picture);
+      write_png(tmp.path / "entries" / (e.name + "-thumb.png"), picture, options.thumbnail_side);
+      schema::write_shade_file(tmp.path / "entries" / view.shade_file, picture.shade);
+      row.thumbnail = "entries/" + e.name + "-thumb.png";
+    }
+    write_text(tmp.path / "entries" / (e.name + ".html"), entry_page_html(view));
+
+    row.name = e.name;
+    row.family = e.family;
+    row.describes = program.describes;
+    row.licence = e.licence;
+    row.deprecated_by = e.deprecated_by;
+    row.aliases = e.aliases;
+    if (program.max_lateral_force_N > 0) row.roughness = program.roughness;
+    row.max_lateral_force_N = program.max_lateral_force_N;
+    row.page = "entries/" + e.name + ".html";
+    rows.push_back(std::move(row));
+  }
+  progress.finish(report.failures.empty() ? "catalog: " + std::to_string(rows.size()) + " entries compiled and drawn"
+                                          : "catalog: " + std::to_string(report.failures.size()) + " of " +
+                                                std::to_string(library.entries().size()) + " entries do not compile");
+  if (!report.failures.empty()) return report;
+
+  write_text(tmp.path / "index.html", index_page_html(index_data(library.manifest(), rows)));
+  for (const auto& a : assets()) write_text(tmp.path / "assets" / std::string(a.name), std::string(a.text));
+  write_text(tmp.path / kCatalogMarker,
+             "Written by `sandpaper library catalog`; the folder is replaced whole by the next run.\nlibrary " +
+                 library.manifest().name + " " + library.manifest().version + "\n");
+  swap_in(tmp.path, dir);
+  tmp.path.clear();
+  report.entries = static_cast<int>(rows.size());
+  return report;
+}
+
+}  // namespace sandpaper::catalog

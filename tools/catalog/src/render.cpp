@@ -1,0 +1,188 @@
+// Picture of a compiled program's height field (render.hpp).
+#include "sandpaper/catalog/render.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include "sandpaper/catalog/html.hpp"
+#include "sandpaper/compiler/array_export.hpp"
+#include "sandpaper/runtime/patch_evaluator.hpp"
+
+namespace sandpaper::catalog {
+namespace {
+
+template <class... F>
+struct Overloaded : F... {
+  using F::operator()...;
+};
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
+
+// The texture's finest length, m, that a pixel must resolve: 64 pixels a period (so that the version-2
+// seed's edges, 12/256 of a period wide, span a few pixels), one pixel a sample.
+double finest_scale(const schema::Term& term) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  return std::visit(Overloaded{
+                        [](const schema::GratingTerm& g) { return g.period_m / 64; },
+                        [](const schema::HeightFieldTerm& h) { return std::min(h.spacing_m[0], h.spacing_m[1]); },
+                        [](const schema::PeriodicTerm& p) { return p.period_m / 64; },
+                        [](const schema::RidgeTerm& r) { return r.wavelength_m / 64; },
+                        [&](const auto&) { return inf; },
+                    },
+                    term);
+}
+
+std::string mm(double m) { return format_number(m * 1e3, 3) + " mm"; }
+
+}  // namespace
+
+PictureRole picture_role(const schema::Term& term) {
+  return std::visit(Overloaded{
+                        [](const schema::GratingTerm&) { return PictureRole::Height; },
+                        [](const schema::HeightFieldTerm&) { return PictureRole::Height; },
+                        [](const schema::PeriodicTerm&) { return PictureRole::Height; },
+                        [](const schema::RidgeTerm&) { return PictureRole::Height; },
+                        [](const schema::SpringTerm&) { return PictureRole::Potential; },
+                        [](const schema::ConstantForceTerm&) { return PictureRole::Potential; },
+                        [](const schema::BowlTerm&) { return PictureRole::Potential; },
+                        [](const schema::LinearSpringTerm&) { return PictureRole::Potential; },
+                        [](const schema::LinearFieldTerm& f) {
+                          return f.tangential_N_per_m == 0 ? PictureRole::Potential : PictureRole::None;
+                        },
+                        [](const auto&) { return PictureRole::None; },
+                    },
+                    term);
+}
+
+std::string term_kind(const schema::Term& term) {
+  return std::visit(Overloaded{
+                        [](const schema::SpringTerm&) { return std::string("spring"); },
+                        [](const schema::DamperTerm&) { return std::string("damper"); },
+                        [](const schema::GratingTerm&) { return std::string("grating"); },
+                        [](const schema::HeightFieldTerm&) { return std::string("height field"); },
+                        [](const schema::ConstantForceTerm&) { return std::string("constant force"); },
+                        [](const schema::NapTerm&) { return std::string("nap"); },
+                        [](const schema::PeriodicTerm&) { return std::string("periodic force"); },
+                        [](const schema::RidgeTerm&) { return std::string("ridges"); },
+                        [](const schema::BowlTerm&) { return std::string("bowl"); },
+                        [](const schema::LinearFieldTerm&) { return std::string("linear field"); },
+                        [](const schema::LinearSpringTerm&) { return std::string("linear spring"); },
+                        [](const schema::MinusTerm&) { return std::string("minus mass"); },
+                        [](const schema::FollowerSpringTerm&) { return std::string("follower spring"); },
+                        [](const schema::PointMassesTerm&) { return std::string("point masses"); },
+                        [](const schema::AttractorTerm&) { return std::string("attractor"); },
+                    },
+                    term);
+}
+
+std::string why_not_pictured(const schema::Term& term) {
+  return std::visit(
+      Overloaded{
+          [](const schema::DamperTerm&) { return std::string("the damper: F = -b v depends on the hand's velocity, not its position"); },
+          [](const schema::NapTerm&) { return std::string("the nap: its force depends on the hand's velocity"); },
+          [](const schema::MinusTerm&) { return std::string("the minus mass: its force depends on velocity and acceleration"); },
+          [](const schema::FollowerSpringTerm&) { return std::string("the follower spring: its force depends on where a lagging point has got to (state)"); },
+          [](const schema::PointMassesTerm&) { return std::string("the point masses: their force depends on the masses' motion (state)"); },
+          [](const schema::AttractorTerm&) { return std::string("the attractor: its force depends on time, as its target moves"); },
+          [](const schema::LinearFieldTerm&) { return std::string("the circulating field: a tangential force has no potential surface"); },
+          [&](const auto&) { return term_kind(term) + ": drawn"; },
+      },
+      term);
+}
+
+Picture render_picture(const schema::PatchProgram& program, int max_side) {
+  Picture pic;
+  schema::PatchProgram drawn = program;  // only the terms with a surface, evaluated as the runtime would
+  drawn.terms.clear();
+  bool heights = false, potentials = false;
+  std::vector<std::string> potential_kinds;
+  double scale = std::numeric_limits<double>::infinity();
+  for (const auto& t : program.terms) {
+    const PictureRole role = picture_role(t);
+    if (role == PictureRole::None) {
+      pic.left_out.push_back(why_not_pictured(t));
+      continue;
+    }
+    drawn.terms.push_back(t);
+    heights = heights || role == PictureRole::Height;
+    if (role == PictureRole::Potential) {
+      potentials = true;
+      potential_kinds.push_back(term_kind(t));
+    }
+    scale = std::min(scale, finest_scale(t));
+  }
+  if (drawn.terms.empty()) return pic;
+
+  const double pw = program.size_m[0], ph = program.size_m[1];
+  const double ps = std::min(scale, std::max(pw, ph) / max_side);
+  pic.nx = std::clamp(static_cast<int>(std::ceil(pw / ps - 1e-9)), 1, max_side);
+  pic.ny = std::clamp(static_cast<int>(std::ceil(ph / ps - 1e-9)), 1, max_side);
+  // A non-repeating height field smaller than the patch: show the field, not the flat rim around it.
+  for (const auto& t : drawn.terms)
+    if (const auto* h = std::get_if<schema::HeightFieldTerm>(&t); h && !h->repeat && drawn.terms.size() == 1) {
+      pic.nx = std::min(pic.nx, static_cast<int>(std::lround(h->nx * h->spacing_m[0] / ps)));
+      pic.ny = std::min(pic.ny, static_cast<int>(std::lround(h->ny * h->spacing_m[1] / ps)));
+    }
+  pic.pixel_m = ps;
+  pic.window_m[0] = pic.nx * ps;
+  pic.window_m[1] = pic.ny * ps;
+
+  runtime::PatchEvaluator eval(drawn);
+  const std::size_t n = static_cast<std::size_t>(pic.nx) * pic.ny;
+  std::vector<double> sx(n), sy(n);
+  runtime::HandState hand;
+  for (int row = 0; row < pic.ny; ++row)
+    for (int col = 0; col < pic.nx; ++col) {
+      // Pixel centres; row 0 is the top of the picture, +y in patch coordinates.
+      hand.position_m = {-0.5 * pic.window_m[0] + (col + 0.5) * ps, 0.5 * pic.window_m[1] - (row + 0.5) * ps};
+      const glm::dvec2 f = eval.force_rt(hand, 0.0);
+      const std::size_t i = static_cast<std::size_t>(row) * pic.nx + col;
+      sx[i] = -f.x;  // F = -grad U: the surface rises against the force
+      sy[i] = -f.y;
+    }
+  pic.shade = compiler::shade_slopes(pic.nx, pic.ny, sx, sy, std::nullopt);
+
+  std::string what;
+  if (heights && !potentials)
+    what = "Height field of the compiled texture";
+  else if (!heights)
+    what = "Potential energy U of the " + potential_kinds.front() +
+           (potential_kinds.front() == "spring" ? " (U = k p\xC2\xB2 / 2, a bowl)" : "") + ", drawn as a surface (F = -grad U)";
+  else
+    what = "Texture height field plus the potential energy of the " + potential_kinds.front() +
+           " (F = -grad U), drawn as one surface";
+  pic.caption = what + ", " + mm(pic.window_m[0]) + " \xC3\x97 " + mm(pic.window_m[1]) + " around the patch centre" +
+                (pic.window_m[0] < pw - 1e-9 || pic.window_m[1] < ph - 1e-9
+                     ? " (the patch is " + mm(pw) + " \xC3\x97 " + mm(ph) + ")"
+                     : "") +
+                ". Slopes are the program's force field as the runtime evaluates it (F = -k grad h), shaded as "
+                "Sandpaper's .shade pictures: Lambertian, lit from the upper left (azimuth 135\xC2\xB0, elevation "
+                "45\xC2\xB0), the steepest slope drawn at 45\xC2\xB0.";
+  return pic;
+}
+
+void write_png(const std::filesystem::path& file, const Picture& picture, int side) {
+  if (picture.empty()) throw std::invalid_argument("write_png: the picture is empty");
+  OIIO::ImageSpec spec(picture.nx, picture.ny, 1, OIIO::TypeDesc::UINT8);
+  std::vector<std::uint8_t> grey(picture.shade.values.size());
+  for (std::size_t i = 0; i < grey.size(); ++i) grey[i] = static_cast<std::uint8_t>(255 - picture.shade.values[i]);
+  OIIO::ImageBuf buf(spec, grey.data());
+  OIIO::ImageBuf out = buf;
+  if (side > 0 && std::max(picture.nx, picture.ny) > side) {
+    const double f = static_cast<double>(side) / std::max(picture.nx, picture.ny);
+    const int w = std::max(1, static_cast<int>(std::lround(picture.nx * f)));
+    const int h = std::max(1, static_cast<int>(std::lround(picture.ny * f)));
+    out = OIIO::ImageBufAlgo::resize(buf, "", 0, OIIO::ROI(0, w, 0, h, 0, 1, 0, 1));
+    if (out.has_error()) throw std::runtime_error("cannot resize the picture for " + file.string() + ": " + out.geterror());
+  }
+  if (!out.write(file.string(), OIIO::TypeDesc::UINT8, "png"))
+    throw std::runtime_error("cannot write " + file.string() + ": " + out.geterror());
+}
+
+}  // namespace sandpaper::catalog

@@ -1,0 +1,61 @@
+// `sandpaper library catalog -o DIR`: the library's static web catalog (tools/catalog/, docs/CATALOG.md).
+#include <unistd.h>
+
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli.hpp"
+#include "sandpaper/catalog/catalog.hpp"
+
+namespace sandpaper::cli {
+namespace {
+
+struct LibraryCatalogOptions {
+  std::string output;
+  bool quiet = false;
+  CommonOptions common;
+};
+LibraryCatalogOptions catalog_options;
+
+}  // namespace
+
+CLI::App* add_library_catalog_command(CLI::App& library) {
+  auto& o = catalog_options;
+  auto* sub = library.add_subcommand("catalog", "write the library's static web catalog: an index page that filters by "
+                                                "family and roughness, and a page per entry with its shaded height field "
+                                                "and lateral-force plot (open DIR/index.html; no server needed)");
+  sub->add_option("-o,--output", o.output, "folder to write (replaced whole; an existing folder must be a catalog or empty)")
+      ->required();
+  sub->add_option("--device", o.common.device, "device calibration to compile for (calibration/devices/)")->capture_default_str();
+  sub->add_option("--library", o.common.library_dir, "library folder (default: $SANDPAPER_LIBRARY or the shipped library/)");
+  sub->add_option("--calibration", o.common.calibration_dir,
+                  "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+  sub->add_flag("--quiet", o.quiet, "no progress on stderr");
+  return sub;
+}
+
+int cmd_library_catalog(const CommonOptions& outer) {
+  auto o = catalog_options;
+  // `sandpaper library --library X catalog ...` works too: the group's options fill what catalog's did not.
+  if (o.common.library_dir.empty()) o.common.library_dir = outer.library_dir;
+  if (o.common.calibration_dir.empty()) o.common.calibration_dir = outer.calibration_dir;
+  auto c = make_compiler(o.common);
+  catalog::CatalogOptions co;
+  co.output = o.output;
+  if (!o.quiet) co.progress = &std::cerr;
+  co.progress_is_tty = isatty(STDERR_FILENO);
+  const auto report = catalog::write_catalog(c, co);
+  if (!report.failures.empty()) {
+    for (const auto& f : report.failures) std::cerr << f.diagnostics;
+    std::cerr << "sandpaper library catalog: " << report.failures.size() << " entr"
+              << (report.failures.size() == 1 ? "y does" : "ies do") << " not compile:";
+    for (const auto& f : report.failures) std::cerr << " " << f.name;
+    std::cerr << "; nothing was written (" << o.output << " is as it was)\n";
+    return kExitBadInput;
+  }
+  std::cout << "catalog of " << report.entries << " entries -> " << o.output << "/index.html\n";
+  return kExitOk;
+}
+
+}  // namespace sandpaper::cli
