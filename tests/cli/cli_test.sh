@@ -353,6 +353,10 @@ expect_exit 1 "a failed rebuild exits 1" -- "$sp" library index "${L[@]}" "${I[@
 has "$tmp/err" 'E0303' "the compiler's reason is shown"
 has "$tmp/err" 'index not written.*is unchanged' "the index is said to be unchanged"
 cmp -s "$tmp/idx/library.sqlite" "$tmp/idx.before" && ok || bad "a failed rebuild changed the index"
+expect_exit 0 "search answers from the previous index while the library is broken" -- "$sp" library search ribbed "${L[@]}" "${I[@]}"
+has "$tmp/err" 'answering from the previous index' "search says the index is the previous one"
+has "$tmp/out" '^ribbed-cloth ' "the previous index still finds ribbed-cloth"
+cmp -s "$tmp/idx/library.sqlite" "$tmp/idx.before" && ok || bad "search over a broken library changed the index"
 expect_exit 1 "library check fails on the broken entry" -- "$sp" library check "${L[@]}" --quiet
 has "$tmp/err" 'broken.hmat:1:10: error\[E0610\]' "check names the entry that does not compile"
 rm "$tmp/lib/textiles/broken.hmat"

@@ -64,7 +64,18 @@ int print_build_failure(const cur::IndexBuildResult& r, const char* who) {
   return kExitBadInput;
 }
 
-// Builds the index when it is missing or stale; returns the exit code of a failed build, or 0.
+// Whether the index at p.index can be read and was built from this library folder.
+bool previous_index_answers(const Paths& p) {
+  try {
+    const cur::Index idx(p.index);
+    return idx.meta("library_dir") == std::filesystem::absolute(p.library).lexically_normal().string();
+  } catch (const cur::IndexError&) {
+    return false;
+  }
+}
+
+// Builds the index when it is missing or stale; returns the exit code of a failed build, or 0
+// (also when the rebuild failed but the previous index of this library can still answer).
 int ensure_index(const Paths& p, bool quiet, const char* who) {
   const auto state = cur::index_state(p.index, p.library, p.calibration);
   if (state == cur::IndexState::Fresh) return kExitOk;
@@ -74,7 +85,17 @@ int ensure_index(const Paths& p, bool quiet, const char* who) {
   const compiler::Library lib(p.library);
   auto progress = cur::Progress::on_stderr("indexing", lib.entries().size(), quiet);
   const auto r = cur::build_index({p.library, p.calibration, p.index, "sim"}, progress);
-  if (!r.ok) return print_build_failure(r, who);
+  if (!r.ok) {
+    const int rc = print_build_failure(r, who);
+    // A library mid-edit should not stop curators searching it: the last good index still answers,
+    // marked as such, as long as it is an index of this library in this schema.
+    if (state == cur::IndexState::Stale && previous_index_answers(p)) {
+      std::cerr << "sandpaper " << who << ": answering from the previous index, built before the library changed; "
+                << "fix the errors above and it is rebuilt\n";
+      return kExitOk;
+    }
+    return rc;
+  }
   progress.finish("indexed " + std::to_string(r.entries) + " entries into " + r.path.string());
   return kExitOk;
 }
