@@ -34,17 +34,16 @@ std::string entry_link(const compiler::Library& lib, const std::string& name) {
 }
 
 // One row of a layer table: what, value as written and in display units, layer, where it came from.
-// The library whose files sources are shown relative to (set per page by entry_page_html).
-thread_local const compiler::Library* shown_library = nullptr;
-
-std::string param_row(const std::string& what, const Param& p, double factor, const std::string& unit) {
+// Sources are shown relative to `lib`'s folder.
+std::string param_row(const compiler::Library& lib, const std::string& what, const Param& p, double factor, const std::string& unit) {
   std::string value = format_number(p.si * factor, 4) + (unit.empty() ? "" : "\xC2\xA0" + unit);
   return "<tr><th scope=\"row\">" + esc(what) + "</th><td class=\"value\">" + esc(value) + "</td><td>" + esc(p.stated) +
          "</td><td>" + esc(compiler::layer_name(p.layer)) + "</td><td class=\"src\">" +
-         esc(shown_library ? shown_source(*shown_library, p.source) : p.source) + "</td></tr>\n";
+         esc(shown_source(lib, p.source)) + "</td></tr>\n";
 }
-std::string opt_row(const std::string& what, const std::optional<Param>& p, double factor, const std::string& unit) {
-  return p ? param_row(what, *p, factor, unit) : "";
+std::string opt_row(const compiler::Library& lib, const std::string& what, const std::optional<Param>& p, double factor,
+                    const std::string& unit) {
+  return p ? param_row(lib, what, *p, factor, unit) : "";
 }
 std::string text_row(const std::string& what, const std::string& html_value) {
   return "<tr><th scope=\"row\">" + esc(what) + "</th><td colspan=\"4\">" + html_value + "</td></tr>\n";
@@ -79,11 +78,12 @@ std::string representative(const EntryView& v) {
 
 std::string perceptual(const EntryView& v) {
   const auto& m = *v.material;
+  const auto& lib = *v.library;
   const auto& p = *v.program;
   std::ostringstream o;
   o << "<section id=\"perceptual\"><h2>Perceptual layer</h2>\n";
   o << "<table class=\"layer\">" << kLayerHead << "<tbody>\n";
-  if (m.roughness) o << param_row("roughness asked for", *m.roughness, 1, "");
+  if (m.roughness) o << param_row(lib, "roughness asked for", *m.roughness, 1, "");
   if (p.max_lateral_force_N > 0)
     o << text_row("roughness compiled",
                   "<strong class=\"roughness\">" + format_number(p.roughness, 3) +
@@ -92,47 +92,48 @@ std::string perceptual(const EntryView& v) {
   else
     o << text_row("roughness compiled", "none: the entry has no texture, so no lateral-force roughness");
   for (const auto& t : m.percepts)
-    o << param_row(t.word + (t.word != t.percept ? " (" + t.percept + ")" : ""), t.value, 1, "") +
+    o << param_row(lib, t.word + (t.word != t.percept ? " (" + t.percept + ")" : ""), t.value, 1, "") +
              text_row("", "sets <code>" + esc(t.parameter) + "</code> through the map <code>" + esc(t.map_id) + "</code>" +
                               (t.provisional ? " <em>(provisional: not yet measured)</em>" : ""));
   o << "</tbody></table>\n</section>\n";
   return o.str();
 }
 
-std::string texture_rows(const compiler::ResolvedMaterial& m) {
+std::string texture_rows(const compiler::Library& lib, const compiler::ResolvedMaterial& m) {
   constexpr double deg = 180 / std::numbers::pi;
   std::string s;
   if (const auto* g = std::get_if<compiler::ResolvedGrating>(&m.texture)) {
     s += text_row("texture", "grating (version-2 recipe, thesis 3.5.2)");
-    s += param_row("period", g->period, 1e3, "mm") + param_row("hill", g->hill, 100, "%") +
-         param_row("orientation", g->orientation, deg, "\xC2\xB0") + opt_row("smoothing (sigma)", g->smoothing, 1e3, "mm");
+    s += param_row(lib, "period", g->period, 1e3, "mm") + param_row(lib, "hill", g->hill, 100, "%") +
+         param_row(lib, "orientation", g->orientation, deg, "\xC2\xB0") + opt_row(lib, "smoothing (sigma)", g->smoothing, 1e3, "mm");
   } else if (const auto* h = std::get_if<compiler::ResolvedHeightmap>(&m.texture)) {
     s += text_row("texture", "height map from the image <code>" + esc(h->stated_path) + "</code>" +
                                  (h->repeat ? ", repeated" : "") + (h->invert ? ", inverted (dark = high)" : "") +
                                  (h->channel.empty() ? "" : ", channel " + esc(h->channel)));
-    s += param_row("width", h->width, 1e3, "mm") + param_row("height", h->height, 1e3, "mm") +
-         opt_row("smoothing (sigma)", h->smoothing, 1e3, "mm") + opt_row("sampling", h->sampling, 1e3, "mm") +
-         opt_row("relief depth", h->depth, 1e3, "mm") + opt_row("press", h->press, 1, "N");
+    s += param_row(lib, "width", h->width, 1e3, "mm") + param_row(lib, "height", h->height, 1e3, "mm") +
+         opt_row(lib, "smoothing (sigma)", h->smoothing, 1e3, "mm") + opt_row(lib, "sampling", h->sampling, 1e3, "mm") +
+         opt_row(lib, "relief depth", h->depth, 1e3, "mm") + opt_row(lib, "press", h->press, 1, "N");
   } else if (const auto* pt = std::get_if<compiler::ResolvedPattern>(&m.texture)) {
     s += text_row("texture", std::string("version-1 pattern: ") + compiler::pattern_kind_name(pt->kind) + " (thesis 3.5.1)");
-    s += param_row("pixel", pt->pixel, 1e3, "mm") + opt_row("valley", pt->valley, 1e3, "mm") +
-         opt_row("hill", pt->hill, 1e3, "mm") + opt_row("offset", pt->offset, 1e3, "mm") +
-         opt_row("feature", pt->feature, 1e3, "mm") + opt_row("kernel", pt->kernel, 1, "px") +
-         opt_row("refilter", pt->refilter, 1, "px") + opt_row("seed", pt->seed, 1, "") + opt_row("count", pt->count, 1, "");
+    s += param_row(lib, "pixel", pt->pixel, 1e3, "mm") + opt_row(lib, "valley", pt->valley, 1e3, "mm") +
+         opt_row(lib, "hill", pt->hill, 1e3, "mm") + opt_row(lib, "offset", pt->offset, 1e3, "mm") +
+         opt_row(lib, "feature", pt->feature, 1e3, "mm") + opt_row(lib, "kernel", pt->kernel, 1, "px") +
+         opt_row(lib, "refilter", pt->refilter, 1, "px") + opt_row(lib, "seed", pt->seed, 1, "") + opt_row(lib, "count", pt->count, 1, "");
   }
   return s;
 }
 
 std::string physical(const EntryView& v) {
   const auto& m = *v.material;
+  const auto& lib = *v.library;
   const auto& p = *v.program;
   std::ostringstream o;
   o << "<section id=\"physical\"><h2>Physical layer</h2>\n";
   o << "<table class=\"layer\">" << kLayerHead << "<tbody>\n";
-  o << texture_rows(m);
-  o << opt_row("height quantization", m.quantize_bits, 1, "bits") << opt_row("maximum lateral force", m.max_lateral_force, 1, "N")
-    << opt_row("spring stiffness", m.spring, 1, "N/m") << opt_row("damping", m.damper, 1, "N\xC2\xB7s/m")
-    << opt_row("anti-viscous damping", m.antiviscous, 1, "N\xC2\xB7s/m");
+  o << texture_rows(lib, m);
+  o << opt_row(lib, "height quantization", m.quantize_bits, 1, "bits") << opt_row(lib, "maximum lateral force", m.max_lateral_force, 1, "N")
+    << opt_row(lib, "spring stiffness", m.spring, 1, "N/m") << opt_row(lib, "damping", m.damper, 1, "N\xC2\xB7s/m")
+    << opt_row(lib, "anti-viscous damping", m.antiviscous, 1, "N\xC2\xB7s/m");
   for (const auto& law : m.laws) {
     o << text_row(std::string(law.physics ? "physics " : "force ") + law.name, "<code>" + esc(law.text) + "</code>");
     const auto* def = schema::find_law(law.physics ? schema::LawFamily::Physics : schema::LawFamily::Force, law.name);
@@ -141,11 +142,11 @@ std::string physical(const EntryView& v) {
       if (def)
         if (const auto* lp = schema::find_param(*def, name); lp && lp->kind == schema::LawParamKind::Quantity)
           unit = std::string(schema::si_unit_name(lp->dimension));
-      o << param_row("\xC2\xA0\xC2\xA0" + name, param, 1, unit == "1" ? "" : unit);
+      o << param_row(lib, "\xC2\xA0\xC2\xA0" + name, param, 1, unit == "1" ? "" : unit);
     }
   }
-  o << opt_row("energy budget", m.energy_budget, 1, "J") << opt_row("energy refill", m.energy_refill, 1, "W");
-  o << param_row("patch width", m.size_width, 1e3, "mm") << param_row("patch height", m.size_height, 1e3, "mm");
+  o << opt_row(lib, "energy budget", m.energy_budget, 1, "J") << opt_row(lib, "energy refill", m.energy_refill, 1, "W");
+  o << param_row(lib, "patch width", m.size_width, 1e3, "mm") << param_row(lib, "patch height", m.size_height, 1e3, "mm");
   o << "</tbody></table>\n<p>Compiled for the device <code>" << esc(p.device) << "</code> into " << p.terms.size()
     << " term" << (p.terms.size() == 1 ? "" : "s") << ":";
   for (std::size_t i = 0; i < p.terms.size(); ++i) o << (i ? ", " : " ") << esc(term_kind(p.terms[i]));
@@ -255,7 +256,6 @@ std::vector<compiler::SourceNote> notes_for(const compiler::Library& library, co
 std::string entry_page_html(const EntryView& v) {
   const auto& e = *v.entry;
   const auto& lib = *v.library;
-  shown_library = &lib;
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" << esc(e.name) << " \xE2\x80\x94 "
