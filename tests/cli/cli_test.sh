@@ -80,6 +80,10 @@ has "$tmp/err" 'W0330.*low confidence' "W0330 outside the believable region"
 expect_exit 0 "explain Noise35" -- "$sp" explain -e Noise35
 has "$tmp/out" 'confidence +thesis non-textural Noise35: mean 65 % \(\+/- 38 %\)' "explain: a non-textural's confidence"
 expect_exit 0 "library" -- "$sp" library
+has "$tmp/out" '^corduroy +textiles +roughness 0.45 ' "library lists each entry with its family and roughness"
+has "$tmp/out" '^sandpaper-80-grit .*\[deprecated: use sandpaper-p80\]' "library marks deprecated entries"
+expect_exit 0 "library --json" -- "$sp" library --json
+has "$tmp/out" '"family": "textiles"' "library --json gives families"
 
 # Bad input: a clear diagnostic, non-zero exit, and the existing output untouched.
 echo keep >"$tmp/out.patch"

@@ -66,19 +66,25 @@ int cmd_library(const CommonOptions& o) {
   auto c = make_compiler(o);
   nlohmann::json arr = nlohmann::json::array();
   int bad = 0;
-  for (const auto& name : c.library().names()) {
-    auto r = c.compile_text(name, "<library " + name + ">");
+  std::size_t width = 16;
+  for (const auto& e : c.library().entries()) width = std::max(width, e.name.size() + 2);
+  for (const auto& e : c.library().entries()) {
+    auto r = c.compile_text(e.name, "<library " + e.name + ">");
     if (!r.ok()) {
       ++bad;
       std::cerr << compiler::format_diagnostics(r.diagnostics);
       continue;
     }
     const auto& p = *r.program;
-    if (o.json)
-      arr.push_back({{"name", name}, {"describes", p.describes}, {"max_lateral_force_N", p.max_lateral_force_N}, {"roughness", p.roughness}});
-    else
-      std::cout << name << std::string(name.size() < 16 ? 16 - name.size() : 1, ' ') << "roughness " << p.roughness
-                << "  \"" << p.describes << "\"\n";
+    if (o.json) {
+      arr.push_back({{"name", e.name}, {"family", e.family}, {"aliases", e.aliases}, {"describes", p.describes},
+                     {"max_lateral_force_N", p.max_lateral_force_N}, {"roughness", p.roughness},
+                     {"deprecated_by", e.deprecated_by}, {"file", e.relative_path}});
+    } else {
+      std::cout << e.name << std::string(width - e.name.size(), ' ') << e.family
+                << std::string(e.family.size() < 20 ? 20 - e.family.size() : 1, ' ') << "roughness " << p.roughness << "  \""
+                << p.describes << "\"" << (e.deprecated_by.empty() ? "" : "  [deprecated: use " + e.deprecated_by + "]") << "\n";
+    }
   }
   if (o.json) std::cout << arr.dump(2) << "\n";
   return bad ? kExitBadInput : kExitOk;
