@@ -82,6 +82,11 @@ has "$tmp/out" 'confidence +thesis non-textural Noise35: mean 65 % \(\+/- 38 %\)
 expect_exit 0 "library" -- "$sp" library
 has "$tmp/out" '^corduroy +textiles +roughness 0.45 ' "library lists each entry with its family and roughness"
 has "$tmp/out" '^sandpaper-80-grit .*\[deprecated: use sandpaper-p80\]' "library marks deprecated entries"
+expect_exit 0 "explain an entry shows its sources" -- "$sp" explain -e "like pinwale-corduroy"
+has "$tmp/out" '^  library corduroy \(library/textiles/corduroy.hmat, CC0-1.0\)' "explain lists the like chain's sourced entries"
+has "$tmp/out" '^ +derived: 16 wales per inch, 25.4 mm / 16' "explain shows a source note with its kind"
+expect_exit 0 "explain a plain material" -- "$sp" explain -e "grating period 2 mm amplitude 1 N"
+grep -q '^sources (' "$tmp/out" && bad "a material with no sourced entries has no sources section" || ok
 expect_exit 0 "library --json" -- "$sp" library --json
 has "$tmp/out" '"family": "textiles"' "library --json gives families"
 

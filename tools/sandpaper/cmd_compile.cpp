@@ -4,6 +4,7 @@
 
 #include "cli.hpp"
 #include "sandpaper/compiler/explain.hpp"
+#include "sandpaper/compiler/sources_report.hpp"
 #include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/patch_json.hpp"
@@ -45,7 +46,8 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     }
     std::cout << j.dump(2) << "\n";
   } else if (explain) {
-    std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device());
+    std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device())
+              << compiler::sources_text(*in->compile->material, c.library());
   } else {
     std::cout << prog.name << ": ";
     // Without a texture there is no lateral-force roughness to report (issue 2's rule for `run`).
