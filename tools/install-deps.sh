@@ -13,7 +13,8 @@ pkgs=(
   libeigen3-dev libboost-math-dev           # least squares and t/F distributions for calibration fits
   libsqlite3-dev                            # the library index (`sandpaper library index`; FTS5 full text)
   libgtest-dev libgmock-dev libbenchmark-dev
-  chromium python3                          # the library catalog's browser test (tests/catalog/browser_test.py)
+  chromium python3                          # the library catalog's and the studio's browser tests (tests/*/browser_test.py)
+  libcpp-httplib-dev                        # the studio's HTTP server (tools/studio/, docs/STUDIO.md)
 )
 missing=()
 for p in "${pkgs[@]}"; do
@@ -25,4 +26,24 @@ if ((${#missing[@]})); then
   echo "installing: ${missing[*]}"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# Node.js and npm build the studio's page (CodeMirror 6 bundled by esbuild; tools/studio/web). Debian's
+# nodejs and npm when the machine has neither.
+if ! command -v npm >/dev/null 2>&1; then
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo=sudo; fi
+  echo "installing: nodejs npm"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends nodejs npm
+fi
+# The page's packages, exactly as the committed lockfile pins them, from the npm registry; again only
+# when the lockfile changed since the last install. No install scripts run (esbuild finds its binary
+# in its platform package).
+web="$(cd "$(dirname "$0")" && pwd)/studio/web"
+stamp="$web/node_modules/.sandpaper-lock"
+if ! cmp -s "$web/package-lock.json" "$stamp" 2>/dev/null; then
+  echo "installing the studio page's npm packages (npm ci)"
+  (cd "$web" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error)
+  cp "$web/package-lock.json" "$stamp"
 fi

@@ -2,6 +2,7 @@
 // stopped from the application's thread.
 #include <atomic>
 
+#include "sandpaper/runtime/owning_source.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/swappable_source.hpp"
 #include "sandpaper/sandpaper.hpp"
@@ -11,19 +12,7 @@ namespace {
 
 // A patch evaluator that owns its program, so that a material swapped out on the servo thread
 // keeps its program until the application thread frees both together (collect_retired_nonrt).
-class ProgramSource final : public runtime::ForceSource {
- public:
-  explicit ProgramSource(std::shared_ptr<const schema::PatchProgram> program)
-      : program_(std::move(program)), evaluator_(*program_) {}
-  glm::dvec2 force_rt(const runtime::HandState& hand, double dt_s) noexcept override {
-    return evaluator_.force_rt(hand, dt_s);
-  }
-  void reset_rt(const runtime::HandState& hand) noexcept override { evaluator_.reset_rt(hand); }
-
- private:
-  std::shared_ptr<const schema::PatchProgram> program_;
-  runtime::PatchEvaluator evaluator_;
-};
+using ProgramSource = runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>;
 
 // The servo loop refuses runs longer than this (runtime/src/servo_loop.cpp).
 constexpr double kMaxTicks = 10'000'000;

@@ -3,11 +3,13 @@
 // 1 the input is wrong (diagnostics printed), 2 usage or environment errors, 3 internal errors.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/runtime/device.hpp"
 #include "sandpaper/schema/patch_program.hpp"
@@ -37,7 +39,7 @@ compiler::Compiler make_compiler(const CommonOptions& o);
 // Compiles the file or expression (or reads a .patch); prints diagnostics to stderr. Returns
 // nullopt (after printing) when the input has errors.
 std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Compiler& c, bool allow_patch);
-nlohmann::json diagnostics_json(const compiler::Diagnostics& d);
+using compiler::diagnostics_json;  // compiler/compile_json.hpp
 // The simulated device's limits from the compiler's device calibration (calibration/devices/<name>.toml).
 runtime::DeviceLimits limits_of(const compiler::Compiler& c);
 
@@ -45,12 +47,23 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
 struct RunDeviceOptions;  // run_device.hpp
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
             double amplitude_mm, const std::string& trace, bool virtual_clock, bool live,
-            const RunDeviceOptions& device_options);
+            const RunDeviceOptions& device_options, bool watch = false);
 int cmd_inspect(const std::string& file, bool json, bool tables);
 // USB HID PID joysticks (cmd_devices.cpp, docs/USB_PID.md): list them; play on the first one found.
 int cmd_devices(const CommonOptions& o);
 int cmd_run_usb(const CommonOptions& o, double rate_hz, double duration_s);
 int cmd_library(const CommonOptions& o);
+// The first HID PID joystick that has a device calibration, opened and owning its transport; nullptr
+// with `error` set (and udev help printed when access was denied) when there is none.
+std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error);
+// `sandpaper studio` (cmd_studio.cpp, docs/STUDIO.md): `path` a material, a workspace or a folder.
+struct StudioOptions {
+  std::string path = ".";
+  std::string listen = "127.0.0.1:4780";
+  bool listen_given = false;
+  double rate_hz = 1000;
+};
+int cmd_studio(const CommonOptions& o, const StudioOptions& so);
 
 // Workspaces (.hws, thesis Appendix B). Options left unset take workspace defaults: a scan through
 // the centre in the direction that crosses the most patches, out to the furthest, for one lap.
@@ -87,6 +100,9 @@ struct ArrayOptions {
   bool invert = false;
 };
 int cmd_array(const ArrayOptions& o);
+// `sandpaper preview`: height.png, field.png, scan.svg and preview.json in `out_dir`, pictures at most
+// `side` pixels on their longer side (cmd_preview.cpp; docs/STUDIO.md).
+int cmd_preview(const CommonOptions& o, const std::string& out_dir, int side);
 
 }  // namespace sandpaper::cli
 

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/explain.hpp"
 #include "sandpaper/compiler/sources_report.hpp"
 #include "sandpaper/compiler/knowledge_report.hpp"
@@ -35,11 +36,10 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
   if (!explain && !out_path.empty()) schema::write_patch_file(out_path, prog);
 
   if (o.json) {
-    auto j = schema::to_json(prog);
-    j["ok"] = true;
-    j["diagnostics"] = diagnostics_json(in->compile->diagnostics);
-    if (!explain) j["output"] = out_path.empty() ? nlohmann::json(nullptr) : nlohmann::json(out_path);
+    // One object with the studio's POST /api/compile (compiler/compile_json.hpp).
+    auto j = compiler::compile_json(*in->compile, out_path.empty() ? std::nullopt : std::optional<std::string>(out_path));
     if (explain) {
+      j.erase("output");
       j["knowledge"] = compiler::knowledge_json(compiler::assess_knowledge(*in->compile->material, prog, c.calibration()),
                                                 c.calibration());
       j["maps"] = compiler::maps_json(c.calibration());

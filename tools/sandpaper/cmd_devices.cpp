@@ -153,4 +153,60 @@ int cmd_run_usb(const CommonOptions& o, double rate_hz, double duration_s) {
   }
 }
 
+namespace {
+
+// A USB joystick that owns its transport, for callers that keep a Device for their own lifetime (the studio).
+class OwnedUsbJoystick final : public runtime::Device {
+ public:
+  OwnedUsbJoystick(std::unique_ptr<runtime::usb::LibusbTransport> transport, const calibration::DeviceCalibration& cal)
+      : transport_(std::move(transport)), joystick_(*transport_, cal) {}
+  ~OwnedUsbJoystick() override { joystick_.close(); }
+  const runtime::DeviceLimits& limits() const noexcept override { return joystick_.limits(); }
+  bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override {
+    return joystick_.read_position_rt(t_s, position_m);
+  }
+  bool write_force_rt(glm::dvec2 force_N) noexcept override { return joystick_.write_force_rt(force_N); }
+  runtime::DeviceFault last_fault_rt() const noexcept override { return joystick_.last_fault_rt(); }
+
+ private:
+  std::unique_ptr<runtime::usb::LibusbTransport> transport_;
+  runtime::usb::HidPidJoystick joystick_;
+};
+
+}  // namespace
+
+std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error) {
+  CommonOptions base = o;
+  base.device = "sim";
+  const auto probe = make_compiler(base);
+  std::vector<Found> found;
+  if (!find_devices(probe.calibration(), found, "studio --device usb")) {
+    error = "no USB force-feedback joystick found";
+    return nullptr;
+  }
+  for (const auto& f : found) {
+    if (!f.calibration) continue;
+    std::unique_ptr<runtime::usb::LibusbTransport> transport;
+    std::string message;
+    const UsbStatus st = runtime::usb::LibusbTransport::open(static_cast<std::uint16_t>(f.info.vendor_id),
+                                                             static_cast<std::uint16_t>(f.info.product_id), transport, message);
+    if (st != UsbStatus::Ok) {
+      error = "cannot open " + ids(f.info.vendor_id, f.info.product_id) + ": " + message;
+      if (st == UsbStatus::AccessDenied) print_udev_help(std::cerr, f.info.vendor_id, f.info.product_id);
+      return nullptr;
+    }
+    try {
+      device_name = f.calibration->name;
+      // The calibration lives in `probe`, which goes out of scope: the joystick keeps what it needs
+      // of it (limits, command scale) at construction.
+      return std::make_unique<OwnedUsbJoystick>(std::move(transport), *f.calibration);
+    } catch (const runtime::usb::HidPidError& e) {
+      error = e.what();
+      return nullptr;
+    }
+  }
+  error = "force-feedback devices are present but none has a device calibration with a [usb] table (docs/CALIBRATION.md)";
+  return nullptr;
+}
+
 }  // namespace sandpaper::cli

@@ -8,10 +8,13 @@
 #include "cli.hpp"
 #include "play.hpp"
 #include "run_device.hpp"
+#include "sandpaper/runtime/owning_source.hpp"
+#include "sandpaper/runtime/swappable_source.hpp"
 #include "sandpaper/runtime/trace_csv.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/patch_io.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -37,7 +40,15 @@ std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max
 
 int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
             double amplitude_mm, const std::string& trace, bool virtual_clock, bool live,
-            const RunDeviceOptions& device_options) {
+            const RunDeviceOptions& device_options, bool watch) {
+  if (watch) {
+    if (o.file.empty() || virtual_clock || o.device == "usb" || !device_options.replay.empty() || !trace.empty()) {
+      std::cerr << "sandpaper run --watch: watches a material file (.hmat or .patch) played in real time on --device sim, without --trace\n";
+      return kExitUsage;
+    }
+    // Until Ctrl-C: the longest run the servo loop takes (10 million ticks).
+    if (duration_s == 0) duration_s = (1e7 - 1) / rate_hz;
+  }
   if (o.device == "usb") return cmd_run_usb(o, rate_hz, duration_s);
   std::vector<glm::dvec2> replayed;
   if (!device_options.replay.empty())
@@ -94,9 +105,60 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
   script.speed_m_s = speed_mm_s * 1e-3;
   script.amplitude_m = amplitude_mm * 1e-3;
   auto ticks = static_cast<std::size_t>(std::llround(duration_s * rate_hz));
-  const auto device = make_run_device(device_options, limits, script, ticks, replayed);
+  // A watched run may last hours: the device records its first minute (the report's mean and strip).
+  const auto recorded = watch ? std::min<std::size_t>(ticks, static_cast<std::size_t>(60 * rate_hz)) : ticks;
+  const auto device = make_run_device(device_options, limits, script, recorded, replayed);
   runtime::RecordingDevice& joystick = *device;
   runtime::PatchEvaluator evaluator(prog);
+  // --watch: the material plays through a hot-swappable source; on every save it is recompiled here,
+  // off the servo thread, and handed over with a crossfade. A save that does not compile leaves the
+  // last good program playing.
+  runtime::SwappableSource swappable(watch ? std::make_unique<runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>>(
+                                                 std::make_shared<const schema::PatchProgram>(prog))
+                                           : nullptr,
+                                     0.02);
+  std::function<void()> reload;
+  std::error_code mtime_ec;
+  auto last_mtime = std::filesystem::last_write_time(o.file, mtime_ec);
+  auto next_check = std::chrono::steady_clock::now();
+  if (watch) {
+    reload = [&] {
+      const auto now = std::chrono::steady_clock::now();
+      if (now < next_check) return;
+      next_check = now + std::chrono::milliseconds(250);
+      swappable.collect_retired_nonrt();
+      std::error_code ec;
+      const auto mtime = std::filesystem::last_write_time(o.file, ec);
+      if (ec || mtime == last_mtime) return;
+      last_mtime = mtime;
+      std::shared_ptr<const schema::PatchProgram> next;
+      if (schema::looks_like_patch_file(o.file)) {
+        try {
+          next = std::make_shared<const schema::PatchProgram>(schema::read_patch_file(o.file));
+        } catch (const schema::PatchFormatError& e) {
+          std::cerr << "watch: " << o.file << ": " << e.what() << "; the last good program keeps playing\n";
+          return;
+        }
+      } else {
+        auto r = c.compile_file(o.file);
+        std::cerr << compiler::format_diagnostics(r.diagnostics);
+        if (!r.ok()) {
+          std::cerr << "watch: " << o.file << " does not compile; the last good program keeps playing\n";
+          return;
+        }
+        next = std::make_shared<const schema::PatchProgram>(std::move(*r.program));
+      }
+      try {
+        swappable.offer_nonrt(std::make_unique<runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>>(next));
+        std::cerr << fmt::format("watch: reloaded {}: maximum lateral force {:.4g} N, roughness {:.3g}\n", next->name,
+                                 next->max_lateral_force_N, next->roughness);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "watch: " << o.file << ": " << e.what() << "; the last good program keeps playing\n";
+      }
+    };
+    std::cerr << "watch: playing " << prog.name << " until Ctrl-C; save " << o.file << " to hear and feel the change\n";
+  }
+  runtime::ForceSource& playing = watch ? static_cast<runtime::ForceSource&>(swappable) : evaluator;
 
   if (!o.json)
     std::cout << fmt::format("playing {} on {}: {:g} Hz for {:g} s, hand {} at {:g} mm/s, {} {:g} mm{}\n", prog.name,
@@ -104,7 +166,7 @@ int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std
                              hand == "circle" ? "radius" : "turning at +-", amplitude_mm,
                              virtual_clock ? " (virtual clock)" : "");
   if (!o.json) std::cout << "  device   " << describe_run_device(device_options) << "\n";
-  const Played played = play(joystick, evaluator, cfg, virtual_clock, live, trace.empty() ? 0 : ticks);
+  const Played played = play(joystick, playing, cfg, virtual_clock, live, trace.empty() ? 0 : ticks, reload);
   const runtime::ServoReport& rep = played.report;
   const auto& map = c.calibration().roughness_map();
   // Roughness is a property of textures (the map relates a texture's peak lateral force to it);

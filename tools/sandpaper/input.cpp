@@ -1,6 +1,7 @@
 #include <iostream>
 
 #include "cli.hpp"
+#include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
 namespace sandpaper::cli {
@@ -11,22 +12,6 @@ compiler::Compiler make_compiler(const CommonOptions& o) {
   if (!o.library_dir.empty()) co.library_dir = o.library_dir;
   if (!o.calibration_dir.empty()) co.calibration_dir = o.calibration_dir;
   return compiler::Compiler(co);
-}
-
-nlohmann::json diagnostics_json(const compiler::Diagnostics& ds) {
-  auto arr = nlohmann::json::array();
-  for (const auto& d : ds.all()) {
-    nlohmann::json j{{"code", d.code},
-                     {"severity", d.severity == compiler::Severity::Error ? "error" : "warning"},
-                     {"location", d.location.str()},
-                     {"line", d.location.line},
-                     {"column", d.location.column},
-                     {"message", d.message},
-                     {"suggestion", d.suggestion}};
-    for (const auto& n : d.notes) j["notes"].push_back({{"location", n.location.str()}, {"message", n.message}});
-    arr.push_back(std::move(j));
-  }
-  return arr;
 }
 
 std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Compiler& c, bool allow_patch) {

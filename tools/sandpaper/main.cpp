@@ -52,6 +52,8 @@ int main(int argc, char** argv) {
   run->add_flag("--virtual-clock", virtual_clock, "run on simulated time, as fast as possible (deterministic)");
   bool live = false;
   run->add_flag("--live", live, "print live servo figures on stderr once a second (default when stderr is a terminal)");
+  bool watch = false;
+  run->add_flag("--watch", watch, "recompile the file whenever it is saved and swap it in while playing (until Ctrl-C unless --duration)");
   RunDeviceOptions run_device;
   add_run_device_options(run, run_device);
   auto* inspect = app.add_subcommand("inspect", "print a patch program");
@@ -94,6 +96,22 @@ int main(int argc, char** argv) {
 
   auto* devices = app.add_subcommand("devices", "list the USB force-feedback (HID PID) joysticks present");
   devices->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+
+  auto* preview = app.add_subcommand("preview", "write a material's preview pictures: shaded height field, force field, force along a scan line");
+  add_common(preview, o, true);
+  std::string preview_dir;
+  int preview_side = 512;
+  preview->add_option("-o,--output", preview_dir, "folder to write height.png, field.png, scan.svg and preview.json into")->required();
+  preview->add_option("--side", preview_side, "longer side of the pictures, pixels")->capture_default_str();
+
+  auto* studio = app.add_subcommand("studio", "serve Sandpaper Studio: edit, see and feel a material while it plays (docs/STUDIO.md)");
+  StudioOptions studio_opts;
+  studio->add_option("path", studio_opts.path, "a material (.hmat), a workspace (.hws) or a folder; the studio works inside its folder")->capture_default_str();
+  studio->add_option("--device", o.device, "sim (Dummy mode: the mouse moves the hand) or usb (the first HID PID joystick)")->capture_default_str();
+  studio->add_option("--listen", studio_opts.listen, "ADDR:PORT to serve on (port 0: any free port); a non-loopback address is warned about")->capture_default_str();
+  studio->add_option("--rate", studio_opts.rate_hz, "servo rate, Hz")->capture_default_str();
+  studio->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY or the shipped library/)");
+  studio->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
 
   CalibrateOptions calibrate_opts;
   add_calibrate_command(app, calibrate_opts);
@@ -141,8 +159,9 @@ int main(int argc, char** argv) {
         ro.live = live || isatty(STDERR_FILENO);
         return cmd_workspace_run(o, ro);
       }
+      if (watch && !run->count("--duration")) duration = 0;
       return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock, live || isatty(STDERR_FILENO),
-                     run_device);
+                     run_device, watch);
     }
     if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);
     if (show->parsed()) return cmd_movie_show(show_file, o.json);
@@ -153,6 +172,14 @@ int main(int argc, char** argv) {
       return cmd_library(o);
     }
     if (array->parsed()) return cmd_array(ao);
+    if (preview->parsed()) {
+      if (!needs_input(preview)) return kExitUsage;
+      return cmd_preview(o, preview_dir, preview_side);
+    }
+    if (studio->parsed()) {
+      studio_opts.listen_given = studio->count("--listen") > 0;
+      return cmd_studio(o, studio_opts);
+    }
     if (devices->parsed()) return cmd_devices(o);
     if (const int rc = cmd_calibrate(calibrate_opts); rc >= 0) return rc;
   } catch (const sandpaper::schema::PatchFormatError& e) {

@@ -57,7 +57,7 @@ void print_live(const runtime::TelemetryReader& reader, std::uint64_t dropped) {
 }  // namespace
 
 Played play(runtime::Device& device, runtime::ForceSource& source, runtime::ServoConfig config, bool virtual_clock,
-            bool live, std::size_t keep_records) {
+            bool live, std::size_t keep_records, const std::function<void()>& poll) {
   StopOnSignal signals;
   config.stop_request = &stop_requested;
   // The virtual clock runs the loop on this thread as fast as it can, so nothing drains the ring
@@ -78,6 +78,7 @@ Played play(runtime::Device& device, runtime::ForceSource& source, runtime::Serv
     while (!servo.finished()) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       reader.drain_nonrt();
+      if (poll) poll();
       if (live && std::chrono::steady_clock::now() >= next_live) {
         print_live(reader, ring.dropped());
         next_live += std::chrono::seconds(1);

@@ -3,6 +3,7 @@
 // virtual clock), Ctrl-C / SIGTERM as a stop request, telemetry drained from the lock-free ring
 // (live figures on stderr, the records kept for --trace), the real-time note printed once.
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "sandpaper/runtime/servo_loop.hpp"
@@ -16,8 +17,9 @@ struct Played {
 
 // `keep_records`: how many tick records to keep (the run's tick count for --trace, else 0).
 // `live`: print a line of figures on stderr once a second while playing (real time only).
+// `poll`: called on this thread about every 20 ms while playing in real time (run --watch reloads there).
 Played play(runtime::Device& device, runtime::ForceSource& source, runtime::ServoConfig config, bool virtual_clock,
-            bool live, std::size_t keep_records);
+            bool live, std::size_t keep_records, const std::function<void()>& poll = {});
 
 // Exit status for a finished run: 0 when it completed or was stopped by a signal, else 1.
 int exit_status_of(const runtime::ServoReport& report);

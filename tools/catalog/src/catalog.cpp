@@ -126,7 +126,10 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
       view.picture_file = e.name + ".png";
       view.shade_file = e.name + ".shade";
       write_png(tmp.path / "entries" / view.picture_file, picture);
-      write_png(tmp.path / "entries" / (e.name + "-thumb.png"), picture, options.thumbnail_side);
+      // Thumbnails share one scale (options.thumbnail_window_m across), so that the index compares
+      // materials' sizes and coarseness at a glance; the entry page's picture keeps the material's own.
+      write_png(tmp.path / "entries" / (e.name + "-thumb.png"),
+                render_picture_window(program, options.thumbnail_window_m, options.thumbnail_side));
       schema::write_shade_file(tmp.path / "entries" / view.shade_file, picture.shade);
       row.thumbnail = "entries/" + e.name + "-thumb.png";
     }

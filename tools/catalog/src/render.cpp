@@ -96,6 +96,29 @@ std::string why_not_pictured(const schema::Term& term) {
       term);
 }
 
+namespace {
+
+// Shades `drawn` (only terms with a surface) over pic's window at pic's pixel size.
+void shade_window(const schema::PatchProgram& drawn, Picture& pic) {
+  const double ps = pic.pixel_m;
+  runtime::PatchEvaluator eval(drawn);
+  const std::size_t n = static_cast<std::size_t>(pic.nx) * pic.ny;
+  std::vector<double> sx(n), sy(n);
+  runtime::HandState hand;
+  for (int row = 0; row < pic.ny; ++row)
+    for (int col = 0; col < pic.nx; ++col) {
+      // Pixel centres; row 0 is the top of the picture, +y in patch coordinates.
+      hand.position_m = {-0.5 * pic.window_m[0] + (col + 0.5) * ps, 0.5 * pic.window_m[1] - (row + 0.5) * ps};
+      const glm::dvec2 f = eval.force_rt(hand, 0.0);
+      const std::size_t i = static_cast<std::size_t>(row) * pic.nx + col;
+      sx[i] = -f.x;  // F = -grad U: the surface rises against the force
+      sy[i] = -f.y;
+    }
+  pic.shade = compiler::shade_slopes(pic.nx, pic.ny, sx, sy, std::nullopt);
+}
+
+}  // namespace
+
 Picture render_picture(const schema::PatchProgram& program, int max_side) {
   Picture pic;
   schema::PatchProgram drawn = program;  // only the terms with a surface, evaluated as the runtime would
@@ -133,20 +156,7 @@ Picture render_picture(const schema::PatchProgram& program, int max_side) {
   pic.window_m[0] = pic.nx * ps;
   pic.window_m[1] = pic.ny * ps;
 
-  runtime::PatchEvaluator eval(drawn);
-  const std::size_t n = static_cast<std::size_t>(pic.nx) * pic.ny;
-  std::vector<double> sx(n), sy(n);
-  runtime::HandState hand;
-  for (int row = 0; row < pic.ny; ++row)
-    for (int col = 0; col < pic.nx; ++col) {
-      // Pixel centres; row 0 is the top of the picture, +y in patch coordinates.
-      hand.position_m = {-0.5 * pic.window_m[0] + (col + 0.5) * ps, 0.5 * pic.window_m[1] - (row + 0.5) * ps};
-      const glm::dvec2 f = eval.force_rt(hand, 0.0);
-      const std::size_t i = static_cast<std::size_t>(row) * pic.nx + col;
-      sx[i] = -f.x;  // F = -grad U: the surface rises against the force
-      sy[i] = -f.y;
-    }
-  pic.shade = compiler::shade_slopes(pic.nx, pic.ny, sx, sy, std::nullopt);
+  shade_window(drawn, pic);
 
   std::string what;
   if (heights && !potentials)
@@ -164,6 +174,23 @@ Picture render_picture(const schema::PatchProgram& program, int max_side) {
                 ". Slopes are the program's force field as the runtime evaluates it (F = -k grad h), shaded as "
                 "Sandpaper's .shade pictures: Lambertian, lit from the upper left (azimuth 135\xC2\xB0, elevation "
                 "45\xC2\xB0), the steepest slope drawn at 45\xC2\xB0.";
+  return pic;
+}
+
+Picture render_picture_window(const schema::PatchProgram& program, double window_side_m, int side) {
+  if (!(window_side_m > 0) || side < 1) throw std::invalid_argument("render_picture_window: window and side must be positive");
+  Picture pic;
+  schema::PatchProgram drawn = program;
+  drawn.terms.clear();
+  for (const auto& t : program.terms)
+    if (picture_role(t) != PictureRole::None) drawn.terms.push_back(t);
+    else pic.left_out.push_back(why_not_pictured(t));
+  if (drawn.terms.empty()) return pic;
+  pic.nx = pic.ny = side;
+  pic.pixel_m = window_side_m / side;
+  pic.window_m[0] = pic.window_m[1] = window_side_m;
+  shade_window(drawn, pic);
+  pic.caption = "Height field, " + mm(window_side_m) + " square around the patch centre (common scale)";
   return pic;
 }
 

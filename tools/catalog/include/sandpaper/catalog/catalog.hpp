@@ -18,6 +18,7 @@ struct CatalogOptions {
   bool progress_is_tty = false;       // a "\r" counter rather than a line every 10 entries
   int picture_side = 512;             // pixels, the longer side of an entry's picture at most
   int thumbnail_side = 128;           // pixels, the index's thumbnails
+  double thumbnail_window_m = 0.04;   // every thumbnail shows this square (m) around its patch centre
 };
 
 struct CatalogFailure {

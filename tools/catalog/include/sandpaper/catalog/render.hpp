@@ -42,6 +42,11 @@ struct Picture {
 // An empty picture (with left_out filled) when no term has a surface.
 Picture render_picture(const schema::PatchProgram& program, int max_side = 512);
 
+// The same shading over a square window of `window_side_m` (m) around the patch centre at `side` pixels,
+// whatever the material's own scale: pictures of different materials drawn this way compare at a glance
+// (the catalog's thumbnails). Throws std::invalid_argument for a non-positive window or side.
+Picture render_picture_window(const schema::PatchProgram& program, double window_side_m, int side);
+
 // The picture as an 8-bit grey PNG (255 = white), via OpenImageIO; `side` > 0 resizes it so that its
 // longer side is `side` pixels (a thumbnail). Throws std::runtime_error when the file cannot be written.
 void write_png(const std::filesystem::path& file, const Picture& picture, int side = 0);

@@ -1,0 +1,189 @@
+#!/usr/bin/env python3
+"""The studio's HTTP contract (docs/STUDIO.md), against a running `sandpaper studio` on the simulated
+joystick: health, compile (the same object as `sandpaper compile --json`), state, parameter (the new
+compiled force within 200 ms, ticks rising), hand (Dummy mode), the Host/Origin refusal, the folder
+confinement, a broken material leaving the last good program playing, saving, and Ctrl-C.
+
+Exit 0 pass, 1 fail. Prints 'N passed, N failed'."""
+import argparse
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from studio_process import Studio  # noqa: E402
+
+passed, failed = 0, []
+
+
+def check(ok, what):
+    global passed
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if ok:
+        passed += 1
+    else:
+        failed.append(what)
+    return ok
+
+
+def poll(studio, predicate, seconds):
+    """The first state within `seconds` that satisfies `predicate`, with the time it took; else (last, None)."""
+    t0 = time.monotonic()
+    s = studio.state()
+    while not predicate(s):
+        if time.monotonic() - t0 > seconds:
+            return s, None
+        time.sleep(0.005)
+        s = studio.state()
+    return s, time.monotonic() - t0
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sandpaper", required=True)
+    ap.add_argument("--examples", required=True)
+    args = ap.parse_args()
+    sandpaper = os.path.abspath(args.sandpaper)
+    examples = pathlib.Path(args.examples).resolve()
+
+    tmp = pathlib.Path(tempfile.mkdtemp(prefix="sandpaper-studio-api-"))
+    folder = tmp / "examples"
+    shutil.copytree(examples, folder)
+    (tmp / "library").symlink_to(examples.parent / "library")  # the examples' images: ../library/images
+    outside = tmp / "outside.hmat"
+    outside.write_text("roughness 0.5\n")
+    (folder / "escape.hmat").symlink_to(outside)
+    original = (folder / "corduroy.hmat").read_text()
+
+    studio = Studio(sandpaper, folder / "corduroy.hmat")
+    try:
+        status, health = studio.get("/api/health")
+        check(status == 200 and health.get("ok") is True and isinstance(health.get("version"), str),
+              f"GET /api/health: {health}")
+
+        # POST /api/compile: the same object as the CLI's, run from the same folder on the same file name.
+        text = (folder / "corduroy.hmat").read_text()
+        status, compiled = studio.post("/api/compile", text, content_type="text/plain")
+        cli = subprocess.run([sandpaper, "compile", "corduroy.hmat", "--json", "-o", str(tmp / "c.patch")],
+                             cwd=folder, capture_output=True, text=True)
+        expected = json.loads(cli.stdout)
+        expected["output"] = None
+        check(status == 200 and compiled == expected,
+              "POST /api/compile equals `sandpaper compile --json` (but for the patch written)")
+        status, bad = studio.post("/api/compile", text.replace("period 3.2 mm", "period 3.2 mn"), content_type="text/plain")
+        d = bad.get("diagnostics", [{}])[0]
+        check(status == 200 and bad.get("ok") is False and d.get("line") == 6 and d.get("code") == "E0204"
+              and "mn" in d.get("message", "") and isinstance(d.get("column"), int),
+              f"a typo compiles to a diagnostic at its line: {d.get('line')}:{d.get('column')} {d.get('code')} {d.get('message')}")
+
+        s1 = studio.state()
+        keys = {"ticks", "rate_hz", "overruns", "max_lateral_force_N", "material", "hand", "force_N"}
+        check(keys <= set(s1), f"GET /api/state has {sorted(keys)}")
+        s2, took = poll(studio, lambda s: s["ticks"] > s1["ticks"] + 50, 10)
+        check(took is not None and s2["running"], f"ticks rise: {s1['ticks']} -> {s2['ticks']}")
+        check(s2["material"] == "corduroy/wide-wale", f"the opened file plays: {s2['material']}")
+
+        # POST /api/parameter: recompiled, swapped, and shown by /api/state within 200 ms.
+        before = studio.state()
+        status, r = studio.post("/api/parameter", {"name": "roughness", "value": 0.8})
+        t_answer = time.monotonic()
+        check(status == 200 and r.get("ok") is True, "POST /api/parameter roughness 0.8 compiles")
+        new_force = r.get("max_lateral_force_N", 0)
+        seen = []
+
+        def shows_new(s):
+            seen.append(s["ticks"])
+            return abs(s["max_lateral_force_N"] - new_force) < 1e-9 and s["material_version"] == r["version"]
+
+        after, _ = poll(studio, shows_new, 5)
+        took = time.monotonic() - t_answer
+        check(new_force > before["max_lateral_force_N"] * 1.2,
+              f"roughness 0.8 compiles to a larger force: {before['max_lateral_force_N']:.4f} -> {new_force:.4f} N")
+        check(shows_new(after) and took <= 0.2, f"/api/state shows the new compiled force {took * 1000:.0f} ms after the answer")
+        check(all(b >= a for a, b in zip(seen, seen[1:])) and seen[-1] > before["ticks"],
+              f"ticks never went backwards and kept rising ({before['ticks']} -> {seen[-1]})")
+        check("roughness 0.8 " in r.get("text", "") and r["text"].count("\n") == original.count("\n"),
+              "the edit changed the number in the text and nothing else")
+        status, e = studio.post("/api/parameter", {"name": "grating.period", "value": 2, "unit": "N"})
+        check(status == 400 and "length" in e.get("error", ""), f"a force unit for a period is refused: {e}")
+        status, e = studio.post("/api/parameter", {"name": "nope", "value": 2})
+        check(status == 400 and "grating.period" in e.get("error", ""), "an unknown parameter is refused, naming the known ones")
+
+        # A broken material never stops the loop: the last good program keeps playing.
+        playing = studio.state()
+        status, broken = studio.post("/api/material", r["text"].replace("grating period", "grating perod"),
+                                     content_type="text/plain")
+        check(status == 200 and broken["ok"] is False and broken["diagnostics"], "POST /api/material with a typo: diagnostics")
+        later, took = poll(studio, lambda s: s["ticks"] > playing["ticks"] + 100, 10)
+        check(took is not None and later["material_version"] == playing["material_version"]
+              and later["max_lateral_force_N"] == playing["max_lateral_force_N"] and later["running"],
+              "after the broken material the last good program still plays, ticking")
+        status, fixed = studio.post("/api/material", r["text"], content_type="text/plain")
+        check(fixed["ok"] is True and fixed["version"] > playing["material_version"], "the fixed text plays again")
+
+        # Dummy mode: the simulated hand goes where the mouse puts it.
+        status, h = studio.post("/api/hand", {"x_mm": 4.0, "y_mm": -3.0})
+        moved, took = poll(studio, lambda s: abs(s["hand"][0] - 4) < 1e-6 and abs(s["hand"][1] + 3) < 1e-6, 5)
+        check(status == 200 and took is not None, f"POST /api/hand moves the hand: {moved['hand']}")
+        status, e = studio.post("/api/hand", {"x_mm": "left"})
+        check(status == 400, "a hand without numbers is refused")
+
+        # The guard: another Host (DNS rebinding) or another Origin (a page elsewhere) is refused.
+        status, e = studio.get("/api/health", headers={"Host": "evil.example:80"})
+        check(status == 403, f"a foreign Host is refused: {status} {e}")
+        status, e = studio.post("/api/hand", {"x_mm": -20.0, "y_mm": 0.0}, headers={"Origin": "http://evil.example"})
+        check(status == 403, f"a foreign Origin is refused: {status} {e}")
+        time.sleep(0.05)  # (would let a wrongly accepted target be reached; the check is on the position)
+        check(abs(studio.state()["hand"][0] - 4) < 1e-6, "the refused request did not move the hand")
+        status, _ = studio.get("/", headers={"Host": "localhost:%d" % studio.port})
+        check(status == 200, "localhost:PORT is this studio too")
+        status, e = studio.post("/api/save", "", headers={"Origin": "http://127.0.0.1:1"})
+        check(status == 403, "another port's origin is refused")
+
+        # The folder: paths that climb out, absolute paths and links that lead out are refused.
+        for name in ["../outside.hmat", str(outside), "escape.hmat", "workspace/../../outside.hmat"]:
+            status, e = studio.post("/api/open", {"file": name})
+            check(status == 403 and "outside" in e.get("error", ""), f"open {name!r} is refused: {status}")
+        status, e = studio.post("/api/open", {"file": "missing.hmat"})
+        check(status == 404, "a missing file is 404")
+        check(outside.read_text() == "roughness 0.5\n", "the file outside is untouched")
+
+        # Saving writes the edited text atomically; the comments stay.
+        status, r = studio.post("/api/parameter", {"name": "grating.period", "value": 2.8, "unit": "mm"})
+        status, saved = studio.post("/api/save", "")
+        now = (folder / "corduroy.hmat").read_text()
+        check(status == 200 and now == original.replace("roughness 0.55", "roughness 0.8").replace("period 3.2 mm", "period 2.8 mm"),
+              "save rewrote exactly the two numbers, comments and layout intact")
+        check(sorted(p.name for p in folder.iterdir() if p.name.startswith(".")) == [], "no temporary file left beside it")
+
+        # Workspaces: the canvas' view and moving a patch.
+        status, opened = studio.post("/api/open", {"file": "workspace/sampler.hws"})
+        check(status == 200 and opened["ok"], "a workspace opens and plays")
+        status, ws = studio.get("/api/workspace")
+        check(status == 200 and len(ws["patches"]) == 7, f"GET /api/workspace lists its 7 patches")
+        status, moved = studio.post("/api/workspace/patch", {"index": 6, "x_mm": 5, "y_mm": 10, "width_mm": 24, "height_mm": 18})
+        check(status == 200 and moved["ok"] and 'at 5 mm, 10 mm size 24 mm x 18 mm' in moved["text"],
+              "moving and resizing a patch rewrites its numbers")
+        status, ws = studio.get("/api/workspace")
+        near = lambda a, b: all(abs(x - y) < 1e-9 for x, y in zip(a, b))
+        check(near(ws["patches"][6]["centre_mm"], [5, 10]) and near(ws["patches"][6]["size_mm"], [24, 18]),
+              "the recompiled workspace has the patch where it was put")
+        status, png = studio.get("/api/preview/patch-0.png")
+        check(status == 200 and png[:8] == b"\x89PNG\r\n\x1a\n", "each patch has its picture")
+        status, e = studio.get("/api/preview/..%2Fsecret")
+        check(status == 404, "preview names outside the fixed set are 404")
+    finally:
+        code, out, err = studio.stop()
+    check(code == 0 and "force at zero" in out, f"Ctrl-C stops the studio with the force at zero (exit {code})")
+    shutil.rmtree(tmp, ignore_errors=True)
+    print(f"{passed} passed, {len(failed)} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,231 @@
+#!/usr/bin/env python3
+"""The studio's real page in headless Chromium against a running `sandpaper studio` on the simulated
+joystick (docs/STUDIO.md): types a typo into the editor and finds the compiler's diagnostic at its line;
+fixes it; drags the roughness slider and sees /api/state report the new compiled force with ticks still
+rising; drags the mouse over the preview and sees the hand and the force vector move (Dummy mode);
+saves and finds the file rewritten with its comments; shows a workspace in Normal, Depth and Blind.
+Screenshots: <out>/studio.png, <out>/studio-workspace.png.
+
+Exit 0 pass, 1 fail (including: Chromium missing), 77 skipped (SANDPAPER_SKIP_BROWSER_TESTS=1).
+Prints 'N passed, N failed'."""
+import argparse
+import json
+import os
+import pathlib
+import re
+import shutil
+import sys
+import tempfile
+import threading
+import time
+
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
+sys.path.insert(0, os.path.join(here, "..", "catalog"))
+from cdp import Browser, find_chromium  # noqa: E402
+from studio_process import Studio  # noqa: E402
+
+passed, failed = 0, []
+
+
+def check(ok, what):
+    global passed
+    print(("ok   " if ok else "FAIL ") + what, flush=True)
+    if ok:
+        passed += 1
+    else:
+        failed.append(what)
+    return ok
+
+
+def key(b, name, code):
+    for kind in ("rawKeyDown", "keyUp"):
+        b.send("Input.dispatchKeyEvent", {"type": kind, "key": name, "code": name, "windowsVirtualKeyCode": code})
+
+
+def mouse(b, kind, x, y, buttons=1):
+    b.send("Input.dispatchMouseEvent", {"type": kind, "x": x, "y": y, "button": "left", "buttons": buttons,
+                                        "clickCount": 1})
+
+
+def click_at_text(b, needle, after=True):
+    """A real click in the editor just after (or before) the first occurrence of `needle`."""
+    xy = b.evaluate("""(() => { const v = window.studio.editor; const i = v.state.doc.toString().indexOf(%s);
+        if (i < 0) return null; const c = v.coordsAtPos(i + (%s ? %d : 0)); return [c.left, (c.top + c.bottom) / 2]; })()"""
+                    % (json.dumps(needle), "true" if after else "false", len(needle)))
+    if xy is None:
+        raise RuntimeError("the editor has no " + needle)
+    mouse(b, "mousePressed", xy[0] + 0.5, xy[1])
+    mouse(b, "mouseReleased", xy[0] + 0.5, xy[1], 0)
+
+
+def wait(b, expression, what, seconds=10):
+    t0 = time.monotonic()
+    try:
+        b.wait_for(expression, what, seconds)
+        return time.monotonic() - t0
+    except Exception:
+        return None
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sandpaper", required=True)
+    ap.add_argument("--examples", required=True)
+    ap.add_argument("--out", required=True)
+    args = ap.parse_args()
+    if os.environ.get("SANDPAPER_SKIP_BROWSER_TESTS") == "1":
+        print("skipped: SANDPAPER_SKIP_BROWSER_TESTS=1")
+        return 77
+    chromium = find_chromium()
+    if not chromium:
+        print("FAIL Chromium is not installed (tools/install-deps.sh installs Debian's chromium)")
+        return 1
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    examples = pathlib.Path(args.examples).resolve()
+    tmp = pathlib.Path(tempfile.mkdtemp(prefix="sandpaper-studio-browser-"))
+    folder = tmp / "examples"
+    shutil.copytree(examples, folder)
+    (tmp / "library").symlink_to(examples.parent / "library")
+    original = (folder / "corduroy.hmat").read_text()
+
+    studio = Studio(os.path.abspath(args.sandpaper), folder / "corduroy.hmat")
+    b = Browser(chromium, width=1400, height=1000)
+    try:
+        b.navigate(studio.url)
+        check(wait(b, "document.body.dataset.ready === 'yes'", "the page to load", 30) is not None, "the page loads")
+        check(b.evaluate("window.studio.text()") == original, "the editor holds the file's text")
+        check(wait(b, "document.querySelector('#picture').complete && document.querySelector('#picture').naturalWidth > 0",
+                   "the preview picture") is not None, "the preview shows the height field")
+        check(wait(b, "document.querySelector('#scan svg .force-along') !== null", "the scan plot") is not None
+              and b.evaluate("[...document.querySelectorAll('#scan svg .axis-label')].map(e => e.textContent).join('|')").count("mm") >= 1,
+              "the force plot is drawn with axes in mm and N")
+
+        # A typo: "mm" -> "mn" in the grating's period, as typed at the keyboard.
+        click_at_text(b, "3.2 mm")
+        key(b, "Backspace", 8)
+        b.send("Input.insertText", {"text": "n"})
+        t = wait(b, "document.querySelector('#diagnostics li[data-line=\"6\"][data-code=\"E0204\"]') !== null",
+                 "the diagnostic at line 6")
+        check(t is not None, f"the typo's diagnostic E0204 is listed at line 6 ({(t or 0) * 1000:.0f} ms after the keystroke)")
+        check(wait(b, "document.querySelector('.cm-lintRange-error') !== null", "the squiggle") is not None,
+              "and squiggled in the editor")
+        squiggle = b.evaluate("document.querySelector('.cm-lintRange-error').textContent")
+        check("mn" in squiggle, f"under the bad unit: {squiggle!r}")
+        check(b.evaluate("document.body.dataset.compiles") == "no", "the page says it does not compile")
+        check(studio.state()["material"] == "corduroy/wide-wale", "the last good program keeps playing")
+
+        key(b, "Backspace", 8)
+        b.send("Input.insertText", {"text": "m"})
+        check(wait(b, "document.body.dataset.compiles === 'yes' && document.querySelectorAll('#diagnostics li.error').length === 0",
+                   "the fix to compile") is not None, "fixed: no errors, it compiles")
+        check(b.evaluate("window.studio.text()") == original, "the text is the file's again")
+
+        # Drag the roughness slider to the right.
+        before = studio.state()
+        box = b.evaluate("""(() => { const e = document.querySelector('input[data-name="roughness"]'); e.scrollIntoView({block: 'center'});
+            const r = e.getBoundingClientRect(); return [r.left, r.top + r.height / 2, r.width, +e.min, +e.max, +e.value]; })()""")
+        left, y, width, lo, hi, value = box
+        x0 = left + 8 + (width - 16) * (value - lo) / (hi - lo)
+        x1 = left + 8 + (width - 16) * 0.85
+        # /api/state as it changes, every few milliseconds, on a thread of its own while the hand drags.
+        series, stop_polling = [], threading.Event()
+
+        def poll_state():
+            while not stop_polling.is_set():
+                series.append((time.monotonic(), studio.state()))
+                time.sleep(0.003)
+
+        poller = threading.Thread(target=poll_state)
+        poller.start()
+        mouse(b, "mousePressed", x0, y)
+        for i in range(1, 11):
+            mouse(b, "mouseMoved", x0 + (x1 - x0) * i / 10, y)
+        mouse(b, "mouseReleased", x1, y, 0)
+        released = time.monotonic()
+        settled = wait(b, "document.body.dataset.sliderBusy === 'no'", "the slider's last answer")
+        time.sleep(0.3)
+        stop_polling.set()
+        poller.join()
+        text = b.evaluate("window.studio.text()")
+        check(re.search(r"roughness 0\.[6-9]|roughness 1\.", text) is not None and settled is not None,
+              "the slider rewrote the number in the editor's text")
+        status, expected = studio.post("/api/compile", text, content_type="text/plain")
+        want = expected["max_lateral_force_N"]
+        series = [(t, st) for t, st in series if t >= released]
+        first = next((t for t, st in series if abs(st["max_lateral_force_N"] - want) < 1e-9), None)
+        ticks = [st["ticks"] for _, st in series]
+        check(first is not None and want > before["max_lateral_force_N"],
+              f"/api/state reports the final compiled force {want:.4f} N (was {before['max_lateral_force_N']:.4f} N)")
+        took = (first or time.monotonic()) - released
+        check(took <= 0.2, f"within 200 ms of releasing the slider ({took * 1000:.0f} ms)")
+        check(all(b2 >= a for a, b2 in zip(ticks, ticks[1:])) and ticks[-1] > before["ticks"],
+              f"ticks still rising ({before['ticks']} -> {ticks[-1]})")
+
+        # Dummy mode: drag over the preview; the hand and the force vector follow.
+        stage = b.evaluate("""(() => { const e = document.querySelector('#stage'); e.scrollIntoView({block: 'center'});
+            const r = e.getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; })()""")
+        sx, sy, sw, sh = stage
+        hands, arrows, forces = set(), set(), []
+        mouse(b, "mousePressed", sx + sw * 0.2, sy + sh * 0.5)
+        for i in range(41):
+            mouse(b, "mouseMoved", sx + sw * (0.2 + 0.6 * i / 40), sy + sh * (0.5 - 0.1 * i / 40))
+            time.sleep(0.03)  # the hand's own pace: 30 ms a step, as a person drags
+            hands.add(b.evaluate("document.querySelector('#stage').dataset.hand"))
+            arrows.add(b.evaluate("document.querySelector('#stage').dataset.arrowPx"))
+            forces.append(studio.state()["force_N"])
+        mouse(b, "mouseReleased", sx + sw * 0.8, sy + sh * 0.4, 0)
+        window_mm = b.evaluate("window.studio.state.preview.window_mm")
+        target = [(0.8 - 0.5) * window_mm[0], (0.5 - 0.4) * window_mm[1]]
+        status_ok = wait(b, "(() => { const h = document.querySelector('#stage').dataset.hand.split(',').map(Number);"
+                            " return Math.abs(h[0] - %f) < 0.05 && Math.abs(h[1] - %f) < 0.05; })()" % tuple(target),
+                         "the hand to reach the mouse", 10)
+        check(status_ok is not None, f"the hand on the page follows the mouse to ({target[0]:.2f}, {target[1]:.2f}) mm")
+        s = studio.state()
+        check(abs(s["hand"][0] - target[0]) < 0.05 and abs(s["hand"][1] - target[1]) < 0.05,
+              f"and so does /api/state's hand: {s['hand']}")
+        check(len(hands) > 10, f"the hand moved through {len(hands)} positions on the page")
+        check(len(arrows) > 10, f"the force vector moved: {len(arrows)} distinct arrow tips")
+        check(max(abs(f[0]) for f in forces) > 0.2, f"crossing the ribs pushes the hand: |Fx| up to {max(abs(f[0]) for f in forces):.3f} N")
+        b.screenshot(str(out / "studio.png"), full_page=False)
+
+        # Save (Ctrl-S in the editor): the file gets the new number, and keeps its comments.
+        click_at_text(b, "describes", after=False)
+        b.send("Input.dispatchKeyEvent", {"type": "rawKeyDown", "key": "s", "code": "KeyS", "modifiers": 2,
+                                          "windowsVirtualKeyCode": 83})
+        b.send("Input.dispatchKeyEvent", {"type": "keyUp", "key": "s", "code": "KeyS", "modifiers": 2, "windowsVirtualKeyCode": 83})
+        check(wait(b, "document.querySelector('#saved').textContent === 'saved'", "the save") is not None, "Ctrl-S saves")
+        saved = (folder / "corduroy.hmat").read_text()
+        old_lines, new_lines = original.splitlines(), saved.splitlines()
+        changed = [i for i, (a, c) in enumerate(zip(old_lines, new_lines)) if a != c]
+        check(saved == text and len(old_lines) == len(new_lines) and changed == [4],
+              f"the file was rewritten with only the roughness line changed: {new_lines[4].strip()!r}")
+        comments = [l[l.index("#"):] for l in old_lines if "#" in l]
+        check(all(c in saved for c in comments), f"all {len(comments)} comments are still there, word for word")
+
+        # A workspace on the canvas, in the thesis' three display modes.
+        b.evaluate("(() => { const s = document.querySelector('#file'); s.value = 'workspace/sampler.hws';"
+                   " s.dispatchEvent(new Event('change')); })()")
+        check(wait(b, "document.querySelectorAll('#patches .patch').length === 7", "the workspace's patches") is not None,
+              "the workspace's 7 patches are on the canvas")
+        check(b.evaluate("getComputedStyle(document.querySelector('#patches .patch')).backgroundImage").startswith("url("),
+              "Normal mode shows each patch's picture")
+        b.screenshot(str(out / "studio-workspace.png"), full_page=False)
+        b.click("input[name=mode][value=blind]")
+        check(wait(b, "[...document.querySelectorAll('#patches .patch')].every(p => getComputedStyle(p).backgroundColor === 'rgb(0, 0, 0)')",
+                   "Blind mode") is not None, "Blind mode draws black rectangles")
+        b.click("input[name=mode][value=depth]")
+        check(wait(b, "document.querySelector('#patches .patch').style.backgroundImage.includes('-field.png')", "Depth mode") is not None,
+              "Depth mode draws each patch's field")
+    finally:
+        b.close()
+        code, printed, err = studio.stop()
+    check(code == 0, f"the studio stops on Ctrl-C (exit {code})")
+    shutil.rmtree(tmp, ignore_errors=True)
+    print(f"{passed} passed, {len(failed)} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

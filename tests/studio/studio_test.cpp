@@ -1,0 +1,200 @@
+// The studio's parts below HTTP: the request guard (Host, Origin, folder confinement), the Dummy-mode
+// joystick, and the session on a running loop (a broken compile leaves the last good program playing;
+// saving rewrites only the file's text, atomically).
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "sandpaper/runtime/dummy_joystick.hpp"
+#include "sandpaper/runtime/sim_joystick.hpp"
+#include "sandpaper/studio/request_guard.hpp"
+#include "sandpaper/studio/session.hpp"
+#include "test_support.hpp"
+
+namespace sandpaper {
+namespace {
+namespace fs = std::filesystem;
+using studio::Listen;
+
+TEST(RequestGuard, AcceptsOnlyThisServersHostNames) {
+  const Listen l{"127.0.0.1", 4780};
+  EXPECT_TRUE(studio::host_allowed("127.0.0.1:4780", l));
+  EXPECT_TRUE(studio::host_allowed("localhost:4780", l));
+  EXPECT_TRUE(studio::host_allowed("LOCALHOST:4780", l));
+  EXPECT_TRUE(studio::host_allowed("[::1]:4780", l));
+  EXPECT_FALSE(studio::host_allowed("127.0.0.1:4781", l));
+  EXPECT_FALSE(studio::host_allowed("evil.example:4780", l));  // DNS rebinding
+  EXPECT_FALSE(studio::host_allowed("localhost", l));
+  EXPECT_FALSE(studio::host_allowed("", l));
+  const Listen lan{"192.0.2.7", 80};
+  EXPECT_TRUE(studio::host_allowed("192.0.2.7:80", lan));
+  EXPECT_FALSE(studio::host_allowed("localhost:80", lan));
+}
+
+TEST(RequestGuard, AcceptsNoOriginOrItsOwnOnly) {
+  const Listen l{"127.0.0.1", 4780};
+  EXPECT_TRUE(studio::origin_allowed("", l));
+  EXPECT_TRUE(studio::origin_allowed("http://127.0.0.1:4780", l));
+  EXPECT_TRUE(studio::origin_allowed("http://localhost:4780", l));
+  EXPECT_FALSE(studio::origin_allowed("http://evil.example", l));
+  EXPECT_FALSE(studio::origin_allowed("https://127.0.0.1:4780", l));
+  EXPECT_FALSE(studio::origin_allowed("null", l));
+}
+
+TEST(RequestGuard, ParsesListenAddresses) {
+  EXPECT_EQ(studio::parse_listen("127.0.0.1:0").port, 0);
+  EXPECT_EQ(studio::parse_listen("[::1]:8000").host, "::1");
+  EXPECT_THROW(studio::parse_listen("127.0.0.1"), std::invalid_argument);
+  EXPECT_THROW(studio::parse_listen("127.0.0.1:99999"), std::invalid_argument);
+  EXPECT_TRUE(studio::is_loopback("127.0.0.2"));
+  EXPECT_FALSE(studio::is_loopback("0.0.0.0"));
+}
+
+TEST(RequestGuard, ConfinesPathsToTheFolder) {
+  const fs::path root = test::temp_dir("studio-confine");
+  fs::create_directories(root / "sub");
+  std::ofstream(root / "sub" / "a.hmat") << "roughness 0.5\n";
+  const fs::path outside = test::temp_dir("studio-outside");
+  fs::create_directory_symlink(outside, root / "link");
+  EXPECT_EQ(studio::confined_path(root, "sub/a.hmat"), fs::canonical(root / "sub" / "a.hmat"));
+  EXPECT_EQ(studio::confined_path(root, "sub/../sub/new.hmat"), fs::canonical(root) / "sub" / "new.hmat");
+  EXPECT_THROW(studio::confined_path(root, "../x.hmat"), studio::OutsideFolder);
+  EXPECT_THROW(studio::confined_path(root, "sub/../../x.hmat"), studio::OutsideFolder);
+  EXPECT_THROW(studio::confined_path(root, "/etc/passwd"), studio::OutsideFolder);
+  EXPECT_THROW(studio::confined_path(root, "link/x.hmat"), studio::OutsideFolder);  // a link that leads out
+  EXPECT_THROW(studio::confined_path(root, ""), studio::OutsideFolder);
+}
+
+TEST(DummyJoystick, MovesTowardTheTargetNoFasterThanItsTopSpeed) {
+  runtime::DummyJoystick j(runtime::sim_device_limits(), 0.2);
+  glm::dvec2 p;
+  ASSERT_TRUE(j.read_position_rt(0.0, p));
+  EXPECT_EQ(p, glm::dvec2(0, 0));
+  j.set_target_nonrt({0.01, 0});
+  ASSERT_TRUE(j.read_position_rt(0.001, p));  // 1 ms at 0.2 m/s: 0.2 mm
+  EXPECT_NEAR(p.x, 0.0002, 1e-12);
+  for (int i = 2; i <= 60; ++i) j.read_position_rt(i * 0.001, p);
+  EXPECT_NEAR(p.x, 0.01, 1e-12);  // arrived after 50 ms, and stays
+  ASSERT_TRUE(j.write_force_rt({0.5, -0.25}));
+  EXPECT_EQ(j.force_nonrt(), glm::dvec2(0.5, -0.25));
+  EXPECT_EQ(j.position_nonrt(), p);
+  j.set_target_nonrt({1.0, 0});  // beyond the 114 mm workspace radius: clipped to it
+  EXPECT_NEAR(j.target_nonrt().x, runtime::sim_device_limits().workspace_radius_m, 1e-12);
+  j.set_target_nonrt({std::nan(""), 0});
+  EXPECT_NEAR(j.target_nonrt().x, runtime::sim_device_limits().workspace_radius_m, 1e-12);
+}
+
+// A session on a running loop with the Dummy-mode joystick.
+struct LiveSession {
+  fs::path root = test::temp_dir("studio-session");
+  runtime::DummyJoystick* dummy = nullptr;
+  std::unique_ptr<studio::LiveLoop> loop;
+  std::unique_ptr<studio::Session> session;
+
+  LiveSession() {
+    auto d = std::make_unique<runtime::DummyJoystick>(runtime::sim_device_limits());
+    dummy = d.get();
+    loop = std::make_unique<studio::LiveLoop>(std::move(d), dummy, studio::LoopOptions{});
+    session = std::make_unique<studio::Session>(test::shipped_compiler(), *loop, root, root / ".previews");
+    loop->start_nonrt();
+  }
+  ~LiveSession() { loop->stop_nonrt(); }
+
+  // Waits (bounded) until the loop plays load `version` and has ticked past `ticks`.
+  studio::LoopState wait_for(std::uint64_t version, std::uint64_t ticks = 0) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    studio::LoopState s;
+    do {
+      s = loop->state_nonrt();
+      if (s.material_version == version && s.ticks > ticks) return s;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    } while (std::chrono::steady_clock::now() < deadline);
+    ADD_FAILURE() << "the loop never played version " << version << " past tick " << ticks << " (it plays "
+                  << s.material_version << " at tick " << s.ticks << ")";
+    return s;
+  }
+};
+
+TEST(StudioSession, ABrokenCompileLeavesTheLastGoodProgramPlaying) {
+  LiveSession live;
+  std::ofstream(live.root / "m.hmat") << "# mine\nroughness 0.5\ngrating period 3 mm\n";
+  const auto opened = live.session->open("m.hmat");
+  ASSERT_TRUE(opened["ok"].get<bool>()) << opened.dump(2);
+  const auto v1 = opened["version"].get<std::uint64_t>();
+  const auto s1 = live.wait_for(v1, 10);
+  const double f1 = s1.compiled_max_lateral_force_N;
+  EXPECT_GT(f1, 0);
+
+  const auto broken = live.session->update("# mine\nroughness 0.5\ngrating period 3 m m\n");
+  EXPECT_FALSE(broken["ok"].get<bool>());
+  ASSERT_FALSE(broken["diagnostics"].empty());
+  EXPECT_EQ(broken["diagnostics"][0]["line"], 3);
+  EXPECT_EQ(broken["version"].get<std::uint64_t>(), v1);  // nothing new offered
+  const auto s2 = live.wait_for(v1, s1.ticks + 20);       // still v1, and still ticking
+  EXPECT_TRUE(s2.running);
+  EXPECT_DOUBLE_EQ(s2.compiled_max_lateral_force_N, f1);
+
+  const auto fixed = live.session->set_parameter("roughness", 0.8, "");
+  EXPECT_FALSE(fixed["ok"].get<bool>()) << "the period's typo is still there";
+  const auto good = live.session->update("# mine\nroughness 0.8\ngrating period 3 mm\n");
+  ASSERT_TRUE(good["ok"].get<bool>());
+  const auto s3 = live.wait_for(good["version"].get<std::uint64_t>(), s2.ticks);
+  EXPECT_GT(s3.compiled_max_lateral_force_N, f1);  // rougher is a larger force (Figure 19)
+}
+
+TEST(StudioSession, SavingRewritesTheFileWithItsCommentsAndNothingElse) {
+  LiveSession live;
+  const std::string original = "# a comment that stays\nroughness 0.5   # and this one\ngrating period 3 mm hill 40%\n";
+  std::ofstream(live.root / "m.hmat") << original;
+  ASSERT_TRUE(live.session->open("m.hmat")["ok"].get<bool>());
+  const auto r = live.session->set_parameter("grating.period", 4.5, "mm");
+  ASSERT_TRUE(r["ok"].get<bool>());
+  live.session->save();
+  std::ifstream in(live.root / "m.hmat");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string expected = original;
+  expected.replace(expected.find("period 3"), 8, "period 4.5");
+  EXPECT_EQ(ss.str(), expected);
+  for (const auto& e : fs::directory_iterator(live.root))  // no temporary left beside it
+    EXPECT_TRUE(e.path().filename() == "m.hmat" || e.path().filename() == ".previews") << e.path();
+}
+
+TEST(StudioSession, RefusesFilesOutsideItsFolder) {
+  LiveSession live;
+  try {
+    live.session->open("../../etc/passwd");
+    ADD_FAILURE() << "opened a file outside the folder";
+  } catch (const studio::RequestError& e) {
+    EXPECT_EQ(e.status, 403);
+  }
+  try {
+    live.session->open("missing.hmat");
+    ADD_FAILURE() << "opened a missing file";
+  } catch (const studio::RequestError& e) {
+    EXPECT_EQ(e.status, 404);
+  }
+}
+
+TEST(StudioSession, TheDummyHandFeelsTheMaterial) {
+  LiveSession live;
+  std::ofstream(live.root / "m.hmat") << "roughness 0.6\ngrating period 2.5 mm\n";
+  const auto v = live.session->open("m.hmat")["version"].get<std::uint64_t>();
+  live.wait_for(v, 10);
+  // Stroke across the ribs: the felt maximum reaches most of the compiled force.
+  for (int i = 0; i <= 40; ++i) {
+    live.loop->set_hand_nonrt(-10 + 0.5 * i, 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  }
+  const auto s = live.loop->state_nonrt();
+  EXPECT_NEAR(s.hand_mm.x, 10, 1.0);
+  EXPECT_GT(s.felt_max_lateral_force_N, 0.5 * s.compiled_max_lateral_force_N);
+  EXPECT_LE(s.felt_max_lateral_force_N, s.compiled_max_lateral_force_N * (1 + 1e-9));
+}
+
+}  // namespace
+}  // namespace sandpaper

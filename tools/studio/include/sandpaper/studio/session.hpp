@@ -1,0 +1,103 @@
+#pragma once
+// What the studio has open: a folder, one file in it (a material or a workspace), its text as edited
+// (saved or not), and the last program that compiled, which is what plays. Every method is called
+// from the HTTP threads and serialised by the session's own mutex; none touches the servo thread
+// except through LiveLoop's non-blocking hand-over (docs/STUDIO.md).
+#include <filesystem>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/compiler/parameters.hpp"
+#include "sandpaper/schema/workspace_program.hpp"
+#include "sandpaper/studio/live_loop.hpp"
+
+namespace sandpaper::studio {
+
+// A request the studio refuses, with the HTTP status to answer and a message saying how to fix it.
+struct RequestError : std::runtime_error {
+  RequestError(int status_, const std::string& message) : std::runtime_error(message), status(status_) {}
+  int status;
+};
+
+// Material and workspace files larger than this are refused (a material is a page of text).
+inline constexpr std::size_t kMaxSourceBytes = 1 << 20;
+
+class Session {
+ public:
+  // `root`: the folder (canonical); the process's working directory is `root`, so a material's
+  // relative image paths resolve as they do for the CLI run from there. `preview_dir`: where preview
+  // pictures are rendered (a private temporary folder).
+  Session(const compiler::Compiler& compiler, LiveLoop& loop, std::filesystem::path root,
+          std::filesystem::path preview_dir);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  // The .hmat and .hws files in the folder (relative paths, sorted; at most 2000, 8 levels deep).
+  nlohmann::json files() const;
+  // Reads `relative` (confined to the folder), compiles and plays it. RequestError 403 outside the
+  // folder, 404 missing, 413 too large, 400 not a .hmat or .hws.
+  nlohmann::json open(const std::string& relative);
+  // The open file: {"file", "kind": "material"|"workspace", "text", "saved": bool, "version", ...}.
+  nlohmann::json current() const;
+
+  // POST /api/compile: compiles `text` as a material, as `sandpaper compile --json` would; plays nothing.
+  nlohmann::json compile_only(const std::string& text) const;
+  // The editor's text changed: compile it; when it compiles, it becomes what plays (hot swap) and its
+  // preview is rendered; when not, the last good program keeps playing. Returns the compile's JSON
+  // plus "parameters", "version" (of the playing program) and "playing_is_current".
+  nlohmann::json update(const std::string& text);
+  // POST /api/parameter: sets one number in the text (only its characters change) and updates.
+  // RequestError 400 for an unknown name or unit, 409 while the text does not compile.
+  nlohmann::json set_parameter(const std::string& name, double value, const std::string& unit);
+  // Writes the text to the open file atomically (temporary file + rename). Returns {"saved", "bytes"}.
+  nlohmann::json save();
+
+  // Workspaces: the canvas' view ({"name", "size_mm", "patches": [{index, source, name, centre_mm,
+  // size_mm, max_lateral_force_N, roughness}]}), and moving or resizing patch `index` (mm), which
+  // rewrites its numbers in the text and updates. RequestError 409 when the open file is a material.
+  nlohmann::json workspace() const;
+  nlohmann::json place_patch(int index, double x_mm, double y_mm, double width_mm, double height_mm);
+
+  // The preview file `name` (height.png, field.png, scan.svg, preview.json, field.json, or
+  // patch-<i>.png / patch-<i>-field.png for a workspace's patch) of the playing program, or nullopt if
+  // there is none. Waits (up to 10 s) until the program of load `min_version` or a later one is drawn.
+  std::optional<std::filesystem::path> preview_file(const std::string& name, std::uint64_t min_version = 0) const;
+
+ private:
+  nlohmann::json update_locked(const std::string& text);
+  nlohmann::json parameters_locked() const;
+  // The preview renderer's thread: draws the newest program that compiled, off the request path, so an
+  // edit is answered (and swapped in) as soon as it compiles.
+  void render_loop();
+  void render(const std::shared_ptr<const schema::PatchProgram>& program,
+              const std::shared_ptr<const schema::WorkspaceProgram>& workspace);
+
+  const compiler::Compiler& compiler_;
+  LiveLoop& loop_;
+  std::filesystem::path root_, preview_dir_;
+  mutable std::mutex mutex_;
+  mutable std::condition_variable rendered_;  // signalled when rendered_version_ changes
+  std::condition_variable to_render_;         // signalled when version_ changes or on quit
+  std::uint64_t rendered_version_ = 0;
+  bool quit_ = false;
+  std::thread renderer_;
+  std::string file_;           // relative to root_
+  bool is_workspace_ = false;
+  std::string text_;           // as edited
+  std::string saved_text_;     // as on disk
+  bool text_compiles_ = false;
+  std::uint64_t version_ = 0;  // of the playing program (LiveLoop's load version)
+  std::shared_ptr<const schema::PatchProgram> program_;
+  std::shared_ptr<const schema::WorkspaceProgram> workspace_;
+  nlohmann::json last_compile_;
+};
+
+}  // namespace sandpaper::studio

@@ -1,0 +1,241 @@
+#include "sandpaper/studio/server.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <httplib.h>
+
+namespace sandpaper::studio {
+namespace {
+
+// Connections a browser keeps open (up to 6 per host, one of them the event stream) plus scripts:
+// cpp-httplib holds a pool thread per open connection.
+constexpr std::size_t kServerThreads = 32;
+constexpr std::size_t kMaxRequestBytes = 2 << 20;
+// The event stream's rate: a strip chart and a force arrow at 30 frames a second.
+constexpr auto kEventPeriod = std::chrono::milliseconds(33);
+
+void send_json(httplib::Response& res, const nlohmann::json& j, int status = 200) {
+  res.status = status;
+  res.set_content(j.dump(), "application/json");
+}
+
+void send_error(httplib::Response& res, int status, const std::string& message) {
+  send_json(res, {{"error", message}}, status);
+}
+
+nlohmann::json body_json(const httplib::Request& req) {
+  try {
+    return nlohmann::json::parse(req.body);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw RequestError(400, std::string("the request body is not JSON: ") + e.what());
+  }
+}
+
+double number_field(const nlohmann::json& j, const char* key) {
+  if (!j.is_object() || !j.contains(key) || !j[key].is_number())
+    throw RequestError(400, std::string("expected a number \"") + key + "\" in the JSON body");
+  const double v = j[key].get<double>();
+  if (!std::isfinite(v)) throw RequestError(400, std::string("\"") + key + "\" must be finite");
+  return v;
+}
+
+std::string string_field(const nlohmann::json& j, const char* key, bool required = true) {
+  if (!j.is_object() || !j.contains(key)) {
+    if (required) throw RequestError(400, std::string("expected a string \"") + key + "\" in the JSON body");
+    return {};
+  }
+  if (!j[key].is_string()) throw RequestError(400, std::string("\"") + key + "\" must be a string");
+  return j[key].get<std::string>();
+}
+
+std::string content_type_of(const std::string& name) {
+  if (name.ends_with(".png")) return "image/png";
+  if (name.ends_with(".svg")) return "image/svg+xml";
+  return "application/json";
+}
+
+}  // namespace
+
+nlohmann::json state_json(const LoopState& s, bool dummy_hand) {
+  return {{"ticks", s.ticks},
+          {"rate_hz", s.rate_hz},
+          {"overruns", s.overruns},
+          {"max_lateral_force_N", s.compiled_max_lateral_force_N},
+          {"felt_max_lateral_force_N", s.felt_max_lateral_force_N},
+          {"material", s.material},
+          {"material_version", s.material_version},
+          {"roughness", s.roughness},
+          {"hand", {s.hand_mm.x, s.hand_mm.y}},
+          {"force_N", {s.force_N.x, s.force_N.y}},
+          {"running", s.running},
+          {"stop_cause", s.stop_cause},
+          {"restarts", s.restarts},
+          {"telemetry_dropped", s.telemetry_dropped},
+          {"dummy_hand", dummy_hand}};
+}
+
+struct Server::Impl {
+  Session& session;
+  LiveLoop& loop;
+  std::string version;
+  Listen listen;
+  httplib::Server http;
+  std::atomic<bool> stopping{false};
+
+  Impl(Session& s, LiveLoop& l, std::string v) : session(s), loop(l), version(std::move(v)) {}
+
+  // Runs `f`, answering a RequestError with its status and message and anything else as a 500 that
+  // says it is the studio's fault, not the request's.
+  template <class F>
+  static void guarded(httplib::Response& res, F&& f) {
+    try {
+      f();
+    } catch (const RequestError& e) {
+      send_error(res, e.status, e.what());
+    } catch (const std::exception& e) {
+      send_error(res, 500, std::string("internal error (a bug in Sandpaper, please report it): ") + e.what());
+    }
+  }
+
+  void routes() {
+    http.set_payload_max_length(kMaxRequestBytes);
+    http.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
+    // The guard: a request for another host name (DNS rebinding) or from another origin (a web page
+    // elsewhere posting to localhost) is refused before any handler runs.
+    http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+      const std::string host = req.get_header_value("Host");
+      if (!host_allowed(host, listen)) {
+        send_error(res, 403, "refused: Host '" + host + "' is not this studio's address; open the address it printed");
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      const std::string origin = req.get_header_value("Origin");
+      if (!origin_allowed(origin, listen)) {
+        send_error(res, 403, "refused: requests from origin '" + origin + "' may not drive this studio");
+        return httplib::Server::HandlerResponse::Handled;
+      }
+      return httplib::Server::HandlerResponse::Unhandled;
+    });
+    for (const auto& a : web_assets()) {
+      const WebAsset asset = a;
+      http.Get(asset.path, [asset](const httplib::Request&, httplib::Response& res) {
+        res.set_header("Cache-Control", "no-cache");
+        res.set_content(asset.body, asset.content_type);
+      });
+    }
+    http.Get("/api/health", [this](const httplib::Request&, httplib::Response& res) {
+      send_json(res, {{"ok", true}, {"version", version}});
+    });
+    http.Get("/api/files", [this](const httplib::Request&, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, {{"files", session.files()}}); });
+    });
+    http.Get("/api/current", [this](const httplib::Request&, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.current()); });
+    });
+    http.Post("/api/open", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.open(string_field(body_json(req), "file"))); });
+    });
+    http.Post("/api/compile", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.compile_only(req.body)); });
+    });
+    http.Post("/api/material", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.update(req.body)); });
+    });
+    http.Post("/api/parameter", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        const auto j = body_json(req);
+        send_json(res, session.set_parameter(string_field(j, "name"), number_field(j, "value"),
+                                             string_field(j, "unit", false)));
+      });
+    });
+    http.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.save()); });
+    });
+    http.Post("/api/hand", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        const auto j = body_json(req);
+        const double x = number_field(j, "x_mm"), y = number_field(j, "y_mm");
+        if (!loop.set_hand_nonrt(x, y))
+          throw RequestError(409, "the hand is a real joystick's; Dummy mode needs --device sim");
+        send_json(res, {{"ok", true}, {"target_mm", {x, y}}});
+      });
+    });
+    http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
+      send_json(res, state_json(loop.state_nonrt(), loop.has_dummy_hand()));
+    });
+    // Server-Sent Events: the state 30 times a second while the page is open.
+    http.Get("/api/events", [this](const httplib::Request&, httplib::Response& res) {
+      res.set_header("Cache-Control", "no-cache");
+      res.set_chunked_content_provider("text/event-stream", [this](std::size_t, httplib::DataSink& sink) {
+        std::this_thread::sleep_for(kEventPeriod);
+        if (stopping.load()) return false;
+        const std::string event = "data: " + state_json(loop.state_nonrt(), loop.has_dummy_hand()).dump() + "\n\n";
+        return sink.write(event.data(), event.size());
+      });
+    });
+    http.Get("/api/workspace", [this](const httplib::Request&, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.workspace()); });
+    });
+    http.Post("/api/workspace/patch", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        const auto j = body_json(req);
+        const double index = number_field(j, "index");
+        if (index != std::floor(index) || index < 0 || index > 1e6) throw RequestError(400, "\"index\" must be a patch number");
+        send_json(res, session.place_patch(static_cast<int>(index), number_field(j, "x_mm"), number_field(j, "y_mm"),
+                                           number_field(j, "width_mm"), number_field(j, "height_mm")));
+      });
+    });
+    http.Get(R"(/api/preview/([A-Za-z0-9.\-]+))", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        const std::string name = req.matches[1];
+        std::uint64_t load = 0;
+        if (req.has_param("v")) {
+          try {
+            load = std::stoull(req.get_param_value("v"));
+          } catch (const std::exception&) {
+            throw RequestError(400, "?v= takes the version number of a load");
+          }
+        }
+        const auto path = session.preview_file(name, load);
+        if (!path) throw RequestError(404, "no preview picture '" + name + "' for the material playing");
+        std::ifstream in(*path, std::ios::binary);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(ss.str(), content_type_of(name).c_str());
+      });
+    });
+  }
+};
+
+Server::Server(Session& session, LiveLoop& loop, std::string version)
+    : impl_(std::make_unique<Impl>(session, loop, std::move(version))) {
+  impl_->routes();
+}
+
+Server::~Server() { stop(); }
+
+int Server::bind(const Listen& listen) {
+  impl_->listen = listen;
+  int port = listen.port;
+  if (port == 0) {
+    port = impl_->http.bind_to_any_port(listen.host);
+  } else if (!impl_->http.bind_to_port(listen.host, port)) {
+    port = -1;
+  }
+  if (port < 0) throw std::runtime_error("cannot listen on " + listen.host + ":" + std::to_string(listen.port));
+  impl_->listen.port = port;
+  return port;
+}
+
+void Server::serve() { impl_->http.listen_after_bind(); }
+
+void Server::stop() {
+  impl_->stopping.store(true);
+  impl_->http.stop();
+}
+
+}  // namespace sandpaper::studio

@@ -1,0 +1,315 @@
+#include "sandpaper/studio/session.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include "sandpaper/catalog/preview.hpp"
+#include "sandpaper/compiler/compile_json.hpp"
+#include "sandpaper/compiler/workspace.hpp"
+#include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/workspace_json.hpp"
+#include "sandpaper/studio/request_guard.hpp"
+
+namespace sandpaper::studio {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The preview pane's pictures: big enough for a 1080p screen's half, small enough to render on every
+// keystroke's compile in a few tens of milliseconds.
+constexpr int kPreviewSide = 384;
+constexpr int kPatchPictureSide = 160;
+constexpr int kFieldArrows = 24;
+
+nlohmann::json parameter_json(const compiler::Parameter& p) {
+  return {{"name", p.name},   {"label", p.label}, {"layer", p.layer}, {"value", p.value}, {"unit", p.unit},
+          {"si", p.si},       {"min", p.min},     {"max", p.max},     {"step", p.step},   {"line", p.line},
+          {"column", p.column}, {"length", p.length}};
+}
+
+std::string read_text(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw RequestError(404, "no file " + path.filename().string() + " in the studio's folder");
+  if (fs::file_size(path, ec) > kMaxSourceBytes)
+    throw RequestError(413, path.filename().string() + " is larger than 1 MiB; the studio edits material and workspace files");
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+Session::Session(const compiler::Compiler& compiler, LiveLoop& loop, fs::path root, fs::path preview_dir)
+    : compiler_(compiler), loop_(loop), root_(std::move(root)), preview_dir_(std::move(preview_dir)) {
+  fs::create_directories(preview_dir_);
+  renderer_ = std::thread([this] { render_loop(); });
+}
+
+Session::~Session() {
+  {
+    std::lock_guard lock(mutex_);
+    quit_ = true;
+  }
+  to_render_.notify_all();
+  renderer_.join();
+}
+
+nlohmann::json Session::files() const {
+  auto out = nlohmann::json::array();
+  std::vector<std::string> names;
+  std::error_code ec;
+  fs::recursive_directory_iterator it(root_, fs::directory_options::skip_permission_denied, ec), end;
+  for (; !ec && it != end && names.size() < 2000; it.increment(ec)) {
+    if (it.depth() > 8) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    const auto name = it->path().filename().string();
+    if (it->is_directory(ec) && (name.starts_with(".") || name == "node_modules" || name == "build")) {
+      it.disable_recursion_pending();
+      continue;
+    }
+    const auto ext = it->path().extension();
+    if ((ext == ".hmat" || ext == ".hws") && it->is_regular_file(ec)) names.push_back(fs::relative(it->path(), root_).string());
+  }
+  std::sort(names.begin(), names.end());
+  for (auto& n : names) out.push_back(n);
+  return out;
+}
+
+nlohmann::json Session::open(const std::string& relative) {
+  fs::path full;
+  try {
+    full = confined_path(root_, relative);
+  } catch (const OutsideFolder& e) {
+    throw RequestError(403, e.what());
+  }
+  const auto ext = full.extension();
+  if (ext != ".hmat" && ext != ".hws")
+    throw RequestError(400, "'" + relative + "' is not a material (.hmat) or workspace (.hws) file");
+  std::string text = read_text(full);
+  nlohmann::json j;
+  {
+    std::lock_guard lock(mutex_);
+    file_ = fs::relative(full, root_).string();
+    is_workspace_ = ext == ".hws";
+    saved_text_ = text;
+    j = update_locked(text);
+    j["file"] = file_;
+  }
+  return j;
+}
+
+nlohmann::json Session::current() const {
+  std::lock_guard lock(mutex_);
+  return {{"file", file_},
+          {"kind", is_workspace_ ? "workspace" : "material"},
+          {"text", text_},
+          {"saved", text_ == saved_text_},
+          {"version", version_},
+          {"compiles", text_compiles_},
+          {"compile", last_compile_},
+          {"parameters", parameters_locked()}};
+}
+
+nlohmann::json Session::compile_only(const std::string& text) const {
+  if (text.size() > kMaxSourceBytes) throw RequestError(413, "a material is at most 1 MiB of text");
+  std::lock_guard lock(mutex_);
+  return compiler::compile_json(compiler_.compile_text(text, file_.empty() ? "<studio>" : file_), std::nullopt);
+}
+
+nlohmann::json Session::parameters_locked() const {
+  auto arr = nlohmann::json::array();
+  const auto params = is_workspace_ ? compiler::workspace_parameters(text_)
+                                    : compiler::material_parameters(text_, compiler_.calibration(), loop_.limits().max_force_N);
+  for (const auto& p : params) arr.push_back(parameter_json(p));
+  return arr;
+}
+
+nlohmann::json Session::update(const std::string& text) {
+  if (text.size() > kMaxSourceBytes) throw RequestError(413, "a material is at most 1 MiB of text");
+  nlohmann::json j;
+  {
+    std::lock_guard lock(mutex_);
+    j = update_locked(text);
+  }
+  return j;
+}
+
+nlohmann::json Session::update_locked(const std::string& text) {
+  text_ = text;
+  nlohmann::json j;
+  if (is_workspace_) {
+    const auto base = (root_ / file_).parent_path();
+    auto r = compiler::compile_workspace_text(compiler_, text, file_, base);
+    j = {{"ok", r.ok()}, {"diagnostics", compiler::diagnostics_json(r.diagnostics)}};
+    if (r.ok()) {
+      auto ws = std::make_shared<const schema::WorkspaceProgram>(std::move(*r.program));
+      j["workspace"] = schema::to_json(*ws);
+      version_ = loop_.load_workspace_nonrt(ws);
+      workspace_ = std::move(ws);
+      program_.reset();
+    }
+  } else {
+    auto r = compiler_.compile_text(text, file_);
+    j = compiler::compile_json(r, std::nullopt);
+    if (r.ok()) {
+      auto prog = std::make_shared<const schema::PatchProgram>(std::move(*r.program));
+      version_ = loop_.load_nonrt(prog, prog->roughness);
+      program_ = std::move(prog);
+      workspace_.reset();
+    }
+  }
+  text_compiles_ = j["ok"].get<bool>();
+  if (text_compiles_) to_render_.notify_all();
+  last_compile_ = j;
+  j["parameters"] = parameters_locked();
+  j["version"] = version_;
+  j["playing_is_current"] = text_compiles_;
+  j["saved"] = text_ == saved_text_;
+  return j;
+}
+
+nlohmann::json Session::set_parameter(const std::string& name, double value, const std::string& unit) {
+  nlohmann::json j;
+  {
+  std::lock_guard lock(mutex_);
+  const auto params = is_workspace_ ? compiler::workspace_parameters(text_)
+                                    : compiler::material_parameters(text_, compiler_.calibration(), loop_.limits().max_force_N);
+  std::string edited;
+  try {
+    edited = compiler::set_parameter(text_, params, name, value, unit);
+  } catch (const compiler::ParameterError& e) {
+    throw RequestError(400, e.what());
+  }
+  j = update_locked(edited);
+  j["text"] = text_;
+  }
+  return j;
+}
+
+nlohmann::json Session::save() {
+  std::lock_guard lock(mutex_);
+  if (file_.empty()) throw RequestError(409, "no file is open");
+  fs::path full;
+  try {
+    full = confined_path(root_, file_);
+  } catch (const OutsideFolder& e) {
+    throw RequestError(403, e.what());
+  }
+  try {
+    schema::write_file_atomically(full, text_);
+  } catch (const std::exception& e) {
+    throw RequestError(500, std::string("could not save: ") + e.what());
+  }
+  saved_text_ = text_;
+  return {{"saved", true}, {"file", file_}, {"bytes", text_.size()}};
+}
+
+nlohmann::json Session::workspace() const {
+  std::lock_guard lock(mutex_);
+  if (!is_workspace_) throw RequestError(409, "the open file is a material, not a workspace");
+  nlohmann::json j{{"file", file_}, {"version", version_}, {"patches", nlohmann::json::array()}};
+  if (!workspace_) return j;
+  j["name"] = workspace_->name;
+  j["size_mm"] = {workspace_->size_m[0] * 1e3, workspace_->size_m[1] * 1e3};
+  for (std::size_t i = 0; i < workspace_->patches.size(); ++i) {
+    const auto& p = workspace_->patches[i];
+    j["patches"].push_back({{"index", i},
+                            {"source", p.source},
+                            {"name", p.program.name},
+                            {"centre_mm", {p.centre_m[0] * 1e3, p.centre_m[1] * 1e3}},
+                            {"size_mm", {p.size_m[0] * 1e3, p.size_m[1] * 1e3}},
+                            {"max_lateral_force_N", p.program.max_lateral_force_N},
+                            {"roughness", p.program.roughness}});
+  }
+  return j;
+}
+
+nlohmann::json Session::place_patch(int index, double x_mm, double y_mm, double width_mm, double height_mm) {
+  nlohmann::json j;
+  {
+  std::lock_guard lock(mutex_);
+  if (!is_workspace_) throw RequestError(409, "the open file is a material, not a workspace");
+  std::string edited;
+  try {
+    edited = compiler::place_workspace_patch(text_, index, x_mm, y_mm, width_mm, height_mm);
+  } catch (const compiler::ParameterError& e) {
+    throw RequestError(400, e.what());
+  }
+  j = update_locked(edited);
+  j["text"] = text_;
+  }
+  return j;
+}
+
+void Session::render_loop() {
+  // Below the request threads: an edit's compile and swap come before its picture.
+  ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 10);
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    to_render_.wait(lock, [this] { return quit_ || version_ != rendered_version_; });
+    if (quit_) return;
+    const auto program = program_;
+    const auto workspace = workspace_;
+    const std::uint64_t version = version_;
+    lock.unlock();
+    try {
+      render(program, workspace);
+    } catch (const std::exception&) {
+      // A picture that cannot be drawn leaves the pane without it; the material still plays.
+    }
+    lock.lock();
+    rendered_version_ = version;
+    rendered_.notify_all();
+  }
+}
+
+void Session::render(const std::shared_ptr<const schema::PatchProgram>& program,
+                     const std::shared_ptr<const schema::WorkspaceProgram>& workspace) {
+  const fs::path dir = preview_dir_ / "current";
+  fs::create_directories(dir);
+  std::vector<fs::path> written;
+  if (program) {
+    written = catalog::write_preview(*program, dir, kPreviewSide, kFieldArrows).written;
+  } else if (workspace) {
+    for (std::size_t i = 0; i < workspace->patches.size(); ++i) {
+      const auto& prog = workspace->patches[i].program;
+      const auto picture = catalog::render_picture(prog, kPatchPictureSide);
+      if (picture.empty()) continue;
+      catalog::write_image_png(dir / ("patch-" + std::to_string(i) + ".png"), catalog::grey_image(picture));
+      double max_f = 0;
+      catalog::write_image_png(dir / ("patch-" + std::to_string(i) + "-field.png"),
+                               catalog::render_force_field(prog, picture, max_f));
+      written.push_back(dir / ("patch-" + std::to_string(i) + ".png"));
+      written.push_back(dir / ("patch-" + std::to_string(i) + "-field.png"));
+    }
+  }
+  // What the previous program had and this one has not (a workspace's patches after a material) goes;
+  // files written again were replaced by rename, so a page reading them never sees one half-written.
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (std::find(written.begin(), written.end(), e.path()) == written.end()) fs::remove(e.path(), ec);
+}
+
+std::optional<fs::path> Session::preview_file(const std::string& name, std::uint64_t min_version) const {
+  // Names are checked against a fixed pattern: nothing from the request reaches the file system as a path.
+  const bool fixed = name == "height.png" || name == "field.png" || name == "scan.svg" || name == "preview.json" ||
+                     name == "field.json";
+  bool patch = name.starts_with("patch-") && name.ends_with(".png") && name.size() < 32 &&
+               std::all_of(name.begin() + 6, name.end() - 4, [](char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == 'f' || c == 'i' || c == 'e' || c == 'l' || c == 'd'; });
+  if (!fixed && !patch) return std::nullopt;
+  std::unique_lock lock(mutex_);
+  rendered_.wait_for(lock, std::chrono::seconds(10), [&] { return rendered_version_ >= std::min(min_version, version_); });
+  const fs::path p = preview_dir_ / "current" / name;
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec)) return std::nullopt;
+  return p;
+}
+
+}  // namespace sandpaper::studio

@@ -1,0 +1,532 @@
+// Sandpaper Studio's page (docs/STUDIO.md): the editor with the compiler's diagnostics, the preview of
+// what plays, sliders for its numbers, Dummy mode (the mouse moves the simulated hand), the live servo
+// figures, and the workspace canvas. Everything it knows comes from the studio's JSON API.
+import { EditorView, basicSetup } from "codemirror";
+import { EditorState } from "@codemirror/state";
+import { setDiagnostics, lintGutter } from "@codemirror/lint";
+import { hmatLanguage } from "./hmat.js";
+
+const $ = (sel) => document.querySelector(sel);
+const state = {
+  file: "", kind: "material", version: 0, parameters: [], preview: null, field: null, workspace: null,
+  live: null, strip: [], selected: -1, mode: "normal", view: "height", remote: false, compileTimer: 0,
+  lastCompileMs: 0,
+};
+
+async function api(method, path, body, json = true) {
+  const init = { method, headers: {} };
+  if (body !== undefined) {
+    init.body = json ? JSON.stringify(body) : body;
+    init.headers["Content-Type"] = json ? "application/json" : "text/plain; charset=utf-8";
+  }
+  const res = await fetch(path, init);
+  const data = await res.json().catch(() => ({}));
+  if (!res.ok) throw new Error(data.error || `${method} ${path}: HTTP ${res.status}`);
+  return data;
+}
+
+function setStatus(text, bad = false) {
+  const s = $("#status");
+  s.textContent = text;
+  s.classList.toggle("bad", bad);
+}
+
+// ---- editor ------------------------------------------------------------------------------------
+const editor = new EditorView({
+  parent: $("#editor"),
+  state: EditorState.create({
+    doc: "",
+    extensions: [
+      basicSetup, hmatLanguage, lintGutter(),
+      EditorView.updateListener.of((u) => {
+        if (!u.docChanged || state.remote) return;
+        clearTimeout(state.compileTimer);
+        // Short enough that diagnostics follow typing within 150 ms, long enough to skip keystrokes
+        // typed in one burst.
+        state.compileTimer = setTimeout(compileNow, 30);
+      }),
+      EditorView.domEventHandlers({
+        keydown: (e) => {
+          if ((e.ctrlKey || e.metaKey) && e.key === "s") { e.preventDefault(); save(); return true; }
+          return false;
+        },
+      }),
+    ],
+  }),
+});
+
+function setText(text) {
+  const old = editor.state.doc.toString();
+  if (old === text) return;
+  // One change over the differing middle, so the cursor and the undo history keep their places.
+  let a = 0;
+  while (a < old.length && a < text.length && old[a] === text[a]) a++;
+  let b = 0;
+  while (b < old.length - a && b < text.length - a && old[old.length - 1 - b] === text[text.length - 1 - b]) b++;
+  state.remote = true;
+  editor.dispatch({ changes: { from: a, to: old.length - b, insert: text.slice(a, text.length - b) } });
+  state.remote = false;
+}
+
+function toEditorDiagnostics(list) {
+  const doc = editor.state.doc;
+  const out = [];
+  for (const d of list) {
+    if (!d.line || d.line > doc.lines) continue;
+    const line = doc.line(d.line);
+    const from = Math.min(line.from + Math.max(0, d.column - 1), line.to);
+    let to = from;
+    while (to < line.to && !/\s/.test(doc.sliceString(to, to + 1))) to++;
+    if (to === from) to = Math.min(from + 1, doc.length);
+    out.push({ from, to, severity: d.severity === "error" ? "error" : "warning",
+               message: `${d.code}: ${d.message}` + (d.suggestion ? `\nhelp: ${d.suggestion}` : "") });
+  }
+  return out;
+}
+
+function showDiagnostics(list) {
+  editor.dispatch(setDiagnostics(editor.state, toEditorDiagnostics(list)));
+  const ul = $("#diagnostics");
+  ul.replaceChildren();
+  for (const d of list) {
+    const li = document.createElement("li");
+    li.className = d.severity;
+    li.dataset.line = d.line;
+    li.dataset.column = d.column;
+    li.dataset.code = d.code;
+    li.innerHTML = `<b>${d.line}:${d.column}</b> <span class="code">${d.code}</span> `;
+    li.append(document.createTextNode(d.message));
+    if (d.suggestion) {
+      const help = document.createElement("div");
+      help.className = "help";
+      help.textContent = "help: " + d.suggestion;
+      li.append(help);
+    }
+    li.addEventListener("click", () => {
+      const line = editor.state.doc.line(Math.min(d.line, editor.state.doc.lines));
+      editor.dispatch({ selection: { anchor: line.from + Math.max(0, d.column - 1) }, scrollIntoView: true });
+      editor.focus();
+    });
+    ul.append(li);
+  }
+  $("#diagnostics-title").textContent = list.length ? `Diagnostics (${list.length})` : "No diagnostics";
+}
+
+async function compileNow() {
+  const text = editor.state.doc.toString();
+  const t0 = performance.now();
+  try {
+    const r = await api("POST", "/api/material", text, false);
+    if (editor.state.doc.toString() !== text) return;  // typed on meanwhile: the next compile answers
+    state.lastCompileMs = performance.now() - t0;
+    applyCompile(r);
+  } catch (e) {
+    setStatus(e.message, true);
+  }
+}
+
+function applyCompile(r) {
+  showDiagnostics(r.diagnostics || []);
+  document.body.dataset.compiles = r.ok ? "yes" : "no";
+  $("#compile-state").textContent = r.ok
+    ? `compiled: ${r.material || r.workspace?.name || ""}` +
+      (r.max_lateral_force_N !== undefined ? ` · ${r.max_lateral_force_N.toFixed(3)} N, roughness ${r.roughness.toFixed(2)}` : "")
+    : "does not compile: the last good program keeps playing";
+  $("#saved").textContent = r.saved ? "saved" : "unsaved";
+  state.version = r.version;
+  renderSliders(r.parameters || []);
+  if (r.ok) refreshPreview();
+}
+
+// ---- sliders -----------------------------------------------------------------------------------
+function renderSliders(params) {
+  const box = $("#sliders");
+  const same = params.length === state.parameters.length && params.every((p, i) => p.name === state.parameters[i].name);
+  state.parameters = params;
+  if (!same) {
+    box.replaceChildren();
+    for (const p of params) {
+      const row = document.createElement("label");
+      row.className = "slider " + p.layer;
+      row.innerHTML = `<span class="name"></span><input type="range"><output></output>`;
+      row.querySelector(".name").textContent = p.label;
+      const input = row.querySelector("input");
+      input.dataset.name = p.name;
+      input.addEventListener("input", () => sliderMoved(input));
+      box.append(row);
+    }
+    if (!params.length) box.textContent = "No numbers to tune in this text.";
+  }
+  box.querySelectorAll("input[type=range]").forEach((input, i) => {
+    const p = params[i];
+    if (sliderSends.get(p.name)?.busy) return;  // the hand is on it: leave it where the hand put it
+    input.min = p.min; input.max = p.max; input.step = p.step; input.value = p.value;
+    input.dataset.unit = p.unit;
+    input.nextElementSibling.textContent = `${p.value} ${p.unit}`.trim();
+  });
+}
+
+// While a slider moves, its value goes to the studio at once when no request is in flight, else as
+// soon as the one in flight returns (only the latest value): the material follows the hand on the
+// slider, and the last value arrives one round trip after the last move.
+const sliderSends = new Map();
+function sliderMoved(input) {
+  const name = input.dataset.name;
+  const step = input.step.includes(".") ? input.step.split(".")[1].length : 0;
+  const value = Number(Number(input.value).toFixed(step));
+  input.nextElementSibling.textContent = `${value} ${input.dataset.unit}`.trim();
+  const s = sliderSends.get(name) || { busy: false, next: null };
+  sliderSends.set(name, s);
+  s.next = value;
+  if (!s.busy) sendSlider(name, input.dataset.unit, s);
+}
+
+async function sendSlider(name, unit, s) {
+  s.busy = true;
+  document.body.dataset.sliderBusy = "yes";
+  while (s.next !== null) {
+    const value = s.next;
+    s.next = null;
+    try {
+      const r = await api("POST", "/api/parameter", { name, value, unit });
+      setText(r.text);
+      applyCompile(r, true);
+    } catch (e) {
+      setStatus(e.message, true);
+    }
+  }
+  s.busy = false;
+  if (![...sliderSends.values()].some((x) => x.busy)) document.body.dataset.sliderBusy = "no";
+}
+
+// ---- preview -----------------------------------------------------------------------------------
+// One refresh at a time, the latest version last: a browser has six connections to the studio, and
+// pictures waiting for their render must not hold them all while a slider's edits queue behind them.
+let previewBusy = false, previewAgain = false;
+async function refreshPreview() {
+  if (previewBusy) { previewAgain = true; return; }
+  previewBusy = true;
+  try {
+    do { previewAgain = false; await refreshPreviewNow(); } while (previewAgain);
+  } catch (e) {
+    setStatus(e.message, true);
+  } finally {
+    previewBusy = false;
+  }
+}
+
+async function refreshPreviewNow() {
+  const v = state.version;
+  if (state.kind === "workspace") {
+    state.workspace = await api("GET", "/api/workspace");
+    drawWorkspace();
+    return;
+  }
+  const [preview, field] = await Promise.all([
+    fetch(`/api/preview/preview.json?v=${v}`).then((r) => r.ok ? r.json() : null),
+    fetch(`/api/preview/field.json?v=${v}`).then((r) => r.ok ? r.json() : null),
+  ]);
+  state.preview = preview;
+  state.field = field;
+  const img = $("#picture");
+  if (preview && preview.pixels) {
+    img.src = `/api/preview/${state.view === "field" ? "field" : "height"}.png?v=${v}`;
+    img.hidden = false;
+    await img.decode().catch(() => {});
+    $("#picture-caption").textContent = `${preview.window_mm[0].toFixed(1)} × ${preview.window_mm[1].toFixed(1)} mm` +
+      ` · scale bar ${preview.scale_bar_mm} mm · ` + (state.view === "field"
+        ? `force field at rest: hue = direction, brightness = |F| up to ${preview.field_max_N.toFixed(3)} N`
+        : "height field, lit from the upper left");
+  } else {
+    img.hidden = true;
+    $("#picture-caption").textContent = "No picture: no force depends on position alone." +
+      (preview?.left_out?.length ? " " + preview.left_out.join(" ") : "");
+  }
+  const svg = await fetch(`/api/preview/scan.svg?v=${v}`).then((r) => r.ok ? r.text() : "");
+  $("#scan").innerHTML = svg;
+  $("#stage").dataset.version = v;
+  drawOverlay();
+}
+
+// Stage pixels <-> millimetres: the picture covers window_mm centred on the patch centre (material),
+// or the workspace's rectangle (workspace); y up.
+function windowMm() {
+  if (state.kind === "workspace") return state.workspace?.size_mm || [228.6, 228.6];
+  return state.preview?.window_mm || [80, 80];
+}
+function toMm(ev) {
+  const r = $("#stage").getBoundingClientRect();
+  const [w, h] = windowMm();
+  return [((ev.clientX - r.left) / r.width - 0.5) * w, (0.5 - (ev.clientY - r.top) / r.height) * h];
+}
+function toPx(xMm, yMm, r) {
+  const [w, h] = windowMm();
+  return [(xMm / w + 0.5) * r.width, (0.5 - yMm / h) * r.height];
+}
+
+function drawOverlay() {
+  const canvas = $("#overlay");
+  const stage = $("#stage");
+  const r = stage.getBoundingClientRect();
+  if (canvas.width !== Math.round(r.width) || canvas.height !== Math.round(r.height)) {
+    canvas.width = Math.round(r.width);
+    canvas.height = Math.round(r.height);
+  }
+  const g = canvas.getContext("2d");
+  g.clearRect(0, 0, canvas.width, canvas.height);
+  // Field arrows (materials): where and which way a slow hand is pushed.
+  const f = state.field;
+  if (state.kind === "material" && f && f.n && f.max_N > 0 && $("#arrows").checked) {
+    g.strokeStyle = "rgba(30, 90, 200, 0.7)";
+    g.lineWidth = 1;
+    const cell = canvas.width / f.n;
+    for (let row = 0; row < f.n; row++) for (let col = 0; col < f.n; col++) {
+      const i = row * f.n + col;
+      const fx = f.fx_N[i] / f.max_N, fy = f.fy_N[i] / f.max_N;
+      const cx = (col + 0.5) * cell, cy = (row + 0.5) * (canvas.height / f.n);
+      arrow(g, cx, cy, cx + fx * cell * 0.45, cy - fy * cell * 0.45, 3);
+    }
+  }
+  const live = state.live;
+  if (!live) return;
+  const [hx, hy] = toPx(live.hand[0], live.hand[1], r);
+  const scale = 60 / Math.max(live.max_lateral_force_N || 1, 0.05);  // the compiled maximum is 60 px
+  const fx = live.force_N[0] * scale, fy = live.force_N[1] * scale;
+  g.strokeStyle = "#c0392b";
+  g.fillStyle = "#c0392b";
+  g.lineWidth = 3;
+  arrow(g, hx, hy, hx + fx, hy - fy, 9);
+  g.beginPath();
+  g.arc(hx, hy, 7, 0, 2 * Math.PI);
+  g.lineWidth = 2;
+  g.strokeStyle = "#111";
+  g.fillStyle = "rgba(255, 210, 60, 0.9)";
+  g.fill();
+  g.stroke();
+  stage.dataset.hand = `${live.hand[0].toFixed(3)},${live.hand[1].toFixed(3)}`;
+  stage.dataset.force = `${live.force_N[0].toFixed(4)},${live.force_N[1].toFixed(4)}`;
+  stage.dataset.handPx = `${hx.toFixed(1)},${hy.toFixed(1)}`;
+  stage.dataset.arrowPx = `${(hx + fx).toFixed(1)},${(hy - fy).toFixed(1)}`;
+}
+
+function arrow(g, x0, y0, x1, y1, head) {
+  g.beginPath();
+  g.moveTo(x0, y0);
+  g.lineTo(x1, y1);
+  g.stroke();
+  const len = Math.hypot(x1 - x0, y1 - y0);
+  if (len < 2) return;
+  const ux = (x1 - x0) / len, uy = (y1 - y0) / len;
+  g.beginPath();
+  g.moveTo(x1, y1);
+  g.lineTo(x1 - head * ux + head * 0.5 * uy, y1 - head * uy - head * 0.5 * ux);
+  g.lineTo(x1 - head * ux - head * 0.5 * uy, y1 - head * uy + head * 0.5 * ux);
+  g.closePath();
+  g.fill();
+}
+
+// ---- Dummy mode: the mouse moves the simulated hand ----------------------------------------------
+let handTimer = 0, handPending = null;
+function sendHand(mm) {
+  handPending = mm;
+  if (handTimer) return;
+  handTimer = setTimeout(async () => {
+    handTimer = 0;
+    const [x_mm, y_mm] = handPending;
+    try { await api("POST", "/api/hand", { x_mm, y_mm }); } catch (e) { setStatus(e.message, true); }
+  }, 20);
+}
+
+function setupStage() {
+  const stage = $("#stage");
+  let dragging = false;
+  stage.addEventListener("pointerdown", (ev) => {
+    if (state.kind === "workspace" && workspacePointerDown(ev)) return;
+    dragging = true;
+    stage.setPointerCapture(ev.pointerId);
+    sendHand(toMm(ev));
+  });
+  stage.addEventListener("pointermove", (ev) => {
+    if (state.kind === "workspace" && workspacePointerMove(ev)) return;
+    if (dragging || $("#follow").checked) sendHand(toMm(ev));
+  });
+  stage.addEventListener("pointerup", (ev) => {
+    if (state.kind === "workspace" && workspacePointerUp(ev)) return;
+    dragging = false;
+  });
+}
+
+// ---- workspace canvas ----------------------------------------------------------------------------
+let wsDrag = null;
+function drawWorkspace() {
+  const ws = state.workspace;
+  const layer = $("#patches");
+  layer.replaceChildren();
+  $("#picture").hidden = true;
+  $("#scan").innerHTML = "";
+  if (!ws || !ws.patches) return;
+  $("#picture-caption").textContent = `${ws.name || ""}: ${ws.patches.length} patches on ${ws.size_mm[0].toFixed(1)} × ` +
+    `${ws.size_mm[1].toFixed(1)} mm, back to front; drag a patch to move it, its corner to resize it`;
+  const r = $("#stage").getBoundingClientRect();
+  ws.patches.forEach((p, i) => {
+    const d = document.createElement("div");
+    d.className = "patch" + (i === state.selected ? " selected" : "");
+    d.dataset.index = i;
+    const [x0, y0] = toPx(p.centre_mm[0] - p.size_mm[0] / 2, p.centre_mm[1] + p.size_mm[1] / 2, r);
+    const [x1, y1] = toPx(p.centre_mm[0] + p.size_mm[0] / 2, p.centre_mm[1] - p.size_mm[1] / 2, r);
+    Object.assign(d.style, { left: `${x0}px`, top: `${y0}px`, width: `${x1 - x0}px`, height: `${y1 - y0}px`, zIndex: 1 + i });
+    // Thesis Appendix B: Normal shows each patch's shaded height map, Depth its surface as data (here
+    // the force field, the program's own gradient), Blind black rectangles only.
+    if (state.mode === "blind") d.classList.add("blind");
+    else d.style.backgroundImage = `url(/api/preview/patch-${i}${state.mode === "depth" ? "-field" : ""}.png?v=${state.version})`;
+    d.title = `${p.source}: ${p.max_lateral_force_N.toFixed(3)} N, roughness ${p.roughness.toFixed(2)}`;
+    if (state.mode !== "blind") {
+      const label = document.createElement("span");
+      label.textContent = p.source;
+      d.append(label);
+    }
+    const grip = document.createElement("i");
+    grip.className = "grip";
+    d.append(grip);
+    layer.append(d);
+  });
+}
+
+function workspacePointerDown(ev) {
+  const patch = ev.target.closest(".patch");
+  if (!patch || !ev.shiftKey && !ev.target.classList.contains("grip") && !$("#edit-patches").checked) return false;
+  const i = Number(patch.dataset.index);
+  state.selected = i;
+  const p = state.workspace.patches[i];
+  wsDrag = { i, resize: ev.target.classList.contains("grip"), start: toMm(ev), centre: [...p.centre_mm], size: [...p.size_mm] };
+  $("#stage").setPointerCapture(ev.pointerId);
+  drawWorkspace();
+  return true;
+}
+function workspacePointerMove(ev) {
+  if (!wsDrag) return false;
+  const [x, y] = toMm(ev);
+  const p = state.workspace.patches[wsDrag.i];
+  const dx = x - wsDrag.start[0], dy = y - wsDrag.start[1];
+  if (wsDrag.resize) {
+    p.size_mm = [Math.max(2, wsDrag.size[0] + dx), Math.max(2, wsDrag.size[1] - dy)];
+    p.centre_mm = [wsDrag.centre[0] + (p.size_mm[0] - wsDrag.size[0]) / 2, wsDrag.centre[1] - (p.size_mm[1] - wsDrag.size[1]) / 2];
+  } else {
+    p.centre_mm = [wsDrag.centre[0] + dx, wsDrag.centre[1] + dy];
+  }
+  drawWorkspace();
+  return true;
+}
+async function workspacePointerUp() {
+  if (!wsDrag) return false;
+  const p = state.workspace.patches[wsDrag.i];
+  const round = (v) => Math.round(v * 10) / 10;
+  wsDrag = null;
+  try {
+    const r = await api("POST", "/api/workspace/patch", { index: p.index, x_mm: round(p.centre_mm[0]), y_mm: round(p.centre_mm[1]),
+      width_mm: round(p.size_mm[0]), height_mm: round(p.size_mm[1]) });
+    setText(r.text);
+    applyCompile(r);
+  } catch (e) {
+    setStatus(e.message, true);
+  }
+  return true;
+}
+
+// ---- live figures ------------------------------------------------------------------------------
+function onState(s) {
+  state.live = s;
+  $("#rate").textContent = s.rate_hz.toFixed(1);
+  $("#ticks").textContent = s.ticks;
+  $("#overruns").textContent = s.overruns;
+  $("#force").textContent = Math.hypot(s.force_N[0], s.force_N[1]).toFixed(3);
+  $("#felt").textContent = s.felt_max_lateral_force_N.toFixed(3);
+  $("#playing").textContent = s.material ? `${s.material} (v${s.material_version})` : "nothing yet";
+  $("#servo").textContent = s.running ? "running" : `stopped: ${s.stop_cause}`;
+  state.strip.push(Math.hypot(s.force_N[0], s.force_N[1]));
+  if (state.strip.length > 300) state.strip.shift();
+  drawStrip();
+  if (state.kind === "material") drawOverlay();
+  else drawWorkspaceHand();
+}
+
+function drawWorkspaceHand() {
+  drawOverlay();
+}
+
+function drawStrip() {
+  const c = $("#strip");
+  const g = c.getContext("2d");
+  g.clearRect(0, 0, c.width, c.height);
+  const top = Math.max(0.05, ...state.strip, state.live?.max_lateral_force_N || 0);
+  g.strokeStyle = "#8a4b08";
+  g.lineWidth = 1.5;
+  g.beginPath();
+  state.strip.forEach((v, i) => {
+    const x = (i / 299) * c.width, y = c.height - 4 - (v / top) * (c.height - 8);
+    if (i) g.lineTo(x, y); else g.moveTo(x, y);
+  });
+  g.stroke();
+  $("#strip-scale").textContent = `|F|, last 10 s, 0 to ${top.toFixed(2)} N`;
+}
+
+function connectEvents() {
+  const es = new EventSource("/api/events");
+  es.onmessage = (e) => onState(JSON.parse(e.data));
+  es.onerror = () => setStatus("lost the studio's event stream; retrying", true);
+  es.onopen = () => setStatus("connected");
+}
+
+// ---- files, saving -------------------------------------------------------------------------------
+async function open(file) {
+  const r = await api("POST", "/api/open", { file });
+  await loadCurrent();
+  return r;
+}
+
+async function loadCurrent() {
+  const cur = await api("GET", "/api/current");
+  state.file = cur.file;
+  state.kind = cur.kind;
+  document.body.dataset.kind = cur.kind;
+  $("#file").value = cur.file;
+  setText(cur.text);
+  applyCompile({ ...cur.compile, parameters: cur.parameters, version: cur.version, saved: cur.saved });
+}
+
+async function save() {
+  try {
+    await flushCompile();
+    const r = await api("POST", "/api/save");
+    $("#saved").textContent = "saved";
+    setStatus(`saved ${r.file} (${r.bytes} bytes)`);
+  } catch (e) {
+    setStatus(e.message, true);
+  }
+}
+
+async function flushCompile() {
+  if (state.compileTimer) { clearTimeout(state.compileTimer); state.compileTimer = 0; await compileNow(); }
+}
+
+async function init() {
+  const { files } = await api("GET", "/api/files");
+  const sel = $("#file");
+  for (const f of files) sel.append(new Option(f, f));
+  sel.addEventListener("change", () => open(sel.value).catch((e) => setStatus(e.message, true)));
+  $("#save").addEventListener("click", save);
+  document.querySelectorAll("input[name=view]").forEach((r) => r.addEventListener("change", () => { state.view = r.value; refreshPreview(); }));
+  document.querySelectorAll("input[name=mode]").forEach((r) => r.addEventListener("change", () => { state.mode = r.value; drawWorkspace(); }));
+  $("#arrows").addEventListener("change", drawOverlay);
+  setupStage();
+  const cur = await api("GET", "/api/current");
+  if (cur.file) await loadCurrent();
+  else if (files.length) await open(files[0]);
+  connectEvents();
+  window.addEventListener("resize", () => (state.kind === "workspace" ? drawWorkspace() : drawOverlay()));
+  document.body.dataset.ready = "yes";
+}
+
+// For tests and scripts driving the page: the editor's text, without reaching into CodeMirror.
+window.studio = { text: () => editor.state.doc.toString(), state, editor };
+init().catch((e) => setStatus(e.message, true));
