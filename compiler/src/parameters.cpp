@@ -6,7 +6,7 @@
 #include <cmath>
 #include <map>
 
-#include <fmt/format.h>
+#include <cstdio>
 
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
@@ -220,10 +220,13 @@ std::vector<Parameter> workspace_parameters(const std::string& text) {
 
 std::string format_parameter_value(double value) {
   if (value == 0) return "0";
-  std::string s = fmt::format("{:.6g}", value);
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", value);
+  std::string s = buf;
   // Keep decimal notation: a slider never needs an exponent, and "1e-05" reads badly in a material.
   if (s.find('e') != std::string::npos) {
-    s = fmt::format("{:.9f}", value);
+    std::snprintf(buf, sizeof buf, "%.9f", value);
+    s = buf;
     while (!s.empty() && s.back() == '0') s.pop_back();
     if (!s.empty() && s.back() == '.') s.pop_back();
   }

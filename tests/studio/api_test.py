@@ -173,7 +173,7 @@ def main():
         near = lambda a, b: all(abs(x - y) < 1e-9 for x, y in zip(a, b))
         check(near(ws["patches"][6]["centre_mm"], [5, 10]) and near(ws["patches"][6]["size_mm"], [24, 18]),
               "the recompiled workspace has the patch where it was put")
-        status, png = studio.get("/api/preview/patch-0.png")
+        status, png = studio.get(f"/api/preview/patch-0.png?v={moved['version']}")
         check(status == 200 and png[:8] == b"\x89PNG\r\n\x1a\n", "each patch has its picture")
         status, e = studio.get("/api/preview/..%2Fsecret")
         check(status == 404, "preview names outside the fixed set are 404")

@@ -91,7 +91,7 @@ def main():
     original = (folder / "corduroy.hmat").read_text()
 
     studio = Studio(os.path.abspath(args.sandpaper), folder / "corduroy.hmat")
-    b = Browser(chromium, width=1400, height=1000)
+    b = Browser(chromium, width=1400, height=1150)
     try:
         b.navigate(studio.url)
         check(wait(b, "document.body.dataset.ready === 'yes'", "the page to load", 30) is not None, "the page loads")

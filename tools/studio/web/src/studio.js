@@ -290,12 +290,8 @@ function drawOverlay() {
   const live = state.live;
   if (!live) return;
   const [hx, hy] = toPx(live.hand[0], live.hand[1], r);
-  const scale = 60 / Math.max(live.max_lateral_force_N || 1, 0.05);  // the compiled maximum is 60 px
+  const scale = 80 / Math.max(live.max_lateral_force_N || 1, 0.05);  // the compiled maximum is 80 px
   const fx = live.force_N[0] * scale, fy = live.force_N[1] * scale;
-  g.strokeStyle = "#c0392b";
-  g.fillStyle = "#c0392b";
-  g.lineWidth = 3;
-  arrow(g, hx, hy, hx + fx, hy - fy, 9);
   g.beginPath();
   g.arc(hx, hy, 7, 0, 2 * Math.PI);
   g.lineWidth = 2;
@@ -303,6 +299,11 @@ function drawOverlay() {
   g.fillStyle = "rgba(255, 210, 60, 0.9)";
   g.fill();
   g.stroke();
+  // The force on the hand, from its centre, drawn over it.
+  g.strokeStyle = "#c0392b";
+  g.fillStyle = "#c0392b";
+  g.lineWidth = 3;
+  arrow(g, hx, hy, hx + fx, hy - fy, 9);
   stage.dataset.hand = `${live.hand[0].toFixed(3)},${live.hand[1].toFixed(3)}`;
   stage.dataset.force = `${live.force_N[0].toFixed(4)},${live.force_N[1].toFixed(4)}`;
   stage.dataset.handPx = `${hx.toFixed(1)},${hy.toFixed(1)}`;
