@@ -16,19 +16,12 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from studio_process import Studio  # noqa: E402
+from checklist import Checklist  # noqa: E402
 
-passed, failed = 0, []
-
-
-def check(ok, what):
-    global passed
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
-    if ok:
-        passed += 1
-    else:
-        failed.append(what)
-    return ok
+checks = Checklist()
+check = checks.check
 
 
 def poll(studio, predicate, seconds):
@@ -181,8 +174,7 @@ def main():
         code, out, err = studio.stop()
     check(code == 0 and "force at zero" in out, f"Ctrl-C stops the studio with the force at zero (exit {code})")
     shutil.rmtree(tmp, ignore_errors=True)
-    print(f"{passed} passed, {len(failed)} failed")
-    return 1 if failed else 0
+    return checks.finish()
 
 
 if __name__ == "__main__":

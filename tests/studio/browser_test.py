@@ -21,21 +21,14 @@ import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, here)
+sys.path.insert(0, os.path.join(here, "..", "support"))
 sys.path.insert(0, os.path.join(here, "..", "catalog"))
 from cdp import Browser, find_chromium  # noqa: E402
 from studio_process import Studio  # noqa: E402
+from checklist import Checklist  # noqa: E402
 
-passed, failed = 0, []
-
-
-def check(ok, what):
-    global passed
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
-    if ok:
-        passed += 1
-    else:
-        failed.append(what)
-    return ok
+checks = Checklist()
+check = checks.check
 
 
 def key(b, name, code):
@@ -223,8 +216,7 @@ def main():
         code, printed, err = studio.stop()
     check(code == 0, f"the studio stops on Ctrl-C (exit {code})")
     shutil.rmtree(tmp, ignore_errors=True)
-    print(f"{passed} passed, {len(failed)} failed")
-    return 1 if failed else 0
+    return checks.finish()
 
 
 if __name__ == "__main__":

@@ -12,17 +12,11 @@ import sys
 import tempfile
 import time
 
-passed, failed = 0, []
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checklist import Checklist  # noqa: E402
 
-
-def check(ok, what):
-    global passed
-    print(("ok   " if ok else "FAIL ") + what, flush=True)
-    if ok:
-        passed += 1
-    else:
-        failed.append(what)
-    return ok
+checks = Checklist()
+check = checks.check
 
 
 class Lines:
@@ -83,8 +77,7 @@ def main():
             out, _ = proc.communicate()
     out = out.decode(errors="replace")
     check(proc.returncode == 0 and "stopped by signal" in out, f"Ctrl-C ends it (exit {proc.returncode})")
-    print(f"{passed} passed, {len(failed)} failed")
-    return 1 if failed else 0
+    return checks.finish()
 
 
 if __name__ == "__main__":

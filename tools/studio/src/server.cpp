@@ -123,7 +123,7 @@ struct Server::Impl {
       const WebAsset asset = a;
       http.Get(asset.path, [asset](const httplib::Request&, httplib::Response& res) {
         res.set_header("Cache-Control", "no-cache");
-        res.set_content(asset.body, asset.content_type);
+        res.set_content(asset.body, std::string(asset.content_type) + "; charset=utf-8");
       });
     }
     http.Get("/api/health", [this](const httplib::Request&, httplib::Response& res) {

@@ -13,10 +13,11 @@
 
 namespace sandpaper::studio {
 
-// The page's files, built from tools/studio/web/ by esbuild and compiled in (generated web_assets.cpp).
+// The page's files, built from tools/studio/web/ by esbuild and compiled in (web_assets.cpp, generated
+// by cmake/embed_files.cmake).
 struct WebAsset {
   const char* path;          // "/", "/studio.js", "/studio.css"
-  const char* content_type;  // "text/html; charset=utf-8", ...
+  const char* content_type;  // "text/html", "text/css", "text/javascript" (served as UTF-8)
   const char* body;
 };
 const std::vector<WebAsset>& web_assets();
