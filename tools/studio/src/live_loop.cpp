@@ -90,8 +90,24 @@ bool LiveLoop::set_hand_nonrt(double x_mm, double y_mm) {
   return true;
 }
 
-LoopState LiveLoop::state_nonrt() const {
+void LiveLoop::promote_locked() {
+  // The newest pending load the servo thread has picked up is what plays now; older ones never will.
+  for (auto it = pending_.rbegin(); it != pending_.rend(); ++it)
+    if (it->playing->load(std::memory_order_acquire)) {
+      state_.material = it->name;
+      state_.material_version = it->version;
+      state_.compiled_max_lateral_force_N = it->force;
+      state_.roughness = it->roughness;
+      pending_.erase(pending_.begin(), it.base());
+      return;
+    }
+}
+
+LoopState LiveLoop::state_nonrt() {
   std::lock_guard lock(mutex_);
+  // Here too, not only in the supervisor's drains: what plays is known the moment the servo thread
+  // has picked it up.
+  promote_locked();
   return state_;
 }
 
@@ -130,16 +146,7 @@ void LiveLoop::supervise() {
         source_.collect_retired_nonrt();
       }
       std::lock_guard lock(mutex_);
-      // The newest pending load the servo thread has picked up is what plays now; older ones never will.
-      for (auto it = pending_.rbegin(); it != pending_.rend(); ++it)
-        if (it->playing->load(std::memory_order_acquire)) {
-          state_.material = it->name;
-          state_.material_version = it->version;
-          state_.compiled_max_lateral_force_N = it->force;
-          state_.roughness = it->roughness;
-          pending_.erase(pending_.begin(), it.base());
-          break;
-        }
+      promote_locked();
       if (!any) continue;
       const double t = time_base + record.t_s;
       state_.ticks = tick_base + record.tick + 1;

@@ -74,10 +74,11 @@ class LiveLoop {
   bool has_dummy_hand() const noexcept { return dummy_ != nullptr; }
   const runtime::DeviceLimits& limits() const noexcept { return device_->limits(); }
 
-  LoopState state_nonrt() const;
+  LoopState state_nonrt();
 
  private:
   void supervise();
+  void promote_locked();  // with mutex_ held
 
   std::unique_ptr<runtime::Device> device_;
   runtime::DummyJoystick* dummy_;
