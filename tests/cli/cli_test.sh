@@ -282,9 +282,20 @@ has "$tmp/err" 'known devices: openffboard-2axis \(1209:ffb0\)' "devices names t
 expect_exit 2 "run --device usb, none present" -- "$sp" run -e corduroy --device usb --duration 0.1
 has "$tmp/err" 'run --device usb: no USB force-feedback device' "run --device usb says why"
 # Stopping: SIGINT to a running real-time run stops it within a tick, exit 0, the cause reported.
+# The signal goes once the process has its handlers (SigCgt in /proc, SIGINT and SIGTERM bits), not
+# after a guessed sleep: under load start-up alone can take longer than any sleep.
+wait_for_stop_handlers() {
+  local pid=$1 mask
+  for _ in $(seq 3000); do
+    mask=$(awk '/^SigCgt:/{print $2}' "/proc/$pid/status" 2>/dev/null) || return 1
+    [ -n "$mask" ] && (( (0x$mask & 0x4002) == 0x4002 )) && return 0
+    sleep 0.01
+  done
+  return 1
+}
 "$sp" run -e corduroy --device sim --duration 30 >"$tmp/sig.out" 2>"$tmp/sig.err" &
 run_pid=$!
-sleep 1
+wait_for_stop_handlers "$run_pid"
 kill -INT "$run_pid"
 start=$(date +%s)
 wait "$run_pid"; got=$?
@@ -293,7 +304,7 @@ wait "$run_pid"; got=$?
 has "$tmp/sig.out" 'stopped: stopped by signal' "SIGINT is reported as the stop cause"
 "$sp" run -e corduroy --device sim --duration 30 --json >"$tmp/sig.out" 2>"$tmp/sig.err" &
 run_pid=$!
-sleep 1
+wait_for_stop_handlers "$run_pid"
 kill -TERM "$run_pid"
 wait "$run_pid"; got=$?
 [ "$got" -eq 0 ] && ok || bad "SIGTERM: exit $got, wanted 0"

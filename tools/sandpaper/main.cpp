@@ -2,11 +2,13 @@
 // `sandpaper --help` lists the commands; schema/LANGUAGE.md describes material files.
 #include <unistd.h>
 #include <iostream>
+#include <string_view>
 
 #include <CLI/CLI.hpp>
 
 #include "cli.hpp"
 #include "cmd_library.hpp"
+#include "play.hpp"
 #include "run_device.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
@@ -28,6 +30,8 @@ void add_common(CLI::App* sub, sandpaper::cli::CommonOptions& o, bool input) {
 
 int main(int argc, char** argv) {
   using namespace sandpaper::cli;
+  // Before anything slow (parsing, loading the library, compiling): a Ctrl-C from here on is a stop request.
+  if (argc > 1 && std::string_view(argv[1]) == "run") install_run_stop_handlers();
   CLI::App app{"Sandpaper: compile perceptual material descriptions into patch programs and play them on a force-feedback joystick"};
   app.require_subcommand(1);
   CommonOptions o;

@@ -21,8 +21,9 @@ extern "C" void request_stop(int) { stop_requested.store(true, std::memory_order
 // Installs the handler for SIGINT and SIGTERM for the run and puts the old ones back after.
 class StopOnSignal {
  public:
+  // The flag is not cleared here: a signal that came after main() installed the handler early
+  // (install_run_stop_handlers) but before playing began must still stop the run, at its first tick.
   StopOnSignal() {
-    stop_requested.store(false);
     struct sigaction action{};
     action.sa_handler = request_stop;
     sigemptyset(&action.sa_mask);
@@ -55,6 +56,14 @@ void print_live(const runtime::TelemetryReader& reader, std::uint64_t dropped) {
 }
 
 }  // namespace
+
+void install_run_stop_handlers() {
+  struct sigaction action{};
+  action.sa_handler = request_stop;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
 
 Played play(runtime::Device& device, runtime::ForceSource& source, runtime::ServoConfig config, bool virtual_clock,
             bool live, std::size_t keep_records, const std::function<void()>& poll) {

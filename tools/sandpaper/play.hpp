@@ -21,6 +21,10 @@ struct Played {
 Played play(runtime::Device& device, runtime::ForceSource& source, runtime::ServoConfig config, bool virtual_clock,
             bool live, std::size_t keep_records, const std::function<void()>& poll = {});
 
+// Called first thing in main() for `run`: from then on SIGINT/SIGTERM request a stop (the run ends at
+// its first tick, exit 0) instead of killing a process that is still loading or compiling.
+void install_run_stop_handlers();
+
 // Exit status for a finished run: 0 when it completed or was stopped by a signal, else 1.
 int exit_status_of(const runtime::ServoReport& report);
 
