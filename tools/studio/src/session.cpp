@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -301,8 +302,8 @@ std::optional<fs::path> Session::preview_file(const std::string& name, std::uint
   // Names are checked against a fixed pattern: nothing from the request reaches the file system as a path.
   const bool fixed = name == "height.png" || name == "field.png" || name == "scan.svg" || name == "preview.json" ||
                      name == "field.json";
-  bool patch = name.starts_with("patch-") && name.ends_with(".png") && name.size() < 32 &&
-               std::all_of(name.begin() + 6, name.end() - 4, [](char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == 'f' || c == 'i' || c == 'e' || c == 'l' || c == 'd'; });
+  static const std::regex patch_picture(R"(patch-\d{1,5}(-field)?\.png)");
+  const bool patch = std::regex_match(name, patch_picture);
   if (!fixed && !patch) return std::nullopt;
   std::unique_lock lock(mutex_);
   rendered_.wait_for(lock, std::chrono::seconds(10), [&] { return rendered_version_ >= std::min(min_version, version_); });
