@@ -40,6 +40,7 @@ PsychophysicalMap read_map(const Toml& f, Problems& problems) {
   m.percept = *c["percept"].value<std::string>();
   m.provisional = *c["status"].value<std::string>() == "provisional";
   m.for_compile = *c["use"].value<std::string>() == "compile";
+  m.for_device = *c["use"].value<std::string>() == "device";
   m.description = *c["description"].value<std::string>();
   for (const auto& node : *c["predictor"].as_array()) {
     const toml::table& p = *node.as_table();
@@ -82,9 +83,12 @@ PsychophysicalMap read_map(const Toml& f, Problems& problems) {
     if (*r && !((*r)->min > 0 && (*r)->min < (*r)->max))
       problems.add(f, *c["domain"].node(), "a domain range must be positive and ascending, [low, high]", "");
 
-  if (m.for_compile) {
+  if (m.for_device && m.domain_device.empty())
+    problems.add(f, *c["use"].node(), "a map with use = \"device\" names its device in [domain] device",
+                 "add [domain] device = \"<name in calibration/devices/>\"");
+  if (m.for_compile || m.for_device) {
     if (!c["ratio_scale"].as_table()) {
-      problems.add(f, c, "a map with use = \"compile\" needs a [ratio_scale] (predictor and reference)",
+      problems.add(f, c, "a map used to compile (use = \"compile\" or \"device\") needs a [ratio_scale] (predictor and reference)",
                    "add [ratio_scale] with predictor = \"force\" and reference = \"382 gf\"");
       return m;
     }
@@ -176,6 +180,7 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
   }
   d.usb_vendor_id = static_cast<int>(c["usb"]["vendor_id"].value_or(std::int64_t{-1}));
   d.usb_product_id = static_cast<int>(c["usb"]["product_id"].value_or(std::int64_t{-1}));
+  d.roughness_map = c["maps"]["roughness"].value_or(std::string());
   d.min_rate_hz = *c["servo_rate_hz"]["min"].value<double>();
   d.max_rate_hz = *c["servo_rate_hz"]["max"].value<double>();
   if (d.min_rate_hz > d.max_rate_hz)
@@ -337,15 +342,54 @@ CalibrationSet CalibrationSet::load(const std::filesystem::path& dir) {
   }
   if (s.devices_.empty() && !problems.any()) problems.add_plain(shown(dir / "devices") + ": no device calibrations");
 
+  // Device maps: the device file's [maps] entry, else the one use = "device" map naming the device.
+  for (std::size_t i = 0; i < s.maps_.size(); ++i) {
+    const auto& m = s.maps_[i];
+    if (!m.for_device) continue;
+    if (!s.find_device(m.domain_device)) {
+      problems.add_plain(m.file + ": error: this use = \"device\" map is for device `" + m.domain_device +
+                         "`, which calibration/devices/ lacks");
+      continue;
+    }
+    const auto& d = *s.find_device(m.domain_device);
+    if (!d.roughness_map.empty() && m.percept == "roughness") continue;  // the device file chooses
+    for (const auto& [key, j] : s.device_maps_)
+      if (key.first == m.domain_device && key.second == m.percept)
+        problems.add_plain(m.file + ": error: device `" + m.domain_device + "` already has a " + m.percept + " map, " +
+                           s.maps_[j].file + "; name the one to use in " + d.file + " ([maps] " + m.percept + " = \"<id>\")");
+    s.device_maps_.push_back({{m.domain_device, m.percept}, i});
+  }
+  for (const auto& d : s.devices_) {
+    if (d.roughness_map.empty()) continue;
+    std::size_t found = s.maps_.size();
+    for (std::size_t i = 0; i < s.maps_.size(); ++i)
+      if (s.maps_[i].id == d.roughness_map) found = i;
+    if (found == s.maps_.size())
+      problems.add_plain(d.file + ": error: [maps] roughness names map `" + d.roughness_map + "`, which calibration/maps/ lacks");
+    else if (s.maps_[found].percept != "roughness" || !(s.maps_[found].for_compile || s.maps_[found].for_device))
+      problems.add_plain(d.file + ": error: [maps] roughness names map `" + d.roughness_map +
+                         "`, which is not a roughness map with use = \"device\" or \"compile\"");
+    else s.device_maps_.push_back({{d.name, "roughness"}, found});
+  }
+
   detail::load_knowledge(dir / "knowledge", shown, s.knowledge_, problems);
   problems.throw_if_any();
   return s;
 }
 
-const PsychophysicalMap* CalibrationSet::compile_map(const std::string& percept) const {
+void CalibrationSet::select_device(const std::string& name) { selected_ = name; }
+
+const PsychophysicalMap* CalibrationSet::default_compile_map(const std::string& percept) const {
   for (const auto& m : maps_)
     if (m.for_compile && m.percept == percept) return &m;
   return nullptr;
+}
+
+const PsychophysicalMap* CalibrationSet::compile_map(const std::string& percept) const {
+  if (!selected_.empty())
+    for (const auto& [key, i] : device_maps_)
+      if (key.first == selected_ && key.second == percept) return &maps_[i];
+  return default_compile_map(percept);
 }
 
 const PsychophysicalMap* CalibrationSet::find_map(const std::string& id) const {

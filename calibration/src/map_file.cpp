@@ -58,7 +58,9 @@ std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOption
                  : "none: raw estimates; geometric mean per stimulus over subjects and runs";
 
   std::string out;
-  out += fmt::format("# Fitted by `sandpaper calibrate fit` from the magnitude estimates in {}:\n", fit.path);
+  if (!o.provenance.empty()) out += "# " + o.provenance + "\n";
+  out += fmt::format("# Fitted by `sandpaper {}` from the magnitude estimates in {}:\n",
+                     o.provenance.empty() ? "calibrate fit" : "experiment analyse", fit.path);
   out += fmt::format("# {} trials ({} answered), {} subjects, {} stimuli, {} runs. log10 mean estimate regressed on\n",
                      fit.trials, fit.answered, fit.subjects.size(), fit.stimuli.size(), fit.runs);
   out += "# log10(force / 1 N) with a constant, the form of Minsky 1995 Figure 19 (docs/CALIBRATION.md, \"Fitting\").\n";
@@ -81,7 +83,7 @@ std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOption
   out += "id = " + toml_string(id) + "\n";
   out += "percept = " + toml_string(o.percept) + "\n";
   out += "status = \"measured\"\n";
-  out += "use = \"compile\"\n";
+  out += o.device.empty() ? "use = \"compile\"\n" : "use = \"device\"\n";
   out += "law = \"log-linear\"\n";
   out += "description = " + toml_string(description) + "\n\n";
   out += "[[predictor]]\nname = \"force\"\nquantity = \"maximum lateral force of the stimulus\"\nunit = \"N\"\n";
@@ -96,16 +98,24 @@ std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOption
   out += fmt::format("degrees_of_freedom = {}\nf_ratio = {}\nstimuli = {}\nsubjects = {}\nruns = {}\n", r.df_residual,
                      toml_float(r.f_ratio), fit.stimuli.size(), fit.subjects.size(), fit.runs);
   out += "normalisation = " + toml_string(normalisation) + "\n";
-  out += "\n[ratio_scale]                # ratio-scale percept 1 at the strongest stimulus\n";
-  out += "predictor = \"force\"\nreference = " + toml_string(bound_text(fmax, "N", true)) + "\n";
+  if (o.reference_N > 0) {
+    out += "\n[ratio_scale]                # ratio-scale percept 1 at the default map's reference force\n";
+    out += "predictor = \"force\"\nreference = " + toml_string(quantity_text(o.reference_N, "N")) + "\n";
+  } else {
+    out += "\n[ratio_scale]                # ratio-scale percept 1 at the strongest stimulus\n";
+    out += "predictor = \"force\"\nreference = " + toml_string(bound_text(fmax, "N", true)) + "\n";
+  }
   out += "\n[domain]                     # the stimuli the fit saw\n";
   out += "force = [" + toml_string(bound_text(fmin, "N", false)) + ", " + toml_string(bound_text(fmax, "N", true)) + "]\n";
   out += "period = [" + toml_string(bound_text(pmin * 1e3, "mm", false)) + ", " +
          toml_string(bound_text(pmax * 1e3, "mm", true)) + "]\n";
+  if (!o.device.empty()) out += "device = " + toml_string(o.device) + "\n";
   out += "\n[source]\n";
-  out += "citation = " + toml_string("magnitude-estimation data in " + fit.path) + "\n";
-  out += "where = " + toml_string(fmt::format("fitted by sandpaper calibrate fit: {} stimuli, {} subjects, {} runs",
-                                              fit.stimuli.size(), fit.subjects.size(), fit.runs)) +
+  out += "citation = " + toml_string(o.citation.empty() ? "magnitude-estimation data in " + fit.path : o.citation) + "\n";
+  out += "where = " + toml_string(o.provenance.empty()
+                                      ? fmt::format("fitted by sandpaper calibrate fit: {} stimuli, {} subjects, {} runs",
+                                                    fit.stimuli.size(), fit.subjects.size(), fit.runs)
+                                      : o.provenance) +
          "\n";
   return out;
 }

@@ -46,6 +46,8 @@ Compiler::Compiler(CompileOptions options)
     for (const auto& d : calibration_.devices()) names += (names.empty() ? "" : ", ") + d.name;
     throw std::invalid_argument("unknown device '" + options_.device + "'; known devices: " + names);
   }
+  // A device with its own fitted maps (docs/EXPERIMENTS.md) compiles percepts through them.
+  calibration_.select_device(device_->name);
 }
 
 CompileResult Compiler::compile_file(const std::filesystem::path& path) const {

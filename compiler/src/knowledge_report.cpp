@@ -250,11 +250,19 @@ std::string knowledge_text(const KnowledgeReport& k, const CalibrationSet& cal) 
   return os.str();
 }
 
+namespace {
+// Maps listed beside the one that compiles: measured maps of the same percept, including the default
+// when a device's own map compiles; other devices' maps are not comparisons for this one.
+bool shown_beside(const calibration::PsychophysicalMap& m, const calibration::PsychophysicalMap& compile) {
+  return &m != &compile && !m.provisional && m.percept == compile.percept && !m.for_device;
+}
+}  // namespace
+
 std::string maps_text(const CalibrationSet& cal) {
   std::ostringstream os;
   const auto& compile = cal.roughness_map();
   auto line = [&](const calibration::PsychophysicalMap& m) {
-    os << "  " << (m.for_compile ? "compile     " : "comparison  ") << m.id << std::string(m.id.size() < 18 ? 18 - m.id.size() : 1, ' ');
+    os << "  " << (&m == &compile ? "compile     " : "comparison  ") << m.id << std::string(m.id.size() < 18 ? 18 - m.id.size() : 1, ' ');
     const auto* main = m.predictor(compile.ratio_predictor);
     if (main) {
       os << "slope " << num(main->coefficient, 3) << " on log " << main->name;
@@ -274,7 +282,7 @@ std::string maps_text(const CalibrationSet& cal) {
   };
   line(compile);
   for (const auto& m : cal.maps())
-    if (!m.for_compile && !m.provisional && m.percept == compile.percept) line(m);
+    if (shown_beside(m, compile)) line(m);
   return os.str();
 }
 
@@ -327,7 +335,7 @@ nlohmann::json maps_json(const CalibrationSet& cal) {
   // The compile map first, then the comparisons beside it, as in the text.
   std::vector<const calibration::PsychophysicalMap*> shown{&compile};
   for (const auto& m : cal.maps())
-    if (!m.for_compile && !m.provisional && m.percept == compile.percept) shown.push_back(&m);
+    if (shown_beside(m, compile)) shown.push_back(&m);
   for (const auto* mp : shown) {
     const auto& m = *mp;
     nlohmann::json preds = nlohmann::json::array();
@@ -339,7 +347,7 @@ nlohmann::json maps_json(const CalibrationSet& cal) {
       preds.push_back(p);
     }
     arr.push_back({{"id", m.id},
-                   {"use", m.for_compile ? "compile" : "comparison"},
+                   {"use", mp == &compile ? "compile" : "comparison"},
                    {"predictors", preds},
                    {"r_squared", m.r_squared ? nlohmann::json(*m.r_squared) : nlohmann::json(nullptr)},
                    {"texture", m.domain_texture},

@@ -20,7 +20,7 @@ double quantity_N(const std::string& s) {  // "3.74612 N"
 
 TEST(MapFile, HoldsTheFit) {
   const auto fit = fit_magnitude_estimation(synthetic::simulate_experiment({}).data);
-  const auto doc = toml::parse(map_file_text(fit, {"test-map", "roughness", ""}));
+  const auto doc = toml::parse(map_file_text(fit, compile_map_options("test-map")));
   EXPECT_EQ(doc["schema"].value_or(std::string()), "sandpaper-map/1");
   EXPECT_EQ(doc["id"].value_or(std::string()), "test-map");
   EXPECT_EQ(doc["percept"].value_or(std::string()), "roughness");

@@ -30,7 +30,7 @@ TEST(RoundTrip, FittedMapLoads) {
   const auto fit = fit_magnitude_estimation(e.data);
   const auto dir = temp_dir();
   const auto path = dir / "fitted-roughness.toml";
-  sandpaper::schema::write_file_atomically(path, map_file_text(fit, {"fitted-roughness", "roughness", ""}));
+  sandpaper::schema::write_file_atomically(path, map_file_text(fit, compile_map_options("fitted-roughness")));
   const auto m = load_map_file(path);
   EXPECT_EQ(m.id, "fitted-roughness");
   EXPECT_EQ(m.percept, "roughness");

@@ -129,4 +129,22 @@ int cmd_calibrate(const CalibrateOptions& o);
 // `library`; runs it with the `library` group's options `o` filling what catalog's own leave unset.
 CLI::App* add_library_catalog_command(CLI::App& library);
 int cmd_library_catalog(const CommonOptions& o);
+
+// `sandpaper experiment run|resume|analyse` (cmd_experiment.cpp, docs/EXPERIMENTS.md).
+struct ExperimentOptions {
+  CommonOptions common;            // --library, --calibration, --json
+  std::string target;              // run: the design; resume and analyse: the results folder
+  std::string subject, output;     // run
+  std::string device = "sim";      // sim or usb
+  std::string observer = "terminal";
+  bool virtual_clock = false;
+  std::string map_out, map_id, pictures;  // analyse
+  bool allow_mixed_designs = false;
+  CLI::App* run = nullptr;
+  CLI::App* resume = nullptr;
+  CLI::App* analyse = nullptr;
+};
+void add_experiment_command(CLI::App& app, ExperimentOptions& o);
+// Runs whichever subcommand was parsed; -1 if none was.
+int cmd_experiment(const ExperimentOptions& o);
 }  // namespace sandpaper::cli

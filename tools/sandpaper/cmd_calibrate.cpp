@@ -13,6 +13,7 @@
 #include "sandpaper/calibration/device_fit.hpp"
 #include "sandpaper/calibration/fit.hpp"
 #include "sandpaper/calibration/fit_error.hpp"
+#include "sandpaper/calibration/fit_json.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
 
 namespace sandpaper::cli {
@@ -22,12 +23,13 @@ using calibration::Coefficient;
 using calibration::RegressionResult;
 using nlohmann::json;
 
-constexpr double kAlpha = 0.05;  // significance level for "adds anything"
+using calibration::period_verdict;
+constexpr double kAlpha = calibration::kSignificanceLevel;
 
 // JSON has no infinity: a non-finite statistic becomes null.
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-std::string p_text(double p) { return p < 0.0001 ? "< 0.0001" : fmt::format("{:.4f}", p); }
+std::string p_text(double p) { return calibration::p_value_text(p); }
 
 // The regression table in the layout of Minsky 1995 Figures 19-20 (Data Desk's).
 std::string regression_table(const RegressionResult& r, const std::string& dependent) {
@@ -53,30 +55,12 @@ std::string regression_table(const RegressionResult& r, const std::string& depen
   return out;
 }
 
-json coefficient_json(const Coefficient& c) {
-  return {{"value", c.value}, {"se", c.se}, {"t", num(c.t)}, {"p", num(c.p)}};
-}
-
-json regression_json(const RegressionResult& r) {
-  json coeffs = json::object();
-  for (const auto& c : r.coefficients) coeffs[c.name] = coefficient_json(c);
-  return {{"constant", r.has_constant}, {"coefficients", coeffs}, {"r2", r.r_squared}, {"r2_adj", r.r_squared_adjusted},
-          {"s", r.s}, {"df", r.df_residual}, {"df_regression", r.df_regression}, {"f", num(r.f_ratio)},
-          {"f_p", num(r.f_p)}, {"ss_regression", r.ss_regression}, {"ss_residual", r.ss_residual},
-          {"ss_total", r.ss_total}, {"n", r.n}};
-}
-
 void write_output(const std::string& path, const std::string& text) {
   try {
     schema::write_file_atomically(path, text);
   } catch (const std::runtime_error& e) {
     throw std::invalid_argument(e.what());  // environment: exit 2 in main
   }
-}
-
-std::string period_verdict(const Coefficient& c) {
-  return c.p < kAlpha ? fmt::format("log period is significant (p = {}): roughness depends on period beyond force", p_text(c.p))
-                      : fmt::format("log period adds nothing significant once force is known (p = {} >= {:g})", p_text(c.p), kAlpha);
 }
 
 int run_fit(const CalibrateOptions& o) {
@@ -92,71 +76,8 @@ int run_fit(const CalibrateOptions& o) {
     write_output(o.output, calibration::map_file_text(fit, mo));
   }
   if (o.json) {
-    json j = {{"ok", true},
-              {"source", fit.path},
-              {"percept", o.percept},
-              {"law", "log10 mean estimate = intercept + slope * log10(force / 1 N)"},
-              {"force_unit", "N"},
-              {"slope", slope.value},
-              {"slope_se", slope.se},
-              {"slope_t", num(slope.t)},
-              {"slope_p", num(slope.p)},
-              {"intercept", constant.value},
-              {"intercept_se", constant.se},
-              {"intercept_t", num(constant.t)},
-              {"intercept_p", num(constant.p)},
-              {"r2", r.r_squared},
-              {"r2_adj", r.r_squared_adjusted},
-              {"s", r.s},
-              {"df", r.df_residual},
-              {"f", num(r.f_ratio)},
-              {"f_p", num(r.f_p)},
-              {"ss_regression", r.ss_regression},
-              {"ss_residual", r.ss_residual},
-              {"ss_total", r.ss_total},
-              {"n_stimuli", fit.stimuli.size()},
-              {"n_subjects", fit.subjects.size()},
-              {"runs", fit.runs},
-              {"trials", fit.trials},
-              {"trials_answered", fit.answered},
-              {"normalisation", "geometric-mean"},
-              {"grand_geometric_mean", fit.grand_geometric_mean}};
-    if (fit.force_period) {
-      const auto& fp = *fit.force_period;
-      const auto& c = fp.coefficient("log period");
-      json p = {{"fitted", true},
-                {"coefficient", c.value},
-                {"se", c.se},
-                {"t", num(c.t)},
-                {"p", num(c.p)},
-                {"significant", c.p < kAlpha},
-                {"alpha", kAlpha},
-                {"verdict", period_verdict(c)},
-                {"unit", "mm"},
-                {"regression", regression_json(fp)}};
-      if (fit.force_period_origin) {
-        p["through_origin"] = regression_json(*fit.force_period_origin);
-        p["through_origin"]["note"] = "Figure 20's form, for comparison only: without a constant the coefficients depend on the units (N, mm)";
-      }
-      j["period"] = p;
-    } else {
-      j["period"] = {{"fitted", false}, {"reason", fit.period_note}};
-    }
-    j["between_subjects"] = {{"subjects", fit.between.subjects}, {"slope_mean", fit.between.slope_mean},
-                             {"slope_sd", fit.between.slope_sd}, {"slope_se", fit.between.slope_se}};
-    json stimuli = json::array();
-    for (std::size_t i = 0; i < fit.stimuli.size(); ++i) {
-      const auto& s = fit.stimuli[i];
-      stimuli.push_back({{"stimulus", s.stimulus}, {"force_N", s.force_N}, {"period_mm", s.period_m * 1e3},
-                         {"estimates", s.estimates}, {"mean_response", s.mean_response},
-                         {"log_residual", r.residuals[i]}});
-    }
-    j["stimuli"] = stimuli;
-    json subjects = json::array();
-    for (const auto& s : fit.subjects)
-      subjects.push_back({{"subject", s.subject}, {"trials", s.trials}, {"answered", s.answered},
-                          {"geometric_mean", s.geometric_mean}, {"slope", s.slope ? json(*s.slope) : json(nullptr)}});
-    j["subjects"] = subjects;
+    json j = {{"ok", true}, {"source", fit.path}, {"percept", o.percept}};
+    j.update(calibration::fit_json(fit));
     if (!o.output.empty()) j["output"] = o.output;
     std::cout << j.dump(2) << "\n";
     return kExitOk;

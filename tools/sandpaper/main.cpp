@@ -119,6 +119,8 @@ int main(int argc, char** argv) {
 
   CalibrateOptions calibrate_opts;
   add_calibrate_command(app, calibrate_opts);
+  ExperimentOptions experiment_opts;
+  add_experiment_command(app, experiment_opts);
 
   // CLI11's own exit codes (106 for a missing subcommand, ...) are not ours: any usage error is 2,
   // --help and --version are 0.
@@ -186,6 +188,7 @@ int main(int argc, char** argv) {
     }
     if (devices->parsed()) return cmd_devices(o);
     if (const int rc = cmd_calibrate(calibrate_opts); rc >= 0) return rc;
+    if (const int rc = cmd_experiment(experiment_opts); rc >= 0) return rc;
   } catch (const sandpaper::schema::PatchFormatError& e) {
     std::cerr << "sandpaper: error: " << e.what() << "\n";
     return kExitBadInput;

@@ -43,7 +43,8 @@ struct PsychophysicalMap {
   std::string file;            // as shown to users: "calibration/maps/minsky1995-fig19.toml"
   std::string percept;         // "roughness"
   bool provisional = false;    // status = "provisional": not measured; every use must warn
-  bool for_compile = false;    // use = "compile" (else a comparison map)
+  bool for_compile = false;    // use = "compile": the default map of its percept
+  bool for_device = false;     // use = "device": compiles only for the device domain.device names
   std::string description;
   std::vector<Predictor> predictors;
   std::optional<double> intercept, intercept_se;
@@ -107,6 +108,7 @@ struct DeviceCalibration {
   double workspace_size_m[2] = {0, 0};  // rectangle width, height (circle: the diameter twice)
   double min_rate_hz = 0, max_rate_hz = 0;
   int usb_vendor_id = -1, usb_product_id = -1;  // [usb] table of a USB HID PID device; -1: not a USB device
+  std::string roughness_map;         // [maps] roughness: the map id this device compiles roughness with; empty: see load()
   CalibrationStatus status = CalibrationStatus::Uncalibrated;
   std::string calibration_method, calibration_source;
 
@@ -129,9 +131,16 @@ class CalibrationSet {
   static CalibrationSet load(const std::filesystem::path& dir);
 
   const std::vector<PsychophysicalMap>& maps() const { return maps_; }
-  // The map the compiler resolves `percept` through (use = "compile"); nullptr if none.
+  // The map the compiler resolves `percept` through: the selected device's own map when it has one
+  // (select_device), else the default (use = "compile"); nullptr if none.
   const PsychophysicalMap* compile_map(const std::string& percept) const;
-  // The roughness compile map (minsky1995-fig19); always present after load().
+  // The default compile map of `percept`, whatever device is selected; nullptr if none.
+  const PsychophysicalMap* default_compile_map(const std::string& percept) const;
+  // Compile for device `name` from now on: its [maps] entry, else the use = "device" map whose
+  // domain.device names it, replaces the default map of that percept (docs/EXPERIMENTS.md). An empty
+  // or unknown name selects no device. Checked by load(): at most one device map per percept and device.
+  void select_device(const std::string& name);
+  // The roughness compile map for the selected device (default: minsky1995-fig19); always present after load().
   const PsychophysicalMap& roughness_map() const { return *compile_map("roughness"); }
   const PsychophysicalMap* find_map(const std::string& id) const;
 
@@ -155,6 +164,9 @@ class CalibrationSet {
   std::vector<Level> roughness_levels_;
   std::vector<DeviceCalibration> devices_;
   Knowledge knowledge_;
+  // (device name, percept) -> index into maps_, filled by load(); selected_ picks the device.
+  std::vector<std::pair<std::pair<std::string, std::string>, std::size_t>> device_maps_;
+  std::string selected_;
 };
 
 // One file, validated against its schema; `shown_as` is the path used in messages and provenance

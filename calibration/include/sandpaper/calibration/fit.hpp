@@ -95,7 +95,20 @@ struct MapFileOptions {
   std::string id;           // map id; empty: "fitted-<percept>"
   std::string percept = "roughness";
   std::string description;  // empty: "<percept> against maximum lateral force, fitted by sandpaper calibrate fit"
+  // Non-empty: a device's own map (use = "device", [domain] device = this), which the compiler uses
+  // only for that device (docs/EXPERIMENTS.md). Empty: the default compile map (use = "compile").
+  std::string device;
+  double reference_N = 0;   // ratio-scale reference force, N; 0: the strongest stimulus
+  std::string provenance;   // "# " lines written first, and the [source] where; empty: calibrate fit's
+  std::string citation;     // [source] citation; empty: "magnitude-estimation data in <csv>"
 };
+
+// Options for a default roughness compile map with id `id` (what `calibrate fit -o` writes).
+inline MapFileOptions compile_map_options(std::string id) {
+  MapFileOptions o;
+  o.id = std::move(id);
+  return o;
+}
 
 // The map file (docs/CALIBRATION.md, schema/files/map.schema.json): the Figure 19 form with force in
 // N, status "measured", use "compile", ratio-scale reference at the largest stimulus force, domain

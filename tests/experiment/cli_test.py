@@ -1,0 +1,182 @@
+#!/usr/bin/env python3
+"""`sandpaper experiment` end to end, as a lab would use it (issue 13's "done when"): the shipped
+example design run for eight simulated subjects on the simulated joystick, analysed, the fitted map
+installed into a calibration folder and used by a compile whose `explain` names it; a design with
+bad stimuli refused before any trial; a session killed with SIGKILL mid-trial and resumed in the
+same order; pooling of different designs refused."""
+import argparse
+import json
+import math
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from checklist import Checklist  # noqa: E402
+
+DESIGN = "examples/experiments/roughness-magnitude.toml"
+SIM = "simulated:exponent=0.76,noise=0.15,seed=3"
+
+
+def run(sp, *args, **kw):
+    return subprocess.run([sp, *args], capture_output=True, text=True, timeout=300, **kw)
+
+
+def answers(folder):
+    with open(os.path.join(folder, "results.jsonl")) as f:
+        return [json.loads(l) for l in f if l.strip() and json.loads(l)["record"] == "answer"]
+
+
+class Stderr:
+    """Collects a process's stderr as it arrives; wait_for blocks until a text appears (no sleeps)."""
+
+    def __init__(self, proc):
+        self.text = ""
+        self.cond = threading.Condition()
+        self.proc = proc
+        threading.Thread(target=self._read, daemon=True).start()
+
+    def _read(self):
+        while True:
+            b = self.proc.stderr.read1(4096) if hasattr(self.proc.stderr, "read1") else self.proc.stderr.read(1)
+            with self.cond:
+                if not b:
+                    self.cond.notify_all()
+                    return
+                self.text += b.decode()
+                self.cond.notify_all()
+
+    def wait_for(self, needle, count=1, timeout=60):
+        with self.cond:
+            return self.cond.wait_for(lambda: self.text.count(needle) >= count or self.proc.poll() is not None, timeout) \
+                and self.text.count(needle) >= count
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sandpaper", required=True)
+    sp = ap.parse_args().sandpaper
+    c = Checklist()
+    tmp = tempfile.mkdtemp(prefix="sandpaper-experiment-")
+    try:
+        cal = os.path.join(tmp, "calibration")
+        shutil.copytree("calibration", cal)
+        results = os.path.join(tmp, "results")
+
+        # Eight simulated subjects on the example design.
+        ok = True
+        for s in range(1, 9):
+            r = run(sp, "experiment", "run", DESIGN, "--subject", f"S0{s}", "-o", os.path.join(results, f"S0{s}"),
+                    "--observer", SIM, "--virtual-clock", "--calibration", cal)
+            ok = ok and r.returncode == 0 and "all 40 trials answered" in r.stdout
+        c.check(ok, "the example design runs for 8 simulated subjects on the simulated joystick")
+        c.check(len(answers(os.path.join(results, "S01"))) == 40, "every answer is in the results file (4 practice + 36)")
+
+        r = run(sp, "experiment", "analyse", results, "--json")
+        rep = json.loads(r.stdout) if r.returncode == 0 else {}
+        me = rep.get("magnitude_estimation", {})
+        c.check(r.returncode == 0 and rep.get("subjects") == 8 and me.get("n_trials") == 288,
+                f"analyse --json pools 8 subjects, 288 trials (exit {r.returncode})")
+        keys = ["slope", "slope_se", "intercept", "intercept_se", "r2", "r2_adj", "s", "df", "f", "subjects", "n_trials"]
+        c.check(all(k in me for k in keys), "magnitude_estimation has calibrate fit's keys plus n_trials and subjects")
+        fit = json.loads(run(sp, "calibrate", "fit", "examples/calibration/roughness-responses.csv", "--json").stdout)
+        c.check(all(k in fit for k in keys[:9]), "calibrate fit --json has the same statistics keys")
+        if me:
+            c.check(abs(me["slope"] - 0.76) < 2 * me["slope_se"],
+                    f"fitted slope {me['slope']:.4f} +- {me['slope_se']:.4f} is within two standard errors of 0.76")
+        plot = me.get("plot", "")
+        c.check(os.path.isfile(plot) and open(plot).read().startswith("<svg"), f"the fit's picture is written ({plot})")
+
+        # Install the fitted map for the sim device and compile through it.
+        map_path = os.path.join(cal, "maps", "sim-roughness.toml")
+        r = run(sp, "experiment", "analyse", results, "--map-out", map_path, "--calibration", cal)
+        c.check(r.returncode == 0 and os.path.isfile(map_path), f"--map-out writes {map_path} (exit {r.returncode}) {r.stderr}")
+        text = open(map_path).read() if os.path.isfile(map_path) else ""
+        c.check('use = "device"' in text and 'device = "sim"' in text and "8 subjects" in text and DESIGN in text,
+                "the map is a device map for sim with its provenance (subjects, design)")
+        r = run(sp, "explain", "-e", "grating period 2.5 mm; roughness 0.6", "--calibration", cal)
+        c.check(r.returncode == 0 and "via sim-roughness (" in r.stdout and "compile     sim-roughness" in r.stdout,
+                "explain names the fitted map as the one that compiled roughness 0.6")
+        c.check("comparison  minsky1995-fig19" in r.stdout, "and lists the 1995 map beside it as a comparison")
+        r = run(sp, "compile", "-e", "grating period 2.5 mm; roughness 0.6", "--calibration", cal, "--json", "-o",
+                os.path.join(tmp, "x.patch"))
+        got = json.loads(r.stdout).get("max_lateral_force_N") if r.returncode == 0 else None
+        want = 3.74614 * 0.6 ** (1 / me.get("slope", 1))
+        c.check(got is not None and abs(got - want) < 1e-3 * want,
+                f"compile --device sim asks for F = 3.746 N x 0.6^(1/slope) = {want:.4f} N (got {got})")
+        r = run(sp, "explain", "-e", "grating period 2.5 mm; roughness 0.6", "--calibration", cal, "--device",
+                "openffboard-2axis")
+        c.check(r.returncode == 0 and "compile     minsky1995-fig19" in r.stdout and "sim-roughness" not in r.stdout,
+                "another device still compiles through the 1995 map")
+
+        # A bad design is refused whole, before the first trial.
+        bad = os.path.join(tmp, "bad.toml")
+        with open(DESIGN) as f:
+            design = f.read()
+        with open(bad, "w") as f:
+            f.write(design.replace('"a1p7", "a3p7"', '"a1p7", "corduroyy", "a1p100", "a3p7"'))
+        r = run(sp, "experiment", "run", bad, "--subject", "S01", "-o", os.path.join(tmp, "bad-results"),
+                "--observer", SIM, "--virtual-clock")
+        c.check(r.returncode == 1 and "`corduroyy` does not compile" in r.stderr and "`a1p100` lies in the low-confidence region" in r.stderr,
+                f"unknown and unbelievable stimuli are both listed (exit {r.returncode})")
+        c.check(not os.path.exists(os.path.join(tmp, "bad-results")), "and nothing is written")
+        r = run(sp, "experiment", "run", DESIGN, "--subject", "S01", "-o", os.path.join(results, "S01"), "--observer", SIM,
+                "--virtual-clock")
+        c.check(r.returncode == 1 and "already holds results" in r.stderr, "run into a used results folder is refused")
+        r = run(sp, "experiment", "run", DESIGN, "--subject", "S01", "-o", os.path.join(tmp, "x"), "--observer",
+                "simulated:exponnent=1")
+        c.check(r.returncode == 2 and "unknown parameter `exponnent`" in r.stderr, "a misspelt observer parameter is a usage error")
+
+        # kill -9 in the middle of a session, then resume in the same order.
+        killed = os.path.join(tmp, "killed", "S01")
+        p = subprocess.Popen([sp, "experiment", "run", DESIGN, "--subject", "S01", "-o", killed, "--virtual-clock"],
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        err = Stderr(p)
+        ready = err.wait_for("Press Enter to begin")
+        p.stdin.write(b"\n")
+        p.stdin.flush()
+        for k in range(1, 4):
+            ready = ready and err.wait_for("How rough", k)
+            p.stdin.write(f"{k + 1}\n".encode())
+            p.stdin.flush()
+            ready = ready and err.wait_for(f"trial   {k} of 40")
+        ready = ready and err.wait_for("How rough", 4)  # trial 4 presented, its answer not given
+        p.send_signal(signal.SIGKILL)
+        p.wait(timeout=60)
+        c.check(ready and p.returncode == -signal.SIGKILL, "a terminal session is killed with SIGKILL at trial 4")
+        got = answers(killed)
+        c.check([a["response"] for a in got] == [2, 3, 4], f"the three answered trials are on disk ({len(got)})")
+        with open(os.path.join(killed, "results.jsonl"), "a") as f:
+            f.write('{"record":"answer","trial":3,"stim')  # as if killed while writing trial 4
+        r = run(sp, "experiment", "resume", killed, "--observer", SIM, "--virtual-clock")
+        c.check(r.returncode == 0 and "resuming at trial 4" in r.stderr and "all 40 trials answered" in r.stdout,
+                f"resume continues at trial 4 and finishes (exit {r.returncode})")
+        got = answers(killed)
+        ref = answers(os.path.join(results, "S01"))
+        c.check([a["trial"] for a in got] == list(range(40)), "each trial answered once, in order")
+        c.check([a["stimuli"] for a in got] == [a["stimuli"] for a in ref],
+                "in the same order as an uninterrupted session of the same subject")
+        r = run(sp, "experiment", "resume", killed, "--observer", SIM, "--virtual-clock")
+        c.check(r.returncode == 0 and "every trial is answered already" in r.stdout, "resuming a finished session says so")
+
+        # Runs of different designs are not pooled unless asked.
+        other = os.path.join(tmp, "other.toml")
+        with open(other, "w") as f:
+            f.write(design.replace("repetitions = 3", "repetitions = 2"))
+        r = run(sp, "experiment", "run", other, "--subject", "S09", "-o", os.path.join(results, "S09"), "--observer", SIM,
+                "--virtual-clock")
+        r = run(sp, "experiment", "analyse", results)
+        c.check(r.returncode == 1 and "different designs" in r.stderr, "analyse refuses to pool different designs")
+        r = run(sp, "experiment", "analyse", results, "--allow-mixed-designs", "--json")
+        c.check(r.returncode == 0 and json.loads(r.stdout)["subjects"] == 9, "--allow-mixed-designs pools them")
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    return c.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

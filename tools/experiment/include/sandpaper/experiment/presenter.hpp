@@ -1,0 +1,82 @@
+#pragma once
+// Playing one stimulus to the subject's hand: the program's force times an envelope that ramps up
+// from zero, holds, and ramps back to zero (runtime/envelope_source.hpp), so consecutive trials
+// never step the force. Two ways to run it: on the running real-time loop (a person at a joystick:
+// each trial is hot-swapped in, runtime/swappable_source.hpp), or on the virtual clock with the
+// simulated joystick's scripted hand (a simulated observer: a whole study in seconds).
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "sandpaper/runtime/device.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/runtime/sim_joystick.hpp"
+#include "sandpaper/runtime/swappable_source.hpp"
+#include "sandpaper/runtime/telemetry.hpp"
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::experiment {
+
+struct PresentOptions {
+  double rate_hz = 1000;   // servo rate, Hz
+  double ramp_s = 0.25;    // force ramp either side of the hold, s
+  double hold_s = 2.0;     // full force, s
+};
+
+// What the loop did while the stimulus played.
+struct Presentation {
+  double felt_max_N = 0;        // largest |F| written to the device during the envelope, N
+  bool interrupted = false;     // the loop stopped (a stop cause) before the envelope ended
+  std::string cause;            // runtime::stop_cause_name when interrupted
+};
+
+class Presenter {
+ public:
+  virtual ~Presenter() = default;
+  // Plays `program` with its force scaled by `gain` (>= 0) for ramp + hold + ramp; returns when the
+  // force is back at zero or the loop stopped. Throws std::invalid_argument for a program the
+  // runtime cannot evaluate.
+  virtual Presentation present(std::shared_ptr<const schema::PatchProgram> program, double gain) = 0;
+  // After an interruption: start the loop again (a resumed session does this by starting afresh).
+  virtual std::string describe() const = 0;
+};
+
+// The simulated joystick on the virtual clock: each presentation is one run of the servo loop, the
+// scripted hand starting at the patch centre. Deterministic.
+class VirtualPresenter final : public Presenter {
+ public:
+  VirtualPresenter(runtime::DeviceLimits limits, runtime::HandScript hand, PresentOptions options);
+  Presentation present(std::shared_ptr<const schema::PatchProgram> program, double gain) override;
+  std::string describe() const override;
+
+ private:
+  runtime::DeviceLimits limits_;
+  runtime::HandScript hand_;
+  PresentOptions options_;
+};
+
+// A device played in real time by one continuously running servo thread; each presentation is
+// offered to it as a hot swap and measured from the telemetry ring.
+class LivePresenter final : public Presenter {
+ public:
+  // Starts the servo thread at once (zero force until the first trial). Throws std::invalid_argument
+  // for a rate the device refuses.
+  LivePresenter(std::unique_ptr<runtime::Device> device, std::string description, PresentOptions options);
+  ~LivePresenter() override;  // stops the loop (zero force written last)
+  Presentation present(std::shared_ptr<const schema::PatchProgram> program, double gain) override;
+  std::string describe() const override { return description_; }
+
+ private:
+  std::unique_ptr<runtime::Device> device_;
+  std::string description_;
+  PresentOptions options_;
+  runtime::SwappableSource source_;
+  runtime::TelemetryRing ring_;
+  std::atomic<bool> stop_{false};
+  runtime::ServoConfig config_;
+  runtime::ServoThread thread_;
+  bool stopped_ = false;
+  runtime::ServoReport report_;
+};
+
+}  // namespace sandpaper::experiment

@@ -1,0 +1,317 @@
+// `sandpaper experiment run|resume|analyse` (docs/EXPERIMENTS.md): present a design's stimuli to a
+// subject, record the answers, and analyse pooled results into the statistics and maps of Minsky
+// 1995 chapters 4-6.
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "cli.hpp"
+#include "sandpaper/calibration/fit.hpp"
+#include "sandpaper/calibration/fit_error.hpp"
+#include "sandpaper/experiment/analysis.hpp"
+#include "sandpaper/experiment/design.hpp"
+#include "sandpaper/experiment/observer.hpp"
+#include "sandpaper/experiment/presenter.hpp"
+#include "sandpaper/experiment/results.hpp"
+#include "sandpaper/experiment/schedule.hpp"
+#include "sandpaper/experiment/session.hpp"
+#include "sandpaper/experiment/stimuli.hpp"
+#include "sandpaper/runtime/sim_joystick.hpp"
+#include "sandpaper/schema/atomic_file.hpp"
+
+namespace sandpaper::cli {
+namespace {
+
+namespace ex = experiment;
+
+std::unique_ptr<ex::Observer> make_observer(const std::string& spec, const std::string& subject) {
+  if (spec == "terminal") return ex::make_terminal_observer(std::cin, std::cerr);
+  return ex::make_simulated_observer(ex::parse_simulated_observer(spec), subject);
+}
+
+// The presenter for `--device sim|usb`; nullptr (after printing why) when none can be made.
+std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const ex::Design& d, const compiler::Compiler& c,
+                                              std::string& device_used) {
+  ex::PresentOptions po;
+  po.rate_hz = d.rate_hz;
+  po.ramp_s = d.ramp_s;
+  po.hold_s = d.duration_s;
+  runtime::HandScript hand;
+  hand.path = runtime::HandPath::Scan;
+  hand.speed_m_s = d.hand_speed_m_s;
+  hand.amplitude_m = d.hand_amplitude_m;
+  if (eo.device == "usb") {
+    if (eo.virtual_clock) {
+      std::cerr << "sandpaper experiment: --virtual-clock plays the simulated joystick; a USB joystick runs in real time\n";
+      return nullptr;
+    }
+    CommonOptions o;
+    o.calibration_dir = eo.common.calibration_dir;
+    o.library_dir = eo.common.library_dir;
+    std::string name, error;
+    auto dev = open_usb_joystick(o, name, error);
+    if (!dev) {
+      std::cerr << "sandpaper experiment: " << error << "\n";
+      return nullptr;
+    }
+    if (name != d.device) {
+      std::cerr << fmt::format("sandpaper experiment: the design compiles for device `{}` but the joystick found is `{}`; "
+                               "set device = \"{}\" in the design\n", d.device, name, name);
+      return nullptr;
+    }
+    device_used = name + " (USB)";
+    return std::make_unique<ex::LivePresenter>(std::move(dev), device_used, po);
+  }
+  if (eo.device != "sim") {
+    std::cerr << "sandpaper experiment: --device is sim or usb (the design's `device` names the calibration)\n";
+    return nullptr;
+  }
+  const auto limits = limits_of(c);
+  if (eo.virtual_clock) {
+    auto p = std::make_unique<ex::VirtualPresenter>(limits, hand, po);
+    device_used = p->describe();
+    return p;
+  }
+  device_used = fmt::format("simulated joystick in real time, hand scanning at {:g} mm/s", hand.speed_m_s * 1e3);
+  return std::make_unique<ex::LivePresenter>(std::make_unique<runtime::SimJoystick>(limits, hand, 0), device_used, po);
+}
+
+int report_outcome(const ex::SessionOutcome& out, const std::filesystem::path& dir, bool json) {
+  if (json)
+    std::cout << nlohmann::json{{"ok", out.finished},      {"results", dir.string()},     {"answered", out.answered},
+                                {"next_trial", out.next_trial}, {"trials", out.total},   {"finished", out.finished},
+                                {"stopped", out.stopped},  {"interrupted", out.interrupted}, {"cause", out.cause}}
+                     .dump(2)
+              << "\n";
+  else if (out.finished)
+    std::cout << fmt::format("all {} trials answered; results in {}\n", out.total, dir.string());
+  else
+    std::cout << fmt::format("{} of {} trials answered; continue with `sandpaper experiment resume {}`\n", out.next_trial,
+                             out.total, dir.string());
+  return out.interrupted ? kExitBadInput : kExitOk;
+}
+
+int run_or_resume(const ExperimentOptions& eo, bool resume) {
+  std::filesystem::path dir = resume ? std::filesystem::path(eo.target) : std::filesystem::path(eo.output);
+  ex::Design design;
+  std::string subject = eo.subject;
+  int first = 0;
+  std::optional<ex::Results> previous;
+  if (resume) {
+    previous = ex::read_results(dir);
+    design = ex::parse_design(previous->design_text, dir / "design.toml");
+    // Material files named by the design are found beside the original design.
+    if (!previous->header.design_path.empty()) {
+      const auto base = std::filesystem::path(previous->header.design_path).parent_path();
+      for (auto& s : design.stimuli)
+        if (!s.file.empty()) s.file = base / s.text;
+    }
+    subject = previous->header.subject;
+    first = previous->next_trial();
+  } else {
+    design = ex::load_design(eo.target);
+  }
+  CommonOptions o = eo.common;
+  o.device = design.device;
+  const auto compiler = make_compiler(o);
+  const auto stimuli = ex::prepare_stimuli(design, compiler);
+  if (design.task == ex::Task::TwoInterval) {
+    double most = 0;
+    for (double inc : design.increments) most = std::max(most, inc);
+    const double need = stimuli.front().force_N * (1 + most);
+    if (need > compiler.device().max_force_N)
+      throw ex::DesignError(fmt::format("{}: error: the largest comparison needs {:.4g} N, more than device `{}` can produce "
+                                        "({:.4g} N); choose a weaker standard or smaller increments",
+                                        design.path, need, design.device, compiler.device().max_force_N));
+  }
+  const auto schedule = ex::make_schedule(design, subject);
+  if (resume && first >= static_cast<int>(schedule.size())) {
+    std::cout << fmt::format("{}: every trial is answered already ({} of {})\n", dir.string(), first, schedule.size());
+    return kExitOk;
+  }
+  auto observer = make_observer(eo.observer, subject);
+  std::string device_used;
+  auto presenter = make_presenter(eo, design, compiler, device_used);
+  if (!presenter) return kExitUsage;
+  std::optional<ex::ResultsWriter> writer;
+  if (resume) {
+    writer.emplace(ex::ResultsWriter::reopen(dir));
+  } else {
+    ex::ResultsHeader h;
+    h.design_checksum = design.checksum;
+    h.design_path = std::filesystem::absolute(eo.target).lexically_normal().string();
+    h.subject = subject;
+    h.task = ex::task_name(design.task);
+    h.device = design.device;
+    h.observer = observer->describe();
+    h.started = ex::utc_now_iso();
+    h.trials = static_cast<int>(schedule.size());
+    writer.emplace(ex::ResultsWriter::create(dir, design, h));
+  }
+  std::cerr << fmt::format("{}: {} for subject {}, {} trials{} on {}; observer {}\n", design.title, ex::task_name(design.task),
+                           subject, schedule.size(), resume ? fmt::format(", resuming at trial {}", first + 1) : "",
+                           device_used, observer->describe());
+  const auto out = ex::run_session(design, stimuli, schedule, first, *presenter, *observer, *writer, std::cerr);
+  return report_outcome(out, dir, eo.common.json);
+}
+
+void print_analysis(const ex::Analysis& a) {
+  const auto& j = a.report;
+  std::cout << fmt::format("{}: {} subjects, {} runs, {} answers ({} interrupted trials)\n", a.task, j["subjects"].get<int>(),
+                           a.runs.size(), j["records_answered"].get<int>(), j["interruptions"].get<int>());
+  if (a.magnitude) {
+    const auto& m = j["magnitude_estimation"];
+    std::cout << fmt::format("log R = {:.4f} log F {} {:.4f}  (F in N)\n", m["slope"].get<double>(),
+                             m["intercept"].get<double>() < 0 ? "-" : "+", std::abs(m["intercept"].get<double>()));
+    std::cout << fmt::format("  slope {:.4f} (s.e. {:.4f}), intercept s.e. {:.4f}, R^2 {:.4f} (adjusted {:.4f}), s {:.4g}, "
+                             "df {}, F {:.4g}\n",
+                             m["slope"].get<double>(), m["slope_se"].get<double>(), m["intercept_se"].get<double>(),
+                             m["r2"].get<double>(), m["r2_adj"].get<double>(), m["s"].get<double>(), m["df"].get<int>(),
+                             m["f"].is_null() ? 0.0 : m["f"].get<double>());
+    if (m["period"]["fitted"].get<bool>()) std::cout << "  " << m["period"]["verdict"].get<std::string>() << "\n";
+  }
+  if (j.contains("sorting")) {
+    const auto& s = j["sorting"];
+    std::cout << fmt::format("top split (single linkage): {} | {}\n", fmt::join(s["clusters"][0].get<std::vector<std::string>>(), " "),
+                             fmt::join(s["clusters"][1].get<std::vector<std::string>>(), " "));
+    std::cout << fmt::format("top split (average linkage): {} | {}\n",
+                             fmt::join(s["average"]["clusters"][0].get<std::vector<std::string>>(), " "),
+                             fmt::join(s["average"]["clusters"][1].get<std::vector<std::string>>(), " "));
+  }
+  if (j.contains("two_interval")) {
+    const auto& t = j["two_interval"];
+    auto bound = [](const nlohmann::json& v) { return v.is_null() ? std::string("unbounded") : fmt::format("{:.4f}", v.get<double>()); };
+    std::cout << fmt::format("Weber fraction {:.4f} (95 % interval {} to {}), {} trials\n", t["weber_fraction"].get<double>(),
+                             bound(t["weber_fraction_interval"][0]), bound(t["weber_fraction_interval"][1]),
+                             t["trials"].get<int>());
+  }
+  if (j.contains("confidence")) {
+    const auto& b = j["confidence"]["boundary"];
+    if (b.contains("force_at_50_percent")) {
+      std::cout << "50 % confidence boundary (logit regression on log force and log period):";
+      for (const auto& p : b["force_at_50_percent"])
+        std::cout << fmt::format("  {:g} mm: {}", p["period_mm"].get<double>(),
+                                 p["force_N"].is_null() ? std::string("-") : fmt::format("{:.3g} N", p["force_N"].get<double>()));
+      std::cout << "\n";
+    }
+  }
+  if (j.contains("confidence"))
+    for (const auto& s : j["confidence"]["stimuli"])
+      std::cout << fmt::format("  {:<16} {:7.3f} N {:6.2f} mm  mean confidence {:5.1f} % (n {})\n", s["stimulus"].get<std::string>(),
+                               s["force_N"].get<double>(), s["period_mm"].get<double>(), s["mean_confidence"].get<double>(),
+                               s["n"].get<int>());
+  for (const auto& p : a.pictures) std::cout << "picture: " << p.string() << "\n";
+  if (j.contains("map")) std::cout << "map: " << j["map"]["file"].get<std::string>() << " (" << j["map"]["id"].get<std::string>() << ")\n";
+}
+
+int analyse(const ExperimentOptions& eo) {
+  ex::AnalyseOptions ao;
+  ao.allow_mixed_designs = eo.allow_mixed_designs;
+  ao.pictures_dir = eo.pictures;
+  auto a = ex::analyse(eo.target, ao);
+  if (!eo.map_out.empty()) {
+    if (!a.magnitude) throw ex::DesignError("--map-out: only a magnitude-estimation study fits a roughness map (this one is " + a.task + ")");
+    std::set<std::string> devices;
+    std::vector<std::string> subjects;
+    for (const auto& r : a.runs) {
+      devices.insert(r.header.device);
+      subjects.push_back(r.header.subject);
+    }
+    if (devices.size() != 1)
+      throw ex::DesignError(fmt::format("--map-out: these runs were made on different devices ({}); a map belongs to one",
+                                        fmt::join(devices, ", ")));
+    CommonOptions o = eo.common;
+    o.device = *devices.begin();
+    const auto compiler = make_compiler(o);
+    const auto* base = compiler.calibration().default_compile_map("roughness");
+    calibration::MapFileOptions mo;
+    const std::filesystem::path out(eo.map_out);
+    mo.id = eo.map_id.empty() ? out.stem().string() : eo.map_id;
+    mo.percept = "roughness";
+    mo.device = *devices.begin();
+    mo.description = "perceived roughness of gratings against their maximum lateral force on device " + mo.device +
+                     ", measured by magnitude estimation (sandpaper experiment)";
+    // Ratio-scale 1 at the default map's reference force, so a roughness number asks for the force
+    // that this device's own subjects judged as the default map's subjects judged that force.
+    if (base) mo.reference_N = base->reference_si;
+    const auto& run0 = a.runs.front();
+    mo.provenance = fmt::format("fitted by sandpaper experiment analyse on {}: {} subjects ({}), {} answered trials, "
+                                "design {} ({}), observers {}",
+                                ex::utc_now_iso(), subjects.size(), fmt::join(subjects, ", "), a.magnitude->answered,
+                                run0.header.design_path, run0.header.design_checksum, run0.header.observer);
+    mo.citation = "magnitude-estimation study in " + eo.target + " (sandpaper experiment run)";
+    const std::string text = calibration::map_file_text(*a.magnitude, mo);
+    // Checked as the compiler will read it before it replaces anything.
+    const auto check = out.parent_path() / (out.filename().string() + ".check.tmp");
+    schema::write_file_atomically(check, text);
+    try {
+      calibration::load_map_file(check, out.string());
+    } catch (...) {
+      std::filesystem::remove(check);
+      throw;
+    }
+    std::filesystem::rename(check, out);
+    a.report["map"] = {{"file", out.string()}, {"id", mo.id}, {"device", mo.device}, {"reference_N", mo.reference_N}};
+  }
+  if (eo.common.json) std::cout << a.report.dump(2) << "\n";
+  else print_analysis(a);
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
+  auto* ex = app.add_subcommand("experiment", "present stimuli to a person, record answers, analyse them into maps (docs/EXPERIMENTS.md)");
+  ex->require_subcommand(1);
+  auto common = [&](CLI::App* sub) {
+    sub->add_option("--library", eo.common.library_dir, "library folder (default: $SANDPAPER_LIBRARY or the shipped library/)");
+    sub->add_option("--calibration", eo.common.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+    sub->add_flag("--json", eo.common.json, "print one JSON object instead of text");
+  };
+  auto playing = [&](CLI::App* sub) {
+    sub->add_option("--device", eo.device, "sim (the simulated joystick) or usb (the first HID PID joystick); the design names the calibration")->capture_default_str();
+    sub->add_option("--observer", eo.observer, "terminal (a person types the answers) or simulated:exponent=0.76,noise=0.15,seed=3")->capture_default_str();
+    sub->add_flag("--virtual-clock", eo.virtual_clock, "simulated joystick and observer only: play on simulated time, as fast as possible");
+  };
+  eo.run = ex->add_subcommand("run", "run a design for one subject, appending every answer to the results folder");
+  eo.run->add_option("design", eo.target, "experiment design (.toml)")->required();
+  eo.run->add_option("--subject", eo.subject, "subject id (with the design's seed it fixes the trial order)")->required();
+  eo.run->add_option("-o,--output", eo.output, "results folder to create")->required();
+  playing(eo.run);
+  common(eo.run);
+  eo.resume = ex->add_subcommand("resume", "continue a results folder from its first unanswered trial, in the same order");
+  eo.resume->add_option("results", eo.target, "results folder")->required();
+  playing(eo.resume);
+  common(eo.resume);
+  eo.analyse = ex->add_subcommand("analyse", "pool results folders and analyse them as the thesis did");
+  eo.analyse->alias("analyze");
+  eo.analyse->add_option("results", eo.target, "a results folder, or a folder of them")->required();
+  eo.analyse->add_option("--map-out", eo.map_out, "magnitude estimation: write the fitted roughness map for the runs' device (calibration/maps/<device>-roughness.toml)");
+  eo.analyse->add_option("--map-id", eo.map_id, "the map's id (default: the file's stem)");
+  eo.analyse->add_option("--pictures", eo.pictures, "folder for the pictures (default: <results>/analysis)");
+  eo.analyse->add_flag("--allow-mixed-designs", eo.allow_mixed_designs, "pool runs of different designs");
+  common(eo.analyse);
+}
+
+int cmd_experiment(const ExperimentOptions& eo) {
+  try {
+    if (eo.run && eo.run->parsed()) return run_or_resume(eo, false);
+    if (eo.resume && eo.resume->parsed()) return run_or_resume(eo, true);
+    if (eo.analyse && eo.analyse->parsed()) return analyse(eo);
+  } catch (const ex::DesignError& e) {
+    if (eo.common.json) std::cout << nlohmann::json{{"ok", false}, {"errors", e.what()}}.dump(2) << "\n";
+    std::cerr << e.what() << (std::string(e.what()).ends_with("\n") ? "" : "\n");
+    return kExitBadInput;
+  } catch (const calibration::FitError& e) {
+    if (eo.common.json) std::cout << nlohmann::json{{"ok", false}, {"errors", e.what()}}.dump(2) << "\n";
+    std::cerr << "sandpaper experiment analyse: " << e.what() << "\n";
+    return kExitBadInput;
+  }
+  return -1;
+}
+
+}  // namespace sandpaper::cli
