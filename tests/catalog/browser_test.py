@@ -19,7 +19,7 @@ import sys
 import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cdp import Browser, find_chromium  # noqa: E402
+from cdp import Browser, chromium_for_test  # noqa: E402
 
 failures = []
 
@@ -68,15 +68,9 @@ def main():
     ap.add_argument("--out", required=True, type=pathlib.Path)
     args = ap.parse_args()
 
-    if os.environ.get("SANDPAPER_SKIP_BROWSER_TESTS") == "1":
-        print("skipped: SANDPAPER_SKIP_BROWSER_TESTS=1")
-        return 77
-    chromium = find_chromium()
-    if not chromium:
-        print("FAIL Chromium not found: the catalog's browser test needs it. Install it with "
-              "`sudo apt-get install chromium` (tools/install-deps.sh does), or set CHROMIUM=/path/to/chromium; "
-              "SANDPAPER_SKIP_BROWSER_TESTS=1 skips this test.", file=sys.stderr)
-        return 1
+    chromium, status = chromium_for_test("the catalog's browser test")
+    if status is not None:
+        return status
 
     args.out.mkdir(parents=True, exist_ok=True)
     catalog = args.out / "catalog"

@@ -31,6 +31,21 @@ def find_chromium():
     return None
 
 
+def chromium_for_test(what):
+    """(executable, None) when a browser test can run; (None, exit status) when it cannot: 77 (skipped)
+    with SANDPAPER_SKIP_BROWSER_TESTS=1, else 1 (failed) when Chromium is missing, saying why."""
+    if os.environ.get("SANDPAPER_SKIP_BROWSER_TESTS") == "1":
+        print("skipped: SANDPAPER_SKIP_BROWSER_TESTS=1")
+        return None, 77
+    chromium = find_chromium()
+    if not chromium:
+        print(f"FAIL Chromium not found: {what} needs it. Install it with `sudo apt-get install chromium` "
+              "(tools/install-deps.sh does), or set CHROMIUM=/path/to/chromium; "
+              "SANDPAPER_SKIP_BROWSER_TESTS=1 skips this test.")
+        return None, 1
+    return chromium, None
+
+
 class Browser:
     def __init__(self, executable, width=1280, height=900, timeout=60):
         self.timeout = timeout

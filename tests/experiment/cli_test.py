@@ -36,6 +36,7 @@ class Stderr:
 
     def __init__(self, proc):
         self.text = ""
+        self.closed = False
         self.cond = threading.Condition()
         self.proc = proc
         threading.Thread(target=self._read, daemon=True).start()
@@ -45,15 +46,33 @@ class Stderr:
             b = self.proc.stderr.read1(4096) if hasattr(self.proc.stderr, "read1") else self.proc.stderr.read(1)
             with self.cond:
                 if not b:
+                    self.closed = True
                     self.cond.notify_all()
                     return
                 self.text += b.decode()
                 self.cond.notify_all()
 
+    def wait_closed(self, timeout=60):
+        """Everything the process wrote, once it has closed stderr (exited)."""
+        with self.cond:
+            self.cond.wait_for(lambda: self.closed, timeout)
+            return self.text
+
     def wait_for(self, needle, count=1, timeout=60):
         with self.cond:
             return self.cond.wait_for(lambda: self.text.count(needle) >= count or self.proc.poll() is not None, timeout) \
                 and self.text.count(needle) >= count
+
+
+def start_terminal(sp, folder, subject):
+    """A session answered at the terminal (stdin a pipe), its stderr collected, at its first question."""
+    p = subprocess.Popen([sp, "experiment", "run", DESIGN, "--subject", subject, "-o", folder, "--virtual-clock"],
+                         stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    err = Stderr(p)
+    ready = err.wait_for("Press Enter to begin")
+    p.stdin.write(b"\n")
+    p.stdin.flush()
+    return p, err, ready
 
 
 def main():
@@ -133,12 +152,7 @@ def main():
 
         # kill -9 in the middle of a session, then resume in the same order.
         killed = os.path.join(tmp, "killed", "S01")
-        p = subprocess.Popen([sp, "experiment", "run", DESIGN, "--subject", "S01", "-o", killed, "--virtual-clock"],
-                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-        err = Stderr(p)
-        ready = err.wait_for("Press Enter to begin")
-        p.stdin.write(b"\n")
-        p.stdin.flush()
+        p, err, ready = start_terminal(sp, killed, "S01")
         for k in range(1, 4):
             ready = ready and err.wait_for("How rough", k)
             p.stdin.write(f"{k + 1}\n".encode())
@@ -162,6 +176,22 @@ def main():
                 "in the same order as an uninterrupted session of the same subject")
         r = run(sp, "experiment", "resume", killed, "--observer", SIM, "--virtual-clock")
         c.check(r.returncode == 0 and "every trial is answered already" in r.stdout, "resuming a finished session says so")
+
+        # Ctrl-C while a question waits: the session stops cleanly and can be resumed.
+        stopped = os.path.join(tmp, "stopped", "S02")
+        p, err, ready = start_terminal(sp, stopped, "S02")
+        p.stdin.write(b"3\n")
+        p.stdin.flush()
+        ready = ready and err.wait_for("trial   1 of 40") and err.wait_for("How rough", 2)
+        p.send_signal(signal.SIGINT)
+        # Not communicate(): it would read stderr too, away from the Stderr thread.
+        p.stdin.close()
+        out = p.stdout.read()
+        p.wait(timeout=60)
+        c.check(ready and p.returncode == 0 and b"continue with `sandpaper experiment resume" in out
+                and "stopped at trial 2 of 40" in err.wait_closed(), f"Ctrl-C at a question stops the session (exit {p.returncode})")
+        r = run(sp, "experiment", "resume", stopped, "--observer", SIM, "--virtual-clock")
+        c.check(r.returncode == 0 and len(answers(stopped)) == 40, "and it resumes to the end")
 
         # Runs of different designs are not pooled unless asked.
         other = os.path.join(tmp, "other.toml")

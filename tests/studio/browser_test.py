@@ -23,7 +23,7 @@ here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, here)
 sys.path.insert(0, os.path.join(here, "..", "support"))
 sys.path.insert(0, os.path.join(here, "..", "catalog"))
-from cdp import Browser, find_chromium  # noqa: E402
+from cdp import Browser, chromium_for_test  # noqa: E402
 from studio_process import Studio  # noqa: E402
 from checklist import Checklist  # noqa: E402
 
@@ -67,13 +67,9 @@ def main():
     ap.add_argument("--examples", required=True)
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
-    if os.environ.get("SANDPAPER_SKIP_BROWSER_TESTS") == "1":
-        print("skipped: SANDPAPER_SKIP_BROWSER_TESTS=1")
-        return 77
-    chromium = find_chromium()
-    if not chromium:
-        print("FAIL Chromium is not installed (tools/install-deps.sh installs Debian's chromium)")
-        return 1
+    chromium, status = chromium_for_test("the studio's browser test")
+    if status is not None:
+        return status
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     examples = pathlib.Path(args.examples).resolve()

@@ -136,7 +136,8 @@ struct ExperimentOptions {
   std::string target;              // run: the design; resume and analyse: the results folder
   std::string subject, output;     // run
   std::string device = "sim";      // sim or usb
-  std::string observer = "terminal";
+  std::string observer = "terminal";  // terminal, page or simulated:...
+  std::string listen = "127.0.0.1:4781";  // --observer page
   bool virtual_clock = false;
   std::string map_out, map_id, pictures;  // analyse
   bool allow_mixed_designs = false;

@@ -1,6 +1,9 @@
 // `sandpaper experiment run|resume|analyse` (docs/EXPERIMENTS.md): present a design's stimuli to a
 // subject, record the answers, and analyse pooled results into the statistics and maps of Minsky
 // 1995 chapters 4-6.
+#include <csignal>
+
+#include <atomic>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -19,6 +22,7 @@
 #include "sandpaper/experiment/results.hpp"
 #include "sandpaper/experiment/schedule.hpp"
 #include "sandpaper/experiment/session.hpp"
+#include "sandpaper/experiment/subject_page.hpp"
 #include "sandpaper/experiment/stimuli.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
@@ -28,9 +32,31 @@ namespace {
 
 namespace ex = experiment;
 
-std::unique_ptr<ex::Observer> make_observer(const std::string& spec, const std::string& subject) {
-  if (spec == "terminal") return ex::make_terminal_observer(std::cin, std::cerr);
-  return ex::make_simulated_observer(ex::parse_simulated_observer(spec), subject);
+// Set by SIGINT/SIGTERM: the question waiting is answered "stopped", the servo loop stops (zero
+// force), and the session ends resumable.
+std::atomic<bool> g_stop{false};
+
+void on_stop_signal(int) { g_stop.store(true); }
+
+void install_stop_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: a terminal read returns, and the terminal observer stops
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+std::unique_ptr<ex::Observer> make_observer(const ExperimentOptions& eo, const std::string& subject) {
+  if (eo.observer == "terminal") return ex::make_terminal_observer(std::cin, std::cerr);
+  if (eo.observer == "page") {
+    std::string url;
+    auto o = ex::make_page_observer(eo.listen, &g_stop, url);
+    // The readiness line scripts wait for.
+    std::cerr << "subject page: " << url << " (open it full screen on the subject's screen)" << std::endl;
+    return o;
+  }
+  return ex::make_simulated_observer(ex::parse_simulated_observer(eo.observer), subject);
 }
 
 // The presenter for `--device sim|usb`; nullptr (after printing why) when none can be made.
@@ -40,6 +66,7 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   po.rate_hz = d.rate_hz;
   po.ramp_s = d.ramp_s;
   po.hold_s = d.duration_s;
+  po.stop = &g_stop;
   runtime::HandScript hand;
   hand.path = runtime::HandPath::Scan;
   hand.speed_m_s = d.hand_speed_m_s;
@@ -133,7 +160,8 @@ int run_or_resume(const ExperimentOptions& eo, bool resume) {
     std::cout << fmt::format("{}: every trial is answered already ({} of {})\n", dir.string(), first, schedule.size());
     return kExitOk;
   }
-  auto observer = make_observer(eo.observer, subject);
+  install_stop_handlers();
+  auto observer = make_observer(eo, subject);
   std::string device_used;
   auto presenter = make_presenter(eo, design, compiler, device_used);
   if (!presenter) return kExitUsage;
@@ -274,7 +302,8 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
   };
   auto playing = [&](CLI::App* sub) {
     sub->add_option("--device", eo.device, "sim (the simulated joystick) or usb (the first HID PID joystick); the design names the calibration")->capture_default_str();
-    sub->add_option("--observer", eo.observer, "terminal (a person types the answers) or simulated:exponent=0.76,noise=0.15,seed=3")->capture_default_str();
+    sub->add_option("--observer", eo.observer, "terminal (a person types the answers), page (the subject's full-screen page) or simulated:exponent=0.76,noise=0.15,seed=3")->capture_default_str();
+    sub->add_option("--listen", eo.listen, "--observer page: ADDR:PORT to serve the page on (port 0: any free port)")->capture_default_str();
     sub->add_flag("--virtual-clock", eo.virtual_clock, "simulated joystick and observer only: play on simulated time, as fast as possible");
   };
   eo.run = ex->add_subcommand("run", "run a design for one subject, appending every answer to the results folder");

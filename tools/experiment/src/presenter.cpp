@@ -86,6 +86,7 @@ Presentation LivePresenter::present(std::shared_ptr<const schema::PatchProgram> 
   double t0 = 0;
   for (;;) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (options_.stop && options_.stop->load()) stop_.store(true, std::memory_order_release);
     const bool is_picked = picked->load(std::memory_order_acquire);
     while (ring_.pop_nonrt(r)) {
       if (!is_picked) continue;

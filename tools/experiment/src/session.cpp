@@ -64,6 +64,7 @@ SessionOutcome run_session(const Design& design, const std::vector<Stimulus>& st
                          t.index + 1, out.total, played.cause);
       out.interrupted = true;
       out.cause = played.cause;
+      observer.ended(false);
       return out;
     }
     const auto asked = std::chrono::steady_clock::now();
@@ -106,8 +107,9 @@ SessionOutcome run_session(const Design& design, const std::vector<Stimulus>& st
     }
     if (!answered) {
       out.stopped = true;
-      log << fmt::format("stopped by the subject at trial {} of {}; `sandpaper experiment resume` continues there\n",
-                         t.index + 1, out.total);
+      log << fmt::format("stopped at trial {} of {}; `sandpaper experiment resume` continues there\n", t.index + 1,
+                         out.total);
+      observer.ended(false);
       return out;
     }
     a.rt_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - asked).count();
@@ -126,6 +128,7 @@ SessionOutcome run_session(const Design& design, const std::vector<Stimulus>& st
       observer.rest(i + 1, out.total);
   }
   out.finished = true;
+  observer.ended(true);
   return out;
 }
 

@@ -75,4 +75,12 @@ std::filesystem::path confined_path(const std::filesystem::path& root, const std
   return full;
 }
 
+std::string refusal(std::string_view host_header, std::string_view origin_header, const Listen& listen) {
+  if (!host_allowed(host_header, listen))
+    return "refused: Host '" + std::string(host_header) + "' is not this server's address; open the address it printed";
+  if (!origin_allowed(origin_header, listen))
+    return "refused: requests from origin '" + std::string(origin_header) + "' may not drive this server";
+  return "";
+}
+
 }  // namespace sandpaper::studio

@@ -107,17 +107,10 @@ struct Server::Impl {
     // The guard: a request for another host name (DNS rebinding) or from another origin (a web page
     // elsewhere posting to localhost) is refused before any handler runs.
     http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-      const std::string host = req.get_header_value("Host");
-      if (!host_allowed(host, listen)) {
-        send_error(res, 403, "refused: Host '" + host + "' is not this studio's address; open the address it printed");
-        return httplib::Server::HandlerResponse::Handled;
-      }
-      const std::string origin = req.get_header_value("Origin");
-      if (!origin_allowed(origin, listen)) {
-        send_error(res, 403, "refused: requests from origin '" + origin + "' may not drive this studio");
-        return httplib::Server::HandlerResponse::Handled;
-      }
-      return httplib::Server::HandlerResponse::Unhandled;
+      const std::string why = refusal(req.get_header_value("Host"), req.get_header_value("Origin"), listen);
+      if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
+      send_error(res, 403, why);
+      return httplib::Server::HandlerResponse::Handled;
     });
     for (const auto& a : web_assets()) {
       const WebAsset asset = a;

@@ -36,6 +36,8 @@ class Observer {
   virtual std::optional<int> choose_interval(const Trial& t, const Presented& p) = 0;
   // Sorting: for each presented stimulus, its pile (0 .. piles-1); nullopt: stopped.
   virtual std::optional<std::vector<int>> sort(const Trial& t, const Presented& p, int piles) = 0;
+  // The session is over: every trial answered (`finished`), or stopped or interrupted.
+  virtual void ended(bool /*finished*/) {}
 };
 
 // Parameters of `--observer simulated:exponent=0.76,noise=0.15,seed=3` (names as in the spec; every

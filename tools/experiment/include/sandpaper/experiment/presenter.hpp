@@ -4,6 +4,7 @@
 // never step the force. Two ways to run it: on the running real-time loop (a person at a joystick:
 // each trial is hot-swapped in, runtime/swappable_source.hpp), or on the virtual clock with the
 // simulated joystick's scripted hand (a simulated observer: a whole study in seconds).
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -21,6 +22,9 @@ struct PresentOptions {
   double rate_hz = 1000;   // servo rate, Hz
   double ramp_s = 0.25;    // force ramp either side of the hold, s
   double hold_s = 2.0;     // full force, s
+  // Set (by a signal handler) to stop the live loop at its next tick; the presentation is then
+  // interrupted with cause stop_requested. nullptr: none.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // What the loop did while the stimulus played.
@@ -72,7 +76,7 @@ class LivePresenter final : public Presenter {
   PresentOptions options_;
   runtime::SwappableSource source_;
   runtime::TelemetryRing ring_;
-  std::atomic<bool> stop_{false};
+  std::atomic<bool> stop_{false};  // set by the destructor, or mirrored from options_.stop
   runtime::ServoConfig config_;
   runtime::ServoThread thread_;
   bool stopped_ = false;

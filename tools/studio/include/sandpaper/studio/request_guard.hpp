@@ -25,6 +25,8 @@ bool host_allowed(std::string_view host_header, const Listen& listen);
 // An Origin header, when present, must be "http://" followed by an allowed host. Absent (curl, a
 // script, a same-origin GET) passes: browsers send Origin on every cross-origin request and POST.
 bool origin_allowed(std::string_view origin_header, const Listen& listen);
+// Both checks: "" when a request with these headers may proceed, else why it is refused (for a 403).
+std::string refusal(std::string_view host_header, std::string_view origin_header, const Listen& listen);
 
 // A path given by the page or a script, refused unless it stays inside the studio's folder.
 struct OutsideFolder : std::runtime_error {
