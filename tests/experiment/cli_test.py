@@ -117,6 +117,12 @@ def main():
         text = open(map_path).read() if os.path.isfile(map_path) else ""
         c.check('use = "device"' in text and 'device = "sim"' in text and "8 subjects" in text and DESIGN in text,
                 "the map is a device map for sim with its provenance (subjects, design)")
+        r = run(sp, "experiment", "analyse", results, "--map-out", os.path.join(cal, "maps", "sim-roughness-2.toml"))
+        c.check(r.returncode == 1 and "already has a roughness map" in r.stderr
+                and not os.path.exists(os.path.join(cal, "maps", "sim-roughness-2.toml")),
+                "a second roughness map for the same device is refused (the folder stays loadable)")
+        r = run(sp, "experiment", "analyse", results, "--map-out", map_path, "--calibration", cal)
+        c.check(r.returncode == 0, "re-fitting into the same file replaces it")
         r = run(sp, "explain", "-e", "grating period 2.5 mm; roughness 0.6", "--calibration", cal)
         c.check(r.returncode == 0 and "via sim-roughness (" in r.stdout and "compile     sim-roughness" in r.stdout,
                 "explain names the fitted map as the one that compiled roughness 0.6")

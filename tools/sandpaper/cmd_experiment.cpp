@@ -236,6 +236,34 @@ void print_analysis(const ex::Analysis& a) {
   if (j.contains("map")) std::cout << "map: " << j["map"]["file"].get<std::string>() << " (" << j["map"]["id"].get<std::string>() << ")\n";
 }
 
+// Writing into a calibration folder's maps/ must leave it loadable: a second roughness map for the
+// same device, or a second map with this id, would make every later compile fail. Refused here,
+// naming the file to replace instead. (Overwriting an earlier fit in the same file is fine.)
+void refuse_second_device_map(const std::filesystem::path& out, const std::string& device, const std::string& id) {
+  const auto maps = out.parent_path();
+  const auto dir = maps.parent_path();
+  std::error_code ec;
+  if (maps.filename() != "maps" || !std::filesystem::is_directory(dir / "devices", ec)) return;
+  const auto same = [&](const std::filesystem::path& a) {
+    return std::filesystem::weakly_canonical(a, ec) == std::filesystem::weakly_canonical(out, ec);
+  };
+  for (const auto& e : std::filesystem::directory_iterator(maps, ec)) {
+    if (e.path().extension() != ".toml" || same(e.path())) continue;
+    calibration::PsychophysicalMap m;
+    try {
+      m = calibration::load_map_file(e.path());
+    } catch (const calibration::CalibrationError&) {
+      continue;  // the calibration set reports its own broken files
+    }
+    if (m.id == id)
+      throw ex::DesignError(fmt::format("--map-out: map id `{}` is already used by {}; give --map-id another id, or write "
+                                        "to that file to replace it", id, e.path().string()));
+    if (m.for_device && m.domain_device == device && m.percept == "roughness")
+      throw ex::DesignError(fmt::format("--map-out: device `{}` already has a roughness map, {}; write to that file to "
+                                        "replace it, or remove it first", device, e.path().string()));
+  }
+}
+
 int analyse(const ExperimentOptions& eo) {
   ex::AnalyseOptions ao;
   ao.allow_mixed_designs = eo.allow_mixed_designs;
@@ -259,6 +287,7 @@ int analyse(const ExperimentOptions& eo) {
     calibration::MapFileOptions mo;
     const std::filesystem::path out(eo.map_out);
     mo.id = eo.map_id.empty() ? out.stem().string() : eo.map_id;
+    refuse_second_device_map(out, *devices.begin(), mo.id);
     mo.percept = "roughness";
     mo.device = *devices.begin();
     mo.description = "perceived roughness of gratings against their maximum lateral force on device " + mo.device +
@@ -304,7 +333,7 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
     sub->add_option("--device", eo.device, "sim (the simulated joystick) or usb (the first HID PID joystick); the design names the calibration")->capture_default_str();
     sub->add_option("--observer", eo.observer, "terminal (a person types the answers), page (the subject's full-screen page) or simulated:exponent=0.76,noise=0.15,seed=3")->capture_default_str();
     sub->add_option("--listen", eo.listen, "--observer page: ADDR:PORT to serve the page on (port 0: any free port)")->capture_default_str();
-    sub->add_flag("--virtual-clock", eo.virtual_clock, "simulated joystick and observer only: play on simulated time, as fast as possible");
+    sub->add_flag("--virtual-clock", eo.virtual_clock, "simulated joystick only: each stimulus plays on simulated time, at once (simulated observers, tests)");
   };
   eo.run = ex->add_subcommand("run", "run a design for one subject, appending every answer to the results folder");
   eo.run->add_option("design", eo.target, "experiment design (.toml)")->required();
