@@ -152,6 +152,12 @@ def main():
         r = run(sp, "experiment", "run", DESIGN, "--subject", "S01", "-o", os.path.join(results, "S01"), "--observer", SIM,
                 "--virtual-clock")
         c.check(r.returncode == 1 and "already holds results" in r.stderr, "run into a used results folder is refused")
+        with open(os.path.join(tmp, "fast.toml"), "w") as f:
+            f.write(design.replace('device = "sim"', 'device = "sandpaper-1995"'))  # a 900 Hz joystick
+        r = run(sp, "experiment", "run", os.path.join(tmp, "fast.toml"), "--subject", "S01", "-o", os.path.join(tmp, "fast"),
+                "--observer", SIM, "--virtual-clock")
+        c.check(r.returncode == 2 and "900" in r.stderr and not os.path.exists(os.path.join(tmp, "fast")),
+                f"a servo rate the device refuses is a usage error before any folder is made (exit {r.returncode})")
         r = run(sp, "experiment", "run", DESIGN, "--subject", "S01", "-o", os.path.join(tmp, "x"), "--observer",
                 "simulated:exponnent=1")
         c.check(r.returncode == 2 and "unknown parameter `exponnent`" in r.stderr, "a misspelt observer parameter is a usage error")

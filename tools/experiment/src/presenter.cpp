@@ -22,7 +22,14 @@ constexpr double kMaxTicks = 10'000'000;
 }  // namespace
 
 VirtualPresenter::VirtualPresenter(runtime::DeviceLimits limits, runtime::HandScript hand, PresentOptions options)
-    : limits_(std::move(limits)), hand_(hand), options_(options) {}
+    : limits_(std::move(limits)), hand_(hand), options_(options) {
+  // Refuse a rate the device cannot take now, before a results folder is made, not at the first trial.
+  runtime::ServoConfig probe;
+  probe.rate_hz = options_.rate_hz;
+  probe.duration_s = 2 * options_.ramp_s + options_.hold_s;
+  probe.ramp_s = 0;
+  runtime::validate_config(probe, limits_);
+}
 
 std::string VirtualPresenter::describe() const {
   return fmt::format("simulated joystick on the virtual clock, hand scanning at {:g} mm/s over +-{:g} mm, {:g} Hz",

@@ -49,6 +49,8 @@ class Presenter {
 // scripted hand starting at the patch centre. Deterministic.
 class VirtualPresenter final : public Presenter {
  public:
+  // Throws std::invalid_argument for a rate or duration the device's limits refuse
+  // (runtime::validate_config).
   VirtualPresenter(runtime::DeviceLimits limits, runtime::HandScript hand, PresentOptions options);
   Presentation present(std::shared_ptr<const schema::PatchProgram> program, double gain) override;
   std::string describe() const override;
