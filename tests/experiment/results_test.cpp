@@ -86,6 +86,17 @@ TEST(Results, MalformedMiddleLineIsAnErrorAtItsLine) {
   }
 }
 
+TEST(Results, BytesThatAreNotUtf8DoNotLoseTheRecord) {
+  const auto dir = std::filesystem::path(test::temp_dir("results-utf8")) / "S01";
+  const auto d = parse_design(kDesign, "d.toml");
+  auto h = header(d);
+  h.subject = "S\xff" "1";  // a subject id typed in Latin-1
+  { auto w = ResultsWriter::create(dir, d, h); w.append(to_json(answer(0, 2))); }
+  const auto r = read_results(dir);
+  EXPECT_EQ(r.header.subject, "S\xef\xbf\xbd" "1");  // U+FFFD in UTF-8
+  EXPECT_EQ(r.answers.size(), 1u);
+}
+
 TEST(Results, ChangedDesignIsRefused) {
   const auto dir = std::filesystem::path(test::temp_dir("results-changed")) / "S01";
   const auto d = parse_design(kDesign, "d.toml");

@@ -44,12 +44,17 @@ const char* task_name(Task t) noexcept {
   return "?";
 }
 
-std::string design_checksum(const std::string& text) {
+std::uint64_t fnv1a64(std::string_view bytes) noexcept {
   std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : text) {
+  for (unsigned char c : bytes) {
     h ^= c;
     h *= 1099511628211ull;
   }
+  return h;
+}
+
+std::string design_checksum(const std::string& text) {
+  const std::uint64_t h = fnv1a64(text);
   char buf[40];
   std::snprintf(buf, sizeof buf, "fnv1a64:%016llx", static_cast<unsigned long long>(h));
   return buf;

@@ -30,12 +30,7 @@ double number(const std::string& key, const std::string& value) {
 class SimulatedObserver final : public Observer {
  public:
   SimulatedObserver(SimulatedObserverSpec spec, const std::string& subject) : spec_(std::move(spec)) {
-    std::uint64_t h = 14695981039346656037ull;
-    for (unsigned char c : subject) {
-      h ^= c;
-      h *= 1099511628211ull;
-    }
-    rng_.seed(spec_.seed ^ h);
+    rng_.seed(subject_seed(spec_.seed, subject));
     // Free modulus (thesis 5.2.3): every subject picks their own scale.
     modulus_ = spec_.modulus * std::exp(0.5 * gauss());
   }

@@ -175,7 +175,8 @@ ResultsWriter::~ResultsWriter() {
 
 void ResultsWriter::append(const nlohmann::json& record) {
   // One write() of the whole line: with O_APPEND a crash leaves either the line or a torn tail.
-  const std::string line = record.dump() + "\n";
+  // Bytes that are not UTF-8 (a subject id, a path) become U+FFFD rather than losing the record.
+  const std::string line = record.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   std::size_t done = 0;
   while (done < line.size()) {
     const ssize_t k = ::write(fd_, line.data() + done, line.size() - done);

@@ -7,12 +7,7 @@
 namespace sandpaper::experiment {
 
 std::uint64_t subject_seed(std::uint64_t design_seed, const std::string& subject) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : subject) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return design_seed ^ h;
+  return design_seed ^ fnv1a64(subject);
 }
 
 std::vector<Trial> make_schedule(const Design& design, const std::string& subject) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sandpaper::experiment {
@@ -48,7 +49,9 @@ struct Design {
   std::vector<double> increments;  // two-interval: comparison force = standard x (1 + increment)
 };
 
-// FNV-1a, 64 bit, as "fnv1a64:%016x": a checksum to tell designs apart, not a security hash.
+// FNV-1a, 64 bit (Fowler, Noll, Vo): a stable hash of bytes, for checksums and seeds, not security.
+std::uint64_t fnv1a64(std::string_view bytes) noexcept;
+// fnv1a64 of the design's text as "fnv1a64:%016x": a checksum to tell designs apart.
 std::string design_checksum(const std::string& text);
 
 // Reads and validates a design. Throws DesignError listing every problem (schema violations,
