@@ -1,7 +1,8 @@
 // sandpaper_bench_loop: times the servo loop itself on the simulated joystick with the monotonic
 // clock (SCHED_FIFO when permitted): period p50/p99/p99.9/max and overruns over a long run.
 // Printed (and written as JSON with --json-out), never asserted: this machine is shared and noisy.
-//   sandpaper_bench_loop --rate 10000 --duration 60 [--material corduroy] [--json-out FILE]
+//   sandpaper_bench_loop --rate 10000 --duration 60 [--material corduroy] [--spin-margin-us 20]
+//                        [--cpu N] [--guard-periods 50] [--json-out FILE]
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -64,6 +65,12 @@ int main(int argc, char** argv) {
   app.add_option("--duration", duration, "run length, s")->capture_default_str();
   app.add_option("--material", material, "material expression or library name to play")->capture_default_str();
   app.add_option("--json-out", json_out, "also write the figures as JSON to this file");
+  runtime::ServoConfig defaults;
+  double spin_margin_us = defaults.spin_margin_s * 1e6, guard_periods = defaults.deadline_guard_periods;
+  int cpu = -1;
+  app.add_option("--spin-margin-us", spin_margin_us, "sleep to this long before each deadline, then spin, us")->capture_default_str();
+  app.add_option("--guard-periods", guard_periods, "deadline guard, periods")->capture_default_str();
+  app.add_option("--cpu", cpu, "pin the servo thread to this CPU (-1: not pinned)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   compiler::CompileOptions options;
@@ -78,6 +85,9 @@ int main(int argc, char** argv) {
   runtime::ServoConfig cfg;
   cfg.rate_hz = rate;
   cfg.duration_s = duration;
+  cfg.spin_margin_s = spin_margin_us * 1e-6;
+  cfg.deadline_guard_periods = guard_periods;
+  cfg.cpu = cpu;
   const auto ticks = static_cast<std::size_t>(std::llround(rate * duration));
   TimedSim device(runtime::sim_device_limits(), ticks);
   runtime::PatchEvaluator evaluator(*r.program);
@@ -96,7 +106,10 @@ int main(int argc, char** argv) {
              report.ticks, report.rate_hz, report.realtime_scheduling ? "SCHED_FIFO" : "normal priority (no SCHED_FIFO)");
   fmt::print("  period  target {:.1f} us; p50 {:.1f}, p99 {:.1f}, p99.9 {:.1f}, max {:.1f} us\n", target_us, p50, p99,
              p999, pmax);
-  fmt::print("  overruns (loop: started > half a period late) {}; periods > 1.5 x target {}\n", report.overruns, late);
+  const double late_percent = report.ticks ? 100.0 * static_cast<double>(report.overruns) / static_cast<double>(report.ticks) : 0;
+  fmt::print("  late ticks (started > half a period late) {} ({:.3f} %); periods > 1.5 x target {}; stalls (> 5 periods) {}, longest {:.1f} us\n",
+             report.overruns, late_percent, late, report.stalls, report.longest_stall_us);
+  fmt::print("  spin margin {:g} us, cpu {}, guard {:g} periods\n", spin_margin_us, report.cpu, guard_periods);
   fmt::print("  compute p50 {:.2f}, p99 {:.2f}, max {:.2f} us; stop: {}\n", report.compute_p50_us, report.compute_p99_us,
              report.compute_max_us, report.stop_reason);
   if (!json_out.empty()) {
@@ -104,7 +117,9 @@ int main(int argc, char** argv) {
                      {"duration_s", duration},     {"ticks", report.ticks},
                      {"rate_hz", report.rate_hz},  {"sched_fifo", report.realtime_scheduling},
                      {"period_us", {{"p50", p50}, {"p99", p99}, {"p99_9", p999}, {"max", pmax}}},
-                     {"overruns", report.overruns}, {"periods_over_1_5x", late},
+                     {"overruns", report.overruns}, {"late_ticks_percent", late_percent}, {"periods_over_1_5x", late},
+                     {"stalls", {{"count", report.stalls}, {"longest_us", report.longest_stall_us}}},
+                     {"spin_margin_us", spin_margin_us}, {"cpu", report.cpu}, {"guard_periods", guard_periods},
                      {"compute_us", {{"p50", report.compute_p50_us}, {"p99", report.compute_p99_us}, {"max", report.compute_max_us}}},
                      {"stop_reason", report.stop_reason}};
     std::ofstream(json_out) << j.dump(2) << "\n";

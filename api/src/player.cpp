@@ -14,9 +14,6 @@ namespace {
 // keeps its program until the application thread frees both together (collect_retired_nonrt).
 using ProgramSource = runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>;
 
-// The servo loop refuses runs longer than this (runtime/src/servo_loop.cpp).
-constexpr double kMaxTicks = 10'000'000;
-
 }  // namespace
 
 struct Player::Impl {
@@ -76,8 +73,7 @@ void Player::start(PlayOptions options) {
   if (!impl_->source) throw Error("nothing to play; load() a material first");
   impl_->config = runtime::ServoConfig{};
   impl_->config.rate_hz = options.rate_hz;
-  impl_->config.duration_s =
-      options.duration_s == 0.0 && options.rate_hz > 0 ? (kMaxTicks - 1) / options.rate_hz : options.duration_s;
+  impl_->config.duration_s = options.duration_s;  // 0: until stop(); the loop's memory is the same either way
   impl_->stop_request.store(false, std::memory_order_release);
   impl_->config.stop_request = &impl_->stop_request;
   auto thread = std::make_unique<runtime::ServoThread>();

@@ -17,12 +17,17 @@ std::int64_t MonotonicClock::now_ns() noexcept {
 }
 
 void MonotonicClock::sleep_until_ns(std::int64_t deadline_ns) noexcept {
-  // Absolute deadline: a signal that wakes us early just sleeps again toward the same instant,
+  // Absolute wake-up time: a signal that wakes us early just sleeps again toward the same instant,
   // so interruptions never stretch the period.
-  timespec deadline{};
-  deadline.tv_sec = static_cast<time_t>(deadline_ns / kNsPerS);
-  deadline.tv_nsec = static_cast<long>(deadline_ns % kNsPerS);
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
+  const std::int64_t wake_ns = deadline_ns - spin_margin_ns_;
+  timespec wake{};
+  wake.tv_sec = static_cast<time_t>(wake_ns / kNsPerS);
+  wake.tv_nsec = static_cast<long>(wake_ns % kNsPerS);
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr) == EINTR) {
+  }
+  // The kernel wakes a thread some tens of microseconds after the requested time on a loaded VM;
+  // the margin absorbs that, and the spin ends on the deadline itself.
+  while (now_ns() < deadline_ns) {
   }
 }
 

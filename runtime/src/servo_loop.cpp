@@ -5,6 +5,11 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+
+#include <sched.h>
+
+#include "sandpaper/runtime/tick_timing.hpp"
 
 namespace sandpaper::runtime {
 namespace {
@@ -13,8 +18,6 @@ namespace {
 // 10 kHz no haptic device we target can follow.
 constexpr double kMinRateHz = 900.0;
 constexpr double kMaxRateHz = 10000.0;
-// Bounds the timing arrays allocated before the first tick (10 M ticks = 160 MB).
-constexpr double kMaxTicks = 10'000'000.0;
 constexpr double kNsPerS = 1e9;
 
 StopCause read_fault_cause(DeviceFault fault) noexcept {
@@ -67,37 +70,9 @@ glm::dvec2 limit_magnitude(glm::dvec2 force, double max_force_N, bool& clamped) 
   return clamped ? force * (max_force_N / magnitude) : force;
 }
 
-struct TimingSummary {
-  double p50_us = 0, p99_us = 0, max_us = 0, min_us = 0, stddev_us = 0;
-};
-
-// Nearest-rank percentiles; reorders `ns`. Runs after the loop, so it may take its time.
-TimingSummary summarize(std::vector<std::int64_t>::iterator first, std::vector<std::int64_t>::iterator last) {
-  TimingSummary summary;
-  const auto count = static_cast<std::size_t>(last - first);
-  if (count == 0) return summary;
-  const auto us = [](std::int64_t ns) { return static_cast<double>(ns) * 1e-3; };
-  double mean = 0;
-  for (auto it = first; it != last; ++it) mean += us(*it);
-  mean /= static_cast<double>(count);
-  double variance = 0;
-  for (auto it = first; it != last; ++it) variance += (us(*it) - mean) * (us(*it) - mean);
-  summary.stddev_us = std::sqrt(variance / static_cast<double>(count));
-  const auto [lowest, highest] = std::minmax_element(first, last);
-  summary.min_us = us(*lowest);
-  summary.max_us = us(*highest);
-  const auto percentile = [&](double fraction) {
-    const auto rank = static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(count)));
-    const auto nth = first + static_cast<std::ptrdiff_t>(std::max<std::size_t>(rank, 1) - 1);
-    std::nth_element(first, nth, last);
-    return us(*nth);
-  };
-  summary.p50_us = percentile(0.50);
-  summary.p99_us = percentile(0.99);
-  return summary;
-}
-
+// 0 plays until stopped (the loop's counter cannot reach this in any lifetime).
 std::uint64_t tick_count(const ServoConfig& config) {
+  if (config.duration_s == 0) return UINT64_MAX;
   return static_cast<std::uint64_t>(std::llround(config.duration_s * config.rate_hz));
 }
 
@@ -144,21 +119,35 @@ void validate_config(const ServoConfig& config, const DeviceLimits& limits) {
   if (rate < limits.min_rate_hz || rate > limits.max_rate_hz)
     throw std::invalid_argument("servo rate " + hz(rate) + " is outside the range device \"" + limits.name +
                                 "\" supports, " + hz(limits.min_rate_hz) + " to " + hz(limits.max_rate_hz));
-  if (!std::isfinite(config.duration_s) || config.duration_s <= 0)
-    throw std::invalid_argument("servo duration must be a positive, finite number of seconds");
-  const double ticks = config.duration_s * rate;
-  if (ticks > kMaxTicks + 0.5)
-    throw std::invalid_argument("servo run of " + std::to_string(std::llround(ticks)) +
-                                " ticks is longer than the limit of 10000000 ticks");
-  if (std::llround(ticks) < 1) throw std::invalid_argument("servo duration is shorter than one servo period");
+  if (!std::isfinite(config.duration_s) || config.duration_s < 0)
+    throw std::invalid_argument("servo duration must be a finite number of seconds, 0 to play until stopped");
+  if (config.duration_s == 0 && config.stop_request == nullptr)
+    throw std::invalid_argument("a servo run until stopped (duration 0) needs a stop request to end it");
+  if (config.duration_s > 0 && std::llround(config.duration_s * rate) < 1)
+    throw std::invalid_argument("servo duration is shorter than one servo period");
   if (!std::isfinite(config.velocity_cutoff_hz) || config.velocity_cutoff_hz <= 0)
     throw std::invalid_argument("velocity filter cutoff must be a positive, finite frequency in Hz");
   if (!std::isfinite(config.ramp_s) || config.ramp_s < 0)
     throw std::invalid_argument("force ramp must be a finite, non-negative time in seconds");
   if (!(config.velocity_limit_m_s > 0))
     throw std::invalid_argument("velocity limit must be a positive speed in m/s");
-  if (!(config.max_late_s > 0))
-    throw std::invalid_argument("deadline allowance must be a positive time in seconds");
+  if (!(config.deadline_guard_periods > 0) || !std::isfinite(config.deadline_guard_periods))
+    throw std::invalid_argument("deadline guard must be a positive, finite number of servo periods");
+  if (!(config.spin_margin_s >= 0) || config.spin_margin_s > 1.0 / rate)
+    throw std::invalid_argument("spin margin must be between 0 and one servo period (" +
+                                std::to_string(1e6 / rate) + " us at " + hz(rate) + ")");
+  if (config.cpu < -1 || config.cpu >= CPU_SETSIZE)
+    throw std::invalid_argument("CPU " + std::to_string(config.cpu) + " does not exist");
+  if (config.cpu >= 0) {
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    if (sched_getaffinity(0, sizeof allowed, &allowed) == 0 && !CPU_ISSET(config.cpu, &allowed)) {
+      std::string list;
+      for (int c = 0; c < CPU_SETSIZE; ++c)
+        if (CPU_ISSET(c, &allowed)) list += (list.empty() ? "" : ", ") + std::to_string(c);
+      throw std::invalid_argument("CPU " + std::to_string(config.cpu) + " is not one this process may run on (" + list + ")");
+    }
+  }
 }
 
 ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& clock,
@@ -168,9 +157,10 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
   const std::uint64_t ticks = tick_count(config);
   const double period_ns = kNsPerS / config.rate_hz;
 
-  // The only allocations of the run: one timing slot per tick, filled in by the ticks.
-  std::vector<std::int64_t> periods_ns(ticks, 0);
-  std::vector<std::int64_t> compute_ns(ticks, 0);
+  // The only allocations of the run, sized by the period and not by the run's length.
+  TickTimingStats periods(period_ns);
+  TickTimingStats compute(period_ns);
+  const double stall_ns = kStallPeriods * period_ns;
 
   ServoReport report;
   StopCause stop = StopCause::Completed;
@@ -180,7 +170,7 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
   std::uint64_t played = 0;
   std::int64_t first_start = 0, previous_start = 0;
   const double velocity_limit_sq = config.velocity_limit_m_s * config.velocity_limit_m_s;
-  const auto max_late_ns = static_cast<double>(config.max_late_s * kNsPerS);
+  const double max_late_ns = config.deadline_guard_periods * period_ns;
 
   const std::int64_t start = clock.now_ns();
   for (std::uint64_t k = 0; k < ticks && stop == StopCause::Completed; ++k) {
@@ -192,8 +182,15 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
     const bool overrun = late_ns > 0.5 * period_ns;
     if (overrun) ++report.overruns;
     if (k == 0) first_start = tick_start;
-    periods_ns[k] = k == 0 ? 0 : tick_start - previous_start;
-    const double dt_s = static_cast<double>(periods_ns[k]) / kNsPerS;
+    const std::int64_t tick_period_ns = k == 0 ? 0 : tick_start - previous_start;
+    if (k > 0) {
+      periods.add_rt(tick_period_ns);
+      if (static_cast<double>(tick_period_ns) > stall_ns) {
+        ++report.stalls;
+        report.longest_stall_us = std::max(report.longest_stall_us, static_cast<double>(tick_period_ns) * 1e-3);
+      }
+    }
+    const double dt_s = static_cast<double>(tick_period_ns) / kNsPerS;
     const double t_s = static_cast<double>(tick_start - start) / kNsPerS;
     ++played;
 
@@ -203,7 +200,7 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
     if (config.stop_request != nullptr && config.stop_request->load(std::memory_order_relaxed)) {
       stop = StopCause::StopRequested;
     } else if (late_ns > max_late_ns) {
-      // The handle has held a stale force for max_late_s: whatever the hand did meanwhile was not seen.
+      // The handle has held a stale force for deadline_guard_periods: whatever the hand did meanwhile was not seen.
       stop = StopCause::DeadlineMissed;
     } else if (!device.read_position_rt(t_s, position)) {
       stop = read_fault_cause(device.last_fault_rt());
@@ -249,14 +246,15 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
     } else {
       device.write_force_rt({0, 0});  // same tick as the fault; its own failure changes nothing now
     }
-    compute_ns[k] = clock.now_ns() - tick_start;
+    const std::int64_t tick_compute_ns = clock.now_ns() - tick_start;
+    compute.add_rt(tick_compute_ns);
     previous_start = tick_start;
     if (config.telemetry != nullptr) {
       TelemetryRecord record;
       record.tick = k;
       record.t_s = t_s;
       record.period_s = dt_s;
-      record.compute_s = static_cast<double>(compute_ns[k]) / kNsPerS;
+      record.compute_s = static_cast<double>(tick_compute_ns) / kNsPerS;
       record.position_m = position;
       record.force_N = sent;
       record.overrun = overrun;
@@ -272,17 +270,14 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
   if (config.telemetry != nullptr) report.telemetry_dropped = config.telemetry->dropped();
   if (played >= 2 && previous_start > first_start)
     report.rate_hz = static_cast<double>(played - 1) * kNsPerS / static_cast<double>(previous_start - first_start);
-  const auto played_end = static_cast<std::ptrdiff_t>(played);
-  const TimingSummary period = summarize(periods_ns.begin() + (played >= 2 ? 1 : played_end), periods_ns.begin() + played_end);
-  report.period_p50_us = period.p50_us;
-  report.period_p99_us = period.p99_us;
-  report.period_max_us = period.max_us;
-  report.period_min_us = period.min_us;
-  report.jitter_us = period.stddev_us;
-  const TimingSummary compute = summarize(compute_ns.begin(), compute_ns.begin() + played_end);
-  report.compute_p50_us = compute.p50_us;
-  report.compute_p99_us = compute.p99_us;
-  report.compute_max_us = compute.max_us;
+  report.period_p50_us = periods.percentile_us(0.50);
+  report.period_p99_us = periods.percentile_us(0.99);
+  report.period_max_us = periods.max_us();
+  report.period_min_us = periods.min_us();
+  report.jitter_us = periods.stddev_us();
+  report.compute_p50_us = compute.percentile_us(0.50);
+  report.compute_p99_us = compute.percentile_us(0.99);
+  report.compute_max_us = compute.max_us();
   return report;
 }
 

@@ -47,7 +47,9 @@ std::size_t TelemetryReader::drain_nonrt() {
     if (r.tick > 0) periods_.add(r.period_s);
     compute_.add(r.compute_s);
     if (r.overrun) ++overruns_;
-    max_force_N_ = std::max(max_force_N_, std::hypot(r.force_N.x, r.force_N.y));
+    const double magnitude = std::hypot(r.force_N.x, r.force_N.y);
+    max_force_N_ = std::max(max_force_N_, magnitude);
+    sum_force_N_ += magnitude;
     if (kept_.size() < keep_) kept_.push_back(r);
     last_ = r;
   }

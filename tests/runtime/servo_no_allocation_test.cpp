@@ -98,9 +98,61 @@ TEST(ServoNoAllocation, AllocationsDoNotGrowWithTicks) {
   const std::size_t short_run = allocations_in_run(program, 1000);
   const std::size_t long_run = allocations_in_run(program, 20000);
   EXPECT_EQ(short_run, long_run);
-  // The two timing arrays; a tick that allocated only once (a string growing on first use, say)
+  // The two timing histograms; a tick that allocated only once (a string growing on first use, say)
   // would not grow with the ticks but would show up here.
   EXPECT_LE(short_run, 2u);
+}
+
+// A device that raises the stop flag after a given number of reads: a run "until stopped" ends.
+class StopAfter final : public Device {
+ public:
+  StopAfter(std::atomic<bool>& flag, std::uint64_t reads) : flag_(flag), reads_left_(reads) {}
+  const DeviceLimits& limits() const noexcept override { return limits_; }
+  bool read_position_rt(double, glm::dvec2& p) noexcept override {
+    p = {0, 0};
+    if (reads_left_ > 0 && --reads_left_ == 0) flag_.store(true, std::memory_order_relaxed);
+    return true;
+  }
+  bool write_force_rt(glm::dvec2) noexcept override { return true; }
+
+ private:
+  DeviceLimits limits_ = sim_device_limits();
+  std::atomic<bool>& flag_;
+  std::uint64_t reads_left_;
+};
+
+// Bytes the servo loop allocates for a run at `rate_hz` of `duration_s` (0: until stopped, after
+// `stop_after` ticks).
+std::size_t bytes_in_run(double rate_hz, double duration_s, std::uint64_t stop_after) {
+  const auto program = table_program();
+  PatchEvaluator evaluator(program);
+  std::atomic<bool> stop{false};
+  StopAfter device(stop, stop_after);
+  VirtualClock clock;
+  ServoConfig config;
+  config.rate_hz = rate_hz;
+  config.duration_s = duration_s;
+  config.stop_request = &stop;
+  CountedAllocations counting;
+  const ServoReport report = run_servo_loop(device, evaluator, clock, config);
+  const std::size_t bytes = counting.bytes();
+  counting.stop();
+  // Stopped runs play one more tick: the one that sees the flag and writes zero.
+  EXPECT_EQ(report.ticks, duration_s > 0 ? static_cast<std::uint64_t>(std::llround(duration_s * rate_hz)) : stop_after + 1);
+  return bytes;
+}
+
+TEST(ServoNoAllocation, MemoryDoesNotGrowWithRunLength) {
+  for (double rate : {1000.0, 10000.0}) {
+    SCOPED_TRACE(rate);
+    const std::size_t one_second = bytes_in_run(rate, 1.0, 0);
+    // A minute of servo time, and a run until stopped that went on for 30 s before the stop.
+    EXPECT_EQ(bytes_in_run(rate, 60.0, 0), one_second);
+    // (plus the stop reason's text, "stopped by signal", one short string after the loop)
+    EXPECT_LE(bytes_in_run(rate, 0.0, static_cast<std::uint64_t>(30 * rate)), one_second + 32);
+    // The timing statistics are two fixed histograms (80 KB), whatever the rate: not 16 bytes a tick.
+    EXPECT_LE(one_second, 100'000u);
+  }
 }
 
 // Every term kind: the stateful ones advance state in slots the constructor allocated, and the
@@ -230,7 +282,7 @@ TEST(ServoNoAllocation, StoppingOnAFaultDoesNotAllocateEither) {
     stop_reason = report.stop_reason;
   }
   EXPECT_EQ(stop_reason, "non-finite force");
-  EXPECT_LE(count, 3u);  // the two timing arrays and the report's stop_reason text, after the loop
+  EXPECT_LE(count, 3u);  // the two timing histograms and the report's stop_reason text, after the loop
 }
 
 }  // namespace

@@ -194,6 +194,38 @@ TEST(StopCauses, DeadlineMissedForLongerThanAllowed) {
   EXPECT_GT(ok.report.overruns, 0u);
 }
 
+TEST(StopCauses, StallsAreCountedAndTheGuardCountsPeriods) {
+  // A 30 ms stall at 1 kHz completes (under the 50-period guard) but is reported: one stall, its
+  // gap the 31 ms between tick 5's start and the late tick 6's start.
+  FaultDevice slow(FaultDevice::Mode::None, 0);
+  StallingClock stall(5, 30'000'000);
+  ServoConfig c = quick();
+  c.duration_s = 0.1;
+  const Outcome once = play(slow, c, &stall);
+  EXPECT_EQ(once.report.stop_cause, StopCause::Completed);
+  EXPECT_EQ(once.report.stalls, 1u);
+  EXPECT_DOUBLE_EQ(once.report.longest_stall_us, 31'000.0);
+
+  // Four periods late is no stall; the gap must exceed kStallPeriods periods.
+  FaultDevice brief(FaultDevice::Mode::None, 0);
+  StallingClock short_stall(5, 3'900'000);
+  EXPECT_EQ(play(brief, c, &short_stall).report.stalls, 0u);
+
+  // The same 30 ms at 10 kHz is 300 periods: over the guard, so the loop stops.
+  FaultDevice fast(FaultDevice::Mode::None, 0);
+  StallingClock fast_stall(5, 30'000'000);
+  ServoConfig ten_khz = c;
+  ten_khz.rate_hz = 10'000;
+  EXPECT_EQ(play(fast, ten_khz, &fast_stall).report.stop_cause, StopCause::DeadlineMissed);
+  // ... unless the guard is set wider, in periods.
+  FaultDevice wide(FaultDevice::Mode::None, 0);
+  StallingClock wide_stall(5, 30'000'000);
+  ten_khz.deadline_guard_periods = 400;
+  const Outcome widened = play(wide, ten_khz, &wide_stall);
+  EXPECT_EQ(widened.report.stop_cause, StopCause::Completed);
+  EXPECT_EQ(widened.report.stalls, 1u);
+}
+
 TEST(StopCauses, StopRequestedBySignalFlag) {
   // The flag goes up during read 8 (as a signal handler would set it); tick 9 sees it.
   FaultDevice device(FaultDevice::Mode::RaiseFlag, 8);

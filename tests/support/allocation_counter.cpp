@@ -32,13 +32,16 @@ thread_local bool allocation_counting_armed = false;
 thread_local bool lock_counting_armed = false;
 std::atomic<std::size_t> counted_allocations{0};
 std::atomic<std::size_t> counted_locks{0};
+std::atomic<std::size_t> counted_bytes{0};
 
-void count_allocation() noexcept {
-  if (allocation_counting_armed) counted_allocations.fetch_add(1, std::memory_order_relaxed);
+void count_allocation(std::size_t bytes = 0) noexcept {
+  if (!allocation_counting_armed) return;
+  counted_allocations.fetch_add(1, std::memory_order_relaxed);
+  counted_bytes.fetch_add(bytes, std::memory_order_relaxed);
 }
 
 void* allocate(std::size_t size) {
-  count_allocation();
+  count_allocation(size);
 #if SANDPAPER_COUNTER_UNDER_SANITIZER
   return std::malloc(size == 0 ? 1 : size);
 #else
@@ -47,7 +50,7 @@ void* allocate(std::size_t size) {
 }
 
 void* allocate_aligned(std::size_t size, std::align_val_t alignment) {
-  count_allocation();
+  count_allocation(size);
   const auto align = static_cast<std::size_t>(alignment);
   const std::size_t rounded = (size + align - 1) / align * align;  // aligned_alloc wants a multiple
   return std::aligned_alloc(align, rounded == 0 ? align : rounded);
@@ -77,15 +80,15 @@ std::atomic<MutexFn> next_trylock{nullptr};
 #if !SANDPAPER_COUNTER_UNDER_SANITIZER
 // C allocations (strdup, a C library's buffers, std::malloc) count as well as operator new.
 extern "C" void* malloc(std::size_t size) {
-  count_allocation();
+  count_allocation(size);
   return __libc_malloc(size);
 }
 extern "C" void* calloc(std::size_t count, std::size_t size) {
-  count_allocation();
+  count_allocation(count * size);
   return __libc_calloc(count, size);
 }
 extern "C" void* realloc(void* p, std::size_t size) {
-  count_allocation();
+  count_allocation(size);
   return __libc_realloc(p, size);
 }
 
@@ -145,6 +148,7 @@ bool counts_c_allocations_and_locks() { return !SANDPAPER_COUNTER_UNDER_SANITIZE
 
 CountedAllocations::CountedAllocations() {
   counted_allocations = 0;
+  counted_bytes = 0;
   allocation_counting_armed = true;
 }
 
@@ -154,6 +158,8 @@ std::size_t CountedAllocations::stop() {
   allocation_counting_armed = false;
   return counted_allocations.load();
 }
+
+std::size_t CountedAllocations::bytes() const { return counted_bytes.load(); }
 
 CountedRtViolations::CountedRtViolations() {
   counted_allocations = 0;

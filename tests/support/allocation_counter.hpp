@@ -20,6 +20,8 @@ class CountedAllocations {
   CountedAllocations& operator=(const CountedAllocations&) = delete;
   // Stops counting (call it before gtest assertions, which allocate) and returns the count.
   std::size_t stop();
+  // Bytes asked for by the allocations counted so far (operator new, malloc, calloc, realloc).
+  std::size_t bytes() const;
 };
 
 struct RtViolations {

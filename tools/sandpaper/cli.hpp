@@ -9,16 +9,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "exit_codes.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/runtime/device.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
 namespace sandpaper::cli {
 
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitBadInput = 1;
-inline constexpr int kExitUsage = 2;
 
 struct CommonOptions {
   std::string file;        // material file or patch program
@@ -44,14 +43,15 @@ using compiler::diagnostics_json;  // compiler/compile_json.hpp
 runtime::DeviceLimits limits_of(const compiler::Compiler& c);
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain);
-struct RunDeviceOptions;  // run_device.hpp
-int cmd_run(const CommonOptions& o, double rate_hz, double duration_s, const std::string& hand, double speed_mm_s,
-            double amplitude_mm, const std::string& trace, bool virtual_clock, bool live,
-            const RunDeviceOptions& device_options, bool watch = false);
+struct PlayRequest;  // tools/player/play_patch.hpp
+int cmd_run(const CommonOptions& o, PlayRequest r, bool watch = false);
+// Replaces this process with `sandpaper-play` (beside this executable) given argv[2..] (what
+// followed `run`); returns -1, after a note, when it cannot, and the caller plays in-process.
+int exec_player(int argc, char** argv);
 int cmd_inspect(const std::string& file, bool json, bool tables);
 // USB HID PID joysticks (cmd_devices.cpp, docs/USB_PID.md): list them; play on the first one found.
 int cmd_devices(const CommonOptions& o);
-int cmd_run_usb(const CommonOptions& o, double rate_hz, double duration_s);
+int cmd_run_usb(const CommonOptions& o, const PlayRequest& r);
 int cmd_library(const CommonOptions& o);
 // The first HID PID joystick that has a device calibration, opened and owning its transport; nullptr
 // with `error` set (and udev help printed when access was denied) when there is none.
@@ -77,6 +77,7 @@ struct WorkspaceRunOptions {
   bool virtual_clock = false;
   double crossfade_ms = 2;
   bool live = false;  // live servo figures on stderr once a second
+  runtime::ServoConfig servo;  // spin margin, deadline guard, CPU (rate and duration are set from the above)
 };
 // True when the input is a workspace file rather than a material.
 inline bool is_workspace_input(const CommonOptions& o) {

@@ -187,7 +187,7 @@ int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
   const double lap_m = hand == "circle" ? 2 * kPi * script.amplitude_m : 4 * script.amplitude_m;
   const double duration_s = ro.duration_s.value_or(lap_m / script.speed_m_s);
 
-  runtime::ServoConfig cfg;
+  runtime::ServoConfig cfg = ro.servo;
   cfg.rate_hz = ro.rate_hz;
   cfg.duration_s = duration_s;
   try {
@@ -252,6 +252,7 @@ int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
                      {"jitter_us", rep.jitter_us},
                      {"compute_us", {{"p50", rep.compute_p50_us}, {"p99", rep.compute_p99_us}, {"max", rep.compute_max_us}}},
                      {"overruns", rep.overruns},
+                     {"stalls", {{"count", rep.stalls}, {"longest_us", rep.longest_stall_us}, {"threshold_periods", runtime::kStallPeriods}}},
                      {"max_lateral_force_N", rep.max_lateral_force_N},
                      {"clamped_ticks", rep.clamped_ticks},
                      {"stop_reason", rep.stop_reason},
@@ -268,9 +269,9 @@ int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
     std::cout << j.dump(2) << "\n";
   } else {
     std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us; "
-                             "jitter {:.2f} us (sd); overruns {}\n",
+                             "jitter {:.2f} us (sd); overruns {}; stalls {} (longest {:.0f} us)\n",
                              rep.ticks, rep.rate_hz, rep.period_p50_us, rep.period_p99_us, rep.period_max_us, rep.jitter_us,
-                             rep.overruns);
+                             rep.overruns, rep.stalls, rep.longest_stall_us);
     std::cout << fmt::format("  compute  p50 {:.2f} us, p99 {:.2f} us, max {:.2f} us per tick\n", rep.compute_p50_us,
                              rep.compute_p99_us, rep.compute_max_us);
     std::cout << fmt::format("  felt     max lateral force {:.4f} N, clamped ticks {}; crossfade {:g} ms at patch edges\n",

@@ -9,7 +9,7 @@
 #include "cli.hpp"
 #include "cmd_library.hpp"
 #include "play.hpp"
-#include "run_device.hpp"
+#include "play_patch.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
@@ -36,9 +36,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   CommonOptions o;
   std::string output;
-  double rate = 1000, duration = 2, speed = 50, amplitude = 30;
-  std::string hand = "scan", trace;
-  bool virtual_clock = false, tables = false;
+  bool tables = false;
 
   auto* compile = app.add_subcommand("compile", "compile a material into a patch program");
   add_common(compile, o, true);
@@ -47,19 +45,10 @@ int main(int argc, char** argv) {
   add_common(explain, o, true);
   auto* run = app.add_subcommand("run", "play a material or patch program on a device");
   add_common(run, o, true);
-  run->add_option("--rate", rate, "servo rate, Hz (900 to 10000)")->capture_default_str();
-  run->add_option("--duration", duration, "how long to play, s")->capture_default_str();
-  run->add_option("--hand", hand, "simulated hand path")->check(CLI::IsMember({"scan", "circle"}))->capture_default_str();
-  run->add_option("--speed", speed, "hand speed, mm/s")->capture_default_str();
-  run->add_option("--amplitude", amplitude, "scan half-width or circle radius, mm")->capture_default_str();
-  run->add_option("--trace", trace, "write every tick's time, position and force to this CSV file");
-  run->add_flag("--virtual-clock", virtual_clock, "run on simulated time, as fast as possible (deterministic)");
-  bool live = false;
-  run->add_flag("--live", live, "print live servo figures on stderr once a second (default when stderr is a terminal)");
+  PlayRequest play_request;
+  add_play_options(run, play_request);
   bool watch = false;
   run->add_flag("--watch", watch, "recompile the file whenever it is saved and swap it in while playing (until Ctrl-C unless --duration)");
-  RunDeviceOptions run_device;
-  add_run_device_options(run, run_device);
   auto* inspect = app.add_subcommand("inspect", "print a patch program");
   std::string patch_file;
   inspect->add_option("file", patch_file, "patch program (.patch)")->required();
@@ -154,20 +143,26 @@ int main(int argc, char** argv) {
           return kExitUsage;
         }
         WorkspaceRunOptions ro;
-        ro.rate_hz = rate;
-        if (run->count("--duration")) ro.duration_s = duration;
-        if (run->count("--hand")) ro.hand = hand;
-        ro.speed_mm_s = speed;
-        if (run->count("--amplitude")) ro.amplitude_mm = amplitude;
-        ro.trace = trace;
-        ro.virtual_clock = virtual_clock;
+        ro.rate_hz = play_request.rate_hz;
+        if (run->count("--duration")) ro.duration_s = play_request.duration_s;
+        if (run->count("--hand")) ro.hand = play_request.hand;
+        ro.speed_mm_s = play_request.speed_mm_s;
+        if (run->count("--amplitude")) ro.amplitude_mm = play_request.amplitude_mm;
+        ro.trace = play_request.trace;
+        ro.virtual_clock = play_request.virtual_clock;
         ro.crossfade_ms = crossfade_ms;
-        ro.live = live || isatty(STDERR_FILENO);
+        ro.live = play_request.live || isatty(STDERR_FILENO);
+        ro.servo = servo_config_of(play_request);
         return cmd_workspace_run(o, ro);
       }
-      if (watch && !run->count("--duration")) duration = 0;
-      return cmd_run(o, rate, duration, hand, speed, amplitude, trace, virtual_clock, live || isatty(STDERR_FILENO),
-                     run_device, watch);
+      // A compiled program needs no compiler: the runtime-only player plays it in a process that
+      // never maps the compiler's libraries (docs/performance.md, "A player that is only a runtime").
+      if (!watch && o.expression.empty() && sandpaper::schema::looks_like_patch_file(o.file) && argc > 1 &&
+          std::string_view(argv[1]) == "run")
+        exec_player(argc, argv);
+      if (watch && !run->count("--duration")) play_request.duration_s = 0;
+      play_request.live = play_request.live || isatty(STDERR_FILENO);
+      return cmd_run(o, play_request, watch);
     }
     if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);
     if (show->parsed()) return cmd_movie_show(show_file, o.json);

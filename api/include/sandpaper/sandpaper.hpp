@@ -115,7 +115,7 @@ class Library {
 
 struct PlayOptions {
   double rate_hz = 1000.0;  // servo rate, 900 Hz - 10 kHz and within the device's limits
-  double duration_s = 0.0;  // how long to play; 0: until stop() (at most 10 million ticks)
+  double duration_s = 0.0;  // how long to play; 0: until stop(), for as long as it takes (fixed memory)
 };
 
 // Plays materials on one device on a servo thread of its own (runtime::ServoThread). Loading while

@@ -128,7 +128,9 @@ HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> by
       const std::uint32_t flags = unsigned_data(data);
       if (tag == 0x8 || tag == 0x9 || tag == 0xB) {
         const ReportType rt = tag == 0x8 ? ReportType::Input : tag == 0x9 ? ReportType::Output : ReportType::Feature;
-        if (g.report_size > 32) fail(at, "report size " + std::to_string(g.report_size) + " bits is over 32");
+        // HID 1.11 sets no limit; Linux's parser takes up to 256 bits, and the OpenFFBoard's vendor
+        // command reports use 64-bit fields. The driver refuses to use a field wider than 32 bits.
+        if (g.report_size > 256) fail(at, "report size " + std::to_string(g.report_size) + " bits is over 256");
         std::uint32_t& bit = next_bit[{static_cast<int>(rt), g.report_id}];
         const bool constant = flags & 1;
         const bool variable = flags & 2;
@@ -222,7 +224,7 @@ HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> by
 void write_field(std::span<std::uint8_t> report, bool uses_ids, const HidField& field, std::int64_t value) noexcept {
   const std::size_t base = uses_ids ? 8 : 0;
   const auto v = static_cast<std::uint64_t>(value);
-  for (std::uint32_t b = 0; b < field.bit_size; ++b) {
+  for (std::uint32_t b = 0; b < std::min<std::uint32_t>(field.bit_size, 64); ++b) {
     const std::size_t bit = base + field.bit_offset + b;
     if (bit / 8 >= report.size()) return;
     const auto mask = static_cast<std::uint8_t>(1u << (bit % 8));
@@ -234,7 +236,7 @@ void write_field(std::span<std::uint8_t> report, bool uses_ids, const HidField& 
 std::int64_t read_field(std::span<const std::uint8_t> report, bool uses_ids, const HidField& field) noexcept {
   const std::size_t base = uses_ids ? 8 : 0;
   std::uint64_t v = 0;
-  for (std::uint32_t b = 0; b < field.bit_size; ++b) {
+  for (std::uint32_t b = 0; b < std::min<std::uint32_t>(field.bit_size, 64); ++b) {
     const std::size_t bit = base + field.bit_offset + b;
     if (bit / 8 >= report.size()) break;
     if ((report[bit / 8] >> (bit % 8)) & 1) v |= std::uint64_t{1} << b;

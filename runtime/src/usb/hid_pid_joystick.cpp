@@ -2,7 +2,10 @@
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <string>
 #include <vector>
 
@@ -22,6 +25,25 @@ std::string hex(std::uint32_t u) {
 }
 
 std::string usage_name(std::uint32_t u) { return "page " + hex(u >> 16) + " usage " + hex(u & 0xFFFF); }
+
+// Two 32-bit values in one lock-free atomic word: the single-slot exchange of the tick and the I/O thread.
+std::uint64_t pack(std::uint32_t x, std::uint32_t y) noexcept { return (std::uint64_t{y} << 32) | x; }
+std::uint32_t low(std::uint64_t v) noexcept { return static_cast<std::uint32_t>(v & 0xFFFFFFFFu); }
+std::uint32_t high(std::uint64_t v) noexcept { return static_cast<std::uint32_t>(v >> 32); }
+// Positions travel as float metres: 4 nm resolution over the +-50 mm of a joystick, far below its
+// 16-bit report steps.
+std::uint64_t pack_position(glm::dvec2 p) noexcept {
+  return pack(std::bit_cast<std::uint32_t>(static_cast<float>(p.x)), std::bit_cast<std::uint32_t>(static_cast<float>(p.y)));
+}
+glm::dvec2 unpack_position(std::uint64_t v) noexcept {
+  return {std::bit_cast<float>(low(v)), std::bit_cast<float>(high(v))};
+}
+
+std::int64_t monotonic_ns() noexcept {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return std::int64_t{now.tv_sec} * 1'000'000'000 + now.tv_nsec;
+}
 
 }  // namespace
 
@@ -45,9 +67,95 @@ HidPidJoystick::HidPidJoystick(UsbTransport& transport, const calibration::Devic
   limits_.max_rate_hz = calibration.max_rate_hz;
   limits_.workspace_radius_m = calibration.workspace_radius_m;
   open();
+  position_raw_.store(pack_position(position_m_), std::memory_order_release);
+  if (options_.io == HidPidIo::IoThread) start_io_thread();
 }
 
 HidPidJoystick::~HidPidJoystick() { close(); }
+
+DeviceFault HidPidJoystick::last_fault_rt() const noexcept { return fault_.load(std::memory_order_acquire); }
+UsbStatus HidPidJoystick::fault_status() const noexcept { return fault_status_.load(std::memory_order_acquire); }
+std::array<std::int32_t, 2> HidPidJoystick::last_command() const noexcept {
+  return {last_command_[0].load(std::memory_order_relaxed), last_command_[1].load(std::memory_order_relaxed)};
+}
+
+void HidPidJoystick::set_fault(DeviceFault fault, UsbStatus status) noexcept {
+  // The first fault is the cause; later ones (the zero force failing after an unplug) are consequences.
+  fault_status_.store(status, std::memory_order_relaxed);
+  DeviceFault none = DeviceFault::None;
+  if (!fault_.compare_exchange_strong(none, fault, std::memory_order_acq_rel)) return;
+}
+
+void HidPidJoystick::start_io_thread() {
+  io_running_.store(true, std::memory_order_release);
+  try {
+    io_thread_ = std::thread([this] { io_thread_body(); });
+  } catch (...) {
+    io_running_.store(false);
+    fail_open(UsbStatus::Other, "cannot start the USB I/O thread");
+  }
+}
+
+void HidPidJoystick::stop_io_thread() noexcept {
+  io_running_.store(false, std::memory_order_release);
+  if (io_thread_.joinable()) io_thread_.join();
+}
+
+// The I/O thread: one input read (a 1 kHz interrupt endpoint paces it), then the latest force if
+// the tick published a new one, at most once per device period. It may block in a transfer for as
+// long as libusb's timeout; the tick then sees no new position and the watchdog (stale_limit_s)
+// stops the servo loop, which publishes zero force; the shutdown sequence sends it.
+void HidPidJoystick::io_thread_body() noexcept {
+  const auto period_ns = static_cast<std::int64_t>(1e9 / std::max(1.0, limits_.max_rate_hz));
+  std::int64_t next = monotonic_ns();
+  while (io_running_.load(std::memory_order_acquire)) {
+    for (int attempt = 0; attempt < kReadsPerTick; ++attempt) {
+      std::size_t length = 0;
+      const UsbStatus s = transport_.read_input(input_, length, options_.read_timeout_ms);
+      if (s == UsbStatus::Timeout) break;
+      if (s != UsbStatus::Ok) {
+        set_fault(s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::ReadFailed, s);
+        return;
+      }
+      glm::dvec2 p{0, 0};
+      if (decode_position({input_.data(), length}, p)) {  // else another report (PID State): read on
+        position_raw_.store(pack_position(p), std::memory_order_relaxed);
+        position_reports_.fetch_add(1, std::memory_order_release);
+        break;
+      }
+    }
+    const std::uint64_t published = command_published_.load(std::memory_order_acquire);
+    if (published != command_sent_.load(std::memory_order_relaxed)) {
+      const std::uint64_t command = command_raw_.load(std::memory_order_relaxed);
+      bool ok = send_constant_force(0, static_cast<std::int32_t>(low(command)));
+      ok = send_constant_force(1, static_cast<std::int32_t>(high(command))) && ok;
+      if (!ok) return;  // send_constant_force set the fault
+      command_sent_.store(published, std::memory_order_release);
+    }
+    io_cycles_.fetch_add(1, std::memory_order_release);
+    next += period_ns;
+    const std::int64_t now = monotonic_ns();
+    if (next < now) next = now;  // behind (a slow transfer): carry on from now, do not burst
+    timespec wake{};
+    wake.tv_sec = static_cast<time_t>(next / 1'000'000'000);
+    wake.tv_nsec = static_cast<long>(next % 1'000'000'000);
+    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &wake, nullptr);
+  }
+}
+
+bool HidPidJoystick::flush_nonrt(double timeout_s) {
+  if (options_.io != HidPidIo::IoThread || !io_thread_.joinable()) return true;
+  const std::uint64_t published = command_published_.load(std::memory_order_acquire);
+  const std::uint64_t cycles = io_cycles_.load(std::memory_order_acquire) + 2;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < until) {
+    if (fault_.load(std::memory_order_acquire) != DeviceFault::None) return false;
+    if (command_sent_.load(std::memory_order_acquire) >= published && io_cycles_.load(std::memory_order_acquire) >= cycles)
+      return true;
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  return false;
+}
 
 void HidPidJoystick::fail_open(UsbStatus status, const std::string& what) {
   close();
@@ -79,6 +187,9 @@ void HidPidJoystick::open() {
       fail_open(UsbStatus::Other, "the HID report descriptor has no " + usage_name(field_usage) +
                                       (report_usage ? " in the report " + usage_name(report_usage) : std::string()) +
                                       ": not a HID PID force-feedback joystick the driver can play");
+    if (f->bit_size > 32)
+      fail_open(UsbStatus::Other, "the HID report descriptor's " + usage_name(field_usage) + " is " +
+                                      std::to_string(f->bit_size) + " bits wide; the driver reads and writes at most 32");
     return *f;
   };
   x_ = need(ReportType::Input, 0, kUsageX);
@@ -119,7 +230,7 @@ void HidPidJoystick::open() {
 
   for (int attempt = 0; attempt < kOpenReads; ++attempt) {
     std::size_t length = 0;
-    s = transport_.read_input_rt(input_, length, options_.open_read_timeout_ms);
+    s = transport_.read_input(input_, length, options_.open_read_timeout_ms);
     if (s == UsbStatus::Ok && decode_position({input_.data(), length}, position_m_)) return;
     if (s != UsbStatus::Ok && s != UsbStatus::Timeout)
       fail_open(s, std::string("cannot read the position: ") + to_string(s));
@@ -138,7 +249,7 @@ void HidPidJoystick::device_control(std::uint32_t command_usage) {
   Buffer b{};
   b[0] = f.report_id;
   write_field(b, ids_, f, *value);
-  const UsbStatus s = transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, f.report_id)));
+  const UsbStatus s = transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, f.report_id)));
   if (s != UsbStatus::Ok && !closed_) fail_open(s, std::string("Device Control failed: ") + to_string(s));
 }
 
@@ -195,14 +306,14 @@ void HidPidJoystick::create_effect(int axis) {
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageX)) write_field(b, ids_, *f, axis == 0);
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageY)) write_field(b, ids_, *f, axis == 1);
     // Direction ordinals stay 0: with Direction Enable clear, Axes Enable picks the axis.
-    const UsbStatus s = transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
+    const UsbStatus s = transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
     if (s != UsbStatus::Ok) fail_open(s, std::string("Set Effect failed: ") + to_string(s));
   }
   // Set Constant Force 0, preformatted once: the tick only rewrites the magnitude.
   cf_report_[a].fill(0);
   cf_report_[a][0] = magnitude_.report_id;
   write_field(cf_report_[a], ids_, cf_block_, block_index_[a]);
-  if (!send_constant_force_rt(axis, 0)) fail_open(fault_status_, std::string("Set Constant Force failed: ") + to_string(fault_status_));
+  if (!send_constant_force(axis, 0)) fail_open(fault_status(), std::string("Set Constant Force failed: ") + to_string(fault_status()));
   // Effect Operation: start, loop count 1.
   {
     const HidField& index = *descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
@@ -215,42 +326,45 @@ void HidPidJoystick::create_effect(int axis) {
     write_field(b, ids_, op, *start);
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kLoopCount))
       write_field(b, ids_, *f, 1);
-    const UsbStatus s = transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
+    const UsbStatus s = transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
     if (s != UsbStatus::Ok) fail_open(s, std::string("Effect Operation (start) failed: ") + to_string(s));
     started_[a] = true;
   }
 }
 
-bool HidPidJoystick::send_constant_force_rt(int axis, std::int32_t magnitude) noexcept {
+bool HidPidJoystick::send_constant_force(int axis, std::int32_t magnitude) noexcept {
   const auto a = static_cast<std::size_t>(axis);
   write_field(cf_report_[a], ids_, magnitude_, magnitude);
-  const UsbStatus s = transport_.write_output_rt({cf_report_[a].data(), cf_bytes_});
+  const UsbStatus s = transport_.write_output({cf_report_[a].data(), cf_bytes_});
   if (s == UsbStatus::Ok) {
-    last_command_[a] = magnitude;
+    last_command_[a].store(magnitude, std::memory_order_relaxed);
     return true;
   }
-  if (fault_ == DeviceFault::None) {
-    fault_ = s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed;
-    fault_status_ = s;
-  }
+  set_fault(s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed, s);
   return false;
 }
 
-bool HidPidJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
-  bool ok = true;
-  for (int axis = 0; axis < 2; ++axis) {
-    double units = calibration_.axis_scale(axis).command(axis == 0 ? force_N.x : force_N.y);
-    if (!std::isfinite(units)) units = 0;
-    double low = magnitude_.logical_min, high = magnitude_.logical_max;
-    if (calibration_.command_max > 0) {
-      low = std::max(low, -static_cast<double>(calibration_.command_max));
-      high = std::min(high, static_cast<double>(calibration_.command_max));
-    }
-    const auto command = static_cast<std::int32_t>(std::clamp(std::round(units), low, high));
-    // Both axes are sent even if the first failed: the other may still carry the zero.
-    ok = send_constant_force_rt(axis, command) && ok;
+std::int32_t HidPidJoystick::command_of(int axis, double force_N) const noexcept {
+  double units = calibration_.axis_scale(axis).command(force_N);
+  if (!std::isfinite(units)) units = 0;
+  double lowest = magnitude_.logical_min, highest = magnitude_.logical_max;
+  if (calibration_.command_max > 0) {
+    lowest = std::max(lowest, -static_cast<double>(calibration_.command_max));
+    highest = std::min(highest, static_cast<double>(calibration_.command_max));
   }
-  return ok;
+  return static_cast<std::int32_t>(std::clamp(std::round(units), lowest, highest));
+}
+
+bool HidPidJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
+  const std::int32_t x = command_of(0, force_N.x), y = command_of(1, force_N.y);
+  if (options_.io == HidPidIo::IoThread) {
+    command_raw_.store(pack(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)), std::memory_order_relaxed);
+    command_published_.fetch_add(1, std::memory_order_release);
+    return fault_.load(std::memory_order_acquire) == DeviceFault::None;
+  }
+  // Both axes are sent even if the first failed: the other may still carry the zero.
+  const bool ok = send_constant_force(0, x);
+  return send_constant_force(1, y) && ok;
 }
 
 bool HidPidJoystick::decode_position(std::span<const std::uint8_t> report, glm::dvec2& position_m) const noexcept {
@@ -270,28 +384,32 @@ bool HidPidJoystick::decode_position(std::span<const std::uint8_t> report, glm::
 
 bool HidPidJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexcept {
   bool fresh = false;
-  for (int attempt = 0; attempt < kReadsPerTick && !fresh; ++attempt) {
-    std::size_t length = 0;
-    const UsbStatus s = transport_.read_input_rt(input_, length, options_.read_timeout_ms);
-    if (s == UsbStatus::Timeout) break;
-    if (s != UsbStatus::Ok) {
-      if (fault_ == DeviceFault::None) {
-        fault_ = s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::ReadFailed;
-        fault_status_ = s;
+  if (options_.io == HidPidIo::IoThread) {
+    if (fault_.load(std::memory_order_acquire) != DeviceFault::None) return false;
+    const std::uint64_t reports = position_reports_.load(std::memory_order_acquire);
+    fresh = reports != seen_reports_;
+    seen_reports_ = reports;
+    position_m_ = unpack_position(position_raw_.load(std::memory_order_relaxed));
+  } else {
+    for (int attempt = 0; attempt < kReadsPerTick && !fresh; ++attempt) {
+      std::size_t length = 0;
+      const UsbStatus s = transport_.read_input(input_, length, options_.read_timeout_ms);
+      if (s == UsbStatus::Timeout) break;
+      if (s != UsbStatus::Ok) {
+        set_fault(s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::ReadFailed, s);
+        return false;
       }
-      return false;
+      fresh = decode_position({input_.data(), length}, position_m_);  // else another report (PID State): read on
     }
-    fresh = decode_position({input_.data(), length}, position_m_);  // else another report (PID State): read on
   }
   if (fresh || !have_time_) {
     last_report_t_s_ = t_s;
     have_time_ = true;
   }
+  // The watchdog: no position for stale_limit_s of servo time, whether the device went quiet or
+  // the I/O thread is stuck in a transfer. The loop then commands zero and stops.
   if (t_s - last_report_t_s_ > options_.stale_limit_s) {
-    if (fault_ == DeviceFault::None) {
-      fault_ = DeviceFault::ReadTimedOut;
-      fault_status_ = UsbStatus::Timeout;
-    }
+    set_fault(DeviceFault::ReadTimedOut, UsbStatus::Timeout);
     return false;
   }
   position_m = position_m_;
@@ -301,9 +419,11 @@ bool HidPidJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexce
 void HidPidJoystick::close() noexcept {
   if (closed_) return;
   closed_ = true;
+  // From here the transport is used by this thread alone.
+  stop_io_thread();
   try {
     for (int axis = 0; axis < 2; ++axis)
-      if (block_index_[static_cast<std::size_t>(axis)]) send_constant_force_rt(axis, 0);
+      if (block_index_[static_cast<std::size_t>(axis)]) send_constant_force(axis, 0);
     const HidField* op_index = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
     const HidField* op = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectOperation);
     for (std::size_t a = 0; a < 2; ++a)
@@ -314,7 +434,7 @@ void HidPidJoystick::close() noexcept {
         write_field(b, ids_, *op, *op->array_value(pid::kOpEffectStop));
         if (const HidField* f = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kLoopCount))
           write_field(b, ids_, *f, 0);
-        transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, op->report_id)));
+        transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, op->report_id)));
         started_[a] = false;
       }
     if (const HidField* free_index = descriptor_.find(ReportType::Output, pid::kBlockFreeReport, pid::kEffectBlockIndex))
@@ -323,7 +443,7 @@ void HidPidJoystick::close() noexcept {
           Buffer b{};
           b[0] = free_index->report_id;
           write_field(b, ids_, *free_index, block_index_[a]);
-          transport_.write_output_rt(report(b, descriptor_.report_bytes(ReportType::Output, free_index->report_id)));
+          transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, free_index->report_id)));
         }
     block_index_ = {0, 0};
     if (actuators_enabled_) {

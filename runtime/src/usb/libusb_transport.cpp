@@ -244,7 +244,7 @@ UsbStatus LibusbTransport::attach_kernel_driver() {
 UsbStatus LibusbTransport::claim_interface() { return usb_status_from_libusb(libusb_claim_interface(handle_, interface_)); }
 UsbStatus LibusbTransport::release_interface() { return usb_status_from_libusb(libusb_release_interface(handle_, interface_)); }
 
-UsbStatus LibusbTransport::read_input_rt(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept {
+UsbStatus LibusbTransport::read_input(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept {
   int got = 0;
   // libusb takes 0 as "wait forever": never pass it.
   const int rc = libusb_interrupt_transfer(handle_, endpoint_in_, buffer.data(), static_cast<int>(buffer.size()), &got,
@@ -262,7 +262,7 @@ UsbStatus LibusbTransport::set_report(int type, std::span<const std::uint8_t> re
   return rc < 0 ? usb_status_from_libusb(rc) : UsbStatus::Ok;
 }
 
-UsbStatus LibusbTransport::write_output_rt(std::span<const std::uint8_t> report) noexcept {
+UsbStatus LibusbTransport::write_output(std::span<const std::uint8_t> report) noexcept {
   if (!endpoint_out_) return set_report(kOutputReport, report, kTickWriteTimeoutMs);
   int sent = 0;
   const int rc = libusb_interrupt_transfer(handle_, endpoint_out_, const_cast<std::uint8_t*>(report.data()),

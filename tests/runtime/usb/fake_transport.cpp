@@ -1,5 +1,7 @@
 #include "fake_transport.hpp"
 
+#include <chrono>
+
 #include <algorithm>
 #include <fstream>
 #include <sstream>
@@ -59,18 +61,24 @@ UsbStatus FakeTransport::release_interface() {
   return UsbStatus::Ok;
 }
 
-UsbStatus FakeTransport::read_input_rt(std::span<std::uint8_t> buffer, std::size_t& length, unsigned) noexcept {
+UsbStatus FakeTransport::read_input(std::span<std::uint8_t> buffer, std::size_t& length, unsigned) noexcept {
   length = 0;
+  note_thread();
   if (unplugged_) return UsbStatus::NoDevice;
-  if (next_input_ >= inputs_.size()) return after_end;
-  const InputEvent& e = inputs_[next_input_++];
+  if (next_input_ >= inputs_.size() && !(repeat_last_input && !inputs_.empty())) return after_end;
+  const InputEvent& e = inputs_[std::min(next_input_++, inputs_.size() - 1)];
   if (e.status != UsbStatus::Ok) return e.status;
   length = std::min(e.report.size(), buffer.size());
   std::copy_n(e.report.begin(), length, buffer.begin());
   return UsbStatus::Ok;
 }
 
-UsbStatus FakeTransport::write_output_rt(std::span<const std::uint8_t> report) noexcept {
+UsbStatus FakeTransport::write_output(std::span<const std::uint8_t> report) noexcept {
+  note_thread();
+  if (hang_.load()) {
+    hung_.fetch_add(1);
+    while (hang_.load()) std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
   if (outputs_ >= unplug_at_output_) unplugged_ = true;
   if (unplugged_) return UsbStatus::NoDevice;
   ++outputs_;

@@ -3,6 +3,8 @@
 // stream, and records every transfer the driver makes, bytes included. Storage for the record is
 // reserved up front, so the _rt calls do not allocate (the driver's no-allocation test relies on it).
 #include <array>
+#include <atomic>
+#include <thread>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -38,6 +40,16 @@ class FakeTransport final : public UsbTransport {
   // Input events in order; after the last, `after_end` (default: Timeout).
   void add_input(InputEvent e) { inputs_.push_back(std::move(e)); }
   UsbStatus after_end = UsbStatus::Timeout;
+  // After the last input event, keep answering with the last report (a device streaming positions).
+  bool repeat_last_input = false;
+  // From now every output transfer blocks until release_outputs(): a transfer that never completes.
+  void hang_outputs() { hang_.store(true); }
+  void release_outputs() { hang_.store(false); }
+  // Output transfers blocked so far (entered while hanging).
+  std::size_t hung_outputs() const { return hung_.load(); }
+  // Counts transfers (reads and outputs) made on `thread`: the servo thread must make none.
+  void watch_thread(std::thread::id thread) { watched_.store(thread); }
+  std::size_t transfers_on_watched_thread() const { return on_watched_.load(); }
   // From this many output reports on (counted from now), every call returns NoDevice.
   void unplug_after_outputs(std::size_t n) { unplug_at_output_ = outputs_ + n; }
   // Every call from now returns NoDevice.
@@ -53,8 +65,8 @@ class FakeTransport final : public UsbTransport {
   UsbStatus attach_kernel_driver() override;
   UsbStatus claim_interface() override;
   UsbStatus release_interface() override;
-  UsbStatus read_input_rt(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept override;
-  UsbStatus write_output_rt(std::span<const std::uint8_t> report) noexcept override;
+  UsbStatus read_input(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept override;
+  UsbStatus write_output(std::span<const std::uint8_t> report) noexcept override;
   UsbStatus set_feature(std::span<const std::uint8_t> report) override;
   UsbStatus get_feature(std::uint8_t report_id, std::span<std::uint8_t> buffer, std::size_t& length) override;
 
@@ -67,8 +79,15 @@ class FakeTransport final : public UsbTransport {
   std::vector<InputEvent> inputs_;
   std::size_t next_input_ = 0;
   std::vector<Transfer> log_;
+  void note_thread() noexcept {
+    if (std::this_thread::get_id() == watched_.load()) on_watched_.fetch_add(1);
+  }
   std::size_t outputs_ = 0, unplug_at_output_ = std::numeric_limits<std::size_t>::max();
-  bool unplugged_ = false, kernel_attached_ = true, claimed_ = false;
+  // Set by the test thread while the driver's I/O thread transfers.
+  std::atomic<bool> unplugged_{false}, hang_{false};
+  std::atomic<std::size_t> hung_{0}, on_watched_{0};
+  std::atomic<std::thread::id> watched_{};
+  bool kernel_attached_ = true, claimed_ = false;
 };
 
 // Reads a hex file: bytes as two hex digits separated by white space; '#' starts a comment.

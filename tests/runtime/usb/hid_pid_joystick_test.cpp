@@ -3,6 +3,10 @@
 // no allocation in the _rt calls.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
 #include "allocation_counter.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
@@ -75,7 +79,7 @@ const std::vector<Step> kShutdown = {
 
 TEST(HidPidJoystick, OpenSendsTheEffectCreationSequence) {
   auto t = testing::primed_transport();
-  HidPidJoystick joystick(*t, testing::openffboard());
+  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
   expect_steps(steps(*t), kOpen);
   EXPECT_EQ(joystick.effect_block_index(0), 1);
   EXPECT_EQ(joystick.effect_block_index(1), 2);
@@ -86,7 +90,7 @@ TEST(HidPidJoystick, OpenSendsTheEffectCreationSequence) {
 
 TEST(HidPidJoystick, EachTickSendsSetConstantForcePerAxisScaledSignedAndClamped) {
   auto t = testing::primed_transport();
-  HidPidJoystick joystick(*t, testing::openffboard());
+  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
   const std::size_t start = t->log().size();
   // 1 mN per command unit (openffboard-2axis.toml): 1.5 N -> 1500 = 0x05DC; -2.25 N -> -2250 = 0xF736.
   ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
@@ -105,7 +109,7 @@ TEST(HidPidJoystick, CloseSendsTheShutdownSequenceAndGivesTheDeviceBack) {
   auto t = testing::primed_transport();
   std::size_t start = 0;
   {
-    HidPidJoystick joystick(*t, testing::openffboard());
+    HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
     ASSERT_TRUE(joystick.write_force_rt({1.0, 1.0}));
     start = t->log().size();
   }  // the destructor closes
@@ -120,7 +124,7 @@ TEST(HidPidJoystick, InputReportsDecodeToMetresOverTheCalibratedWorkspace) {
   // calibration's 100 mm x 100 mm: x = 16384 / 32767 * 50 mm, y = -50 mm.
   t->add_input({UsbStatus::Ok, {0x02, 0x03, 0x02}});
   t->add_input({UsbStatus::Ok, testing::position_report(16384, -32767)});
-  HidPidJoystick joystick(*t, testing::openffboard());
+  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
   glm::dvec2 p{9, 9};
   ASSERT_TRUE(joystick.read_position_rt(0.0, p));
   EXPECT_NEAR(p.x, 16384.0 / 32767.0 * 0.05, 1e-12);
@@ -133,7 +137,7 @@ TEST(HidPidJoystick, OpenFailsCleanlyWhenTheDeviceHasNoRoomAndGivesItBack) {
   t->add_feature_reply(0x13, {0x13, 0x00, 0x10, 0x04, 0x01});
   t->add_feature_reply(0x12, {0x12, 0x00, 0x02, 0x00, 0x00});  // Block Load: full
   try {
-    HidPidJoystick joystick(*t, testing::openffboard());
+    HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
     FAIL() << "opened a device whose effect memory is full";
   } catch (const HidPidError& e) {
     EXPECT_NE(std::string(e.what()).find("full"), std::string::npos) << e.what();
@@ -170,7 +174,7 @@ ServoConfig config(double duration_s) {
 TEST(HidPidJoystick, UnplugMidRunStopsTheLoopAndNamesTheCause) {
   auto t = testing::primed_transport();
   for (int k = 0; k < 100; ++k) t->add_input({UsbStatus::Ok, testing::position_report(0, 0)});
-  HidPidJoystick joystick(*t, testing::openffboard());
+  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
   t->unplug_after_outputs(2 * 10);  // ten ticks of two Set Constant Force reports, then gone
   ConstantForce source({1.0, 0.5});
   VirtualClock clock;
@@ -190,7 +194,7 @@ TEST(HidPidJoystick, ReadTimeoutStopsTheLoopWithZeroForceSent) {
   auto t = testing::primed_transport();
   for (int k = 0; k < 5; ++k) t->add_input({UsbStatus::Ok, testing::position_report(100, 100)});
   // Then no more reports: every read times out.
-  HidPidOptions options;
+  HidPidOptions options = testing::synchronous();
   options.stale_limit_s = 0.0025;  // stale after 2.5 ms without a report
   HidPidJoystick joystick(*t, testing::openffboard(), options);
   ConstantForce source({1.0, 0.5});
@@ -211,7 +215,7 @@ TEST(HidPidJoystick, ReadErrorOtherThanTimeoutStopsAtOnce) {
   auto t = testing::primed_transport();
   t->add_input({UsbStatus::Ok, testing::position_report(0, 0)});
   t->add_input({UsbStatus::Other, {}});
-  HidPidJoystick joystick(*t, testing::openffboard());
+  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
   ConstantForce source({0.0, 0.0});
   VirtualClock clock;
   const ServoReport report = run_servo_loop(joystick, source, clock, config(0.1));
@@ -226,7 +230,7 @@ TEST(HidPidJoystick, TicksDoNotAllocate) {
     t->add_input({UsbStatus::Ok, {0x02, 0x00, 0x00}});
     t->add_input({UsbStatus::Ok, testing::position_report(static_cast<std::int16_t>(k), static_cast<std::int16_t>(-k))});
   }
-  HidPidJoystick joystick(*t, testing::openffboard());
+  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
   glm::dvec2 p{0, 0};
   bool ok = true;
   std::size_t count = 0;
@@ -241,6 +245,118 @@ TEST(HidPidJoystick, TicksDoNotAllocate) {
   EXPECT_TRUE(ok);
   EXPECT_EQ(count, 0u);
   EXPECT_EQ(joystick.last_command()[0], 999);
+}
+
+// The default: transfers on the driver's own I/O thread, the tick only exchanging atomics with it.
+
+// A device streaming position reports (the last one repeats, as a joystick at rest reports).
+std::unique_ptr<testing::FakeTransport> streaming_transport() {
+  auto t = testing::primed_transport();
+  t->add_input({UsbStatus::Ok, testing::position_report(16384, -32767)});
+  t->repeat_last_input = true;
+  return t;
+}
+
+TEST(HidPidJoystickIoThread, TheTickPublishesAndTheIoThreadSends) {
+  auto t = streaming_transport();
+  HidPidJoystick joystick(*t, testing::openffboard());
+  t->watch_thread(std::this_thread::get_id());  // this thread plays the servo tick
+  const std::size_t start = t->log().size();
+  glm::dvec2 p{0, 0};
+  ASSERT_TRUE(joystick.flush_nonrt());  // the I/O thread has read past the queued report
+  ASSERT_TRUE(joystick.read_position_rt(0.0, p));
+  EXPECT_NEAR(p.x, 16384.0 / 32767.0 * 0.05, 1e-7);
+  EXPECT_NEAR(p.y, -0.05, 1e-7);
+  ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
+  ASSERT_TRUE(joystick.flush_nonrt());
+  EXPECT_EQ(t->transfers_on_watched_thread(), 0u);  // the tick made no transfer itself
+  // The same bytes as the synchronous driver sends for the same force.
+  const auto got = steps(*t, start);
+  ASSERT_GE(got.size(), 2u);
+  EXPECT_EQ(got[got.size() - 2].bytes, (Bytes{0x05, 0x01, 0xDC, 0x05}));
+  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0x36, 0xF7}));
+  EXPECT_EQ(joystick.last_command()[0], 1500);
+}
+
+TEST(HidPidJoystickIoThread, ATransferThatNeverCompletesDoesNotHoldTheTick) {
+  auto t = streaming_transport();
+  HidPidOptions options;
+  options.stale_limit_s = 0.05;
+  HidPidJoystick joystick(*t, testing::openffboard(), options);
+  ASSERT_TRUE(joystick.flush_nonrt());
+  t->hang_outputs();  // the next Set Constant Force never completes (until released below)
+  // The servo loop on its real-time thread, 10 s long: only the watchdog can end it early.
+  ConstantForce source({1.0, 0.5});
+  ServoConfig c = config(10.0);
+  c.deadline_guard_periods = 1e6;  // a loaded test machine must not stop it first: the watchdog is under test
+  ServoThread servo;
+  struct Watching final : ForceSource {
+    ForceSource& inner;
+    std::atomic<std::thread::id>& id;
+    Watching(ForceSource& s, std::atomic<std::thread::id>& i) : inner(s), id(i) {}
+    glm::dvec2 force_rt(const HandState& h, double dt) noexcept override {
+      id.store(std::this_thread::get_id());
+      return inner.force_rt(h, dt);
+    }
+    void reset_rt(const HandState& h) noexcept override { inner.reset_rt(h); }
+  };
+  std::atomic<std::thread::id> tick_thread{};
+  Watching watching(source, tick_thread);
+  servo.start_nonrt(joystick, watching, c);
+  while (tick_thread.load() == std::thread::id{} && !servo.finished()) std::this_thread::yield();
+  t->watch_thread(tick_thread.load());
+  const ServoReport report = servo.join_nonrt();  // returns although the I/O thread is still stuck
+  EXPECT_EQ(t->hung_outputs(), 1u);
+  EXPECT_EQ(report.stop_cause, StopCause::DeviceReadTimeout);
+  EXPECT_LT(report.ticks, 10'000u);
+  EXPECT_EQ(t->transfers_on_watched_thread(), 0u);
+  // Once the stuck transfer completes (it carried the old force), the shutdown sends zero on both
+  // axes before stopping the effects.
+  const std::size_t start = t->log().size();
+  t->release_outputs();
+  joystick.close();
+  const auto got = steps(*t, start);
+  const auto stop = std::find_if(got.begin(), got.end(), [](const Step& s) { return s.bytes == Bytes{0x0A, 0x01, 0x03, 0x00}; });
+  ASSERT_NE(stop, got.end());
+  ASSERT_GE(stop - got.begin(), 2);
+  EXPECT_EQ((stop - 2)->bytes, (Bytes{0x05, 0x01, 0x00, 0x00}));
+  EXPECT_EQ((stop - 1)->bytes, (Bytes{0x05, 0x02, 0x00, 0x00}));
+}
+
+TEST(HidPidJoystickIoThread, UnplugMidRunStopsTheLoopWithTheCauseNamed) {
+  auto t = streaming_transport();
+  HidPidJoystick joystick(*t, testing::openffboard());
+  ASSERT_TRUE(joystick.flush_nonrt());
+  t->unplug_after_outputs(20);  // ten forces sent, then the device is gone
+  ConstantForce source({0.5, 0.5});  // published every tick, so sent every I/O cycle
+  ServoConfig c = config(10.0);
+  c.deadline_guard_periods = 1e6;
+  const ServoReport report = run_servo_thread_nonrt(joystick, source, c);
+  EXPECT_EQ(report.stop_cause, StopCause::DeviceUnplugged);
+  EXPECT_EQ(joystick.fault(), DeviceFault::Unplugged);
+  EXPECT_LT(report.ticks, 10'000u);
+}
+
+TEST(HidPidJoystickIoThread, TicksNeitherAllocateNorLock) {
+  auto t = streaming_transport();
+  HidPidJoystick joystick(*t, testing::openffboard());
+  ASSERT_TRUE(joystick.flush_nonrt());
+  glm::dvec2 p{0, 0};
+  bool ok = true;
+  sandpaper::test::RtViolations seen;
+  {
+    sandpaper::test::CountedRtViolations counting;
+    for (int k = 0; k < 1000; ++k) {
+      ok = joystick.read_position_rt(k * 1e-5, p) && ok;  // 10 ms of servo time: never stale
+      ok = joystick.write_force_rt({k * 1e-3, -k * 1e-3}) && ok;
+    }
+    seen = counting.stop();
+  }
+  EXPECT_TRUE(ok);
+  EXPECT_EQ(seen.allocations, 0u);
+  EXPECT_EQ(seen.locks, 0u);
+  ASSERT_TRUE(joystick.flush_nonrt());
+  EXPECT_EQ(joystick.last_command()[0], 999);  // the I/O thread sent the latest force
 }
 
 }  // namespace

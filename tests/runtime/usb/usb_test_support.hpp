@@ -5,6 +5,7 @@
 
 #include "fake_transport.hpp"
 #include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 
 namespace sandpaper::runtime::usb::testing {
 
@@ -15,6 +16,14 @@ inline std::vector<std::uint8_t> test_descriptor() {
 inline const calibration::DeviceCalibration& openffboard() {
   static const auto set = calibration::CalibrationSet::load(std::filesystem::path(SANDPAPER_SOURCE_DIR) / "calibration");
   return *set.find_device("openffboard-2axis");
+}
+
+// Options for the driver making its transfers on the calling thread, so that a test sees the
+// exact report stream tick by tick (HidPidIo::CallingThread).
+inline HidPidOptions synchronous() {
+  HidPidOptions o;
+  o.io = HidPidIo::CallingThread;
+  return o;
 }
 
 // Input report 1: buttons, X, Y (16-bit little-endian).

@@ -1,6 +1,7 @@
 #pragma once
 // Time for the servo loop. The real clock sleeps on absolute deadlines (clock_nanosleep,
-// CLOCK_MONOTONIC, TIMER_ABSTIME) so that lateness never accumulates; the virtual clock jumps to
+// CLOCK_MONOTONIC, TIMER_ABSTIME) so that lateness never accumulates, optionally waking a margin
+// early and spinning the rest; the virtual clock jumps to
 // each deadline at once, so tests play seconds of servo time in milliseconds, deterministically.
 #include <cstdint>
 
@@ -15,8 +16,14 @@ class ServoClock {
 
 class MonotonicClock final : public ServoClock {
  public:
+  // `spin_margin_ns`: sleep until this long before the deadline, then spin on the clock to it
+  // (ServoConfig::spin_margin_s); 0 sleeps all the way.
+  explicit MonotonicClock(std::int64_t spin_margin_ns = 0) noexcept : spin_margin_ns_(spin_margin_ns) {}
   std::int64_t now_ns() noexcept override;
   void sleep_until_ns(std::int64_t deadline_ns) noexcept override;
+
+ private:
+  std::int64_t spin_margin_ns_;
 };
 
 class VirtualClock final : public ServoClock {

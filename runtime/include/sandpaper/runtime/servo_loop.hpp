@@ -16,12 +16,22 @@ namespace sandpaper::runtime {
 
 struct ServoConfig {
   double rate_hz = 1000.0;     // 900 Hz .. 10 kHz (and within the device's limits)
-  double duration_s = 2.0;     // how long to play; ticks = round(duration * rate)
+  double duration_s = 2.0;     // how long to play; ticks = round(duration * rate); 0: until stop_request
+                               // (which must then be set); memory does not grow with the run's length
   double velocity_cutoff_hz = 50.0;  // first-order low-pass on finite-difference velocity and acceleration
   // Safety (docs/RUNTIME.md, "Stop causes").
   double ramp_s = 0.05;             // the force is scaled by t / ramp_s over the first ramp_s (0: no ramp)
   double velocity_limit_m_s = 2.0;  // filtered hand speed above this stops the loop (VelocityLimit)
-  double max_late_s = 0.05;         // a tick starting this long after its deadline stops the loop (DeadlineMissed)
+  // A tick starting more than this many periods after its deadline stops the loop (DeadlineMissed):
+  // 50 periods is 50 ms at 1 kHz, 5 ms at 10 kHz (docs/performance.md, "Punctual ticks", measured).
+  double deadline_guard_periods = 50.0;
+  // The real clock sleeps to this long before each deadline, then spins to it: the kernel's wake-up
+  // latency (tens of us on a VM) lands inside the margin instead of making the tick late. 0: sleep only.
+  // Measured in docs/performance.md; the price is a core busy for the margin of every period.
+  double spin_margin_s = 20e-6;
+  // Pin the servo thread to this CPU (sched_setaffinity); -1: leave it to the scheduler.
+  // docs/RUNTIME.md, "An isolated core", gives the isolcpus/nohz_full recipe for labs.
+  int cpu = -1;
   // Set (by a signal handler, another thread) to stop the loop at its next tick (StopRequested).
   const std::atomic<bool>* stop_request = nullptr;
   // Where each tick's record goes (never blocks: drops when full), or nullptr.
@@ -40,7 +50,7 @@ enum class StopCause {
   DeviceReadTimeout,  // "device_read_timeout"
   DeviceUnplugged,    // "device_unplugged"
   DeviceWriteFailed,  // "device_write_failed"
-  DeadlineMissed,     // "deadline_missed": a tick started more than max_late_s after its deadline
+  DeadlineMissed,     // "deadline_missed": a tick started more than deadline_guard_periods after its deadline
   VelocityLimit,      // "velocity_limit": filtered hand speed above velocity_limit_m_s
   StopRequested,      // "stop_requested": stop_request was set (Ctrl-C, SIGTERM)
 };
@@ -57,6 +67,9 @@ struct ServoReport {
   double jitter_us = 0;         // standard deviation of the period
   double compute_p50_us = 0, compute_p99_us = 0, compute_max_us = 0;
   std::uint64_t overruns = 0;   // ticks that started after their deadline plus half a period
+  // Gaps between tick starts longer than kStallPeriods periods: each is one event, however long.
+  std::uint64_t stalls = 0;
+  double longest_stall_us = 0;  // the longest such gap (0 without stalls)
   std::uint64_t clamped_ticks = 0;   // ticks whose force was limited to the device maximum
   std::uint64_t ramped_ticks = 0;    // ticks whose force was scaled down by the start ramp
   double max_lateral_force_N = 0;    // largest |F| actually written
@@ -66,12 +79,18 @@ struct ServoReport {
   bool memory_locked = false;        // mlockall succeeded
   int realtime_error = 0;            // errno of the refused SCHED_FIFO request (0 if granted or not asked)
   std::uint64_t telemetry_dropped = 0;  // records the telemetry ring had no room for
+  int cpu = -1;                      // the CPU the servo thread was pinned to, or -1
+  double spin_margin_us = 0;         // the clock's spin margin (0 on the virtual clock)
 };
 
+// A gap between tick starts longer than this many periods is reported as a stall.
+inline constexpr double kStallPeriods = 5.0;
+
 // Throws std::invalid_argument for a rate outside 900 Hz - 10 kHz or outside the device's limits,
-// a non-positive or non-finite duration, a run shorter than one tick or longer than 10 million
-// ticks, a non-positive velocity filter cutoff, a negative or non-finite ramp, or a non-positive
-// velocity limit or deadline allowance.
+// a negative or non-finite duration, a run shorter than one tick, a run until stopped without a
+// stop_request, a non-positive velocity filter cutoff, a negative or non-finite ramp, a
+// non-positive velocity limit or deadline guard, a spin margin outside 0 .. one period, or a CPU
+// this process may not run on.
 void validate_config(const ServoConfig& config, const DeviceLimits& limits);
 
 // Plays `source` on `device` on the calling thread with `clock`; returns when done.

@@ -78,6 +78,8 @@ class TelemetryReader {
   std::uint64_t records_read() const noexcept { return read_; }
   std::uint64_t overruns() const noexcept { return overruns_; }
   double max_force_N() const noexcept { return max_force_N_; }
+  // Mean |F| of the records read so far (N); 0 before any.
+  double mean_force_N() const noexcept { return read_ ? sum_force_N_ / static_cast<double>(read_) : 0; }
   const TelemetryRecord& last() const noexcept { return last_; }
   const std::vector<TelemetryRecord>& kept() const noexcept { return kept_; }
 
@@ -88,7 +90,7 @@ class TelemetryReader {
   std::size_t keep_;
   std::vector<TelemetryRecord> kept_;
   std::uint64_t read_ = 0, overruns_ = 0;
-  double max_force_N_ = 0;
+  double max_force_N_ = 0, sum_force_N_ = 0;
   TelemetryRecord last_{};
 };
 

@@ -4,8 +4,10 @@
 // The reference device is the OpenFFBoard as a 2-axis joystick (calibration/devices/openffboard-2axis.toml).
 // Reports, order, rate and assumptions: docs/USB_PID.md.
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <stdexcept>
+#include <thread>
 
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/runtime/device.hpp"
@@ -21,10 +23,22 @@ namespace sandpaper::runtime::usb {
 using sandpaper::runtime::DeviceFault;
 const char* to_string(DeviceFault fault) noexcept;
 
+// Where the USB transfers of a running joystick happen.
+enum class HidPidIo {
+  // Default: on the driver's own I/O thread. The servo tick only exchanges single-slot atomics with
+  // it (the latest position in, the latest force out), so _rt calls never reach libusb, which
+  // allocates and locks; a transfer that hangs stalls the I/O thread, never the tick.
+  IoThread,
+  // On the thread that calls read_position_rt / write_force_rt: for tests of the exact report
+  // stream, tick by tick. Not real-time safe with a real transport.
+  CallingThread,
+};
+
 struct HidPidOptions {
-  unsigned read_timeout_ms = 1;     // longest wait for an input report per tick (a 1 kHz endpoint reports every 1 ms)
-  double stale_limit_s = 0.05;      // longest time without a position report before the read fails
+  unsigned read_timeout_ms = 1;     // longest wait for an input report per read (a 1 kHz endpoint reports every 1 ms)
+  double stale_limit_s = 0.05;      // longest time without a position report before the read fails (the watchdog)
   unsigned open_read_timeout_ms = 500;  // wait for the first position report while opening
+  HidPidIo io = HidPidIo::IoThread;
 };
 
 // Thrown when the device cannot be opened: the status names the transport's cause (NoDevice,
@@ -48,34 +62,46 @@ class HidPidJoystick final : public Device {
   HidPidJoystick& operator=(const HidPidJoystick&) = delete;
 
   const DeviceLimits& limits() const noexcept override { return limits_; }
-  // Reads one input report (waiting at most read_timeout_ms); returns the latest position (m).
-  // False, with fault() set, when unplugged, on a failed transfer, or when stale.
+  // The latest position (m) the device reported. IoThread: read from the I/O thread's slot, no
+  // transfer; CallingThread: reads input reports here (waiting at most read_timeout_ms each).
+  // False, with fault() set, when unplugged, on a failed transfer, or when no position report has
+  // come for stale_limit_s of servo time (also when the I/O thread is stuck in a transfer).
   bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override;
-  // Sends Set Constant Force for X then Y: magnitude = calibration command units for the force (N),
-  // rounded and clamped to the Magnitude field's logical range and to +-command_max.
+  // Set Constant Force for X then Y: magnitude = calibration command units for the force (N),
+  // rounded and clamped to the Magnitude field's logical range and to +-command_max. IoThread:
+  // publishes the pair for the I/O thread to send (false once it has failed); CallingThread: sends.
   bool write_force_rt(glm::dvec2 force_N) noexcept override;
+
+  // IoThread: waits (up to `timeout_s`) until the I/O thread has sent the latest force published
+  // and read past every input report queued before this call; true if it did. For tests and shutdown.
+  bool flush_nonrt(double timeout_s = 1.0);
 
   // The shutdown sequence (zero force, stop, free, stop all, disable actuators, release, reattach);
   // best effort, each step tried whatever the previous returned. Idempotent; the destructor calls it.
   void close() noexcept;
 
-  DeviceFault fault() const noexcept { return fault_; }
-  DeviceFault last_fault_rt() const noexcept override { return fault_; }
-  UsbStatus fault_status() const noexcept { return fault_status_; }
+  DeviceFault fault() const noexcept { return last_fault_rt(); }
+  DeviceFault last_fault_rt() const noexcept override;
+  UsbStatus fault_status() const noexcept;
   std::uint8_t effect_block_index(int axis) const noexcept { return block_index_[static_cast<std::size_t>(axis)]; }
   const HidReportDescriptor& descriptor() const noexcept { return descriptor_; }
-  // Last commanded magnitudes (command units), X and Y.
-  std::array<std::int32_t, 2> last_command() const noexcept { return last_command_; }
+  // Last magnitudes sent to the device (command units), X and Y.
+  std::array<std::int32_t, 2> last_command() const noexcept;
 
  private:
   static constexpr std::size_t kMaxReport = 64;  // full-speed interrupt packet
   using Buffer = std::array<std::uint8_t, kMaxReport>;
 
   void open();
+  void start_io_thread();
+  void stop_io_thread() noexcept;
+  void io_thread_body() noexcept;
+  std::int32_t command_of(int axis, double force_N) const noexcept;
+  void set_fault(DeviceFault fault, UsbStatus status) noexcept;
   void device_control(std::uint32_t command_usage);
   void create_effect(int axis);
   std::span<const std::uint8_t> report(const Buffer& b, std::size_t bytes) const { return {b.data(), bytes}; }
-  bool send_constant_force_rt(int axis, std::int32_t magnitude) noexcept;
+  bool send_constant_force(int axis, std::int32_t magnitude) noexcept;
   bool decode_position(std::span<const std::uint8_t> report, glm::dvec2& position_m) const noexcept;
   [[noreturn]] void fail_open(UsbStatus status, const std::string& what);
 
@@ -96,12 +122,25 @@ class HidPidJoystick final : public Device {
   bool detached_ = false, claimed_ = false, closed_ = false, actuators_enabled_ = false;
   std::array<std::uint8_t, 2> block_index_{0, 0};  // 0: no effect created
   std::array<bool, 2> started_{false, false};
-  std::array<std::int32_t, 2> last_command_{0, 0};
+  std::array<std::atomic<std::int32_t>, 2> last_command_{};
   glm::dvec2 position_m_{0, 0};
   double last_report_t_s_ = 0;
   bool have_time_ = false;
-  DeviceFault fault_ = DeviceFault::None;
-  UsbStatus fault_status_ = UsbStatus::Ok;
+  // The first fault wins; written by whichever thread saw it, read by the tick.
+  std::atomic<DeviceFault> fault_{DeviceFault::None};
+  std::atomic<UsbStatus> fault_status_{UsbStatus::Ok};
+  static_assert(std::atomic<DeviceFault>::is_always_lock_free && std::atomic<std::uint64_t>::is_always_lock_free);
+
+  // The single-slot exchanges between the tick and the I/O thread (HidPidIo::IoThread).
+  std::atomic<std::uint64_t> position_raw_{0};       // X, Y logical values (2 x 32 bits) of the latest report
+  std::atomic<std::uint64_t> position_reports_{0};   // count of position reports decoded; the tick watches it change
+  std::atomic<std::uint64_t> command_raw_{0};        // X, Y command units (2 x 32 bits) the tick wants
+  std::atomic<std::uint64_t> command_published_{0};  // count of commands published by the tick
+  std::atomic<std::uint64_t> command_sent_{0};       // the publication count the I/O thread last sent
+  std::atomic<std::uint64_t> io_cycles_{0};          // I/O thread loop count (flush_nonrt)
+  std::atomic<bool> io_running_{false};
+  std::uint64_t seen_reports_ = 0;                   // tick side
+  std::thread io_thread_;
 };
 
 }  // namespace sandpaper::runtime::usb

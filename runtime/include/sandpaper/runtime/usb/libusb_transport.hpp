@@ -47,8 +47,8 @@ class LibusbTransport final : public UsbTransport {
   UsbStatus attach_kernel_driver() override;
   UsbStatus claim_interface() override;
   UsbStatus release_interface() override;
-  UsbStatus read_input_rt(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept override;
-  UsbStatus write_output_rt(std::span<const std::uint8_t> report) noexcept override;
+  UsbStatus read_input(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept override;
+  UsbStatus write_output(std::span<const std::uint8_t> report) noexcept override;
   UsbStatus set_feature(std::span<const std::uint8_t> report) override;
   UsbStatus get_feature(std::uint8_t report_id, std::span<std::uint8_t> buffer, std::size_t& length) override;
 

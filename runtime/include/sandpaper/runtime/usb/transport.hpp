@@ -2,7 +2,8 @@
 // What the HID PID driver needs of a USB connection, so that it can be tested without hardware:
 // libusb_transport.hpp talks to a real device, tests use a fake that replays a recorded descriptor
 // and report stream. Reports are passed as on the wire: byte 0 is the report ID when the device
-// uses report IDs. Functions ending _rt run on the servo thread: no allocation, no locks, no logging.
+// uses report IDs. Transfers block and (in libusb) allocate and lock: the driver makes them on its own I/O
+// thread (HidPidIo::IoThread), never on the servo thread.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -38,11 +39,11 @@ class UsbTransport {
 
   // Reads one input report from the interrupt IN endpoint into `buffer`, waiting at most
   // `timeout_ms` (> 0); `length` gets the number of bytes received.
-  virtual UsbStatus read_input_rt(std::span<std::uint8_t> buffer, std::size_t& length,
+  virtual UsbStatus read_input(std::span<std::uint8_t> buffer, std::size_t& length,
                                   unsigned timeout_ms) noexcept = 0;
   // Sends an output report: interrupt OUT when the interface has that endpoint, else SET_REPORT
   // (Output) on the control pipe.
-  virtual UsbStatus write_output_rt(std::span<const std::uint8_t> report) noexcept = 0;
+  virtual UsbStatus write_output(std::span<const std::uint8_t> report) noexcept = 0;
   // SET_REPORT (Feature) and GET_REPORT (Feature) on the control pipe. `buffer[0]` of get_feature
   // is the report ID asked for; `length` gets the bytes received, report ID included.
   virtual UsbStatus set_feature(std::span<const std::uint8_t> report) = 0;

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "cli.hpp"
+#include "exit_codes.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -72,7 +72,7 @@ Played play(runtime::Device& device, runtime::ForceSource& source, runtime::Serv
   // The virtual clock runs the loop on this thread as fast as it can, so nothing drains the ring
   // meanwhile: it must hold the whole run.
   const auto ticks = static_cast<std::size_t>(std::llround(config.duration_s * config.rate_hz));
-  runtime::TelemetryRing ring(virtual_clock ? ticks + 1 : kRealTimeRingRecords);
+  runtime::TelemetryRing ring(virtual_clock && ticks > 0 ? ticks + 1 : kRealTimeRingRecords);
   config.telemetry = &ring;
   runtime::TelemetryReader reader(ring, config.rate_hz, keep_records);
 
@@ -102,6 +102,7 @@ Played play(runtime::Device& device, runtime::ForceSource& source, runtime::Serv
   if (ring.dropped() > 0)
     std::cerr << "warning: the telemetry reader fell behind; " << ring.dropped() << " tick records were dropped\n";
   played.records = reader.kept();
+  played.mean_force_N = reader.mean_force_N();
   return played;
 }
 

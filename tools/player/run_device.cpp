@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-#include "cli.hpp"
+#include "exit_codes.hpp"
 #include "sandpaper/runtime/replay_joystick.hpp"
 #include "sandpaper/runtime/trace_csv.hpp"
 

@@ -13,6 +13,7 @@ namespace sandpaper::cli {
 struct Played {
   runtime::ServoReport report;
   std::vector<runtime::TelemetryRecord> records;  // every tick, from the telemetry ring (when kept)
+  double mean_force_N = 0;                        // mean |F| written over every tick of the run
 };
 
 // `keep_records`: how many tick records to keep (the run's tick count for --trace, else 0).

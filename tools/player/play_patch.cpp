@@ -1,0 +1,278 @@
+#include "play_patch.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "exit_codes.hpp"
+#include "play.hpp"
+#include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/runtime/trace_csv.hpp"
+#include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
+#include "sandpaper/schema/atomic_file.hpp"
+#include "usb_devices.hpp"
+
+namespace sandpaper::cli {
+namespace {
+
+// A row of block characters: the largest |F| in each slice of the first `span_ticks` ticks, so
+// the texture's force pattern is visible (over a whole run every slice would reach the maximum).
+std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max_force, std::size_t width,
+                        std::size_t span_ticks) {
+  static const char* bars[] = {" ", "▁", "▂", "▃", "▄", "▅", "▆", "▇", "█"};
+  if (recs.empty() || !(max_force > 0)) return {};
+  std::string out;
+  std::size_t span = std::min(span_ticks, recs.size());
+  std::size_t per = std::max<std::size_t>(1, span / width);
+  for (std::size_t i = 0; i + per <= span; i += per) {
+    double m = 0;
+    for (std::size_t k = i; k < i + per; ++k) m = std::max(m, std::hypot(recs[k].force_N.x, recs[k].force_N.y));
+    out += bars[static_cast<int>(std::lround(8 * m / max_force))];
+  }
+  return out;
+}
+
+// Seconds of ticks the simulated device records: the force strip shows the first 256 ms, and the
+// rest of the report comes from the telemetry, so a long run does not grow the process.
+constexpr double kRecordedSeconds = 1.0;
+
+nlohmann::json stalls_json(const runtime::ServoReport& rep) {
+  return {{"count", rep.stalls}, {"longest_us", rep.longest_stall_us}, {"threshold_periods", runtime::kStallPeriods}};
+}
+
+std::string stalls_text(const runtime::ServoReport& rep) {
+  if (rep.stalls == 0) return fmt::format("no stalls (gaps over {:g} periods)", runtime::kStallPeriods);
+  return fmt::format("{} stall{} (gaps over {:g} periods), longest {:.0f} us", rep.stalls, rep.stalls == 1 ? "" : "s",
+                     runtime::kStallPeriods, rep.longest_stall_us);
+}
+
+// Which executable played: sandpaper-play (the runtime alone) or sandpaper (compiled in-process).
+std::string player_name() {
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("unknown") : self.filename().string();
+}
+
+}  // namespace
+
+void add_play_options(CLI::App* run, PlayRequest& r) {
+  run->add_option("--rate", r.rate_hz, "servo rate, Hz (900 to 10000)")->capture_default_str();
+  run->add_option("--duration", r.duration_s, "how long to play, s")->capture_default_str();
+  run->add_option("--hand", r.hand, "simulated hand path")->check(CLI::IsMember({"scan", "circle"}))->capture_default_str();
+  run->add_option("--speed", r.speed_mm_s, "hand speed, mm/s")->capture_default_str();
+  run->add_option("--amplitude", r.amplitude_mm, "scan half-width or circle radius, mm")->capture_default_str();
+  run->add_option("--trace", r.trace, "write every tick's time, position and force to this CSV file");
+  run->add_flag("--virtual-clock", r.virtual_clock, "run on simulated time, as fast as possible (deterministic)");
+  run->add_flag("--live", r.live, "print live servo figures on stderr once a second (default when stderr is a terminal)");
+  run->add_option("--spin-margin", r.spin_margin_us,
+                  "wake this long before each tick's deadline and spin to it, us (0: sleep only; docs/performance.md)")
+      ->capture_default_str();
+  run->add_option("--deadline-guard", r.deadline_guard_periods,
+                  "stop (deadline_missed) when a tick starts this many servo periods late")
+      ->capture_default_str();
+  run->add_option("--cpu", r.cpu, "pin the servo thread to this CPU (docs/RUNTIME.md: an isolated core)");
+  add_run_device_options(run, r.device);
+}
+
+runtime::ServoConfig servo_config_of(const PlayRequest& r) {
+  runtime::ServoConfig cfg;
+  cfg.rate_hz = r.rate_hz;
+  cfg.duration_s = r.duration_s;
+  cfg.spin_margin_s = r.spin_margin_us * 1e-6;
+  cfg.deadline_guard_periods = r.deadline_guard_periods;
+  cfg.cpu = r.cpu;
+  return cfg;
+}
+
+int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits) {
+  runtime::ServoConfig cfg = servo_config_of(r);
+  std::atomic<bool> stop{false};
+  cfg.stop_request = &stop;  // play() always has one: a run until stopped is allowed
+  try {
+    runtime::validate_config(cfg, limits);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitUsage;
+  }
+  if (r.virtual_clock && r.duration_s == 0) {
+    std::cerr << "sandpaper: error: --virtual-clock needs a --duration (a simulated run cannot be stopped by hand)\n";
+    return kExitUsage;
+  }
+  if (!(r.speed_mm_s > 0) || !(r.amplitude_mm > 0) || !std::isfinite(r.speed_mm_s) || !std::isfinite(r.amplitude_mm)) {
+    std::cerr << "sandpaper: error: --speed and --amplitude must be positive (mm/s, mm)\n";
+    return kExitUsage;
+  }
+  if (r.amplitude_mm * 1e-3 > limits.workspace_radius_m) {
+    std::cerr << "sandpaper: error: --amplitude " << r.amplitude_mm << " mm leaves the " << limits.workspace_radius_m * 1e3
+              << " mm workspace radius of device '" << limits.name << "'\n";
+    return kExitUsage;
+  }
+  if (!r.trace.empty()) {
+    // Refuse an unwritable trace before playing, not after.
+    auto dir = std::filesystem::path(r.trace).parent_path();
+    if (dir.empty()) dir = ".";
+    if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
+      std::cerr << "sandpaper: error: cannot write the trace '" << r.trace << "': folder " << dir
+                << " does not exist or is not writable\n";
+      return kExitUsage;
+    }
+  }
+  return kExitOk;
+}
+
+int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& limits,
+                const calibration::PsychophysicalMap& map, const PlayRequest& r, runtime::ForceSource* playing,
+                const std::function<void()>& poll) {
+  runtime::HandScript script;
+  script.path = r.hand == "circle" ? runtime::HandPath::Circle : runtime::HandPath::Scan;
+  script.speed_m_s = r.speed_mm_s * 1e-3;
+  script.amplitude_m = r.amplitude_mm * 1e-3;
+  const bool until_stopped = r.duration_s == 0;
+  const auto ticks = until_stopped ? std::size_t{0} : static_cast<std::size_t>(std::llround(r.duration_s * r.rate_hz));
+  const auto first_second = static_cast<std::size_t>(kRecordedSeconds * r.rate_hz);
+  const std::size_t recorded = until_stopped ? first_second : std::min(ticks, first_second);
+  std::vector<glm::dvec2> replayed;
+  runtime::ServoConfig cfg = servo_config_of(r);
+  if (!r.device.replay.empty()) {
+    double replay_duration = 0;
+    if (const int rc = load_replay(r.device, r.rate_hz, replayed, replay_duration); rc != kExitOk) return rc;
+    cfg.duration_s = replay_duration;
+  }
+  const auto device = make_run_device(r.device, limits, script, recorded, replayed);
+  runtime::RecordingDevice& joystick = *device;
+  runtime::PatchEvaluator evaluator(prog);
+  runtime::ForceSource& source = playing != nullptr ? *playing : static_cast<runtime::ForceSource&>(evaluator);
+
+  if (!r.json) {
+    const std::string how_long = until_stopped ? std::string("until Ctrl-C") : fmt::format("for {:g} s", cfg.duration_s);
+    std::cout << fmt::format("playing {} on {}: {:g} Hz {}, hand {} at {:g} mm/s, {} {:g} mm{}\n", prog.name, limits.name,
+                             r.rate_hz, how_long, r.hand, r.speed_mm_s, r.hand == "circle" ? "radius" : "turning at +-",
+                             r.amplitude_mm, r.virtual_clock ? " (virtual clock)" : "");
+    std::cout << "  device   " << describe_run_device(r.device) << "\n" << std::flush;
+  }
+  const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
+  const Played played = play(joystick, source, cfg, r.virtual_clock, r.live, keep, poll);
+  const runtime::ServoReport& rep = played.report;
+  // Roughness is a property of textures (the map relates a texture's peak lateral force to it);
+  // for springs and dampers alone it does not apply.
+  const bool textured = prog.max_lateral_force_N > 0;
+  const double roughness = map.percept_of(rep.max_lateral_force_N);
+  const double mean_force = played.mean_force_N;
+
+  if (!r.trace.empty()) {
+    // From the telemetry ring: what the servo tick published, not the device's own record.
+    std::vector<runtime::TickRecord> published;
+    published.reserve(played.records.size());
+    for (const auto& t : played.records) published.push_back({t.t_s, t.position_m, t.force_N});
+    schema::write_file_atomically(r.trace, runtime::format_trace_csv(published));
+  }
+
+  if (r.json) {
+    nlohmann::json j{{"material", prog.name},
+                     {"device", limits.name},
+                     {"ticks", rep.ticks},
+                     {"rate_hz", rep.rate_hz},
+                     {"rate_hz_target", r.rate_hz},
+                     {"duration_s", cfg.duration_s},
+                     {"period_us", {{"p50", rep.period_p50_us}, {"p99", rep.period_p99_us}, {"max", rep.period_max_us}, {"min", rep.period_min_us}}},
+                     {"jitter_us", rep.jitter_us},
+                     {"compute_us", {{"p50", rep.compute_p50_us}, {"p99", rep.compute_p99_us}, {"max", rep.compute_max_us}}},
+                     {"overruns", rep.overruns},
+                     {"stalls", stalls_json(rep)},
+                     {"max_lateral_force_N", rep.max_lateral_force_N},
+                     {"mean_lateral_force_N", mean_force},
+                     {"roughness", textured ? nlohmann::json(roughness) : nlohmann::json(nullptr)},
+                     {"roughness_map", map.id},
+                     {"compiled_max_lateral_force_N", prog.max_lateral_force_N},
+                     {"clamped_ticks", rep.clamped_ticks},
+                     {"stop_reason", rep.stop_reason},
+                     {"stop_cause", runtime::stop_cause_name(rep.stop_cause)},
+                     {"realtime_scheduling", rep.realtime_scheduling},
+                     {"memory_locked", rep.memory_locked},
+                     {"servo", {{"spin_margin_us", rep.spin_margin_us},
+                                {"deadline_guard_periods", cfg.deadline_guard_periods},
+                                {"cpu", rep.cpu >= 0 ? nlohmann::json(rep.cpu) : nlohmann::json(nullptr)}}},
+                     {"clock", r.virtual_clock ? "virtual" : "monotonic"},
+                     {"player", player_name()},
+                     {"hand", {{"path", r.hand}, {"speed_mm_s", r.speed_mm_s}, {"amplitude_mm", r.amplitude_mm}}},
+                     {"hand_device", describe_run_device(r.device)},
+                     {"trace", r.trace.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.trace)}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us; "
+                             "jitter {:.2f} us (sd); overruns {}; {}\n",
+                             rep.ticks, rep.rate_hz, rep.period_p50_us, rep.period_p99_us, rep.period_max_us,
+                             rep.jitter_us, rep.overruns, stalls_text(rep));
+    std::cout << fmt::format("  compute  p50 {:.2f} us, p99 {:.2f} us, max {:.2f} us per tick\n", rep.compute_p50_us,
+                             rep.compute_p99_us, rep.compute_max_us);
+    // Only a texture has a compiled maximum lateral force to compare with; force laws have none.
+    const std::string compiled = textured ? fmt::format(" (texture compiled {:.4f} N)", prog.max_lateral_force_N) : "";
+    std::cout << fmt::format("  felt     max force {:.4f} N{}, mean {:.4f} N, clamped ticks {}\n", rep.max_lateral_force_N,
+                             compiled, mean_force, rep.clamped_ticks);
+    if (textured)
+      std::cout << fmt::format("  percept  roughness {:.3f} predicted from the measured force ({})\n", roughness, map.id);
+    else
+      std::cout << "  percept  no texture: the roughness map does not apply\n";
+    auto span = static_cast<std::size_t>(std::llround(0.256 * r.rate_hz));
+    std::cout << "  |F|      " << force_strip(joystick.records(), std::max(rep.max_lateral_force_N, 1e-9), 64, span)
+              << "  (first 256 ms; bar height 0 to " << fmt::format("{:.3g}", rep.max_lateral_force_N) << " N)\n";
+    std::cout << "  servo    " << (r.virtual_clock ? "virtual clock" : rep.realtime_scheduling ? "SCHED_FIFO, memory locked"
+                                                                     : "normal priority (SCHED_FIFO not permitted here)")
+              << (rep.cpu >= 0 ? fmt::format(", pinned to CPU {}", rep.cpu) : "")
+              << "; stopped: " << rep.stop_reason << "\n";
+    if (!r.trace.empty()) std::cout << "  trace    " << r.trace << " (" << played.records.size() << " ticks)\n";
+  }
+  return exit_status_of(rep);
+}
+
+int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const PlayRequest& r) {
+  using runtime::usb::UsbStatus;
+  const auto& cal = *chosen.calibration;
+  if (program.device != cal.name) {
+    std::cerr << "sandpaper: error: the patch was compiled for device '" << program.device << "', not '" << cal.name
+              << "'; recompile it with --device " << cal.name << "\n";
+    return kExitUsage;
+  }
+  const runtime::ServoConfig cfg = servo_config_of(r);
+  std::unique_ptr<runtime::usb::LibusbTransport> transport;
+  std::string message;
+  const UsbStatus s = runtime::usb::LibusbTransport::open(static_cast<std::uint16_t>(chosen.info.vendor_id),
+                                                          static_cast<std::uint16_t>(chosen.info.product_id), transport, message);
+  if (s != UsbStatus::Ok) {
+    std::cerr << "sandpaper run --device usb: cannot open " << ids(chosen.info.vendor_id, chosen.info.product_id) << ": " << message << "\n";
+    if (s == UsbStatus::AccessDenied) print_udev_help(std::cerr, chosen.info.vendor_id, chosen.info.product_id);
+    return kExitUsage;
+  }
+  try {
+    runtime::usb::HidPidJoystick joystick(*transport, cal);
+    runtime::validate_config(cfg, joystick.limits());
+    runtime::PatchEvaluator evaluator(program);
+    std::cout << fmt::format("playing {} on {} ({}): {:g} Hz {}\n", program.name, cal.name,
+                             ids(chosen.info.vendor_id, chosen.info.product_id), r.rate_hz,
+                             r.duration_s == 0 ? std::string("until Ctrl-C") : fmt::format("for {:g} s", r.duration_s));
+    // Through play(): Ctrl-C / SIGTERM stop the loop with zero force, and the device is given back below.
+    const auto rep = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, 0).report;
+    joystick.close();
+    const std::string stop = std::string(rep.stop_reason) + " [" + runtime::stop_cause_name(rep.stop_cause) + "]";
+    std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p99 {:.1f} us; overruns {}; {}\n", rep.ticks,
+                             rep.rate_hz, rep.period_p99_us, rep.overruns, stalls_text(rep))
+              << fmt::format("  felt     max force {:.4f} N, clamped ticks {}\n", rep.max_lateral_force_N, rep.clamped_ticks)
+              << "  servo    " << (rep.realtime_scheduling ? "SCHED_FIFO, memory locked" : "normal priority (SCHED_FIFO not permitted here)")
+              << "; stopped: " << stop << "\n";
+    return exit_status_of(rep);
+  } catch (const runtime::usb::HidPidError& e) {
+    std::cerr << "sandpaper run --device usb: " << e.what() << "\n";
+    if (e.status == UsbStatus::AccessDenied) print_udev_help(std::cerr, chosen.info.vendor_id, chosen.info.product_id);
+    return kExitUsage;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitUsage;
+  }
+}
+
+}  // namespace sandpaper::cli

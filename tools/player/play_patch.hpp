@@ -1,0 +1,52 @@
+#pragma once
+// Playing one patch program, the part of `sandpaper run` that needs no compiler: shared by
+// `sandpaper run` (which compiles first) and the runtime-only `sandpaper-play` (which reads a
+// compiled .patch). Prints the run's report (text or --json) and returns the exit code.
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "run_device.hpp"
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/runtime/force_source.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::cli {
+
+struct Found;  // usb_devices.hpp
+
+// Units at the boundary: Hz, s, mm/s, mm, us, periods.
+struct PlayRequest {
+  double rate_hz = 1000, duration_s = 2, speed_mm_s = 50, amplitude_mm = 30;
+  std::string hand = "scan", trace;
+  bool virtual_clock = false, live = false, json = false;
+  RunDeviceOptions device;
+  double spin_margin_us = runtime::ServoConfig{}.spin_margin_s * 1e6;
+  double deadline_guard_periods = runtime::ServoConfig{}.deadline_guard_periods;
+  int cpu = -1;
+};
+
+// Registers run's playing options on `run` (--rate ... --trace, --virtual-clock, --live, the hand
+// device options, --spin-margin, --deadline-guard, --cpu). The same for `sandpaper run` and `sandpaper-play`.
+void add_play_options(CLI::App* run, PlayRequest& r);
+
+// The servo settings of a request.
+runtime::ServoConfig servo_config_of(const PlayRequest& r);
+
+// Checks what can be checked before loading the material (rate and servo settings for the device,
+// hand speed and amplitude, a writable trace folder): 0, or kExitUsage after printing why.
+int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits);
+
+// Plays `program` on the simulated device `limits` and reports. `roughness_map` predicts the felt
+// roughness from the measured force. `playing`: a source to play instead of `program`'s evaluator
+// (run --watch's swappable one); `poll` is called about every 20 ms while playing in real time.
+int play_on_sim(const schema::PatchProgram& program, const runtime::DeviceLimits& limits,
+                const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r,
+                runtime::ForceSource* playing = nullptr, const std::function<void()>& poll = {});
+
+// Plays `program` on the USB joystick `chosen` (its calibration must be the program's device).
+int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const PlayRequest& r);
+
+}  // namespace sandpaper::cli
