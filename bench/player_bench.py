@@ -23,13 +23,20 @@ def median_start_ms(cmd, runs=40):
 
 def max_rss_mb(cmd):
     """Runs cmd to completion in a fresh child (via a tiny wrapper, so RUSAGE_CHILDREN is its own)."""
-    wrapper = ("import resource, subprocess, sys, json;"
-               "r = subprocess.run(sys.argv[1:], stdout=subprocess.PIPE, stderr=subprocess.DEVNULL);"
-               "print(json.dumps({'rc': r.returncode, 'maxrss_kb': resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss,"
-               "'out': r.stdout.decode(errors='replace')}))")
-    out = subprocess.run([sys.executable, "-c", wrapper, *cmd], stdout=subprocess.PIPE, check=True).stdout
-    j = json.loads(out)
+    j = run_measured(cmd)
     return j["maxrss_kb"] / 1024.0, j["rc"], j["out"]
+
+
+def run_measured(cmd):
+    """Wall time (s), maximum RSS (KB), exit code and stdout of cmd, run in a fresh wrapper process."""
+    wrapper = ("import resource, subprocess, sys, json, time;"
+               "t = time.perf_counter();"
+               "r = subprocess.run(sys.argv[1:], stdout=subprocess.PIPE, stderr=subprocess.PIPE);"
+               "t = time.perf_counter() - t;"
+               "print(json.dumps({'rc': r.returncode, 'maxrss_kb': resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss,"
+               "'seconds': t, 'out': r.stdout.decode(errors='replace'), 'err': r.stderr.decode(errors='replace')}))")
+    out = subprocess.run([sys.executable, "-c", wrapper, *cmd], stdout=subprocess.PIPE, check=True).stdout
+    return json.loads(out)
 
 
 def main():
@@ -56,15 +63,19 @@ def main():
             subprocess.run(["oiiotool", photo, "--resize", "4096x4096", "-d", "uint16", "-o", big], check=True)
             with open(os.path.join(tmp, "big.hmat"), "w") as f:
                 f.write('material "big" {\n  heightmap "big.png" size 204.8 mm\n  roughness 0.6\n}\n')
-            t0 = time.perf_counter()
-            r = subprocess.run([sp, "compile", os.path.join(tmp, "big.hmat"), "-o", hf], stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True)
-            results["heightfield_compile_s"] = time.perf_counter() - t0
-            have_big = r.returncode == 0
-            if not have_big:
-                print("4096^2 height field did not compile:", r.stderr.strip()[:400])
-            else:
-                results["heightfield_patch_MB"] = os.path.getsize(hf) / 2**20
+            compiles = {}
+            for label, extra, out_file in (("float32", [], hf), ("--compact", ["--compact"], os.path.join(tmp, "big-compact.patch"))):
+                j = run_measured([sp, "compile", os.path.join(tmp, "big.hmat"), "-o", out_file, *extra])
+                compiles[label] = {"seconds": j["seconds"], "max_rss_MB": j["maxrss_kb"] / 1024.0, "rc": j["rc"],
+                                   "patch_MB": os.path.getsize(out_file) / 2**20 if j["rc"] == 0 else None}
+                if j["rc"] != 0:
+                    print("4096^2 height field did not compile:", j["err"].strip()[:400])
+            if a.old_sandpaper:
+                j = run_measured([a.old_sandpaper, "compile", os.path.join(tmp, "big.hmat"), "-o", os.path.join(tmp, "old.patch")])
+                compiles["previous build"] = {"seconds": j["seconds"], "max_rss_MB": j["maxrss_kb"] / 1024.0, "rc": j["rc"]}
+            results["heightfield_4096_compile"] = compiles
+            results["heightfield_grids_MB"] = 2 * 4096 * 4096 * 4 / 2**20
+            have_big = compiles["float32"]["rc"] == 0
         results["start_ms"] = {"sandpaper-play --help": median_start_ms([play, "--help"]),
                                "sandpaper --help": median_start_ms([sp, "--help"])}
         if a.old_sandpaper:
@@ -81,6 +92,8 @@ def main():
             rss["previous sandpaper run grating"] = {"max_rss_MB": mb, "rc": rc}
         if have_big:
             short = ["--duration", "5", "--json"]
+            mb, rc, _ = max_rss_mb([play, os.path.join(tmp, "big-compact.patch"), *short])
+            rss["sandpaper-play 4096^2 height field, --compact patch (5 s)"] = {"max_rss_MB": mb, "rc": rc}
             mb, rc, _ = max_rss_mb([play, hf, *short])
             rss["sandpaper-play 4096^2 height field (5 s)"] = {"max_rss_MB": mb, "rc": rc}
             if a.old_sandpaper:

@@ -2,39 +2,73 @@
 // 3.4 EQ 12-13). Computed once, in float, here; the runtime only samples the result.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <OpenImageIO/parallel.h>
 
 #include "sandpaper/compiler/textures.hpp"
 
 namespace sandpaper::compiler {
 namespace {
 
-// Separable Gaussian blur of one axis; `wrap` treats the image as a tile, else edges are clamped.
-void blur_axis(std::vector<float>& img, int nx, int ny, double sigma_px, bool along_x, bool wrap) {
-  if (sigma_px < 0.3) return;  // narrower than a third of a pixel changes nothing measurable
-  int radius = static_cast<int>(std::ceil(3.0 * sigma_px));
+// Rows are independent in every pass below: OpenImageIO's thread pool (the compiler links it to
+// read images) spreads them over the cores. Each output value is summed in the same order as a
+// single thread would, so the result does not depend on the number of threads.
+template <class F>
+void for_each_row(int rows, F&& f) {
+  OIIO::parallel_for(std::int64_t{0}, std::int64_t{rows}, [&f](std::int64_t y) { f(static_cast<int>(y)); });
+}
+
+std::vector<double> gaussian_kernel(double sigma_px, int& radius) {
+  radius = static_cast<int>(std::ceil(3.0 * sigma_px));
   std::vector<double> k(static_cast<std::size_t>(2 * radius + 1));
   double sum = 0;
   for (int i = -radius; i <= radius; ++i) sum += k[static_cast<std::size_t>(i + radius)] = std::exp(-0.5 * i * i / (sigma_px * sigma_px));
   for (auto& w : k) w /= sum;
-  int n = along_x ? nx : ny;
-  int lines = along_x ? ny : nx;
-  std::vector<float> line(static_cast<std::size_t>(n));
-  for (int l = 0; l < lines; ++l) {
-    auto at = [&](int i) -> float& {
-      return along_x ? img[static_cast<std::size_t>(l) * nx + i] : img[static_cast<std::size_t>(i) * nx + l];
-    };
-    for (int i = 0; i < n; ++i) {
+  return k;
+}
+
+int edge(int q, int n, bool wrap) { return wrap ? ((q % n) + n) % n : std::clamp(q, 0, n - 1); }
+
+// Separable Gaussian blur; `wrap` treats the image as a tile, else edges are clamped. Along x each
+// row is blurred in place; along y each output row sums whole input rows (cache-friendly), into
+// a second image.
+void blur_x(std::vector<float>& img, int nx, int ny, double sigma_px, bool wrap) {
+  if (sigma_px < 0.3) return;  // narrower than a third of a pixel changes nothing measurable
+  int radius = 0;
+  const auto k = gaussian_kernel(sigma_px, radius);
+  for_each_row(ny, [&](int y) {
+    float* row = img.data() + static_cast<std::size_t>(y) * nx;
+    std::vector<float> line(static_cast<std::size_t>(nx));
+    for (int i = 0; i < nx; ++i) {
       double s = 0;
-      for (int j = -radius; j <= radius; ++j) {
-        int q = i + j;
-        q = wrap ? ((q % n) + n) % n : std::clamp(q, 0, n - 1);
-        s += k[static_cast<std::size_t>(j + radius)] * at(q);
-      }
+      for (int j = -radius; j <= radius; ++j) s += k[static_cast<std::size_t>(j + radius)] * row[edge(i + j, nx, wrap)];
       line[static_cast<std::size_t>(i)] = static_cast<float>(s);
     }
-    for (int i = 0; i < n; ++i) at(i) = line[static_cast<std::size_t>(i)];
-  }
+    std::copy(line.begin(), line.end(), row);
+  });
+}
+
+void blur_y(std::vector<float>& img, int nx, int ny, double sigma_px, bool wrap) {
+  if (sigma_px < 0.3) return;
+  int radius = 0;
+  const auto k = gaussian_kernel(sigma_px, radius);
+  std::vector<float> out(img.size());
+  for_each_row(ny, [&](int y) {
+    std::vector<double> acc(static_cast<std::size_t>(nx), 0.0);
+    for (int j = -radius; j <= radius; ++j) {
+      const float* in = img.data() + static_cast<std::size_t>(edge(y + j, ny, wrap)) * nx;
+      const double w = k[static_cast<std::size_t>(j + radius)];
+      for (int x = 0; x < nx; ++x) acc[static_cast<std::size_t>(x)] += w * in[x];
+    }
+    float* o = out.data() + static_cast<std::size_t>(y) * nx;
+    for (int x = 0; x < nx; ++x) o[x] = static_cast<float>(acc[static_cast<std::size_t>(x)]);
+  });
+  img.swap(out);
 }
 
 }  // namespace
@@ -63,33 +97,51 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
   const double to_height = h.stylus() ? h.depth->si / (static_cast<double>(img->hi) - img->lo) : 1.0;
   const double base = h.stylus() ? img->lo : 0.0;
   std::vector<float> height(img->values.size());
-  for (int y = 0; y < ny; ++y)
+  for_each_row(ny, [&](int y) {
     for (int x = 0; x < nx; ++x)
       height[static_cast<std::size_t>(ny - 1 - y) * nx + x] =
           static_cast<float>(to_height * (img->values[static_cast<std::size_t>(y) * nx + x] - base));
+  });
+  std::vector<float>().swap(img->values);  // the image is not needed again: give its memory back now
 
   const double dx = h.width.si / nx, dy = h.height.si / ny;  // m per sample
   const double sigma = h.smoothing ? h.smoothing->si : 0.0;
-  blur_axis(height, nx, ny, sigma / dx, true, h.repeat);
-  blur_axis(height, nx, ny, sigma / dy, false, h.repeat);
+  blur_x(height, nx, ny, sigma / dx, h.repeat);
+  blur_y(height, nx, ny, sigma / dy, h.repeat);
 
   // Central differences (EQ 12-13), one-sided at clamped edges, wrapped for tiles; per metre.
-  std::vector<double> gx(height.size()), gy(height.size());
+  // Computed where needed (twice: for the peak, then for the forces) rather than kept: two grids
+  // of doubles would be four times the patch's size.
   auto H = [&](int x, int y) { return static_cast<double>(height[static_cast<std::size_t>(y) * nx + x]); };
-  for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x) {
-      int xl, xr, yd, yu;
-      if (h.repeat) {
-        xl = (x - 1 + nx) % nx, xr = (x + 1) % nx, yd = (y - 1 + ny) % ny, yu = (y + 1) % ny;
-      } else {
-        xl = std::max(x - 1, 0), xr = std::min(x + 1, nx - 1), yd = std::max(y - 1, 0), yu = std::min(y + 1, ny - 1);
-      }
-      // Distance between the two samples: two pixels, or one at a clamped edge.
-      int span_x = h.repeat ? 2 : xr - xl, span_y = h.repeat ? 2 : yu - yd;
-      std::size_t i = static_cast<std::size_t>(y) * nx + x;
-      gx[i] = (H(xr, y) - H(xl, y)) / (span_x * dx);
-      gy[i] = (H(x, yu) - H(x, yd)) / (span_y * dy);
+  const auto gradient = [&](int x, int y) {
+    int xl, xr, yd, yu;
+    if (h.repeat) {
+      xl = (x - 1 + nx) % nx, xr = (x + 1) % nx, yd = (y - 1 + ny) % ny, yu = (y + 1) % ny;
+    } else {
+      xl = std::max(x - 1, 0), xr = std::min(x + 1, nx - 1), yd = std::max(y - 1, 0), yu = std::min(y + 1, ny - 1);
     }
+    // Distance between the two samples: two pixels, or one at a clamped edge.
+    const int span_x = h.repeat ? 2 : xr - xl, span_y = h.repeat ? 2 : yu - yd;
+    return std::pair<double, double>{(H(xr, y) - H(xl, y)) / (span_x * dx), (H(x, yu) - H(x, yd)) / (span_y * dy)};
+  };
+  // One row of gradients into gx, gy: the edges through `gradient`, the interior (the same
+  // arithmetic, without the per-pixel edge logic) straight from the three rows it reads.
+  const auto gradient_row = [&](int y, double* gx, double* gy) {
+    if (h.repeat || y == 0 || y == ny - 1 || nx < 3) {
+      for (int x = 0; x < nx; ++x) std::tie(gx[x], gy[x]) = gradient(x, y);
+      return;
+    }
+    const float* row = height.data() + static_cast<std::size_t>(y) * nx;
+    const float* down = row - nx;
+    const float* up = row + nx;
+    const double span_dx = 2 * dx, span_dy = 2 * dy;
+    std::tie(gx[0], gy[0]) = gradient(0, y);
+    for (int x = 1; x < nx - 1; ++x) {
+      gx[x] = (static_cast<double>(row[x + 1]) - static_cast<double>(row[x - 1])) / span_dx;
+      gy[x] = (static_cast<double>(up[x]) - static_cast<double>(down[x])) / span_dy;
+    }
+    std::tie(gx[nx - 1], gy[nx - 1]) = gradient(nx - 1, y);
+  };
 
   // The maximum is taken inside a rim (as the thesis measured gratings away from the edges):
   // 3 sigma of smoothing plus the two outermost pixels, whose differences touch the clamped edge
@@ -101,12 +153,28 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
                 "use a smoothing below a sixth of the image size");
     return std::nullopt;
   }
+  // The peak |grad h|: rows find their largest squared magnitude (cheap), then hypot (as before,
+  // so the result is bit for bit the single-threaded one) is taken only of the values that can be it.
+  std::vector<double> row_peak_sq(static_cast<std::size_t>(ny), 0.0);
+  const int inner_rows = ny - 2 * rim_y;
+  for_each_row(inner_rows, [&](int r) {
+    const int y = r + rim_y;
+    std::vector<double> gx(static_cast<std::size_t>(nx)), gy(static_cast<std::size_t>(nx));
+    gradient_row(y, gx.data(), gy.data());
+    double m = 0;
+    for (int x = rim_x; x < nx - rim_x; ++x) m = std::max(m, gx[static_cast<std::size_t>(x)] * gx[static_cast<std::size_t>(x)] + gy[static_cast<std::size_t>(x)] * gy[static_cast<std::size_t>(x)]);
+    row_peak_sq[static_cast<std::size_t>(y)] = m;
+  });
+  const double peak_sq = *std::max_element(row_peak_sq.begin(), row_peak_sq.end());
+  const double candidate_sq = peak_sq * (1 - 1e-9);  // far wider than the rounding of x^2 + y^2
   double peak = 0;
-  for (int y = rim_y; y < ny - rim_y; ++y)
+  for (int y = rim_y; y < ny - rim_y; ++y) {
+    if (!(row_peak_sq[static_cast<std::size_t>(y)] >= candidate_sq) || peak_sq == 0) continue;
     for (int x = rim_x; x < nx - rim_x; ++x) {
-      std::size_t i = static_cast<std::size_t>(y) * nx + x;
-      peak = std::max(peak, std::hypot(gx[i], gy[i]));
+      const auto [gx, gy] = gradient(x, y);
+      if (gx * gx + gy * gy >= candidate_sq) peak = std::max(peak, std::hypot(gx, gy));
     }
+  }
   if (!(peak > 0)) {
     diags.error("E0403", h.location, "image '" + h.stated_path + "' has no slope inside its rim, so no lateral force",
                 "use an image with variation away from its edges, or less smoothing");
@@ -127,10 +195,16 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
   out.repeat = h.repeat;
   out.force_x_N.resize(height.size());
   out.force_y_N.resize(height.size());
-  for (std::size_t i = 0; i < height.size(); ++i) {
-    out.force_x_N[i] = static_cast<float>(-gain * gx[i]);
-    out.force_y_N[i] = static_cast<float>(-gain * gy[i]);
-  }
+  for_each_row(ny, [&](int y) {
+    std::vector<double> gx(static_cast<std::size_t>(nx)), gy(static_cast<std::size_t>(nx));
+    gradient_row(y, gx.data(), gy.data());
+    float* fx = out.force_x_N.data() + static_cast<std::size_t>(y) * nx;
+    float* fy = out.force_y_N.data() + static_cast<std::size_t>(y) * nx;
+    for (int x = 0; x < nx; ++x) {
+      fx[x] = static_cast<float>(-gain * gx[static_cast<std::size_t>(x)]);
+      fy[x] = static_cast<float>(-gain * gy[static_cast<std::size_t>(x)]);
+    }
+  });
   std::ostringstream os;
   os << img->description << ", " << dx * 1e3 << " mm per sample";
   b.summary = os.str();

@@ -1,6 +1,13 @@
 #include "sandpaper/schema/patch_io.hpp"
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <bit>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -8,6 +15,11 @@
 #include <variant>
 
 #include <zlib.h>
+
+// Header-only use of Imath's binary16 conversions (no lookup table, so nothing to link): the
+// patch reader stays free of image libraries.
+#define IMATH_HALF_NO_LOOKUP_TABLE
+#include <Imath/half.h>
 
 #include "sandpaper/schema/atomic_file.hpp"
 
@@ -38,67 +50,158 @@ enum : std::uint32_t {
   kTagFollowerSpring = 13,
   kTagPointMasses = 14,
   kTagAttractor = 15,
+  kTagHeightFieldHalf = 16,  // a height field whose grids are binary16 (PatchWriteOptions::compact_grids)
 };
 static_assert(std::variant_size_v<Term> == 15, "a new term kind needs a tag, a writer and a reader here");
 
+// The payload as a list of segments: small fields in buffers of their own, large float arrays
+// referenced where they lie in the program, so that writing a 4096 x 4096 height field copies no
+// grid (docs/performance.md, "Image compile that scales").
 class Writer {
  public:
   template <class T>
   void pod(T v) {
     static_assert(std::is_trivially_copyable_v<T>);
     const auto* b = reinterpret_cast<const unsigned char*>(&v);
-    out_.insert(out_.end(), b, b + sizeof(T));
+    own().insert(own().end(), b, b + sizeof(T));
   }
   void str(const std::string& s) {
     pod<std::uint32_t>(static_cast<std::uint32_t>(s.size()));
-    out_.insert(out_.end(), s.begin(), s.end());
+    own().insert(own().end(), s.begin(), s.end());
   }
   void floats(const std::vector<float>& v) {
     pod<std::uint64_t>(v.size());
     const auto* b = reinterpret_cast<const unsigned char*>(v.data());
-    out_.insert(out_.end(), b, b + v.size() * sizeof(float));
+    if (v.size() < kReferencedFloats) {
+      own().insert(own().end(), b, b + v.size() * sizeof(float));
+    } else {
+      segments_.push_back({{}, std::string_view(reinterpret_cast<const char*>(b), v.size() * sizeof(float))});
+    }
   }
-  std::vector<unsigned char>& bytes() { return out_; }
+  // uint16 values, kept by the writer (the halves of a compact grid exist only here).
+  void halves(std::vector<std::uint16_t> v) {
+    pod<std::uint64_t>(v.size());
+    Segment seg;
+    seg.owned.resize(v.size() * sizeof(std::uint16_t));
+    if (!v.empty()) std::memcpy(seg.owned.data(), v.data(), seg.owned.size());
+    segments_.push_back(std::move(seg));
+    segments_.emplace_back();  // what follows goes to a fresh buffer
+  }
+  // The segments in order; valid while this Writer and the program it wrote live.
+  std::vector<std::string_view> parts() const {
+    std::vector<std::string_view> out;
+    for (const auto& s : segments_)
+      out.push_back(s.external.data() ? s.external : std::string_view(reinterpret_cast<const char*>(s.owned.data()), s.owned.size()));
+    return out;
+  }
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const auto& part : parts()) n += part.size();
+    return n;
+  }
 
  private:
-  std::vector<unsigned char> out_;
+  static constexpr std::size_t kReferencedFloats = 4096;
+  struct Segment {
+    std::vector<unsigned char> owned;
+    std::string_view external;
+  };
+  std::vector<unsigned char>& own() {
+    if (segments_.empty() || segments_.back().external.data()) segments_.emplace_back();
+    return segments_.back().owned;
+  }
+  std::vector<Segment> segments_;
+};
+
+// Where the reader's bytes come from: memory (deserialize) or the file itself, read in place into
+// the program's arrays (read_patch_file), so that loading a height field holds no second copy.
+class ByteSource {
+ public:
+  virtual ~ByteSource() = default;
+  virtual void read(void* into, std::size_t n) = 0;  // throws PatchFormatError when fewer are left
+  virtual std::size_t remaining() const = 0;
+};
+
+class MemorySource final : public ByteSource {
+ public:
+  MemorySource(const unsigned char* p, std::size_t n) : p_(p), end_(p + n) {}
+  void read(void* into, std::size_t n) override {
+    if (static_cast<std::size_t>(end_ - p_) < n) throw PatchFormatError("patch program truncated");
+    if (n > 0) std::memcpy(into, p_, n);
+    p_ += n;
+  }
+  std::size_t remaining() const override { return static_cast<std::size_t>(end_ - p_); }
+
+ private:
+  const unsigned char* p_;
+  const unsigned char* end_;
+};
+
+// The payload of an open file, `size` bytes long (checked against the file's size before), summed
+// with CRC-32 as it is read.
+class FileSource final : public ByteSource {
+ public:
+  FileSource(std::FILE* f, std::size_t size) : f_(f), left_(size), crc_(crc32(0L, Z_NULL, 0)) {}
+  void read(void* into, std::size_t n) override {
+    if (left_ < n) throw PatchFormatError("patch program truncated");
+    if (n > 0 && std::fread(into, 1, n, f_) != n) throw PatchFormatError("patch program truncated");
+    auto* p = static_cast<const unsigned char*>(into);
+    for (std::size_t done = 0; done < n;) {
+      const auto chunk = static_cast<uInt>(std::min<std::size_t>(n - done, 1u << 30));
+      crc_ = crc32(crc_, p + done, chunk);
+      done += chunk;
+    }
+    left_ -= n;
+  }
+  std::size_t remaining() const override { return left_; }
+  std::uint32_t crc() const { return static_cast<std::uint32_t>(crc_); }
+
+ private:
+  std::FILE* f_;
+  std::size_t left_;
+  uLong crc_;
 };
 
 class Reader {
  public:
-  Reader(const unsigned char* p, std::size_t n) : p_(p), end_(p + n) {}
+  explicit Reader(ByteSource& source) : source_(source) {}
   template <class T>
   T pod() {
-    need(sizeof(T));
     T v;
-    std::memcpy(&v, p_, sizeof(T));
-    p_ += sizeof(T);
+    source_.read(&v, sizeof(T));
     return v;
   }
   std::string str() {
     auto n = pod<std::uint32_t>();
-    need(n);
-    std::string s(reinterpret_cast<const char*>(p_), n);
-    p_ += n;
+    if (n > source_.remaining()) throw PatchFormatError("patch program truncated");
+    std::string s(n, '\0');
+    source_.read(s.data(), n);
     return s;
   }
   std::vector<float> floats() {
     auto n = pod<std::uint64_t>();
-    if (n > static_cast<std::uint64_t>(end_ - p_) / sizeof(float))
+    // Checked before allocating: a corrupt count must not ask for more memory than the file holds.
+    if (n > source_.remaining() / sizeof(float))
       throw PatchFormatError("patch program truncated: float array longer than the file");
     std::vector<float> v(n);
-    std::memcpy(v.data(), p_, n * sizeof(float));
-    p_ += n * sizeof(float);
+    source_.read(v.data(), n * sizeof(float));
     return v;
   }
-  bool done() const { return p_ == end_; }
+  // binary16 values, widened to float32.
+  std::vector<float> halves() {
+    auto n = pod<std::uint64_t>();
+    if (n > source_.remaining() / sizeof(std::uint16_t))
+      throw PatchFormatError("patch program truncated: half-float array longer than the file");
+    std::vector<std::uint16_t> h(n);
+    source_.read(h.data(), n * sizeof(std::uint16_t));
+    std::vector<float> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = imath_half_to_float(h[i]);
+    return v;
+  }
+  bool done() const { return source_.remaining() == 0; }
 
  private:
-  void need(std::size_t n) const {
-    if (static_cast<std::size_t>(end_ - p_) < n) throw PatchFormatError("patch program truncated");
-  }
-  const unsigned char* p_;
-  const unsigned char* end_;
+  ByteSource& source_;
 };
 
 std::uint32_t crc_of(const unsigned char* p, std::size_t n) {
@@ -113,7 +216,28 @@ std::uint32_t crc_of(const unsigned char* p, std::size_t n) {
   return static_cast<std::uint32_t>(c);
 }
 
-void write_term(Writer& w, const Term& term) {
+// A grid as binary16, or nothing if some force would move by more than kCompactTolerance of the
+// grid's largest component (or overflow the half range); `error` gets the largest relative error.
+std::optional<std::vector<std::uint16_t>> compact(const std::vector<float>& grid, double peak, double& error) {
+  std::vector<std::uint16_t> out(grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    out[i] = imath_float_to_half(grid[i]);
+    const double back = imath_half_to_float(out[i]);
+    const double e = peak > 0 ? std::abs(back - grid[i]) / peak : (back == grid[i] ? 0.0 : 1.0);
+    if (!(e <= kCompactTolerance)) return std::nullopt;
+    error = std::max(error, e);
+  }
+  return out;
+}
+
+double largest_component(const std::vector<float>& a, const std::vector<float>& b) {
+  double m = 0;
+  for (float v : a) m = std::max(m, static_cast<double>(std::abs(v)));
+  for (float v : b) m = std::max(m, static_cast<double>(std::abs(v)));
+  return m;
+}
+
+void write_term(Writer& w, const Term& term, const PatchWriteOptions& options, CompactReport* report) {
   if (const auto* s = std::get_if<SpringTerm>(&term)) {
     w.pod<std::uint32_t>(kTagSpring);
     w.pod(s->stiffness_N_per_m);
@@ -128,7 +252,23 @@ void write_term(Writer& w, const Term& term) {
     w.pod(g->orientation_rad);
     w.floats(g->force_N);
   } else if (const auto* h = std::get_if<HeightFieldTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagHeightField);
+    std::optional<std::vector<std::uint16_t>> hx, hy;
+    double error = 0;
+    if (options.compact_grids) {
+      const double peak = largest_component(h->force_x_N, h->force_y_N);
+      hx = compact(h->force_x_N, peak, error);
+      if (hx) hy = compact(h->force_y_N, peak, error);
+      if (report != nullptr) {
+        if (hx && hy) {
+          ++report->compacted;
+          report->largest_error = std::max(report->largest_error, error);
+        } else {
+          ++report->kept;
+        }
+      }
+    }
+    const bool half = hx && hy;
+    w.pod<std::uint32_t>(half ? kTagHeightFieldHalf : kTagHeightField);
     w.pod(h->nx);
     w.pod(h->ny);
     w.pod(h->origin_m[0]);
@@ -136,8 +276,13 @@ void write_term(Writer& w, const Term& term) {
     w.pod(h->spacing_m[0]);
     w.pod(h->spacing_m[1]);
     w.pod<std::uint8_t>(h->repeat ? 1 : 0);
-    w.floats(h->force_x_N);
-    w.floats(h->force_y_N);
+    if (half) {
+      w.halves(std::move(*hx));
+      w.halves(std::move(*hy));
+    } else {
+      w.floats(h->force_x_N);
+      w.floats(h->force_y_N);
+    }
   } else if (const auto* c = std::get_if<ConstantForceTerm>(&term)) {
     w.pod<std::uint32_t>(kTagConstantForce);
     w.pod(c->force_N[0]);
@@ -226,7 +371,8 @@ Term read_term(Reader& r) {
         throw PatchFormatError("grating term with no force table or a non-positive period");
       return g;
     }
-    case kTagHeightField: {
+    case kTagHeightField:
+    case kTagHeightFieldHalf: {
       HeightFieldTerm h;
       h.nx = r.pod<std::uint32_t>();
       h.ny = r.pod<std::uint32_t>();
@@ -235,8 +381,8 @@ Term read_term(Reader& r) {
       h.spacing_m[0] = r.pod<double>();
       h.spacing_m[1] = r.pod<double>();
       h.repeat = r.pod<std::uint8_t>() != 0;
-      h.force_x_N = r.floats();
-      h.force_y_N = r.floats();
+      h.force_x_N = tag == kTagHeightFieldHalf ? r.halves() : r.floats();
+      h.force_y_N = tag == kTagHeightFieldHalf ? r.halves() : r.floats();
       auto n = static_cast<std::uint64_t>(h.nx) * h.ny;
       if (h.nx < 2 || h.ny < 2 || h.force_x_N.size() != n || h.force_y_N.size() != n ||
           !(h.spacing_m[0] > 0) || !(h.spacing_m[1] > 0))
@@ -337,8 +483,9 @@ Term read_term(Reader& r) {
 
 }  // namespace
 
-std::vector<unsigned char> serialize(const PatchProgram& p) {
-  Writer w;
+namespace {
+
+void write_payload(Writer& w, const PatchProgram& p, const PatchWriteOptions& options, CompactReport* report) {
   w.str(p.name);
   w.str(p.describes);
   w.str(p.device);
@@ -358,7 +505,7 @@ std::vector<unsigned char> serialize(const PatchProgram& p) {
   w.pod(p.energy_budget_J);
   w.pod(p.energy_refill_W);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(p.terms.size()));
-  for (const auto& t : p.terms) write_term(w, t);
+  for (const auto& t : p.terms) write_term(w, t, options, report);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(p.provenance.size()));
   for (const auto& pv : p.provenance) {
     w.str(pv.parameter);
@@ -373,37 +520,9 @@ std::vector<unsigned char> serialize(const PatchProgram& p) {
     w.str(wn.code);
     w.str(wn.message);
   }
-  const auto& payload = w.bytes();
-
-  Writer h;
-  for (char c : kMagic) h.pod(c);
-  h.pod<std::uint32_t>(kPatchFormatVersion);
-  h.pod<std::uint32_t>(0);  // flags, reserved
-  h.pod<std::uint64_t>(payload.size());
-  h.pod<std::uint32_t>(crc_of(payload.data(), payload.size()));
-  h.pod<std::uint32_t>(0);  // padding to 32 bytes
-  auto out = std::move(h.bytes());
-  out.insert(out.end(), payload.begin(), payload.end());
-  return out;
 }
 
-PatchProgram deserialize(const std::vector<unsigned char>& bytes) {
-  if (bytes.size() < kHeaderSize || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
-    throw PatchFormatError("not a Sandpaper patch program (no SNDPATCH header)");
-  Reader h(bytes.data() + 8, kHeaderSize - 8);
-  auto version = h.pod<std::uint32_t>();
-  h.pod<std::uint32_t>();
-  auto size = h.pod<std::uint64_t>();
-  auto crc = h.pod<std::uint32_t>();
-  if (version != kPatchFormatVersion)
-    throw PatchFormatError("patch format version " + std::to_string(version) + ", this build reads version " +
-                           std::to_string(kPatchFormatVersion) + ": recompile the material");
-  if (size > kMaxPayload || size != bytes.size() - kHeaderSize)
-    throw PatchFormatError("patch program size does not match its header (truncated or padded file)");
-  const unsigned char* payload = bytes.data() + kHeaderSize;
-  if (crc_of(payload, size) != crc) throw PatchFormatError("patch program checksum mismatch (corrupted file)");
-
-  Reader r(payload, size);
+PatchProgram read_payload(Reader& r) {
   PatchProgram p;
   p.name = r.str();
   p.describes = r.str();
@@ -447,17 +566,105 @@ PatchProgram deserialize(const std::vector<unsigned char>& bytes) {
   return p;
 }
 
-void write_patch_file(const std::filesystem::path& path, const PatchProgram& program) {
-  auto bytes = serialize(program);
-  write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+struct Header {
+  std::uint64_t size = 0;
+  std::uint32_t crc = 0;
+};
+
+std::vector<unsigned char> header_bytes(std::uint64_t size, std::uint32_t crc) {
+  std::vector<unsigned char> h(kHeaderSize, 0);  // flags (12..15) and padding (28..31) stay 0
+  const std::uint32_t version = kPatchFormatVersion;
+  std::memcpy(h.data(), kMagic, sizeof kMagic);
+  std::memcpy(h.data() + 8, &version, sizeof version);
+  std::memcpy(h.data() + 16, &size, sizeof size);
+  std::memcpy(h.data() + 24, &crc, sizeof crc);
+  return h;
+}
+
+// Checks the 32-byte header of a `total`-byte file and returns its payload size and checksum.
+Header parse_header(const unsigned char* bytes, std::size_t total) {
+  if (total < kHeaderSize || std::memcmp(bytes, kMagic, sizeof kMagic) != 0)
+    throw PatchFormatError("not a Sandpaper patch program (no SNDPATCH header)");
+  MemorySource source(bytes + 8, kHeaderSize - 8);
+  Reader h(source);
+  auto version = h.pod<std::uint32_t>();
+  h.pod<std::uint32_t>();
+  Header out;
+  out.size = h.pod<std::uint64_t>();
+  out.crc = h.pod<std::uint32_t>();
+  if (version != kPatchFormatVersion)
+    throw PatchFormatError("patch format version " + std::to_string(version) + ", this build reads version " +
+                           std::to_string(kPatchFormatVersion) + ": recompile the material");
+  if (out.size > kMaxPayload || out.size != total - kHeaderSize)
+    throw PatchFormatError("patch program size does not match its header (truncated or padded file)");
+  return out;
+}
+
+std::uint32_t crc_of_parts(const std::vector<std::string_view>& parts) {
+  uLong c = crc32(0L, Z_NULL, 0);
+  for (const auto& part : parts) {
+    const auto* p = reinterpret_cast<const unsigned char*>(part.data());
+    for (std::size_t done = 0; done < part.size();) {
+      const auto chunk = static_cast<uInt>(std::min<std::size_t>(part.size() - done, 1u << 30));
+      c = crc32(c, p + done, chunk);
+      done += chunk;
+    }
+  }
+  return static_cast<std::uint32_t>(c);
+}
+
+}  // namespace
+
+std::vector<unsigned char> serialize(const PatchProgram& p, const PatchWriteOptions& options, CompactReport* report) {
+  Writer w;
+  write_payload(w, p, options, report);
+  const auto parts = w.parts();
+  auto out = header_bytes(w.size(), crc_of_parts(parts));
+  for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+  return out;
+}
+
+PatchProgram deserialize(const std::vector<unsigned char>& bytes) {
+  const Header header = parse_header(bytes.data(), bytes.size());
+  const unsigned char* payload = bytes.data() + kHeaderSize;
+  if (crc_of(payload, header.size) != header.crc) throw PatchFormatError("patch program checksum mismatch (corrupted file)");
+  MemorySource source(payload, header.size);
+  Reader r(source);
+  return read_payload(r);
+}
+
+void write_patch_file(const std::filesystem::path& path, const PatchProgram& program, const PatchWriteOptions& options,
+                      CompactReport* report) {
+  Writer w;
+  write_payload(w, program, options, report);
+  auto parts = w.parts();
+  const auto header = header_bytes(w.size(), crc_of_parts(parts));
+  parts.insert(parts.begin(), std::string_view(reinterpret_cast<const char*>(header.data()), header.size()));
+  write_file_atomically(path, parts);
 }
 
 PatchProgram read_patch_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open patch program '" + path.string() + "'");
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Before opening: a FIFO or a device would block or never end.
+  std::error_code ec;
+  if (const auto status = std::filesystem::status(path, ec); !ec && std::filesystem::exists(status) &&
+                                                             !std::filesystem::is_regular_file(status))
+    throw PatchFormatError(path.string() + ": not a regular file");
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!f) throw std::runtime_error("cannot open patch program '" + path.string() + "'");
   try {
-    return deserialize(bytes);
+    struct stat st{};
+    if (fstat(fileno(f.get()), &st) != 0 || !S_ISREG(st.st_mode))
+      throw PatchFormatError("not a regular file");
+    unsigned char head[kHeaderSize] = {};
+    const std::size_t got = std::fread(head, 1, kHeaderSize, f.get());
+    const Header header = parse_header(head, got < kHeaderSize ? got : static_cast<std::size_t>(st.st_size));
+    // Read in place into the program's arrays; the checksum is summed on the way and compared
+    // before the program is returned, so a corrupted file is never used.
+    FileSource source(f.get(), header.size);
+    Reader r(source);
+    PatchProgram program = read_payload(r);
+    if (source.crc() != header.crc) throw PatchFormatError("patch program checksum mismatch (corrupted file)");
+    return program;
   } catch (const PatchFormatError& e) {
     throw PatchFormatError(path.string() + ": " + e.what());
   }

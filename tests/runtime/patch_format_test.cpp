@@ -3,7 +3,15 @@
 // view names each parameter with its unit.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <variant>
 
@@ -221,6 +229,90 @@ TEST(PatchFormat, JsonNamesEveryParameterWithItsUnit) {
   EXPECT_EQ(t[14]["swirl"], 0.3);
   EXPECT_EQ(t[14]["radius_m"], 0.02);
   EXPECT_EQ(t[14]["passive"], false);
+}
+
+// A 256 x 256 height field of smooth forces up to about 2 N, as an image texture compiles to.
+HeightFieldTerm smooth_field() {
+  HeightFieldTerm f;
+  f.nx = f.ny = 256;
+  f.origin_m[0] = f.origin_m[1] = -0.0128;
+  f.spacing_m[0] = f.spacing_m[1] = 1e-4;
+  for (std::uint32_t y = 0; y < f.ny; ++y)
+    for (std::uint32_t x = 0; x < f.nx; ++x) {
+      f.force_x_N.push_back(static_cast<float>(1.9 * std::sin(0.05 * x) * std::cos(0.031 * y)));
+      f.force_y_N.push_back(static_cast<float>(-2.1 * std::cos(0.05 * x) * std::sin(0.031 * y) + 1e-5 * x));
+    }
+  return f;
+}
+
+TEST(PatchFormat, CompactGridsKeepEveryForceWithinATenthOfAPercentInHalfTheBytes) {
+  const auto program = program_of({smooth_field()});
+  CompactReport report;
+  const auto full = serialize(program);
+  const auto compact = serialize(program, {.compact_grids = true}, &report);
+  EXPECT_EQ(report.compacted, 1u);
+  EXPECT_EQ(report.kept, 0u);
+  EXPECT_GT(report.largest_error, 0.0);  // binary16 is not exact for these values
+  EXPECT_LE(report.largest_error, kCompactTolerance);
+  EXPECT_LT(compact.size(), full.size() * 52 / 100);
+  const auto back = deserialize(compact);
+  const auto& a = std::get<HeightFieldTerm>(program.terms[0]);
+  const auto& b = std::get<HeightFieldTerm>(back.terms[0]);
+  ASSERT_EQ(b.force_x_N.size(), a.force_x_N.size());
+  double peak = 0, worst = 0;
+  for (std::size_t i = 0; i < a.force_x_N.size(); ++i)
+    peak = std::max({peak, std::abs(static_cast<double>(a.force_x_N[i])), std::abs(static_cast<double>(a.force_y_N[i]))});
+  for (std::size_t i = 0; i < a.force_x_N.size(); ++i)
+    worst = std::max({worst, std::abs(static_cast<double>(b.force_x_N[i]) - a.force_x_N[i]),
+                      std::abs(static_cast<double>(b.force_y_N[i]) - a.force_y_N[i])});
+  EXPECT_LE(worst / peak, 1e-3);
+  EXPECT_DOUBLE_EQ(worst / peak, report.largest_error);
+}
+
+TEST(PatchFormat, AGridThatHalvesCannotHoldStaysFloat32) {
+  auto field = smooth_field();
+  field.force_x_N[0] = 1e6f;  // beyond binary16's largest finite value (65504)
+  const auto program = program_of({field});
+  CompactReport report;
+  const auto bytes = serialize(program, {.compact_grids = true}, &report);
+  EXPECT_EQ(report.compacted, 0u);
+  EXPECT_EQ(report.kept, 1u);
+  EXPECT_EQ(bytes, serialize(program));  // exactly the float32 encoding
+}
+
+TEST(PatchFormat, FilesAreReadInPlaceAndCheckedWhole) {
+  const auto program = program_of({smooth_field(), sample_grating()});
+  const auto dir = std::filesystem::temp_directory_path() / ("patch_read_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "p.patch";
+  write_patch_file(file, program);
+  const auto bytes = serialize(program);
+  {
+    std::ifstream in(file, std::ios::binary);
+    const std::vector<unsigned char> on_disk((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(on_disk, bytes);  // the segmented writer writes what serialize makes
+  }
+  const auto back = read_patch_file(file);
+  ASSERT_EQ(back.terms.size(), 2u);
+  EXPECT_TRUE(same(back.terms[0], program.terms[0]));
+  // One flipped byte inside a grid: the checksum, summed while reading, refuses the file.
+  auto corrupt = bytes;
+  corrupt[bytes.size() / 2] ^= 0x40;
+  std::ofstream(dir / "bad.patch", std::ios::binary).write(reinterpret_cast<const char*>(corrupt.data()),
+                                                            static_cast<std::streamsize>(corrupt.size()));
+  try {
+    read_patch_file(dir / "bad.patch");
+    ADD_FAILURE() << "a corrupted file was read";
+  } catch (const PatchFormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("checksum"), std::string::npos) << e.what();
+  }
+  // Truncated: refused by its size before any array is allocated.
+  std::ofstream(dir / "short.patch", std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), 1000);
+  EXPECT_THROW(read_patch_file(dir / "short.patch"), PatchFormatError);
+  // A FIFO would block the reader: refused before it is opened.
+  ASSERT_EQ(::mkfifo((dir / "fifo.patch").c_str(), 0600), 0);
+  EXPECT_THROW(read_patch_file(dir / "fifo.patch"), PatchFormatError);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ struct CommonOptions {
   std::string library_dir;
   std::string calibration_dir;
   bool json = false;
+  bool compact = false;    // compile: height-field grids as binary16 where forces stay within 0.1 %
 };
 
 // What a material or patch input turned into. For .patch inputs `compile` is empty.
@@ -43,6 +44,10 @@ using compiler::diagnostics_json;  // compiler/compile_json.hpp
 runtime::DeviceLimits limits_of(const compiler::Compiler& c);
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain);
+// `sandpaper compile A.hmat B.hmat FOLDER/ -o OUT/`: every material (a folder's .hmat files, found
+// recursively, keep their place below it) compiled in this one process into OUT. Exit 1 if any
+// failed (those write nothing), 2 for unusable arguments (nothing is compiled).
+int cmd_compile_batch(const CommonOptions& o, const std::vector<std::string>& inputs, const std::string& out_dir);
 struct PlayRequest;  // tools/player/play_patch.hpp
 int cmd_run(const CommonOptions& o, PlayRequest r, bool watch = false);
 // Replaces this process with `sandpaper-play` (beside this executable) given argv[2..] (what

@@ -1,5 +1,8 @@
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "cli.hpp"
@@ -23,6 +26,17 @@ std::string command_units(const schema::PatchProgram& p) {
   return os.str();
 }
 
+// What --compact did, on stderr: nothing to say without height fields.
+std::string compact_note(const schema::CompactReport& r) {
+  if (r.compacted + r.kept == 0) return {};
+  std::ostringstream os;
+  os << "compact: " << r.compacted << " height-field grid pair(s) as 16-bit floats (largest error "
+     << r.largest_error * 100 << " % of the grid's largest force)";
+  if (r.kept) os << ", " << r.kept << " kept as 32-bit floats (16 bits would move a force by more than 0.1 %)";
+  os << "\n";
+  return os.str();
+}
+
 }  // namespace
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain) {
@@ -33,7 +47,9 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
   std::string out_path = output;
   if (!explain && out_path.empty() && o.expression.empty())
     out_path = std::filesystem::path(o.file).replace_extension(".patch").string();
-  if (!explain && !out_path.empty()) schema::write_patch_file(out_path, prog);
+  schema::CompactReport compacted;
+  if (!explain && !out_path.empty()) schema::write_patch_file(out_path, prog, {o.compact}, &compacted);
+  if (o.compact && !o.json) std::cerr << compact_note(compacted);
 
   if (o.json) {
     // One object with the studio's POST /api/compile (compiler/compile_json.hpp).
@@ -62,6 +78,75 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     std::cout << "\n";
   }
   return kExitOk;
+}
+
+// Many materials in one process: the library and calibration are read once, and each material costs
+// only its own compile (docs/performance.md, "Batch compile").
+int cmd_compile_batch(const CommonOptions& o, const std::vector<std::string>& inputs, const std::string& out_dir) {
+  if (out_dir.empty()) {
+    std::cerr << "sandpaper compile: several inputs (or a folder) need -o FOLDER for the patch programs\n";
+    return kExitUsage;
+  }
+  // (input file, output file): a folder's materials keep their place below it.
+  std::vector<std::pair<std::filesystem::path, std::filesystem::path>> jobs;
+  for (const auto& in : inputs) {
+    const std::filesystem::path path(in);
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+      std::vector<std::filesystem::path> found;
+      for (auto it = std::filesystem::recursive_directory_iterator(path, ec); !ec && it != std::filesystem::recursive_directory_iterator();
+           it.increment(ec))
+        if (it->is_regular_file() && it->path().extension() == ".hmat") found.push_back(it->path());
+      std::sort(found.begin(), found.end());
+      for (const auto& f : found)
+        jobs.emplace_back(f, std::filesystem::path(out_dir) / std::filesystem::relative(f, path).replace_extension(".patch"));
+    } else if (std::filesystem::is_regular_file(path, ec) && path.extension() == ".hmat") {
+      jobs.emplace_back(path, std::filesystem::path(out_dir) / path.filename().replace_extension(".patch"));
+    } else {
+      std::cerr << "sandpaper compile: " << in << " is neither a material file (.hmat) nor a folder\n";
+      return kExitUsage;
+    }
+  }
+  std::map<std::filesystem::path, std::filesystem::path> claimed;
+  for (const auto& [in, out] : jobs)
+    if (auto [it, fresh] = claimed.emplace(out, in); !fresh) {
+      std::cerr << "sandpaper compile: " << it->second.string() << " and " << in.string() << " would both write " << out.string()
+                << "; compile them into different folders\n";
+      return kExitUsage;
+    }
+  if (jobs.empty()) {
+    std::cerr << "sandpaper compile: no material files (.hmat) in " << inputs.front() << "\n";
+    return kExitUsage;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  auto c = make_compiler(o);
+  std::size_t failed = 0;
+  nlohmann::json results = nlohmann::json::array();
+  for (const auto& [in, out] : jobs) {
+    auto r = c.compile_file(in);
+    std::cerr << compiler::format_diagnostics(r.diagnostics);
+    if (r.ok()) {
+      std::filesystem::create_directories(out.parent_path());
+      schema::CompactReport compacted;
+      schema::write_patch_file(out, *r.program, {o.compact}, &compacted);  // written to a temporary file and renamed
+    } else {
+      ++failed;
+    }
+    if (o.json)
+      results.push_back({{"input", in.string()},
+                         {"output", r.ok() ? nlohmann::json(out.string()) : nlohmann::json(nullptr)},
+                         {"ok", r.ok()},
+                         {"diagnostics", diagnostics_json(r.diagnostics)}});
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (o.json)
+    std::cout << nlohmann::json{{"ok", failed == 0}, {"compiled", jobs.size() - failed}, {"failed", failed},
+                                {"seconds", seconds}, {"results", results}}.dump(2) << "\n";
+  else
+    std::cout << "compiled " << jobs.size() - failed << " of " << jobs.size() << " material(s) into " << out_dir << " in "
+              << std::round(seconds * 100) / 100 << " s" << (failed ? ", " + std::to_string(failed) + " with errors (nothing written for them)" : "")
+              << "\n";
+  return failed ? kExitBadInput : kExitOk;
 }
 
 int cmd_library(const CommonOptions& o) {

@@ -1,6 +1,7 @@
 // sandpaper: compile, explain, run and inspect haptic materials; write Sandpaper's array files.
 // `sandpaper --help` lists the commands; schema/LANGUAGE.md describes material files.
 #include <unistd.h>
+#include <filesystem>
 #include <iostream>
 #include <string_view>
 
@@ -38,9 +39,14 @@ int main(int argc, char** argv) {
   std::string output;
   bool tables = false;
 
-  auto* compile = app.add_subcommand("compile", "compile a material into a patch program");
-  add_common(compile, o, true);
-  compile->add_option("-o,--output", output, "patch program to write (default: the input with .patch)");
+  auto* compile = app.add_subcommand("compile", "compile a material into a patch program (or many: files and folders, -o FOLDER)");
+  std::vector<std::string> compile_inputs;
+  compile->add_option("file", compile_inputs, "material file (.hmat) or workspace (.hws); several files or folders compile in one process");
+  compile->add_option("-e,--expression", o.expression, "material as one line: statements separated by ';', or a library name");
+  add_common(compile, o, false);
+  compile->add_option("-o,--output", output, "patch program to write (default: the input with .patch); a folder for several inputs");
+  compile->add_flag("--compact", o.compact,
+                    "store height-field grids as 16-bit floats where every force stays within 0.1 % of the grid's largest (half the file)");
   auto* explain = app.add_subcommand("explain", "show how each layer of a material resolved, with units and sources");
   add_common(explain, o, true);
   auto* run = app.add_subcommand("run", "play a material or patch program on a device");
@@ -128,6 +134,15 @@ int main(int argc, char** argv) {
   };
   try {
     if (compile->parsed()) {
+      const bool batch = compile_inputs.size() > 1 || (compile_inputs.size() == 1 && std::filesystem::is_directory(compile_inputs[0]));
+      if (batch) {
+        if (!o.expression.empty()) {
+          std::cerr << "sandpaper compile: give files and folders, or -e '<expression>', not both\n";
+          return kExitUsage;
+        }
+        return cmd_compile_batch(o, compile_inputs, output);
+      }
+      if (compile_inputs.size() == 1) o.file = compile_inputs[0];
       if (!needs_input(compile)) return kExitUsage;
       return is_workspace_input(o) ? cmd_workspace_compile(o, output, false) : cmd_compile(o, output, false);
     }

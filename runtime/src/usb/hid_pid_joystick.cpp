@@ -199,9 +199,16 @@ void HidPidJoystick::open() {
   cf_block_ = need(ReportType::Output, pid::kSetConstantForceReport, pid::kEffectBlockIndex);
   need(ReportType::Output, pid::kSetEffectReport, pid::kEffectBlockIndex);
   need(ReportType::Output, pid::kSetEffectReport, pid::kEffectType);
+  // One constant-force effect per axis, each enabled on its own axis: a device whose effects cannot
+  // act on Y (the OpenFFBoard's 1-axis wheel descriptor) is not a 2-axis joystick.
+  need(ReportType::Output, pid::kSetEffectReport, kUsageX);
+  need(ReportType::Output, pid::kSetEffectReport, kUsageY);
   need(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
   need(ReportType::Output, pid::kEffectOperationReport, pid::kEffectOperation);
-  need(ReportType::Output, pid::kDeviceControlReport, pid::kDeviceControlReport);
+  if (!device_control_field(pid::kDcEnableActuators) || !device_control_field(pid::kDcDeviceReset))
+    fail_open(UsbStatus::Other, "the HID report descriptor has no Device Control report with Enable Actuators and Device Reset "
+                                "(an array in report " + usage_name(pid::kDeviceControlReport) + ", or bits in report " +
+                                usage_name(pid::kDeviceControlBitsReport) + "): not a HID PID force-feedback joystick the driver can play");
   need(ReportType::Feature, pid::kCreateNewEffectReport, pid::kEffectType);
   need(ReportType::Feature, pid::kBlockLoadReport, pid::kEffectBlockIndex);
   need(ReportType::Feature, pid::kBlockLoadReport, pid::kBlockLoadStatus);
@@ -238,17 +245,25 @@ void HidPidJoystick::open() {
   fail_open(UsbStatus::Timeout, "the device sent no position report while opening");
 }
 
+const HidField* HidPidJoystick::device_control_field(std::uint32_t command_usage) const {
+  // The array form: one field whose value selects the command.
+  if (const HidField* f = descriptor_.find(ReportType::Output, pid::kDeviceControlReport, pid::kDeviceControlReport))
+    return f->array_value(command_usage) ? f : nullptr;
+  // The bitmask form: a 1-bit variable per command, in report 0x95 (or, as some descriptors put it, 0x96).
+  for (std::uint32_t report_usage : {pid::kDeviceControlBitsReport, pid::kDeviceControlReport})
+    if (const HidField* f = descriptor_.find(ReportType::Output, report_usage, command_usage); f && f->variable) return f;
+  return nullptr;
+}
+
 void HidPidJoystick::device_control(std::uint32_t command_usage) {
-  const HidField& f = *descriptor_.find(ReportType::Output, pid::kDeviceControlReport, pid::kDeviceControlReport);
-  const auto value = f.array_value(command_usage);
-  if (!value) {
-    if (command_usage == pid::kDcEnableActuators || command_usage == pid::kDcDeviceReset)
-      fail_open(UsbStatus::Other, "the Device Control report lacks " + usage_name(command_usage));
-    return;  // optional commands of the shutdown
-  }
+  const HidField* field = device_control_field(command_usage);
+  if (!field) return;  // optional commands of the shutdown (open() checked the ones it needs)
+  const HidField& f = *field;
   Buffer b{};
   b[0] = f.report_id;
-  write_field(b, ids_, f, *value);
+  // Array: the command's value. Bits: this command's bit set, every other clear (the OpenFFBoard
+  // acts on each set bit in turn, HidFFB.cpp:205-224).
+  write_field(b, ids_, f, f.variable ? 1 : *f.array_value(command_usage));
   const UsbStatus s = transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, f.report_id)));
   if (s != UsbStatus::Ok && !closed_) fail_open(s, std::string("Device Control failed: ") + to_string(s));
 }
@@ -305,7 +320,15 @@ void HidPidJoystick::create_effect(int axis) {
       if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, zero)) write_field(b, ids_, *f, 0);
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageX)) write_field(b, ids_, *f, axis == 0);
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageY)) write_field(b, ids_, *f, axis == 1);
-    // Direction ordinals stay 0: with Direction Enable clear, Axes Enable picks the axis.
+    // Direction Enable clear: Axes Enable picks the axis, and the OpenFFBoard scales the enabled axis
+    // linearly by its direction ordinal, X by (dir - 18000) / 18000 and Y by -(dir - 18000) / 18000
+    // (HidFFB.cpp:316-317, directions 0..36000). The X effect's ordinal 1 at its logical maximum
+    // (360 degrees) and the Y effect's ordinal 2 at 0 give both axes the factor +1, so a positive
+    // magnitude means the same sense on both. (All ordinals 0, as before, gave X -1 and Y +1.) For
+    // a device that reads the ordinals as an angle, 360 and 0 degrees are the same direction.
+    // The ordinals also name Type Specific Block Offset fields: only those under Direction count.
+    for (const HidField* f : descriptor_.find_all(ReportType::Output, pid::kSetEffectReport, usage(kOrdinalPage, 1)))
+      if (f->parent_usage == pid::kDirection) write_field(b, ids_, *f, axis == 0 ? f->logical_max : 0);
     const UsbStatus s = transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
     if (s != UsbStatus::Ok) fail_open(s, std::string("Set Effect failed: ") + to_string(s));
   }

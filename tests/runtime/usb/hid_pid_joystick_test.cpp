@@ -40,9 +40,11 @@ void expect_steps(const std::vector<Step>& got, const std::vector<Step>& want) {
 }
 
 // Set Effect (report 1): block, type 1 (Constant Force), duration 0xFFFF (infinite), trigger repeat,
-// sample period and start delay 0, gain 255, trigger button 0 (none), axes enable, direction 0.
+// sample period and start delay 0, gain 255, trigger button 0 (none), axes enable, direction
+// ordinals: the X effect's ordinal 1 at 36000 (0x8CA0), everything else 0.
 Bytes set_effect(std::uint8_t block, std::uint8_t axes) {
-  return {0x01, block, 0x01, 0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0xFF, 0x00, axes, 0, 0, 0, 0};
+  const std::uint8_t lo = axes == 0x01 ? 0xA0 : 0, hi = axes == 0x01 ? 0x8C : 0;
+  return {0x01, block, 0x01, 0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0xFF, 0x00, axes, lo, hi, 0, 0};
 }
 
 const std::vector<Step> kOpen = {

@@ -48,7 +48,11 @@ inline constexpr std::uint32_t kBlockLoadSuccess = usage(kPidPage, 0x8C);
 inline constexpr std::uint32_t kBlockLoadFull = usage(kPidPage, 0x8D);
 inline constexpr std::uint32_t kBlockLoadError = usage(kPidPage, 0x8E);
 inline constexpr std::uint32_t kBlockFreeReport = usage(kPidPage, 0x90);
+// "PID Device Control" (0x96): the report collection when Device Control is one array field (the
+// SideWinder Force Feedback 2); "PID Device Control Report" (0x95): the report collection around
+// one 1-bit variable per command, read as a bitmask (the OpenFFBoard). The driver speaks both.
 inline constexpr std::uint32_t kDeviceControlReport = usage(kPidPage, 0x96);
+inline constexpr std::uint32_t kDeviceControlBitsReport = usage(kPidPage, 0x95);
 inline constexpr std::uint32_t kDcEnableActuators = usage(kPidPage, 0x97);
 inline constexpr std::uint32_t kDcDisableActuators = usage(kPidPage, 0x98);
 inline constexpr std::uint32_t kDcStopAllEffects = usage(kPidPage, 0x99);

@@ -99,6 +99,8 @@ class HidPidJoystick final : public Device {
   std::int32_t command_of(int axis, double force_N) const noexcept;
   void set_fault(DeviceFault fault, UsbStatus status) noexcept;
   void device_control(std::uint32_t command_usage);
+  // The field that carries Device Control's `command_usage` (array or bit form), or nullptr.
+  const HidField* device_control_field(std::uint32_t command_usage) const;
   void create_effect(int axis);
   std::span<const std::uint8_t> report(const Buffer& b, std::size_t bytes) const { return {b.data(), bytes}; }
   bool send_constant_force(int axis, std::int32_t magnitude) noexcept;
