@@ -2,7 +2,7 @@
 // clock (SCHED_FIFO when permitted): period p50/p99/p99.9/max and overruns over a long run.
 // Printed (and written as JSON with --json-out), never asserted: this machine is shared and noisy.
 //   sandpaper_bench_loop --rate 10000 --duration 60 [--material corduroy] [--spin-margin-us 20]
-//                        [--cpu N] [--guard-periods 50] [--json-out FILE]
+//                        [--cpu N] [--guard-periods 0] [--json-out FILE]
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   double spin_margin_us = defaults.spin_margin_s * 1e6, guard_periods = defaults.deadline_guard_periods;
   int cpu = -1;
   app.add_option("--spin-margin-us", spin_margin_us, "sleep to this long before each deadline, then spin, us")->capture_default_str();
-  app.add_option("--guard-periods", guard_periods, "deadline guard, periods")->capture_default_str();
+  app.add_option("--guard-periods", guard_periods, "deadline guard, periods (0: 50 ms)")->capture_default_str();
   app.add_option("--cpu", cpu, "pin the servo thread to this CPU (-1: not pinned)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 

@@ -78,6 +78,10 @@ std::uint64_t tick_count(const ServoConfig& config) {
 
 }  // namespace
 
+double deadline_guard_s(const ServoConfig& config) noexcept {
+  return config.deadline_guard_periods > 0 ? config.deadline_guard_periods / config.rate_hz : kDefaultDeadlineGuardS;
+}
+
 const char* stop_cause_name(StopCause cause) noexcept {
   switch (cause) {
     case StopCause::Completed: return "completed";
@@ -131,8 +135,8 @@ void validate_config(const ServoConfig& config, const DeviceLimits& limits) {
     throw std::invalid_argument("force ramp must be a finite, non-negative time in seconds");
   if (!(config.velocity_limit_m_s > 0))
     throw std::invalid_argument("velocity limit must be a positive speed in m/s");
-  if (!(config.deadline_guard_periods > 0) || !std::isfinite(config.deadline_guard_periods))
-    throw std::invalid_argument("deadline guard must be a positive, finite number of servo periods");
+  if (!(config.deadline_guard_periods >= 0) || !std::isfinite(config.deadline_guard_periods))
+    throw std::invalid_argument("deadline guard must be a finite number of servo periods, 0 for 50 ms");
   if (!(config.spin_margin_s >= 0) || config.spin_margin_s > 1.0 / rate)
     throw std::invalid_argument("spin margin must be between 0 and one servo period (" +
                                 std::to_string(1e6 / rate) + " us at " + hz(rate) + ")");
@@ -170,7 +174,7 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
   std::uint64_t played = 0;
   std::int64_t first_start = 0, previous_start = 0;
   const double velocity_limit_sq = config.velocity_limit_m_s * config.velocity_limit_m_s;
-  const double max_late_ns = config.deadline_guard_periods * period_ns;
+  const double max_late_ns = deadline_guard_s(config) * kNsPerS;
 
   const std::int64_t start = clock.now_ns();
   for (std::uint64_t k = 0; k < ticks && stop == StopCause::Completed; ++k) {

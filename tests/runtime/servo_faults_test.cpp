@@ -87,8 +87,13 @@ TEST(ValidateConfig, SpinMarginGuardAndCpu) {
   c.spin_margin_s = -1e-6;
   EXPECT_THROW(validate_config(c, sim), std::invalid_argument);
   c = config(1000, 1.0);
-  c.deadline_guard_periods = 0;
+  c.deadline_guard_periods = -1;
   EXPECT_NE(rejection(c, sim).find("deadline guard"), std::string::npos);
+  c.deadline_guard_periods = 0;  // 0: the default, 50 ms
+  EXPECT_NO_THROW(validate_config(c, sim));
+  EXPECT_DOUBLE_EQ(deadline_guard_s(c), 0.05);
+  c.deadline_guard_periods = 20;
+  EXPECT_DOUBLE_EQ(deadline_guard_s(c), 0.02);
   c = config(1000, 1.0);
   c.cpu = 1023;  // no machine this runs on has it, and this process may not run there
   EXPECT_NE(rejection(c, sim).find("CPU 1023"), std::string::npos);

@@ -73,7 +73,7 @@ void add_play_options(CLI::App* run, PlayRequest& r) {
                   "wake this long before each tick's deadline and spin to it, us (0: sleep only; docs/performance.md)")
       ->capture_default_str();
   run->add_option("--deadline-guard", r.deadline_guard_periods,
-                  "stop (deadline_missed) when a tick starts this many servo periods late")
+                  "stop (deadline_missed) when a tick starts this many servo periods late (0: 50 ms)")
       ->capture_default_str();
   run->add_option("--cpu", r.cpu, "pin the servo thread to this CPU (docs/RUNTIME.md: an isolated core)");
   add_run_device_options(run, r.device);
@@ -195,7 +195,7 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
                      {"realtime_scheduling", rep.realtime_scheduling},
                      {"memory_locked", rep.memory_locked},
                      {"servo", {{"spin_margin_us", rep.spin_margin_us},
-                                {"deadline_guard_periods", cfg.deadline_guard_periods},
+                                {"deadline_guard_ms", runtime::deadline_guard_s(cfg) * 1e3},
                                 {"cpu", rep.cpu >= 0 ? nlohmann::json(rep.cpu) : nlohmann::json(nullptr)}}},
                      {"clock", r.virtual_clock ? "virtual" : "monotonic"},
                      {"player", player_name()},

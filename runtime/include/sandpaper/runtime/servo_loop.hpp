@@ -22,9 +22,12 @@ struct ServoConfig {
   // Safety (docs/RUNTIME.md, "Stop causes").
   double ramp_s = 0.05;             // the force is scaled by t / ramp_s over the first ramp_s (0: no ramp)
   double velocity_limit_m_s = 2.0;  // filtered hand speed above this stops the loop (VelocityLimit)
-  // A tick starting more than this many periods after its deadline stops the loop (DeadlineMissed):
-  // 50 periods is 50 ms at 1 kHz, 5 ms at 10 kHz (docs/performance.md, "Punctual ticks", measured).
-  double deadline_guard_periods = 50.0;
+  // A tick starting more than this many periods after its deadline stops the loop (DeadlineMissed).
+  // 0: 50 ms at the run's rate (50 periods at 1 kHz, 500 at 10 kHz). Measured (docs/performance.md,
+  // "Punctual ticks"): this VM stalls for up to 26 ms at any rate, so a fixed 50 periods stopped
+  // every 10 kHz run within 4 s, while 50 ms passed every run and still ends one whose handle held
+  // a stale force for 50 ms.
+  double deadline_guard_periods = 0.0;
   // The real clock sleeps to this long before each deadline, then spins to it: the kernel's wake-up
   // latency (tens of us on a VM) lands inside the margin instead of making the tick late. 0: sleep only.
   // Measured in docs/performance.md; the price is a core busy for the margin of every period.
@@ -50,7 +53,7 @@ enum class StopCause {
   DeviceReadTimeout,  // "device_read_timeout"
   DeviceUnplugged,    // "device_unplugged"
   DeviceWriteFailed,  // "device_write_failed"
-  DeadlineMissed,     // "deadline_missed": a tick started more than deadline_guard_periods after its deadline
+  DeadlineMissed,     // "deadline_missed": a tick started more than the deadline guard after its deadline
   VelocityLimit,      // "velocity_limit": filtered hand speed above velocity_limit_m_s
   StopRequested,      // "stop_requested": stop_request was set (Ctrl-C, SIGTERM)
 };
@@ -85,11 +88,15 @@ struct ServoReport {
 
 // A gap between tick starts longer than this many periods is reported as a stall.
 inline constexpr double kStallPeriods = 5.0;
+// The deadline guard when ServoConfig::deadline_guard_periods is 0.
+inline constexpr double kDefaultDeadlineGuardS = 0.05;
+// The guard of `config`, in seconds.
+double deadline_guard_s(const ServoConfig& config) noexcept;
 
 // Throws std::invalid_argument for a rate outside 900 Hz - 10 kHz or outside the device's limits,
 // a negative or non-finite duration, a run shorter than one tick, a run until stopped without a
 // stop_request, a non-positive velocity filter cutoff, a negative or non-finite ramp, a
-// non-positive velocity limit or deadline guard, a spin margin outside 0 .. one period, or a CPU
+// non-positive velocity limit, a negative deadline guard, a spin margin outside 0 .. one period, or a CPU
 // this process may not run on.
 void validate_config(const ServoConfig& config, const DeviceLimits& limits);
 
