@@ -671,6 +671,8 @@ PatchProgram read_patch_file(const std::filesystem::path& path) {
 }
 
 bool looks_like_patch_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;  // a FIFO would block the open
   std::ifstream in(path, std::ios::binary);
   char m[8] = {};
   in.read(m, 8);

@@ -29,6 +29,19 @@ grep -q '"stop_cause": "completed"' "$tmp/run.json" && ok || bad "run did not co
 # A material (not a compiled patch) is still compiled and played by sandpaper itself.
 "$sp" run -e 'roughness 0.6; grating period 2.5 mm' --duration 0.2 --json >"$tmp/run2.json" 2>/dev/null || bad "run -e"
 grep -q '"player": "sandpaper"' "$tmp/run2.json" && ok || bad "run -e should play in-process"
+# A workspace program (.wsp) plays in the player exactly as the workspace compiled in-process does
+# (virtual clock: deterministic, so the two reports must agree in every number).
+"$sp" compile "$src/examples/workspace/sampler.hws" -o "$tmp/s.wsp" >/dev/null 2>"$tmp/err" || bad "compile -o .wsp: $(cat "$tmp/err")"
+"$sp" run "$tmp/s.wsp" --virtual-clock --json >"$tmp/wsp.json" 2>"$tmp/err" || bad "run .wsp: $(tail -2 "$tmp/err")"
+"$sp" run "$src/examples/workspace/sampler.hws" --virtual-clock --json >"$tmp/hws.json" 2>/dev/null || bad "run .hws"
+python3 - "$tmp/wsp.json" "$tmp/hws.json" <<'PY' && ok || bad "the .wsp run differs from the .hws run"
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:])
+assert a.pop("player") == "sandpaper-play", "the .wsp was not played by sandpaper-play"
+assert b.pop("player") == "sandpaper"
+assert a["touched_patches"] > 1, a["touched_patches"]
+assert a == b, {k: (a.get(k), b.get(k)) for k in set(a) | set(b) if a.get(k) != b.get(k)}
+PY
 # The player refuses what it cannot play, with the way out.
 "$play" "$src/examples/corduroy.hmat" >/dev/null 2>"$tmp/err"; rc=$?
 [ "$rc" -eq 2 ] && ok || bad "sandpaper-play of a .hmat: exit $rc, wanted 2"

@@ -20,6 +20,7 @@
 #include "runtime_test_support.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/patch_json.hpp"
+#include "sandpaper/schema/workspace_io.hpp"
 #include "term_samples.hpp"
 
 namespace sandpaper::runtime {
@@ -312,6 +313,41 @@ TEST(PatchFormat, FilesAreReadInPlaceAndCheckedWhole) {
   // A FIFO would block the reader: refused before it is opened.
   ASSERT_EQ(::mkfifo((dir / "fifo.patch").c_str(), 0600), 0);
   EXPECT_THROW(read_patch_file(dir / "fifo.patch"), PatchFormatError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(WorkspaceFormat, ProgramsRoundTripWithEveryPatchAndRefuseCorruption) {
+  WorkspaceProgram ws;
+  ws.name = "two patches";
+  ws.size_m[0] = 0.2;
+  ws.size_m[1] = 0.1;
+  const double c1[2] = {-0.03, 0.01}, s1[2] = {0.04, 0.02}, c2[2] = {0.02, -0.01}, s2[2] = {0.05, 0.05};
+  ws.patches.push_back(place_patch(program_of({smooth_field()}), c1, s1, "images/x.png"));
+  ws.patches.push_back(place_patch(program_of({sample_grating(), spring(50.0)}), c2, s2, "corduroy"));
+  const auto dir = std::filesystem::temp_directory_path() / ("wsp_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_workspace_program_file(dir / "w.wsp", ws);
+  EXPECT_TRUE(looks_like_workspace_program_file(dir / "w.wsp"));
+  EXPECT_FALSE(looks_like_patch_file(dir / "w.wsp"));
+  const auto back = read_workspace_program_file(dir / "w.wsp");
+  EXPECT_EQ(back.name, ws.name);
+  EXPECT_EQ(back.size_m[0], 0.2);
+  ASSERT_EQ(back.patches.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(back.patches[i].source, ws.patches[i].source);
+    EXPECT_EQ(back.patches[i].centre_m[0], ws.patches[i].centre_m[0]);
+    EXPECT_EQ(back.patches[i].size_m[1], ws.patches[i].size_m[1]);
+    EXPECT_EQ(serialize(back.patches[i].program), serialize(ws.patches[i].program));
+  }
+  // A flipped byte anywhere in the payload is refused by the checksum.
+  std::ifstream in(dir / "w.wsp", std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  bytes[bytes.size() - 40] ^= 0x01;
+  std::ofstream(dir / "bad.wsp", std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  EXPECT_THROW(read_workspace_program_file(dir / "bad.wsp"), PatchFormatError);
+  bytes.resize(100);
+  std::ofstream(dir / "short.wsp", std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  EXPECT_THROW(read_workspace_program_file(dir / "short.wsp"), PatchFormatError);
   std::filesystem::remove_all(dir);
 }
 

@@ -12,8 +12,10 @@
 #include "exit_codes.hpp"
 #include "play.hpp"
 #include "play_patch.hpp"
+#include "play_workspace.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
+#include "sandpaper/schema/workspace_io.hpp"
 #include "usb_devices.hpp"
 
 namespace {
@@ -31,13 +33,33 @@ runtime::DeviceLimits limits_of(const calibration::DeviceCalibration& dev) {
 }
 
 int play_file(const std::string& file, const std::string& device, const std::string& calibration_dir,
-              cli::PlayRequest& r) {
+              cli::PlayRequest& r, const CLI::App& app, double crossfade_ms) {
   const auto set_dir = calibration_dir.empty() ? calibration::default_calibration_dir() : std::filesystem::path(calibration_dir);
   auto set = calibration::CalibrationSet::load(set_dir);
-  if (!schema::looks_like_patch_file(file)) {
+  const bool workspace = schema::looks_like_workspace_program_file(file);
+  if (!workspace && !schema::looks_like_patch_file(file)) {
     std::cerr << "sandpaper-play: error: " << file
-              << " is not a patch program; compile it first (sandpaper compile FILE -o FILE.patch) or play it with sandpaper run\n";
+              << " is not a patch or workspace program; compile it first (sandpaper compile FILE -o FILE.patch, or "
+                 "ws.hws -o ws.wsp) or play it with sandpaper run\n";
     return cli::kExitUsage;
+  }
+  if (workspace) {
+    const calibration::DeviceCalibration* dev = set.find_device(device);
+    if (device != "sim" || dev == nullptr) {
+      std::cerr << "sandpaper: error: device '" << device << "' cannot be played yet; only --device sim runs workspaces\n";
+      return cli::kExitUsage;
+    }
+    const runtime::DeviceLimits limits = limits_of(*dev);
+    const cli::WorkspaceRunOptions ro = cli::workspace_options_of(r, app, crossfade_ms);
+    if (const int rc = cli::check_workspace_request(ro, limits); rc != cli::kExitOk) return rc;
+    const auto ws = schema::read_workspace_program_file(file);
+    for (const auto& p : ws.patches)
+      if (p.program.device != device) {
+        std::cerr << "sandpaper: error: " << file << " was compiled for device '" << p.program.device << "', not '" << device
+                  << "'; recompile it with --device " << device << "\n";
+        return cli::kExitUsage;
+      }
+    return cli::play_workspace_on_sim(ws, limits, ro);
   }
   if (device == "usb") {
     std::vector<cli::Found> found;
@@ -82,17 +104,18 @@ int main(int argc, char** argv) {
   sigaddset(&stops, SIGTERM);
   sigprocmask(SIG_UNBLOCK, &stops, nullptr);
 
-  CLI::App app{"sandpaper-play: play a compiled patch program (.patch) on the simulated joystick or a USB HID PID joystick.\n"
+  CLI::App app{"sandpaper-play: play a compiled patch program (.patch) on the simulated joystick or a USB HID PID joystick,\n"
+               "or a compiled workspace program (.wsp) on the simulated joystick.\n"
                "The runtime only: compile materials with `sandpaper compile`; `sandpaper run FILE.patch` runs this."};
   std::string file, device = "sim", calibration_dir, library_dir;
   cli::PlayRequest r;
   double crossfade_ms = 2;
-  app.add_option("file", file, "patch program to play (.patch)")->required();
+  app.add_option("file", file, "patch program (.patch) or workspace program (.wsp) to play")->required();
   app.add_option("--device", device, "device the patch was compiled for (sim), or usb: the first HID PID joystick found")
       ->capture_default_str();
   app.add_option("--calibration", calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
   app.add_option("--library", library_dir, "accepted as `sandpaper run` does; a compiled patch needs no library");
-  app.add_option("--crossfade", crossfade_ms, "accepted as `sandpaper run` does; workspaces only");
+  app.add_option("--crossfade", crossfade_ms, "workspaces: crossfade time at patch edges, ms")->capture_default_str();
   app.add_flag("--json", r.json, "print one JSON object instead of text");
   cli::add_play_options(&app, r);
   try {
@@ -103,7 +126,7 @@ int main(int argc, char** argv) {
   }
   r.live = r.live || isatty(STDERR_FILENO);
   try {
-    return play_file(file, device, calibration_dir, r);
+    return play_file(file, device, calibration_dir, r, app, crossfade_ms);
   } catch (const schema::PatchFormatError& e) {
     std::cerr << "sandpaper: error: " << e.what() << "\n";
     return cli::kExitBadInput;

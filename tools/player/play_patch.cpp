@@ -51,14 +51,13 @@ std::string stalls_text(const runtime::ServoReport& rep) {
                      runtime::kStallPeriods, rep.longest_stall_us);
 }
 
-// Which executable played: sandpaper-play (the runtime alone) or sandpaper (compiled in-process).
+}  // namespace
+
 std::string player_name() {
   std::error_code ec;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::string("unknown") : self.filename().string();
 }
-
-}  // namespace
 
 void add_play_options(CLI::App* run, PlayRequest& r) {
   run->add_option("--rate", r.rate_hz, "servo rate, Hz (900 to 10000)")->capture_default_str();

@@ -32,6 +32,9 @@ struct PlayRequest {
 // device options, --spin-margin, --deadline-guard, --cpu). The same for `sandpaper run` and `sandpaper-play`.
 void add_play_options(CLI::App* run, PlayRequest& r);
 
+// Which executable is playing: "sandpaper-play" (the runtime alone) or "sandpaper" (compiled in-process).
+std::string player_name();
+
 // The servo settings of a request.
 runtime::ServoConfig servo_config_of(const PlayRequest& r);
 

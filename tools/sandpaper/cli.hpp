@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "exit_codes.hpp"
+#include "play_workspace.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/runtime/device.hpp"
@@ -70,20 +71,7 @@ struct StudioOptions {
 };
 int cmd_studio(const CommonOptions& o, const StudioOptions& so);
 
-// Workspaces (.hws, thesis Appendix B). Options left unset take workspace defaults: a scan through
-// the centre in the direction that crosses the most patches, out to the furthest, for one lap.
-struct WorkspaceRunOptions {
-  double rate_hz = 1000;
-  std::optional<double> duration_s;
-  std::optional<std::string> hand;
-  double speed_mm_s = 50;
-  std::optional<double> amplitude_mm;
-  std::string trace;
-  bool virtual_clock = false;
-  double crossfade_ms = 2;
-  bool live = false;  // live servo figures on stderr once a second
-  runtime::ServoConfig servo;  // spin margin, deadline guard, CPU (rate and duration are set from the above)
-};
+// Workspaces (.hws, thesis Appendix B): WorkspaceRunOptions and the playing are in tools/player/play_workspace.hpp.
 // True when the input is a workspace file rather than a material.
 inline bool is_workspace_input(const CommonOptions& o) {
   return o.expression.empty() && std::filesystem::path(o.file).extension() == ".hws";

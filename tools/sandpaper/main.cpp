@@ -13,6 +13,7 @@
 #include "play_patch.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
+#include "sandpaper/schema/workspace_io.hpp"
 
 namespace {
 
@@ -157,23 +158,15 @@ int main(int argc, char** argv) {
           std::cerr << "sandpaper run: --hand-model and --replay play single materials; workspaces use the scripted hand\n";
           return kExitUsage;
         }
-        WorkspaceRunOptions ro;
-        ro.rate_hz = play_request.rate_hz;
-        if (run->count("--duration")) ro.duration_s = play_request.duration_s;
-        if (run->count("--hand")) ro.hand = play_request.hand;
-        ro.speed_mm_s = play_request.speed_mm_s;
-        if (run->count("--amplitude")) ro.amplitude_mm = play_request.amplitude_mm;
-        ro.trace = play_request.trace;
-        ro.virtual_clock = play_request.virtual_clock;
-        ro.crossfade_ms = crossfade_ms;
-        ro.live = play_request.live || isatty(STDERR_FILENO);
-        ro.servo = servo_config_of(play_request);
+        play_request.json = o.json;
+        WorkspaceRunOptions ro = workspace_options_of(play_request, *run, crossfade_ms);
+        ro.live = ro.live || isatty(STDERR_FILENO);
         return cmd_workspace_run(o, ro);
       }
       // A compiled program needs no compiler: the runtime-only player plays it in a process that
       // never maps the compiler's libraries (docs/performance.md, "A player that is only a runtime").
-      if (!watch && o.expression.empty() && sandpaper::schema::looks_like_patch_file(o.file) && argc > 1 &&
-          std::string_view(argv[1]) == "run")
+      if (!watch && o.expression.empty() && argc > 1 && std::string_view(argv[1]) == "run" &&
+          (sandpaper::schema::looks_like_patch_file(o.file) || sandpaper::schema::looks_like_workspace_program_file(o.file)))
         exec_player(argc, argv);
       if (watch && !run->count("--duration")) play_request.duration_s = 0;
       play_request.live = play_request.live || isatty(STDERR_FILENO);

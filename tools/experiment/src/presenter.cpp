@@ -15,9 +15,6 @@ namespace {
 
 using PatchSource = runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>;
 
-// The live loop runs for as long as the servo loop allows (10 million ticks: 2.8 h at 1 kHz); a
-// session longer than that is resumed.
-constexpr double kMaxTicks = 10'000'000;
 
 }  // namespace
 
@@ -56,7 +53,7 @@ LivePresenter::LivePresenter(std::unique_ptr<runtime::Device> device, std::strin
     : device_(std::move(device)), description_(std::move(description)), options_(options), source_(nullptr),
       ring_(1 << 16) {
   config_.rate_hz = options_.rate_hz;
-  config_.duration_s = (kMaxTicks - 1) / options_.rate_hz;
+  config_.duration_s = 0;  // until the session stops it
   config_.stop_request = &stop_;
   config_.telemetry = &ring_;
   thread_.start_nonrt(*device_, source_, config_);

@@ -12,9 +12,6 @@
 namespace sandpaper::studio {
 namespace {
 
-// The servo loop refuses runs longer than 10 million ticks (runtime/src/servo_loop.cpp); the studio
-// plays "until stopped" as the longest run, and starts another if one ever completes.
-constexpr double kMaxTicks = 10'000'000;
 // Ticks the ring holds between the supervisor's drains (every 10 ms): 0.65 s at 10 kHz.
 constexpr std::size_t kRingRecords = 1 << 13;
 
@@ -31,7 +28,8 @@ LiveLoop::LiveLoop(std::unique_ptr<runtime::Device> device, runtime::DummyJoysti
       ring_(kRingRecords) {
   runtime::ServoConfig probe;
   probe.rate_hz = options_.rate_hz;
-  probe.duration_s = (kMaxTicks - 1) / options_.rate_hz;
+  probe.duration_s = 0;  // until stopped, as the loop will run
+  probe.stop_request = &stop_request_;
   runtime::validate_config(probe, device_->limits());
 }
 
@@ -121,7 +119,7 @@ void LiveLoop::supervise() {
   while (!quitting_.load()) {
     runtime::ServoConfig cfg;
     cfg.rate_hz = options_.rate_hz;
-    cfg.duration_s = (kMaxTicks - 1) / options_.rate_hz;
+    cfg.duration_s = 0;  // until stopped (the loop's memory does not grow with its length)
     cfg.stop_request = &stop_request_;
     cfg.telemetry = &ring_;
     runtime::TelemetryReader reader(ring_, cfg.rate_hz);
