@@ -22,16 +22,6 @@ namespace {
 
 using namespace sandpaper;
 
-runtime::DeviceLimits limits_of(const calibration::DeviceCalibration& dev) {
-  runtime::DeviceLimits limits;
-  limits.name = dev.name;
-  limits.max_force_N = dev.max_force_N;
-  limits.min_rate_hz = dev.min_rate_hz;
-  limits.max_rate_hz = dev.max_rate_hz;
-  limits.workspace_radius_m = dev.workspace_radius_m;
-  return limits;
-}
-
 int play_file(const std::string& file, const std::string& device, const std::string& calibration_dir,
               cli::PlayRequest& r, const CLI::App& app, double crossfade_ms) {
   const auto set_dir = calibration_dir.empty() ? calibration::default_calibration_dir() : std::filesystem::path(calibration_dir);
@@ -49,7 +39,7 @@ int play_file(const std::string& file, const std::string& device, const std::str
       std::cerr << "sandpaper: error: device '" << device << "' cannot be played yet; only --device sim runs workspaces\n";
       return cli::kExitUsage;
     }
-    const runtime::DeviceLimits limits = limits_of(*dev);
+    const runtime::DeviceLimits limits = cli::limits_of(*dev);
     const cli::WorkspaceRunOptions ro = cli::workspace_options_of(r, app, crossfade_ms);
     if (const int rc = cli::check_workspace_request(ro, limits); rc != cli::kExitOk) return rc;
     const auto ws = schema::read_workspace_program_file(file);
@@ -79,7 +69,7 @@ int play_file(const std::string& file, const std::string& device, const std::str
     return cli::kExitUsage;
   }
   set.select_device(device);
-  const runtime::DeviceLimits limits = limits_of(*dev);
+  const runtime::DeviceLimits limits = cli::limits_of(*dev);
   if (const int rc = cli::check_play_request(r, limits); rc != cli::kExitOk) return rc;
   const auto program = schema::read_patch_file(file);  // PatchFormatError: exit 1, below
   // A compiled .patch keeps its warnings (e.g. W0320, a provisional map): show them as compiling would.

@@ -88,6 +88,29 @@ runtime::ServoConfig servo_config_of(const PlayRequest& r) {
   return cfg;
 }
 
+runtime::DeviceLimits limits_of(const calibration::DeviceCalibration& dev) {
+  runtime::DeviceLimits limits;
+  limits.name = dev.name;
+  limits.max_force_N = dev.max_force_N;
+  limits.min_rate_hz = dev.min_rate_hz;
+  limits.max_rate_hz = dev.max_rate_hz;
+  limits.workspace_radius_m = dev.workspace_radius_m;
+  return limits;
+}
+
+int check_trace_folder(const std::string& trace) {
+  if (trace.empty()) return kExitOk;
+  // Refuse an unwritable trace before playing, not after.
+  auto dir = std::filesystem::path(trace).parent_path();
+  if (dir.empty()) dir = ".";
+  if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
+    std::cerr << "sandpaper: error: cannot write the trace '" << trace << "': folder " << dir
+              << " does not exist or is not writable\n";
+    return kExitUsage;
+  }
+  return kExitOk;
+}
+
 int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits) {
   runtime::ServoConfig cfg = servo_config_of(r);
   std::atomic<bool> stop{false};
@@ -111,17 +134,7 @@ int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits
               << " mm workspace radius of device '" << limits.name << "'\n";
     return kExitUsage;
   }
-  if (!r.trace.empty()) {
-    // Refuse an unwritable trace before playing, not after.
-    auto dir = std::filesystem::path(r.trace).parent_path();
-    if (dir.empty()) dir = ".";
-    if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
-      std::cerr << "sandpaper: error: cannot write the trace '" << r.trace << "': folder " << dir
-                << " does not exist or is not writable\n";
-      return kExitUsage;
-    }
-  }
-  return kExitOk;
+  return check_trace_folder(r.trace);
 }
 
 int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& limits,

@@ -38,6 +38,12 @@ std::string player_name();
 // The servo settings of a request.
 runtime::ServoConfig servo_config_of(const PlayRequest& r);
 
+// The device limits (SI) a device calibration states.
+runtime::DeviceLimits limits_of(const calibration::DeviceCalibration& device);
+
+// 0 when `trace` is empty or its folder is writable; else kExitUsage after saying so.
+int check_trace_folder(const std::string& trace);
+
 // Checks what can be checked before loading the material (rate and servo settings for the device,
 // hand speed and amplitude, a writable trace folder): 0, or kExitUsage after printing why.
 int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits);

@@ -1,7 +1,5 @@
 #include "play_workspace.hpp"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -95,16 +93,7 @@ int check_workspace_request(const WorkspaceRunOptions& ro, const runtime::Device
     std::cerr << "sandpaper: error: --crossfade must be a time >= 0 ms\n";
     return kExitUsage;
   }
-  if (!ro.trace.empty()) {
-    auto dir = std::filesystem::path(ro.trace).parent_path();
-    if (dir.empty()) dir = ".";
-    if (!std::filesystem::is_directory(dir) || access(dir.c_str(), W_OK) != 0) {
-      std::cerr << "sandpaper: error: cannot write the trace '" << ro.trace << "': folder " << dir
-                << " does not exist or is not writable\n";
-      return kExitUsage;
-    }
-  }
-  return kExitOk;
+  return check_trace_folder(ro.trace);
 }
 
 int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::DeviceLimits& limits,

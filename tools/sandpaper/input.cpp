@@ -1,6 +1,7 @@
 #include <iostream>
 
 #include "cli.hpp"
+#include "play_patch.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
@@ -31,15 +32,6 @@ std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Co
   return in;
 }
 
-runtime::DeviceLimits limits_of(const compiler::Compiler& c) {
-  const auto& dev = c.device();
-  runtime::DeviceLimits limits;
-  limits.name = dev.name;
-  limits.max_force_N = dev.max_force_N;
-  limits.min_rate_hz = dev.min_rate_hz;
-  limits.max_rate_hz = dev.max_rate_hz;
-  limits.workspace_radius_m = dev.workspace_radius_m;
-  return limits;
-}
+runtime::DeviceLimits limits_of(const compiler::Compiler& c) { return limits_of(c.device()); }
 
 }  // namespace sandpaper::cli

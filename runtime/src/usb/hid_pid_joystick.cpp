@@ -81,9 +81,9 @@ std::array<std::int32_t, 2> HidPidJoystick::last_command() const noexcept {
 
 void HidPidJoystick::set_fault(DeviceFault fault, UsbStatus status) noexcept {
   // The first fault is the cause; later ones (the zero force failing after an unplug) are consequences.
-  fault_status_.store(status, std::memory_order_relaxed);
   DeviceFault none = DeviceFault::None;
-  if (!fault_.compare_exchange_strong(none, fault, std::memory_order_acq_rel)) return;
+  if (fault_.compare_exchange_strong(none, fault, std::memory_order_acq_rel))
+    fault_status_.store(status, std::memory_order_release);
 }
 
 void HidPidJoystick::start_io_thread() {

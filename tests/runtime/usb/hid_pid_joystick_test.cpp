@@ -265,12 +265,12 @@ TEST(HidPidJoystickIoThread, TheTickPublishesAndTheIoThreadSends) {
   t->watch_thread(std::this_thread::get_id());  // this thread plays the servo tick
   const std::size_t start = t->log().size();
   glm::dvec2 p{0, 0};
-  ASSERT_TRUE(joystick.flush_nonrt());  // the I/O thread has read past the queued report
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));  // the I/O thread has read past the queued report
   ASSERT_TRUE(joystick.read_position_rt(0.0, p));
   EXPECT_NEAR(p.x, 16384.0 / 32767.0 * 0.05, 1e-7);
   EXPECT_NEAR(p.y, -0.05, 1e-7);
   ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
-  ASSERT_TRUE(joystick.flush_nonrt());
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
   EXPECT_EQ(t->transfers_on_watched_thread(), 0u);  // the tick made no transfer itself
   // The same bytes as the synchronous driver sends for the same force.
   const auto got = steps(*t, start);
@@ -285,7 +285,7 @@ TEST(HidPidJoystickIoThread, ATransferThatNeverCompletesDoesNotHoldTheTick) {
   HidPidOptions options;
   options.stale_limit_s = 0.05;
   HidPidJoystick joystick(*t, testing::openffboard(), options);
-  ASSERT_TRUE(joystick.flush_nonrt());
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
   t->hang_outputs();  // the next Set Constant Force never completes (until released below)
   // The servo loop on its real-time thread, 10 s long: only the watchdog can end it early.
   ConstantForce source({1.0, 0.5});
@@ -327,8 +327,10 @@ TEST(HidPidJoystickIoThread, ATransferThatNeverCompletesDoesNotHoldTheTick) {
 
 TEST(HidPidJoystickIoThread, UnplugMidRunStopsTheLoopWithTheCauseNamed) {
   auto t = streaming_transport();
-  HidPidJoystick joystick(*t, testing::openffboard());
-  ASSERT_TRUE(joystick.flush_nonrt());
+  HidPidOptions options;
+  options.stale_limit_s = 5.0;  // a loaded machine may starve the I/O thread for a while: only the unplug may end this run
+  HidPidJoystick joystick(*t, testing::openffboard(), options);
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
   t->unplug_after_outputs(20);  // ten forces sent, then the device is gone
   ConstantForce source({0.5, 0.5});  // published every tick, so sent every I/O cycle
   ServoConfig c = config(10.0);
@@ -342,7 +344,7 @@ TEST(HidPidJoystickIoThread, UnplugMidRunStopsTheLoopWithTheCauseNamed) {
 TEST(HidPidJoystickIoThread, TicksNeitherAllocateNorLock) {
   auto t = streaming_transport();
   HidPidJoystick joystick(*t, testing::openffboard());
-  ASSERT_TRUE(joystick.flush_nonrt());
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
   glm::dvec2 p{0, 0};
   bool ok = true;
   sandpaper::test::RtViolations seen;
@@ -357,7 +359,7 @@ TEST(HidPidJoystickIoThread, TicksNeitherAllocateNorLock) {
   EXPECT_TRUE(ok);
   EXPECT_EQ(seen.allocations, 0u);
   EXPECT_EQ(seen.locks, 0u);
-  ASSERT_TRUE(joystick.flush_nonrt());
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
   EXPECT_EQ(joystick.last_command()[0], 999);  // the I/O thread sent the latest force
 }
 
