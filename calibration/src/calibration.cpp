@@ -181,6 +181,10 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
   d.usb_vendor_id = static_cast<int>(c["usb"]["vendor_id"].value_or(std::int64_t{-1}));
   d.usb_product_id = static_cast<int>(c["usb"]["product_id"].value_or(std::int64_t{-1}));
   d.roughness_map = c["maps"]["roughness"].value_or(std::string());
+  if (c["emulation"].is_table()) {
+    d.emulated = true;
+    d.hold_tables = c["emulation"]["tables"].value_or(std::string()) == "sample-and-hold";
+  }
   d.min_rate_hz = *c["servo_rate_hz"]["min"].value<double>();
   d.max_rate_hz = *c["servo_rate_hz"]["max"].value<double>();
   if (d.min_rate_hz > d.max_rate_hz)

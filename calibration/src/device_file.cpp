@@ -125,6 +125,7 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   copy_table(out, base, "position");
   copy_table(out, base, "workspace");
   copy_table(out, base, "usb");
+  copy_table(out, base, "emulation");
   copy_table(out, base, "servo_rate_hz");
   out += "\n[calibration]\nstatus = \"calibrated\"\n";
   std::string method = "least-squares line force = gain x command + offset fitted to force-gauge readings, per axis";

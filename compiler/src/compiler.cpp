@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "sandpaper/compiler/codegen.hpp"
+#include "sandpaper/compiler/felt_at_speed.hpp"
 #include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
@@ -25,8 +26,11 @@ CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Libra
   r.material = m;
   schema::PatchProgram program;
   if (!generate(m, cal, device, program, r.diagnostics)) return r;
+  warn_roughness_domain(m, cal, r.diagnostics);
   // What the thesis found about textures like this one (Ch. 4): needs the compiled force.
   warn_believability(m, program, cal, r.diagnostics);
+  // What a hand moving at a common speed feels of a grating at the device's servo rate (issue 15).
+  warn_felt_at_speed(m, program, cal, device, r.diagnostics);
   for (const auto& d : r.diagnostics.all())
     if (d.severity == Severity::Warning) program.warnings.push_back({d.code, d.location.str() + ": " + d.message});
   r.program = std::move(program);

@@ -1,8 +1,12 @@
 #include "sandpaper/compiler/explain.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <iomanip>
 #include <sstream>
 
+#include "sandpaper/compiler/felt_at_speed.hpp"
 #include "sandpaper/compiler/force_levels.hpp"
 #include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/compiler/percepts.hpp"
@@ -87,9 +91,47 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
        << " force table" << (levels.tables == 1 ? "" : "s") << "\n";
   os << "  patch                 " << p.size_m[0] * 1e3 << " mm x " << p.size_m[1] * 1e3 << " mm, " << p.terms.size()
      << " force term" << (p.terms.size() == 1 ? "" : "s") << "\n";
+  // The servo rate `run` plays this device at: 1000 Hz within the device's range.
+  const double rate = default_servo_rate_hz(device);
+  if (const auto felt = felt_at_explain_speeds(p, rate); !felt.empty()) {
+    os << "\nfelt at speed (grating: the mean peak a tick reads per ridge, over every phase; docs/TEXTURES.md)\n";
+    for (const auto& f : felt)
+      os << "  " << f.speed_m_s * 1e3 << " mm/s at " << std::lround(f.rate_hz) << " Hz  " << f.peak_N << " N  ("
+         << f.fraction * 100 << " % of the compiled peak), roughness " << map.percept_of(f.peak_N) << "\n";
+    // The remedies, measured, at the common hand speed that loses the most (W0350's).
+    const double weber = cal.knowledge().force_jnd.weber_fraction;
+    double worst_speed = 0, worst = 1;
+    for (const auto& f : felt_at_speed(p, kCommonHandSpeeds_m_s, {rate}))
+      if (f.fraction < 1 - weber && f.fraction < worst) worst = f.fraction, worst_speed = f.speed_m_s;
+    if (worst_speed > 0) {
+      const auto r = felt_remedies(m, p, worst_speed, rate, std::max(rate, device.max_rate_hz), weber);
+      os << "  remedies at " << worst_speed * 1e3 << " mm/s (more than one force JND lost at " << std::lround(rate) << " Hz):\n";
+      if (r.fast_rate_hz > 0)
+        os << "    servo at " << std::lround(r.fast_rate_hz) << " Hz: " << r.fast.peak_N << " N, roughness "
+           << map.percept_of(r.fast.peak_N) << "\n";
+      if (r.smoothing_m > 0)
+        os << "    smoothing " << r.smoothing_m * 1e3 << " mm on the grating: " << r.smoothed.peak_N << " N, roughness "
+           << map.percept_of(r.smoothed.peak_N) << "\n";
+    }
+  }
+  if (device.emulated && device.position_resolution_m > 0) {
+    const double step_N = device.quantized() ? device.force_step_N(0) : 0.0;
+    const auto tables = quantize_tables(p, device.position_resolution_m, step_N, device.command_max);
+    if (!tables.empty())
+      os << "\non " << device.name << " (positions in " << device.position_resolution_m * 1e3 << " mm steps, forces in "
+         << step_N * 1e3 << " mN command units up to " << device.command_max << ", tables sample-and-hold)\n";
+    for (const auto& q : tables)
+      os << "  " << q.kind << "  " << q.positions_per_spacing << " position samples per "
+         << (q.kind == "grating" ? "period" : "table sample") << " (" << q.spacing_m * 1e3 << " mm); "
+         << q.device_levels << " distinct force levels sent (of " << q.table_levels << " in the table), largest "
+         << q.largest_N << " N\n";
+  }
   if (auto k = knowledge_text(assess_knowledge(m, p, cal), cal); !k.empty())
     os << "\nknowledge (what Minsky 1995 found; calibration/knowledge/)\n" << k;
-  os << "\nmaps (" << map.percept << ": the map compiled through, and the comparisons beside it)\n" << maps_text(cal);
+  // The roughness maps relate a texture's peak lateral force to roughness; without a texture they
+  // say nothing about this material.
+  if (p.max_lateral_force_N > 0)
+    os << "\nmaps (" << map.percept << ": the map compiled through, and the comparisons beside it)\n" << maps_text(cal);
   if (!p.warnings.empty()) {
     os << "\nwarnings\n";
     for (const auto& w : p.warnings) os << "  " << w.code << " " << w.message << "\n";

@@ -141,7 +141,7 @@ std::vector<Parameter> material_parameters(const std::string& text, const calibr
                      if (s.value) c.plain(s.word, s.word, "perceptual", s.value_location, *s.value, 0, 1);
                    },
                    [&](const GratingStmt& s) {
-                     c.quantity("grating.period", "grating period", "physical", s.period, &period);
+                     opt(c, "grating", "period", s.period, &period);
                      opt(c, "grating", "hill", s.hill);
                      opt(c, "grating", "amplitude", s.amplitude);
                      opt(c, "grating", "orientation", s.orientation);

@@ -400,21 +400,23 @@ class Parser {
     throw StatementError{};
   }
 
-  // grating := 'grating' 'period' LENGTH ( 'hill' FRACTION | 'amplitude' FORCE | 'orientation' ANGLE
-  //                                       | 'smoothing' LENGTH )*
+  // grating := 'grating' ( 'period' LENGTH | 'hill' FRACTION | 'amplitude' FORCE | 'orientation' ANGLE
+  //                      | 'smoothing' LENGTH )+
+  // Every option may be left out (a file `like` a grating overrides it parameter by parameter), but
+  // not all of them; the resolver asks for the period when nothing is inherited.
   GratingStmt grating() {
     GratingStmt g;
-    if (!(peek().kind == TokenKind::Word && peek().text == "period")) {
+    g.location = toks_[pos_ - 1].location;
+    static const std::vector<std::string> opts{"period", "hill", "amplitude", "orientation", "smoothing"};
+    if (peek().kind != TokenKind::Word) {
       diags_.error("E0201", peek().location, std::string("expected `period`, found ") + describe(peek()),
                    "write grating period 2.5 mm [hill 50%] [amplitude 2 N] [orientation 0 deg]");
       throw StatementError{};
     }
-    next();
-    g.period = quantity(Dimension::Length, "the grating period");
-    static const std::vector<std::string> opts{"hill", "amplitude", "orientation", "smoothing"};
     while (peek().kind == TokenKind::Word) {
       const Token& o = next();
-      if (o.text == "hill") set_once(g.hill, o, Dimension::Fraction, "the hill fraction");
+      if (o.text == "period") set_once(g.period, o, Dimension::Length, "the grating period");
+      else if (o.text == "hill") set_once(g.hill, o, Dimension::Fraction, "the hill fraction");
       else if (o.text == "amplitude") set_once(g.amplitude, o, Dimension::Force, "the force amplitude");
       else if (o.text == "orientation") set_once(g.orientation, o, Dimension::Angle, "the grating orientation");
       else if (o.text == "smoothing") set_once(g.smoothing, o, Dimension::Length, "the smoothing");

@@ -111,6 +111,17 @@ std::vector<std::string> quantities_set(const Statement& st) {
       st.node);
 }
 
+// A statement other than `like` and the entry's own metadata (describes, family, alias, licence,
+// deprecated) changes the material it inherits.
+bool changes_what_it_inherits(const std::vector<const Statement*>& kept) {
+  for (const auto* st : kept)
+    if (!std::holds_alternative<LikeStmt>(st->node) && !std::holds_alternative<DescribesStmt>(st->node) &&
+        !std::holds_alternative<FamilyStmt>(st->node) && !std::holds_alternative<AliasStmt>(st->node) &&
+        !std::holds_alternative<LicenceStmt>(st->node) && !std::holds_alternative<DeprecatedStmt>(st->node))
+      return true;
+  return false;
+}
+
 class Resolver {
  public:
   Resolver(const MaterialSyntax& syn, ResolveContext& ctx, Diagnostics& diags) : syn_(syn), ctx_(ctx), diags_(diags) {}
@@ -146,6 +157,17 @@ class Resolver {
       else if (const auto* x = std::get_if<DeprecatedStmt>(&st->node)) m.deprecated_by = x->replacement;
     }
     if (!syn_.name.empty()) m.name = syn_.name;
+    else if (has_like && syn_.file && syn_.file->name.rfind('<', 0) == 0 && changes_what_it_inherits(kept)) {
+      // "playing corduroy" would say the library entry itself is playing: an unnamed inline description
+      // that changes what it inherits is named by what it says ("like corduroy; roughness 0.7"),
+      // or, when that is too long to read as a name, as the entry modified.
+      std::string t = syn_.file->text;
+      for (auto& c : t)
+        if (c == '\n' || c == '\t' || c == '\r') c = ' ';
+      t.erase(0, t.find_first_not_of(" ;"));
+      t.erase(t.find_last_not_of(" ;") + 1);
+      m.name = !t.empty() && t.size() <= 80 ? t : m.name + ", modified";
+    }
     for (const auto* st : kept)
       if (std::holds_alternative<ExtrapolateStmt>(st->node)) m.extrapolate = true;
     // Perceptual layer.
@@ -501,7 +523,14 @@ class Resolver {
   }
 
   void grating(const GratingStmt& g, const Statement& st, ResolvedMaterial& m) {
-    bool ok = positive(g.period, "grating period");
+    const auto* base = std::get_if<ResolvedGrating>(&m.texture);
+    if (!g.period && !base) {
+      diags_.error("E0201", g.location, "this grating has no period, and the file inherits no grating to take it from",
+                   "give it one: grating period 2.5 mm" + std::string(g.hill ? " " + g.hill->text() : std::string()) +
+                       ", or start from a grating with `like corduroy`");
+      return;
+    }
+    bool ok = !g.period || positive(*g.period, "grating period");
     if (g.hill && !(g.hill->si > 0 && g.hill->si < 1)) {
       diags_.error("E0304", g.hill->location, "hill " + g.hill->text() + " is outside 0-100 %",
                    "the hill is the fraction of each period that is raised: use a value between 0% and 100%, e.g. 50%");
@@ -512,8 +541,7 @@ class Resolver {
     if (!ok) return;
     // What this statement leaves out it inherits from an inherited grating, else the defaults.
     ResolvedGrating r;
-    const auto* base = std::get_if<ResolvedGrating>(&m.texture);
-    r.period = stated_param(g.period, Layer::Physical);
+    r.period = g.period ? stated_param(*g.period, Layer::Physical) : base->period;
     r.hill = g.hill ? stated_param(*g.hill, Layer::Physical)
                     : base ? base->hill : default_param(0.5, "50% (thesis 3.5.2: hill 128 px, valley 128 px)");
     r.orientation = g.orientation ? stated_param(*g.orientation, Layer::Physical)
@@ -776,26 +804,6 @@ class Resolver {
       diags_.warning("W0305", syn_.name_location.file ? syn_.name_location : SourceLocation{syn_.file, 1, 1, 1},
                      "the material has no force terms; it will feel like nothing",
                      "add a texture, a spring or a damper");
-    // The roughness map's domain: warn where a roughness target extrapolates it.
-    const auto& map = ctx_.calibration.roughness_map();
-    if (m.roughness && m.roughness->layer == Layer::Perceptual) {
-      if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
-        double p = g->period.si;
-        if (map.period && !map.period->contains(p))
-          diags_.warning("W0302", m.roughness->location,
-                         "grating period " + fmt_num(p * 1e3) + " mm is outside the periods the " + map.id +
-                             " map was measured on (0.7-10 mm); the roughness extrapolates",
-                         "periods from 0.7 mm to 10 mm keep the prediction inside the data");
-      } else if (std::holds_alternative<ResolvedHeightmap>(m.texture)) {
-        diags_.warning("W0304", m.roughness->location,
-                       "the " + map.id + " map was measured on gratings; for an image texture the roughness extrapolates",
-                       "treat the roughness of image textures as approximate");
-      } else if (std::holds_alternative<ResolvedPattern>(m.texture)) {
-        diags_.warning("W0304", m.roughness->location,
-                       "the " + map.id + " map was measured on version-2 gratings; for a pattern texture the roughness extrapolates",
-                       "treat the roughness of pattern textures as approximate, or give the force with `amplitude`");
-      }
-    }
   }
 
   SourceLocation texture_location(const ResolvedMaterial& m) const {
@@ -825,6 +833,30 @@ class Resolver {
 };
 
 }  // namespace
+
+// The roughness map's domain: warn where a roughness target extrapolates it. Called once the
+// texture has compiled, so an image that cannot be read reports only its E0401.
+void warn_roughness_domain(const ResolvedMaterial& m, const calibration::CalibrationSet& cal, Diagnostics& diags) {
+  const auto& map = cal.roughness_map();
+  if (m.roughness && m.roughness->layer == Layer::Perceptual) {
+    if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
+      double p = g->period.si;
+      if (map.period && !map.period->contains(p))
+        diags.warning("W0302", m.roughness->location,
+                       "grating period " + fmt_num(p * 1e3) + " mm is outside the periods the " + map.id +
+                           " map was measured on (0.7-10 mm); the roughness extrapolates",
+                       "periods from 0.7 mm to 10 mm keep the prediction inside the data");
+    } else if (std::holds_alternative<ResolvedHeightmap>(m.texture)) {
+      diags.warning("W0304", m.roughness->location,
+                     "the " + map.id + " map was measured on gratings; for an image texture the roughness extrapolates",
+                     "treat the roughness of image textures as approximate");
+    } else if (std::holds_alternative<ResolvedPattern>(m.texture)) {
+      diags.warning("W0304", m.roughness->location,
+                     "the " + map.id + " map was measured on version-2 gratings; for a pattern texture the roughness extrapolates",
+                     "treat the roughness of pattern textures as approximate, or give the force with `amplitude`");
+    }
+  }
+}
 
 ResolvedMaterial resolve(const MaterialSyntax& syntax, ResolveContext& ctx, Diagnostics& diags) {
   return Resolver(syntax, ctx, diags).run();

@@ -22,7 +22,7 @@ struct Version1Data {
   double base_pu = 0, fless_pu = 0, fmore_pu = 0, fmost_pu = 0;
   double stripes_weak_pu = 0, stripes_strong_pu = 0;
   double stripes_kernel_px = 0, seed = 0, patch_px = 0;
-  double law_force_pu = 0, law_at_mm = 0, law_at_m_per_s = 0;
+  double law_force_pu = 0, law_at_mm = 0, law_at_m_per_s = 0, law_period_mm = 0;
 };
 
 double number_at(const toml::table& t, const char* section, const char* key, const std::string& file) {
@@ -59,6 +59,7 @@ Version1Data load_data(const std::filesystem::path& library_dir) {
   d.law_force_pu = number_at(t, "laws", "force_pu", file);
   d.law_at_mm = number_at(t, "laws", "at_displacement_mm", file);
   d.law_at_m_per_s = number_at(t, "laws", "at_speed_m_per_s", file);
+  d.law_period_mm = number_at(t, "laws", "period_mm", file);
   return d;
 }
 
@@ -137,20 +138,29 @@ ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem
   static const std::regex perlin(R"(perlin(\d+)(Fless|Fmore|Fmost)?)");
   static const std::regex noise(R"(Noise(\d+))");
   static const std::regex stripes(R"(2Stripes(Weak|Strong))");
-  static const std::regex law(R"(Nothing|Bump|Slick|Spring|Viscous)");
-  static const std::regex table8(R"([aA](\d+)[pP](\d+))");
+  // Chapter 4's non-texturals and every prototype of Appendix B's Texture menu, by its own name.
+  static const std::regex law(
+      R"(Nothing|Bump|Slick|Spring|Viscous|AntiViscous|ATNSpring|Nap|Null|Bowl|Wave|Cusp|Triangle|Const|Ridge|Minus|Circle|Buckle)");
+  // Table 8's levels are whole; one decimal (a8.5p18 = 340 ju) names Table 6's amplitudes, which are
+  // whole program units (10 pu per level), in the same scheme.
+  static const std::regex table8(R"([aA](\d+(?:\.\d)?)[pP](\d+))");
   std::smatch m;
 
   if (std::regex_match(name, m, table8)) {
     // Version-2 (3.5.2, Table 8): level l commands 40 l joystick units; the period is in 0.1 mm.
-    long long level = std::stoll(m[1].str().substr(0, 9)), tenths = std::stoll(m[2].str().substr(0, 9));
-    if (level < 1 || level * kJoystickUnitsPerLevel > kJoystickFullScale)
-      return fail(name + ": force level " + m[1].str() + " commands " + std::to_string(level * kJoystickUnitsPerLevel) +
-                  " joystick units; Table 8's levels run from 1 to 51 (40 to 2040 of the joystick's 2048)");
+    const std::string level_text = m[1].str().substr(0, 11);
+    const auto dot = level_text.find('.');
+    const long long level_tenths = std::stoll(level_text.substr(0, dot)) * 10 +
+                                   (dot == std::string::npos ? 0 : std::stoll(level_text.substr(dot + 1)));
+    const long long tenths = std::stoll(m[2].str().substr(0, 9));
+    if (level_tenths < 1 || level_tenths * kJoystickUnitsPerLevel > kJoystickFullScale * 10)
+      return fail(name + ": force level " + m[1].str() + " commands " + sig(static_cast<double>(level_tenths) * kJoystickUnitsPerLevel / 10) +
+                  " joystick units; levels run from 0.1 to 51.2 (4 to 2048 joystick units, the joystick's full scale)");
     if (tenths < 1) return fail(name + ": the period is in tenths of a millimetre and must be at least 1 (0.1 mm)");
     std::ostringstream os;
     const std::string period = sig(static_cast<double>(tenths) / 10.0) + " mm";
-    const long long ju = level * kJoystickUnitsPerLevel;
+    const long long ju = level_tenths * kJoystickUnitsPerLevel / 10;  // whole: 40 / 10 = 4 ju per tenth
+    const std::string level = sig(static_cast<double>(level_tenths) / 10.0);
     os << "# " << name << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
        << "# Minsky 1995 Table 8: force level " << level << " = command amplitude " << ju
        << " joystick units; equal hill and valley widths;\n"
@@ -227,18 +237,52 @@ ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem
   const double force_N = d.law_force_pu * schema::find_unit("pu")->to_si;
   const double k = force_N / (d.law_at_mm * 1e-3), b = force_N / d.law_at_m_per_s;
   const std::string n = m[0].str();
+  const double period_mm = d.law_period_mm, lead_s = 0.02, lag_s = 0.1;
+  const std::string at_mm = sig(d.law_force_pu) + " pu at " + sig(d.law_at_mm) + " mm from the centre";
+  const std::string at_speed = sig(d.law_force_pu) + " pu at " + sig(d.law_at_m_per_s) + " m/s";
+  const std::string amp = sig(force_N) + " N", per = sig(period_mm) + " mm";
   std::string stmt, describes;
-  if (n == "Nothing") {
-    stmt = "force Nothing";
-    describes = "Minsky 1995 non-textural Nothing: no force";
+  if (n == "Nothing" || n == "Null") {
+    stmt = "force " + n;
+    describes = "Minsky 1995 " + std::string(n == "Nothing" ? "non-textural Nothing" : "Texture-menu Null") + ": no force";
   } else if (n == "Spring" || n == "Bump") {
     stmt = "force " + n + " stiffness " + sig(k) + " N/m";
-    describes = "Minsky 1995 non-textural " + n + (n == "Spring" ? ": F = -k p, a bowl" : ": F = k p, a dome") + ", " +
-                sig(d.law_force_pu) + " pu at " + sig(d.law_at_mm) + " mm from the centre";
-  } else {
-    stmt = std::string("force ") + (n == "Slick" ? "AntiViscous" : "Viscous") + " damping " + sig(b) + " N*s/m";
-    describes = "Minsky 1995 non-textural " + n + (n == "Slick" ? ": F = +b v, like ice" : ": F = -b v, like oil") + ", " +
-                sig(d.law_force_pu) + " pu at " + sig(d.law_at_m_per_s) + " m/s";
+    describes = "Minsky 1995 non-textural " + n + (n == "Spring" ? ": F = -k p, a bowl" : ": F = k p, a dome") + ", " + at_mm;
+  } else if (n == "Viscous" || n == "Slick" || n == "AntiViscous") {
+    stmt = std::string("force ") + (n == "Viscous" ? "Viscous" : "AntiViscous") + " damping " + sig(b) + " N*s/m";
+    describes = "Minsky 1995 " + std::string(n == "AntiViscous" ? "Texture-menu " : "non-textural ") + n +
+                (n == "Viscous" ? ": F = -b v, like oil" : ": F = +b v, like ice") + ", " + at_speed;
+  } else if (n == "Nap") {
+    stmt = "force Nap damping " + sig(b) + " N*s/m";
+    describes = "Minsky 1995 Texture-menu Nap: F_x = -b v_x, F_y = |b v_y|, like velvet, " + at_speed;
+  } else if (n == "Bowl") {
+    // F = -k p sqrt(|p| / r) equals the linear spring at r: the reading's 40 mm.
+    stmt = "force Bowl stiffness " + sig(k) + " N/m radius " + sig(d.law_at_mm) + " mm";
+    describes = "Minsky 1995 Texture-menu Bowl: a spring growing as |p|^1.5, " + at_mm;
+  } else if (n == "Circle") {
+    stmt = "force Circle stiffness " + sig(k) + " N/m";
+    describes = "Minsky 1995 Texture-menu Circle: a field k p turned a quarter turn, " + at_mm;
+  } else if (n == "Buckle") {
+    stmt = "force Buckle radial " + sig(k) + " N/m tangential " + sig(k) + " N/m";
+    describes = "Minsky 1995 Texture-menu Buckle: radial and quarter-turn gains, each " + at_mm;
+  } else if (n == "Wave" || n == "Cusp" || n == "Triangle") {
+    stmt = "force " + n + " amplitude " + amp + " period " + per;
+    describes = "Minsky 1995 " + std::string(n == "Triangle" ? "3.4 procedural triangle wave" : "Texture-menu " + n) +
+                ": amplitude " + sig(d.law_force_pu) + " pu, period " + per + " on each axis";
+  } else if (n == "Ridge") {
+    // F_x = k ((p_x mod wavelength) - width) spans -k width .. k (wavelength - width): width = half.
+    const double width_mm = period_mm / 2;
+    stmt = "force Ridge stiffness " + sig(force_N / (width_mm * 1e-3)) + " N/m wavelength " + per + " width " + sig(width_mm) + " mm";
+    describes = "Minsky 1995 Texture-menu Ridge: ridges every " + per + " along x, " + sig(d.law_force_pu) + " pu at their edges";
+  } else if (n == "Const") {
+    stmt = "force Const x " + amp + " y 0 N";
+    describes = "Minsky 1995 Texture-menu Const: a steady " + sig(d.law_force_pu) + " pu toward +x";
+  } else if (n == "Minus") {
+    stmt = "force Minus stiffness " + sig(b / lead_s) + " N/m lead " + sig(lead_s * 1e3) + " ms";
+    describes = "Minsky 1995 Texture-menu Minus: a spring to where the hand will be 20 ms ahead, " + at_speed;
+  } else {  // ATNSpring
+    stmt = "force ATNSpring stiffness " + sig(b / lag_s) + " N/m lag " + sig(lag_s * 1e3) + " ms";
+    describes = "Minsky 1995 Texture-menu ATNSpring: pushed from a point trailing the hand by 100 ms, " + at_speed;
   }
   std::ostringstream os;
   os << "# " << n << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
@@ -248,7 +292,7 @@ ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem
      << "  " << stmt << "\n"
      << "  size " << px_mm(static_cast<long long>(d.patch_px)) << "\n}\n";
   return make({n, os.str(),
-               "thesis stimulus generator (Minsky 1995, 4.3 and Appendix B; constants a reading from "
+               "thesis stimulus generator (Minsky 1995, 4.3 and Appendix B's Texture menu; constants a reading from "
                "library/thesis/version1.toml)"});
 }
 

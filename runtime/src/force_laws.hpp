@@ -55,13 +55,16 @@ inline glm::dvec2 linear_spring(const schema::LinearSpringTerm& t, glm::dvec2 p)
   return -t.stiffness_N_per_m * along * n;
 }
 
-// Appendix B Minus: a spring to where the hand will be `lead` from now, m - p = v lead + a lead^2 / 2.
+// Appendix B Minus: F = k (J - M), M where the hand will be `lead` from now, M - J = v lead + a lead^2 / 2
+// (docs/TEXTURES.md, "Minus and ATNSpring": the OCR's x component).
 inline glm::dvec2 minus(const schema::MinusTerm& t, glm::dvec2 v, glm::dvec2 a) noexcept {
-  return t.stiffness_N_per_m * (t.lead_s * v + (0.5 * t.lead_s * t.lead_s) * a);
+  return -t.stiffness_N_per_m * (t.lead_s * v + (0.5 * t.lead_s * t.lead_s) * a);
 }
 
+// Appendix B ATNSpring: F = k (J - M), M a point that follows the hand with a lag: the hand is pushed
+// away from where it has just been (docs/TEXTURES.md, "Minus and ATNSpring").
 inline glm::dvec2 follower_spring(const schema::FollowerSpringTerm& t, glm::dvec2 p, glm::dvec2 follower_m) noexcept {
-  return -t.stiffness_N_per_m * (p - follower_m);
+  return t.stiffness_N_per_m * (p - follower_m);
 }
 
 // Where the attractor's light object is at time t_s on its swirling path (thesis 3.2.2).

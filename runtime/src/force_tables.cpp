@@ -85,4 +85,36 @@ glm::dvec2 height_field_force(const HeightFieldTerm& field, glm::dvec2 p) noexce
   return {bilinear(field.force_x_N), bilinear(field.force_y_N)};
 }
 
+glm::dvec2 grating_force_held(const GratingTerm& grating, glm::dvec2 p) noexcept {
+  const glm::dvec2 n{std::cos(grating.orientation_rad), std::sin(grating.orientation_rad)};
+  const double u = (p.x * n.x + p.y * n.y) / grating.period_m;
+  if (!std::isfinite(u)) return {kNaN, kNaN};
+  const std::size_t size = grating.force_N.size();
+  const auto i = static_cast<std::size_t>(std::llround((u - std::floor(u)) * static_cast<double>(size))) % size;
+  return static_cast<double>(grating.force_N[i]) * n;
+}
+
+glm::dvec2 height_field_force_held(const HeightFieldTerm& field, glm::dvec2 p) noexcept {
+  const double gx = (p.x - field.origin_m[0]) / field.spacing_m[0];
+  const double gy = (p.y - field.origin_m[1]) / field.spacing_m[1];
+  if (!std::isfinite(gx) || !std::isfinite(gy)) return field.repeat ? glm::dvec2{kNaN, kNaN} : glm::dvec2{0, 0};
+  const double rx = std::round(gx), ry = std::round(gy);
+  std::size_t ix = 0, iy = 0;
+  if (field.repeat) {
+    const auto wrap = [](double r, std::uint32_t n) {
+      const double m = r - std::floor(r / n) * n;
+      return std::min(static_cast<std::size_t>(m), static_cast<std::size_t>(n - 1));
+    };
+    ix = wrap(rx, field.nx);
+    iy = wrap(ry, field.ny);
+  } else {
+    // The same extent as the interpolating reader: [0, n - 1] samples, edges included.
+    if (!(gx >= 0 && gx <= field.nx - 1.0 && gy >= 0 && gy <= field.ny - 1.0)) return {0, 0};
+    ix = static_cast<std::size_t>(rx);
+    iy = static_cast<std::size_t>(ry);
+  }
+  const std::size_t k = iy * field.nx + ix;
+  return {field.force_x_N[k], field.force_y_N[k]};
+}
+
 }  // namespace sandpaper::runtime::tables

@@ -14,4 +14,10 @@ glm::dvec2 grating_force(const schema::GratingTerm& grating, glm::dvec2 p) noexc
 // Bilinear interpolation of the gradient grid; zero outside a non-repeating grid.
 glm::dvec2 height_field_force(const schema::HeightFieldTerm& field, glm::dvec2 p) noexcept;
 
+// Sample-and-hold, as the thesis' joystick read its tables (Appendix B 2.1: "Arrays are sampled at a
+// resolution of one screen pixel per array item"): the nearest sample, held until the hand reaches
+// the next one. Same wrapping, edges and NaN rules as the interpolating versions.
+glm::dvec2 grating_force_held(const schema::GratingTerm& grating, glm::dvec2 p) noexcept;
+glm::dvec2 height_field_force_held(const schema::HeightFieldTerm& field, glm::dvec2 p) noexcept;
+
 }  // namespace sandpaper::runtime::tables

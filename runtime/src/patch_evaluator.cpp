@@ -21,8 +21,8 @@ struct Overloaded : Ts... {
 
 }  // namespace
 
-PatchEvaluator::PatchEvaluator(const schema::PatchProgram& program)
-    : program_(program), tank_(program.energy_budget_J, program.energy_refill_W) {
+PatchEvaluator::PatchEvaluator(const schema::PatchProgram& program, TableSampling tables)
+    : program_(program), tank_(program.energy_budget_J, program.energy_refill_W), tables_(tables) {
   check_program(program);
   const std::size_t n = program.terms.size();
   slot_of_.assign(n, kNoSlot);
@@ -101,8 +101,12 @@ glm::dvec2 PatchEvaluator::force_rt(const HandState& hand, double dt_s) noexcept
                 return -t.stiffness_N_per_m * (p - glm::dvec2{t.centre_m[0], t.centre_m[1]});
               },
               [&](const schema::DamperTerm& t) -> glm::dvec2 { return -t.damping_Ns_per_m * v; },
-              [&](const schema::GratingTerm& t) { return tables::grating_force(t, p); },
-              [&](const schema::HeightFieldTerm& t) { return tables::height_field_force(t, p); },
+              [&](const schema::GratingTerm& t) {
+                return tables_ == TableSampling::Hold ? tables::grating_force_held(t, p) : tables::grating_force(t, p);
+              },
+              [&](const schema::HeightFieldTerm& t) {
+                return tables_ == TableSampling::Hold ? tables::height_field_force_held(t, p) : tables::height_field_force(t, p);
+              },
               [&](const schema::ConstantForceTerm& t) { return laws::constant_force(t); },
               [&](const schema::NapTerm& t) { return laws::nap(t, v); },
               [&](const schema::PeriodicTerm& t) { return laws::periodic(t, p); },

@@ -103,8 +103,8 @@ void check(const TermCheck& c, const MinusTerm& t) {
   c.non_negative("lead", t.lead_s);
 }
 
-// is_passive() counts a follower spring as passive (a spring in series with a damper), which holds
-// only for a stiffness of zero or more.
+// ATNSpring is active and metered by the energy tank (docs/TEXTURES.md); a negative stiffness would
+// turn it into a different law (a spring in series with a damper) that the library does not name.
 void check(const TermCheck& c, const FollowerSpringTerm& t) {
   c.non_negative("stiffness", t.stiffness_N_per_m);
   c.positive("lag", t.lag_s);

@@ -33,7 +33,9 @@ std::vector<Stimulus> table6_stimuli() {
     s.program_units = amplitudes[i];
     s.period_mm = periods[i % 9];
     s.force_N = s.program_units * kNewtonsPerProgramUnit;
-    s.name = fmt::format("a{}p{}", s.program_units, static_cast<int>(std::lround(s.period_mm * 10)));
+    // Table 8's naming, which the stimulus generator reads: force level = 40 joystick units = 10 pu,
+    // so Table 6's 85 pu at 1.8 mm is a8.5p18 (one decimal is exact: every amplitude is whole pu).
+    s.name = fmt::format("a{:g}p{}", s.program_units / 10.0, static_cast<int>(std::lround(s.period_mm * 10)));
     out.push_back(s);
   }
   return out;

@@ -30,7 +30,7 @@ class Random {
 inline constexpr double kNewtonsPerProgramUnit = 4 * 0.490909 * 9.80665e-3;
 
 struct Stimulus {
-  std::string name;        // a<program units>p<period in 0.1 mm>, as the thesis named stimuli
+  std::string name;        // a<level>p<period in 0.1 mm>, Table 8's naming (level = 10 pu = 40 ju; may be 8.5)
   int program_units = 0;   // Table 6 command amplitude
   double force_N = 0;
   double period_mm = 0;

@@ -39,6 +39,41 @@ expect_exit 0 "run -e corduroy (real time)" -- "$sp" run -e corduroy --device si
 has "$tmp/out" 'achieved' "run prints the achieved rate"
 has "$tmp/out" 'max force [0-9.]+ N \(texture compiled [0-9.]+ N\)' "run prints the forces felt"
 
+# The thesis' joystick, emulated (issue 15): 900 Hz, positions on 0.0558 mm counts, forces in whole
+# joystick units (4.814 mN), tables held; the trace shows the staircase.
+expect_exit 0 "emulated sandpaper-1995" -- "$sp" run -e a10p25 --device sandpaper-1995 --virtual-clock --duration 0.5 --json --trace "$tmp/t95.csv"
+has "$tmp/out" '"rate_hz_target": 900' "the emulated joystick runs at its own 900 Hz"
+has "$tmp/out" '"tables": "sample-and-hold"' "run --json says how the tables were read"
+has "$tmp/out" '"warnings": \[' "run --json carries the compiler's warnings"
+python3 - "$tmp/t95.csv" <<'PY' && ok || bad "the emulated trace is not on encoder counts and joystick units"
+import csv, sys
+step, unit = 0.0558e-3, 0.00481417274   # calibration/devices/sandpaper-1995.toml
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 450, len(rows)
+for r in rows:
+    for v, q in ((float(r["x_m"]), step), (float(r["force_x_N"]), unit)):
+        assert abs(v / q - round(v / q)) < 1e-6, (v, q)
+# After the 50 ms start ramp: only the seed table's levels.
+levels = {round(abs(float(r["force_x_N"])) / unit) for r in rows if float(r["t_s"]) >= 0.05} - {0}
+assert 1 <= len(levels) <= 15, levels   # the 8-bit seed's levels, held: a staircase, not a ramp
+PY
+expect_exit 0 "a compiled patch on the emulated joystick" -- "$sp" compile -e a10p25 --device sandpaper-1995 -o "$tmp/a95.patch"
+expect_exit 0 "sandpaper-play plays it" -- "$sp" run "$tmp/a95.patch" --device sandpaper-1995 --virtual-clock --duration 0.2 --json
+has "$tmp/out" '"player": "sandpaper-play"' "the runtime-only player plays the emulated device"
+has "$tmp/out" '"position_step_mm": 0\.0558' "the player quantises positions"
+expect_exit 2 "the emulated joystick has one rate" -- "$sp" run -e a10p25 --device sandpaper-1995 --rate 1000 --virtual-clock
+expect_exit 2 "a USB device is not emulated" -- "$sp" run -e a10p25 --device openffboard-2axis --virtual-clock
+expect_exit 0 "explain on sandpaper-1995" -- "$sp" explain -e a10p25 --device sandpaper-1995
+has "$tmp/out" 'position samples per period' "explain says what the emulated device's quantisation does"
+has "$tmp/out" 'distinct force levels sent' "explain counts the levels the emulated device sends"
+has "$tmp/out" 'felt at speed' "explain predicts the force felt at speed"
+expect_exit 0 "explain --json felt_at_speed" -- "$sp" explain -e "grating period 0.7 mm; roughness 0.5" --json
+has "$tmp/out" '"felt_at_speed"' "explain --json has felt_at_speed"
+has "$tmp/out" '"speed_mm_s": 200' "felt_at_speed lists 200 mm/s"
+expect_exit 0 "explain a spring" -- "$sp" explain -e "spring 100 N/m"
+if grep -q '^maps' "$tmp/out"; then bad "explain of a material without texture prints the roughness maps"; else ok; fi
+expect_exit 0 "Appendix B's Bowl by name" -- "$sp" run -e Bowl --device sim --virtual-clock --duration 0.2 --hand circle
+
 # Force laws and physics models (Appendix B, 3.2.2), and thesis stimuli by name.
 expect_exit 0 "run the Slick example" -- "$sp" run examples/laws/slick.hmat --device sim --duration 0.5 --hand circle --virtual-clock
 has "$tmp/err" 'W0306' "a non-passive law warns"
@@ -359,6 +394,8 @@ has "$tmp/err" '^no entries match$' "no match said"
 expect_exit 2 "a bad roughness range is a usage error" -- "$sp" library search --roughness 0.6 "${L[@]}" "${I[@]}"
 has "$tmp/err" 'write A\.\.B, A\.\. or \.\.B' "the range's form is given"
 expect_exit 0 "show by alias" -- "$sp" library show rib-cloth "${L[@]}" "${I[@]}"
+has "$tmp/out" 'patch\.width +95 mm' "library show prints lengths as explain does"
+if grep -Eq '0\.095 m|[0-9] rad' "$tmp/out"; then bad "library show prints raw SI"; else ok; fi
 has "$tmp/out" '^ribbed-cloth  \(alias rib-cloth\)' "show names the entry"
 has "$tmp/out" 'source derived "8 ribs per inch: 25.4 mm / 8"' "show prints the sources"
 has "$tmp/out" 'maximum lateral force  1\.3[0-9]* N' "show prints the force"

@@ -143,7 +143,7 @@ TEST(Laws, TermsAreSummedInTheOrderWritten) {
 
 TEST(Laws, NonPassiveLawsWarnAndGetAnEnergyBound) {
   for (const char* text : {"force AntiViscous damping 2 N*s/m", "force Nap damping 1 N*s/m", "force Minus stiffness 50 N/m",
-                           "force Circle stiffness 20 N/m", "force Buckle tangential 5 N/m",
+                           "force Circle stiffness 20 N/m", "force Buckle tangential 5 N/m", "force ATNSpring stiffness 50 N/m",
                            "physics Attractor stiffness 20 N/m"}) {
     auto r = test::shipped_compiler().compile_text(text);
     ASSERT_TRUE(r.ok()) << text;

@@ -35,7 +35,7 @@ material "a/b" {
   EXPECT_EQ(m.name, "a/b");
   ASSERT_EQ(m.statements.size(), 9u);
   const auto& g = std::get<GratingStmt>(m.statements[3].node);
-  EXPECT_DOUBLE_EQ(g.period.si, 0.0032);
+  EXPECT_DOUBLE_EQ(g.period->si, 0.0032);
   EXPECT_DOUBLE_EQ(g.hill->si, 0.5);
   EXPECT_DOUBLE_EQ(g.smoothing->si, 0.0001);
   const auto& h = std::get<HeightmapStmt>(m.statements[4].node);

@@ -79,7 +79,7 @@ TEST(PatchIO, WritesAtomicallyAndLeavesNoTemporaryFiles) {
   auto path = dir + "/m.patch";
   schema::write_patch_file(path, sample());
   EXPECT_TRUE(schema::looks_like_patch_file(path));
-  EXPECT_EQ(schema::read_patch_file(path).name, "corduroy");
+  EXPECT_EQ(schema::read_patch_file(path).name, sample().name);
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 1);

@@ -1,5 +1,6 @@
 // Layer resolution: representative, then perceptual, then physical; the file beats what it
 // inherits; one statement per quantity in a file.
+#include <algorithm>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -33,6 +34,39 @@ TEST(Resolution, FileBeatsInheritedParameterByParameter) {
   EXPECT_DOUBLE_EQ(provenance(p, "texture.hill").value_si, 0.6);  // not stated: inherited
   EXPECT_EQ(provenance(p, "texture.hill").layer, "representative");
   EXPECT_NEAR(p.roughness, 0.45, 1e-12);  // force still from the library's roughness
+}
+
+// LANGUAGE.md: a grating statement overrides the inherited grating parameter by parameter, so it
+// may leave out the period too (issue 15: "like corduroy; grating hill 40%" was E0201).
+TEST(Resolution, GratingWithoutPeriodOverridesOnlyWhatItSays) {
+  auto r = test::shipped_compiler().compile_text("like corduroy; grating hill 40%");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_DOUBLE_EQ(provenance(*r.program, "texture.hill").value_si, 0.4);
+  EXPECT_EQ(provenance(*r.program, "texture.hill").layer, "physical");
+  EXPECT_DOUBLE_EQ(provenance(*r.program, "texture.period").value_si, 0.0032);  // corduroy's
+  EXPECT_EQ(provenance(*r.program, "texture.period").layer, "representative");
+  // Nothing to inherit a period from: one error at the statement, saying what to write.
+  auto none = test::shipped_compiler().compile_text("grating hill 40%; roughness 0.5");
+  EXPECT_EQ(test::codes(none), std::vector<std::string>{"E0201"});
+  EXPECT_NE(compiler::format_diagnostics(none.diagnostics).find("grating period 2.5 mm"), std::string::npos);
+  // A bare `grating` still asks for its options.
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("grating; roughness 0.5")), std::vector<std::string>{"E0201"});
+}
+
+// A missing image is reported alone: not after a warning about how its roughness would extrapolate.
+TEST(Resolution, MissingImageReportsOnlyItsError) {
+  auto r = test::shipped_compiler().compile_text("heightmap \"no-such-image.png\" size 50 mm; roughness 0.5");
+  EXPECT_EQ(test::codes(r), std::vector<std::string>{"E0401"});
+  EXPECT_TRUE(test::codes(r, Severity::Warning).empty()) << compiler::format_diagnostics(r.diagnostics);
+}
+
+// An unnamed one-line description that changes its library entry is not named as the entry itself.
+TEST(Resolution, ModifiedEntryIsNotNamedAsTheEntry) {
+  auto r = test::shipped_compiler().compile_text("like corduroy; roughness 0.7");
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r.program->name, "like corduroy; roughness 0.7");
+  EXPECT_EQ(test::shipped_compiler().compile_text("corduroy").program->name, "corduroy");
+  EXPECT_EQ(test::shipped_compiler().compile_text("like corduroy").program->name, "corduroy");
 }
 
 TEST(Resolution, PerceptualInFileBeatsInheritedPhysical) {
@@ -106,29 +140,37 @@ TEST(Resolution, LibraryCycleIsCaught) {
   EXPECT_TRUE(cycle);
 }
 
+// The warnings of `r` but W0350 (felt at speed), which a fine float grating also gets and which
+// tests/e2e/felt_at_speed_test.cpp tests.
+std::vector<std::string> warnings_but_speed(const compiler::CompileResult& r) {
+  auto w = test::codes(r, Severity::Warning);
+  w.erase(std::remove(w.begin(), w.end(), "W0350"), w.end());
+  return w;
+}
+
 TEST(Resolution, RoughnessAboveOneNeedsExtrapolate) {
   auto r = test::shipped_compiler().compile_text("grating period 2 mm; roughness 1.2");
   EXPECT_EQ(test::codes(r), std::vector<std::string>{"E0303"});
   auto ok = test::shipped_compiler().compile_text("grating period 2 mm; extrapolate; roughness 1.2");
   ASSERT_TRUE(ok.ok());
-  EXPECT_EQ(test::codes(ok, Severity::Warning), std::vector<std::string>{"W0303"});
+  EXPECT_EQ(warnings_but_speed(ok), std::vector<std::string>{"W0303"});
   EXPECT_NEAR(ok.program->max_lateral_force_N, test::expected_force_for_roughness(1.2), 1e-9);
 }
 
 TEST(Resolution, ExtrapolationWarnings) {
   auto weak = test::shipped_compiler().compile_text("grating period 2 mm; roughness 0.05");
   ASSERT_TRUE(weak.ok());
-  EXPECT_EQ(test::codes(weak, Severity::Warning), std::vector<std::string>{"W0301"});
+  EXPECT_EQ(warnings_but_speed(weak), std::vector<std::string>{"W0301"});
   auto edge = test::shipped_compiler().compile_text("grating period 2 mm; roughness 0.0983");
-  EXPECT_TRUE(test::codes(edge, Severity::Warning).empty());
+  EXPECT_TRUE(warnings_but_speed(edge).empty());
   auto fine = test::shipped_compiler().compile_text("grating period 0.5 mm; roughness 0.5");
-  EXPECT_EQ(test::codes(fine, Severity::Warning), std::vector<std::string>{"W0302"});
+  EXPECT_EQ(warnings_but_speed(fine), std::vector<std::string>{"W0302"});
   auto wide = test::shipped_compiler().compile_text("grating period 12 mm; roughness 0.5");
-  EXPECT_EQ(test::codes(wide, Severity::Warning), std::vector<std::string>{"W0302"});
+  EXPECT_EQ(warnings_but_speed(wide), std::vector<std::string>{"W0302"});
   auto inside = test::shipped_compiler().compile_text("grating period 10 mm; roughness 0.5");
   EXPECT_TRUE(test::codes(inside, Severity::Warning).empty());
   // Warnings travel in the patch program too.
-  ASSERT_EQ(fine.program->warnings.size(), 1u);
+  ASSERT_FALSE(fine.program->warnings.empty());
   EXPECT_EQ(fine.program->warnings[0].code, "W0302");
 }
 

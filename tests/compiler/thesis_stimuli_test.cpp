@@ -2,7 +2,10 @@
 // and the version-2 names at every period.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -12,6 +15,7 @@
 #include "sandpaper/compiler/explain.hpp"
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/compiler/thesis_stimuli.hpp"
+#include "sandpaper/schema/patch_json.hpp"
 #include "sandpaper/schema/units.hpp"
 #include "test_support.hpp"
 
@@ -69,7 +73,6 @@ TEST(ThesisStimuli, Table8ForcesWithinTwoPercent) {
 }
 
 TEST(ThesisStimuli, Table8NamesAreQuantizedSeedGratings) {
-  // a10p25 has a library file (library/thesis-gratings/a10p25.hmat), which wins; the others are generated.
   auto r = test::shipped_compiler().compile_text("a3p12");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_EQ(test::provenance(*r.program, "texture.quantization").value_si, 8);
@@ -231,10 +234,13 @@ TEST(ThesisStimuli, ExplainNamesTheGenerator) {
   EXPECT_NE(text.find("pattern bars"), std::string::npos) << text;
   EXPECT_NE(text.find("thesis stimulus barsB15W20_2 ("), std::string::npos) << text;
   EXPECT_NE(text.find("force levels"), std::string::npos) << text;
-  // A library file of the same name wins over the generator.
-  auto lib = c.compile_text("a10p25");
-  ASSERT_TRUE(lib.ok());
-  EXPECT_EQ(lib.material->like_origins.at(0), "library/thesis-gratings/a10p25.hmat");
+  // All twelve Table 8 stimuli are generated alike (issue 15: a10p25 was a hand-written float grating).
+  for (const auto& name : compiler::thesis_table8_names()) {
+    auto t8 = c.compile_text(name);
+    ASSERT_TRUE(t8.ok()) << name;
+    EXPECT_EQ(t8.material->like_origins.at(0).rfind("thesis stimulus generator", 0), 0u) << name;
+    EXPECT_EQ(test::provenance(*t8.program, "texture.quantization").value_si, 8) << name;
+  }
 }
 
 TEST(ThesisStimuli, NonTexturalLawsReachTheBaseForceAtTheReadingsPoint) {
@@ -273,4 +279,81 @@ TEST(ThesisStimuli, UnknownOrImpossibleNames) {
   ASSERT_EQ(test::codes(missing), std::vector<std::string>{"E0301"});
   EXPECT_NE(missing.diagnostics.all()[0].suggestion.find("version1.toml"), std::string::npos);
   EXPECT_TRUE(bare.compile_text("a3p7").ok());  // Table 8 needs no data file
+}
+
+// Every prototype of Appendix B's Texture menu plays by its own name (issue 15), with the law the menu
+// instantiated and the readings' constants (library/thesis/version1.toml [laws]).
+TEST(ThesisStimuli, TextureMenuPrototypesByName) {
+  const auto& c = test::shipped_compiler();
+  const std::vector<std::pair<std::string, std::string>> menu{
+      {"Nothing", ""},          {"Null", ""},        {"Spring", "spring"},   {"Bump", "linear_field"},
+      {"Viscous", "damper"},    {"AntiViscous", "damper"}, {"ATNSpring", "follower_spring"}, {"Nap", "nap"},
+      {"Bowl", "bowl"},         {"Wave", "periodic"}, {"Cusp", "periodic"}, {"Triangle", "periodic"},
+      {"Const", "constant_force"}, {"Ridge", "ridge"}, {"Minus", "minus"},  {"Circle", "linear_field"},
+      {"Buckle", "linear_field"}};
+  for (const auto& [name, kind] : menu) {
+    auto r = c.compile_text(name);
+    ASSERT_TRUE(r.ok()) << name << "\n" << compiler::format_diagnostics(r.diagnostics);
+    EXPECT_EQ(r.material->like_origins.at(0).rfind("thesis stimulus generator", 0), 0u) << name;
+    const auto j = schema::to_json(*r.program);
+    if (kind.empty()) {
+      EXPECT_TRUE(j["terms"].empty()) << name << ": " << j["terms"].dump();
+    } else {
+      ASSERT_FALSE(j["terms"].empty()) << name;
+      EXPECT_EQ(j["terms"][0]["kind"], kind) << name << ": " << j["terms"].dump();
+    }
+  }
+  // The readings: the base force, 60 pu, at 0.1 m/s for Minus (k lead v) and ATNSpring (k lag v, its
+  // steady lag); Const pushes exactly 60 pu.
+  const double base_N = 60 * 4 * kJoystickUnit_N;
+  const auto term = [&](const char* n) { return c.compile_text(n).program->terms.at(0); };
+  const auto minus = std::get<schema::MinusTerm>(term("Minus"));
+  // Constants are written to 6 significant digits in the generated text.
+  EXPECT_NEAR(minus.stiffness_N_per_m * minus.lead_s * 0.1, base_N, 1e-5 * base_N);
+  const auto atn = std::get<schema::FollowerSpringTerm>(term("ATNSpring"));
+  EXPECT_NEAR(atn.stiffness_N_per_m * atn.lag_s * 0.1, base_N, 1e-5 * base_N);
+  EXPECT_NEAR(std::get<schema::ConstantForceTerm>(term("Const")).force_N[0], base_N, 1e-5 * base_N);
+}
+
+// One naming for the thesis' gratings: every stimulus named in every shipped CSV compiles, through the
+// generator, to the force its row states (issue 15: a20p7 was 0.385 N in the CSV, 3.85 N compiled).
+TEST(ThesisStimuli, EveryStimulusInEveryShippedCsvCompilesToItsForce) {
+  const auto& c = test::shipped_compiler();
+  std::size_t checked = 0, files = 0;
+  const std::filesystem::path root = SANDPAPER_SOURCE_DIR;
+  for (const char* dir : {"examples", "library", "calibration"})
+    for (const auto& e : std::filesystem::recursive_directory_iterator(root / dir)) {
+      if (e.path().extension() != ".csv") continue;
+      std::ifstream in(e.path());
+      std::string line;
+      std::vector<std::string> header;
+      std::map<std::string, double> force_of;
+      while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::vector<std::string> cells;
+        std::stringstream ss(line);
+        for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+        if (header.empty()) {
+          header = cells;
+          continue;
+        }
+        const auto col = [&](const char* name) {
+          return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+        };
+        if (col("stimulus") >= cells.size()) break;
+        force_of[cells[col("stimulus")]] = col("force_N") < cells.size() ? std::stod(cells[col("force_N")]) : -1;
+      }
+      if (force_of.empty()) continue;
+      ++files;
+      for (const auto& [name, force] : force_of) {
+        auto r = c.compile_text(name);
+        ASSERT_TRUE(r.ok()) << e.path() << ": " << name << "\n" << compiler::format_diagnostics(r.diagnostics);
+        if (force >= 0) {
+          EXPECT_NEAR(r.program->max_lateral_force_N, force, 1e-4 * force) << e.path() << ": " << name;
+        }
+        ++checked;
+      }
+    }
+  EXPECT_GE(files, 1u);
+  EXPECT_GE(checked, 30u);  // roughness-responses.csv: Table 6's 30 stimuli
 }

@@ -200,21 +200,23 @@ TEST(ForceLaws, LinearSpring) {
   });
 }
 
-// Appendix B Minus: F = k (M - J), M the joystick's predicted position `lead` ahead.
-TEST(ForceLaws, MinusPullsTowardThePredictedPosition) {
+// Appendix B Minus, as the OCR's x component reads: F = k (J - M), M the joystick's predicted position
+// `lead` ahead, so it holds the hand back from where it is going.
+TEST(ForceLaws, MinusPushesAwayFromThePredictedPosition) {
   expect_law(minus(100, 0.03), [](const HandState& h) {
     const glm::dvec2 predicted = h.position_m + 0.03 * h.velocity_m_s + 0.5 * 0.03 * 0.03 * h.acceleration_m_s2;
-    return 100.0 * (predicted - h.position_m);
+    return 100.0 * (h.position_m - predicted);
   });
 }
 
-// ATNSpring: F = -k (p - m), dm/dt = (p - m) / lag. For a hand moving at constant velocity v from
+// ATNSpring, as the OCR's x component reads: F = k (p - m), dm/dt = (p - m) / lag. For a hand moving at constant velocity v from
 // rest on m: continuously, p - m = v lag (1 - exp(-t / lag)); with the hand sampled every dt and held,
 // p_k - m_k = v dt e (1 - e^k) / (1 - e), e = exp(-dt / lag).
 TEST(ForceLaws, FollowerSpringLagsAsTheClosedForm) {
   const double k = 150, lag = 0.05, dt = 1e-3;
   const glm::dvec2 start{-0.03, 0.01}, v{0.04, -0.015};
-  const auto program = program_of({follower_spring(k, lag)});
+  auto program = program_of({follower_spring(k, lag)});
+  program.energy_budget_J = 1e9;  // active since issue 15 (F = k (p - m)): a budget the run never empties
   PatchEvaluator evaluator(program);
   HandState hand;
   hand.position_m = start;
@@ -224,8 +226,8 @@ TEST(ForceLaws, FollowerSpringLagsAsTheClosedForm) {
   for (int i = 0; i <= 1500; ++i) {
     hand.position_m = start + (i * dt) * v;
     const glm::dvec2 f = evaluator.force_rt(hand, i == 0 ? 0.0 : dt);
-    const glm::dvec2 sampled = -k * (v * dt * e * (1 - std::pow(e, i)) / (1 - e));
-    const glm::dvec2 continuous = -k * (v * lag * (1 - std::exp(-i * dt / lag)));
+    const glm::dvec2 sampled = k * (v * dt * e * (1 - std::pow(e, i)) / (1 - e));
+    const glm::dvec2 continuous = k * (v * lag * (1 - std::exp(-i * dt / lag)));
     ASSERT_NEAR(f.x, sampled.x, 1e-10) << i;
     ASSERT_NEAR(f.y, sampled.y, 1e-10) << i;
     // The sampled hand differs from the continuous one by at most one tick of travel.

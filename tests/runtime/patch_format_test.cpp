@@ -217,7 +217,7 @@ TEST(PatchFormat, JsonNamesEveryParameterWithItsUnit) {
   EXPECT_EQ(t[11]["lead_s"], 0.02);
   EXPECT_EQ(t[12]["kind"], "follower_spring");
   EXPECT_EQ(t[12]["lag_s"], 0.05);
-  EXPECT_EQ(t[12]["passive"], true);
+  EXPECT_EQ(t[12]["passive"], false);  // ATNSpring pushes along the recent motion (issue 15)
   EXPECT_EQ(t[13]["kind"], "point_masses");
   EXPECT_EQ(t[13]["count"], 2);
   EXPECT_EQ(t[13]["mass_kg"], nlohmann::json({0.05, 0.03}));

@@ -76,11 +76,15 @@ TEST(WorkspaceJnd, PatchesThreeJndsApartOrEqualDoNotWarn) {
   EXPECT_TRUE(warnings(twice, "W0503").empty());
 }
 
-TEST(WorkspaceJnd, ShippedExamplesDoNotWarn) {
+// No workspace warning (W05xx: hidden patches, JND collisions); the materials' own warnings (W0350 for
+// the fine gratings at 100 mm/s) are the materials' business.
+TEST(WorkspaceJnd, ShippedExamplesHaveNoWorkspaceWarnings) {
   for (const char* f : {"examples/workspace/sampler.hws", "examples/workspace/cloths.hws", "examples/workspace/periods.hws"}) {
     auto r = compiler::compile_workspace_file(test::shipped_compiler(), f);
     ASSERT_TRUE(r.ok()) << f;
-    EXPECT_TRUE(r.diagnostics.all().empty()) << f << "\n" << compiler::format_diagnostics(r.diagnostics);
+    for (const auto& d : r.diagnostics.all())
+      EXPECT_TRUE(d.code.rfind("W05", 0) != 0 && d.severity != compiler::Severity::Error)
+          << f << "\n" << compiler::format_diagnostics(r.diagnostics);
   }
 }
 

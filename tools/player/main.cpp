@@ -64,11 +64,13 @@ int play_file(const std::string& file, const std::string& device, const std::str
     std::cerr << "sandpaper-play: error: no device calibration named '" << device << "' in " << set_dir.string() << "\n";
     return cli::kExitUsage;
   }
-  if (device != "sim") {
-    std::cerr << "sandpaper: error: device '" << device << "' cannot be played yet; only --device sim and --device usb run\n";
+  if (device != "sim" && !dev->emulated) {
+    std::cerr << "sandpaper: error: device '" << device << "' cannot be played yet; only --device sim, --device usb and "
+                 "emulated devices (sandpaper-1995) run\n";
     return cli::kExitUsage;
   }
   set.select_device(device);
+  cli::apply_emulation(*dev, r);
   const runtime::DeviceLimits limits = cli::limits_of(*dev);
   if (const int rc = cli::check_play_request(r, limits); rc != cli::kExitOk) return rc;
   const auto program = schema::read_patch_file(file);  // PatchFormatError: exit 1, below

@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <filesystem>
 #include <iostream>
 
@@ -51,6 +53,13 @@ std::string stalls_text(const runtime::ServoReport& rep) {
                      runtime::kStallPeriods, rep.longest_stall_us);
 }
 
+std::string describe_emulation(const PlayRequest& r) {
+  const auto& q = r.quantization;
+  return fmt::format("positions in {:.4g} mm steps, forces in {:.4g} mN steps up to {} units per axis, tables {}",
+                     q.position_step_m * 1e3, q.force_step_N[0] * 1e3, q.command_max,
+                     r.tables == runtime::TableSampling::Hold ? "sample-and-hold (Appendix B 2.1)" : "interpolated");
+}
+
 }  // namespace
 
 std::string player_name() {
@@ -60,7 +69,9 @@ std::string player_name() {
 }
 
 void add_play_options(CLI::App* run, PlayRequest& r) {
-  run->add_option("--rate", r.rate_hz, "servo rate, Hz (900 to 10000)")->capture_default_str();
+  run->add_option("--rate", r.rate_hz, "servo rate, Hz (900 to 10000; an emulated device: its own rate)")
+      ->each([&r](const std::string&) { r.rate_given = true; })
+      ->capture_default_str();
   run->add_option("--duration", r.duration_s, "how long to play, s")->capture_default_str();
   run->add_option("--hand", r.hand, "simulated hand path")->check(CLI::IsMember({"scan", "circle"}))->capture_default_str();
   run->add_option("--speed", r.speed_mm_s, "hand speed, mm/s")->capture_default_str();
@@ -78,8 +89,24 @@ void add_play_options(CLI::App* run, PlayRequest& r) {
   add_run_device_options(run, r.device);
 }
 
+void apply_emulation(const calibration::DeviceCalibration& device, PlayRequest& r) {
+  if (!device.emulated) return;
+  r.emulated = true;
+  r.quantization.position_step_m = device.position_resolution_m;
+  for (int a = 0; a < 2; ++a)
+    r.quantization.force_step_N[a] = device.quantized() ? device.force_step_N(a) : 0.0;
+  r.quantization.command_max = device.command_max;
+  r.tables = device.hold_tables ? runtime::TableSampling::Hold : runtime::TableSampling::Interpolate;
+  if (!r.rate_given) r.rate_hz = std::clamp(1000.0, device.min_rate_hz, device.max_rate_hz);
+}
+
 runtime::ServoConfig servo_config_of(const PlayRequest& r) {
   runtime::ServoConfig cfg;
+  if (r.emulated) {
+    cfg.command_step_N[0] = r.quantization.force_step_N[0];
+    cfg.command_step_N[1] = r.quantization.force_step_N[1];
+    cfg.command_max = r.quantization.command_max;
+  }
   cfg.rate_hz = r.rate_hz;
   cfg.duration_s = r.duration_s;
   cfg.spin_margin_s = r.spin_margin_us * 1e-6;
@@ -155,9 +182,17 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
     if (const int rc = load_replay(r.device, r.rate_hz, replayed, replay_duration); rc != kExitOk) return rc;
     cfg.duration_s = replay_duration;
   }
-  const auto device = make_run_device(r.device, limits, script, recorded, replayed);
+  // An emulated device: the hand moves a plain simulated handle, read and driven through the device's
+  // quantisation; the loop rounds its commands to the device's units (servo_config_of), so the
+  // telemetry and the trace show what was sent.
+  std::unique_ptr<runtime::RecordingDevice> device;
+  if (r.emulated)
+    device = std::make_unique<runtime::QuantizingJoystick>(make_run_device(r.device, limits, script, 0, replayed),
+                                                           r.quantization, recorded);
+  else
+    device = make_run_device(r.device, limits, script, recorded, replayed);
   runtime::RecordingDevice& joystick = *device;
-  runtime::PatchEvaluator evaluator(prog);
+  runtime::PatchEvaluator evaluator(prog, r.tables);
   runtime::ForceSource& source = playing != nullptr ? *playing : static_cast<runtime::ForceSource&>(evaluator);
 
   if (!r.json) {
@@ -165,7 +200,9 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
     std::cout << fmt::format("playing {} on {}: {:g} Hz {}, hand {} at {:g} mm/s, {} {:g} mm{}\n", prog.name, limits.name,
                              r.rate_hz, how_long, r.hand, r.speed_mm_s, r.hand == "circle" ? "radius" : "turning at +-",
                              r.amplitude_mm, r.virtual_clock ? " (virtual clock)" : "");
-    std::cout << "  device   " << describe_run_device(r.device) << "\n" << std::flush;
+    std::cout << "  device   " << describe_run_device(r.device) << "\n";
+    if (r.emulated) std::cout << "  emulated " << describe_emulation(r) << "\n";
+    std::cout << std::flush;
   }
   const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
   const Played played = play(joystick, source, cfg, r.virtual_clock, r.live, keep, poll);
@@ -213,7 +250,15 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
                      {"player", player_name()},
                      {"hand", {{"path", r.hand}, {"speed_mm_s", r.speed_mm_s}, {"amplitude_mm", r.amplitude_mm}}},
                      {"hand_device", describe_run_device(r.device)},
+                     {"emulation", r.emulated ? nlohmann::json{{"position_step_mm", r.quantization.position_step_m * 1e3},
+                                                               {"force_step_N", {r.quantization.force_step_N[0], r.quantization.force_step_N[1]}},
+                                                               {"command_max", r.quantization.command_max},
+                                                               {"tables", r.tables == runtime::TableSampling::Hold ? "sample-and-hold" : "interpolate"}}
+                                              : nlohmann::json(nullptr)},
                      {"trace", r.trace.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.trace)}};
+    // The compiler's warnings travel in the program (compile --json and explain --json show them too).
+    j["warnings"] = nlohmann::json::array();
+    for (const auto& w : prog.warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
     std::cout << j.dump(2) << "\n";
   } else {
     std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us; "

@@ -10,6 +10,8 @@
 #include "run_device.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/runtime/force_source.hpp"
+#include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/runtime/quantizing_joystick.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
@@ -26,7 +28,17 @@ struct PlayRequest {
   double spin_margin_us = runtime::ServoConfig{}.spin_margin_s * 1e6;
   double deadline_guard_periods = runtime::ServoConfig{}.deadline_guard_periods;
   int cpu = -1;
+  bool rate_given = false;  // --rate was on the command line
+  // A device emulated on the simulator ([emulation] in its device file; apply_emulation sets these).
+  bool emulated = false;
+  runtime::DeviceQuantization quantization;
+  runtime::TableSampling tables = runtime::TableSampling::Interpolate;
 };
+
+// For a device whose file has [emulation] (sandpaper-1995): plays on the simulated joystick with the
+// device's position and force quantisation and table sampling, at its servo rate unless --rate was
+// given (1000 Hz clamped to the device's range). Does nothing for other devices.
+void apply_emulation(const calibration::DeviceCalibration& device, PlayRequest& r);
 
 // Registers run's playing options on `run` (--rate ... --trace, --virtual-clock, --live, the hand
 // device options, --spin-margin, --deadline-guard, --cpu). The same for `sandpaper run` and `sandpaper-play`.

@@ -8,7 +8,9 @@
 #include <CLI/CLI.hpp>
 
 #include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/schema/patch_json.hpp"
 #include "sandpaper/curation/check.hpp"
+#include "sandpaper/curation/display.hpp"
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/near.hpp"
 #include "sandpaper/curation/search.hpp"
@@ -238,7 +240,7 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
   std::cout << "\n  describes  \"" << e.describes << "\"\n"
             << "  family     " << e.family << (e.family_title.empty() ? "" : " (" + e.family_title + ")") << "\n"
             << "  licence    " << e.licence << "\n"
-            << "  file       " << e.file << " (library " << e.library_version << ", " << idx.meta("library_dir") << ")\n";
+            << "  file       " << cur::DisplayPaths(p.library).path_of(e.file) << " (library " << e.library_version << ")\n";
   if (!e.deprecated_by.empty()) std::cout << "  DEPRECATED replaced by " << e.deprecated_by << "\n";
   if (!e.likes.empty()) {
     std::string l;
@@ -259,7 +261,7 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
   }
   for (const auto& [k, v] : e.others) std::cout << "  " << pad(k, 23) << num(v) << " (ratio scale)\n";
   std::cout << "physical\n  " << e.physical << "\n  terms: " << (e.terms.empty() ? "none" : e.terms) << "\n";
-  std::cout << "statements (" << e.file << ")\n";
+  std::cout << "statements (" << cur::DisplayPaths(p.library).path_of(e.file) << ")\n";
   for (const auto& s : statements) {
     std::cout << "  " << std::setw(3) << s.line << "  " << s.text << "\n";
     for (const auto& [k, t] : s.sources) std::cout << "         source " << k << " \"" << t << "\"\n";
@@ -268,8 +270,9 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
   std::size_t wp = 0;
   for (const auto& r : prov) wp = std::max(wp, r.parameter.size());
   for (const auto& r : prov) {
-    std::cout << "  " << pad(r.parameter, wp) << "  " << num(r.value_si, 4) << " " << r.si_unit << "  " << r.layer << "  "
-              << r.source << "\n";
+    // As explain shows them (95 mm, 0 deg), not in raw SI: the JSON keeps value_si and si_unit.
+    const std::string value = r.si_unit.empty() ? r.stated : schema::display_value(r.value_si, r.si_unit);
+    std::cout << "  " << pad(r.parameter, wp) << "  " << pad(value, 12) << "  " << pad(r.layer, 10) << "  " << r.source << "\n";
     for (const auto& [k, t] : r.notes) std::cout << "      source " << k << " \"" << t << "\"\n";
   }
   return kExitOk;

@@ -56,10 +56,12 @@ int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
   }
   if (o.device == "usb") return cmd_run_usb(o, r);
   auto c = make_compiler(o);
-  if (o.device != "sim") {
-    std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim and --device usb run\n";
+  if (o.device != "sim" && !c.device().emulated) {
+    std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim, --device usb and "
+                 "emulated devices (sandpaper-1995) run\n";
     return kExitUsage;
   }
+  apply_emulation(c.device(), r);
   const runtime::DeviceLimits limits = limits_of(c);
   if (const int rc = check_play_request(r, limits); rc != kExitOk) return rc;
 

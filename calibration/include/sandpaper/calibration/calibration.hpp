@@ -108,6 +108,11 @@ struct DeviceCalibration {
   double workspace_size_m[2] = {0, 0};  // rectangle width, height (circle: the diameter twice)
   double min_rate_hz = 0, max_rate_hz = 0;
   int usb_vendor_id = -1, usb_product_id = -1;  // [usb] table of a USB HID PID device; -1: not a USB device
+  // [emulation]: a historical device `run` plays on the simulated joystick with its own quantisation
+  // (sandpaper-1995: Minsky 1995 Table 2, Appendix B 2.1). `hold_tables`: force tables read by
+  // sample-and-hold (nearest sample) instead of interpolation.
+  bool emulated = false;
+  bool hold_tables = false;
   std::string roughness_map;         // [maps] roughness: the map id this device compiles roughness with; empty: see load()
   CalibrationStatus status = CalibrationStatus::Uncalibrated;
   std::string calibration_method, calibration_source;

@@ -21,9 +21,11 @@ inline constexpr double kMaxPatternKernel = 256;
 inline constexpr int kSeedPixels = 256;
 inline constexpr double kSeedKernel_px = 24;
 
-// Gaussian sigma, pixels, of a kernel of size n pixels. Reading (docs/TEXTURES.md): the kernel
-// spans +-2 sigma, so sigma = n / 4 (the version-2 seed's kernel 24 -> sigma 6 px).
-constexpr double kernel_sigma_px(double kernel_px) { return kernel_px / 4.0; }
+// Gaussian sigma, pixels, of a version-1 kernel of size n. Reading (docs/TEXTURES.md, "Quantization"):
+// the kernel size is the sigma in pixels, the reading that reproduces 3.6.1's "5 to 8" force levels of
+// the version-1 gratings (until issue 15 it was n / 4, as for the version-2 seed's kernel 24, which
+// gave 1 to 4). The version-2 seed keeps its own reading (kSeedSigmaPerPeriod).
+constexpr double kernel_sigma_px(double kernel_px) { return kernel_px; }
 
 // The pattern's lateral-force field at its pixel pitch, scaled so that max |F| = max_force_N.
 // Bars and grids are one tile repeated over the patch; perlin, noise and stripes cover the patch

@@ -23,6 +23,11 @@ struct ResolveContext {
 // The result is meaningful only if no error was added to `diags`.
 ResolvedMaterial resolve(const MaterialSyntax& syntax, ResolveContext& ctx, Diagnostics& diags);
 
+// W0302/W0304: a perceptual roughness outside what its map measured (a grating period outside the
+// map's periods, an image or pattern texture). Called after code generation succeeded, so a texture
+// that fails to compile reports only its own error.
+void warn_roughness_domain(const ResolvedMaterial& m, const calibration::CalibrationSet& cal, Diagnostics& diags);
+
 // Default patch size: the thesis' experiment stimuli were squares about 9.5 cm a side (5.2.3).
 inline constexpr double kDefaultPatchSize_m = 0.095;
 

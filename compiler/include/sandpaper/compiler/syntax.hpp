@@ -42,8 +42,9 @@ struct PerceptStmt {
 };
 // Physical: a grating (thesis 3.5.2 version-2 recipe).
 struct GratingStmt {
-  Quantity period;
+  std::optional<Quantity> period;  // absent: inherited from the grating this file is `like` (LANGUAGE.md)
   std::optional<Quantity> hill, amplitude, orientation, smoothing;
+  SourceLocation location;         // the `grating` keyword
 };
 // Physical: an image read as a height field (thesis 3.2.2, 3.4).
 struct HeightmapStmt {

@@ -24,6 +24,12 @@ struct TermState {
   double time_s = 0;                // Attractor: time on the path, wrapped to [0, period)
 };
 
+// How force tables (gratings, height fields) are read between their samples.
+enum class TableSampling : std::uint8_t {
+  Interpolate,  // linear along a grating, bilinear over a height field (the default)
+  Hold,         // the nearest sample, held: the thesis' joystick (Appendix B 2.1), `--device sandpaper-1995`
+};
+
 class PatchEvaluator final : public ForceSource {
  public:
   // Keeps a reference: `program` must outlive the evaluator and not change while it is used.
@@ -33,9 +39,9 @@ class PatchEvaluator final : public ForceSource {
   // periods, lags, radii or masses <= 0, point-mass count not 1 or 2, negative physical springs or
   // dampers, swirl <= -1, a negative energy budget or refill, patch size <= 0); table values
   // themselves are not checked.
-  explicit PatchEvaluator(const schema::PatchProgram& program);
+  explicit PatchEvaluator(const schema::PatchProgram& program, TableSampling tables = TableSampling::Interpolate);
   // A temporary program would be gone before the first tick.
-  explicit PatchEvaluator(schema::PatchProgram&&) = delete;
+  explicit PatchEvaluator(schema::PatchProgram&&, TableSampling = TableSampling::Interpolate) = delete;
 
   // Advances every stateful term by dt_s (s; dt_s <= 0 advances nothing), then returns the sum of
   // every term's force at `hand`, the non-passive terms' share scaled by the energy tank. Zero
@@ -74,6 +80,7 @@ class PatchEvaluator final : public ForceSource {
   std::vector<Slot> slots_;             // one per stateful term
   bool any_active_ = false;             // any non-passive term: only then is the tank metered
   EnergyTank tank_;
+  TableSampling tables_ = TableSampling::Interpolate;
 };
 
 }  // namespace sandpaper::runtime

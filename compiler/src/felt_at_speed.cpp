@@ -1,0 +1,191 @@
+#include "sandpaper/compiler/felt_at_speed.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+
+#include "sandpaper/compiler/patterns.hpp"
+#include "sandpaper/compiler/textures.hpp"
+
+namespace sandpaper::compiler {
+namespace {
+
+struct Ridge {
+  double first = 0, last = 0;  // sample indices of its first and last sample (last may pass n: wrapped)
+  double sign = 0;
+  double peak = 0;             // largest |F| of its samples
+};
+
+// Runs of one sign around the (periodic) table, zero samples separating them.
+std::vector<Ridge> ridges_of(const std::vector<float>& t) {
+  const std::size_t n = t.size();
+  std::vector<Ridge> out;
+  if (n == 0) return out;
+  auto sign_at = [&](std::size_t i) { return t[i % n] > 0 ? 1.0 : t[i % n] < 0 ? -1.0 : 0.0; };
+  // Start just after a sign change so that no run is split by the wrap.
+  std::size_t start = 0;
+  while (start < n && sign_at(start) == sign_at(start + n - 1)) ++start;
+  if (start == n) {  // one sign everywhere (or all zero): one ridge spanning the period, if any force
+    if (sign_at(0) != 0) {
+      float peak = 0;
+      for (float f : t) peak = std::max(peak, std::abs(f));
+      out.push_back({0, static_cast<double>(n), sign_at(0), peak});
+    }
+    return out;
+  }
+  for (std::size_t i = start; i < start + n;) {
+    const double s = sign_at(i);
+    std::size_t j = i;
+    float peak = 0;
+    while (j < start + n && sign_at(j) == s) peak = std::max(peak, std::abs(t[j % n])), ++j;
+    if (s != 0) out.push_back({static_cast<double>(i), static_cast<double>(j - 1), s, peak});
+    i = j;
+  }
+  return out;
+}
+
+// The runtime's read of the table at fractional sample index x (linear, wrapped): runtime/src/force_tables.cpp.
+double read(const std::vector<float>& t, double x) {
+  const auto n = static_cast<double>(t.size());
+  const double u = x - std::floor(x / n) * n;
+  const double whole = std::floor(u);
+  auto i = static_cast<std::size_t>(whole);
+  const double frac = u - whole;
+  if (i >= t.size()) i = 0;
+  const double lo = t[i], hi = t[(i + 1) % t.size()];
+  return lo + frac * (hi - lo);
+}
+
+}  // namespace
+
+std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std::vector<double>& speeds_m_s,
+                                       const std::vector<double>& rates_hz) {
+  std::vector<FeltAtSpeed> out;
+  const schema::GratingTerm* g = nullptr;
+  for (const auto& t : p.terms)
+    if ((g = std::get_if<schema::GratingTerm>(&t))) break;
+  if (!g || g->force_N.empty() || !(g->period_m > 0)) return out;
+  const auto& table = g->force_N;
+  const auto n = static_cast<double>(table.size());
+  const auto ridges = ridges_of(table);
+  double continuous = 0;
+  for (const auto& r : ridges) continuous += r.peak;
+  continuous = ridges.empty() ? 0 : continuous / static_cast<double>(ridges.size());
+  constexpr int kPhases = 512;
+  for (double rate : rates_hz)
+    for (double v : speeds_m_s) {
+      FeltAtSpeed f{v, rate, 0, 0};
+      const double step = v / rate / g->period_m * n;  // one tick's travel, in samples
+      double sum = 0;
+      for (const auto& r : ridges) {
+        // The ridge's force lives between the zero-or-opposite samples on either side of it.
+        const double lo = r.first - 1, hi = r.last + 1;
+        for (int k = 0; k < kPhases; ++k) {
+          double best = 0;
+          for (double x = lo + step * (k + 0.5) / kPhases; x <= hi; x += step) best = std::max(best, r.sign * read(table, x));
+          sum += best;
+        }
+      }
+      f.peak_N = ridges.empty() ? 0 : sum / (kPhases * static_cast<double>(ridges.size()));
+      f.fraction = continuous > 0 ? f.peak_N / continuous : 0;
+      out.push_back(f);
+    }
+  return out;
+}
+
+double default_servo_rate_hz(const calibration::DeviceCalibration& device) {
+  return std::clamp(1000.0, device.min_rate_hz, device.max_rate_hz);
+}
+
+namespace {
+
+std::string fmt(double v, int digits = 3) {
+  std::ostringstream os;
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
+
+// `m`'s grating rebuilt with Gaussian sigma `sigma_m`, the way codegen builds it (float, or the 8-bit seed).
+schema::PatchProgram rebuilt(const ResolvedGrating& g, const ResolvedMaterial& m, double sigma_m, double max_force_N) {
+  schema::PatchProgram p;
+  if (m.quantize_bits)
+    p.terms.emplace_back(make_seed_grating(g.period.si, g.hill.si, g.orientation.si, sigma_m / g.period.si * kSeedPixels,
+                                           static_cast<int>(m.quantize_bits->si), max_force_N));
+  else
+    p.terms.emplace_back(make_grating(g.period.si, g.hill.si, g.orientation.si, sigma_m, max_force_N));
+  return p;
+}
+
+}  // namespace
+
+FeltRemedies felt_remedies(const ResolvedMaterial& m, const schema::PatchProgram& p, double speed_m_s, double rate_hz,
+                           double fast_rate_hz, double weber_fraction) {
+  FeltRemedies r;
+  const auto* g = std::get_if<ResolvedGrating>(&m.texture);
+  const auto felt = felt_at_speed(p, {speed_m_s}, {rate_hz});
+  if (!g || felt.empty()) return r;
+  r.speed_m_s = speed_m_s;
+  r.rate_hz = rate_hz;
+  r.now = felt.front();
+  if (fast_rate_hz > rate_hz) {
+    r.fast_rate_hz = fast_rate_hz;
+    r.fast = felt_at_speed(p, {speed_m_s}, {fast_rate_hz}).front();
+  }
+  // The least sigma (bisection between the compiled one and a quarter period) within half a JND.
+  const double target = 1 - weber_fraction / 2;
+  const double force = p.max_lateral_force_N;
+  const double start = g->smoothing ? g->smoothing->si : g->period.si * kSeedSigmaPerPeriod;
+  double lo = start, hi = g->period.si / 4;
+  const auto fraction_at = [&](double sigma) { return felt_at_speed(rebuilt(*g, m, sigma, force), {speed_m_s}, {rate_hz}).front(); };
+  if (!(hi > lo) || fraction_at(hi).fraction < target) return r;
+  for (int i = 0; i < 30 && hi - lo > 1e-3 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (fraction_at(mid).fraction >= target ? hi : lo) = mid;
+  }
+  // Rounded up to a stated length (micrometres), then measured as it will be compiled.
+  r.smoothing_m = std::ceil(hi * 1e6) * 1e-6;
+  r.smoothed = fraction_at(r.smoothing_m);
+  return r;
+}
+
+void warn_felt_at_speed(const ResolvedMaterial& m, const schema::PatchProgram& p, const calibration::CalibrationSet& cal,
+                        const calibration::DeviceCalibration& device, Diagnostics& diags) {
+  const auto* g = std::get_if<ResolvedGrating>(&m.texture);
+  if (!g || !(p.max_lateral_force_N > 0)) return;
+  const double weber = cal.knowledge().force_jnd.weber_fraction;
+  const double rate = default_servo_rate_hz(device);
+  const auto felt = felt_at_speed(p, kCommonHandSpeeds_m_s, {rate});
+  const FeltAtSpeed* worst = nullptr;
+  for (const auto& f : felt)
+    if (f.fraction < 1 - weber && (!worst || f.fraction < worst->fraction)) worst = &f;
+  if (!worst) return;
+  const auto& map = cal.roughness_map();
+  const auto r = felt_remedies(m, p, worst->speed_m_s, rate, std::max(rate, device.max_rate_hz), weber);
+  const std::string at = fmt(worst->speed_m_s * 1e3) + " mm/s";
+  std::string help;
+  if (r.fast_rate_hz > 0)
+    help += "play at " + fmt(r.fast_rate_hz, 6) + " Hz (`run --rate " + fmt(r.fast_rate_hz, 6) + "`): " + fmt(r.fast.peak_N) +
+            " N felt at " + at + ", roughness " + fmt(map.percept_of(r.fast.peak_N)) + "; ";
+  if (r.smoothing_m > 0)
+    help += "or widen the walls for " + at + " with `smoothing " + fmt(r.smoothing_m * 1e3, 3) + " mm` on the grating: " +
+            fmt(r.smoothed.peak_N) + " N felt, roughness " + fmt(map.percept_of(r.smoothed.peak_N));
+  else
+    help += "no smoothing up to a quarter of the period keeps it within half a JND at " + at;
+  diags.warning("W0350", g->location,
+                "at " + at + ", a common hand speed, the " + fmt(rate, 6) + " Hz servo on " + device.name +
+                    " reads this grating's force walls at " + fmt(worst->peak_N) + " N of the " + fmt(p.max_lateral_force_N) +
+                    " N compiled (" + fmt(worst->fraction * 100) + " %): more than one force JND (" + fmt(weber * 100) +
+                    " %) is lost, so it feels like roughness " + fmt(map.percept_of(worst->peak_N)) + ", not " +
+                    fmt(p.roughness),
+                help);
+}
+
+std::vector<FeltAtSpeed> felt_at_explain_speeds(const schema::PatchProgram& p, double device_rate_hz) {
+  std::vector<double> rates{device_rate_hz};
+  if (device_rate_hz != 10000) rates.push_back(10000);
+  return felt_at_speed(p, {0.02, 0.05, 0.1, 0.2}, rates);
+}
+
+}  // namespace sandpaper::compiler
