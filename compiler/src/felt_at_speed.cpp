@@ -17,30 +17,41 @@ struct Ridge {
   double peak = 0;             // largest |F| of its samples
 };
 
-// Runs of one sign around the (periodic) table, zero samples separating them.
+// Runs of one sign around the (periodic) table. Zero samples do not end a run: an 8-bit table with
+// wide walls has zeros between small steps of one wall, which is one ridge to the hand.
 std::vector<Ridge> ridges_of(const std::vector<float>& t) {
   const std::size_t n = t.size();
   std::vector<Ridge> out;
-  if (n == 0) return out;
   auto sign_at = [&](std::size_t i) { return t[i % n] > 0 ? 1.0 : t[i % n] < 0 ? -1.0 : 0.0; };
-  // Start just after a sign change so that no run is split by the wrap.
+  std::vector<std::size_t> nonzero;
+  for (std::size_t i = 0; i < n; ++i)
+    if (sign_at(i) != 0) nonzero.push_back(i);
+  if (nonzero.empty()) return out;
+  // Start at a nonzero sample whose previous nonzero sample (cyclically) has the other sign, so that
+  // no run is split by the wrap; if every nonzero sample has one sign, the table is one ridge.
   std::size_t start = 0;
-  while (start < n && sign_at(start) == sign_at(start + n - 1)) ++start;
-  if (start == n) {  // one sign everywhere (or all zero): one ridge spanning the period, if any force
-    if (sign_at(0) != 0) {
-      float peak = 0;
-      for (float f : t) peak = std::max(peak, std::abs(f));
-      out.push_back({0, static_cast<double>(n), sign_at(0), peak});
-    }
+  const std::size_t m = nonzero.size();
+  while (start < m && sign_at(nonzero[start]) == sign_at(nonzero[(start + m - 1) % m])) ++start;
+  if (start == m) {
+    float peak = 0;
+    for (float f : t) peak = std::max(peak, std::abs(f));
+    out.push_back({0, static_cast<double>(n), sign_at(nonzero[0]), peak});
     return out;
   }
-  for (std::size_t i = start; i < start + n;) {
-    const double s = sign_at(i);
-    std::size_t j = i;
+  for (std::size_t k = 0; k < m;) {
+    const std::size_t first = nonzero[(start + k) % m];
+    const double s = sign_at(first);
+    std::size_t last = first;
     float peak = 0;
-    while (j < start + n && sign_at(j) == s) peak = std::max(peak, std::abs(t[j % n])), ++j;
-    if (s != 0) out.push_back({static_cast<double>(i), static_cast<double>(j - 1), s, peak});
-    i = j;
+    while (k < m && sign_at(nonzero[(start + k) % m]) == s) {
+      const std::size_t i = nonzero[(start + k) % m];
+      peak = std::max(peak, std::abs(t[i]));
+      last = i;
+      ++k;
+    }
+    // Unwrapped: the run's last sample comes after its first.
+    const double last_unwrapped = last >= first ? static_cast<double>(last) : static_cast<double>(last + n);
+    out.push_back({static_cast<double>(first), last_unwrapped, s, peak});
   }
   return out;
 }

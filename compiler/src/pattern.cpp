@@ -72,7 +72,8 @@ std::string num(double v) {
 }  // namespace
 
 bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double patch_height_m, int bits,
-                        double max_force_N, schema::HeightFieldTerm& out, Diagnostics& diags, std::string& summary) {
+                        double max_force_N, schema::HeightFieldTerm& out, Diagnostics& diags, std::string& summary,
+                        double* peak_gradient_steps) {
   const double pixel = p.pixel.si;
   const bool quantized = bits > 0;
   const double top = quantized ? std::ldexp(1.0, bits) - 1 : 1.0;  // the hill's height in height steps
@@ -197,6 +198,7 @@ bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double p
     return false;
   }
   const double gain = max_force_N / peak;
+  if (peak_gradient_steps) *peak_gradient_steps = peak;
   out = {};
   out.nx = static_cast<std::uint32_t>(nx);
   out.ny = static_cast<std::uint32_t>(ny);

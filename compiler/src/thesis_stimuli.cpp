@@ -8,6 +8,7 @@
 
 #include <toml++/toml.h>
 
+#include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/schema/units.hpp"
 
 namespace sandpaper::compiler {
@@ -20,6 +21,7 @@ constexpr int kJoystickFullScale = 2048;    // Table 8: "command amplitude (rang
 // Readings from version1.toml.
 struct Version1Data {
   double base_pu = 0, fless_pu = 0, fmore_pu = 0, fmost_pu = 0;
+  std::string reference;  // the stimulus whose MaxGradient is felt at base_pu (4.5.2: force proportional to it)
   double stripes_weak_pu = 0, stripes_strong_pu = 0;
   double stripes_kernel_px = 0, seed = 0, patch_px = 0;
   double law_force_pu = 0, law_at_mm = 0, law_at_m_per_s = 0, law_period_mm = 0;
@@ -51,6 +53,9 @@ Version1Data load_data(const std::filesystem::path& library_dir) {
   d.fless_pu = number_at(t, "forces", "Fless_pu", file);
   d.fmore_pu = number_at(t, "forces", "Fmore_pu", file);
   d.fmost_pu = number_at(t, "forces", "Fmost_pu", file);
+  auto reference = t["forces"]["reference"].value<std::string>();
+  if (!reference) throw std::runtime_error(file + ": [forces] reference is missing or not a string");
+  d.reference = *reference;
   d.stripes_weak_pu = number_at(t, "forces", "stripes_weak_pu", file);
   d.stripes_strong_pu = number_at(t, "forces", "stripes_strong_pu", file);
   d.stripes_kernel_px = number_at(t, "patterns", "stripes_kernel_px", file);
@@ -88,14 +93,15 @@ std::string force_suffix_pu(const std::string& suffix, const Version1Data& d, do
 }
 
 const char* kVersion1Origin =
-    "thesis stimulus generator (Minsky 1995, 3.5.1 and ch. 4; force a reading from library/thesis/version1.toml)";
+    "thesis stimulus generator (Minsky 1995, 3.5.1 and ch. 4; force proportional to the stimulus' MaxGradient (4.5.2), "
+    "scale a reading from library/thesis/version1.toml)";
 
 std::string version1_text(const std::string& name, const std::string& describes, const std::string& statement,
                           double pu, const std::string& force_note, const Version1Data& d) {
   std::ostringstream os;
   os << "# " << name << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
      << "# Force: " << sig(pu) << " pu (" << force_note << "), a reading: the OCR loses each version-1\n"
-     << "# stimulus's force (library/thesis/version1.toml, docs/TEXTURES.md).\n"
+     << "# stimulus's force (library/thesis/version1.toml, docs/TEXTURES.md, \"Version-1 forces\").\n"
      << "material \"" << name << "\" {\n"
      << "  describes \"" << describes << "\"\n"
      << "  " << statement << (statement.rfind("force ", 0) == 0 ? "" : " amplitude " + sig(pu) + " pu") << "\n";
@@ -118,6 +124,64 @@ std::string kernel_words(const std::string& k1, const std::string& k2) {
   std::string s = "Gaussian kernel " + k1;
   if (!k2.empty()) s += ", refiltered with kernel " + k2;
   return s;
+}
+
+Param px_param(double px) { return Param{px * kThesisPixel_m, "", Layer::Default, "", {}}; }
+Param number_param(double v) { return Param{v, "", Layer::Default, "", {}}; }
+double kernel_value(const std::string& k) { return std::stod(k[0] == '.' ? "0" + k : k); }
+
+// A version-1 pattern as the generator states it, resolved directly (no text round trip).
+ResolvedPattern v1_pattern(PatternKind kind, long long valley, long long hill, long long offset, const std::string& k1,
+                           const std::string& k2, long long feature, double seed) {
+  ResolvedPattern p;
+  p.kind = kind;
+  p.pixel = px_param(1);
+  if (kind == PatternKind::Perlin) {
+    p.feature = px_param(static_cast<double>(feature));
+    p.seed = number_param(seed);
+  } else {
+    p.valley = px_param(static_cast<double>(valley));
+    p.hill = px_param(static_cast<double>(hill));
+    if (offset) p.offset = px_param(static_cast<double>(offset));
+  }
+  if (!k1.empty()) p.kernel = number_param(kernel_value(k1));
+  if (!k2.empty()) p.refilter = number_param(kernel_value(k2));
+  return p;
+}
+
+// 4.5.2's MaxGradient: the largest |h(i+1) - h(i-1)| of the stimulus' 8-bit height array, height steps.
+std::optional<double> max_gradient_steps(const ResolvedPattern& p, const Version1Data& d) {
+  schema::HeightFieldTerm field;
+  Diagnostics diags;
+  std::string summary;
+  double peak = 0;
+  const double patch = d.patch_px * kThesisPixel_m;
+  if (!make_pattern_field(p, patch, patch, 8, 1.0, field, diags, summary, &peak)) return std::nullopt;
+  return peak;
+}
+
+// The reference stimulus' MaxGradient ([forces] reference: a bars or grid name).
+std::optional<double> reference_gradient(const Version1Data& d) {
+  static const std::regex name(R"((bars|grid)B(\d+)W(\d+)_(\d+))");
+  std::smatch m;
+  if (!std::regex_match(d.reference, m, name)) return std::nullopt;
+  return max_gradient_steps(v1_pattern(m[1] == "grid" ? PatternKind::Grid : PatternKind::Bars, std::stoll(m[2].str()),
+                                       std::stoll(m[3].str()), 0, m[4].str(), "", 0, 0),
+                            d);
+}
+
+// 4.5.2: "The maximum force from any stimulus is proportional to the maximum height gradient that
+// occurs in its height array": `pu` (the variant's force at the reference's gradient) scaled by the
+// stimulus' MaxGradient over the reference's; `note` says so. Returns why not, or "".
+std::string proportional_force(const std::optional<double>& g, const Version1Data& d, double& pu, std::string& note) {
+  const auto g_ref = reference_gradient(d);
+  if (!g_ref || !(*g_ref > 0)) return "the reference stimulus " + d.reference + " of [forces] has no slope";
+  if (!g || !(*g > 0)) return "its height array has no slope, so no force";
+  const double at_reference = pu;
+  pu = at_reference * *g / *g_ref;
+  note += ", " + sig(at_reference) + " pu x MaxGradient " + sig(*g, 4) + " / " + sig(*g_ref, 4) + " height steps of " +
+          d.reference + " (4.5.2)";
+  return {};
 }
 
 ThesisLookup make(ThesisStimulus s) { return ThesisLookup{std::move(s), {}}; }
@@ -199,6 +263,8 @@ ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem
     if (valley < 1 || hill < 1) return fail(name + ": valley and hill need at least one pixel each");
     double pu = 0;
     std::string force_note = force_suffix_pu(suffix, d, pu);
+    const auto g = max_gradient_steps(v1_pattern(is_grid ? PatternKind::Grid : PatternKind::Bars, valley, hill, offset, k1, k2, 0, 0), d);
+    if (const std::string why = proportional_force(g, d, pu, force_note); !why.empty()) return fail(name + ": " + why);
     std::string stmt = std::string("pattern ") + (is_grid ? "grid" : "bars") + " valley " + px_mm(valley) + " hill " +
                        px_mm(hill) + (offset ? " offset " + px_mm(offset) : "") + kernel_options(k1, k2);
     std::string describes = std::string("Minsky 1995 version-1 ") + (is_grid ? "grid " : "grating ") + name + ": valley " +
@@ -212,6 +278,8 @@ ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem
     if (feature < 1) return fail(name + ": the feature size needs at least one pixel");
     double pu = 0;
     std::string force_note = force_suffix_pu(m[2].str(), d, pu);
+    const auto g = max_gradient_steps(v1_pattern(PatternKind::Perlin, 0, 0, 0, "", "", feature, d.seed), d);
+    if (const std::string why = proportional_force(g, d, pu, force_note); !why.empty()) return fail(name + ": " + why);
     std::string stmt = "pattern perlin feature " + px_mm(feature) + " seed " + sig(d.seed);
     std::string describes = "Minsky 1995 version-1 Perlin texture " + name + ": lattice " + std::to_string(feature) +
                             " px, " + force_note + "; 1 px = 0.37 mm";

@@ -98,9 +98,10 @@ TEST(Believability, CompilerWarnsW0330OnBothSidesOfEachBound) {
   EXPECT_TRUE(warns("pattern grid valley 4.81 mm hill 4.81 mm amplitude 20 pu", "W0330"));
   EXPECT_FALSE(warns("pattern grid valley 4.44 mm hill 4.81 mm amplitude 20 pu", "W0330"));
   // Perlins are reported by explain (their bound is a reading), never warned about.
-  EXPECT_FALSE(warns("perlin20Fless", "W0330"));
-  EXPECT_FALSE(assess("perlin20Fless").believable);
-  EXPECT_TRUE(assess("perlin20Fmore").believable);
+  // (Since issue 15 a version-1 stimulus' force follows its MaxGradient: perlin50Fless is 2.4 pu, perlin5Fmore 70 pu.)
+  EXPECT_FALSE(warns("perlin50Fless", "W0330"));
+  EXPECT_FALSE(assess("perlin50Fless").believable);
+  EXPECT_TRUE(assess("perlin5Fmore").believable);
 }
 
 TEST(Believability, Table8A3P100SitsOnTheForceBoundAndInsideTheBelievableRegion) {

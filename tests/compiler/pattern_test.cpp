@@ -24,33 +24,6 @@ compiler::CompileResult compile_ok(const std::string& text) {
   return r;
 }
 
-// Independent restatement of the version-1 bar profile: valley px of 0 then hill px of 255 per
-// period, a wrapped discrete Gaussian of sigma = kernel / 4 px (radius 3 sigma), rounded to whole
-// height steps; the gradient d(i) = h(i+1) - h(i-1).
-std::vector<double> bar_gradient_8bit(int valley, int hill, double kernel) {
-  const int n = valley + hill;
-  const double sigma = kernel;  // the version-1 reading since issue 15: kernel n is sigma n px
-  const int radius = static_cast<int>(std::ceil(3 * sigma));
-  std::vector<double> w;
-  double sum = 0;
-  for (int j = -radius; j <= radius; ++j) {
-    w.push_back(std::exp(-j * j / (2 * sigma * sigma)));
-    sum += w.back();
-  }
-  std::vector<double> h(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    double s = 0;
-    for (int j = -radius; j <= radius; ++j) {
-      int q = ((i + j) % n + n) % n;
-      s += w[static_cast<std::size_t>(j + radius)] / sum * (q >= valley ? 255.0 : 0.0);
-    }
-    h[static_cast<std::size_t>(i)] = std::round(s);
-  }
-  std::vector<double> d(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) d[static_cast<std::size_t>(i)] = h[static_cast<std::size_t>((i + 1) % n)] - h[static_cast<std::size_t>((i + n - 1) % n)];
-  return d;
-}
-
 std::size_t distinct_nonzero_magnitudes(const std::vector<double>& d) {
   std::set<double> s;
   for (double x : d)
@@ -117,7 +90,7 @@ TEST(Pattern, BarsFollowTheLateralForceGradient) {
   // valley 15 px, hill 20 px, kernel 2 (sigma 2 px), 8-bit: F = -k d, k = target / max |d|.
   auto r = compile_ok("pattern bars valley 5.55 mm hill 7.4 mm kernel 2 amplitude 1.5 N; quantize 8 bit");
   const auto& f = field_of(r);
-  auto d = bar_gradient_8bit(15, 20, 2);
+  auto d = test::bar_gradient_8bit(15, 20, 2);
   ASSERT_EQ(f.nx, d.size());
   ASSERT_EQ(f.ny, 1u);
   double peak = 0;
@@ -138,7 +111,7 @@ TEST(Pattern, QuantizationLeavesAHandfulOfForceLevels) {
     auto f = compile_ok(bars);
     auto lq = compiler::count_force_levels(*q.program);
     auto lf = compiler::count_force_levels(*f.program);
-    EXPECT_EQ(lq.magnitudes, distinct_nonzero_magnitudes(bar_gradient_8bit(15, 20, kernel))) << kernel;
+    EXPECT_EQ(lq.magnitudes, distinct_nonzero_magnitudes(test::bar_gradient_8bit(15, 20, kernel))) << kernel;
     EXPECT_GE(lf.magnitudes, lq.magnitudes) << kernel;
     if (kernel <= 2) {
       EXPECT_LE(lq.magnitudes, 8u) << kernel;

@@ -42,6 +42,31 @@ std::string temp_dir(const std::string& tag) {
 
 double expected_force_for_roughness(double r) { return 382 * 9.80665e-3 * std::pow(r, 1 / 0.759593); }
 
+std::vector<double> bar_gradient_8bit(int valley, int hill, double kernel) {
+  const int n = valley + hill;
+  const double sigma = kernel;  // the version-1 reading since issue 15: kernel n is sigma n px
+  const int radius = static_cast<int>(std::ceil(3 * sigma));
+  std::vector<double> w;
+  double sum = 0;
+  for (int j = -radius; j <= radius; ++j) {
+    w.push_back(std::exp(-j * j / (2 * sigma * sigma)));
+    sum += w.back();
+  }
+  std::vector<double> h(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    double s = 0;
+    for (int j = -radius; j <= radius; ++j) {
+      int q = ((i + j) % n + n) % n;
+      s += w[static_cast<std::size_t>(j + radius)] / sum * (q >= valley ? 255.0 : 0.0);
+    }
+    h[static_cast<std::size_t>(i)] = std::round(s);
+  }
+  std::vector<double> d(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) d[static_cast<std::size_t>(i)] = h[static_cast<std::size_t>((i + 1) % n)] - h[static_cast<std::size_t>((i + n - 1) % n)];
+  return d;
+}
+
+
 }  // namespace sandpaper::test
 
 namespace {

@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <vector>
 
 #include "sandpaper/compiler/compiler.hpp"
 
@@ -17,5 +18,10 @@ std::string temp_dir(const std::string& tag);
 // Independent restatement of the ratio scale (Minsky 1995 Fig. 19; issue 2):
 // F = 382 gf * r^(1 / 0.759593), 1 gf = 9.80665 mN.
 double expected_force_for_roughness(double r);
+
+// Independent restatement of a version-1 bar tile's 8-bit lateral-force gradient (thesis 3.5.1, EQ 12-13):
+// valley then hill pixels, wrapped Gaussian of sigma = kernel px (docs/TEXTURES.md's reading), heights
+// rounded to 0-255, d(i) = h(i+1) - h(i-1), in height steps.
+std::vector<double> bar_gradient_8bit(int valley, int hill, double kernel);
 
 }  // namespace sandpaper::test

@@ -32,8 +32,11 @@ constexpr double kernel_sigma_px(double kernel_px) { return kernel_px; }
 // (patch_width_m x patch_height_m, rounded to whole pixels), each sample a central difference.
 // `bits` = 0: float heights; otherwise heights are rounded to `bits` bits after generation and
 // after each smoothing pass. Errors (array too large, no slope) go to `diags` at the statement.
+// `peak_gradient_steps` (if given): the largest |(h(i+1) - h(i-1), h(j+1) - h(j-1))| before scaling, in
+// height steps (0-255 for 8 bits; 0-1 for float heights): 4.5.2's MaxGradient.
 bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double patch_height_m, int bits,
-                        double max_force_N, schema::HeightFieldTerm& out, Diagnostics& diags, std::string& summary);
+                        double max_force_N, schema::HeightFieldTerm& out, Diagnostics& diags, std::string& summary,
+                        double* peak_gradient_steps = nullptr);
 
 // The version-2 grating built the thesis' way (3.5.2, Appendix B "Waves"): one period is the
 // 256 px seed (hill = round(256 hill) px centred on u = 0, the rest valley), smoothed by a
