@@ -64,6 +64,8 @@ std::optional<schema::Term> term_of(const ResolvedLaw& l) {
   if (n == "Circle") return schema::LinearFieldTerm{0, si(l, "stiffness")};
   if (n == "Buckle") return schema::LinearFieldTerm{si(l, "radial"), si(l, "tangential")};
   if (n == "LinearSpring") return schema::LinearSpringTerm{si(l, "stiffness"), si(l, "orientation"), {0, 0}};
+  if (n == "Friction")
+    return schema::FrictionTerm{si(l, "static"), si(l, "kinetic"), si(l, "press"), si(l, "stiffness"), si(l, "stick_speed")};
   if (n == "Attractor")
     return schema::AttractorTerm{si(l, "stiffness"), si(l, "radius"), si(l, "period"), si(l, "swirl"), {0, 0}};
   if (n == "Mass" || n == "Brick" || n == "TwoMasses") {
@@ -120,6 +122,15 @@ bool generate_laws(const ResolvedMaterial& m, const calibration::DeviceCalibrati
         ok = false;
         continue;
       }
+    }
+    if (const auto* f = std::get_if<schema::FrictionTerm>(&*term); f && f->kinetic_coefficient > f->static_coefficient) {
+      // Sliding at more force than it took to break loose would push the hand on at breakaway.
+      diags.error("E0304", law.location,
+                  "physics Friction's kinetic coefficient " + num(f->kinetic_coefficient) + " exceeds its static one " +
+                      num(f->static_coefficient) + ": a contact slides at no more force than it takes to break it loose",
+                  "give kinetic at most " + num(f->static_coefficient) + " (rubber on a dry surface: about 3/4 of static)");
+      ok = false;
+      continue;
     }
     if (!schema::is_passive(*term)) {
       any_non_passive = true;

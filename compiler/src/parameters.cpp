@@ -35,6 +35,7 @@ SiRange default_range(Dimension d, double max_force_N) {
     case Dimension::Time: return {0, 2};
     case Dimension::Energy: return {0, 0.5};
     case Dimension::Power: return {0, 1};
+    case Dimension::Speed: return {0, 0.05};
   }
   return {0, 1};
 }

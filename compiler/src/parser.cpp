@@ -784,6 +784,7 @@ class Parser {
       case Dimension::Time: return "20 ms";
       case Dimension::Energy: return "50 mJ";
       case Dimension::Power: return "10 mW";
+      case Dimension::Speed: return "2 mm/s";
     }
     return "";
   }

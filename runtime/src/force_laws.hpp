@@ -67,6 +67,24 @@ inline glm::dvec2 follower_spring(const schema::FollowerSpringTerm& t, glm::dvec
   return t.stiffness_N_per_m * (p - follower_m);
 }
 
+// Friction (docs/FORCE_LAWS.md, "Friction"): the spring to the adhesion point.
+inline glm::dvec2 friction(const schema::FrictionTerm& t, glm::dvec2 p, glm::dvec2 adhesion_m) noexcept {
+  return -t.stiffness_N_per_m * (p - adhesion_m);
+}
+
+// Advances the adhesion point w over one tick (Karnopp 1985's stick band, Hayward & Armstrong 2000's
+// adhesion point): stuck until |p - w| passes mu_static P / k; sliding, w trails the hand at
+// mu_kinetic P / k until the hand turns back or slows below the stick speed. w only moves toward p.
+inline void advance_friction(const schema::FrictionTerm& t, glm::dvec2 p, glm::dvec2 v, glm::dvec2& w, bool& sticking) noexcept {
+  const glm::dvec2 z = p - w;
+  const double r = std::hypot(z.x, z.y);
+  const double z_static = t.static_coefficient * t.press_N / t.stiffness_N_per_m;
+  const double z_kinetic = t.kinetic_coefficient * t.press_N / t.stiffness_N_per_m;
+  if (!sticking && (std::hypot(v.x, v.y) < t.stick_speed_m_s || v.x * z.x + v.y * z.y <= 0)) sticking = true;
+  if (sticking && r > z_static) sticking = false;  // breaks loose
+  if (!sticking && r > z_kinetic) w = p - (z_kinetic / r) * z;
+}
+
 // Where the attractor's light object is at time t_s on its swirling path (thesis 3.2.2).
 inline glm::dvec2 attractor_point(const schema::AttractorTerm& t, double t_s) noexcept {
   const double theta = 2 * std::numbers::pi * t_s / t.period_s;

@@ -56,6 +56,7 @@ void PatchEvaluator::reset_rt(const HandState& hand) noexcept {
     TermState& state = slots_[slot_of_[i]].state;
     state = TermState{};
     state.follower_m = hand.position_m;
+    state.adhesion_m = hand.position_m;
     if (const auto* masses = std::get_if<schema::PointMassesTerm>(&program_.terms[i]))
       state.masses = point_masses_at_rest(*masses, hand.position_m);
   }
@@ -73,6 +74,8 @@ void PatchEvaluator::advance_rt(const HandState& hand, double dt_s) noexcept {
     } else if (const auto* follower = std::get_if<schema::FollowerSpringTerm>(&term)) {
       // Exact for a hand held still over the tick: the lag's step response, whatever dt / lag is.
       slot.state.follower_m += (1.0 - std::exp(-dt_s / follower->lag_s)) * (hand.position_m - slot.state.follower_m);
+    } else if (const auto* friction = std::get_if<schema::FrictionTerm>(&term)) {
+      laws::advance_friction(*friction, hand.position_m, hand.velocity_m_s, slot.state.adhesion_m, slot.state.sticking);
     } else if (const auto* attractor = std::get_if<schema::AttractorTerm>(&term)) {
       // Wrapped to one period so that hours of play keep the phase's resolution.
       double t = slot.state.time_s + dt_s;
@@ -118,6 +121,7 @@ glm::dvec2 PatchEvaluator::force_rt(const HandState& hand, double dt_s) noexcept
               [&](const schema::FollowerSpringTerm& t) { return laws::follower_spring(t, p, state->follower_m); },
               [&](const schema::PointMassesTerm& t) { return point_masses_hand_force(t, state->masses, p, v); },
               [&](const schema::AttractorTerm& t) { return laws::attractor(t, p, state->time_s); },
+              [&](const schema::FrictionTerm& t) { return laws::friction(t, p, state->adhesion_m); },
           },
           program_.terms[i]);
       (passive_[i] ? passive : active) += f;

@@ -110,6 +110,22 @@ void check(const TermCheck& c, const FollowerSpringTerm& t) {
   c.positive("lag", t.lag_s);
 }
 
+// The kinetic coefficient above the static one would make the contact slide at more force than it took
+// to break it loose (docs/FORCE_LAWS.md, "Friction").
+void check(const TermCheck& c, const FrictionTerm& t) {
+  c.finite("static coefficient", t.static_coefficient);
+  c.finite("kinetic coefficient", t.kinetic_coefficient);
+  c.finite("press", t.press_N);
+  c.finite("stiffness", t.stiffness_N_per_m);
+  c.finite("stick speed", t.stick_speed_m_s);
+  c.non_negative("static coefficient", t.static_coefficient);
+  c.non_negative("kinetic coefficient", t.kinetic_coefficient);
+  if (t.kinetic_coefficient > t.static_coefficient) c.fail("kinetic coefficient must not exceed the static one");
+  c.positive("press", t.press_N);
+  c.positive("stiffness", t.stiffness_N_per_m);
+  c.non_negative("stick speed", t.stick_speed_m_s);
+}
+
 // Negative springs or dampers would make the masses' own motion grow without bound, which no energy
 // bound on the hand could stop, and is_passive() counts this term as passive.
 void check(const TermCheck& c, const PointMassesTerm& t) {
@@ -138,7 +154,7 @@ void check(const TermCheck& c, const AttractorTerm& t) {
 const char* kind_name(const Term& term) {
   static constexpr const char* kNames[] = {"spring", "damper", "grating", "height field", "constant force",
                                            "nap", "periodic", "ridge", "bowl", "linear field", "linear spring",
-                                           "minus", "follower spring", "point masses", "attractor"};
+                                           "minus", "follower spring", "point masses", "attractor", "friction"};
   static_assert(std::size(kNames) == std::variant_size_v<Term>, "a name for every term kind");
   return kNames[term.index()];
 }

@@ -61,7 +61,8 @@ std::string describe(const toml::node& n) {
 
 std::optional<Dimension> dimension_named(const std::string& name) {
   for (Dimension d : {Dimension::Length, Dimension::Force, Dimension::Stiffness, Dimension::Damping, Dimension::Angle,
-                      Dimension::Fraction, Dimension::Mass, Dimension::Time, Dimension::Energy, Dimension::Power})
+                      Dimension::Fraction, Dimension::Mass, Dimension::Time, Dimension::Energy, Dimension::Power,
+                      Dimension::Speed})
     if (dimension_name(d) == name) return d;
   return std::nullopt;
 }

@@ -36,6 +36,13 @@ constexpr std::array kAttractor{req("stiffness", D::Stiffness), opt("radius", D:
                                 opt("period", D::Time, 2.0, "2 s"),
                                 LawParam{"swirl", K::Number, D::Fraction, false, 0.3, "0.3", false}};
 
+// Friction's coefficients are plain numbers (K::Number: zero allowed); the kinetic one is checked
+// against the static one by the runtime's term checks.
+constexpr std::array kFriction{LawParam{"static", K::Number, D::Fraction, true, 0, "", false},
+                               LawParam{"kinetic", K::Number, D::Fraction, true, 0, "", false},
+                               req("press", D::Force), opt("stiffness", D::Stiffness, 2000, "2000 N/m"),
+                               opt("stick_speed", D::Speed, 0.002, "2 mm/s")};
+
 constexpr const char* kTextureMenu = "Minsky 1995, Appendix B (Texture menu)";
 constexpr const char* kReading = "Minsky 1995, Appendix B (Texture menu; OCR garbled, reading in docs/TEXTURES.md)";
 constexpr const char* kPhysics = "Minsky 1995, 3.2.2 (dynamic modules)";
@@ -65,6 +72,9 @@ const std::array kLaws{
            "Minsky 1995, 3.2.2 and Appendix C (\"to throw bricks\")"},
     LawDef{LawFamily::Physics, "LinearSpring", kLinearSpring, "F = -k (p . n) n: a spring along one line", kPhysics},
     LawDef{LawFamily::Physics, "RadialSpring", kStiffness, "F = -k p: a spring in all directions from the centre", kPhysics},
+    LawDef{LawFamily::Physics, "Friction", kFriction,
+           "F = -k (p - w): Coulomb friction mu P with stick-slip, w an adhesion point (passive)",
+           "Karnopp 1985 (stick band); Hayward & Armstrong 2000 (adhesion point); docs/FORCE_LAWS.md"},
     LawDef{LawFamily::Physics, "Attractor", kAttractor,
            "F = -k (p - q(t)), q a light object on a swirling path (not passive)", kPhysics},
 };

@@ -51,8 +51,9 @@ enum : std::uint32_t {
   kTagPointMasses = 14,
   kTagAttractor = 15,
   kTagHeightFieldHalf = 16,  // a height field whose grids are binary16 (PatchWriteOptions::compact_grids)
+  kTagFriction = 17,
 };
-static_assert(std::variant_size_v<Term> == 15, "a new term kind needs a tag, a writer and a reader here");
+static_assert(std::variant_size_v<Term> == 16, "a new term kind needs a tag, a writer and a reader here");
 
 // The payload as a list of segments: small fields in buffers of their own, large float arrays
 // referenced where they lie in the program, so that writing a 4096 x 4096 height field copies no
@@ -344,6 +345,13 @@ void write_term(Writer& w, const Term& term, const PatchWriteOptions& options, C
     w.pod(a->swirl);
     w.pod(a->centre_m[0]);
     w.pod(a->centre_m[1]);
+  } else if (const auto* f = std::get_if<FrictionTerm>(&term)) {
+    w.pod<std::uint32_t>(kTagFriction);
+    w.pod(f->static_coefficient);
+    w.pod(f->kinetic_coefficient);
+    w.pod(f->press_N);
+    w.pod(f->stiffness_N_per_m);
+    w.pod(f->stick_speed_m_s);
   }
 }
 
@@ -475,6 +483,15 @@ Term read_term(Reader& r) {
       a.centre_m[0] = r.pod<double>();
       a.centre_m[1] = r.pod<double>();
       return a;
+    }
+    case kTagFriction: {
+      FrictionTerm f;
+      f.static_coefficient = r.pod<double>();
+      f.kinetic_coefficient = r.pod<double>();
+      f.press_N = r.pod<double>();
+      f.stiffness_N_per_m = r.pod<double>();
+      f.stick_speed_m_s = r.pod<double>();
+      return f;
     }
     default:
       throw PatchFormatError("unknown term tag " + std::to_string(tag) + " (made by a newer compiler?)");

@@ -13,6 +13,7 @@ std::string display_value(double v, const std::string& unit) {
   os.precision(4);
   if (unit == "m") os << v * 1e3 << " mm";
   else if (unit == "rad") os << v * 180.0 / 3.14159265358979323846 << " deg";
+  else if (unit == "m/s") os << v * 1e3 << " mm/s";
   else if (unit == "1") os << v;
   else os << v << " " << unit;
   return os.str();
@@ -84,6 +85,9 @@ nlohmann::json term_json(const Term& t, bool with_tables) {
                 {"orientation_rad", l->orientation_rad}, {"centre_m", pair(l->centre_m)}};
   if (const auto* m = std::get_if<MinusTerm>(&t))
     return json{{"kind", "minus"}, {"stiffness_N_per_m", m->stiffness_N_per_m}, {"lead_s", m->lead_s}};
+  if (const auto* f = std::get_if<FrictionTerm>(&t))
+    return json{{"kind", "friction"}, {"static_coefficient", f->static_coefficient}, {"kinetic_coefficient", f->kinetic_coefficient},
+                {"press_N", f->press_N}, {"stiffness_N_per_m", f->stiffness_N_per_m}, {"stick_speed_m_s", f->stick_speed_m_s}};
   if (const auto* f = std::get_if<FollowerSpringTerm>(&t))
     return json{{"kind", "follower_spring"}, {"stiffness_N_per_m", f->stiffness_N_per_m}, {"lag_s", f->lag_s}};
   if (const auto* m = std::get_if<PointMassesTerm>(&t)) {

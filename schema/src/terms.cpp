@@ -19,7 +19,7 @@ bool is_passive(const Term& term) {
 
 bool has_state(const Term& term) {
   return std::holds_alternative<FollowerSpringTerm>(term) || std::holds_alternative<PointMassesTerm>(term) ||
-         std::holds_alternative<AttractorTerm>(term);
+         std::holds_alternative<AttractorTerm>(term) || std::holds_alternative<FrictionTerm>(term);
 }
 
 std::uint32_t point_mass_substeps(const PointMassesTerm& t, double dt_s) {

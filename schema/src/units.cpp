@@ -42,6 +42,8 @@ constexpr std::array kUnits{
     UnitDef{"mJ", Dimension::Energy, 1e-3},
     UnitDef{"W", Dimension::Power, 1.0},
     UnitDef{"mW", Dimension::Power, 1e-3},
+    UnitDef{"m/s", Dimension::Speed, 1.0},
+    UnitDef{"mm/s", Dimension::Speed, 1e-3},
 };
 }  // namespace
 
@@ -57,6 +59,7 @@ std::string_view si_unit_name(Dimension d) {
     case Dimension::Time: return "s";
     case Dimension::Energy: return "J";
     case Dimension::Power: return "W";
+    case Dimension::Speed: return "m/s";
   }
   return "?";
 }
@@ -73,6 +76,7 @@ std::string_view dimension_name(Dimension d) {
     case Dimension::Time: return "time";
     case Dimension::Energy: return "energy";
     case Dimension::Power: return "power";
+    case Dimension::Speed: return "speed";
   }
   return "?";
 }

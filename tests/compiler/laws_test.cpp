@@ -124,6 +124,7 @@ TEST(Laws, EveryLawInTheTableCompiles) {
         case schema::Dimension::Force: text += "0.5 N"; break;
         case schema::Dimension::Length: text += "4 mm"; break;
         case schema::Dimension::Mass: text += "100 g"; break;
+        case schema::Dimension::Fraction: text += "0.5"; break;  // a plain number (Friction's coefficients)
         default: ADD_FAILURE() << "no example for " << def.name << " " << p.name;
       }
     }

@@ -27,6 +27,7 @@ TEST(Units, FactorsMatchTheirDefinitions) {
       {"s", Dimension::Time, 1},            {"ms", Dimension::Time, 0.001},
       {"J", Dimension::Energy, 1},          {"mJ", Dimension::Energy, 0.001},
       {"W", Dimension::Power, 1},           {"mW", Dimension::Power, 0.001},
+      {"m/s", Dimension::Speed, 1},         {"mm/s", Dimension::Speed, 0.001},
   };
   for (const auto& c : cases) {
     auto u = schema::find_unit(c.name);

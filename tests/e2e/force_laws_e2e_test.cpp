@@ -3,6 +3,7 @@
 // checked against the thesis' formula evaluated directly on that tick's recorded position, on the
 // velocity and acceleration the loop documents (first-order low-pass, 50 Hz, of finite differences),
 // and, for models with state, on state integrated here independently. Forces in newtons.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -14,6 +15,7 @@
 
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "test_support.hpp"
@@ -248,3 +250,42 @@ TEST(ForceLawsPlayed, TheEnergyBoundStopsAntiViscousFromInjectingMore) {
 }
 
 }  // namespace
+
+// Friction played on the scripted scan (docs/FORCE_LAWS.md, "Friction"): while the hand slides the force
+// is mu_k P against the motion; each turn re-sticks the contact, and the next stroke starts only when
+// the presliding spring reaches mu_s P; the force never passes mu_s P by more than one tick's travel.
+TEST(ForceLawsPlayed, FrictionSlidesAtKineticAndBreaksLooseAtStatic) {
+  auto r = test::shipped_compiler().compile_text("physics Friction static 0.8 kinetic 0.5 press 2 N");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_TRUE(test::codes(r, compiler::Severity::Warning).empty());  // passive: no W0306, no energy bound
+  EXPECT_EQ(r.program->energy_budget_J, 0.0);
+  runtime::HandScript scan;
+  scan.speed_m_s = 0.05;
+  scan.amplitude_m = 0.02;
+  runtime::ServoConfig cfg;
+  cfg.duration_s = 3.0;
+  cfg.ramp_s = 0;
+  runtime::SimJoystick sim(runtime::sim_device_limits(), scan, 3000);
+  runtime::PatchEvaluator ev(*r.program);
+  runtime::VirtualClock clock;
+  ASSERT_EQ(runtime::run_servo_loop(sim, ev, clock, cfg).stop_reason, "completed");
+  const auto& rec = sim.records();
+  const double step = 0.05 / 1000, k = 2000;
+  int sliding = 0;
+  double peak = 0;
+  for (std::size_t i = 1; i + 1 < rec.size(); ++i) {
+    const double v = rec[i + 1].position_m.x - rec[i - 1].position_m.x;
+    const double f = rec[i].force_N.x;
+    peak = std::max(peak, std::abs(f));
+    if (std::abs(std::abs(f) - 0.5 * 2) < 1e-9 && std::abs(v) > 0.5 * step) {
+      ++sliding;
+      EXPECT_LT(f * v, 0) << i;  // against the motion
+    }
+  }
+  EXPECT_GT(sliding, 2000);  // most of the run slides at mu_k P
+  EXPECT_GT(peak, 0.8 * 2 - k * step);
+  EXPECT_LE(peak, 0.8 * 2 + k * step);
+  // Kinetic above static is refused when compiling.
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("physics Friction static 0.5 kinetic 0.8 press 1 N")),
+            std::vector<std::string>{"E0304"});
+}

@@ -87,6 +87,11 @@ bool same(const Term& x, const Term& y) {
            same(a->damping_Ns_per_m, b.damping_Ns_per_m) && a->ground_damping_Ns_per_m == b.ground_damping_Ns_per_m &&
            same(a->gravity_m_s2, b.gravity_m_s2);
   }
+  if (const auto* a = std::get_if<FrictionTerm>(&x)) {
+    const auto& b = std::get<FrictionTerm>(y);
+    return a->static_coefficient == b.static_coefficient && a->kinetic_coefficient == b.kinetic_coefficient &&
+           a->press_N == b.press_N && a->stiffness_N_per_m == b.stiffness_N_per_m && a->stick_speed_m_s == b.stick_speed_m_s;
+  }
   const auto& a = std::get<AttractorTerm>(x);
   const auto& b = std::get<AttractorTerm>(y);
   return a.stiffness_N_per_m == b.stiffness_N_per_m && a.radius_m == b.radius_m && a.period_s == b.period_s &&
@@ -156,7 +161,8 @@ TEST(PatchFormat, TagsAreTheDocumentedOnes) {
     const auto bytes = serialize(bare({kinds[i]}));
     std::uint32_t tag = 0;
     std::memcpy(&tag, bytes.data() + kFirstTagOffset, 4);
-    EXPECT_EQ(tag, i + 1) << "docs/PATCH_FORMAT.md numbers the kinds 1..15 in the variant's order";
+    // 16 is the compact height field (a second encoding of kind 4), so friction, the 16th kind, is 17.
+    EXPECT_EQ(tag, i < 15 ? i + 1 : i + 2) << "docs/PATCH_FORMAT.md numbers the kinds in the variant's order";
   }
 }
 
@@ -228,6 +234,11 @@ TEST(PatchFormat, JsonNamesEveryParameterWithItsUnit) {
   EXPECT_EQ(t[14]["kind"], "attractor");
   EXPECT_EQ(t[14]["period_s"], 1.5);
   EXPECT_EQ(t[14]["swirl"], 0.3);
+  EXPECT_EQ(t[15]["kind"], "friction");
+  EXPECT_EQ(t[15]["static_coefficient"], 0.9);
+  EXPECT_EQ(t[15]["press_N"], 1.5);
+  EXPECT_EQ(t[15]["stick_speed_m_s"], 0.003);
+  EXPECT_EQ(t[15]["passive"], true);
   EXPECT_EQ(t[14]["radius_m"], 0.02);
   EXPECT_EQ(t[14]["passive"], false);
 }

@@ -118,6 +118,17 @@ inline schema::AttractorTerm attractor(double k, double radius_m, double period_
   return t;
 }
 
+inline schema::FrictionTerm friction(double mu_static, double mu_kinetic, double press_N, double k = 2000,
+                                     double stick_speed = 0.002) {
+  schema::FrictionTerm t;
+  t.static_coefficient = mu_static;
+  t.kinetic_coefficient = mu_kinetic;
+  t.press_N = press_N;
+  t.stiffness_N_per_m = k;
+  t.stick_speed_m_s = stick_speed;
+  return t;
+}
+
 // A small repeating height field with made-up gradients.
 inline schema::HeightFieldTerm sample_height_field() {
   schema::HeightFieldTerm field;
@@ -161,7 +172,8 @@ inline std::vector<schema::Term> every_term_kind() {
           minus(100, 0.02),
           follower_spring(150, 0.05),
           two_masses(0.05, 0.03, 200, 150, 0.5, 0.3, 0.1),
-          attractor(80, 0.02, 1.5, 0.3, 0.001, 0.0)};
+          attractor(80, 0.02, 1.5, 0.3, 0.001, 0.0),
+          friction(0.9, 0.6, 1.5, 1800, 0.003)};
 }
 
 }  // namespace sandpaper::runtime::testing

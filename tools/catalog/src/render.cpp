@@ -77,6 +77,7 @@ std::string term_kind(const schema::Term& term) {
                         [](const schema::FollowerSpringTerm&) { return std::string("follower spring"); },
                         [](const schema::PointMassesTerm&) { return std::string("point masses"); },
                         [](const schema::AttractorTerm&) { return std::string("attractor"); },
+                        [](const schema::FrictionTerm&) { return std::string("friction"); },
                     },
                     term);
 }
@@ -90,6 +91,7 @@ std::string why_not_pictured(const schema::Term& term) {
           [](const schema::FollowerSpringTerm&) { return std::string("the follower spring: its force depends on where a lagging point has got to (state)"); },
           [](const schema::PointMassesTerm&) { return std::string("the point masses: their force depends on the masses' motion (state)"); },
           [](const schema::AttractorTerm&) { return std::string("the attractor: its force depends on time, as its target moves"); },
+          [](const schema::FrictionTerm&) { return std::string("friction: its force depends on where the contact last stuck (state)"); },
           [](const schema::LinearFieldTerm&) { return std::string("the circulating field: a tangential force has no potential surface"); },
           [&](const auto&) { return term_kind(term) + ": drawn"; },
       },

@@ -22,6 +22,8 @@ struct TermState {
   PointMassesState masses;          // PointMasses
   glm::dvec2 follower_m{0, 0};      // FollowerSpring: the lagging point m (m, patch coordinates)
   double time_s = 0;                // Attractor: time on the path, wrapped to [0, period)
+  glm::dvec2 adhesion_m{0, 0};      // Friction: the adhesion point w (m, patch coordinates)
+  bool sticking = true;             // Friction: stuck at w (else sliding)
 };
 
 // How force tables (gratings, height fields) are read between their samples.

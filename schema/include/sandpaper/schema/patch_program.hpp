@@ -97,16 +97,17 @@ struct LinearSpringTerm {
   double centre_m[2] = {0, 0};
 };
 
-// Appendix B Minus (reading: "minus mass"): F = k (m - p), m the position predicted `lead` ahead from
-// the hand's position, velocity and acceleration: m - p = v lead + a lead^2 / 2 (lead >= 0). Not passive.
+// Appendix B Minus: F = k (p - m), m the position predicted `lead` ahead from the hand's position,
+// velocity and acceleration: m - p = v lead + a lead^2 / 2 (lead >= 0): a damper and an added mass
+// (docs/TEXTURES.md, "Minus and ATNSpring"). Metered by the energy bound (sampled acceleration).
 struct MinusTerm {
   double stiffness_N_per_m = 0;
   double lead_s = 0;
 };
 
-// Appendix B ATNSpring: F = -k (p - m), m a point that follows the hand with a first-order lag:
-// dm/dt = (p - m) / lag, lag > 0. State: m (runtime). Passive (a spring in series with a damper) for
-// k >= 0, which the runtime requires.
+// Appendix B ATNSpring: F = k (p - m), m a point that follows the hand with a first-order lag:
+// dm/dt = (p - m) / lag, lag > 0. State: m (runtime). Not passive: m trails the hand, so the force
+// pushes along its recent motion (docs/TEXTURES.md, "Minus and ATNSpring"); k >= 0.
 struct FollowerSpringTerm {
   double stiffness_N_per_m = 0;
   double lag_s = 0;
@@ -138,15 +139,31 @@ struct AttractorTerm {
   double centre_m[2] = {0, 0};
 };
 
+// Coulomb friction with stick-slip against a stated press force (a joystick has no normal force:
+// docs/FORCE_LAWS.md, "Friction"). The hand is tied by a spring of `stiffness` to an adhesion point w
+// (Hayward & Armstrong 2000's presliding spring; Karnopp 1985's stick band): F = -k (p - w). Sticking,
+// w stays until |p - w| passes mu_static P / k, then the contact slides: w is dragged behind the hand
+// at mu_kinetic P / k, so |F| = mu_kinetic P, until the hand's speed falls below `stick_speed` or it
+// turns back, when the contact sticks again. w only ever moves toward the hand, so the term is
+// passive. State: w and sticking (runtime). 0 <= mu_kinetic <= mu_static, P > 0, k > 0.
+struct FrictionTerm {
+  double static_coefficient = 0;
+  double kinetic_coefficient = 0;
+  double press_N = 0;
+  double stiffness_N_per_m = 0;
+  double stick_speed_m_s = 0;
+};
+
 using Term = std::variant<SpringTerm, DamperTerm, GratingTerm, HeightFieldTerm, ConstantForceTerm, NapTerm,
                           PeriodicTerm, RidgeTerm, BowlTerm, LinearFieldTerm, LinearSpringTerm, MinusTerm,
-                          FollowerSpringTerm, PointMassesTerm, AttractorTerm>;
+                          FollowerSpringTerm, PointMassesTerm, AttractorTerm, FrictionTerm>;
 
 // Whether a term can only store and return energy it took from the hand (thesis 3.2.2 calls the others
-// "non-physical"). Non-passive terms: negative damping (AntiViscous, Slick), Nap, Minus, Attractor,
-// and linear fields with a tangential gain (Circle, Buckle). The runtime bounds the energy they inject.
+// "non-physical"). Non-passive terms: negative damping (AntiViscous, Slick), Nap, Minus, ATNSpring,
+// Attractor, and linear fields with a tangential gain (Circle, Buckle). The runtime bounds the energy they inject.
 bool is_passive(const Term& term);
-// Whether the runtime keeps state for the term between ticks (FollowerSpring, PointMasses, Attractor).
+// Whether the runtime keeps state for the term between ticks (FollowerSpring, PointMasses, Attractor,
+// Friction).
 bool has_state(const Term& term);
 
 // Substeps of the point-mass integrator (semi-implicit Euler) for one tick of `dt_s` seconds: enough

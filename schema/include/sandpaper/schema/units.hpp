@@ -8,7 +8,7 @@
 
 namespace sandpaper::schema {
 
-enum class Dimension { Length, Force, Stiffness, Damping, Angle, Fraction, Mass, Time, Energy, Power };
+enum class Dimension { Length, Force, Stiffness, Damping, Angle, Fraction, Mass, Time, Energy, Power, Speed };
 
 // Name of the SI unit a dimension is stored in ("m", "N", "N/m", "N*s/m", "rad", "1").
 std::string_view si_unit_name(Dimension d);
