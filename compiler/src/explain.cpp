@@ -26,7 +26,8 @@ std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s 
 }  // namespace
 
 std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& p,
-                         const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device) {
+                         const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device,
+                         double design_speed_m_s) {
   const auto& map = cal.roughness_map();
   std::ostringstream os;
   os << std::setprecision(4);
@@ -98,14 +99,17 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
     for (const auto& f : felt)
       os << "  " << f.speed_m_s * 1e3 << " mm/s at " << std::lround(f.rate_hz) << " Hz  " << f.peak_N << " N  ("
          << f.fraction * 100 << " % of the compiled peak), roughness " << map.percept_of(f.peak_N) << "\n";
-    // The remedies, measured, at the common hand speed that loses the most (W0350's).
+    // The remedies, measured: at the designer's stated speed, else at the common hand speed that
+    // loses the most (W0350's), if one loses more than a JND.
     const double weber = cal.knowledge().force_jnd.weber_fraction;
     double worst_speed = 0, worst = 1;
     for (const auto& f : felt_at_speed(p, kCommonHandSpeeds_m_s, {rate}))
       if (f.fraction < 1 - weber && f.fraction < worst) worst = f.fraction, worst_speed = f.speed_m_s;
-    if (worst_speed > 0) {
-      const auto r = felt_remedies(m, p, worst_speed, rate, std::max(rate, device.max_rate_hz), weber);
-      os << "  remedies at " << worst_speed * 1e3 << " mm/s (more than one force JND lost at " << std::lround(rate) << " Hz):\n";
+    const double at = design_speed_m_s > 0 ? design_speed_m_s : worst_speed;
+    if (at > 0) {
+      const auto r = felt_remedies(m, p, at, rate, std::max(rate, device.max_rate_hz), weber);
+      os << "  remedies at " << at * 1e3 << " mm/s (" << (design_speed_m_s > 0 ? "the design speed" : "more than one force JND lost")
+         << " at " << std::lround(rate) << " Hz: " << r.now.peak_N << " N felt, " << r.now.fraction * 100 << " %):\n";
       if (r.fast_rate_hz > 0)
         os << "    servo at " << std::lround(r.fast_rate_hz) << " Hz: " << r.fast.peak_N << " N, roughness "
            << map.percept_of(r.fast.peak_N) << "\n";

@@ -70,6 +70,11 @@ has "$tmp/out" 'felt at speed' "explain predicts the force felt at speed"
 expect_exit 0 "explain --json felt_at_speed" -- "$sp" explain -e "grating period 0.7 mm; roughness 0.5" --json
 has "$tmp/out" '"felt_at_speed"' "explain --json has felt_at_speed"
 has "$tmp/out" '"speed_mm_s": 200' "felt_at_speed lists 200 mm/s"
+expect_exit 0 "explain --design-speed" -- "$sp" explain -e "roughness 0.6; grating period 2.5 mm" --design-speed 200
+has "$tmp/out" 'remedies at 200 mm/s \(the design speed' "explain measures the remedies at the stated design speed"
+has "$tmp/out" 'smoothing [0-9.]+ mm on the grating: [0-9.]+ N, roughness' "explain offers smoothing for the design speed"
+expect_exit 0 "explain --design-speed --json" -- "$sp" explain -e "roughness 0.6; grating period 2.5 mm" --design-speed 200 --json
+has "$tmp/out" '"design_speed": true' "explain --json marks the design speed's remedies"
 expect_exit 0 "explain a spring" -- "$sp" explain -e "spring 100 N/m"
 if grep -q '^maps' "$tmp/out"; then bad "explain of a material without texture prints the roughness maps"; else ok; fi
 expect_exit 0 "Appendix B's Bowl by name" -- "$sp" run -e Bowl --device sim --virtual-clock --duration 0.2 --hand circle

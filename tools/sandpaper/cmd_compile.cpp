@@ -69,10 +69,13 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
       // The remedies at each common hand speed (W0350), measured: a faster servo, or wider walls.
       nlohmann::json remedies = nlohmann::json::array();
       const double weber = c.calibration().knowledge().force_jnd.weber_fraction;
-      for (double v : compiler::kCommonHandSpeeds_m_s) {
+      std::vector<double> speeds = compiler::kCommonHandSpeeds_m_s;
+      if (o.design_speed_mm_s > 0) speeds.push_back(o.design_speed_mm_s * 1e-3);
+      for (double v : speeds) {
         const auto r = compiler::felt_remedies(*in->compile->material, prog, v, rate, std::max(rate, c.device().max_rate_hz), weber);
         if (r.speed_m_s == 0) continue;
-        remedies.push_back({{"speed_mm_s", v * 1e3}, {"rate_hz", rate}, {"peak_N", r.now.peak_N}, {"fraction", r.now.fraction},
+        remedies.push_back({{"speed_mm_s", v * 1e3}, {"design_speed", o.design_speed_mm_s > 0 && v == speeds.back()},
+                            {"rate_hz", rate}, {"peak_N", r.now.peak_N}, {"fraction", r.now.fraction},
                             {"faster_servo", r.fast_rate_hz > 0 ? nlohmann::json{{"rate_hz", r.fast_rate_hz}, {"peak_N", r.fast.peak_N}}
                                                                 : nlohmann::json(nullptr)},
                             {"smoothing", r.smoothing_m > 0 ? nlohmann::json{{"smoothing_mm", r.smoothing_m * 1e3}, {"peak_N", r.smoothed.peak_N}}
@@ -93,7 +96,7 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     }
     std::cout << j.dump(2) << "\n";
   } else if (explain) {
-    std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device())
+    std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device(), o.design_speed_mm_s * 1e-3)
               << compiler::sources_text(*in->compile->material, c.library());
   } else {
     std::cout << prog.name << ": ";

@@ -50,6 +50,10 @@ int main(int argc, char** argv) {
                     "store height-field grids as 16-bit floats where every force stays within 0.1 % of the grid's largest (half the file)");
   auto* explain = app.add_subcommand("explain", "show how each layer of a material resolved, with units and sources");
   add_common(explain, o, true);
+  explain->add_option("--design-speed", o.design_speed_mm_s,
+                      "hand speed the material is designed for, mm/s: a grating's remedies (faster servo, smoothing) "
+                      "are measured at it (docs/TEXTURES.md, \"The force a hand really feels\")")
+      ->check(CLI::PositiveNumber);
   auto* run = app.add_subcommand("run", "play a material or patch program on a device");
   add_common(run, o, true);
   PlayRequest play_request;

@@ -11,7 +11,10 @@
 
 namespace sandpaper::compiler {
 
+// `design_speed_m_s` > 0: the hand speed (m/s) the designer states the material is for (`explain
+// --design-speed`); a grating's remedies (felt_at_speed.hpp) are then measured at it, whatever it loses.
 std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& p,
-                         const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device);
+                         const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device,
+                         double design_speed_m_s = 0);
 
 }  // namespace sandpaper::compiler

@@ -64,7 +64,7 @@ struct ResolvedLaw {
 };
 
 // A version-1 synthetic height map (thesis 3.5.1). Lengths are whole pixels of `pixel`; kernel
-// sizes are in pixels, the Gaussian spanning +-2 sigma (sigma = kernel / 4 px; docs/TEXTURES.md).
+// sizes are the Gaussian's sigma in pixels (docs/TEXTURES.md, "Patterns": the reading that gives 3.6.1's counts).
 enum class PatternKind { Bars, Grid, Perlin, Noise, Stripes };
 const char* pattern_kind_name(PatternKind k);
 struct ResolvedPattern {
