@@ -22,6 +22,7 @@
 #include <Imath/half.h>
 
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/term_kinds.hpp"
 
 namespace sandpaper::schema {
 namespace {
@@ -32,28 +33,6 @@ constexpr std::size_t kHeaderSize = 32;
 constexpr std::uint64_t kMaxPayload = 1ull << 31;
 
 static_assert(std::endian::native == std::endian::little, "patch I/O assumes a little-endian host");
-
-// Payload tags: one per term kind; stable across versions (docs/PATCH_FORMAT.md).
-enum : std::uint32_t {
-  kTagSpring = 1,
-  kTagDamper = 2,
-  kTagGrating = 3,
-  kTagHeightField = 4,
-  kTagConstantForce = 5,
-  kTagNap = 6,
-  kTagPeriodic = 7,
-  kTagRidge = 8,
-  kTagBowl = 9,
-  kTagLinearField = 10,
-  kTagLinearSpring = 11,
-  kTagMinus = 12,
-  kTagFollowerSpring = 13,
-  kTagPointMasses = 14,
-  kTagAttractor = 15,
-  kTagHeightFieldHalf = 16,  // a height field whose grids are binary16 (PatchWriteOptions::compact_grids)
-  kTagFriction = 17,
-};
-static_assert(std::variant_size_v<Term> == 16, "a new term kind needs a tag, a writer and a reader here");
 
 // The payload as a list of segments: small fields in buffers of their own, large float arrays
 // referenced where they lie in the program, so that writing a 4096 x 4096 height field copies no
@@ -238,264 +217,175 @@ double largest_component(const std::vector<float>& a, const std::vector<float>& 
   return m;
 }
 
-void write_term(Writer& w, const Term& term, const PatchWriteOptions& options, CompactReport* report) {
-  if (const auto* s = std::get_if<SpringTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagSpring);
-    w.pod(s->stiffness_N_per_m);
-    w.pod(s->centre_m[0]);
-    w.pod(s->centre_m[1]);
-  } else if (const auto* d = std::get_if<DamperTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagDamper);
-    w.pod(d->damping_Ns_per_m);
-  } else if (const auto* g = std::get_if<GratingTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagGrating);
-    w.pod(g->period_m);
-    w.pod(g->orientation_rad);
-    w.floats(g->force_N);
-  } else if (const auto* h = std::get_if<HeightFieldTerm>(&term)) {
-    std::optional<std::vector<std::uint16_t>> hx, hy;
-    double error = 0;
-    if (options.compact_grids) {
-      const double peak = largest_component(h->force_x_N, h->force_y_N);
-      hx = compact(h->force_x_N, peak, error);
-      if (hx) hy = compact(h->force_y_N, peak, error);
-      if (report != nullptr) {
-        if (hx && hy) {
-          ++report->compacted;
-          report->largest_error = std::max(report->largest_error, error);
-        } else {
-          ++report->kept;
-        }
-      }
-    }
-    const bool half = hx && hy;
-    w.pod<std::uint32_t>(half ? kTagHeightFieldHalf : kTagHeightField);
-    w.pod(h->nx);
-    w.pod(h->ny);
-    w.pod(h->origin_m[0]);
-    w.pod(h->origin_m[1]);
-    w.pod(h->spacing_m[0]);
-    w.pod(h->spacing_m[1]);
-    w.pod<std::uint8_t>(h->repeat ? 1 : 0);
-    if (half) {
-      w.halves(std::move(*hx));
-      w.halves(std::move(*hy));
-    } else {
-      w.floats(h->force_x_N);
-      w.floats(h->force_y_N);
-    }
-  } else if (const auto* c = std::get_if<ConstantForceTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagConstantForce);
-    w.pod(c->force_N[0]);
-    w.pod(c->force_N[1]);
-  } else if (const auto* n = std::get_if<NapTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagNap);
-    w.pod(n->damping_Ns_per_m);
-  } else if (const auto* pe = std::get_if<PeriodicTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagPeriodic);
-    w.pod<std::uint8_t>(static_cast<std::uint8_t>(pe->shape));
-    w.pod(pe->amplitude_N);
-    w.pod(pe->period_m);
-    w.pod<std::uint8_t>(pe->on_x ? 1 : 0);
-    w.pod<std::uint8_t>(pe->on_y ? 1 : 0);
-  } else if (const auto* r = std::get_if<RidgeTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagRidge);
-    w.pod(r->stiffness_N_per_m);
-    w.pod(r->wavelength_m);
-    w.pod(r->ridge_width_m);
-  } else if (const auto* b = std::get_if<BowlTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagBowl);
-    w.pod(b->stiffness_N_per_m);
-    w.pod(b->radius_m);
-  } else if (const auto* lf = std::get_if<LinearFieldTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagLinearField);
-    w.pod(lf->radial_N_per_m);
-    w.pod(lf->tangential_N_per_m);
-  } else if (const auto* ls = std::get_if<LinearSpringTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagLinearSpring);
-    w.pod(ls->stiffness_N_per_m);
-    w.pod(ls->orientation_rad);
-    w.pod(ls->centre_m[0]);
-    w.pod(ls->centre_m[1]);
-  } else if (const auto* mi = std::get_if<MinusTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagMinus);
-    w.pod(mi->stiffness_N_per_m);
-    w.pod(mi->lead_s);
-  } else if (const auto* fs = std::get_if<FollowerSpringTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagFollowerSpring);
-    w.pod(fs->stiffness_N_per_m);
-    w.pod(fs->lag_s);
-  } else if (const auto* pm = std::get_if<PointMassesTerm>(&term)) {
-    // Both slots are written whatever the count, so the record has one fixed size.
-    w.pod<std::uint32_t>(kTagPointMasses);
-    w.pod(pm->count);
-    for (int i = 0; i < 2; ++i) {
-      w.pod(pm->mass_kg[i]);
-      w.pod(pm->stiffness_N_per_m[i]);
-      w.pod(pm->damping_Ns_per_m[i]);
-    }
-    w.pod(pm->ground_damping_Ns_per_m);
-    w.pod(pm->gravity_m_s2[0]);
-    w.pod(pm->gravity_m_s2[1]);
-  } else if (const auto* a = std::get_if<AttractorTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagAttractor);
-    w.pod(a->stiffness_N_per_m);
-    w.pod(a->radius_m);
-    w.pod(a->period_s);
-    w.pod(a->swirl);
-    w.pod(a->centre_m[0]);
-    w.pod(a->centre_m[1]);
-  } else if (const auto* f = std::get_if<FrictionTerm>(&term)) {
-    w.pod<std::uint32_t>(kTagFriction);
-    w.pod(f->static_coefficient);
-    w.pod(f->kinetic_coefficient);
-    w.pod(f->press_N);
-    w.pod(f->stiffness_N_per_m);
-    w.pod(f->stick_speed_m_s);
+// A listed field's bytes, by its member's type (docs/PATCH_FORMAT.md, "Terms").
+template <class M>
+void put(Writer& w, const M& v) {
+  if constexpr (std::is_same_v<M, double>) {
+    w.pod(v);
+  } else if constexpr (std::is_same_v<M, double[2]>) {
+    w.pod(v[0]);
+    w.pod(v[1]);
+  } else if constexpr (std::is_same_v<M, bool>) {
+    w.pod<std::uint8_t>(v ? 1 : 0);
+  } else {
+    static_assert(std::is_enum_v<M> && sizeof(M) == 1, "a listed field is a double, a pair, a bool or a u8 enumeration");
+    w.pod<std::uint8_t>(static_cast<std::uint8_t>(v));
   }
 }
 
-Term read_term(Reader& r) {
-  auto tag = r.pod<std::uint32_t>();
-  switch (tag) {
-    case kTagSpring: {
-      SpringTerm s;
-      s.stiffness_N_per_m = r.pod<double>();
-      s.centre_m[0] = r.pod<double>();
-      s.centre_m[1] = r.pod<double>();
-      return s;
-    }
-    case kTagDamper: {
-      DamperTerm d;
-      d.damping_Ns_per_m = r.pod<double>();
-      return d;
-    }
-    case kTagGrating: {
-      GratingTerm g;
-      g.period_m = r.pod<double>();
-      g.orientation_rad = r.pod<double>();
-      g.force_N = r.floats();
-      if (g.force_N.size() < 2 || !(g.period_m > 0))
-        throw PatchFormatError("grating term with no force table or a non-positive period");
-      return g;
-    }
-    case kTagHeightField:
-    case kTagHeightFieldHalf: {
-      HeightFieldTerm h;
-      h.nx = r.pod<std::uint32_t>();
-      h.ny = r.pod<std::uint32_t>();
-      h.origin_m[0] = r.pod<double>();
-      h.origin_m[1] = r.pod<double>();
-      h.spacing_m[0] = r.pod<double>();
-      h.spacing_m[1] = r.pod<double>();
-      h.repeat = r.pod<std::uint8_t>() != 0;
-      h.force_x_N = tag == kTagHeightFieldHalf ? r.halves() : r.floats();
-      h.force_y_N = tag == kTagHeightFieldHalf ? r.halves() : r.floats();
-      auto n = static_cast<std::uint64_t>(h.nx) * h.ny;
-      if (h.nx < 2 || h.ny < 2 || h.force_x_N.size() != n || h.force_y_N.size() != n ||
-          !(h.spacing_m[0] > 0) || !(h.spacing_m[1] > 0))
-        throw PatchFormatError("height-field term whose grid does not match its size");
-      return h;
-    }
-    case kTagConstantForce: {
-      ConstantForceTerm c;
-      c.force_N[0] = r.pod<double>();
-      c.force_N[1] = r.pod<double>();
-      return c;
-    }
-    case kTagNap: {
-      NapTerm n;
-      n.damping_Ns_per_m = r.pod<double>();
-      return n;
-    }
-    case kTagPeriodic: {
-      PeriodicTerm pe;
-      const auto shape = r.pod<std::uint8_t>();
-      if (shape > static_cast<std::uint8_t>(PeriodicShape::Triangle))
-        throw PatchFormatError("periodic term with unknown shape " + std::to_string(shape));
-      pe.shape = static_cast<PeriodicShape>(shape);
-      pe.amplitude_N = r.pod<double>();
-      pe.period_m = r.pod<double>();
-      pe.on_x = r.pod<std::uint8_t>() != 0;
-      pe.on_y = r.pod<std::uint8_t>() != 0;
-      return pe;
-    }
-    case kTagRidge: {
-      RidgeTerm ri;
-      ri.stiffness_N_per_m = r.pod<double>();
-      ri.wavelength_m = r.pod<double>();
-      ri.ridge_width_m = r.pod<double>();
-      return ri;
-    }
-    case kTagBowl: {
-      BowlTerm b;
-      b.stiffness_N_per_m = r.pod<double>();
-      b.radius_m = r.pod<double>();
-      return b;
-    }
-    case kTagLinearField: {
-      LinearFieldTerm lf;
-      lf.radial_N_per_m = r.pod<double>();
-      lf.tangential_N_per_m = r.pod<double>();
-      return lf;
-    }
-    case kTagLinearSpring: {
-      LinearSpringTerm ls;
-      ls.stiffness_N_per_m = r.pod<double>();
-      ls.orientation_rad = r.pod<double>();
-      ls.centre_m[0] = r.pod<double>();
-      ls.centre_m[1] = r.pod<double>();
-      return ls;
-    }
-    case kTagMinus: {
-      MinusTerm mi;
-      mi.stiffness_N_per_m = r.pod<double>();
-      mi.lead_s = r.pod<double>();
-      return mi;
-    }
-    case kTagFollowerSpring: {
-      FollowerSpringTerm fs;
-      fs.stiffness_N_per_m = r.pod<double>();
-      fs.lag_s = r.pod<double>();
-      return fs;
-    }
-    case kTagPointMasses: {
-      PointMassesTerm pm;
-      pm.count = r.pod<std::uint32_t>();
-      if (pm.count != 1 && pm.count != 2)
-        throw PatchFormatError("point-masses term with " + std::to_string(pm.count) + " masses (1 or 2)");
-      for (int i = 0; i < 2; ++i) {
-        pm.mass_kg[i] = r.pod<double>();
-        pm.stiffness_N_per_m[i] = r.pod<double>();
-        pm.damping_Ns_per_m[i] = r.pod<double>();
-      }
-      pm.ground_damping_Ns_per_m = r.pod<double>();
-      pm.gravity_m_s2[0] = r.pod<double>();
-      pm.gravity_m_s2[1] = r.pod<double>();
-      return pm;
-    }
-    case kTagAttractor: {
-      AttractorTerm a;
-      a.stiffness_N_per_m = r.pod<double>();
-      a.radius_m = r.pod<double>();
-      a.period_s = r.pod<double>();
-      a.swirl = r.pod<double>();
-      a.centre_m[0] = r.pod<double>();
-      a.centre_m[1] = r.pod<double>();
-      return a;
-    }
-    case kTagFriction: {
-      FrictionTerm f;
-      f.static_coefficient = r.pod<double>();
-      f.kinetic_coefficient = r.pod<double>();
-      f.press_N = r.pod<double>();
-      f.stiffness_N_per_m = r.pod<double>();
-      f.stick_speed_m_s = r.pod<double>();
-      return f;
-    }
-    default:
-      throw PatchFormatError("unknown term tag " + std::to_string(tag) + " (made by a newer compiler?)");
+template <class T, class M>
+void get(Reader& r, const terms::Field<T, M>& f, T& term) {
+  M& v = term.*(f.member);
+  if constexpr (std::is_same_v<M, double>) {
+    v = r.pod<double>();
+  } else if constexpr (std::is_same_v<M, double[2]>) {
+    v[0] = r.pod<double>();
+    v[1] = r.pod<double>();
+  } else if constexpr (std::is_same_v<M, bool>) {
+    v = r.pod<std::uint8_t>() != 0;
+  } else {
+    const auto raw = r.pod<std::uint8_t>();
+    if (raw >= terms::EnumNames<M>::names.size())
+      throw PatchFormatError(std::string(terms::Kind<T>::label) + " term with unknown " + std::string(f.label) + " " +
+                             std::to_string(raw));
+    v = static_cast<M>(raw);
   }
+}
+
+// The kinds without a field list.
+
+void write_body(Writer& w, const GratingTerm& g, const PatchWriteOptions&, CompactReport*) {
+  w.pod<std::uint32_t>(terms::Kind<GratingTerm>::tag);
+  w.pod(g.period_m);
+  w.pod(g.orientation_rad);
+  w.floats(g.force_N);
+}
+
+void write_body(Writer& w, const HeightFieldTerm& h, const PatchWriteOptions& options, CompactReport* report) {
+  std::optional<std::vector<std::uint16_t>> hx, hy;
+  double error = 0;
+  if (options.compact_grids) {
+    const double peak = largest_component(h.force_x_N, h.force_y_N);
+    hx = compact(h.force_x_N, peak, error);
+    if (hx) hy = compact(h.force_y_N, peak, error);
+    if (report != nullptr) {
+      if (hx && hy) {
+        ++report->compacted;
+        report->largest_error = std::max(report->largest_error, error);
+      } else {
+        ++report->kept;
+      }
+    }
+  }
+  const bool half = hx && hy;
+  w.pod<std::uint32_t>(half ? terms::Kind<HeightFieldTerm>::compact_tag : terms::Kind<HeightFieldTerm>::tag);
+  w.pod(h.nx);
+  w.pod(h.ny);
+  w.pod(h.origin_m[0]);
+  w.pod(h.origin_m[1]);
+  w.pod(h.spacing_m[0]);
+  w.pod(h.spacing_m[1]);
+  w.pod<std::uint8_t>(h.repeat ? 1 : 0);
+  if (half) {
+    w.halves(std::move(*hx));
+    w.halves(std::move(*hy));
+  } else {
+    w.floats(h.force_x_N);
+    w.floats(h.force_y_N);
+  }
+}
+
+// Both slots are written whatever the count, so the record has one fixed size.
+void write_body(Writer& w, const PointMassesTerm& pm, const PatchWriteOptions&, CompactReport*) {
+  w.pod<std::uint32_t>(terms::Kind<PointMassesTerm>::tag);
+  w.pod(pm.count);
+  for (int i = 0; i < 2; ++i) {
+    w.pod(pm.mass_kg[i]);
+    w.pod(pm.stiffness_N_per_m[i]);
+    w.pod(pm.damping_Ns_per_m[i]);
+  }
+  w.pod(pm.ground_damping_Ns_per_m);
+  w.pod(pm.gravity_m_s2[0]);
+  w.pod(pm.gravity_m_s2[1]);
+}
+
+template <terms::Listed T>
+void write_body(Writer& w, const T& term, const PatchWriteOptions&, CompactReport*) {
+  w.pod<std::uint32_t>(terms::Kind<T>::tag);
+  terms::for_each_field<T>([&](const auto& f) { put(w, term.*(f.member)); });
+}
+
+GratingTerm read_body(Reader& r, std::uint32_t, std::type_identity<GratingTerm>) {
+  GratingTerm g;
+  g.period_m = r.pod<double>();
+  g.orientation_rad = r.pod<double>();
+  g.force_N = r.floats();
+  if (g.force_N.size() < 2 || !(g.period_m > 0))
+    throw PatchFormatError("grating term with no force table or a non-positive period");
+  return g;
+}
+
+HeightFieldTerm read_body(Reader& r, std::uint32_t tag, std::type_identity<HeightFieldTerm>) {
+  const bool half = tag == terms::Kind<HeightFieldTerm>::compact_tag;
+  HeightFieldTerm h;
+  h.nx = r.pod<std::uint32_t>();
+  h.ny = r.pod<std::uint32_t>();
+  h.origin_m[0] = r.pod<double>();
+  h.origin_m[1] = r.pod<double>();
+  h.spacing_m[0] = r.pod<double>();
+  h.spacing_m[1] = r.pod<double>();
+  h.repeat = r.pod<std::uint8_t>() != 0;
+  h.force_x_N = half ? r.halves() : r.floats();
+  h.force_y_N = half ? r.halves() : r.floats();
+  auto n = static_cast<std::uint64_t>(h.nx) * h.ny;
+  if (h.nx < 2 || h.ny < 2 || h.force_x_N.size() != n || h.force_y_N.size() != n || !(h.spacing_m[0] > 0) ||
+      !(h.spacing_m[1] > 0))
+    throw PatchFormatError("height-field term whose grid does not match its size");
+  return h;
+}
+
+PointMassesTerm read_body(Reader& r, std::uint32_t, std::type_identity<PointMassesTerm>) {
+  PointMassesTerm pm;
+  pm.count = r.pod<std::uint32_t>();
+  if (pm.count != 1 && pm.count != 2)
+    throw PatchFormatError("point-masses term with " + std::to_string(pm.count) + " masses (1 or 2)");
+  for (int i = 0; i < 2; ++i) {
+    pm.mass_kg[i] = r.pod<double>();
+    pm.stiffness_N_per_m[i] = r.pod<double>();
+    pm.damping_Ns_per_m[i] = r.pod<double>();
+  }
+  pm.ground_damping_Ns_per_m = r.pod<double>();
+  pm.gravity_m_s2[0] = r.pod<double>();
+  pm.gravity_m_s2[1] = r.pod<double>();
+  return pm;
+}
+
+template <terms::Listed T>
+T read_body(Reader& r, std::uint32_t, std::type_identity<T>) {
+  T term;
+  terms::for_each_field<T>([&](const auto& f) { get(r, f, term); });
+  return term;
+}
+
+template <class T>
+constexpr bool has_tag(std::uint32_t tag) {
+  if constexpr (requires { terms::Kind<T>::compact_tag; })
+    if (tag == terms::Kind<T>::compact_tag) return true;
+  return tag == terms::Kind<T>::tag;
+}
+
+void write_term(Writer& w, const Term& term, const PatchWriteOptions& options, CompactReport* report) {
+  std::visit([&](const auto& t) { write_body(w, t, options, report); }, term);
+}
+
+Term read_term(Reader& r) {
+  const auto tag = r.pod<std::uint32_t>();
+  std::optional<Term> term;
+  terms::for_each_kind([&]<class T>(std::type_identity<T> kind) {
+    if (!term && has_tag<T>(tag)) term.emplace(read_body(r, tag, kind));
+  });
+  if (!term) throw PatchFormatError("unknown term tag " + std::to_string(tag) + " (made by a newer compiler?)");
+  return std::move(*term);
 }
 
 }  // namespace

@@ -3,23 +3,16 @@
 #include <variant>
 
 #include "sandpaper/schema/patch_program.hpp"
+#include "sandpaper/schema/term_kinds.hpp"
 
 namespace sandpaper::schema {
 
 bool is_passive(const Term& term) {
-  if (const auto* d = std::get_if<DamperTerm>(&term)) return d->damping_Ns_per_m >= 0;
-  if (const auto* f = std::get_if<LinearFieldTerm>(&term)) return f->tangential_N_per_m == 0;
-  // ATNSpring pushes the hand away from a point that lags it, so along its recent motion: active.
-  // Minus (k (J - M), M ahead of the hand) is a damper plus an added mass, passive in continuous
-  // time; it stays metered because its acceleration is a finite difference of sampled positions,
-  // and a delayed acceleration feedback can put energy in (docs/TEXTURES.md, "Minus and ATNSpring").
-  return !std::holds_alternative<NapTerm>(term) && !std::holds_alternative<MinusTerm>(term) &&
-         !std::holds_alternative<AttractorTerm>(term) && !std::holds_alternative<FollowerSpringTerm>(term);
+  return terms::visit_kind(term, [](const auto& kind, const auto& t) { return kind.passive(t); });
 }
 
 bool has_state(const Term& term) {
-  return std::holds_alternative<FollowerSpringTerm>(term) || std::holds_alternative<PointMassesTerm>(term) ||
-         std::holds_alternative<AttractorTerm>(term) || std::holds_alternative<FrictionTerm>(term);
+  return terms::visit_kind(term, [](const auto& kind, const auto&) { return kind.has_state; });
 }
 
 std::uint32_t point_mass_substeps(const PointMassesTerm& t, double dt_s) {

@@ -13,6 +13,7 @@
 #include "sandpaper/catalog/html.hpp"
 #include "sandpaper/compiler/array_export.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/schema/term_kinds.hpp"
 
 namespace sandpaper::catalog {
 namespace {
@@ -61,25 +62,7 @@ PictureRole picture_role(const schema::Term& term) {
 }
 
 std::string term_kind(const schema::Term& term) {
-  return std::visit(Overloaded{
-                        [](const schema::SpringTerm&) { return std::string("spring"); },
-                        [](const schema::DamperTerm&) { return std::string("damper"); },
-                        [](const schema::GratingTerm&) { return std::string("grating"); },
-                        [](const schema::HeightFieldTerm&) { return std::string("height field"); },
-                        [](const schema::ConstantForceTerm&) { return std::string("constant force"); },
-                        [](const schema::NapTerm&) { return std::string("nap"); },
-                        [](const schema::PeriodicTerm&) { return std::string("periodic force"); },
-                        [](const schema::RidgeTerm&) { return std::string("ridges"); },
-                        [](const schema::BowlTerm&) { return std::string("bowl"); },
-                        [](const schema::LinearFieldTerm&) { return std::string("linear field"); },
-                        [](const schema::LinearSpringTerm&) { return std::string("linear spring"); },
-                        [](const schema::MinusTerm&) { return std::string("minus mass"); },
-                        [](const schema::FollowerSpringTerm&) { return std::string("follower spring"); },
-                        [](const schema::PointMassesTerm&) { return std::string("point masses"); },
-                        [](const schema::AttractorTerm&) { return std::string("attractor"); },
-                        [](const schema::FrictionTerm&) { return std::string("friction"); },
-                    },
-                    term);
+  return std::string(schema::terms::visit_kind(term, [](const auto& kind, const auto&) { return kind.label; }));
 }
 
 std::string why_not_pictured(const schema::Term& term) {

@@ -154,13 +154,16 @@ struct FrictionTerm {
   double stick_speed_m_s = 0;
 };
 
+// Each kind's tag, names, passivity, state and field list: schema::terms::Kind (term_kinds.hpp), which
+// drives the patch file, the JSON view and the runtime's checks (docs/PATCH_FORMAT.md, "Adding a term kind").
 using Term = std::variant<SpringTerm, DamperTerm, GratingTerm, HeightFieldTerm, ConstantForceTerm, NapTerm,
                           PeriodicTerm, RidgeTerm, BowlTerm, LinearFieldTerm, LinearSpringTerm, MinusTerm,
                           FollowerSpringTerm, PointMassesTerm, AttractorTerm, FrictionTerm>;
 
 // Whether a term can only store and return energy it took from the hand (thesis 3.2.2 calls the others
 // "non-physical"). Non-passive terms: negative damping (AntiViscous, Slick), Nap, Minus, ATNSpring,
-// Attractor, and linear fields with a tangential gain (Circle, Buckle). The runtime bounds the energy they inject.
+// Attractor, and linear fields with a tangential gain (Circle, Buckle); each kind's entry in
+// term_kinds.hpp says which. The runtime bounds the energy they inject.
 bool is_passive(const Term& term);
 // Whether the runtime keeps state for the term between ticks (FollowerSpring, PointMasses, Attractor,
 // Friction).
