@@ -69,10 +69,14 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   if (m.damper) os << "                  damper " << m.damper->stated << " [" << m.damper->source << "]\n";
 
   os << "\nparameters\n";
-  os << "  " << pad("parameter", 28) << pad("value", 14) << pad("layer", 16) << "source (as stated)\n";
+  // As wide as the longest name, so that a long law parameter (physics.NapFriction.against_kinetic)
+  // does not push its row's columns out of line.
+  std::size_t name_width = 28;
+  for (const auto& pv : p.provenance) name_width = std::max(name_width, pv.parameter.size() + 1);
+  os << "  " << pad("parameter", name_width) << pad("value", 14) << pad("layer", 16) << "source (as stated)\n";
   for (const auto& pv : p.provenance) {
     std::string value = pv.si_unit.empty() ? "" : schema::display_value(pv.value_si, pv.si_unit);
-    os << "  " << pad(pv.parameter, 28) << pad(value, 14) << pad(pv.layer, 16) << pv.source;
+    os << "  " << pad(pv.parameter, name_width) << pad(value, 14) << pad(pv.layer, 16) << pv.source;
     if (!pv.stated.empty()) os << "  (" << pv.stated << ")";
     os << "\n";
   }

@@ -66,6 +66,9 @@ std::optional<schema::Term> term_of(const ResolvedLaw& l) {
   if (n == "LinearSpring") return schema::LinearSpringTerm{si(l, "stiffness"), si(l, "orientation"), {0, 0}};
   if (n == "Friction")
     return schema::FrictionTerm{si(l, "static"), si(l, "kinetic"), si(l, "press"), si(l, "stiffness"), si(l, "stick_speed")};
+  if (n == "NapFriction")
+    return schema::NapFrictionTerm{si(l, "static"),   si(l, "kinetic"),   si(l, "against_static"), si(l, "against_kinetic"),
+                                   si(l, "press"),    si(l, "stiffness"), si(l, "stick_speed"),    si(l, "nap")};
   if (n == "Attractor")
     return schema::AttractorTerm{si(l, "stiffness"), si(l, "radius"), si(l, "period"), si(l, "swirl"), {0, 0}};
   if (n == "Mass" || n == "Brick" || n == "TwoMasses") {
@@ -123,12 +126,25 @@ bool generate_laws(const ResolvedMaterial& m, const calibration::DeviceCalibrati
         continue;
       }
     }
-    if (const auto* f = std::get_if<schema::FrictionTerm>(&*term); f && f->kinetic_coefficient > f->static_coefficient) {
-      // Sliding at more force than it took to break loose would push the hand on at breakaway.
+    // Sliding at more force than it took to break loose would push the hand on at breakaway.
+    auto slides_harder = [&](const char* kinetic, double k, const char* static_, double s) {
+      if (!(k > s)) return false;
       diags.error("E0304", law.location,
-                  "physics Friction's kinetic coefficient " + num(f->kinetic_coefficient) + " exceeds its static one " +
-                      num(f->static_coefficient) + ": a contact slides at no more force than it takes to break it loose",
-                  "give kinetic at most " + num(f->static_coefficient) + " (rubber on a dry surface: about 3/4 of static)");
+                  "physics " + law.name + "'s " + kinetic + " coefficient " + num(k) + " exceeds its " + static_ + " one " +
+                      num(s) + ": a contact slides at no more force than it takes to break it loose",
+                  std::string("give ") + kinetic + " at most " + num(s) + " (rubber on a dry surface: about 3/4 of static)");
+      return true;
+    };
+    bool slides_too_hard = false;
+    if (const auto* f = std::get_if<schema::FrictionTerm>(&*term))
+      slides_too_hard = slides_harder("kinetic", f->kinetic_coefficient, "static", f->static_coefficient);
+    if (const auto* f = std::get_if<schema::NapFrictionTerm>(&*term)) {
+      const bool with = slides_harder("kinetic", f->kinetic_coefficient, "static", f->static_coefficient);
+      const bool against = slides_harder("against_kinetic", f->against_kinetic_coefficient, "against_static",
+                                         f->against_static_coefficient);
+      slides_too_hard = with || against;
+    }
+    if (slides_too_hard) {
       ok = false;
       continue;
     }

@@ -75,14 +75,39 @@ inline glm::dvec2 friction(const schema::FrictionTerm& t, glm::dvec2 p, glm::dve
 // Advances the adhesion point w over one tick (Karnopp 1985's stick band, Hayward & Armstrong 2000's
 // adhesion point): stuck until |p - w| passes mu_static P / k; sliding, w trails the hand at
 // mu_kinetic P / k until the hand turns back or slows below the stick speed. w only moves toward p.
-inline void advance_friction(const schema::FrictionTerm& t, glm::dvec2 p, glm::dvec2 v, glm::dvec2& w, bool& sticking) noexcept {
+// z_static and z_kinetic are the stick band's two stretches, mu P / k (m).
+inline void advance_adhesion(glm::dvec2 p, glm::dvec2 v, double stick_speed_m_s, double z_static, double z_kinetic,
+                             glm::dvec2& w, bool& sticking) noexcept {
   const glm::dvec2 z = p - w;
   const double r = std::hypot(z.x, z.y);
-  const double z_static = t.static_coefficient * t.press_N / t.stiffness_N_per_m;
-  const double z_kinetic = t.kinetic_coefficient * t.press_N / t.stiffness_N_per_m;
-  if (!sticking && (std::hypot(v.x, v.y) < t.stick_speed_m_s || v.x * z.x + v.y * z.y <= 0)) sticking = true;
+  if (!sticking && (std::hypot(v.x, v.y) < stick_speed_m_s || v.x * z.x + v.y * z.y <= 0)) sticking = true;
   if (sticking && r > z_static) sticking = false;  // breaks loose
   if (!sticking && r > z_kinetic) w = p - (z_kinetic / r) * z;
+}
+
+inline void advance_friction(const schema::FrictionTerm& t, glm::dvec2 p, glm::dvec2 v, glm::dvec2& w, bool& sticking) noexcept {
+  const double per_mu = t.press_N / t.stiffness_N_per_m;
+  advance_adhesion(p, v, t.stick_speed_m_s, t.static_coefficient * per_mu, t.kinetic_coefficient * per_mu, w, sticking);
+}
+
+// How far the way p - w points against the nap: 0 along n (with the nap), 1 along -n, (1 - cos) / 2
+// between. With the hand on w the way is undefined and nothing depends on it (no stretch to compare).
+inline double against_nap(const schema::NapFrictionTerm& t, glm::dvec2 z) noexcept {
+  const double r = std::hypot(z.x, z.y);
+  if (!(r > 0)) return 0;
+  const double c = (z.x * std::cos(t.nap_orientation_rad) + z.y * std::sin(t.nap_orientation_rad)) / r;
+  return 0.5 * (1 - c);
+}
+
+// As advance_friction, the coefficients mixed by the way the hand is pulling from w. w moves along
+// p - w, so the way, and the coefficients, stay those the move was judged with.
+inline void advance_nap_friction(const schema::NapFrictionTerm& t, glm::dvec2 p, glm::dvec2 v, glm::dvec2& w,
+                                 bool& sticking) noexcept {
+  const double a = against_nap(t, p - w);
+  const double mu_s = t.static_coefficient + a * (t.against_static_coefficient - t.static_coefficient);
+  const double mu_k = t.kinetic_coefficient + a * (t.against_kinetic_coefficient - t.kinetic_coefficient);
+  const double per_mu = t.press_N / t.stiffness_N_per_m;
+  advance_adhesion(p, v, t.stick_speed_m_s, mu_s * per_mu, mu_k * per_mu, w, sticking);
 }
 
 // Where the attractor's light object is at time t_s on its swirling path (thesis 3.2.2).

@@ -76,6 +76,8 @@ void PatchEvaluator::advance_rt(const HandState& hand, double dt_s) noexcept {
       slot.state.follower_m += (1.0 - std::exp(-dt_s / follower->lag_s)) * (hand.position_m - slot.state.follower_m);
     } else if (const auto* friction = std::get_if<schema::FrictionTerm>(&term)) {
       laws::advance_friction(*friction, hand.position_m, hand.velocity_m_s, slot.state.adhesion_m, slot.state.sticking);
+    } else if (const auto* nap = std::get_if<schema::NapFrictionTerm>(&term)) {
+      laws::advance_nap_friction(*nap, hand.position_m, hand.velocity_m_s, slot.state.adhesion_m, slot.state.sticking);
     } else if (const auto* attractor = std::get_if<schema::AttractorTerm>(&term)) {
       // Wrapped to one period so that hours of play keep the phase's resolution.
       double t = slot.state.time_s + dt_s;
@@ -122,6 +124,7 @@ glm::dvec2 PatchEvaluator::force_rt(const HandState& hand, double dt_s) noexcept
               [&](const schema::PointMassesTerm& t) { return point_masses_hand_force(t, state->masses, p, v); },
               [&](const schema::AttractorTerm& t) { return laws::attractor(t, p, state->time_s); },
               [&](const schema::FrictionTerm& t) { return laws::friction(t, p, state->adhesion_m); },
+              [&](const schema::NapFrictionTerm& t) -> glm::dvec2 { return -t.stiffness_N_per_m * (p - state->adhesion_m); },
           },
           program_.terms[i]);
       (passive_[i] ? passive : active) += f;

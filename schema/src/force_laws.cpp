@@ -43,6 +43,16 @@ constexpr std::array kFriction{LawParam{"static", K::Number, D::Fraction, true, 
                                req("press", D::Force), opt("stiffness", D::Stiffness, 2000, "2000 N/m"),
                                opt("stick_speed", D::Speed, 0.002, "2 mm/s")};
 
+// NapFriction: the with-the-nap pair, the against-the-nap pair, then as Friction, and the way the nap
+// lies (Appendix B's Nap lies toward +y: F_y = |b v_y| helps a hand moving toward +y).
+constexpr std::array kNapFriction{LawParam{"static", K::Number, D::Fraction, true, 0, "", false},
+                                  LawParam{"kinetic", K::Number, D::Fraction, true, 0, "", false},
+                                  LawParam{"against_static", K::Number, D::Fraction, true, 0, "", false},
+                                  LawParam{"against_kinetic", K::Number, D::Fraction, true, 0, "", false},
+                                  req("press", D::Force), opt("stiffness", D::Stiffness, 2000, "2000 N/m"),
+                                  opt("stick_speed", D::Speed, 0.002, "2 mm/s"),
+                                  LawParam{"nap", K::Quantity, D::Angle, false, 1.5707963267948966, "90 deg", true}};
+
 constexpr const char* kTextureMenu = "Minsky 1995, Appendix B (Texture menu)";
 constexpr const char* kReading = "Minsky 1995, Appendix B (Texture menu; OCR garbled, reading in docs/TEXTURES.md)";
 constexpr const char* kPhysics = "Minsky 1995, 3.2.2 (dynamic modules)";
@@ -75,6 +85,10 @@ const std::array kLaws{
     LawDef{LawFamily::Physics, "Friction", kFriction,
            "F = -k (p - w): Coulomb friction mu P with stick-slip, w an adhesion point (passive)",
            "Karnopp 1985 (stick band); Hayward & Armstrong 2000 (adhesion point); docs/FORCE_LAWS.md"},
+    LawDef{LawFamily::Physics, "NapFriction", kNapFriction,
+           "Friction whose coefficients depend on the way the hand slides: static/kinetic with the nap (toward `nap`), "
+           "against_static/against_kinetic against it (velvet, fur; passive)",
+           "Minsky 1995, 7.4.1 (napped materials) and Appendix B (Nap); the friction as Friction's"},
     LawDef{LawFamily::Physics, "Attractor", kAttractor,
            "F = -k (p - q(t)), q a light object on a swirling path (not passive)", kPhysics},
 };

@@ -289,3 +289,44 @@ TEST(ForceLawsPlayed, FrictionSlidesAtKineticAndBreaksLooseAtStatic) {
   EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("physics Friction static 0.5 kinetic 0.8 press 1 N")),
             std::vector<std::string>{"E0304"});
 }
+
+// Velvet from the library, stroked up and down the nap on the scripted scan (docs/FORCE_LAWS.md, "Nap
+// friction"): toward +y, with the nap, the contact slides at 0.2 N; toward -y, against it, at 0.5 N.
+TEST(ForceLawsPlayed, VelvetDragsAgainstTheNapAndGlidesWithIt) {
+  auto r = test::shipped_compiler().compile_text("like velvet");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  runtime::HandScript scan;
+  scan.speed_m_s = 0.05;
+  scan.amplitude_m = 0.02;
+  scan.direction_rad = std::numbers::pi / 2;  // along y, across the nap's lie and back
+  runtime::ServoConfig cfg;
+  cfg.duration_s = 3.0;
+  cfg.ramp_s = 0;
+  runtime::SimJoystick sim(runtime::sim_device_limits(), scan, 3000);
+  runtime::PatchEvaluator ev(*r.program);
+  runtime::VirtualClock clock;
+  ASSERT_EQ(runtime::run_servo_loop(sim, ev, clock, cfg).stop_reason, "completed");
+  const auto& rec = sim.records();
+  const double step = 0.05 / 1000;
+  int with = 0, against = 0, other = 0;
+  for (std::size_t i = 1; i + 1 < rec.size(); ++i) {
+    const double v = rec[i + 1].position_m.y - rec[i - 1].position_m.y;
+    const double f = rec[i].force_N.y;
+    if (std::abs(v) < 0.5 * step) continue;
+    if (v > 0 && std::abs(f + 0.2) < 1e-9) ++with;
+    else if (v < 0 && std::abs(f - 0.5) < 1e-9) ++against;
+    else ++other;
+  }
+  // Most of each stroke slides; the rest is the presliding spring after each turn.
+  EXPECT_GT(with, 1000);
+  EXPECT_GT(against, 1000);
+  EXPECT_LT(other, with / 4);
+  // Each pair's kinetic above its static is refused, each with its own diagnostic.
+  const std::string pairs = "physics NapFriction press 1 N static 0.3 kinetic 0.2 ";
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text(pairs + "against_static 0.5 against_kinetic 0.8")),
+            std::vector<std::string>{"E0304"});
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text(
+                "physics NapFriction press 1 N static 0.2 kinetic 0.3 against_static 0.5 against_kinetic 0.8")),
+            (std::vector<std::string>{"E0304", "E0304"}));
+  EXPECT_TRUE(test::codes(test::shipped_compiler().compile_text(pairs + "against_static 0.8 against_kinetic 0.5")).empty());
+}

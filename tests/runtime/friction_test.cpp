@@ -98,3 +98,71 @@ TEST(Friction, NeverGivesTheHandEnergy) {
     EXPECT_GT(slides, 0) << trial;  // the path did break loose: the slip branch was exercised
   }
 }
+
+// Nap friction (schema::NapFrictionTerm): the same stick band, its coefficients set by the way the hand
+// pulls from the adhesion point. With the nap lying toward +y: stroking toward +y slides at mu_k P,
+// toward -y at the against coefficient, across the nap (along x) halfway between.
+TEST(NapFriction, SlidesWithTheNapAtKineticAndAgainstItAtTheAgainstCoefficient) {
+  constexpr double kWithS = 0.3, kWithK = 0.2, kAgainstS = 0.9, kAgainstK = 0.6;
+  const auto program = program_of({nap_friction(kWithS, kWithK, kAgainstS, kAgainstK, kPress)});
+  struct Way {
+    glm::dvec2 step;
+    double kinetic, breakaway;
+  };
+  const double half_k = 0.5 * (kWithK + kAgainstK), half_s = 0.5 * (kWithS + kAgainstS);
+  for (const Way& way : {Way{{0, 20e-6}, kWithK, kWithS}, Way{{0, -20e-6}, kAgainstK, kAgainstS},
+                         Way{{20e-6, 0}, half_k, half_s}, Way{{-20e-6, 0}, half_k, half_s}}) {
+    SCOPED_TRACE(way.step.x + way.step.y);
+    Drive d(program);
+    double peak = 0;
+    for (int i = 0; i < 600; ++i) peak = std::max(peak, glm::length(d.to(d.hand.position_m + way.step)));
+    // Sliding: mu_k P against the stroke.
+    EXPECT_NEAR(glm::length(d.last_force), way.kinetic * kPress, 1e-9);
+    EXPECT_LT(glm::dot(d.last_force, way.step), 0);
+    EXPECT_FALSE(d.ev.state_of(0)->sticking);
+    // Breaking loose: mu_s P, within one tick's travel.
+    EXPECT_NEAR(peak, way.breakaway * kPress, kK * 20e-6 + 1e-12);
+  }
+}
+
+// With equal coefficients both ways, nap friction is friction: the same forces tick by tick.
+TEST(NapFriction, EqualCoefficientsPlayAsFriction) {
+  const auto plain_program = program_of({friction(kMuS, kMuK, kPress, kK)});
+  const auto nap_program = program_of({nap_friction(kMuS, kMuK, kMuS, kMuK, kPress, 0.3, kK)});
+  Drive plain(plain_program);
+  Drive nap(nap_program);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> jerk(0, 4.0);
+  glm::dvec2 v{0, 0};
+  for (int i = 0; i < 3000; ++i) {
+    v += glm::dvec2{jerk(rng), jerk(rng)} * kDt;
+    const glm::dvec2 p = plain.hand.position_m + v * kDt;
+    const glm::dvec2 a = plain.to(p), b = nap.to(p);
+    ASSERT_NEAR(a.x, b.x, 1e-12) << i;
+    ASSERT_NEAR(a.y, b.y, 1e-12) << i;
+  }
+}
+
+// Passive as friction is: the adhesion point only moves toward the hand, whichever coefficients apply.
+TEST(NapFriction, NeverGivesTheHandEnergy) {
+  const auto program = program_of({nap_friction(0.3, 0.2, 0.9, 0.6, kPress, 1.2, kK, 0.002)});
+  std::mt19937 rng(18);
+  std::normal_distribution<double> jerk(0, 4.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Drive d(program);
+    glm::dvec2 v{0, 0};
+    double work_on_hand = 0;
+    int slides = 0;
+    for (int i = 0; i < 5000; ++i) {
+      v += glm::dvec2{jerk(rng), jerk(rng)} * kDt;
+      v *= 0.995;
+      const glm::dvec2 before = d.hand.position_m;
+      const glm::dvec2 f = d.to(before + v * kDt);
+      work_on_hand += glm::dot(f, d.hand.position_m - before);
+      slides += d.ev.state_of(0)->sticking ? 0 : 1;
+    }
+    const glm::dvec2 z = d.hand.position_m - d.ev.state_of(0)->adhesion_m;
+    EXPECT_LE(work_on_hand, -0.5 * kK * glm::dot(z, z) + 1e-12) << trial;
+    EXPECT_GT(slides, 0) << trial;
+  }
+}

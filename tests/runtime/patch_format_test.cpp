@@ -92,6 +92,14 @@ bool same(const Term& x, const Term& y) {
     return a->static_coefficient == b.static_coefficient && a->kinetic_coefficient == b.kinetic_coefficient &&
            a->press_N == b.press_N && a->stiffness_N_per_m == b.stiffness_N_per_m && a->stick_speed_m_s == b.stick_speed_m_s;
   }
+  if (const auto* a = std::get_if<NapFrictionTerm>(&x)) {
+    const auto& b = std::get<NapFrictionTerm>(y);
+    return a->static_coefficient == b.static_coefficient && a->kinetic_coefficient == b.kinetic_coefficient &&
+           a->against_static_coefficient == b.against_static_coefficient &&
+           a->against_kinetic_coefficient == b.against_kinetic_coefficient && a->press_N == b.press_N &&
+           a->stiffness_N_per_m == b.stiffness_N_per_m && a->stick_speed_m_s == b.stick_speed_m_s &&
+           a->nap_orientation_rad == b.nap_orientation_rad;
+  }
   const auto& a = std::get<AttractorTerm>(x);
   const auto& b = std::get<AttractorTerm>(y);
   return a.stiffness_N_per_m == b.stiffness_N_per_m && a.radius_m == b.radius_m && a.period_s == b.period_s &&

@@ -129,6 +129,11 @@ inline schema::FrictionTerm friction(double mu_static, double mu_kinetic, double
   return t;
 }
 
+inline schema::NapFrictionTerm nap_friction(double mu_s, double mu_k, double against_s, double against_k, double press_N,
+                                             double nap_rad = 1.5707963267948966, double k = 2000, double stick_speed = 0.002) {
+  return {mu_s, mu_k, against_s, against_k, press_N, k, stick_speed, nap_rad};
+}
+
 // A small repeating height field with made-up gradients.
 inline schema::HeightFieldTerm sample_height_field() {
   schema::HeightFieldTerm field;
@@ -173,7 +178,8 @@ inline std::vector<schema::Term> every_term_kind() {
           follower_spring(150, 0.05),
           two_masses(0.05, 0.03, 200, 150, 0.5, 0.3, 0.1),
           attractor(80, 0.02, 1.5, 0.3, 0.001, 0.0),
-          friction(0.9, 0.6, 1.5, 1800, 0.003)};
+          friction(0.9, 0.6, 1.5, 1800, 0.003),
+          nap_friction(0.4, 0.3, 0.9, 0.7, 1.2, 1.4, 2200, 0.0025)};
 }
 
 }  // namespace sandpaper::runtime::testing

@@ -75,6 +75,7 @@ std::string why_not_pictured(const schema::Term& term) {
           [](const schema::PointMassesTerm&) { return std::string("the point masses: their force depends on the masses' motion (state)"); },
           [](const schema::AttractorTerm&) { return std::string("the attractor: its force depends on time, as its target moves"); },
           [](const schema::FrictionTerm&) { return std::string("friction: its force depends on where the contact last stuck (state)"); },
+          [](const schema::NapFrictionTerm&) { return std::string("nap friction: its force depends on where the contact last stuck (state)"); },
           [](const schema::LinearFieldTerm&) { return std::string("the circulating field: a tangential force has no potential surface"); },
           [&](const auto&) { return term_kind(term) + ": drawn"; },
       },

@@ -154,11 +154,27 @@ struct FrictionTerm {
   double stick_speed_m_s = 0;
 };
 
+// Friction that depends on the way the contact slides across a nap (velvet, fur: "different properties
+// when stroked in different directions", thesis 7.4.1). Sliding along n = (cos nap, sin nap), "with
+// the nap", the coefficients are static_ and kinetic_coefficient; along -n, against it, they are the
+// against_ ones; in between they mix by (1 - cos angle) / 2, the angle between n and p - w. Otherwise as
+// FrictionTerm (the same adhesion point and stick band), so passive. State: w and sticking (runtime).
+struct NapFrictionTerm {
+  double static_coefficient = 0;
+  double kinetic_coefficient = 0;
+  double against_static_coefficient = 0;
+  double against_kinetic_coefficient = 0;
+  double press_N = 0;
+  double stiffness_N_per_m = 0;
+  double stick_speed_m_s = 0;
+  double nap_orientation_rad = 0;
+};
+
 // Each kind's tag, names, passivity, state and field list: schema::terms::Kind (term_kinds.hpp), which
 // drives the patch file, the JSON view and the runtime's checks (docs/PATCH_FORMAT.md, "Adding a term kind").
 using Term = std::variant<SpringTerm, DamperTerm, GratingTerm, HeightFieldTerm, ConstantForceTerm, NapTerm,
                           PeriodicTerm, RidgeTerm, BowlTerm, LinearFieldTerm, LinearSpringTerm, MinusTerm,
-                          FollowerSpringTerm, PointMassesTerm, AttractorTerm, FrictionTerm>;
+                          FollowerSpringTerm, PointMassesTerm, AttractorTerm, FrictionTerm, NapFrictionTerm>;
 
 // Whether a term can only store and return energy it took from the hand (thesis 3.2.2 calls the others
 // "non-physical"). Non-passive terms: negative damping (AntiViscous, Slick), Nap, Minus, ATNSpring,

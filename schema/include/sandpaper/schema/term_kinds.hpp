@@ -260,6 +260,31 @@ struct Kind<FrictionTerm> {
   };
 };
 
+template <>
+struct Kind<NapFrictionTerm> {
+  static constexpr std::uint32_t tag = 18;
+  static constexpr std::string_view json = "nap_friction", label = "nap friction";
+  static constexpr AlwaysPassive passive{};  // as friction: the adhesion point only moves toward the hand
+  static constexpr bool has_state = true;
+  static constexpr auto fields = std::tuple{
+      field("static_coefficient", "static coefficient", &NapFrictionTerm::static_coefficient, Check::NonNegative),
+      field("kinetic_coefficient", "kinetic coefficient", &NapFrictionTerm::kinetic_coefficient, Check::NonNegative),
+      field("against_static_coefficient", "against static coefficient", &NapFrictionTerm::against_static_coefficient,
+            Check::NonNegative),
+      field("against_kinetic_coefficient", "against kinetic coefficient", &NapFrictionTerm::against_kinetic_coefficient,
+            Check::NonNegative),
+      field("press_N", "press", &NapFrictionTerm::press_N, Check::Positive),
+      field("stiffness_N_per_m", "stiffness", &NapFrictionTerm::stiffness_N_per_m, Check::Positive),
+      field("stick_speed_m_s", "stick speed", &NapFrictionTerm::stick_speed_m_s, Check::NonNegative),
+      field("nap_orientation_rad", "nap orientation", &NapFrictionTerm::nap_orientation_rad)};
+  static constexpr auto rule = [](const NapFrictionTerm& t) -> const char* {
+    if (t.kinetic_coefficient > t.static_coefficient) return "kinetic coefficient must not exceed the static one";
+    if (t.against_kinetic_coefficient > t.against_static_coefficient)
+      return "against kinetic coefficient must not exceed the against static one";
+    return nullptr;
+  };
+};
+
 // Whether a kind's parameters are a field list (else its code is written by hand).
 template <class T>
 concept Listed = requires { Kind<T>::fields; };
