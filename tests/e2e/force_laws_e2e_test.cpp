@@ -293,25 +293,17 @@ TEST(ForceLawsPlayed, FrictionSlidesAtKineticAndBreaksLooseAtStatic) {
 // Velvet from the library, stroked up and down the nap on the scripted scan (docs/FORCE_LAWS.md, "Nap
 // friction"): toward +y, with the nap, the contact slides at 0.2 N; toward -y, against it, at 0.5 N.
 TEST(ForceLawsPlayed, VelvetDragsAgainstTheNapAndGlidesWithIt) {
-  auto r = test::shipped_compiler().compile_text("like velvet");
-  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   runtime::HandScript scan;
   scan.speed_m_s = 0.05;
   scan.amplitude_m = 0.02;
-  scan.direction_rad = std::numbers::pi / 2;  // along y, across the nap's lie and back
-  runtime::ServoConfig cfg;
-  cfg.duration_s = 3.0;
-  cfg.ramp_s = 0;
-  runtime::SimJoystick sim(runtime::sim_device_limits(), scan, 3000);
-  runtime::PatchEvaluator ev(*r.program);
-  runtime::VirtualClock clock;
-  ASSERT_EQ(runtime::run_servo_loop(sim, ev, clock, cfg).stop_reason, "completed");
-  const auto& rec = sim.records();
+  scan.direction_rad = std::numbers::pi / 2;  // along y, with the nap's lie and back
+  const auto rec = play("like velvet", scan, 3.0);
+  ASSERT_FALSE(rec.empty());
   const double step = 0.05 / 1000;
   int with = 0, against = 0, other = 0;
   for (std::size_t i = 1; i + 1 < rec.size(); ++i) {
-    const double v = rec[i + 1].position_m.y - rec[i - 1].position_m.y;
-    const double f = rec[i].force_N.y;
+    const double v = rec[i + 1].p.y - rec[i - 1].p.y;
+    const double f = rec[i].force.y;
     if (std::abs(v) < 0.5 * step) continue;
     if (v > 0 && std::abs(f + 0.2) < 1e-9) ++with;
     else if (v < 0 && std::abs(f - 0.5) < 1e-9) ++against;
