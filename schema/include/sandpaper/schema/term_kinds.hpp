@@ -289,8 +289,7 @@ struct Kind<NapFrictionTerm> {
 template <class T>
 concept Listed = requires { Kind<T>::fields; };
 
-// Calls f(Kind<T>-typed tag object) for every alternative of Term, in variant order:
-// f(std::type_identity<T>{}).
+// Calls f(std::type_identity<T>{}) for every alternative T of Term, in variant order.
 template <class F>
 constexpr void for_each_kind(F&& f) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
