@@ -13,6 +13,9 @@
 namespace sandpaper::compiler {
 namespace {
 
+// The finest grating period any joystick can render (see generate()).
+constexpr double kLeastPeriod_m = 1e-6;
+
 std::string num(double v, int precision = 4) {
   std::ostringstream os;
   os.precision(precision);
@@ -186,6 +189,19 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
 
     const int bits = m.quantize_bits ? static_cast<int>(m.quantize_bits->si) : 0;
     if (m.quantize_bits) record(out, "texture.quantization", *m.quantize_bits, "bit");
+    // A period the device cannot resolve plays as aliased noise, or (a denormal) as a non-finite force
+    // that stops the servo at its first tick: two position counts per period at the least, and never
+    // under a micrometre, the finest any joystick senses (issue 16).
+    if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
+      const double least_m = std::max(kLeastPeriod_m, 2 * device.position_resolution_m);
+      if (!(g->period.si >= least_m)) {
+        diags.error("E0304", g->period.location.file ? g->period.location : g->location,
+                    "grating period " + num(g->period.si * 1e3) + " mm is finer than " + device.name + " can play (" +
+                        num(least_m * 1e3) + " mm: two position steps, and at least 1 um)",
+                    "give a period of at least " + num(least_m * 1e3) + " mm; the thesis' gratings are 0.7-10 mm (5.4)");
+        return false;
+      }
+    }
     if (const auto* seed = std::get_if<ResolvedGrating>(&m.texture); seed && bits > 0) {
       if (!generate_seed_grating(*seed, bits, force, out)) return false;
     } else if (const auto* pt = std::get_if<ResolvedPattern>(&m.texture)) {

@@ -10,6 +10,7 @@
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/compiler/resolver.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
 namespace {
@@ -55,17 +56,18 @@ Compiler::Compiler(CompileOptions options)
 }
 
 CompileResult Compiler::compile_file(const std::filesystem::path& path) const {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) {
+  std::string text;
+  try {
+    text = schema::read_input_file(path, schema::limits::kMaxSourceBytes);
+  } catch (const schema::InputFileError& e) {
     CompileResult r;
     auto f = std::make_shared<const SourceFile>(path.string(), "");
-    r.diagnostics.error("E0001", SourceLocation{f, 0, 0, 1}, "cannot open material file '" + path.string() + "'",
+    r.diagnostics.error("E0001", SourceLocation{f, 0, 0, 1}, std::string("cannot read material file: ") + e.what(),
                         "check the path; material files end in .hmat");
     return r;
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return compile_source(std::make_shared<const SourceFile>(path.string(), ss.str()), library_, calibration_, *device_);
+  return compile_source(std::make_shared<const SourceFile>(path.string(), std::move(text)), library_, calibration_,
+                        *device_);
 }
 
 CompileResult Compiler::compile_text(const std::string& text, const std::string& display_name) const {

@@ -2,24 +2,61 @@
 
 #include <algorithm>
 
+#include "sandpaper/schema/input_limits.hpp"
+
 namespace sandpaper::compiler {
 
 Diagnostic& Diagnostics::error(std::string code, SourceLocation loc, std::string message, std::string suggestion) {
-  ++errors_;
-  list_.push_back({std::move(code), Severity::Error, std::move(loc), std::move(message), std::move(suggestion), {}});
-  return list_.back();
+  return add(Severity::Error, std::move(code), std::move(loc), std::move(message), std::move(suggestion));
 }
 
 Diagnostic& Diagnostics::warning(std::string code, SourceLocation loc, std::string message, std::string suggestion) {
-  list_.push_back({std::move(code), Severity::Warning, std::move(loc), std::move(message), std::move(suggestion), {}});
-  return list_.back();
+  return add(Severity::Warning, std::move(code), std::move(loc), std::move(message), std::move(suggestion));
+}
+
+bool Diagnostics::error_limit_reached() const noexcept { return errors_ >= schema::limits::kMaxErrorsPerFile; }
+
+Diagnostic& Diagnostics::add(Severity severity, std::string code, SourceLocation loc, std::string message,
+                             std::string suggestion) {
+  const bool is_error = severity == Severity::Error;
+  std::size_t& kept = is_error ? errors_ : warnings_;
+  const std::size_t limit = is_error ? schema::limits::kMaxErrorsPerFile : schema::limits::kMaxWarningsPerFile;
+  if (kept < limit) {
+    ++kept;
+    list_.push_back({std::move(code), severity, std::move(loc), std::move(message), std::move(suggestion), {}});
+    return list_.back();
+  }
+  drop(is_error, std::move(loc), 1);
+  scratch_ = {};
+  return scratch_;
+}
+
+// Past the limit: one summary entry, its count kept current, and nothing else stored.
+void Diagnostics::drop(bool is_error, SourceLocation loc, std::size_t count) {
+  std::size_t& dropped = is_error ? dropped_errors_ : dropped_warnings_;
+  std::size_t& summary = is_error ? summary_error_ : summary_warning_;
+  const std::size_t limit = is_error ? schema::limits::kMaxErrorsPerFile : schema::limits::kMaxWarningsPerFile;
+  dropped += count;
+  if (summary == SIZE_MAX) {
+    summary = list_.size();
+    list_.push_back({is_error ? "E0009" : "W0009", is_error ? Severity::Error : Severity::Warning, std::move(loc), {},
+                     is_error ? "fix the errors above first; the rest are often consequences of them"
+                              : "fix the warnings above first, or compile the parts separately",
+                     {}});
+  }
+  list_[summary].message = "too many " + std::string(is_error ? "errors" : "warnings") + ": " +
+                           std::to_string(dropped) + " more not shown (at most " + std::to_string(limit) +
+                           " are reported)";
 }
 
 void Diagnostics::append(const Diagnostics& other) {
   for (const auto& d : other.list_) {
-    list_.push_back(d);
-    if (d.severity == Severity::Error) ++errors_;
+    if (d.code == "E0009" || d.code == "W0009") continue;  // recounted here
+    Diagnostic& added = add(d.severity, d.code, d.location, d.message, d.suggestion);
+    added.notes = d.notes;
   }
+  if (other.dropped_errors_ > 0) drop(true, other.list_[other.summary_error_].location, other.dropped_errors_);
+  if (other.dropped_warnings_ > 0) drop(false, other.list_[other.summary_warning_].location, other.dropped_warnings_);
 }
 
 namespace {
@@ -33,22 +70,41 @@ const char* severity_name(Severity s) {
   return "?";
 }
 
-// The source line with a gutter, and a caret line under the location (Souffle/clang style).
+// The source line with a gutter, and a caret line under the location (Souffle/clang style). A long
+// line is clipped to a window around the caret, marked with "...", so that a 40 KB line echoed under
+// each of its errors cannot grow the output with the square of its length (issue 16).
 void append_excerpt(std::string& out, const SourceLocation& loc) {
   if (!loc.file || loc.line <= 0) return;
   std::string_view text = loc.file->line_text(loc.line);
+  std::size_t caret = static_cast<std::size_t>(std::max(1, loc.column) - 1);
+  std::size_t width = static_cast<std::size_t>(std::max(1, loc.length));
+  std::string_view before, after;
+  constexpr std::size_t kWindow = schema::limits::kMaxEchoedLineBytes;
+  if (text.size() > kWindow) {
+    const auto boundary = [&](std::size_t i) {  // back to the start of a UTF-8 character
+      while (i > 0 && i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0) == 0x80) --i;
+      return i;
+    };
+    std::size_t begin = boundary(caret > kWindow / 3 ? caret - kWindow / 3 : 0);
+    std::size_t end = boundary(std::min(text.size(), begin + kWindow));
+    if (caret > text.size()) caret = text.size();
+    if (begin > 0) before = "...";
+    if (end < text.size()) after = "...";
+    text = text.substr(begin, end - begin);
+    caret = caret - begin + before.size();
+    width = std::min(width, text.size() + before.size() + 1 - std::min(caret, text.size() + before.size()));
+  }
   std::string num = std::to_string(loc.line);
   std::string pad(num.size(), ' ');
-  out += " " + num + " | " + std::string(text) + "\n";
+  out += " " + num + " | " + std::string(before) + std::string(text) + std::string(after) + "\n";
   out += " " + pad + " | ";
   // Keep tabs as tabs so the caret lines up under the same characters in a terminal.
-  int col = std::max(1, loc.column);
-  for (int i = 1; i < col; ++i) {
-    auto idx = static_cast<std::size_t>(i - 1);
-    out += (idx < text.size() && text[idx] == '\t') ? '\t' : ' ';
+  for (std::size_t i = 0; i < caret; ++i) {
+    const std::size_t idx = i - std::min(i, before.size());
+    out += (i >= before.size() && idx < text.size() && text[idx] == '\t') ? '\t' : ' ';
   }
   out += '^';
-  for (int i = 1; i < loc.length; ++i) out += '~';
+  for (std::size_t i = 1; i < std::max<std::size_t>(1, width); ++i) out += '~';
   out += '\n';
 }
 

@@ -17,9 +17,14 @@
 
 #include "sandpaper/compiler/diagnostic.hpp"
 #include "sandpaper/schema/array_file.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
 namespace {
+
+// The height channels of a picture, read as 32-bit floats: at most 256 MiB (4096 x 4096 x R, G, B
+// is 192 MiB). Checked from the header, before any pixel is allocated (issue 16).
+constexpr std::uint64_t kMaxImageReadBytes = std::uint64_t{256} << 20;
 
 std::string mm(double m) {
   std::ostringstream os;
@@ -34,13 +39,23 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 
-// All channels of the picture, interleaved, as float.
+// The picture's channels [first, first + read) interleaved as float (only those the height uses
+// are read), and the names of all `nc` of them.
 struct RawImage {
   int nx = 0, ny = 0, nc = 0;
+  int first = 0, read = 0;
   std::vector<float> pixels;
   std::vector<std::string> channel_names;
   std::string format;  // "uint8", "half", ".depth (uint8)"
 };
+
+// A decoder's error log can hold one line per scanline: the first says what is wrong.
+std::string first_line(const std::string& log) {
+  const auto end = log.find('\n');
+  if (end == std::string::npos) return log;
+  const auto more = static_cast<std::size_t>(std::count(log.begin(), log.end(), '\n'));
+  return log.substr(0, end) + " (and " + std::to_string(more) + " more lines like it)";
+}
 
 bool fail(HeightImageError& e, std::string code, std::string message, std::string suggestion) {
   e = {std::move(code), std::move(message), std::move(suggestion)};
@@ -61,13 +76,15 @@ bool check_dimensions(const HeightImageRequest& r, long long nx, long long ny, c
 }
 
 bool read_depth_file(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
-  std::ifstream in(r.path, std::ios::binary);
-  if (!in)
-    return fail(e, "E0401",
-                "cannot read array file '" + r.shown_path + "': " +
-                    (std::filesystem::exists(r.path) ? "it cannot be opened" : "no such file"),
+  std::string text;
+  try {
+    text = schema::read_input_file(r.path, schema::limits::kMaxImageFileBytes);
+  } catch (const schema::InputFileError& x) {
+    return fail(e, "E0401", std::string("cannot read array file: ") + x.what(),
                 "check the path (relative to the material file's folder)");
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
+  std::vector<unsigned char> bytes(text.begin(), text.end());
+  text = {};
   schema::ArrayFile a;
   try {
     a = schema::decode_array(bytes, r.shown_path);
@@ -77,7 +94,7 @@ bool read_depth_file(const HeightImageRequest& r, RawImage& raw, HeightImageErro
   if (!check_dimensions(r, a.width, a.height, "items", e)) return false;
   raw.nx = a.width;
   raw.ny = a.height;
-  raw.nc = 1;
+  raw.nc = raw.read = 1;
   raw.channel_names = {"depth"};
   raw.format = ".depth, uint8";
   raw.pixels.resize(a.values.size());
@@ -86,20 +103,58 @@ bool read_depth_file(const HeightImageRequest& r, RawImage& raw, HeightImageErro
   return true;
 }
 
-bool read_picture(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
+// Opens the picture and reads its header: nothing is allocated for pixels yet.
+std::unique_ptr<OIIO::ImageInput> open_picture(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
+  // A device or FIFO (/dev/zero, a pipe) would make a format probe read forever or block.
+  std::error_code ec;
+  const auto status = std::filesystem::status(r.path, ec);
+  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    fail(e, "E0401", "cannot read image '" + r.shown_path + "': not a regular file (a device, FIFO or directory)",
+         "give an image file on disk");
+    return nullptr;
+  }
+  if (!ec && std::filesystem::exists(status) && std::filesystem::file_size(r.path, ec) > schema::limits::kMaxImageFileBytes) {
+    fail(e, "E0401",
+         "image '" + r.shown_path + "' is larger than the limit of " +
+             std::to_string(schema::limits::kMaxImageFileBytes >> 20) + " MiB for a height-map file",
+         "scale the image down, or crop it, before using it");
+    return nullptr;
+  }
   // Heights are the values as stored: no premultiplying by alpha (PNG, TIFF and others would).
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   auto in = OIIO::ImageInput::open(r.path, &config);
   if (!in) {
-    std::string why = OIIO::geterror();
-    return fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + (why.empty() ? "unreadable" : why),
-                "check the path (relative to the material file's folder) and that the file is an image");
+    std::string why = first_line(OIIO::geterror());
+    fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + (why.empty() ? "unreadable" : why),
+         "check the path (relative to the material file's folder) and that the file is an image");
+    return nullptr;
   }
   const OIIO::ImageSpec& spec = in->spec();
-  if (!check_dimensions(r, spec.width, spec.height, "px", e)) return false;
-  if (spec.nchannels < 1)
-    return fail(e, "E0402", "image '" + r.shown_path + "' has no channels", "use an image with at least one channel");
+  if (!check_dimensions(r, spec.width, spec.height, "px", e)) return nullptr;
+  if (spec.nchannels < 1) {
+    fail(e, "E0402", "image '" + r.shown_path + "' has no channels", "use an image with at least one channel");
+    return nullptr;
+  }
+  if (static_cast<std::uint64_t>(spec.nchannels) > schema::limits::kMaxImageChannels) {
+    fail(e, "E0402",
+         "image '" + r.shown_path + "' claims " + std::to_string(spec.nchannels) + " channels, more than the limit of " +
+             std::to_string(schema::limits::kMaxImageChannels),
+         "save the channel that holds the heights as a grey image");
+    return nullptr;
+  }
+  // The decoder works a scanline or strip of all channels at a time, whichever it is asked for: the
+  // whole image as stored must fit the budget too (a 320-byte header can claim gigabytes).
+  const std::uint64_t stored = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height) *
+                               static_cast<std::uint64_t>(spec.nchannels) * std::max<std::uint64_t>(1, spec.format.size());
+  if (stored > kMaxImageReadBytes) {
+    fail(e, "E0402",
+         "image '" + r.shown_path + "' claims " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+             " px of " + std::to_string(spec.nchannels) + " channels (" + std::to_string(stored >> 20) +
+             " MiB), over the limit of " + std::to_string(kMaxImageReadBytes >> 20) + " MiB",
+         "scale the image down, or save the channel that holds the heights as a grey image");
+    return nullptr;
+  }
   raw.nx = spec.width;
   raw.ny = spec.height;
   raw.nc = spec.nchannels;
@@ -108,21 +163,37 @@ bool read_picture(const HeightImageRequest& r, RawImage& raw, HeightImageError& 
     raw.channel_names.push_back(name.empty() ? "channel" + std::to_string(c) : name);
   }
   raw.format = spec.format.c_str();
-  raw.pixels.resize(static_cast<std::size_t>(raw.nx) * raw.ny * raw.nc);
+  return in;
+}
+
+// Reads the channels [first, last] of an open picture, within a stated memory budget.
+bool read_channels(const HeightImageRequest& r, OIIO::ImageInput& in, int first, int last, RawImage& raw,
+                   HeightImageError& e) {
+  raw.first = first;
+  raw.read = last - first + 1;
+  const std::uint64_t bytes = static_cast<std::uint64_t>(raw.nx) * static_cast<std::uint64_t>(raw.ny) *
+                              static_cast<std::uint64_t>(raw.read) * sizeof(float);
+  if (bytes > kMaxImageReadBytes)
+    return fail(e, "E0402",
+                "image '" + r.shown_path + "' needs " + std::to_string(bytes >> 20) + " MiB to read its height channels, over the limit of " +
+                    std::to_string(kMaxImageReadBytes >> 20) + " MiB",
+                "scale the image down, or name the one channel that holds the heights with `channel NAME`");
+  raw.pixels.resize(static_cast<std::size_t>(raw.nx) * raw.ny * raw.read);
   // Integer pixels arrive normalised to 0..1; float pixels as stored (no assumption of 0..1).
-  if (!in->read_image(0, 0, 0, raw.nc, OIIO::TypeDesc::FLOAT, raw.pixels.data())) {
-    std::string why = in->geterror();
+  const bool ok = in.read_image(0, 0, first, last + 1, OIIO::TypeDesc::FLOAT, raw.pixels.data());
+  // OpenImageIO can report success for a truncated file and only log the error: ask it as well.
+  std::string why = first_line(in.geterror());
+  if (!ok || !why.empty())
     return fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + (why.empty() ? "read failed" : why),
-                "the file may be truncated or corrupt");
-  }
-  in->close();
+                "the file may be truncated or corrupt; save it again");
+  in.close();
   return true;
 }
 
-// The heights from the channels, by the rule at the top of this file; `how` describes it.
-bool select_heights(const HeightImageRequest& r, const RawImage& raw, std::vector<float>& out, std::string& how,
+// The weight of each channel in the height, by the rule at the top of this file; `how` describes it.
+bool choose_weights(const HeightImageRequest& r, const RawImage& raw, std::vector<float>& weight, std::string& how,
                     HeightImageError& e) {
-  std::vector<float> weight(static_cast<std::size_t>(raw.nc), 0.0f);
+  weight.assign(static_cast<std::size_t>(raw.nc), 0.0f);
   auto index_of = [&](const std::string& n) {
     auto it = std::find(raw.channel_names.begin(), raw.channel_names.end(), n);
     return it == raw.channel_names.end() ? -1 : static_cast<int>(it - raw.channel_names.begin());
@@ -157,16 +228,20 @@ bool select_heights(const HeightImageRequest& r, const RawImage& raw, std::vecto
     how = "Rec. 709 luminance of " + raw.channel_names[static_cast<std::size_t>(ri)] + ", " +
           raw.channel_names[static_cast<std::size_t>(gi)] + ", " + raw.channel_names[static_cast<std::size_t>(bi)];
   }
-  std::size_t n = static_cast<std::size_t>(raw.nx) * raw.ny;
+  return true;
+}
+
+// The heights: the weighted sum of the channels read.
+void combine(const RawImage& raw, const std::vector<float>& weight, std::vector<float>& out) {
+  const std::size_t n = static_cast<std::size_t>(raw.nx) * raw.ny;
   out.assign(n, 0.0f);
   for (std::size_t i = 0; i < n; ++i) {
-    const float* p = &raw.pixels[i * static_cast<std::size_t>(raw.nc)];
+    const float* p = &raw.pixels[i * static_cast<std::size_t>(raw.read)];
     float v = 0;
-    for (int c = 0; c < raw.nc; ++c)
-      if (weight[static_cast<std::size_t>(c)] != 0.0f) v += weight[static_cast<std::size_t>(c)] * p[c];
+    for (int c = 0; c < raw.read; ++c)
+      if (const float w = weight[static_cast<std::size_t>(raw.first + c)]; w != 0.0f) v += w * p[c];
     out[i] = v;
   }
-  return true;
 }
 
 }  // namespace
@@ -180,11 +255,21 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
     return std::nullopt;
   }
   RawImage raw;
-  if (!(kind == schema::ArrayKind::Depth ? read_depth_file(r, raw, e) : read_picture(r, raw, e))) return std::nullopt;
-
   HeightImage img;
   std::string how;
-  if (!select_heights(r, raw, img.values, how, e)) return std::nullopt;
+  std::vector<float> weight;
+  if (kind == schema::ArrayKind::Depth) {
+    if (!read_depth_file(r, raw, e) || !choose_weights(r, raw, weight, how, e)) return std::nullopt;
+  } else {
+    auto in = open_picture(r, raw, e);
+    if (!in || !choose_weights(r, raw, weight, how, e)) return std::nullopt;
+    // Only the channels the height uses are read: a 40-channel header costs nothing unread.
+    int first = raw.nc, last = -1;
+    for (int c = 0; c < raw.nc; ++c)
+      if (weight[static_cast<std::size_t>(c)] != 0.0f) first = std::min(first, c), last = std::max(last, c);
+    if (last < 0 || !read_channels(r, *in, first, last, raw, e)) return std::nullopt;
+  }
+  combine(raw, weight, img.values);
   raw.pixels = {};
   for (float v : img.values)
     if (!std::isfinite(v)) {

@@ -1,7 +1,12 @@
 #include "sandpaper/compiler/lexer.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdio>
+#include <string_view>
+
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
 namespace {
@@ -49,9 +54,7 @@ class Lexer {
         while (src_[b] != '%' && pos_ < src_.size() && is_word_char(src_[pos_])) advance();
         push(TokenKind::Word, src_.substr(b, pos_ - b), line_, col, static_cast<int>(pos_ - b));
       } else {
-        diags_.error("E0102", loc(line_, col_, 1), std::string("unexpected character '") + c + "'",
-                               "remove it; words, numbers with units, \"strings\", { } and ; are what a material file holds");
-        advance();
+        unexpected();
       }
     }
     push(TokenKind::End, "", line_, col_, 1);
@@ -60,6 +63,35 @@ class Lexer {
   }
 
  private:
+  bool starts_token(std::size_t i) const {
+    const char c = src_[i];
+    if (c == '\n' || c == ';' || c == ' ' || c == '\t' || c == '\r' || c == '#' || c == '{' || c == '}' || c == '"' ||
+        is_digit(c) || c == '.' || is_word_start(c) || (c == ',' && options_.commas))
+      return true;
+    return (c == '-' || c == '+') && i + 1 < src_.size() && (is_digit(src_[i + 1]) || src_[i + 1] == '.');
+  }
+
+  // A run of characters that start no token is one error, not one per byte: a line of 40,000 stray
+  // characters gives one diagnostic (issue 16). The text is valid UTF-8 here (lex() checked).
+  void unexpected() {
+    const std::size_t b = pos_;
+    const int col = col_;
+    do advance();
+    while (pos_ < src_.size() && !starts_token(pos_));
+    const std::size_t n = pos_ - b;
+    // Quote at most 16 bytes, cut at a character boundary.
+    std::size_t shown = std::min<std::size_t>(n, 16);
+    while (shown < n && (static_cast<unsigned char>(src_[b + shown]) & 0xC0) == 0x80) --shown;
+    const std::string quoted = src_.substr(b, shown) + (shown < n ? "..." : "");
+    const auto chars = std::count_if(src_.begin() + static_cast<std::ptrdiff_t>(b),
+                                     src_.begin() + static_cast<std::ptrdiff_t>(pos_),
+                                     [](char ch) { return (static_cast<unsigned char>(ch) & 0xC0) != 0x80; });
+    const bool one = chars == 1;
+    diags_.error("E0102", loc(line_, col, static_cast<int>(std::min<std::size_t>(n, 1u << 20))),
+                 std::string(one ? "unexpected character '" : "unexpected characters '") + quoted + "'",
+                 "remove it; words, numbers with units, \"strings\", { } and ; are what a material file holds");
+  }
+
   // number := [+-]? digits ('.' digits?)? exponent? | [+-]? '.' digits exponent?
   void number() {
     std::size_t b = pos_;
@@ -142,6 +174,41 @@ class Lexer {
 }  // namespace
 
 std::vector<Token> lex(const std::shared_ptr<const SourceFile>& file, Diagnostics& diags, LexOptions options) {
+  const auto nothing = [&] {
+    const SourceLocation at{file, 1, 1, 1};
+    return std::vector<Token>{Token{TokenKind::End, "", 0, at}, Token{TokenKind::Eof, "", 0, at}};
+  };
+  // Bounded before anything is built from the text: a 50 MB file must not become 50 M tokens.
+  if (file->text.size() > schema::limits::kMaxSourceBytes) {
+    diags.error("E0105", SourceLocation{file, 0, 0, 1},
+                "the file is " + std::to_string(file->text.size()) + " bytes, over the limit of " +
+                    std::to_string(schema::limits::kMaxSourceBytes) + " bytes for a material or workspace file",
+                "split it into several files, or keep large data in an image that `heightmap` reads");
+    return nothing();
+  }
+  // Names and strings end up in JSON and patch files, which hold only UTF-8: refuse other bytes at
+  // their place rather than fail later in a JSON writer. One error per line is enough.
+  std::string_view rest = file->text;
+  std::size_t offset = 0, bad = 0;
+  bool any_bad = false;
+  while (!schema::is_valid_utf8(rest, bad)) {
+    any_bad = true;
+    const std::size_t at = offset + bad;
+    const auto line_it = std::upper_bound(file->line_starts.begin(), file->line_starts.end(), at);
+    const auto line = static_cast<int>(line_it - file->line_starts.begin());
+    const std::size_t line_start = file->line_starts[static_cast<std::size_t>(line - 1)];
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(file->text[at])));
+    diags.error("E0104", SourceLocation{file, line, static_cast<int>(at - line_start + 1), 1},
+                std::string("byte ") + hex + " is not UTF-8 text",
+                "save the file as UTF-8; material and workspace files hold UTF-8 text only");
+    if (diags.error_limit_reached()) break;
+    const std::size_t next_line =
+        line_it == file->line_starts.end() ? file->text.size() : static_cast<std::size_t>(*line_it);
+    offset = next_line;
+    rest = std::string_view(file->text).substr(next_line);
+  }
+  if (any_bad) return nothing();
   return Lexer(file, diags, options).run();
 }
 

@@ -8,6 +8,7 @@
 
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
 
@@ -30,11 +31,14 @@ void read_entry_metadata(LibraryEntry& e) {
 
 namespace {
 
+// An unreadable or oversized entry reads as empty text, which then fails to parse and is reported
+// by the scan like any broken entry.
 std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  try {
+    return schema::read_input_file(p, schema::limits::kMaxSourceBytes);
+  } catch (const schema::InputFileError&) {
+    return {};
+  }
 }
 
 // A location in the manifest for diagnostics about it.

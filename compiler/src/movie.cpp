@@ -11,6 +11,7 @@
 
 #include "sandpaper/compiler/shuffle.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
 namespace {
@@ -33,11 +34,11 @@ std::string normalise_line_ends(const std::string& text) {
 }
 
 std::optional<std::string> read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || fs::is_directory(path)) return std::nullopt;
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return normalise_line_ends(ss.str());
+  try {
+    return normalise_line_ends(schema::read_input_file(path, schema::limits::kMaxTextFileBytes));
+  } catch (const schema::InputFileError&) {
+    return std::nullopt;
+  }
 }
 
 struct Line {

@@ -63,6 +63,10 @@ const std::vector<std::string>& statement_keywords() {
 
 namespace {
 
+// The range of a quantity in SI units (see quantity()).
+constexpr double kLeastQuantitySI = 1e-12;
+constexpr double kGreatestQuantitySI = 1e12;
+
 // Thrown inside a statement to abandon it; the diagnostic has already been recorded.
 struct StatementError {};
 
@@ -724,8 +728,15 @@ class Parser {
       throw StatementError{};
     }
     next();
-    if (!std::isfinite(n.number)) {
-      diags_.error("E0103", n.location, "number out of range '" + n.text + "'", "use a finite number");
+    // Outside 1e-12 to 1e12 in SI units no quantity describes something a hand can feel, and the
+    // extremes (denormals, 1e300) make the runtime's arithmetic overflow or lose all precision.
+    const double si = n.number * def->to_si;
+    if (!std::isfinite(n.number) || !std::isfinite(si) ||
+        (si != 0 && (std::abs(si) < kLeastQuantitySI || std::abs(si) > kGreatestQuantitySI))) {
+      diags_.error("E0103", n.location,
+                   "number out of range '" + n.text + " " + u.text + "': " + what + " must be 0 or between 1e-12 and 1e12 " +
+                       std::string(schema::si_unit_name(dim)),
+                   "use a value a hand could feel, for example " + example(dim));
       throw StatementError{};
     }
     SourceLocation span = n.location;

@@ -1,5 +1,7 @@
 #include "sandpaper/compiler/resolver.hpp"
 
+#include "sandpaper/schema/input_limits.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -9,6 +11,7 @@
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/schema/force_laws.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/compiler/percepts.hpp"
 #include "sandpaper/compiler/thesis_stimuli.hpp"
@@ -257,12 +260,32 @@ class Resolver {
                      "break the cycle: an entry must not, through `like`, start from itself");
         return base;
       }
+    // Bounded, so that a chain of thousands of entries cannot exhaust the stack (issue 16).
+    if (ctx_.entry_stack.size() >= static_cast<std::size_t>(schema::limits::kMaxLikeDepth)) {
+      std::string chain;
+      const auto& st = ctx_.entry_stack;
+      for (std::size_t i = 0; i < st.size(); ++i) {
+        if (i == 3 && st.size() > 6) {
+          chain += " -> ... (" + std::to_string(st.size() - 6) + " more)";
+          i = st.size() - 3;
+        }
+        chain += (chain.empty() ? "" : " -> ") + st[i];
+      }
+      chain += " -> " + entry_name;
+      diags_.error("E0313", like.name_location,
+                   "`like` chain deeper than " + std::to_string(schema::limits::kMaxLikeDepth) + " entries: " + chain,
+                   "start one of these entries from a library entry nearer the root, or give its numbers itself");
+      return base;
+    }
     std::string text, origin, label;
     if (path) {
-      std::ifstream in(*path, std::ios::binary);
-      std::stringstream ss;
-      ss << in.rdbuf();
-      text = ss.str();
+      try {
+        text = schema::read_input_file(*path, schema::limits::kMaxSourceBytes);
+      } catch (const schema::InputFileError& e) {
+        diags_.error("E0306", like.name_location, "library entry '" + entry_name + "' cannot be read: " + e.what(),
+                     "fix or remove the entry's file");
+        return base;
+      }
       origin = "library/" + lib_entry->relative_path;
       label = reference ? "library " + entry_name + " (the library's reference texture for bare perceptual descriptions)"
                         : "library " + entry_name;

@@ -7,6 +7,7 @@
 #include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/compiler/workspace_parser.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
 namespace {
@@ -89,12 +90,17 @@ void warn_within_one_jnd(const Compiler& compiler, const WorkspaceSyntax& syntax
   auto label = [&](const Textured& t) {
     return "patch " + std::to_string(t.patch + 1) + " (\"" + syntax.patches[t.patch].material + "\", " + newtons(t.force) + ")";
   };
+  // Every pair is compared, but only the first kShownPairs are spelled out: 2,000 materials have
+  // millions of close pairs, and one summary says how many more there are (issue 16).
+  constexpr std::size_t kShownPairs = 20;
+  std::size_t close_pairs = 0;
   for (std::size_t j = 1; j < textured.size(); ++j)
     for (std::size_t i = 0; i < j; ++i) {
       const double lo = std::min(textured[i].force, textured[j].force), hi = std::max(textured[i].force, textured[j].force);
       if (hi <= lo * (1 + 1e-9)) continue;
       const double steps = jnd.steps_between(lo, hi);
       if (steps >= 1) continue;
+      if (++close_pairs > kShownPairs) continue;
       const double apart = lo * (1 + jnd.weber_fraction);
       auto& d = diags.warning(
           "W0503", syntax.patches[textured[j].patch].material_location,
@@ -106,6 +112,12 @@ void warn_within_one_jnd(const Compiler& compiler, const WorkspaceSyntax& syntax
       d.notes.push_back({syntax.patches[textured[i].patch].material_location,
                          "patch " + std::to_string(textured[i].patch + 1) + "'s material"});
     }
+  if (close_pairs > kShownPairs)
+    diags.warning("W0503", syntax.name_location.file ? syntax.name_location : SourceLocation{syntax.file, 0, 0, 1},
+                  "and " + std::to_string(close_pairs - kShownPairs) +
+                      " more pairs of textured materials less than one force JND apart (" +
+                      std::to_string(kShownPairs) + " are listed above)",
+                  "spread the materials' forces by at least one JND, or use fewer distinct materials");
 }
 
 WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& syntax, const fs::path& base_dir,
@@ -233,17 +245,17 @@ WorkspaceResult compile_workspace_text(const Compiler& compiler, const std::stri
 }
 
 WorkspaceResult compile_workspace_file(const Compiler& compiler, const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || fs::is_directory(path)) {
+  std::string text;
+  try {
+    text = schema::read_input_file(path, schema::limits::kMaxSourceBytes);
+  } catch (const schema::InputFileError& e) {
     WorkspaceResult r;
     auto f = std::make_shared<const SourceFile>(path.string(), "");
-    r.diagnostics.error("E0500", SourceLocation{f, 0, 0, 1}, "cannot open workspace file '" + path.string() + "'",
+    r.diagnostics.error("E0500", SourceLocation{f, 0, 0, 1}, std::string("cannot read workspace file: ") + e.what(),
                         "check the path; workspace files end in .hws");
     return r;
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return compile_workspace_text(compiler, ss.str(), path.string(), path.parent_path());
+  return compile_workspace_text(compiler, text, path.string(), path.parent_path());
 }
 
 }  // namespace sandpaper::compiler

@@ -1,5 +1,7 @@
 #include "sandpaper/compiler/workspace_parser.hpp"
 
+#include "sandpaper/schema/input_limits.hpp"
+
 #include <cmath>
 
 namespace sandpaper::compiler {
@@ -94,6 +96,10 @@ class WorkspaceParser {
     } else if (kw.text == "patch") {
       next();
       ws.patches.push_back(patch(kw.location));
+      if (ws.patches.size() == schema::limits::kMaxWorkspacePatches + 1)
+        diags_.error("E0509", kw.location,
+                     "more than " + std::to_string(schema::limits::kMaxWorkspacePatches) + " patches in one workspace",
+                     "split the workspace into several, or tile one larger patch instead of many small ones");
     } else {
       const std::string guess = closest_match(kw.text, workspace_keywords());
       diags_.error("E0502", kw.location, "unknown workspace statement '" + kw.text + "'",

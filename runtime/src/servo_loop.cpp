@@ -79,10 +79,16 @@ glm::dvec2 command_of(glm::dvec2 force, const ServoConfig& c, double max_force_N
   return out;
 }
 
+// Exactly: the scaled force's magnitude can round a few ulp above the maximum (10.000000000000002 N
+// on a 10 N device), so it is stepped down by one ulp at a time until it is not above it.
 glm::dvec2 limit_magnitude(glm::dvec2 force, double max_force_N, bool& clamped) noexcept {
   const double magnitude = std::hypot(force.x, force.y);
   clamped = magnitude > max_force_N;
-  return clamped ? force * (max_force_N / magnitude) : force;
+  if (!clamped) return force;
+  glm::dvec2 out = force * (max_force_N / magnitude);
+  constexpr double kOneUlpLess = 1.0 - 0x1p-53;
+  for (int i = 0; i < 64 && std::hypot(out.x, out.y) > max_force_N; ++i) out *= kOneUlpLess;
+  return out;
 }
 
 // 0 plays until stopped (the loop's counter cannot reach this in any lifetime).

@@ -77,6 +77,7 @@ void check(const TermCheck& c, const GratingTerm& t) {
 void check(const TermCheck& c, const HeightFieldTerm& t) {
   const std::size_t samples = std::size_t{t.nx} * t.ny;
   if (samples == 0) c.fail("grid is empty");
+  if (!t.repeat && (t.nx < 2 || t.ny < 2)) c.fail("a field that does not repeat needs at least 2 x 2 samples");
   if (t.force_x_N.size() != samples || t.force_y_N.size() != samples)
     c.fail("force tables must hold nx * ny samples");
   c.positive("spacing x", t.spacing_m[0]);

@@ -1,5 +1,7 @@
 #include "sandpaper/schema/patch_io.hpp"
 
+#include "sandpaper/schema/input_limits.hpp"
+
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -156,6 +158,9 @@ class Reader {
     if (n > source_.remaining()) throw PatchFormatError("patch program truncated");
     std::string s(n, '\0');
     source_.read(s.data(), n);
+    // Strings go on to JSON and terminals; the compiler writes only UTF-8 (issue 16).
+    if (std::size_t bad = 0; !is_valid_utf8(s, bad))
+      throw PatchFormatError("patch program holds a string that is not UTF-8 (byte " + std::to_string(bad) + " of it)");
     return s;
   }
   std::vector<float> floats() {
@@ -320,7 +325,7 @@ GratingTerm read_body(Reader& r, std::uint32_t, std::type_identity<GratingTerm>)
   g.period_m = r.pod<double>();
   g.orientation_rad = r.pod<double>();
   g.force_N = r.floats();
-  if (g.force_N.size() < 2 || !(g.period_m > 0))
+  if (g.force_N.size() < 2 || !(g.period_m > 0) || !std::isfinite(g.period_m) || !std::isfinite(g.orientation_rad))
     throw PatchFormatError("grating term with no force table or a non-positive period");
   return g;
 }
@@ -338,8 +343,12 @@ HeightFieldTerm read_body(Reader& r, std::uint32_t tag, std::type_identity<Heigh
   h.force_x_N = half ? r.halves() : r.floats();
   h.force_y_N = half ? r.halves() : r.floats();
   auto n = static_cast<std::uint64_t>(h.nx) * h.ny;
-  if (h.nx < 2 || h.ny < 2 || h.force_x_N.size() != n || h.force_y_N.size() != n || !(h.spacing_m[0] > 0) ||
-      !(h.spacing_m[1] > 0))
+  // One sample across is a field constant along that axis, which only a repeating field can mean
+  // (the version-1 bars are 35 x 1 and repeat); a field that ends needs two samples to span a cell.
+  const std::uint32_t least = h.repeat ? 1 : 2;
+  if (h.nx < least || h.ny < least || h.force_x_N.size() != n || h.force_y_N.size() != n ||
+      !(h.spacing_m[0] > 0) || !(h.spacing_m[1] > 0) || !std::isfinite(h.spacing_m[0]) ||
+      !std::isfinite(h.spacing_m[1]) || !std::isfinite(h.origin_m[0]) || !std::isfinite(h.origin_m[1]))
     throw PatchFormatError("height-field term whose grid does not match its size");
   return h;
 }
@@ -470,6 +479,16 @@ PatchProgram read_payload(Reader& r) {
     p.warnings.push_back(std::move(wn));
   }
   if (!r.done()) throw PatchFormatError("patch program has trailing bytes");
+  // What the runtime would refuse is refused here, as a file error: a program with a NaN size has a
+  // valid checksum but is still a bad file, not a bad command line (exit 1, issue 16).
+  const auto finite = [](double v) { return std::isfinite(v); };
+  if (!(finite(p.size_m[0]) && p.size_m[0] > 0 && finite(p.size_m[1]) && p.size_m[1] > 0))
+    throw PatchFormatError("patch program whose size is not positive and finite");
+  if (!(finite(p.energy_budget_J) && p.energy_budget_J >= 0 && finite(p.energy_refill_W) && p.energy_refill_W >= 0))
+    throw PatchFormatError("patch program whose energy budget or refill is negative or not finite");
+  if (!(finite(p.max_lateral_force_N) && finite(p.roughness) && finite(p.command.max_force_N) &&
+        finite(p.command.newtons_per_command_unit[0]) && finite(p.command.newtons_per_command_unit[1])))
+    throw PatchFormatError("patch program with a non-finite force, roughness or command scale");
   return p;
 }
 

@@ -79,13 +79,43 @@ TEST(ServoClampProperty, NoRecordedForceExceedsTheDeviceMaximum) {
     ASSERT_EQ(report.stop_reason, "completed") << "trial " << trial_index;
     ASSERT_EQ(joystick.records().size(), 200u);
     for (const TickRecord& record : joystick.records())
-      ASSERT_LE(std::hypot(record.force_N.x, record.force_N.y), trial.limits.max_force_N + 1e-9)
+      ASSERT_LE(std::hypot(record.force_N.x, record.force_N.y), trial.limits.max_force_N)
           << "trial " << trial_index << " t " << record.t_s;
-    ASSERT_LE(report.max_lateral_force_N, trial.limits.max_force_N + 1e-9);
+    ASSERT_LE(report.max_lateral_force_N, trial.limits.max_force_N);
     if (report.clamped_ticks > 0) ++clamped_runs;
   }
   // The generator must actually provoke the clamp, or the property says nothing.
   EXPECT_GT(clamped_runs, static_cast<std::uint64_t>(kTrials / 4));
+}
+
+// Exactly at most the maximum, not within rounding of it: a 1 GN/m spring pulls far past a 10 N
+// device everywhere, and scaling the force down to 10 N used to round to 10.000000000000002 N
+// in some directions (issue 16).
+TEST(ServoClampProperty, AFarTooStiffSpringIsHeldToExactlyTheMaximum) {
+  for (const double max_force_N : {10.0, 7.3, 0.1, 3.0}) {
+    DeviceLimits limits = sim_device_limits();
+    limits.max_force_N = max_force_N;
+    for (const HandPath path : {HandPath::Scan, HandPath::Circle}) {
+      HandScript script;
+      script.path = path;
+      script.speed_m_s = 0.137;
+      script.amplitude_m = 0.031;
+      script.direction_rad = 0.7;
+      const auto program = program_of({spring(1e9, 0.0013, -0.0021)});
+      PatchEvaluator evaluator(program);
+      SimJoystick joystick(limits, script, 4096);
+      VirtualClock clock;
+      ServoConfig config;
+      config.rate_hz = 1000;
+      config.duration_s = 4.0;
+      config.ramp_s = 0;
+      const ServoReport report = run_servo_loop(joystick, evaluator, clock, config);
+      ASSERT_GT(report.clamped_ticks, 3000u);
+      for (const TickRecord& record : joystick.records())
+        ASSERT_LE(std::hypot(record.force_N.x, record.force_N.y), max_force_N)
+            << "exceeds by " << std::hypot(record.force_N.x, record.force_N.y) - max_force_N << " N at t " << record.t_s;
+    }
+  }
 }
 
 TEST(ServoClampProperty, ClampedTicksAreExactlyTheTicksThatWantedTooMuch) {

@@ -3,6 +3,7 @@
 #include <unistd.h>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <string_view>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +13,7 @@
 #include "play.hpp"
 #include "play_patch.hpp"
 #include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/workspace_io.hpp"
 
@@ -198,6 +200,15 @@ int main(int argc, char** argv) {
     if (const int rc = cmd_experiment(experiment_opts); rc >= 0) return rc;
   } catch (const sandpaper::schema::PatchFormatError& e) {
     std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const sandpaper::schema::InputFileError& e) {
+    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    // The readers' limits (docs/RELIABILITY.md) are meant to stop this first; if memory still runs
+    // out, the input asked for it, so it is the input's fault, said plainly.
+    std::cerr << "sandpaper: error: out of memory: the input needs more memory than this machine has "
+                 "(docs/RELIABILITY.md lists the limits on inputs)\n";
     return kExitBadInput;
   } catch (const sandpaper::calibration::CalibrationError& e) {
     std::cerr << "sandpaper: calibration error: " << e.what() << "\n";

@@ -2,6 +2,7 @@
 // Diagnostics are data: a stable code, a severity, where, what, and how to fix it. User errors
 // (bad material files) are Diagnostics; internal errors (bugs) are exceptions of type
 // InternalError and are never shown as the user's fault.
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -26,18 +27,29 @@ struct Diagnostic {
   std::vector<DiagnosticNote> notes;  // other places involved, e.g. the first of two conflicting lines
 };
 
-// Collects diagnostics in the order they were found.
+// Collects diagnostics in the order they were found, at most schema::limits::kMaxErrorsPerFile
+// errors and kMaxWarningsPerFile warnings: past a limit, one E0009 / W0009 says how many more there
+// were and the rest are counted, not kept (a hostile file cannot fill memory with diagnostics).
 class Diagnostics {
  public:
+  // The returned reference may be a scratch entry (past the limit); notes added to it are dropped.
   Diagnostic& error(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
   Diagnostic& warning(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
   void append(const Diagnostics& other);
   bool has_errors() const noexcept { return errors_ > 0; }
+  // True once errors are no longer kept: a phase may stop looking for more.
+  bool error_limit_reached() const noexcept;
   const std::vector<Diagnostic>& all() const noexcept { return list_; }
 
  private:
+  Diagnostic& add(Severity severity, std::string code, SourceLocation loc, std::string message,
+                  std::string suggestion);
+  void drop(bool is_error, SourceLocation loc, std::size_t count);
   std::vector<Diagnostic> list_;
-  int errors_ = 0;
+  std::size_t errors_ = 0, warnings_ = 0;
+  std::size_t dropped_errors_ = 0, dropped_warnings_ = 0;
+  std::size_t summary_error_ = SIZE_MAX, summary_warning_ = SIZE_MAX;  // index of the E0009 / W0009 entry
+  Diagnostic scratch_;
 };
 
 // Clang-style text: "file:line:col: error[E0202]: message", the source line, a caret under the

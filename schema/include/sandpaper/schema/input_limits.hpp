@@ -1,0 +1,52 @@
+#pragma once
+// Limits on outside input, one place for all of them; docs/RELIABILITY.md lists each with the error
+// it gives. Each is far above what a hand-written or shipped file needs and far below what would
+// exhaust memory or time on a small machine (issue 16).
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace sandpaper::schema::limits {
+
+// A material (.hmat) or workspace (.hws) source file: 4 MiB. The largest shipped file is 1.6 KB.
+inline constexpr std::size_t kMaxSourceBytes = std::size_t{4} << 20;
+// Errors kept per compile; past it one "too many errors" diagnostic ends the list (as clang's
+// -ferror-limit). Warnings are capped at the same count, summarised the same way.
+inline constexpr std::size_t kMaxErrorsPerFile = 50;
+inline constexpr std::size_t kMaxWarningsPerFile = 200;
+// A source line echoed under a diagnostic is clipped to this many bytes around the caret.
+inline constexpr std::size_t kMaxEchoedLineBytes = 160;
+// `like` chains: a material inheriting from one inheriting from ... at most this deep.
+inline constexpr int kMaxLikeDepth = 64;
+// An image read as a height map: at most 4096 x 4096 pixels (compiler kMaxImagePixels) and 64
+// channels, its height channels as floats under 256 MiB; checked from the header, before any pixel.
+inline constexpr std::uint64_t kMaxImageChannels = 64;
+// An image file on disk: 512 MiB.
+inline constexpr std::uint64_t kMaxImageFileBytes = std::uint64_t{512} << 20;
+// A workspace: at most this many patches.
+inline constexpr std::size_t kMaxWorkspacePatches = 65536;
+// Other text inputs read whole (calibration TOML, CSV, movie, shuffle and experiment files): 64 MiB.
+inline constexpr std::size_t kMaxTextFileBytes = std::size_t{64} << 20;
+
+}  // namespace sandpaper::schema::limits
+
+namespace sandpaper::schema {
+
+// An input file that cannot be read as asked: missing, not a regular file (a FIFO or a device such
+// as /dev/zero would block or never end), unreadable, or larger than its limit. what() names the
+// path and how to fix it.
+struct InputFileError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The whole of a regular file, at most `max_bytes` long. Throws InputFileError.
+std::string read_input_file(const std::filesystem::path& path, std::size_t max_bytes);
+
+// True if `text` is well-formed UTF-8 (no overlong forms, surrogates or code points past U+10FFFF);
+// otherwise false and `bad_offset` is the byte offset of the first byte that is not.
+bool is_valid_utf8(std::string_view text, std::size_t& bad_offset) noexcept;
+
+}  // namespace sandpaper::schema
