@@ -1,0 +1,64 @@
+// Workspace text (.hws) through the workspace compiler (each patch's material through the material
+// compiler), .hmat paths relative to examples/workspace/ so the shipped workspaces' own paths work.
+// For a program: written as a .wsp file and read back (the reader must take what the writer wrote),
+// written again unchanged, its JSON serialised, and played on the simulated joystick.
+#include <cstddef>
+#include <cstdint>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+
+#include "fuzz_compile.hpp"
+#include "fuzz_play.hpp"
+#include "fuzz_support.hpp"
+#include "sandpaper/compiler/compile_json.hpp"
+#include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/compiler/workspace.hpp"
+#include "sandpaper/runtime/workspace_evaluator.hpp"
+#include "sandpaper/schema/workspace_io.hpp"
+#include "sandpaper/schema/workspace_json.hpp"
+
+namespace {
+std::string file_bytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace sandpaper;
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const auto result = compiler::compile_workspace_text(fuzz::shipped_compiler(), text, "<fuzz>.hws",
+                                                       fuzz::source_dir() / "examples" / "workspace");
+  (void)compiler::format_diagnostics(result.diagnostics);
+  fuzz::dump_json(compiler::diagnostics_json(result.diagnostics));
+  fuzz::check(!result.program || !result.diagnostics.has_errors(), "a workspace with errors produced a program");
+  if (!result.ok()) return 0;
+
+  const auto wsp = fuzz::scratch_dir() / "workspace.wsp";
+  schema::write_workspace_program_file(wsp, *result.program);
+  const std::string written = file_bytes(wsp);
+  schema::WorkspaceProgram back;
+  try {
+    back = schema::read_workspace_program_file(wsp);
+  } catch (const schema::PatchFormatError& e) {
+    if (fuzz::known_defect_tolerated("readback")) return 0;
+    fuzz::fail(std::string("a compiled workspace does not read back: ") + e.what());
+  }
+  schema::write_workspace_program_file(wsp, back);
+  fuzz::check(file_bytes(wsp) == written, "write -> read -> write changed a compiled workspace's bytes");
+  fuzz::dump_json(schema::to_json(back));
+
+  const auto variant = static_cast<std::uint32_t>(std::hash<std::string>{}(text));
+  try {
+    runtime::WorkspaceEvaluator evaluator(back);
+    const auto report = fuzz::play_and_check(evaluator, variant);
+    if (report.stop_cause != runtime::StopCause::Completed && !fuzz::known_defect_tolerated("unplayable"))
+      fuzz::fail(std::string("a compiled workspace stops the servo loop: ") + runtime::stop_cause_name(report.stop_cause));
+  } catch (const std::invalid_argument& e) {
+    if (!fuzz::known_defect_tolerated("unplayable"))
+      fuzz::fail(std::string("the runtime refuses a compiled workspace: ") + e.what());
+  }
+  return 0;
+}

@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# Runs one fuzz target (fuzz/<target>_fuzz.cpp) for a while: tools/fuzz.sh TARGET SECONDS [JOBS]
+#
+# Builds the `fuzz` preset (clang, libFuzzer, ASan + UBSan) into build-fuzz/ if needed, then fuzzes
+# a working corpus, build-fuzz/corpus/TARGET/, seeded from fuzz/corpus/TARGET/ (new seeds are added,
+# nothing is removed), with the target's dictionary from fuzz/dict/. Crashes, leaks, timeouts and
+# out-of-memory inputs go to build-fuzz/findings/TARGET/; libFuzzer's output to build-fuzz/logs/.
+# Prints executions and coverage, and appends one line per run to build-fuzz/fuzz-log.tsv:
+#   date  target  seconds  execs  cov  ft  crashes
+# JOBS > 1 runs libFuzzer's fork mode with that many workers, which also keeps going after a crash
+# (each crash still lands in findings/); JOBS = 1 (the default) stops at the first crash.
+#
+# Environment: FUZZ_NO_BUILD=1 skips the build step; FUZZ_NICE (default 10) is the nice level;
+# SANDPAPER_FUZZ_KNOWN names known defects to step over (fuzz/fuzz_support.hpp); FUZZ_ARGS adds
+# libFuzzer flags. A saved crash replays with build-fuzz/bin/TARGET_fuzz FILE, and in the normal
+# build as a test once copied to fuzz/regressions/TARGET/.
+set -euo pipefail
+
+usage() { echo "usage: tools/fuzz.sh TARGET SECONDS [JOBS]   (targets: fuzz/*_fuzz.cpp)" >&2; exit 2; }
+[[ $# -ge 2 && $# -le 3 ]] || usage
+target=$1 seconds=$2 jobs=${3:-1}
+[[ $seconds =~ ^[0-9]+$ && $jobs =~ ^[1-9][0-9]*$ ]] || usage
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+[[ -f $root/fuzz/${target}_fuzz.cpp ]] || { echo "fuzz.sh: no target '$target' (fuzz/${target}_fuzz.cpp)" >&2; exit 2; }
+build=$root/build-fuzz
+
+if [[ ${FUZZ_NO_BUILD:-0} != 1 ]]; then
+  cd "$root"
+  [[ -f $build/CMakeCache.txt ]] || cmake --preset fuzz
+  # One build at a time on a shared machine: the same lock every build here takes.
+  flock /tmp/build.lock cmake --build --preset fuzz --target "${target}_fuzz"
+fi
+bin=$build/bin/${target}_fuzz
+[[ -x $bin ]] || { echo "fuzz.sh: $bin was not built" >&2; exit 2; }
+
+# Largest input per target: text readers 4 KB (a material is a few lines; longer only slows the
+# search), results folders 16 KB (a whole small session), binary files 64 KB (small patch programs).
+case $target in
+  patch|workspace_program|array) max_len=65536 ;;
+  experiment_results) max_len=16384 ;;
+  *) max_len=4096 ;;
+esac
+case $target in
+  material) dict=material ;;
+  workspace) dict=workspace ;;
+  patch|workspace_program) dict=patch ;;
+  calibration|experiment_design) dict=toml ;;
+  movie|shuffle) dict=movie ;;
+  trace_csv) dict=trace_csv ;;
+  experiment_results) dict=experiment_results ;;
+  *) dict= ;;
+esac
+
+corpus=$build/corpus/$target findings=$build/findings/$target logs=$build/logs
+mkdir -p "$corpus" "$findings" "$logs"
+cp -n "$root/fuzz/corpus/$target"/* "$corpus"/ 2>/dev/null || true
+stamp=$(date -u +%Y%m%dT%H%M%SZ)
+log=$logs/$target-$stamp.log
+marker=$(mktemp)  # findings newer than this are this run's
+
+args=(-max_total_time="$seconds" -max_len="$max_len" -print_final_stats=1 -timeout=25 -rss_limit_mb=2048
+      -artifact_prefix="$findings/")
+[[ -n $dict ]] && args+=(-dict="$root/fuzz/dict/$dict.dict")
+[[ $jobs -gt 1 ]] && args+=(-fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+# shellcheck disable=SC2206
+args+=(${FUZZ_ARGS:-})
+
+# Relative image paths in material text resolve here (fuzz/CMakeLists.txt, SANDPAPER_FUZZ_WORKDIR).
+cd "$root/tests/golden/diagnostics"
+echo "fuzz.sh: $target for ${seconds}s, jobs $jobs, log $log" >&2
+status=0
+nice -n "${FUZZ_NICE:-10}" "$bin" "${args[@]}" "$corpus" >"$log" 2>&1 || status=$?
+
+# Executions: libFuzzer's final stats (stat::number_of_executed_units) in the default mode; in fork
+# mode, the count on its last status line ("#N: cov: ..."). Coverage: cov/ft of the last status line.
+execs=$(awk '/stat::number_of_executed_units:/ {n=$2} END {print n}' "$log")
+last=$(grep -E '^#[0-9]+:? .*cov: ' "$log" | tail -1 || true)
+[[ -z $execs ]] && execs=$(sed -E 's/^#([0-9]+).*/\1/' <<<"$last")
+cov=$(sed -nE 's/.*cov: ([0-9]+).*/\1/p' <<<"$last")
+ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<<"$last")
+new_findings=$(find "$findings" -type f -newer "$marker")
+crashes=$(grep -c . <<<"$new_findings" || true)
+rm -f "$marker"
+
+printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$stamp" "$target" "$seconds" "${execs:-0}" "${cov:-0}" "${ft:-0}" "$crashes" \
+  >>"$build/fuzz-log.tsv"
+echo "target $target: ${execs:-0} executions, cov ${cov:-0}, ft ${ft:-0}, ${crashes} finding(s) in $findings (libFuzzer exit $status)"
+if [[ $crashes -gt 0 ]]; then
+  echo "$new_findings"
+  grep -E '^(==[0-9]+==ERROR|SUMMARY|fuzz invariant broken|.*runtime error:)' "$log" | head -5 || true
+fi
+exit 0
