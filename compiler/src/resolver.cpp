@@ -760,6 +760,17 @@ class Resolver {
     if (!ok) return;
     ResolvedHeightmap r;
     std::filesystem::path p(h.path);
+    // A library entry reaches only inside its library: the library is shared, and an entry that
+    // named "/srv/x.exr" or "../../x.exr" would read whatever the machine it is compiled on has there.
+    if (syn_.file && syn_.file->name.rfind("library/", 0) == 0) {
+      const auto inside = (std::filesystem::path(syn_.file->name.substr(8)).parent_path() / p).lexically_normal();
+      if (p.is_absolute() || inside.empty() || *inside.begin() == "..") {
+        diags_.error("E0314", h.path_location,
+                     "library entry's image '" + h.path + "' is outside the library",
+                     "put the image in the library (library/images/) and name it relative to the entry's folder");
+        return;
+      }
+    }
     if (p.is_relative() && syn_.file) {
       // Relative to the material file's folder; for -e text, to the working directory.
       std::filesystem::path dir;

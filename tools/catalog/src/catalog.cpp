@@ -1,8 +1,14 @@
 // Compiles every entry and writes the catalog into a temporary folder, then swaps it in (catalog.hpp).
 #include "sandpaper/catalog/catalog.hpp"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <ostream>
@@ -59,14 +65,40 @@ void check_replaceable(const fs::path& dir) {
                               " in it), so it is not replaced; give a new or empty folder, or a previous catalog");
 }
 
-// Renames `fresh` to `dir`, moving any previous `dir` aside first and deleting it afterwards; if the
-// second rename fails the previous catalog is put back.
+// True if process `pid` may still be running (a temporary it owns is not stale).
+bool alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH); }
+
+// Removes ".<name>.new-PID-N" and ".<name>.old-PID-N" folders beside `dir` left by runs that were
+// killed (kill -9 runs no destructor); a running catalog build's folders are left alone.
+void remove_stale_temporaries(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
+  const std::string prefix = "." + dir.filename().string() + ".";
+  for (const auto& e : fs::directory_iterator(parent, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string rest = name.substr(prefix.size());  // "new-1234-567890"
+    if (rest.rfind("new-", 0) != 0 && rest.rfind("old-", 0) != 0) continue;
+    const long pid = std::strtol(rest.c_str() + 4, nullptr, 10);
+    if (!alive(pid)) fs::remove_all(e.path(), ec);
+  }
+}
+
+// Puts `fresh` in place of `dir` in one step: renameat2's RENAME_EXCHANGE swaps the two names
+// atomically, so a kill at any moment leaves either the old catalog or the new one at `dir`, never
+// none. File systems without it (EINVAL) get the two renames, the old catalog moved aside first.
 void swap_in(const fs::path& fresh, const fs::path& dir) {
   std::error_code ec;
   if (!fs::exists(dir, ec)) {
     fs::rename(fresh, dir);
     return;
   }
+  if (::renameat2(AT_FDCWD, fresh.c_str(), AT_FDCWD, dir.c_str(), RENAME_EXCHANGE) == 0) {
+    fs::remove_all(fresh, ec);  // now the previous catalog
+    return;
+  }
+  if (errno != EINVAL && errno != ENOSYS)
+    throw std::runtime_error("cannot put the catalog in place of " + dir.string() + ": " + std::strerror(errno));
   const fs::path old = temp_beside(dir, "old");
   fs::remove(old);
   fs::rename(dir, old);
@@ -87,6 +119,7 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
   if (!dir.has_filename()) dir = dir.parent_path();  // "out/" -> "out"
   if (dir == dir.root_path()) throw std::invalid_argument("the catalog cannot replace the root folder");
   check_replaceable(dir);
+  remove_stale_temporaries(dir);
   const auto& library = compiler.library();
   CatalogReport report;
 

@@ -2,6 +2,7 @@
 #include "sandpaper/curation/check.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <functional>
 #include <tuple>
 #include <map>
@@ -127,6 +128,21 @@ struct Checker {
         out.error("E0606", at(st.location), "`" + st.keyword + "` carries numbers but has no `source`",
                   "add a line after it: source KIND \"where the numbers come from\", KIND one of measurement, standard, "
                   "publication, derived (show the arithmetic), by-ear (designed by ear or eye, said plainly)");
+  }
+
+  // E0612: an entry's image lies inside the library. The library is shared: an absolute path or one
+  // that climbs out reads whatever the compiling machine has there, and would name it in patches.
+  void images(const LibraryEntry& e) {
+    for (const auto& st : e.syntax.statements) {
+      const auto* h = std::get_if<compiler::HeightmapStmt>(&st.node);
+      if (!h) continue;
+      const std::filesystem::path p(h->path);
+      const auto inside = (std::filesystem::path(e.relative_path).parent_path() / p).lexically_normal();
+      if (p.is_absolute() || inside.empty() || *inside.begin() == "..")
+        out.error("E0612", at(h->path_location), "image " + quoted(h->path) + " is outside the library",
+                  "copy the image into the library (library/images/) and name it relative to the entry's folder, "
+                  "e.g. \"../images/NAME.png\"");
+    }
   }
 
   static std::string join(const std::vector<std::string>& v) {
@@ -288,7 +304,7 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
               "name the entry a bare perceptual description starts from (a grating the roughness map was measured on)");
 
   for (const auto& e : lib.entries())
-    if (e.parsed_ok) ck.metadata(e), ck.sources(e);
+    if (e.parsed_ok) ck.metadata(e), ck.sources(e), ck.images(e);
   ck.duplicates();
   ck.deprecations();
   const auto in_cycle = ck.cycles();

@@ -1,6 +1,11 @@
 // Building the index: compile every entry on one device, then write everything into a temp file
 // beside the index and rename it over the old one (atomic on POSIX file systems).
+#include <signal.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <filesystem>
 
 #include <map>
 #include <regex>
@@ -138,6 +143,20 @@ void write_index(const std::filesystem::path& path, const compiler::Library& lib
   sql::exec(db, "COMMIT");
 }
 
+// Removes "<index>.tmp-PID" files left by runs that were killed (kill -9 runs no clean-up), each
+// 20 MB or more for a large library; a running build's file is left alone.
+void remove_stale_temporaries(const std::filesystem::path& index) {
+  std::error_code ec;
+  const auto parent = index.parent_path().empty() ? std::filesystem::path(".") : index.parent_path();
+  const std::string prefix = index.filename().string() + ".tmp-";
+  for (const auto& e : std::filesystem::directory_iterator(parent, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) std::filesystem::remove(e.path(), ec);
+  }
+}
+
 }  // namespace
 
 IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
@@ -191,6 +210,7 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
   };
   std::error_code ec;
   if (r.path.has_parent_path()) std::filesystem::create_directories(r.path.parent_path(), ec);
+  remove_stale_temporaries(r.path);
   auto tmp = r.path;
   tmp += ".tmp-" + std::to_string(getpid());
   std::filesystem::remove(tmp, ec);

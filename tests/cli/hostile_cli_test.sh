@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# Hostile files and interrupted runs, as a user meets them (issue 16): exit codes (1 for wrong input,
+# with a message, never a raw library exception), library images outside the library, no machine
+# path in a patch, and what a kill -9 leaves behind. Usage: hostile_cli_test.sh path/to/sandpaper SOURCE_DIR
+set -uo pipefail
+sp=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'kill -9 $(jobs -p) 2>/dev/null; rm -rf "$tmp"' EXIT
+fails=0
+ok() { echo "ok   $1"; }
+bad() { echo "FAIL $1"; fails=$((fails + 1)); }
+check() {  # check "what" expected_status actual_status
+  if [ "$2" = "$3" ]; then ok "$1"; else bad "$1 (exit $3, expected $2)"; fi
+}
+has() {  # has "what" file pattern
+  if grep -q -- "$3" "$2"; then ok "$1"; else bad "$1: no '$3' in $2:"; head -c 2000 "$2"; fi
+}
+
+# A patch with a valid checksum whose size is NaN: a bad file (exit 1), not a usage error (2).
+"$sp" compile -e "grating period 2 mm amplitude 1 N" -o "$tmp/g.patch" >/dev/null 2>&1
+python3 - "$tmp/g.patch" "$tmp/nan.patch" <<'PY'
+import struct, sys, zlib
+b = bytearray(open(sys.argv[1], 'rb').read())
+p = 32
+for _ in range(5):  # name, describes, device, device_file, command_unit
+    n = struct.unpack_from('<I', b, p)[0]; p += 4 + n
+p += 8 + 8 + 8 + 8 + 1  # newtons_per_command_unit[2], command_max, max_force_N, calibrated
+struct.pack_into('<d', b, p, float('nan'))  # size_m[0]
+struct.pack_into('<I', b, 24, zlib.crc32(bytes(b[32:])) & 0xffffffff)
+open(sys.argv[2], 'wb').write(bytes(b))
+PY
+"$sp" run "$tmp/nan.patch" --duration 0.1 >"$tmp/out" 2>"$tmp/err"; check "run: a NaN-size patch is exit 1" 1 $?
+has "and the message says what is wrong" "$tmp/err" "size is not positive and finite"
+"$sp" inspect "$tmp/nan.patch" >"$tmp/out" 2>"$tmp/err"; check "inspect: the same" 1 $?
+
+# Non-UTF-8 source: a diagnostic at its place, and --json still prints JSON (it used to throw).
+printf 'material "m" {\n  describes "caf\xe9"\n  grating period 2 mm amplitude 1 N\n}\n' >"$tmp/latin1.hmat"
+"$sp" compile "$tmp/latin1.hmat" --json >"$tmp/out" 2>"$tmp/err"; check "non-UTF-8 source is exit 1" 1 $?
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["diagnostics"][0]["code"]=="E0104", d' "$tmp/out" \
+  && ok "--json prints a E0104 diagnostic" || bad "--json output is not JSON with E0104"
+if grep -q "json.exception" "$tmp/err"; then bad "a raw nlohmann exception reached the user"; else ok "no raw library exception"; fi
+
+# A material file that is a device or a FIFO is refused at once (it used to hang).
+mkfifo "$tmp/fifo.hmat"
+timeout 20 "$sp" compile "$tmp/fifo.hmat" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "a FIFO is exit 1, without blocking" 1 $?
+printf 'material "z" {\n  heightmap "/dev/zero" size 50 mm\n  roughness 0.5\n}\n' >"$tmp/zero.hmat"
+timeout 20 "$sp" compile "$tmp/zero.hmat" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "heightmap /dev/zero is exit 1, without hanging" 1 $?
+has "E0401 says why" "$tmp/err" "not a regular file"
+
+# No absolute machine path enters a patch, even when the user gives absolute paths.
+sed "s|\"../library/images/grass.png\"|\"$src/library/images/grass.png\"|" "$src/examples/grass.hmat" >"$tmp/grass.hmat"
+"$sp" compile "$tmp/grass.hmat" -o "$tmp/grass.patch" >/dev/null 2>&1; check "an absolute image path compiles" 0 $?
+"$sp" inspect "$tmp/grass.patch" --json >"$tmp/grass.json" 2>&1
+if grep -q -e "$tmp" -e "$src" "$tmp/grass.json"; then bad "an absolute path is in the patch:"; grep -e "$tmp" -e "$src" "$tmp/grass.json" | head -3
+else ok "the patch names no absolute path"; fi
+
+# A library entry may not reach outside its library: `library check` says so, and `like` refuses it.
+mkdir -p "$tmp/lib/cloth" "$tmp/lib/images"
+cp "$src/library/images/brick.png" "$tmp/brick.png"
+cp "$src/library/images/brick.png" "$tmp/lib/images/brick.png"
+entry() {  # entry NAME IMAGE
+  printf 'material "%s" {\n  family cloth\n  describes "test entry"\n  licence "CC0-1.0"\n  heightmap "%s" size 50 mm\n  source by-ear "test"\n  roughness 0.5\n  source by-ear "test"\n}\n' "$1" "$2" >"$tmp/lib/cloth/$1.hmat"
+}
+entry inside "../images/brick.png"
+entry absolute "$tmp/brick.png"
+entry climbing "../../brick.png"
+printf 'name = "hostile"\nversion = "0.1.0"\n[[families]]\nid = "cloth"\ntitle = "Cloth"\n' >"$tmp/lib/library.toml"
+"$sp" library check --library "$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "library check: escapes are errors" 1 $?
+has "the absolute path is reported" "$tmp/err" "cloth/absolute.hmat:5:.*E0612"
+has "the climbing path is reported" "$tmp/err" "cloth/climbing.hmat:5:.*E0612"
+if grep -q "inside.hmat.*E0612" "$tmp/err"; then bad "an image inside the library was reported"; else ok "an image inside the library is fine"; fi
+"$sp" compile --library "$tmp/lib" -e "like absolute" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "like an escaping entry: exit 1" 1 $?
+has "the error names the image" "$tmp/err" "brick.png. is outside the library"
+"$sp" compile --library "$tmp/lib" -e "like inside" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "like an entry inside: compiles" 0 $?
+rm "$tmp/lib/cloth/absolute.hmat" "$tmp/lib/cloth/climbing.hmat"
+
+# Temporaries of killed runs are cleaned by the next run. Synthetic ones first: a PID above the
+# kernel's pid_max cannot be running.
+"$sp" library index --library "$tmp/lib" --index "$tmp/idx/library.sqlite" --quiet >/dev/null 2>&1
+head -c 1000000 /dev/urandom >"$tmp/idx/library.sqlite.tmp-99999999"
+"$sp" library index --library "$tmp/lib" --index "$tmp/idx/library.sqlite" --quiet >/dev/null 2>&1; check "index rebuilds" 0 $?
+[ ! -e "$tmp/idx/library.sqlite.tmp-99999999" ]; check "a dead run's index temporary is removed" 0 $?
+"$sp" library catalog --library "$tmp/lib" -o "$tmp/site" --quiet >/dev/null 2>&1; check "catalog builds" 0 $?
+mkdir -p "$tmp/.site.new-99999999-1/entries" "$tmp/.site.old-99999999-2"
+"$sp" library catalog --library "$tmp/lib" -o "$tmp/site" --quiet >/dev/null 2>&1; check "catalog rebuilds" 0 $?
+[ -z "$(ls -A "$tmp" | grep '^\.site\.')" ]; check "a dead run's catalog temporaries are removed" 0 $?
+
+# A real kill -9 in the middle of a catalog of the shipped library: the previous catalog stays whole
+# at its place, and the next run leaves no temporaries. The run's temporary folder appearing is the
+# signal that it is under way.
+cp "$tmp/site/index.html" "$tmp/index.before"
+"$sp" library catalog -o "$tmp/site" --quiet >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do
+  [ -n "$(ls -A "$tmp" | grep '^\.site\.new-')" ] && [ -n "$(ls -A "$tmp"/.site.new-*/entries 2>/dev/null)" ] && break
+  kill -0 $pid 2>/dev/null || break
+  read -rt 0.1 <> <(:) || true
+done
+kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+cmp -s "$tmp/index.before" "$tmp/site/index.html"; check "after kill -9 the previous catalog is whole" 0 $?
+"$sp" library catalog --library "$tmp/lib" -o "$tmp/site" --quiet >/dev/null 2>&1; check "the next run succeeds" 0 $?
+[ -z "$(ls -A "$tmp" | grep '^\.site\.')" ]; check "and leaves no temporaries of the killed run" 0 $?
+
+echo "$fails failed"
+exit $((fails > 0))
