@@ -2,7 +2,8 @@
 // results.jsonl, beside a design.toml copied from examples/experiments/ (the one whose checksum the
 // input names, else roughness-magnitude.toml, so that a header can match). read_results as
 // `experiment resume` and `analyse` read it; an accepted folder's records as JSON, then the analysis
-// `experiment analyse` runs on it (pictures into the scratch folder).
+// `experiment analyse` runs on it (pictures into the scratch folder; left out where the fuzz build
+// cannot compile the analysis: fuzz/CMakeLists.txt, SANDPAPER_FUZZ_NO_ANALYSIS).
 // Expected rejections: experiment::DesignError, calibration::FitError. Nothing else is caught.
 #include <cstddef>
 #include <cstdint>
@@ -13,8 +14,10 @@
 #include <vector>
 
 #include "fuzz_support.hpp"
+#ifndef SANDPAPER_FUZZ_NO_ANALYSIS
 #include "sandpaper/calibration/fit_error.hpp"
 #include "sandpaper/experiment/analysis.hpp"
+#endif
 #include "sandpaper/experiment/design.hpp"
 #include "sandpaper/experiment/results.hpp"
 
@@ -61,6 +64,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int next = results.next_trial();
   fuzz::check(next >= 0, "next_trial() < 0");
 
+#ifndef SANDPAPER_FUZZ_NO_ANALYSIS
   experiment::AnalyseOptions options;
   options.pictures_dir = fuzz::scratch_dir() / "analysis";
   try {
@@ -69,5 +73,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const experiment::DesignError&) {
   } catch (const calibration::FitError&) {
   }
+#endif
   return 0;
 }

@@ -7,8 +7,9 @@
 # out-of-memory inputs go to build-fuzz/findings/TARGET/; libFuzzer's output to build-fuzz/logs/.
 # Prints executions and coverage, and appends one line per run to build-fuzz/fuzz-log.tsv:
 #   date  target  seconds  execs  cov  ft  crashes
-# JOBS > 1 runs libFuzzer's fork mode with that many workers, which also keeps going after a crash
-# (each crash still lands in findings/); JOBS = 1 (the default) stops at the first crash.
+# JOBS > 1, or FUZZ_KEEP_GOING=1, runs libFuzzer's fork mode with JOBS workers, which keeps going
+# after a crash, leak, timeout or out-of-memory (each still lands in findings/); otherwise the run
+# stops at the first one.
 #
 # Environment: FUZZ_NO_BUILD=1 skips the build step; FUZZ_NICE (default 10) is the nice level;
 # SANDPAPER_FUZZ_KNOWN names known defects to step over (fuzz/fuzz_support.hpp); FUZZ_ARGS adds
@@ -48,6 +49,7 @@ case $target in
   calibration|experiment_design) dict=toml ;;
   movie|shuffle) dict=movie ;;
   trace_csv) dict=trace_csv ;;
+  studio_request) dict=studio_request ;;
   experiment_results) dict=experiment_results ;;
   *) dict= ;;
 esac
@@ -62,7 +64,7 @@ marker=$(mktemp)  # findings newer than this are this run's
 args=(-max_total_time="$seconds" -max_len="$max_len" -print_final_stats=1 -timeout=25 -rss_limit_mb=2048
       -artifact_prefix="$findings/")
 [[ -n $dict ]] && args+=(-dict="$root/fuzz/dict/$dict.dict")
-[[ $jobs -gt 1 ]] && args+=(-fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+[[ $jobs -gt 1 || ${FUZZ_KEEP_GOING:-0} == 1 ]] && args+=(-fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
 # shellcheck disable=SC2206
 args+=(${FUZZ_ARGS:-})
 
