@@ -1,6 +1,5 @@
 #include "sandpaper/compiler/compiler.hpp"
 
-#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -15,33 +14,6 @@
 
 namespace sandpaper::compiler {
 namespace {
-
-void replace_all(std::string& s, const std::string& from, const std::string& to) {
-  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
-    s.replace(at, from.size(), to);
-}
-
-// A patch names no absolute path of the machine that compiled it (docs/PATCH_FORMAT.md): a material
-// file or an image given by absolute path is named by its file name alone in provenance and warnings.
-// Diagnostics on the terminal keep the path as given.
-void strip_machine_paths(schema::PatchProgram& program, const SourceFile& file, const ResolvedMaterial& m) {
-  std::vector<std::string> absolute;
-  if (std::filesystem::path(file.name).is_absolute()) absolute.push_back(file.name);
-  if (const auto* h = std::get_if<ResolvedHeightmap>(&m.texture))
-    for (const auto& p : {h->stated_path, h->path})
-      if (std::filesystem::path(p).is_absolute()) absolute.push_back(p);
-  // Longest first, so that a path is not half-replaced by a shorter one inside it.
-  std::sort(absolute.begin(), absolute.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
-  for (const auto& from : absolute) {
-    const std::string to = std::filesystem::path(from).filename().string();
-    for (auto& pv : program.provenance) {
-      replace_all(pv.source, from, to);
-      replace_all(pv.stated, from, to);
-    }
-    for (auto& w : program.warnings) replace_all(w.message, from, to);
-    replace_all(program.describes, from, to);
-  }
-}
 
 CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Library& lib,
                              const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device) {
@@ -62,7 +34,6 @@ CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Libra
   warn_felt_at_speed(m, program, cal, device, r.diagnostics);
   for (const auto& d : r.diagnostics.all())
     if (d.severity == Severity::Warning) program.warnings.push_back({d.code, d.location.str() + ": " + d.message});
-  strip_machine_paths(program, *file, m);
   r.program = std::move(program);
   return r;
 }
@@ -91,7 +62,7 @@ CompileResult Compiler::compile_file(const std::filesystem::path& path) const {
   } catch (const schema::InputFileError& e) {
     CompileResult r;
     auto f = std::make_shared<const SourceFile>(path.string(), "");
-    r.diagnostics.error("E0001", SourceLocation{f, 0, 0, 1}, std::string("cannot read material file: ") + e.what(),
+    r.diagnostics.error("E0001", SourceLocation{f, 0, 0, 1}, "cannot open material file '" + path.string() + "': " + e.reason,
                         "check the path; material files end in .hmat");
     return r;
   }

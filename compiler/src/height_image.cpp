@@ -80,7 +80,7 @@ bool read_depth_file(const HeightImageRequest& r, RawImage& raw, HeightImageErro
   try {
     text = schema::read_input_file(r.path, schema::limits::kMaxImageFileBytes);
   } catch (const schema::InputFileError& x) {
-    return fail(e, "E0401", std::string("cannot read array file: ") + x.what(),
+    return fail(e, "E0401", "cannot read array file '" + r.shown_path + "': " + x.reason,
                 "check the path (relative to the material file's folder)");
   }
   std::vector<unsigned char> bytes(text.begin(), text.end());

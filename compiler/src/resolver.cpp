@@ -282,7 +282,7 @@ class Resolver {
       try {
         text = schema::read_input_file(*path, schema::limits::kMaxSourceBytes);
       } catch (const schema::InputFileError& e) {
-        diags_.error("E0306", like.name_location, "library entry '" + entry_name + "' cannot be read: " + e.what(),
+        diags_.error("E0306", like.name_location, "library entry '" + entry_name + "' cannot be read: " + e.reason,
                      "fix or remove the entry's file");
         return base;
       }

@@ -251,7 +251,7 @@ WorkspaceResult compile_workspace_file(const Compiler& compiler, const fs::path&
   } catch (const schema::InputFileError& e) {
     WorkspaceResult r;
     auto f = std::make_shared<const SourceFile>(path.string(), "");
-    r.diagnostics.error("E0500", SourceLocation{f, 0, 0, 1}, std::string("cannot read workspace file: ") + e.what(),
+    r.diagnostics.error("E0500", SourceLocation{f, 0, 0, 1}, "cannot open workspace file '" + path.string() + "': " + e.reason,
                         "check the path; workspace files end in .hws");
     return r;
   }

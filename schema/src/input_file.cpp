@@ -14,23 +14,23 @@ std::string read_input_file(const std::filesystem::path& path, std::size_t max_b
   // Before opening: opening a FIFO blocks until a writer comes, and /dev/zero never ends.
   struct stat st{};
   if (::stat(name.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode))
-    throw InputFileError("'" + name + "' is not a regular file (a device, FIFO or socket); give a file on disk");
+    throw InputFileError(name, "not a regular file (a device, FIFO or socket); give a file on disk");
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(name.c_str(), "rb"), &std::fclose);
-  if (!f) throw InputFileError("cannot open '" + name + "': " + std::strerror(errno));
+  if (!f) throw InputFileError(name, std::strerror(errno));
   // Again on the open file: a file swapped in after the first check must not slip through.
-  if (fstat(fileno(f.get()), &st) != 0) throw InputFileError("cannot read '" + name + "': " + std::strerror(errno));
-  if (S_ISDIR(st.st_mode)) throw InputFileError("'" + name + "' is a directory, not a file");
+  if (fstat(fileno(f.get()), &st) != 0) throw InputFileError(name, std::strerror(errno));
+  if (S_ISDIR(st.st_mode)) throw InputFileError(name, "a directory, not a file");
   if (!S_ISREG(st.st_mode))
-    throw InputFileError("'" + name + "' is not a regular file (a device, FIFO or socket); give a file on disk");
+    throw InputFileError(name, "not a regular file (a device, FIFO or socket); give a file on disk");
   const auto size = static_cast<std::uint64_t>(st.st_size);
   if (size > max_bytes)
-    throw InputFileError("'" + name + "' is " + std::to_string(size) + " bytes, over the limit of " +
-                         std::to_string(max_bytes) + " bytes for this kind of file (docs/RELIABILITY.md)");
+    throw InputFileError(name, std::to_string(size) + " bytes, over the limit of " + std::to_string(max_bytes) +
+                                   " bytes for this kind of file (docs/RELIABILITY.md)");
   std::string text(static_cast<std::size_t>(size), '\0');
   const std::size_t got = size ? std::fread(text.data(), 1, text.size(), f.get()) : 0;
-  if (got != text.size() || std::ferror(f.get())) throw InputFileError("cannot read '" + name + "': read failed");
+  if (got != text.size() || std::ferror(f.get())) throw InputFileError(name, "read failed");
   // A file that grew while we read it: refuse rather than take part of it.
-  if (std::fgetc(f.get()) != EOF) throw InputFileError("'" + name + "' changed while it was read; try again");
+  if (std::fgetc(f.get()) != EOF) throw InputFileError(name, "changed while it was read; try again");
   return text;
 }
 

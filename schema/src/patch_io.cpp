@@ -401,11 +401,36 @@ Term read_term(Reader& r) {
 
 namespace {
 
+// A patch names no absolute path of the machine that compiled it (docs/PATCH_FORMAT.md): a material
+// file or image given by absolute path is named by its file name alone in the text a patch carries.
+// An absolute path here starts a string or follows a space, quote or parenthesis, and runs to the
+// next space, colon, quote or parenthesis ("/home/u/m.hmat:9:48" -> "m.hmat:9:48").
+std::string without_machine_paths(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    const bool starts = s[i] == '/' && i + 1 < s.size() && s[i + 1] != ' ' && s[i + 1] != '/' &&
+                        (i == 0 || s[i - 1] == ' ' || s[i - 1] == '"' || s[i - 1] == '\'' || s[i - 1] == '(');
+    if (!starts) {
+      out += s[i++];
+      continue;
+    }
+    std::size_t end = i, name = i + 1;
+    while (end < s.size() && s[end] != ' ' && s[end] != ':' && s[end] != '"' && s[end] != '\'' && s[end] != ')') {
+      if (s[end] == '/') name = end + 1;
+      ++end;
+    }
+    out.append(s, name, end - name);
+    i = end;
+  }
+  return out;
+}
+
 void write_payload(Writer& w, const PatchProgram& p, const PatchWriteOptions& options, CompactReport* report) {
   w.str(p.name);
-  w.str(p.describes);
+  w.str(without_machine_paths(p.describes));
   w.str(p.device);
-  w.str(p.command.device_file);
+  w.str(without_machine_paths(p.command.device_file));
   w.str(p.command.command_unit);
   w.pod(p.command.newtons_per_command_unit[0]);
   w.pod(p.command.newtons_per_command_unit[1]);
@@ -417,7 +442,7 @@ void write_payload(Writer& w, const PatchProgram& p, const PatchWriteOptions& op
   w.pod(p.max_lateral_force_N);
   w.pod(p.roughness);
   w.str(p.roughness_map);
-  w.str(p.roughness_map_file);
+  w.str(without_machine_paths(p.roughness_map_file));
   w.pod(p.energy_budget_J);
   w.pod(p.energy_refill_W);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(p.terms.size()));
@@ -427,14 +452,14 @@ void write_payload(Writer& w, const PatchProgram& p, const PatchWriteOptions& op
     w.str(pv.parameter);
     w.pod(pv.value_si);
     w.str(pv.si_unit);
-    w.str(pv.stated);
+    w.str(without_machine_paths(pv.stated));
     w.str(pv.layer);
-    w.str(pv.source);
+    w.str(without_machine_paths(pv.source));
   }
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(p.warnings.size()));
   for (const auto& wn : p.warnings) {
     w.str(wn.code);
-    w.str(wn.message);
+    w.str(without_machine_paths(wn.message));
   }
 }
 

@@ -102,5 +102,5 @@ cmp -s "$tmp/index.before" "$tmp/site/index.html"; check "after kill -9 the prev
 "$sp" library catalog --library "$tmp/lib" -o "$tmp/site" --quiet >/dev/null 2>&1; check "the next run succeeds" 0 $?
 [ -z "$(ls -A "$tmp" | grep '^\.site\.')" ]; check "and leaves no temporaries of the killed run" 0 $?
 
-echo "$fails failed"
+echo "hostile files: $fails failed"
 exit $((fails > 0))

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "sandpaper/compiler/workspace.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/workspace_json.hpp"
 #include "test_support.hpp"
 
@@ -166,6 +167,34 @@ TEST(WorkspaceCompile, JsonHasEveryPatchWithUnits) {
 TEST(WorkspaceCompile, MissingFile) {
   auto r = compiler::compile_workspace_file(test::shipped_compiler(), "no/such/workspace.hws");
   EXPECT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0500"});
+}
+
+// Issue 16: a workspace states its limit on patches, and close pairs of materials are summarised.
+TEST(WorkspaceCompile, MorePatchesThanTheLimitAreRefused) {
+  std::string text = "workspace \"w\" {\n  size 10000 mm\n";
+  for (std::size_t i = 0; i <= schema::limits::kMaxWorkspacePatches; ++i) text += "  patch \"like corduroy\" at 0 mm, 0 mm size 1 mm\n";
+  text += "}\n";
+  const auto r = compile(text);
+  EXPECT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0509"});
+}
+
+// 2,000 distinct materials used to give one W0503 per close pair (591 MB of warnings): now the
+// first 20 pairs and one summary with the count of the rest.
+TEST(WorkspaceCompile, CloseMaterialPairsAreListedThenCounted) {
+  std::string text = "workspace \"w\" {\n  size 1000 mm\n";
+  constexpr int kMaterials = 60;  // forces 0.1% apart: every pair within one JND is close
+  for (int i = 0; i < kMaterials; ++i)
+    text += "  patch \"grating period 2 mm amplitude " + std::to_string(1.0 + 0.001 * i) + " N\" at " +
+            std::to_string(-450 + 15 * i) + " mm, 0 mm size 10 mm\n";
+  text += "}\n";
+  const auto r = compile(text);
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics).substr(0, 2000);
+  const auto w = codes(r.diagnostics, compiler::Severity::Warning);
+  EXPECT_EQ(std::count(w.begin(), w.end(), "W0503"), 21);
+  const auto& last = r.diagnostics.all().back();
+  EXPECT_EQ(last.code, "W0503");
+  // 60 materials, every pair closer than one JND: 1770 pairs, 20 listed.
+  EXPECT_NE(last.message.find("and 1750 more pairs"), std::string::npos) << last.message;
 }
 
 }  // namespace

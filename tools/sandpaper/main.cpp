@@ -202,7 +202,7 @@ int main(int argc, char** argv) {
     std::cerr << "sandpaper: error: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const sandpaper::schema::InputFileError& e) {
-    std::cerr << "sandpaper: error: " << e.what() << "\n";
+    std::cerr << "sandpaper: error: cannot read " << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
     // The readers' limits (docs/RELIABILITY.md) are meant to stop this first; if memory still runs

@@ -39,7 +39,9 @@ namespace sandpaper::schema {
 // as /dev/zero would block or never end), unreadable, or larger than its limit. what() names the
 // path and how to fix it.
 struct InputFileError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  InputFileError(const std::string& path, const std::string& why)
+      : std::runtime_error("'" + path + "': " + why), reason(why) {}
+  std::string reason;  // what is wrong, without the path: "No such file or directory"
 };
 
 // The whole of a regular file, at most `max_bytes` long. Throws InputFileError.
