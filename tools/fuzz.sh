@@ -77,7 +77,7 @@ nice -n "${FUZZ_NICE:-10}" "$bin" "${args[@]}" "$corpus" >"$log" 2>&1 || status=
 # Executions: libFuzzer's final stats (stat::number_of_executed_units) in the default mode; in fork
 # mode, the count on its last status line ("#N: cov: ..."). Coverage: cov/ft of the last status line.
 execs=$(awk '/stat::number_of_executed_units:/ {n=$2} END {print n}' "$log")
-last=$(grep -E '^#[0-9]+:? .*cov: ' "$log" | tail -1 || true)
+last=$(grep -E '^#[0-9]+:?[[:space:]].*cov: ' "$log" | tail -1 || true)
 [[ -z $execs ]] && execs=$(sed -E 's/^#([0-9]+).*/\1/' <<<"$last")
 cov=$(sed -nE 's/.*cov: ([0-9]+).*/\1/p' <<<"$last")
 ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<<"$last")
