@@ -21,7 +21,10 @@ struct Heights {
 };
 
 // Radius of the discrete Gaussian: 3 sigma, as the image path (heightmap.cpp) uses.
-int blur_radius(double sigma_px) { return sigma_px > 0 ? static_cast<int>(std::ceil(3.0 * sigma_px)) : 0; }
+// Callers bound sigma (kMaxPatternKernel); the clamp keeps the cast defined whatever they pass.
+int blur_radius(double sigma_px) {
+  return sigma_px > 0 ? static_cast<int>(std::min(std::ceil(3.0 * sigma_px), 1e6)) : 0;
+}
 
 // Separable Gaussian of `sigma_px`, normalised discrete weights; edges wrap (tiles) or clamp.
 void blur(Heights& a, double sigma_px) {

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "sandpaper/compiler/knowledge_report.hpp"
 #include "sandpaper/compiler/workspace.hpp"
@@ -151,6 +152,7 @@ WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& 
   for (const auto& cm : materials) report_material(cm, syntax, diags);
 
   // Place the patches: the placed size, or the material's own.
+  std::map<std::tuple<std::size_t, double, double>, std::shared_ptr<const schema::PatchProgram>> placed;
   const double half_w = 0.5 * ws.size_m[0], half_h = 0.5 * ws.size_m[1];
   for (std::size_t i = 0; i < syntax.patches.size(); ++i) {
     const auto& p = syntax.patches[i];
@@ -178,7 +180,10 @@ WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& 
                   "move it inward, make it smaller, or make the workspace larger with `size W x H`");
       continue;
     }
-    ws.patches.push_back(schema::place_patch(*cr.program, centre, size, p.material));
+    // One program per material and size, shared by every patch that places it so.
+    auto& shared = placed[{material_of[i], size[0], size[1]}];
+    if (!shared) shared = schema::place_patch(*cr.program, centre, size, p.material).program;
+    ws.patches.push_back(schema::place_shared_patch(shared, centre, p.material));
   }
   if (diags.has_errors()) {
     r.diagnostics = std::move(diags);
@@ -217,10 +222,10 @@ std::vector<RoughnessStep> roughness_order(const schema::WorkspaceProgram& ws, c
   std::vector<RoughnessStep> out;
   for (std::size_t i = 0; i < ws.patches.size(); ++i) {
     const auto& p = ws.patches[i];
-    if (!(p.program.max_lateral_force_N > 0)) continue;
+    if (!(p.program->max_lateral_force_N > 0)) continue;
     bool seen = false;
     for (const auto& s : out) seen = seen || s.material == p.source;
-    if (!seen) out.push_back({i, p.source, p.program.name, p.program.max_lateral_force_N, p.program.roughness, 0});
+    if (!seen) out.push_back({i, p.source, p.program->name, p.program->max_lateral_force_N, p.program->roughness, 0});
   }
   std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.force_N < b.force_N; });
   for (std::size_t i = 0; i + 1 < out.size(); ++i) out[i].jnd_to_next = jnd.steps_between(out[i].force_N, out[i + 1].force_N);

@@ -21,7 +21,8 @@ std::vector<PatchRect> rects_of(const schema::WorkspaceProgram& ws) {
       throw std::invalid_argument(what + ": centre must be finite");
     // The patch evaluator zeroes force outside program.size_m; the lookup uses the placed size.
     // They must agree, or part of a placed patch would be silent (or the grid would be wrong).
-    if (p.program.size_m[0] != p.size_m[0] || p.program.size_m[1] != p.size_m[1])
+    if (!p.program) throw std::invalid_argument(what + ": no program");
+    if (p.program->size_m[0] != p.size_m[0] || p.program->size_m[1] != p.size_m[1])
       throw std::invalid_argument(what + ": placed size differs from its program's size_m; place it with schema::place_patch");
     rects.push_back({{p.centre_m[0], p.centre_m[1]}, {0.5 * p.size_m[0], 0.5 * p.size_m[1]}});
   }
@@ -45,7 +46,7 @@ WorkspaceEvaluator::WorkspaceEvaluator(const schema::WorkspaceProgram& workspace
   for (std::size_t i = 0; i < workspace_.patches.size(); ++i) {
     const auto& p = workspace_.patches[i];
     try {
-      evaluators_.push_back(std::make_unique<PatchEvaluator>(p.program));
+      evaluators_.push_back(std::make_unique<PatchEvaluator>(*p.program));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("patch " + std::to_string(i) + " (" + p.source + "): " + e.what());
     }

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <zlib.h>
@@ -92,13 +93,19 @@ void write_workspace_program_file(const std::filesystem::path& path, const Works
   put(payload, ws.size_m[0]);
   put(payload, ws.size_m[1]);
   put(payload, static_cast<std::uint32_t>(ws.patches.size()));
+  std::shared_ptr<const PatchProgram> last_program;
+  std::vector<unsigned char> program;
   for (const auto& p : ws.patches) {
     put_str(payload, p.source);
     put(payload, p.centre_m[0]);
     put(payload, p.centre_m[1]);
     put(payload, p.size_m[0]);
     put(payload, p.size_m[1]);
-    const auto program = serialize(p.program, options);
+    // A shared program is serialized once (the file still holds it per patch).
+    if (p.program != last_program) {
+      program = serialize(*p.program, options);
+      last_program = p.program;
+    }
     put(payload, static_cast<std::uint64_t>(program.size()));
     put_bytes(payload, program.data(), program.size());
   }
@@ -149,6 +156,7 @@ WorkspaceProgram read_workspace_program_file(const std::filesystem::path& path) 
     ws.size_m[0] = c.pod<double>();
     ws.size_m[1] = c.pod<double>();
     const auto n = c.pod<std::uint32_t>();
+    std::unordered_map<std::string, std::shared_ptr<const PatchProgram>> distinct;
     for (std::uint32_t i = 0; i < n; ++i) {
       PlacedPatch p;
       p.source = c.str();
@@ -157,7 +165,11 @@ WorkspaceProgram read_workspace_program_file(const std::filesystem::path& path) 
       p.size_m[0] = c.pod<double>();
       p.size_m[1] = c.pod<double>();
       const auto length = c.pod<std::uint64_t>();
-      p.program = deserialize(c.bytes(length));
+      // Patches with byte-identical programs share one (as the compiler made them).
+      const auto bytes = c.bytes(length);
+      auto& shared = distinct[std::string(bytes.begin(), bytes.end())];
+      if (!shared) shared = std::make_shared<const PatchProgram>(deserialize(bytes));
+      p.program = shared;
       ws.patches.push_back(std::move(p));
     }
     if (!c.done()) throw PatchFormatError("workspace program has trailing bytes");

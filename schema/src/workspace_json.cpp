@@ -19,7 +19,7 @@ nlohmann::json to_json(const WorkspaceProgram& ws, bool with_tables) {
                             {"source", p.source},
                             {"centre_m", {p.centre_m[0], p.centre_m[1]}},
                             {"size_m", {p.size_m[0], p.size_m[1]}},
-                            {"program", to_json(p.program, with_tables)}});
+                            {"program", to_json(*p.program, with_tables)}});
   }
   return j;
 }

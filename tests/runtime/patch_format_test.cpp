@@ -356,7 +356,7 @@ TEST(WorkspaceFormat, ProgramsRoundTripWithEveryPatchAndRefuseCorruption) {
     EXPECT_EQ(back.patches[i].source, ws.patches[i].source);
     EXPECT_EQ(back.patches[i].centre_m[0], ws.patches[i].centre_m[0]);
     EXPECT_EQ(back.patches[i].size_m[1], ws.patches[i].size_m[1]);
-    EXPECT_EQ(serialize(back.patches[i].program), serialize(ws.patches[i].program));
+    EXPECT_EQ(serialize(*back.patches[i].program), serialize(*ws.patches[i].program));
   }
   // A flipped byte anywhere in the payload is refused by the checksum.
   std::ifstream in(dir / "w.wsp", std::ios::binary);

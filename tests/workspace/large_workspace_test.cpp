@@ -62,7 +62,7 @@ TEST(LargeWorkspace, AThousandPatchesCompileAndPlay) {
 
   // Independent evaluators for every patch, fed relative positions.
   std::vector<std::unique_ptr<runtime::PatchEvaluator>> alone;
-  for (const auto& p : ws.patches) alone.push_back(std::make_unique<runtime::PatchEvaluator>(p.program));
+  for (const auto& p : ws.patches) alone.push_back(std::make_unique<runtime::PatchEvaluator>(*p.program));
   std::set<std::uint32_t> touched;
   std::size_t compared = 0, gaps = 0;
   const auto& recs = sim.records();

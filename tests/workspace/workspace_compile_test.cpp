@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/schema/input_limits.hpp"
+#include "sandpaper/schema/workspace_io.hpp"
 #include "sandpaper/schema/workspace_json.hpp"
 #include "test_support.hpp"
 
@@ -41,10 +43,10 @@ TEST(WorkspaceCompile, TheExampleSamplerCompiles) {
   EXPECT_DOUBLE_EQ(ws.patches[0].size_m[0], 0.032);
   EXPECT_DOUBLE_EQ(ws.patches[0].size_m[1], 0.060);
   for (const auto& p : ws.patches) {
-    EXPECT_EQ(p.program.size_m[0], p.size_m[0]);
-    EXPECT_EQ(p.program.size_m[1], p.size_m[1]);
+    EXPECT_EQ(p.program->size_m[0], p.size_m[0]);
+    EXPECT_EQ(p.program->size_m[1], p.size_m[1]);
   }
-  EXPECT_EQ(ws.patches[3].program.name, "a19p100");
+  EXPECT_EQ(ws.patches[3].program->name, "a19p100");
   EXPECT_EQ(ws.patches[6].source, "roughness 0.3; grating period 5 mm");
   EXPECT_DOUBLE_EQ(ws.patches[6].size_m[1], 0.020);  // `size 20 mm`: square
 }
@@ -54,7 +56,7 @@ TEST(WorkspaceCompile, PatchesKeepWhatTheMaterialCompilerGives) {
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   auto direct = test::shipped_compiler().compile_text("a10p25");
   ASSERT_TRUE(direct.ok());
-  const auto& placed = r.program->patches.at(0).program;
+  const auto& placed = *r.program->patches.at(0).program;
   EXPECT_EQ(placed.name, direct.program->name);
   EXPECT_EQ(placed.max_lateral_force_N, direct.program->max_lateral_force_N);
   EXPECT_EQ(placed.terms.size(), direct.program->terms.size());
@@ -78,7 +80,7 @@ TEST(WorkspaceCompile, MaterialFilesAreRelativeToTheWorkspace) {
   std::ofstream(dir / "w.hws") << "workspace \"w\" {\n  patch \"sub/ribs.hmat\" at 0 mm, 0 mm size 20 mm\n}\n";
   auto r = compiler::compile_workspace_file(test::shipped_compiler(), dir / "w.hws");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
-  EXPECT_NEAR(r.program->patches[0].program.max_lateral_force_N, 1.0, 1e-9);
+  EXPECT_NEAR(r.program->patches[0].program->max_lateral_force_N, 1.0, 1e-9);
   EXPECT_EQ(r.program->patches[0].source, "sub/ribs.hmat");
 }
 
@@ -195,6 +197,34 @@ TEST(WorkspaceCompile, CloseMaterialPairsAreListedThenCounted) {
   EXPECT_EQ(last.code, "W0503");
   // 60 materials, every pair closer than one JND: 1770 pairs, 20 listed.
   EXPECT_NE(last.message.find("and 1750 more pairs"), std::string::npos) << last.message;
+}
+
+// 100,000 patches of one material used to hold 100,000 copies of its program (3.25 GB): patches of
+// one material at one size now share one program, in the compiler's output and read back from a
+// workspace program file.
+TEST(WorkspaceCompile, PatchesOfOneMaterialAndSizeShareOneProgram) {
+  std::string text = "workspace \"w\" {\n  size 1000 mm\n";
+  constexpr int kPatches = 5000;
+  for (int i = 0; i < kPatches; ++i)
+    text += "  patch \"like corduroy\" at " + std::to_string(-400 + (i % 80) * 10) + " mm, " +
+            std::to_string(-400 + (i / 80) * 10) + " mm size " + (i % 2 ? "8 mm" : "6 mm") + "\n";
+  text += "}\n";
+  const auto r = compile(text);
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics).substr(0, 2000);
+  std::set<const schema::PatchProgram*> distinct;
+  for (const auto& p : r.program->patches) {
+    distinct.insert(p.program.get());
+    EXPECT_EQ(p.program->size_m[0], p.size_m[0]);
+  }
+  EXPECT_EQ(distinct.size(), 2u);  // one per size
+  const fs::path dir = test::temp_dir("ws-shared");
+  schema::write_workspace_program_file(dir / "w.wsp", *r.program);
+  const auto back = schema::read_workspace_program_file(dir / "w.wsp");
+  std::set<const schema::PatchProgram*> read_distinct;
+  for (const auto& p : back.patches) read_distinct.insert(p.program.get());
+  EXPECT_EQ(read_distinct.size(), 2u);
+  ASSERT_EQ(back.patches.size(), static_cast<std::size_t>(kPatches));
+  EXPECT_EQ(back.patches[1].program->size_m[0], 0.008);
 }
 
 }  // namespace

@@ -162,13 +162,17 @@ TEST(WorkspaceEvaluator, RefusesInconsistentWorkspaces) {
   schema::WorkspaceProgram ws;
   ws.patches.push_back(placed(constant_force_program(1.0), 0, 0, 0.04, 0.04));
   EXPECT_THROW(WorkspaceEvaluator(ws, -1e-3), std::invalid_argument);
-  ws.patches[0].program.size_m[0] = 0.05;  // placed and program sizes disagree
+  auto wider = *ws.patches[0].program;
+  wider.size_m[0] = 0.05;  // placed and program sizes disagree
+  ws.patches[0].program = std::make_shared<const schema::PatchProgram>(wider);
   EXPECT_THROW(WorkspaceEvaluator{ws}, std::invalid_argument);
   ws.patches[0] = placed(constant_force_program(1.0), 0, 0, 0.0, 0.04);
   EXPECT_THROW(WorkspaceEvaluator{ws}, std::invalid_argument);
   schema::GratingTerm broken;  // period 0: PatchEvaluator refuses it, and the message names the patch
   ws.patches[0] = placed(constant_force_program(1.0), 0, 0, 0.04, 0.04, "broken-one");
-  ws.patches[0].program.terms = {broken};
+  auto with_broken = *ws.patches[0].program;
+  with_broken.terms = {broken};
+  ws.patches[0].program = std::make_shared<const schema::PatchProgram>(with_broken);
   try {
     WorkspaceEvaluator ev(ws);
     ADD_FAILURE() << "a broken patch program was accepted";

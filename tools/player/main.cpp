@@ -44,8 +44,8 @@ int play_file(const std::string& file, const std::string& device, const std::str
     if (const int rc = cli::check_workspace_request(ro, limits); rc != cli::kExitOk) return rc;
     const auto ws = schema::read_workspace_program_file(file);
     for (const auto& p : ws.patches)
-      if (p.program.device != device) {
-        std::cerr << "sandpaper: error: " << file << " was compiled for device '" << p.program.device << "', not '" << device
+      if (p.program->device != device) {
+        std::cerr << "sandpaper: error: " << file << " was compiled for device '" << p.program->device << "', not '" << device
                   << "'; recompile it with --device " << device << "\n";
         return cli::kExitUsage;
       }

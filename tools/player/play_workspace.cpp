@@ -162,11 +162,11 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
     for (std::size_t i = 0; i < ws.patches.size(); ++i)
       patches.push_back({{"patch", i + 1},
                          {"source", ws.patches[i].source},
-                         {"material", ws.patches[i].program.name},
+                         {"material", ws.patches[i].program->name},
                          {"touched", ticks_on[i] > 0},
                          {"ticks", ticks_on[i]},
                          {"max_lateral_force_N", max_force[i]},
-                         {"compiled_max_lateral_force_N", ws.patches[i].program.max_lateral_force_N}});
+                         {"compiled_max_lateral_force_N", ws.patches[i].program->max_lateral_force_N}});
     nlohmann::json j{{"workspace", ws.name},
                      {"device", limits.name},
                      {"ticks", rep.ticks},
@@ -212,7 +212,7 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
       }
       std::cout << "    " << patch_line(ws, i)
                 << fmt::format("  {} ticks, max |F| {:.4f} N (compiled {:.4f} N)\n", ticks_on[i], max_force[i],
-                               ws.patches[i].program.max_lateral_force_N);
+                               ws.patches[i].program->max_lateral_force_N);
     }
     if (!list_all && touched < ws.patches.size())
       std::cout << "    (" << ws.patches.size() - touched << " patches not touched)\n";

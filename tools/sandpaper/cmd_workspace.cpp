@@ -41,9 +41,12 @@ int cmd_workspace_compile(const CommonOptions& o, const std::string& output, boo
   if (!ws) return kExitBadInput;
   std::string out_path = output;
   if (!explain && out_path.empty()) out_path = std::filesystem::path(o.file).replace_extension(".json").string();
-  const auto j = schema::to_json(*ws);
   // A `.wsp` output is the binary workspace program the runtime-only player plays; anything else the JSON view.
-  if (!explain && std::filesystem::path(out_path).extension() == ".wsp")
+  // The JSON view holds every patch's program, so it is built only when asked for (65,536 patches: 1 GB).
+  const bool wsp = !explain && std::filesystem::path(out_path).extension() == ".wsp";
+  nlohmann::json j;
+  if (o.json || (!explain && !wsp)) j = schema::to_json(*ws);
+  if (wsp)
     schema::write_workspace_program_file(out_path, *ws, {o.compact});
   else if (!explain)
     schema::write_file_atomically(out_path, j.dump(2) + "\n");
@@ -79,7 +82,7 @@ int cmd_workspace_compile(const CommonOptions& o, const std::string& output, boo
   std::cout << "\n  painting order: patch 1 is at the back, each later patch lies in front; only the frontmost patch\n"
                "  under the hand sends force (thesis Appendix B). Positions are patch centres, origin at the workspace centre.\n";
   for (std::size_t i = 0; i < ws->patches.size(); ++i) {
-    const auto& p = ws->patches[i].program;
+    const auto& p = *ws->patches[i].program;
     std::cout << "  " << patch_line(*ws, i) << "\n";
     std::cout << fmt::format("      material {}; maximum lateral force {:.4g} N, roughness {:.3g}; {} term{}\n", p.name,
                              p.max_lateral_force_N, p.roughness, p.terms.size(), p.terms.size() == 1 ? "" : "s");

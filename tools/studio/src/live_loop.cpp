@@ -69,7 +69,7 @@ std::uint64_t LiveLoop::load_workspace_nonrt(std::shared_ptr<const schema::Works
   auto playing = std::make_shared<std::atomic<bool>>(false);
   auto source = std::make_unique<TrackedSource<schema::WorkspaceProgram, runtime::WorkspaceEvaluator>>(workspace, playing);
   double force = 0;
-  for (const auto& p : workspace->patches) force = std::max(force, p.program.max_lateral_force_N);
+  for (const auto& p : workspace->patches) force = std::max(force, p.program->max_lateral_force_N);
   std::lock_guard offer_lock(offer_mutex_);
   std::uint64_t version;
   {

@@ -223,11 +223,11 @@ nlohmann::json Session::workspace() const {
     const auto& p = workspace_->patches[i];
     j["patches"].push_back({{"index", i},
                             {"source", p.source},
-                            {"name", p.program.name},
+                            {"name", p.program->name},
                             {"centre_mm", {p.centre_m[0] * 1e3, p.centre_m[1] * 1e3}},
                             {"size_mm", {p.size_m[0] * 1e3, p.size_m[1] * 1e3}},
-                            {"max_lateral_force_N", p.program.max_lateral_force_N},
-                            {"roughness", p.program.roughness}});
+                            {"max_lateral_force_N", p.program->max_lateral_force_N},
+                            {"roughness", p.program->roughness}});
   }
   return j;
 }
@@ -280,7 +280,7 @@ void Session::render(const std::shared_ptr<const schema::PatchProgram>& program,
     written = catalog::write_preview(*program, dir, kPreviewSide, kFieldArrows).written;
   } else if (workspace) {
     for (std::size_t i = 0; i < workspace->patches.size(); ++i) {
-      const auto& prog = workspace->patches[i].program;
+      const auto& prog = *workspace->patches[i].program;
       const auto picture = catalog::render_picture(prog, kPatchPictureSide);
       if (picture.empty()) continue;
       catalog::write_image_png(dir / ("patch-" + std::to_string(i) + ".png"), catalog::grey_image(picture));
