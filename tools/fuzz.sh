@@ -6,7 +6,7 @@
 # nothing is removed), with the target's dictionary from fuzz/dict/. Crashes, leaks, timeouts and
 # out-of-memory inputs go to build-fuzz/findings/TARGET/; libFuzzer's output to build-fuzz/logs/.
 # Prints executions and coverage, and appends one line per run to build-fuzz/fuzz-log.tsv:
-#   date  target  seconds  execs  cov  ft  crashes
+#   date  target  seconds (as run)  execs  cov  ft  crashes
 # JOBS > 1, or FUZZ_KEEP_GOING=1, runs libFuzzer's fork mode with JOBS workers, which keeps going
 # after a crash, leak, timeout or out-of-memory (each still lands in findings/); otherwise the run
 # stops at the first one.
@@ -72,6 +72,7 @@ args+=(${FUZZ_ARGS:-})
 cd "$root/tests/golden/diagnostics"
 echo "fuzz.sh: $target for ${seconds}s, jobs $jobs, log $log" >&2
 status=0
+started=$(date +%s)
 nice -n "${FUZZ_NICE:-10}" "$bin" "${args[@]}" "$corpus" >"$log" 2>&1 || status=$?
 
 # Executions: libFuzzer's final stats (stat::number_of_executed_units) in the default mode; in fork
@@ -84,10 +85,11 @@ ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<<"$last")
 new_findings=$(find "$findings" -type f -newer "$marker")
 crashes=$(grep -c . <<<"$new_findings" || true)
 rm -f "$marker"
+elapsed=$(( $(date +%s) - started ))  # less than SECONDS when the run stopped at a finding
 
-printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$stamp" "$target" "$seconds" "${execs:-0}" "${cov:-0}" "${ft:-0}" "$crashes" \
+printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$stamp" "$target" "$elapsed" "${execs:-0}" "${cov:-0}" "${ft:-0}" "$crashes" \
   >>"$build/fuzz-log.tsv"
-echo "target $target: ${execs:-0} executions, cov ${cov:-0}, ft ${ft:-0}, ${crashes} finding(s) in $findings (libFuzzer exit $status)"
+echo "target $target: ${elapsed}s, ${execs:-0} executions, cov ${cov:-0}, ft ${ft:-0}, ${crashes} finding(s) in $findings (libFuzzer exit $status)"
 if [[ $crashes -gt 0 ]]; then
   echo "$new_findings"
   grep -E '^(==[0-9]+==ERROR|SUMMARY|fuzz invariant broken|.*runtime error:)' "$log" | head -5 || true
