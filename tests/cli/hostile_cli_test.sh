@@ -34,6 +34,13 @@ PY
 has "and the message says what is wrong" "$tmp/err" "size is not positive and finite"
 "$sp" inspect "$tmp/nan.patch" >"$tmp/out" 2>"$tmp/err"; check "inspect: the same" 1 $?
 
+# Run length: a stated maximum, and a run that keeps every tick in memory is bounded in ticks
+# (--duration 100000 --virtual-clock used to take 7 GB).
+"$sp" run -e "grating period 2 mm amplitude 1 N" --duration 1e300 >"$tmp/out" 2>"$tmp/err"; check "an absurd --duration is a usage error" 2 $?
+has "that says the limit" "$tmp/err" "to 86400 s"
+"$sp" run -e "grating period 2 mm amplitude 1 N" --duration 2100 --virtual-clock >"$tmp/out" 2>"$tmp/err"; check "a virtual-clock run over 2^21 ticks is refused" 2 $?
+has "with the longest it may be" "$tmp/err" "2097152 ticks: 2097.15 s at 1000 Hz"
+
 # Non-UTF-8 source: a diagnostic at its place, and --json still prints JSON (it used to throw).
 printf 'material "m" {\n  describes "caf\xe9"\n  grating period 2 mm amplitude 1 N\n}\n' >"$tmp/latin1.hmat"
 "$sp" compile "$tmp/latin1.hmat" --json >"$tmp/out" 2>"$tmp/err"; check "non-UTF-8 source is exit 1" 1 $?

@@ -17,6 +17,7 @@
 #include "sandpaper/runtime/trace_csv.hpp"
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 #include "usb_devices.hpp"
 
 namespace sandpaper::cli {
@@ -138,7 +139,27 @@ int check_trace_folder(const std::string& trace) {
   return kExitOk;
 }
 
+int check_run_length(double duration_s, double rate_hz, bool records_every_tick) {
+  using schema::limits::kMaxRecordedTicks;
+  using schema::limits::kMaxRunSeconds;
+  if (!(duration_s >= 0 && duration_s <= kMaxRunSeconds)) {
+    std::cerr << "sandpaper: error: --duration must be from 0 (until stopped) to " << kMaxRunSeconds << " s\n";
+    return kExitUsage;
+  }
+  if (records_every_tick && std::isfinite(rate_hz) && duration_s * rate_hz > static_cast<double>(kMaxRecordedTicks)) {
+    std::cerr << fmt::format(
+        "sandpaper: error: a run that records every tick (--virtual-clock, --trace, the simulated joystick) is at most "
+        "{} ticks: {:g} s at {:g} Hz; give a shorter --duration (docs/RELIABILITY.md)\n",
+        kMaxRecordedTicks, static_cast<double>(kMaxRecordedTicks) / rate_hz, rate_hz);
+    return kExitUsage;
+  }
+  return kExitOk;
+}
+
 int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits) {
+  // The virtual clock's telemetry ring and a --trace hold every tick until the run ends.
+  const bool records = r.virtual_clock || !r.trace.empty();
+  if (const int rc = check_run_length(r.duration_s, r.rate_hz, records); rc != kExitOk) return rc;
   runtime::ServoConfig cfg = servo_config_of(r);
   std::atomic<bool> stop{false};
   cfg.stop_request = &stop;  // play() always has one: a run until stopped is allowed

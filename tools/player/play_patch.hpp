@@ -59,6 +59,9 @@ int check_trace_folder(const std::string& trace);
 // Checks what can be checked before loading the material (rate and servo settings for the device,
 // hand speed and amplitude, a writable trace folder): 0, or kExitUsage after printing why.
 int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits);
+// --duration (s) within schema::limits::kMaxRunSeconds, and a run that keeps a record of every tick
+// within kMaxRecordedTicks at `rate_hz`; kExitOk, or kExitUsage after saying why.
+int check_run_length(double duration_s, double rate_hz, bool records_every_tick);
 
 // Plays `program` on the simulated device `limits` and reports. `roughness_map` predicts the felt
 // roughness from the measured force. `playing`: a source to play instead of `program`'s evaluator

@@ -112,6 +112,8 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
   const double lap_m = hand == "circle" ? 2 * kPi * script.amplitude_m : 4 * script.amplitude_m;
   const double duration_s = ro.duration_s.value_or(lap_m / script.speed_m_s);
 
+  // The simulated joystick below keeps a record of every tick.
+  if (const int rc = check_run_length(duration_s, ro.rate_hz, true); rc != kExitOk) return rc;
   runtime::ServoConfig cfg = ro.servo;
   cfg.rate_hz = ro.rate_hz;
   cfg.duration_s = duration_s;

@@ -28,6 +28,11 @@ inline constexpr std::uint64_t kMaxImageChannels = 64;
 inline constexpr std::uint64_t kMaxImageFileBytes = std::uint64_t{512} << 20;
 // A workspace: at most this many patches.
 inline constexpr std::size_t kMaxWorkspacePatches = 65536;
+// A run: at most a day (`--duration`, s). A run that records every tick (the virtual clock, the
+// simulated joystick, `--trace`) at most 2^21 ticks, about 35 min at 1 kHz: each tick's record
+// is kept in memory until the run ends.
+inline constexpr double kMaxRunSeconds = 86400;
+inline constexpr std::uint64_t kMaxRecordedTicks = std::uint64_t{1} << 21;
 // Other text inputs read whole (calibration TOML, CSV, movie, shuffle and experiment files): 64 MiB.
 inline constexpr std::size_t kMaxTextFileBytes = std::size_t{64} << 20;
 
