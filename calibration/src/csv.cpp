@@ -1,5 +1,6 @@
 // The CSV reader of csv.hpp: one line at a time, quotes within a line only.
 #include "sandpaper/calibration/csv.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -105,11 +106,13 @@ CsvTable parse_csv(std::string_view text, const std::string& path) {
 }
 
 CsvTable read_csv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FitError(path.string(), 0, "cannot read the file (does it exist?)");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_csv(ss.str(), path.string());
+  std::string text;
+  try {
+    text = schema::read_input_file(path, schema::limits::kMaxTextFileBytes);
+  } catch (const schema::InputFileError& e) {
+    throw FitError(path.string(), 0, "cannot read the file: " + e.reason);
+  }
+  return parse_csv(text, path.string());
 }
 
 void require_columns(const CsvTable& t, const std::vector<std::string>& required) {

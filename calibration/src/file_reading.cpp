@@ -1,4 +1,5 @@
 #include "file_reading.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 #include "sandpaper/schema/file_schema.hpp"
 #include "sandpaper/schema/units.hpp"
@@ -30,8 +31,15 @@ std::optional<Toml> read_validated(const std::filesystem::path& path, const std:
     return std::nullopt;
   }
   Toml f{shown_as, {}};
+  std::string text;
   try {
-    f.doc = toml::parse_file(path.string());
+    text = schema::read_input_file(path, schema::limits::kMaxTextFileBytes);
+  } catch (const schema::InputFileError& e) {
+    problems.add_plain(shown_as + ": error: cannot read: " + e.reason);
+    return std::nullopt;
+  }
+  try {
+    f.doc = toml::parse(text, path.string());
   } catch (const toml::parse_error& e) {
     problems.add_at(shown_as, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column),
                     "not valid TOML: " + std::string(e.description()));

@@ -1,4 +1,5 @@
 #include "run_device.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,16 +33,16 @@ void add_run_device_options(CLI::App* run, RunDeviceOptions& d) {
 }
 
 int load_replay(const RunDeviceOptions& d, double rate_hz, std::vector<glm::dvec2>& positions, double& duration_s) {
-  std::ifstream in(d.replay, std::ios::binary);
-  if (!in) {
-    std::cerr << "sandpaper: error: cannot read the trace to replay '" << d.replay << "'\n";
+  std::string text;
+  try {
+    text = schema::read_input_file(d.replay, schema::limits::kMaxTextFileBytes);
+  } catch (const schema::InputFileError& e) {
+    std::cerr << "sandpaper: error: cannot read the trace to replay '" << d.replay << "': " << e.reason << "\n";
     return kExitBadInput;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
   std::vector<runtime::TickRecord> trace;
   try {
-    trace = runtime::parse_trace_csv(text.str());
+    trace = runtime::parse_trace_csv(text);
   } catch (const std::invalid_argument& e) {
     std::cerr << d.replay << ": error: " << e.what() << "\n";
     return kExitBadInput;

@@ -1,6 +1,7 @@
 // Reading experiment designs: TOML validated against schema/files/experiment.schema.json, then
 // the checks a schema cannot express (which task needs which section).
 #include "sandpaper/experiment/design.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -64,11 +65,13 @@ Design load_design(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw DesignError(path.string() + ": error: no such design file (an experiment design is a .toml file; docs/EXPERIMENTS.md)");
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (!in && !in.eof()) throw DesignError(path.string() + ": error: cannot read the design file");
-  return parse_design(ss.str(), path);
+  std::string text;
+  try {
+    text = schema::read_input_file(path, schema::limits::kMaxTextFileBytes);
+  } catch (const schema::InputFileError& e) {
+    throw DesignError(path.string() + ": error: cannot read the design file: " + e.reason);
+  }
+  return parse_design(text, path);
 }
 
 Design parse_design(const std::string& text, const std::filesystem::path& path) {

@@ -1,4 +1,5 @@
 #include "sandpaper/experiment/results.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -20,11 +21,12 @@ constexpr const char* kResultsFile = "results.jsonl";
 constexpr const char* kDesignCopy = "design.toml";
 
 std::string read_all(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw DesignError(p.string() + ": error: cannot read (is this a results folder of `sandpaper experiment run`?)");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  try {
+    return schema::read_input_file(p, schema::limits::kMaxTextFileBytes);
+  } catch (const schema::InputFileError& e) {
+    throw DesignError(p.string() + ": error: cannot read (" + e.reason +
+                      "; is this a results folder of `sandpaper experiment run`?)");
+  }
 }
 
 template <class T>
