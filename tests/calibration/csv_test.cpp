@@ -37,7 +37,7 @@ TEST(Csv, ErrorsCarryTheLine) {
     (void)read_csv("no/such/file.csv");
     FAIL();
   } catch (const FitError& e) {
-    EXPECT_EQ(std::string(e.what()), "no/such/file.csv: error: cannot read the file (does it exist?)");
+    EXPECT_EQ(std::string(e.what()), "no/such/file.csv: error: cannot read the file: No such file or directory");
   }
 }
 
