@@ -14,6 +14,7 @@
 #include <zlib.h>
 
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::schema {
 namespace {
@@ -50,6 +51,9 @@ class Cursor {
     need(n);
     std::string s(reinterpret_cast<const char*>(p_), n);
     p_ += n;
+    // Names go on to JSON and terminals; the compiler writes only UTF-8 (issue 16, a fuzz finding).
+    if (std::size_t bad = 0; !is_valid_utf8(s, bad))
+      throw PatchFormatError("workspace program holds a string that is not UTF-8 (byte " + std::to_string(bad) + " of it)");
     return s;
   }
   std::vector<unsigned char> bytes(std::uint64_t n) {
