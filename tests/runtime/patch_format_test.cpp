@@ -182,6 +182,29 @@ std::vector<unsigned char> patched(std::vector<unsigned char> bytes, std::size_t
   return bytes;
 }
 
+// Empty arrays are read without handing memcpy or fread a null pointer (undefined behaviour that
+// UBSan reported in issue 16: run this under the asan preset to check it), then refused; a 1-row
+// grid is read if it repeats, and refused if it does not.
+TEST(PatchFormat, EmptyAndOneRowGrids) {
+  HeightFieldTerm empty;
+  empty.spacing_m[0] = empty.spacing_m[1] = 1e-3;
+  for (const bool compact : {false, true}) {
+    PatchWriteOptions options;
+    options.compact_grids = compact;
+    EXPECT_THROW(deserialize(serialize(bare({empty}), options)), PatchFormatError);
+  }
+  HeightFieldTerm row;
+  row.nx = 35;
+  row.ny = 1;
+  row.spacing_m[0] = row.spacing_m[1] = 0.37e-3;
+  row.force_x_N.assign(35, 0.5f);
+  row.force_y_N.assign(35, 0.0f);
+  row.repeat = true;
+  EXPECT_NO_THROW(deserialize(serialize(bare({row}))));
+  row.repeat = false;
+  EXPECT_THROW(deserialize(serialize(bare({row}))), PatchFormatError);
+}
+
 TEST(PatchFormat, UnknownShapesAndCountsAreRefused) {
   const auto wave = serialize(bare({periodic(PeriodicShape::Sine, 1, 0.01)}));
   EXPECT_NO_THROW(deserialize(patched(wave, kFirstTagOffset + 4, 2)));
