@@ -13,6 +13,15 @@ namespace {
 // rounding of c - h. An extra cell only costs one rejected test.
 double margin_m(double centre, double half) { return 1e-9 * std::max(1.0, std::abs(centre) + half); }
 
+// The cell holding `offset` (m, >= 0 or NaN) at `per_m` cells per metre, within [0, n - 1]. In
+// double before the cast: a degenerate span (a denormal workspace, a fuzz finding) makes per_m
+// infinite, and inf or NaN is no uint32.
+std::uint32_t cell_index(double offset, double per_m, std::uint32_t n) noexcept {
+  const double c = offset * per_m;
+  if (!(c > 0)) return 0;
+  return c < static_cast<double>(n - 1) ? static_cast<std::uint32_t>(c) : n - 1;
+}
+
 std::uint32_t cells_for(double length, double cell) {
   if (!(cell > 0) || !(length > 0)) return 1;
   return static_cast<std::uint32_t>(std::clamp(std::ceil(length / cell), 1.0, 4096.0));
@@ -70,12 +79,8 @@ PatchGrid::PatchGrid(std::span<const PatchRect> rects, glm::dvec2 bounds_half_m)
   for (;;) {
     cells_per_m_ = {span.x > 0 ? nx_ / span.x : 0.0, span.y > 0 ? ny_ / span.y : 0.0};
     std::size_t entries = 0;
-    const auto cell_x = [&](double x) {
-      return std::min(nx_ - 1, static_cast<std::uint32_t>(std::max(0.0, (x - origin_m_.x) * cells_per_m_.x)));
-    };
-    const auto cell_y = [&](double y) {
-      return std::min(ny_ - 1, static_cast<std::uint32_t>(std::max(0.0, (y - origin_m_.y) * cells_per_m_.y)));
-    };
+    const auto cell_x = [&](double x) { return cell_index(x - origin_m_.x, cells_per_m_.x, nx_); };
+    const auto cell_y = [&](double y) { return cell_index(y - origin_m_.y, cells_per_m_.y, ny_); };
     for (std::size_t i = 0; i < rects.size(); ++i) {
       const PatchRect& r = rects[i];
       const double mx = margin_m(r.centre_m.x, r.half_m.x), my = margin_m(r.centre_m.y, r.half_m.y);
@@ -110,8 +115,8 @@ PatchGrid::PatchGrid(std::span<const PatchRect> rects, glm::dvec2 bounds_half_m)
 std::uint32_t PatchGrid::frontmost_at(glm::dvec2 p) const noexcept {
   // Written so that NaN fails it: a non-finite position is on no patch.
   if (!(p.x >= origin_m_.x && p.x <= extent_m_.x && p.y >= origin_m_.y && p.y <= extent_m_.y)) return kNoPatch;
-  const auto ix = std::min(nx_ - 1, static_cast<std::uint32_t>((p.x - origin_m_.x) * cells_per_m_.x));
-  const auto iy = std::min(ny_ - 1, static_cast<std::uint32_t>((p.y - origin_m_.y) * cells_per_m_.y));
+  const auto ix = cell_index(p.x - origin_m_.x, cells_per_m_.x, nx_);
+  const auto iy = cell_index(p.y - origin_m_.y, cells_per_m_.y, ny_);
   const std::size_t cell = std::size_t{iy} * nx_ + ix;
   for (std::uint32_t k = cell_start_[cell], end = cell_start_[cell + 1]; k < end; ++k) {
     const std::uint32_t id = cell_patches_[k];

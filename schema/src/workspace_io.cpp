@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -36,6 +37,8 @@ void put_str(std::vector<unsigned char>& out, const std::string& s) {
   put(out, static_cast<std::uint32_t>(s.size()));
   put_bytes(out, s.data(), s.size());
 }
+
+bool plausible_length(double m) { return std::isfinite(m) && m >= 1e-12 && m <= 1e12; }
 
 class Cursor {
  public:
@@ -174,8 +177,15 @@ WorkspaceProgram read_workspace_program_file(const std::filesystem::path& path) 
       auto& shared = distinct[std::string(bytes.begin(), bytes.end())];
       if (!shared) shared = std::make_shared<const PatchProgram>(deserialize(bytes));
       p.program = shared;
+      if (!plausible_length(p.size_m[0]) || !plausible_length(p.size_m[1]) || !std::isfinite(p.centre_m[0]) ||
+          !std::isfinite(p.centre_m[1]))
+        throw PatchFormatError("workspace program with a patch whose size or centre is not a plausible length");
       ws.patches.push_back(std::move(p));
     }
+    // The compiler's range for any quantity (1e-12 to 1e12 in SI): a denormal workspace size made the
+    // runtime's patch grid overflow (a fuzz finding).
+    if (!plausible_length(ws.size_m[0]) || !plausible_length(ws.size_m[1]))
+      throw PatchFormatError("workspace program whose size is not between 1e-12 m and 1e12 m");
     if (!c.done()) throw PatchFormatError("workspace program has trailing bytes");
     return ws;
   } catch (const PatchFormatError& e) {

@@ -2,7 +2,10 @@
 // writing) ignored and cut off on resume, a changed design refused.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
+
+#include <nlohmann/json.hpp>
 
 #include "sandpaper/experiment/results.hpp"
 #include "test_support.hpp"
@@ -83,6 +86,32 @@ TEST(Results, MalformedMiddleLineIsAnErrorAtItsLine) {
     FAIL() << "no error";
   } catch (const DesignError& e) {
     EXPECT_NE(std::string(e.what()).find("results.jsonl:2:1: error: malformed record"), std::string::npos) << e.what();
+  }
+}
+
+// A number where the file holds a whole number: 1.5, or one beyond an int, is a malformed record
+// at its line. nlohmann's get<int> of 2.2e9 is undefined behaviour (fuzz finding F4, issue 16).
+TEST(Results, NonWholeOrOutOfRangeCountsAreMalformedRecords) {
+  const auto d = parse_design(kDesign, "d.toml");
+  int case_index = 0;
+  for (const nlohmann::json& bad : {nlohmann::json(2222222221.6), nlohmann::json(1.5), nlohmann::json(2.2e100),
+                                    nlohmann::json(std::int64_t{4'000'000'000})}) {
+    const auto dir = std::filesystem::path(test::temp_dir("results-whole")) / ("S" + std::to_string(case_index++));
+    {
+      auto w = ResultsWriter::create(dir, d, header(d));
+      auto a = to_json(answer(0, 1));
+      a["repetition"] = bad;
+      w.append(a);
+      w.append(to_json(answer(1, 1)));
+    }
+    try {
+      read_results(dir);
+      ADD_FAILURE() << bad.dump() << " was read as a repetition count";
+    } catch (const DesignError& e) {
+      EXPECT_NE(std::string(e.what()).find("results.jsonl:2:1: error: malformed record: `repetition` must be a whole number"),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 

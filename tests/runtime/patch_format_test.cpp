@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <variant>
 
@@ -203,6 +204,25 @@ TEST(PatchFormat, EmptyAndOneRowGrids) {
   EXPECT_NO_THROW(deserialize(serialize(bare({row}))));
   row.repeat = false;
   EXPECT_THROW(deserialize(serialize(bare({row}))), PatchFormatError);
+}
+
+// A workspace program whose size is denormal made the runtime's patch grid cast inf to an
+// unsigned cell index (fuzz finding F2, issue 16): the reader refuses sizes outside the compiler's
+// range for a quantity, and the grid's cell arithmetic stays defined whatever it is given.
+TEST(PatchFormat, ImplausibleWorkspaceSizesAreRefused) {
+  const auto dir = std::filesystem::temp_directory_path() / ("sandpaper-ws-size-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const double size : {2.78e-309, 1e-13, 3.1e78, std::numeric_limits<double>::infinity()}) {
+    WorkspaceProgram ws;
+    ws.size_m[1] = size;
+    write_workspace_program_file(dir / "w.wsp", ws);
+    EXPECT_THROW(read_workspace_program_file(dir / "w.wsp"), PatchFormatError) << size;
+  }
+  WorkspaceProgram ok;
+  ok.size_m[0] = 1e-12;
+  write_workspace_program_file(dir / "w.wsp", ok);
+  EXPECT_NO_THROW(read_workspace_program_file(dir / "w.wsp"));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(PatchFormat, UnknownShapesAndCountsAreRefused) {

@@ -1,18 +1,20 @@
 #include "sandpaper/experiment/results.hpp"
-#include "sandpaper/schema/input_limits.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <climits>
 #include <chrono>
 #include <cstring>
+#include <optional>
 #include <ctime>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::experiment {
 namespace {
@@ -36,19 +38,35 @@ std::vector<T> vec(const nlohmann::json& j, const char* key) {
   return out;
 }
 
+// A whole number that fits an int, or `fallback` when the key is absent (no fallback: required).
+// nlohmann's get<int> of 2.2e100 or 1.5 is undefined behaviour (a fuzz finding): refuse instead.
+int whole(const nlohmann::json& j, const char* key, std::optional<int> fallback = std::nullopt) {
+  if (!j.contains(key)) {
+    if (fallback) return *fallback;
+    throw std::invalid_argument(std::string("no `") + key + "`");
+  }
+  const auto& v = j.at(key);
+  if (v.is_number_unsigned() && v.get<std::uint64_t>() <= static_cast<std::uint64_t>(INT_MAX))
+    return static_cast<int>(v.get<std::uint64_t>());
+  if (v.is_number_integer() && !v.is_number_unsigned() && v.get<std::int64_t>() >= INT_MIN && v.get<std::int64_t>() <= INT_MAX)
+    return static_cast<int>(v.get<std::int64_t>());
+  throw std::invalid_argument(std::string("`") + key + "` must be a whole number from " + std::to_string(INT_MIN) +
+                              " to " + std::to_string(INT_MAX));
+}
+
 Answer answer_from(const nlohmann::json& j) {
   Answer a;
-  a.trial = j.at("trial").get<int>();
+  a.trial = whole(j, "trial");
   a.practice = j.value("practice", false);
-  a.repetition = j.value("repetition", 0);
+  a.repetition = whole(j, "repetition", 0);
   a.stimuli = vec<std::string>(j, "stimuli");
   a.compiled_force_N = vec<double>(j, "compiled_force_N");
   a.felt_force_N = vec<double>(j, "felt_force_N");
   a.period_m = vec<double>(j, "period_m");
   if (j.contains("response") && !j.at("response").is_null()) a.response = j.at("response").get<double>();
   a.increment = j.value("increment", 0.0);
-  a.comparison_interval = j.value("comparison_interval", 0);
-  a.chosen_interval = j.value("chosen_interval", 0);
+  a.comparison_interval = whole(j, "comparison_interval", 0);
+  a.chosen_interval = whole(j, "chosen_interval", 0);
   a.correct = j.value("correct", false);
   if (j.contains("piles")) a.piles = j.at("piles").get<std::vector<std::vector<std::string>>>();
   a.rt_s = j.value("rt_s", 0.0);
@@ -123,12 +141,12 @@ Results read_results(const std::filesystem::path& dir) {
         r.header.device = j.value("device", "");
         r.header.observer = j.value("observer", "");
         r.header.started = j.value("started", "");
-        r.header.trials = j.at("trials").get<int>();
+        r.header.trials = whole(j, "trials");
         header = true;
       } else if (kind == "answer") {
         r.answers.push_back(answer_from(j));
       } else if (kind == "interrupted") {
-        r.interruptions.push_back({j.at("trial").get<int>(), j.value("cause", "")});
+        r.interruptions.push_back({whole(j, "trial"), j.value("cause", "")});
       } else {
         throw std::invalid_argument("unknown record `" + kind + "`");
       }
