@@ -84,8 +84,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const fs::path full = studio::confined_path(studio_root(), relative);
     fuzz::check(inside(full, studio_root()), "a confined path outside the studio's folder: " + full.string());
+    // Links followed as far as the path exists: what opening or creating the file would reach.
     std::error_code ec;
-    const fs::path real = fs::canonical(full, ec);
+    const fs::path real = fs::weakly_canonical(full, ec);
     if (!ec) fuzz::check(inside(real, studio_root()), "a confined path whose links lead outside: " + real.string());
   } catch (const studio::OutsideFolder&) {
   }
