@@ -67,6 +67,10 @@ TEST(RequestGuard, ConfinesPathsToTheFolder) {
   EXPECT_THROW(studio::confined_path(root, "/etc/passwd"), studio::OutsideFolder);
   EXPECT_THROW(studio::confined_path(root, "link/x.hmat"), studio::OutsideFolder);  // a link that leads out
   EXPECT_THROW(studio::confined_path(root, ""), studio::OutsideFolder);
+  // Found by fuzzing (issue 16): `..` after a folder that does not exist, then the link out; and a
+  // name too long for the file system, which threw std::filesystem_error instead of a refusal.
+  EXPECT_THROW(studio::confined_path(root, "missing/../link/passwd"), studio::OutsideFolder);
+  EXPECT_THROW(studio::confined_path(root, std::string(300, 'a')), studio::OutsideFolder);
 }
 
 TEST(DummyJoystick, MovesTowardTheTargetNoFasterThanItsTopSpeed) {

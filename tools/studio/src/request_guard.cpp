@@ -64,7 +64,12 @@ std::filesystem::path confined_path(const std::filesystem::path& root, const std
   if (rel.is_absolute() || rel.has_root_name() || rel.has_root_directory())
     throw OutsideFolder("'" + relative + "' is an absolute path; give a path relative to the studio's folder");
   const fs::path base = fs::canonical(root);
-  const fs::path full = fs::weakly_canonical(base / rel);
+  // `..` is applied before symlinks are resolved: weakly_canonical keeps "missing/../link" lexical
+  // past a component that does not exist, so a link there would lead out unseen (a fuzz finding).
+  // Errors (a name too long, a link loop) are refusals, not exceptions (another one).
+  std::error_code ec;
+  const fs::path full = fs::weakly_canonical(base / rel.lexically_normal(), ec);
+  if (ec) throw OutsideFolder("'" + relative + "' cannot be resolved in the studio's folder: " + ec.message());
   // Lexically inside: every component of base is a prefix of full's.
   auto b = base.begin();
   auto f = full.begin();
