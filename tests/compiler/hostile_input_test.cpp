@@ -157,6 +157,16 @@ TEST(HostileInput, PeriodsTheDeviceCannotPlayAreRefused) {
   EXPECT_TRUE(compile("0.2 mm", "sandpaper-1995").ok());
 }
 
+// Fuzz finding F1: a thesis stimulus name's kernel got no bound, and a huge one overflowed the blur
+// radius's int (undefined behaviour). The name now says why it cannot be made.
+TEST(HostileInput, AThesisNameWithAHugeKernelIsRefused) {
+  const auto r = test::shipped_compiler().compile_text("like gridB5W5_17777777777777777777777777777777777777777", "<f1>");
+  ASSERT_EQ(test::codes(r), std::vector<std::string>{"E0301"});
+  EXPECT_NE(compiler::format_diagnostics(r.diagnostics).find("more than the largest kernel, 256 px"), std::string::npos)
+      << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_TRUE(test::shipped_compiler().compile_text("like gridB5W5_2", "<ok>").ok());
+}
+
 // --- images ---
 
 fs::path material_with_image(const fs::path& dir, const std::string& image) {
