@@ -35,6 +35,14 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/library/ DESTINATION ${SANDPAPER_INSTALL
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/calibration/ DESTINATION ${SANDPAPER_INSTALL_DATA_DIR}/calibration
   PATTERN include EXCLUDE PATTERN src EXCLUDE PATTERN CMakeLists.txt EXCLUDE)
 
+# Only an install has sandpaper/package_location.h: applications including the API headers from it
+# register where its data lies, from where the header lies (relocatable; compiler/data_dirs.hpp).
+file(RELATIVE_PATH SANDPAPER_HEADER_DIR_TO_DATA ${CMAKE_INSTALL_FULL_INCLUDEDIR}/sandpaper ${SANDPAPER_INSTALL_FULL_DATA_DIR})
+configure_file(${CMAKE_CURRENT_LIST_DIR}/package_location.h.in
+  ${CMAKE_CURRENT_BINARY_DIR}/package_location/sandpaper/package_location.h @ONLY)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/package_location/sandpaper/package_location.h
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/sandpaper)
+
 install(EXPORT SandpaperTargets NAMESPACE Sandpaper:: DESTINATION ${SANDPAPER_CMAKE_DIR})
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/SandpaperConfig.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/SandpaperConfig.cmake

@@ -4,18 +4,16 @@
 
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/compiler/data_dirs.hpp"
 #include "sandpaper/sandpaper.hpp"
 
 namespace sandpaper {
 namespace {
 
 // A missing data directory would otherwise show up later as "unknown material" or a list of
-// unreadable calibration files; say which directory and how to point elsewhere instead.
-std::filesystem::path existing_dir(std::filesystem::path dir, const char* what, const char* env) {
-  std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec))
-    throw Error(std::string("no ") + what + " directory at " + dir.string() + "; pass one, or set " + env);
-  return dir;
+// unreadable calibration files; name every missing one at once, with what chose it.
+compiler::DataDirChoice given_or_found(const std::filesystem::path& given, compiler::DataDirChoice found) {
+  return given.empty() ? found : compiler::DataDirChoice{given, "LibraryOptions"};
 }
 
 }  // namespace
@@ -31,11 +29,13 @@ Library::Library(const std::filesystem::path& library_dir)
     : Library(LibraryOptions{.library_dir = library_dir, .calibration_dir = {}, .device = "sim"}) {}
 
 Library::Library(LibraryOptions options) : impl_(std::make_unique<Impl>()) {
-  impl_->library_dir = existing_dir(
-      options.library_dir.empty() ? compiler::default_library_dir() : options.library_dir, "library", "SANDPAPER_LIBRARY");
-  impl_->calibration_dir =
-      existing_dir(options.calibration_dir.empty() ? calibration::default_calibration_dir() : options.calibration_dir,
-                   "calibration", "SANDPAPER_CALIBRATION");
+  auto library = given_or_found(options.library_dir, compiler::find_library_dir());
+  auto calibration = given_or_found(options.calibration_dir, compiler::find_calibration_dir());
+  if (auto missing = compiler::missing_data_dirs_message({{"library", library}, {"calibration", calibration}});
+      !missing.empty())
+    throw Error(missing);
+  impl_->library_dir = std::move(library.dir);
+  impl_->calibration_dir = std::move(calibration.dir);
   try {
     impl_->compiler = std::make_unique<compiler::Compiler>(
         compiler::CompileOptions{options.device, impl_->library_dir, impl_->calibration_dir});

@@ -5,8 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <string>
 #include <thread>
 
+#include "sandpaper/compiler/data_dirs.hpp"
 #include "sandpaper/sandpaper.hpp"
 
 namespace {
@@ -90,6 +95,56 @@ TEST(Api, MissingDataDirectoryIsNamed) {
   }
   EXPECT_THROW(Library(sandpaper::LibraryOptions{.library_dir = {}, .calibration_dir = {}, .device = "no-such-device"}),
                sandpaper::Error);
+}
+
+// Sets an environment variable for one scope (tests run one per process under ctest).
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    value ? ::setenv(name, value, 1) : ::unsetenv(name);
+  }
+  ~ScopedEnv() { old_ ? ::setenv(name_, old_->c_str(), 1) : ::unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+TEST(Api, EveryMissingDataDirectoryIsNamedAtOnceWithWhatChoseIt) {
+  ScopedEnv lib("SANDPAPER_LIBRARY", nullptr), cal("SANDPAPER_CALIBRATION", nullptr);
+  ScopedEnv data("SANDPAPER_DATA_DIR", "/nonexistent/sandpaper-data");
+  try {
+    Library library;
+    FAIL() << "no exception";
+  } catch (const sandpaper::Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("no library directory at /nonexistent/sandpaper-data/library (chosen by $SANDPAPER_DATA_DIR)"),
+              std::string::npos) << what;
+    EXPECT_NE(what.find("no calibration directory at /nonexistent/sandpaper-data/calibration (chosen by "
+                        "$SANDPAPER_DATA_DIR)"), std::string::npos) << what;
+    EXPECT_NE(what.find("Set SANDPAPER_DATA_DIR"), std::string::npos) << what;
+  }
+}
+
+TEST(Api, DataDirectoryOverridesApplyMostSpecificFirst) {
+  const std::string src = SANDPAPER_SOURCE_DIR;
+  ScopedEnv lib("SANDPAPER_LIBRARY", nullptr), cal("SANDPAPER_CALIBRATION", nullptr);
+  {
+    ScopedEnv data("SANDPAPER_DATA_DIR", src.c_str());  // the source tree holds library/ and calibration/
+    EXPECT_EQ(sandpaper::compiler::find_library_dir().dir, std::filesystem::path(src) / "library");
+    EXPECT_EQ(sandpaper::compiler::find_library_dir().chosen_by, "$SANDPAPER_DATA_DIR");
+    EXPECT_EQ(Library().calibration_dir(), std::filesystem::path(src) / "calibration");
+    ScopedEnv only_lib("SANDPAPER_LIBRARY", (src + "/examples").c_str());
+    EXPECT_EQ(sandpaper::compiler::find_library_dir().dir, std::filesystem::path(src) / "examples");
+    EXPECT_EQ(sandpaper::compiler::find_library_dir().chosen_by, "$SANDPAPER_LIBRARY");
+    EXPECT_EQ(sandpaper::compiler::find_calibration_dir().chosen_by, "$SANDPAPER_DATA_DIR");
+  }
+  ScopedEnv data("SANDPAPER_DATA_DIR", nullptr);
+  EXPECT_EQ(sandpaper::compiler::find_library_dir().chosen_by, "the built-in default");
+  EXPECT_EQ(sandpaper::compiler::find_library_dir().dir, std::filesystem::path(src) / "library");
 }
 
 TEST(Api, PlaysForTheDurationWithTheCompiledForce) {

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# ctest install.consumer: install this build, then build and run tests/consumer/ against the
-# installed package only, once through find_package(Sandpaper) and once through pkg-config.
+# ctest install.consumer: install this build, move the installed prefix elsewhere (relocation), then
+# build and run tests/consumer/ against the moved package only, once through find_package(Sandpaper)
+# and once through pkg-config; run the installed CLI and player from there; and check the error when
+# the data is gone.
 # Usage: run_consumer_test.sh BUILD_DIR SOURCE_DIR INSTALL_PREFIX INSTALL_LIBDIR INSTALL_DATA_DIR CXX [CXX_FLAGS]
 #   INSTALL_PREFIX, INSTALL_LIBDIR and INSTALL_DATA_DIR are the configured (absolute) ones.
 # The install is staged with DESTDIR (as packagers do), so the configured prefix is never written.
-# The installed libraries look for their data in INSTALL_DATA_DIR, compiled in: the first run checks
-# that this is what they report, the others point SANDPAPER_LIBRARY/CALIBRATION at the staged copy.
+# Nothing points the programs at their data: they must find it from where the package lies now.
 set -euo pipefail
 build=$1 src=$2 prefix=$3 libdir=$4 datadir=$5 cxx=$6 cxxflags=${7:-}
 
@@ -15,16 +16,22 @@ mkdir -p "$work"
 stage=$work/stage
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
-echo "== install into DESTDIR=$stage (prefix $prefix)"
+echo "== install into DESTDIR=$stage (prefix $prefix), then move the prefix to $work/moved"
 DESTDIR=$stage cmake --install "$build" > "$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
-root=$stage$prefix
-for f in "$root/include/sandpaper/sandpaper.hpp" "$stage$libdir/cmake/Sandpaper/SandpaperConfig.cmake" \
-         "$stage$libdir/pkgconfig/sandpaper.pc" "$stage$datadir/library" \
-         "$stage$datadir/calibration/levels/roughness-levels.toml"; do
+# Everything below lives under the prefix; keep its layout, change its place.
+rel_lib=${libdir#"$prefix"/} rel_data=${datadir#"$prefix"/}
+[[ $rel_lib != "$libdir" && $rel_data != "$datadir" ]] || fail "libdir $libdir or datadir $datadir is not under the prefix $prefix"
+root=$work/moved
+mv "$stage$prefix" "$root"
+data=$root/$rel_data
+for f in "$root/include/sandpaper/sandpaper.hpp" "$root/$rel_lib/cmake/Sandpaper/SandpaperConfig.cmake" \
+         "$root/$rel_lib/pkgconfig/sandpaper.pc" "$data/library" "$data/calibration/levels/roughness-levels.toml" \
+         "$root/bin/sandpaper" "$root/bin/sandpaper-play"; do
   [[ -e $f ]] || fail "not installed: $f"
 done
-[[ -n $(find "$stage$datadir/library" -name corduroy.hmat) ]] || fail "library entry corduroy not installed"
-[[ ! -e $stage$datadir/calibration/src ]] || fail "calibration's code was installed as data"
+[[ -n $(find "$data/library" -name corduroy.hmat) ]] || fail "library entry corduroy not installed"
+[[ ! -e $data/calibration/src ]] || fail "calibration's code was installed as data"
+unset SANDPAPER_LIBRARY SANDPAPER_CALIBRATION SANDPAPER_DATA_DIR
 
 # The build tree's own answer, from the source tree's data, for comparison.
 expected=$("$build/bin/play_material" corduroy) || fail "build tree's play_material corduroy"
@@ -32,19 +39,25 @@ expected_force=$(sed -n 's/.*(compiled \([0-9.e+-]*\) N).*/\1/p' <<<"$expected")
 [[ -n $expected_force ]] || fail "no compiled force in: $expected"
 echo "build tree: $expected"
 
+# The data directories compiled in are NUL-terminated strings; debug information naming source files
+# under $src/calibration/include is not a data path, hence the \x00.
+no_source_paths() {  # $1: an installed or consumer executable
+  local d
+  for d in library calibration; do
+    if LC_ALL=C grep -a -q -P "\\Q$src/$d\\E\\x00" "$1"; then fail "$1 has the source tree's $d path $src/$d compiled in"; fi
+  done
+}
+
 check_run() {  # $1: executable, $2: how it was built
   local exe=$1 how=$2 out
   [[ -x $exe ]] || fail "$how: no executable"
-  # Nothing of the source tree's data may be compiled in.
-  if grep -a -q -F "$src/library" "$exe"; then fail "$how: $exe contains the source tree's library path $src/library"; fi
-  # Without the environment, the installed default: the configured data directory.
-  out=$(env -u SANDPAPER_LIBRARY -u SANDPAPER_CALIBRATION "$exe" corduroy 2>&1) || true
-  grep -q -F "$datadir/library" <<<"$out" || fail "$how: does not use the installed library directory $datadir/library: $out"
-  # With the environment pointing at the staged install: plays corduroy.
-  out=$(SANDPAPER_LIBRARY=$stage$datadir/library SANDPAPER_CALIBRATION=$stage$datadir/calibration "$exe" corduroy 2>&1) ||
-    fail "$how: run failed: $out"
+  no_source_paths "$exe"
+  out=$("$exe" corduroy 2>&1) || fail "$how: run failed: $out"
   echo "$how: $out"
-  grep -q -F "library $stage$datadir/library" <<<"$out" || fail "$how: library directory not reported"
+  local reported
+  reported=$(sed -n 's/^library //p' <<<"$out")
+  [[ -n $reported && $(realpath -m "$reported") == $(realpath -m "$data/library") ]] ||
+    fail "$how: does not use the moved package's library $data/library: $out"
   grep -q "^played 500 ticks, .*stop completed$" <<<"$out" || fail "$how: did not play 500 ticks to completion"
   local compiled played
   compiled=$(sed -n 's/.*compiled_max_lateral_force_N \([0-9.e+-]*\).*/\1/p' <<<"$out")
@@ -57,21 +70,55 @@ check_run() {  # $1: executable, $2: how it was built
   }' || fail "$how: forces"
 }
 
-echo "== find_package(Sandpaper)"
+echo "== find_package(Sandpaper) from the moved prefix"
 cmake -S "$src/tests/consumer" -B "$work/cmake-build" -DCMAKE_PREFIX_PATH="$root" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_CXX_FLAGS="$cxxflags" -DCMAKE_FIND_PACKAGE_NO_SYSTEM_PACKAGE_REGISTRY=ON \
   > "$work/configure.log" 2>&1 || { cat "$work/configure.log"; fail "configure against the installed package"; }
 grep -q -F "$root" "$work/cmake-build/CMakeCache.txt" || fail "Sandpaper was not found in $root"
+grep -i "sandpaper" "$work/configure.log" | grep -i "not exist" && fail "configure warns of a missing Sandpaper path"
+grep -q -F "Sandpaper_DATA_DIR=$data" "$work/configure.log" || fail "Sandpaper_DATA_DIR is not the moved package's $data"
 cmake --build "$work/cmake-build" -j2 > "$work/build.log" 2>&1 || { cat "$work/build.log"; fail "build"; }
 check_run "$work/cmake-build/play_by_name" "find_package"
 
-echo "== pkg-config sandpaper"
-export PKG_CONFIG_PATH=$stage$libdir/pkgconfig
+echo "== pkg-config sandpaper from the moved prefix"
+export PKG_CONFIG_PATH=$root/$rel_lib/pkgconfig
 flags=$(pkg-config --cflags --libs sandpaper) || fail "pkg-config --cflags --libs sandpaper"
 inc=$(pkg-config --variable=includedir sandpaper)
 [[ $(realpath -m "$inc") == $(realpath -m "$root/include") ]] || fail "pkg-config's includedir $inc is not the install's"
-# shellcheck disable=SC2086  # flags are words
-"$cxx" -std=c++20 $cxxflags "$src/tests/consumer/play_by_name.cpp" -o "$work/play_by_name_pc" $flags \
+# The flags carry a quoted define: use them as make would (through the shell), hence eval.
+eval "\"\$cxx\" -std=c++20 $cxxflags \"\$src/tests/consumer/play_by_name.cpp\" -o \"\$work/play_by_name_pc\" $flags" \
   > "$work/pc-build.log" 2>&1 || { cat "$work/pc-build.log"; fail "build with pkg-config"; }
 check_run "$work/play_by_name_pc" "pkg-config"
+
+echo "== a C program (sandpaper/sandpaper.h) through pkg-config, linked by the C++ driver"
+cflags=$(pkg-config --cflags sandpaper) libs=$(pkg-config --libs sandpaper)
+eval "cc -std=c11 -Wall -Wextra -Werror $cflags -c \"\$src/tests/api/c_api_test.c\" -o \"\$work/c_api_test.o\"" \
+  > "$work/c-build.log" 2>&1 || { cat "$work/c-build.log"; fail "compile the C program"; }
+eval "\"\$cxx\" \"\$work/c_api_test.o\" -o \"\$work/c_consumer\" $libs -lm" >> "$work/c-build.log" 2>&1 ||
+  { cat "$work/c-build.log"; fail "link the C program"; }
+no_source_paths "$work/c_consumer"
+out=$("$work/c_consumer" 2>&1) || fail "C program: $out"
+grep -q "^c api: [0-9]* checks, 0 failed$" <<<"$out" || fail "C program: $out"
+echo "C program: $out"
+
+echo "== the installed CLI and player, from the moved prefix"
+no_source_paths "$root/bin/sandpaper"
+no_source_paths "$root/bin/sandpaper-play"
+out=$("$root/bin/sandpaper" compile -e corduroy -o "$work/corduroy.patch" 2>&1) || fail "installed sandpaper compile: $out"
+out=$("$root/bin/sandpaper" run "$work/corduroy.patch" --duration 0.2 --virtual-clock 2>&1) ||
+  fail "installed sandpaper run (through the installed sandpaper-play): $out"
+echo "sandpaper run: $(tail -1 <<<"$out")"
+out=$("$root/bin/sandpaper" library search corduroy 2>&1) || fail "installed sandpaper library search: $out"
+grep -q corduroy <<<"$out" || fail "installed library search does not find corduroy: $out"
+
+echo "== the data gone: one error naming both directories"
+mv "$data" "$data.away"
+out=$("$work/cmake-build/play_by_name" corduroy 2>&1) && fail "played without its data: $out"
+echo "without data: $out"
+grep -q -F "no library directory at $data/library (chosen by the package this program was built against)" <<<"$out" &&
+  grep -q -F "no calibration directory at $data/calibration" <<<"$out" && grep -q -F "SANDPAPER_DATA_DIR" <<<"$out" ||
+  fail "the error does not name both missing directories and the override: $out"
+out=$(SANDPAPER_DATA_DIR=$data.away "$work/cmake-build/play_by_name" corduroy 2>&1) || fail "SANDPAPER_DATA_DIR not honoured: $out"
+grep -q -F "library $data.away/library" <<<"$out" || fail "SANDPAPER_DATA_DIR not used: $out"
+mv "$data.away" "$data"
 echo "PASS"

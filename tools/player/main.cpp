@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   app.add_option("file", file, "patch program (.patch) or workspace program (.wsp) to play")->required();
   app.add_option("--device", device, "device the patch was compiled for (sim), or usb: the first HID PID joystick found")
       ->capture_default_str();
-  app.add_option("--calibration", calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+  app.add_option("--calibration", calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   app.add_option("--library", library_dir, "accepted as `sandpaper run` does; a compiled patch needs no library");
   app.add_option("--crossfade", crossfade_ms, "workspaces: crossfade time at patch edges, ms")->capture_default_str();
   app.add_flag("--json", r.json, "print one JSON object instead of text");

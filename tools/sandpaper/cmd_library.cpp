@@ -31,8 +31,8 @@ std::string num(double v, int digits = 3) {
 std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
 
 void add_paths(CLI::App* sub, LibraryCommandOptions& o, bool index) {
-  sub->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY or the shipped library/)");
-  sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+  sub->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+  sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   if (index)
     sub->add_option("--index", o.index, "SQLite index file (default: $SANDPAPER_LIBRARY_INDEX or <library>/.index/library.sqlite)");
 }

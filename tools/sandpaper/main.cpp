@@ -25,8 +25,8 @@ void add_common(CLI::App* sub, sandpaper::cli::CommonOptions& o, bool input) {
     sub->add_option("-e,--expression", o.expression, "material as one line: statements separated by ';', or a library name");
   }
   sub->add_option("--device", o.device, "device calibration to compile for (calibration/devices/); run also takes usb: the first HID PID joystick found")->capture_default_str();
-  sub->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY or the shipped library/)");
-  sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+  sub->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+  sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   sub->add_flag("--json", o.json, "print one JSON object instead of text");
 }
 
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
   array->add_option("--shade", ao.shade, "also write the shaded picture, lit from the upper left (.shade)");
 
   auto* devices = app.add_subcommand("devices", "list the USB force-feedback (HID PID) joysticks present");
-  devices->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+  devices->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
 
   auto* preview = app.add_subcommand("preview", "write a material's preview pictures: shaded height field, force field, force along a scan line");
   add_common(preview, o, true);
@@ -116,8 +116,8 @@ int main(int argc, char** argv) {
   studio->add_option("--device", o.device, "sim (Dummy mode: the mouse moves the hand) or usb (the first HID PID joystick)")->capture_default_str();
   studio->add_option("--listen", studio_opts.listen, "ADDR:PORT to serve on (port 0: any free port); a non-loopback address is warned about")->capture_default_str();
   studio->add_option("--rate", studio_opts.rate_hz, "servo rate, Hz")->capture_default_str();
-  studio->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY or the shipped library/)");
-  studio->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION or the shipped calibration/)");
+  studio->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+  studio->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
 
   CalibrateOptions calibrate_opts;
   add_calibrate_command(app, calibrate_opts);

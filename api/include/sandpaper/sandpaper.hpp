@@ -22,6 +22,12 @@
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
+// In an installed package: register where its data lies, found from where its headers lie
+// (cmake/package_location.h.in; the source tree has no such header).
+#if __has_include(<sandpaper/package_location.h>)
+#include <sandpaper/package_location.h>
+#endif
+
 namespace sandpaper {
 
 // Base of everything this API throws for bad input or missing data; what() says how to fix it.
@@ -72,8 +78,10 @@ class Material {
 };
 
 struct LibraryOptions {
-  std::filesystem::path library_dir;      // empty: $SANDPAPER_LIBRARY, else the shipped library
-  std::filesystem::path calibration_dir;  // empty: $SANDPAPER_CALIBRATION, else the shipped calibration
+  // Empty: compiler::find_library_dir() / find_calibration_dir(): $SANDPAPER_LIBRARY /
+  // $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR, else the shipped data (docs/API.md, "Data directories").
+  std::filesystem::path library_dir;
+  std::filesystem::path calibration_dir;
   std::string device = "sim";             // device calibration to compile for (calibration/devices/)
 };
 
@@ -84,8 +92,9 @@ class Library {
   Library();
   // Another library directory (entries `<name>.hmat`), the shipped calibration, device "sim".
   explicit Library(const std::filesystem::path& library_dir);
-  // Throws Error if a data directory is missing or unreadable (the message names it and the
-  // environment variable that overrides it), if the calibration is malformed, or the device unknown.
+  // Throws Error if a data directory is missing (the message names every missing one, what chose
+  // it, and the environment variables that override it), if the calibration is malformed, or the
+  // device unknown.
   explicit Library(LibraryOptions options);
   ~Library();
   Library(Library&&) noexcept;

@@ -179,8 +179,9 @@ class CalibrationSet {
 PsychophysicalMap load_map_file(const std::filesystem::path& path, const std::string& shown_as = {});
 DeviceCalibration load_device_file(const std::filesystem::path& path, const std::string& shown_as = {});
 
-// The calibration directory: $SANDPAPER_CALIBRATION if set, else the shipped calibration/ (the source
-// tree's in a build tree, <datadir>/sandpaper/calibration when installed; compiler/src/data_dirs.cpp).
+// The calibration directory: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, else the shipped
+// calibration/ (the source tree's in a build tree, the installed package's when installed); defined
+// with compiler::find_calibration_dir() in compiler/src/data_dirs.cpp.
 std::filesystem::path default_calibration_dir();
 
 }  // namespace sandpaper::calibration

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/compiler/data_dirs.hpp"
 #include "sandpaper/compiler/diagnostic.hpp"
 #include "sandpaper/compiler/library.hpp"
 #include "sandpaper/compiler/resolved.hpp"

@@ -74,8 +74,8 @@ class Library {
 // Reads the material file's metadata statements into `e` (family, aliases, licence, ...).
 void read_entry_metadata(LibraryEntry& e);
 
-// $SANDPAPER_LIBRARY if set, else the shipped library: the source tree's in a build tree,
-// <datadir>/sandpaper/library when installed (compiler/src/data_dirs.cpp).
+// find_library_dir().dir: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, else the shipped library
+// (the source tree's in a build tree, the installed package's when installed; data_dirs.hpp).
 std::filesystem::path default_library_dir();
 
 }  // namespace sandpaper::compiler
