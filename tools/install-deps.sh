@@ -15,6 +15,7 @@ pkgs=(
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium python3                          # the library catalog's and the studio's browser tests (tests/*/browser_test.py)
   libcpp-httplib-dev                        # the studio's HTTP server (tools/studio/, docs/STUDIO.md)
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (bindings/python, docs/PYTHON.md)
 )
 missing=()
 for p in "${pkgs[@]}"; do

@@ -111,6 +111,23 @@ echo "sandpaper run: $(tail -1 <<<"$out")"
 out=$("$root/bin/sandpaper" library search corduroy 2>&1) || fail "installed sandpaper library search: $out"
 grep -q corduroy <<<"$out" || fail "installed library search does not find corduroy: $out"
 
+# The Python module, when built (SANDPAPER_TEST_PYTHON: the interpreter it was built for): installed
+# into the prefix's dist-packages, it finds the data from where it lies.
+if [[ -n ${SANDPAPER_TEST_PYTHON:-} ]]; then
+  echo "== the Python module, installed, from the moved prefix"
+  mod=$(find "$root" -name 'sandpaper*.so' -path '*-packages*' | head -1)
+  [[ -n $mod ]] || fail "the Python module was not installed under $root"
+  no_source_paths "$mod"
+  out=$(cd "$work" && PYTHONPATH=$(dirname "$mod") "$SANDPAPER_TEST_PYTHON" -c '
+import sandpaper
+lib = sandpaper.Library()
+print("library", lib.library_dir)
+print("corduroy", lib.compile("corduroy").max_lateral_force_N)' 2>&1) || fail "import the installed module: $out"
+  echo "python: $out"
+  reported=$(sed -n 's/^library //p' <<<"$out")
+  [[ $(realpath -m "$reported") == $(realpath -m "$data/library") ]] || fail "the installed module does not use $data/library: $out"
+fi
+
 echo "== the data gone: one error naming both directories"
 mv "$data" "$data.away"
 out=$("$work/cmake-build/play_by_name" corduroy 2>&1) && fail "played without its data: $out"

@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/explain.hpp"
+#include "sandpaper/compiler/explain_json.hpp"
 #include "sandpaper/compiler/felt_at_speed.hpp"
 #include "sandpaper/compiler/force_levels.hpp"
 #include "sandpaper/compiler/sources_report.hpp"
@@ -58,41 +59,7 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     auto j = compiler::compile_json(*in->compile, out_path.empty() ? std::nullopt : std::optional<std::string>(out_path));
     if (explain) {
       j.erase("output");
-      j["knowledge"] = compiler::knowledge_json(compiler::assess_knowledge(*in->compile->material, prog, c.calibration()),
-                                                c.calibration());
-      j["maps"] = compiler::maps_json(c.calibration());
-      nlohmann::json felt = nlohmann::json::array();
-      const double rate = compiler::default_servo_rate_hz(c.device());
-      for (const auto& f : compiler::felt_at_explain_speeds(prog, rate))
-        felt.push_back({{"speed_mm_s", f.speed_m_s * 1e3}, {"rate_hz", f.rate_hz}, {"peak_N", f.peak_N}, {"fraction", f.fraction}});
-      j["felt_at_speed"] = felt;
-      // The remedies at each common hand speed (W0350), measured: a faster servo, or wider walls.
-      nlohmann::json remedies = nlohmann::json::array();
-      const double weber = c.calibration().knowledge().force_jnd.weber_fraction;
-      std::vector<double> speeds = compiler::kCommonHandSpeeds_m_s;
-      if (o.design_speed_mm_s > 0) speeds.push_back(o.design_speed_mm_s * 1e-3);
-      for (double v : speeds) {
-        const auto r = compiler::felt_remedies(*in->compile->material, prog, v, rate, std::max(rate, c.device().max_rate_hz), weber);
-        if (r.speed_m_s == 0) continue;
-        remedies.push_back({{"speed_mm_s", v * 1e3}, {"design_speed", o.design_speed_mm_s > 0 && v == speeds.back()},
-                            {"rate_hz", rate}, {"peak_N", r.now.peak_N}, {"fraction", r.now.fraction},
-                            {"faster_servo", r.fast_rate_hz > 0 ? nlohmann::json{{"rate_hz", r.fast_rate_hz}, {"peak_N", r.fast.peak_N}}
-                                                                : nlohmann::json(nullptr)},
-                            {"smoothing", r.smoothing_m > 0 ? nlohmann::json{{"smoothing_mm", r.smoothing_m * 1e3}, {"peak_N", r.smoothed.peak_N}}
-                                                            : nlohmann::json(nullptr)}});
-      }
-      j["felt_remedies"] = remedies;
-      // An emulated device (sandpaper-1995): what its quantisation leaves of each force table.
-      const auto& dev = c.device();
-      if (dev.emulated && dev.position_resolution_m > 0) {
-        const double step_N = dev.quantized() ? dev.force_step_N(0) : 0.0;
-        nlohmann::json q = nlohmann::json::array();
-        for (const auto& t : compiler::quantize_tables(prog, dev.position_resolution_m, step_N, dev.command_max))
-          q.push_back({{"kind", t.kind}, {"spacing_mm", t.spacing_m * 1e3}, {"positions_per_spacing", t.positions_per_spacing},
-                       {"table_levels", t.table_levels}, {"device_levels", t.device_levels}, {"largest_N", t.largest_N}});
-        j["device_quantization"] = {{"device", dev.name}, {"position_step_mm", dev.position_resolution_m * 1e3},
-                                    {"force_step_N", step_N}, {"command_max", dev.command_max}, {"tables", q}};
-      }
+      j.update(compiler::explain_json(*in->compile->material, prog, c, o.design_speed_mm_s * 1e-3));
     }
     std::cout << j.dump(2) << "\n";
   } else if (explain) {

@@ -1,0 +1,276 @@
+// The Python module `sandpaper` (pybind11): compile materials by name or text, read what the compiler
+// decided (explain) and the lateral force field as numpy arrays, and play them on the simulated
+// joystick with the servo thread running while Python does other things. docs/PYTHON.md.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <dlfcn.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sandpaper/compiler/compile_json.hpp"
+#include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/compiler/data_dirs.hpp"
+#include "sandpaper/compiler/explain_json.hpp"
+#include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/runtime/recording_device.hpp"
+#include "sandpaper/sandpaper.h"
+#include "sandpaper/sandpaper.hpp"
+
+namespace py = pybind11;
+namespace sp = sandpaper;
+
+namespace {
+
+// JSON from the compiler, as Python dicts and lists (the same keys and units as the CLI's --json).
+py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+// A failed compile, carried to Python with its diagnostics as data.
+struct CompileFailure {
+  std::string message;
+  nlohmann::json diagnostics;
+};
+
+// The compiler with its data, shared by the materials it compiled (explain needs it).
+struct PyLibrary {
+  std::shared_ptr<const sp::compiler::Compiler> compiler;
+  std::filesystem::path library_dir, calibration_dir;
+};
+
+// A compiled material: the compile (resolved layers, diagnostics) and the playable program.
+struct PyMaterial {
+  std::shared_ptr<const sp::compiler::Compiler> compiler;
+  std::shared_ptr<const sp::compiler::CompileResult> result;
+  sp::Material material;
+};
+
+PyLibrary open_library(std::optional<std::filesystem::path> library_dir, std::optional<std::filesystem::path> calibration_dir,
+                       const std::string& device) {
+  // The same choice and the same message for missing folders as sandpaper::Library.
+  auto library = library_dir ? sp::compiler::DataDirChoice{*library_dir, "library_dir="} : sp::compiler::find_library_dir();
+  auto calibration =
+      calibration_dir ? sp::compiler::DataDirChoice{*calibration_dir, "calibration_dir="} : sp::compiler::find_calibration_dir();
+  if (auto missing = sp::compiler::missing_data_dirs_message({{"library", library}, {"calibration", calibration}});
+      !missing.empty())
+    throw sp::Error(missing);
+  try {
+    auto c = std::make_shared<const sp::compiler::Compiler>(
+        sp::compiler::CompileOptions{device, library.dir, calibration.dir});
+    return PyLibrary{std::move(c), library.dir, calibration.dir};
+  } catch (const std::exception& e) {  // malformed calibration, unknown device (the message lists the known ones)
+    throw sp::Error(e.what());
+  }
+}
+
+PyMaterial compile(const PyLibrary& lib, const std::string& text) {
+  auto result = std::make_shared<sp::compiler::CompileResult>(lib.compiler->compile_text(text, "<compile>"));
+  if (!result->ok())
+    throw CompileFailure{sp::compiler::format_diagnostics(result->diagnostics),
+                         sp::compiler::diagnostics_json(result->diagnostics)};
+  sp::Material material(*result->program);
+  return PyMaterial{lib.compiler, std::move(result), std::move(material)};
+}
+
+std::vector<std::string> roughness_levels(const PyLibrary& lib) {
+  std::vector<std::string> out;
+  for (const auto& l : lib.compiler->calibration().roughness_levels()) out.push_back(l.name);
+  return out;
+}
+
+// The lateral force a still hand feels at each point of an n x n grid over the patch (row 0 at
+// -y): what the height field's gradient and the other position-dependent terms give (F = -k grad h,
+// thesis 3.4). The program keeps the gradient, not the heights, so this is the field itself.
+py::dict lateral_force_field(const PyMaterial& m, int n) {
+  if (n < 2 || n > 4096) throw py::value_error("n must be 2 to 4096 points a side");
+  const auto& program = m.material.program();
+  py::array_t<double> x({n}), y({n}), fx({n, n}), fy({n, n});
+  auto xs = x.mutable_unchecked<1>(), ys = y.mutable_unchecked<1>();
+  auto fxs = fx.mutable_unchecked<2>(), fys = fy.mutable_unchecked<2>();
+  for (int i = 0; i < n; ++i) {
+    xs(i) = program.size_m[0] * ((i + 0.5) / n - 0.5);
+    ys(i) = program.size_m[1] * ((i + 0.5) / n - 0.5);
+  }
+  sp::runtime::PatchEvaluator evaluator(program);
+  sp::runtime::HandState hand;
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      hand.position_m = {xs(c), ys(r)};
+      evaluator.reset_rt(hand);  // state (adhesion, masses) at rest under the hand
+      const auto f = evaluator.force_rt(hand, 0.0);
+      fxs(r, c) = f.x;
+      fys(r, c) = f.y;
+    }
+  py::dict out;
+  out["x_m"] = x;
+  out["y_m"] = y;
+  out["fx_N"] = fx;
+  out["fy_N"] = fy;
+  return out;
+}
+
+py::dict report_dict(const sp::runtime::ServoReport& r) {
+  py::dict d;
+  d["ticks"] = r.ticks;
+  d["rate_hz"] = r.rate_hz;
+  d["max_lateral_force_N"] = r.max_lateral_force_N;
+  d["stop_cause"] = sp::runtime::stop_cause_name(r.stop_cause);
+  d["period_p50_us"] = r.period_p50_us;
+  d["period_p99_us"] = r.period_p99_us;
+  d["jitter_us"] = r.jitter_us;
+  d["overruns"] = r.overruns;
+  d["clamped_ticks"] = r.clamped_ticks;
+  d["realtime_scheduling"] = r.realtime_scheduling;
+  return d;
+}
+
+// A player and whether its device records ticks (Player.simulated(record_ticks=...)).
+struct PyPlayer {
+  sp::Player player;
+  sp::runtime::RecordingDevice* recorder = nullptr;
+};
+
+sp::runtime::HandScript hand_script(const std::string& path, double speed_m_s, double amplitude_m) {
+  sp::runtime::HandScript s;
+  if (path == "scan") s.path = sp::runtime::HandPath::Scan;
+  else if (path == "circle") s.path = sp::runtime::HandPath::Circle;
+  else throw py::value_error("hand must be \"scan\" or \"circle\", not \"" + path + "\"");
+  if (!(speed_m_s > 0) || !(amplitude_m > 0)) throw py::value_error("speed_m_s and amplitude_m must be positive");
+  s.speed_m_s = speed_m_s;
+  s.amplitude_m = amplitude_m;
+  return s;
+}
+
+#ifdef SANDPAPER_MODULE_DIR_TO_DATA
+// The installed module: the data of the install it belongs to, from where this shared object lies
+// (<prefix>/lib/python3.X/dist-packages/ -> <prefix>/share/sandpaper), wherever the prefix was moved.
+void register_installed_data_dir() {
+  Dl_info info{};
+  if (!dladdr(reinterpret_cast<void*>(&register_installed_data_dir), &info) || !info.dli_fname) return;
+  static const std::string module_file = std::filesystem::absolute(info.dli_fname).string();
+  sp::compiler::set_package_data_dir_nonrt(module_file.c_str(), SANDPAPER_MODULE_DIR_TO_DATA);
+}
+#endif
+
+}  // namespace
+
+PYBIND11_MODULE(sandpaper, m) {
+#ifdef SANDPAPER_MODULE_DIR_TO_DATA
+  register_installed_data_dir();
+#endif
+  m.doc() = "Sandpaper: compile haptic materials by name or description and play them (docs/PYTHON.md)";
+  m.attr("__version__") = sp_version();
+
+  static py::exception<sp::Error> error(m, "Error");
+  static py::exception<sp::UnknownLevel> unknown_level(m, "UnknownLevel", error.ptr());
+  static py::exception<CompileFailure> compile_error(m, "CompileError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const CompileFailure& e) {
+      // An instance with the diagnostics as data: [{code, severity, location, line, column, message, suggestion}].
+      py::object instance = py::handle(compile_error.ptr())(e.message);
+      instance.attr("diagnostics") = to_python(e.diagnostics);
+      PyErr_SetObject(compile_error.ptr(), instance.ptr());
+    } catch (const sp::UnknownLevel& e) {
+      py::object instance = py::handle(unknown_level.ptr())(e.what());
+      instance.attr("known") = e.known();
+      PyErr_SetObject(unknown_level.ptr(), instance.ptr());
+    } catch (const sp::Error& e) {
+      error(e.what());
+    }
+  });
+
+  py::class_<PyMaterial>(m, "Material", "A compiled material: a patch program ready to play (SI units).")
+      .def_property_readonly("name", [](const PyMaterial& x) { return x.material.name(); })
+      .def_property_readonly("max_lateral_force_N", [](const PyMaterial& x) { return x.material.max_lateral_force_N(); },
+                             "the texture's maximum lateral force as compiled for the device, N")
+      .def_property_readonly("roughness", [](const PyMaterial& x) { return x.material.roughness(); },
+                             "ratio-scale roughness the roughness map predicts (Minsky 1995, Fig. 19)")
+      .def_property_readonly("size_m", [](const PyMaterial& x) {
+        return std::vector<double>{x.material.program().size_m[0], x.material.program().size_m[1]};
+      }, "patch width and height, m")
+      .def_property_readonly("warnings", [](const PyMaterial& x) { return x.material.warnings(); })
+      .def("explain", [](const PyMaterial& x, double design_speed_m_s) {
+        auto j = sp::compiler::compile_json(*x.result, std::nullopt);
+        j.erase("output");
+        j.update(sp::compiler::explain_json(*x.result->material, *x.result->program, *x.compiler, design_speed_m_s));
+        return to_python(j);
+      }, py::arg("design_speed_m_s") = 0.0,
+         "what the compiler decided, as `sandpaper explain --json` prints it: a dict")
+      .def("lateral_force_field", &lateral_force_field, py::arg("n") = 128,
+           "the lateral force a still hand feels on an n x n grid: {x_m, y_m, fx_N, fy_N} as numpy arrays")
+      .def("__repr__", [](const PyMaterial& x) {
+        return "<sandpaper.Material " + x.material.name() + ": " + std::to_string(x.material.max_lateral_force_N()) + " N>";
+      });
+
+  py::class_<PyLibrary>(m, "Library", "The world haptics library with its calibration, compiling for one device.")
+      .def(py::init(&open_library), py::arg("library_dir") = py::none(), py::arg("calibration_dir") = py::none(),
+           py::arg("device") = "sim")
+      .def("compile", &compile, py::arg("text"), py::call_guard<py::gil_scoped_release>(),
+           "a library name (\"corduroy\") or material statements; raises CompileError")
+      .def("roughness_level", [](const PyLibrary& lib, const std::string& level) {
+        if (!lib.compiler->calibration().find_level(level)) throw sp::UnknownLevel(level, roughness_levels(lib));
+        py::gil_scoped_release release;
+        return compile(lib, "roughness " + level);
+      }, py::arg("level"), "a named roughness level (\"coarse\") on the reference texture; raises UnknownLevel")
+      .def("roughness_levels", &roughness_levels, "roughness level names, weakest first")
+      .def("names", [](const PyLibrary& lib) { return lib.compiler->library().names(); }, "entry names, sorted")
+      .def_readonly("library_dir", &PyLibrary::library_dir)
+      .def_readonly("calibration_dir", &PyLibrary::calibration_dir);
+
+  py::class_<PyPlayer>(m, "Player", "Plays materials on a device on a servo thread of its own.")
+      .def_static("simulated", [](std::size_t record_ticks, const std::string& hand, double speed_m_s, double amplitude_m) {
+        auto device = std::make_unique<sp::runtime::SimJoystick>(sp::runtime::sim_device_limits(),
+                                                                 hand_script(hand, speed_m_s, amplitude_m), record_ticks);
+        auto* recorder = device.get();
+        return std::make_unique<PyPlayer>(PyPlayer{sp::Player(std::move(device)), recorder});
+      }, py::arg("record_ticks") = 0, py::arg("hand") = "scan", py::arg("speed_m_s") = 0.05, py::arg("amplitude_m") = 0.03,
+         "the simulated joystick (10 N, calibration/devices/sim.toml) with a scripted hand; keeps the first "
+         "record_ticks ticks for trace()")
+      .def("load", [](PyPlayer& p, const PyMaterial& x) { p.player.load(x.material); }, py::arg("material"))
+      .def("start", [](PyPlayer& p, double rate_hz, double duration_s) {
+        try {
+          p.player.start({.rate_hz = rate_hz, .duration_s = duration_s});
+        } catch (const std::invalid_argument& e) {
+          throw py::value_error(e.what());
+        }
+      }, py::arg("rate_hz") = 1000.0, py::arg("duration_s") = 0.0,
+         "starts the servo thread (rate 900 - 10000 Hz; duration 0: until stop()) and returns at once")
+      .def("stop", [](PyPlayer& p) {
+        sp::runtime::ServoReport r;
+        {
+          py::gil_scoped_release release;
+          r = p.player.stop();
+        }
+        return report_dict(r);
+      }, "stops at the next tick, waits, and returns the run's report (a dict)")
+      .def("wait", [](PyPlayer& p) {
+        sp::runtime::ServoReport r;
+        {
+          py::gil_scoped_release release;
+          r = p.player.wait();
+        }
+        return report_dict(r);
+      }, "waits for the run to end (its duration, or a fault) and returns its report (a dict)")
+      .def_property_readonly("playing", [](const PyPlayer& p) { return p.player.playing(); })
+      .def("trace", [](const PyPlayer& p) {
+        if (p.player.playing()) throw sp::Error("trace() is read after the run: stop() or wait() first");
+        const auto& rec = p.recorder->records();
+        py::array_t<double> a({static_cast<py::ssize_t>(rec.size()), py::ssize_t{5}});
+        auto v = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < rec.size(); ++i) {
+          const auto k = static_cast<py::ssize_t>(i);
+          v(k, 0) = rec[i].t_s;
+          v(k, 1) = rec[i].position_m.x;
+          v(k, 2) = rec[i].position_m.y;
+          v(k, 3) = rec[i].force_N.x;
+          v(k, 4) = rec[i].force_N.y;
+        }
+        return a;
+      }, "the recorded ticks as an (n, 5) array: t_s, x_m, y_m, fx_N, fy_N");
+}

@@ -1,0 +1,17 @@
+#pragma once
+// What `sandpaper explain --json` adds to a compile's JSON (compile_json.hpp), for every caller that
+// shows it (the CLI, the Python module's Material.explain()): "knowledge" (what the psychophysics
+// says of this material, thesis 5.4), "maps" (the calibrated maps in use), "felt_at_speed" and
+// "felt_remedies" (the peak force felt at common hand speeds, mm/s, N) and, on an emulated device,
+// "device_quantization". Units are in the keys.
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/compiler/compiler.hpp"
+
+namespace sandpaper::compiler {
+
+// `design_speed_m_s` > 0: the hand speed (m/s) the material is designed for, added to the remedies.
+nlohmann::json explain_json(const ResolvedMaterial& material, const schema::PatchProgram& program, const Compiler& compiler,
+                            double design_speed_m_s);
+
+}  // namespace sandpaper::compiler

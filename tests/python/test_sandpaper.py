@@ -1,0 +1,127 @@
+"""The Python module `sandpaper` (bindings/python), as an experimenter would use it: compile by name
+and by text, errors carrying diagnostics, explain as a dict, the force field and a run's trace as
+numpy arrays, and playing while Python goes on. Run by ctest (python.module) with PYTHONPATH set to
+the build's python/ folder."""
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import sandpaper
+
+
+@pytest.fixture(scope="module")
+def lib():
+    return sandpaper.Library()
+
+
+def test_compiles_a_library_entry_with_its_calibrated_numbers(lib):
+    m = lib.compile("corduroy")
+    assert m.name == "corduroy"
+    assert 0.1 < m.max_lateral_force_N < 10.0
+    assert m.roughness > 0
+    assert m.size_m[0] > 0 and m.size_m[1] > 0
+    assert "corduroy" in lib.names()
+
+
+def test_a_roughness_level_is_stronger_the_coarser_it_is(lib):
+    levels = lib.roughness_levels()
+    assert "coarse" in levels and "fine" in levels
+    assert lib.roughness_level("coarse").max_lateral_force_N > lib.roughness_level("fine").max_lateral_force_N
+
+
+def test_a_failed_compile_raises_with_the_diagnostics_as_data(lib):
+    with pytest.raises(sandpaper.CompileError) as info:
+        lib.compile("grating period 2.5 parsecs")
+    err = info.value
+    assert isinstance(err, sandpaper.Error)
+    assert "<compile>:1:" in str(err) and "^" in str(err)
+    assert err.diagnostics and err.diagnostics[0]["severity"] == "error"
+    assert err.diagnostics[0]["code"].startswith("E")
+    assert err.diagnostics[0]["line"] == 1
+
+
+def test_an_unknown_level_names_the_known_ones(lib):
+    with pytest.raises(sandpaper.UnknownLevel) as info:
+        lib.roughness_level("coarsee")
+    assert "coarse" in info.value.known
+    assert 'did you mean "coarse"' in str(info.value)
+
+
+def test_missing_data_directories_are_all_named():
+    with pytest.raises(sandpaper.Error) as info:
+        sandpaper.Library(library_dir="/nonexistent/lib", calibration_dir="/nonexistent/cal")
+    assert "/nonexistent/lib" in str(info.value) and "/nonexistent/cal" in str(info.value)
+
+
+def test_explain_is_a_dict_of_what_the_compiler_decided(lib):
+    e = lib.compile("corduroy").explain()
+    assert e["ok"] is True
+    assert e["max_lateral_force_N"] == pytest.approx(lib.compile("corduroy").max_lateral_force_N)
+    assert e["material"] == "corduroy" and e["provenance"]
+    assert {"knowledge", "maps", "felt_at_speed", "terms", "diagnostics"} <= set(e)
+    assert all(f["speed_mm_s"] > 0 for f in e["felt_at_speed"])
+
+
+def test_the_lateral_force_field_is_a_numpy_array_within_the_compiled_maximum(lib):
+    m = lib.compile("grating period 2.5 mm hill 50% amplitude 0.8 N")
+    field = m.lateral_force_field(n=512)  # 0.19 mm apart: fine enough to find the 2.5 mm grating's peaks
+    fx, fy = field["fx_N"], field["fy_N"]
+    assert fx.shape == (512, 512) and fy.shape == (512, 512) and field["x_m"].shape == (512,)
+    magnitude = np.hypot(fx, fy)
+    assert magnitude.max() == pytest.approx(0.8, rel=0.02)
+    assert magnitude.max() <= m.max_lateral_force_N * (1 + 1e-6)
+    # A grating across x: the force varies along x and not along y.
+    assert np.ptp(fx[256, :]) > 1.0 and np.ptp(fx[:, 256]) < 1e-9
+
+
+def test_plays_for_the_duration_and_records_the_trace(lib):
+    m = lib.compile("corduroy")
+    p = sandpaper.Player.simulated(record_ticks=300)
+    p.load(m)
+    p.start(rate_hz=1000, duration_s=0.3)
+    report = p.wait()
+    assert report["ticks"] == 300
+    assert report["stop_cause"] == "completed"
+    trace = p.trace()
+    assert trace.shape == (300, 5)
+    assert np.all(np.diff(trace[:, 0]) > 0)  # time runs forward
+    forces = np.hypot(trace[:, 3], trace[:, 4])
+    assert forces.max() == pytest.approx(report["max_lateral_force_N"])
+    assert forces.max() <= m.max_lateral_force_N * (1 + 1e-9)
+
+
+def test_the_gil_is_released_while_playing(lib):
+    """Python keeps running while another thread is blocked in wait(): if wait() held the GIL, this
+    thread could not count until the run was over, and would find it over."""
+    p = sandpaper.Player.simulated()
+    p.load(lib.compile("corduroy"))
+    p.start(rate_hz=1000, duration_s=3.0)
+    entered = threading.Event()
+    reports = []
+
+    def waiter():
+        entered.set()
+        reports.append(p.wait())
+
+    t = threading.Thread(target=waiter)
+    t.start()
+    entered.wait()
+    n, end = 0, time.monotonic() + 0.3  # many GIL switch intervals (5 ms): the waiter is in wait() by now
+    while time.monotonic() < end:
+        n += 1
+    still_running = t.is_alive()
+    t.join()
+    assert n > 1000
+    assert still_running, "wait() returned before this thread could count: it held the GIL"
+    assert reports[0]["stop_cause"] == "completed"
+
+
+def test_bad_rates_and_hands_are_value_errors(lib):
+    p = sandpaper.Player.simulated()
+    p.load(lib.compile("corduroy"))
+    with pytest.raises(ValueError):
+        p.start(rate_hz=50, duration_s=0.1)
+    with pytest.raises(ValueError):
+        sandpaper.Player.simulated(hand="zigzag")
