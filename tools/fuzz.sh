@@ -38,8 +38,8 @@ bin=$build/bin/${target}_fuzz
 # Largest input per target: text readers 4 KB (a material is a few lines; longer only slows the
 # search), results folders 16 KB (a whole small session), binary files 64 KB (small patch programs).
 case $target in
-  patch|workspace_program|array) max_len=65536 ;;
-  experiment_results) max_len=16384 ;;
+  patch|workspace_program|array|gltf) max_len=65536 ;;
+  experiment_results|lsp_message) max_len=16384 ;;
   *) max_len=4096 ;;
 esac
 case $target in
@@ -51,6 +51,7 @@ case $target in
   trace_csv) dict=trace_csv ;;
   studio_request) dict=studio_request ;;
   experiment_results) dict=experiment_results ;;
+  lsp_message) dict=lsp_message ;;
   *) dict= ;;
 esac
 

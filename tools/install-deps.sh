@@ -16,6 +16,7 @@ pkgs=(
   chromium python3                          # the library catalog's and the studio's browser tests (tests/*/browser_test.py)
   libcpp-httplib-dev                        # the studio's HTTP server (tools/studio/, docs/STUDIO.md)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (bindings/python, docs/PYTHON.md)
+  dpkg-dev file                             # the Debian package: cpack -G DEB's dpkg-shlibdeps (cmake/Packaging.cmake)
 )
 missing=()
 for p in "${pkgs[@]}"; do
@@ -47,4 +48,13 @@ if ! cmp -s "$web/package-lock.json" "$stamp" 2>/dev/null; then
   echo "installing the studio page's npm packages (npm ci)"
   (cd "$web" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error)
   cp "$web/package-lock.json" "$stamp"
+fi
+# The glTF checks' packages (Khronos' gltf-validator and ajv; ctest gltf.validate, docs/GLTF.md), the
+# same way: pinned by tests/gltf/package-lock.json, installed when it changed.
+gltf_checks="$(cd "$(dirname "$0")/.." && pwd)/tests/gltf"
+stamp="$gltf_checks/node_modules/.sandpaper-lock"
+if ! cmp -s "$gltf_checks/package-lock.json" "$stamp" 2>/dev/null; then
+  echo "installing the glTF checks' npm packages (npm ci)"
+  (cd "$gltf_checks" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error)
+  cp "$gltf_checks/package-lock.json" "$stamp"
 fi

@@ -44,6 +44,8 @@ sp_status guarded(F&& body) noexcept {
     return body();
   } catch (const sandpaper::CompileError& e) {
     return fail(SP_ERROR_COMPILE, e.what());
+  } catch (const sandpaper::DeviceError& e) {
+    return fail(SP_ERROR_DEVICE, e.what());
   } catch (const sandpaper::UnknownLevel& e) {
     return fail(SP_ERROR_UNKNOWN_LEVEL, e.what());
   } catch (const sandpaper::Error& e) {
@@ -138,6 +140,19 @@ sp_status sp_player_open_simulated(sp_player** out) {
     *out = new sp_player{sandpaper::Player::simulated()};
     return SP_OK;
   });
+}
+
+sp_status sp_player_open_usb(const sp_library* library, sp_player** out) {
+  if (!library) return null_argument("sp_player_open_usb", "library");
+  if (!out) return null_argument("sp_player_open_usb", "out");
+  return guarded([&] {
+    *out = new sp_player{sandpaper::Player::usb(library->library)};
+    return SP_OK;
+  });
+}
+
+const char* sp_player_device_calibration(const sp_player* player) {
+  return player ? player->player.device_calibration().c_str() : "";
 }
 
 void sp_player_close(sp_player* player) { delete player; }  // ~Player stops and joins

@@ -61,6 +61,8 @@ Material Library::roughness_level(const std::string& level) const {
   return compile("roughness " + level);
 }
 
+const compiler::Compiler& Library::compiler() const noexcept { return *impl_->compiler; }
+
 std::vector<std::string> Library::names() const { return impl_->compiler->library().names(); }
 
 std::vector<std::string> Library::roughness_levels() const {

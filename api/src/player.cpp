@@ -22,6 +22,7 @@ struct Player::Impl {
   std::atomic<bool> stop_request{false};
   runtime::ServoConfig config;
   std::unique_ptr<runtime::ServoThread> thread;  // from start until joined
+  std::string device_calibration;                // usb(): the calibration the joystick takes forces in
 
   // Stops a run still going (also when a moved-to Player drops this one), rather than wait for
   // its whole duration as ServoThread's own destructor would.
@@ -58,6 +59,12 @@ Player::Player(Player&&) noexcept = default;
 Player& Player::operator=(Player&&) noexcept = default;
 
 void Player::load(const Material& material) {
+  // Forces are compiled against a device's command scale (thesis 7.6.3): another device's program
+  // would push with the wrong strength.
+  if (!impl_->device_calibration.empty() && material.program().device != impl_->device_calibration)
+    throw DeviceError("the material '" + material.name() + "' was compiled for device '" + material.program().device +
+                "', but this player's joystick is '" + impl_->device_calibration +
+                "'; compile it with Library(LibraryOptions{.device = \"" + impl_->device_calibration + "\"})");
   auto next = std::make_unique<ProgramSource>(material.shared_program());
   if (impl_->thread) {
     impl_->source->offer_nonrt(std::move(next));
@@ -95,5 +102,9 @@ runtime::ServoReport Player::wait() {
 bool Player::playing() const noexcept { return impl_->thread && !impl_->thread->finished(); }
 
 runtime::Device& Player::device() noexcept { return *impl_->device; }
+
+const std::string& Player::device_calibration() const noexcept { return impl_->device_calibration; }
+
+void Player::set_device_calibration_nonrt(std::string name) { impl_->device_calibration = std::move(name); }
 
 }  // namespace sandpaper

@@ -167,6 +167,7 @@ PYBIND11_MODULE(sandpaper, m) {
 
   static py::exception<sp::Error> error(m, "Error");
   static py::exception<sp::UnknownLevel> unknown_level(m, "UnknownLevel", error.ptr());
+  static py::exception<sp::DeviceError> device_error(m, "DeviceError", error.ptr());
   static py::exception<CompileFailure> compile_error(m, "CompileError", error.ptr());
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -180,6 +181,8 @@ PYBIND11_MODULE(sandpaper, m) {
       py::object instance = py::handle(unknown_level.ptr())(e.what());
       instance.attr("known") = e.known();
       PyErr_SetObject(unknown_level.ptr(), instance.ptr());
+    } catch (const sp::DeviceError& e) {
+      device_error(e.what());
     } catch (const sp::Error& e) {
       error(e.what());
     }
@@ -232,6 +235,14 @@ PYBIND11_MODULE(sandpaper, m) {
       }, py::arg("record_ticks") = 0, py::arg("hand") = "scan", py::arg("speed_m_s") = 0.05, py::arg("amplitude_m") = 0.03,
          "the simulated joystick (10 N, calibration/devices/sim.toml) with a scripted hand; keeps the first "
          "record_ticks ticks for trace()")
+      .def_static("usb", [](const PyLibrary& lib) {
+        return std::make_unique<PyPlayer>(PyPlayer{sp::Player::usb(lib.compiler->calibration()), nullptr});
+      }, py::arg("library"),
+         "the first USB HID PID force-feedback joystick plugged in that the library's calibration knows "
+         "(docs/USB_PID.md); compile its materials with Library(device=player.device_calibration). "
+         "Raises DeviceError when there is none or it cannot be opened")
+      .def_property_readonly("device_calibration", [](const PyPlayer& p) { return p.player.device_calibration(); },
+         "the device calibration materials must be compiled for (usb); empty for the simulated joystick")
       .def("load", [](PyPlayer& p, const PyMaterial& x) { p.player.load(x.material); }, py::arg("material"))
       .def("start", [](PyPlayer& p, double rate_hz, double duration_s) {
         try {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "sandpaper/schema/diagnostic_codes.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
@@ -19,6 +20,11 @@ bool Diagnostics::error_limit_reached() const noexcept { return errors_ >= schem
 Diagnostic& Diagnostics::add(Severity severity, std::string code, SourceLocation loc, std::string message,
                              std::string suggestion) {
   const bool is_error = severity == Severity::Error;
+  // A code outside the shared table would reach users undocumented, and the language server
+  // could not link it: that is Sandpaper's bug, whatever the input.
+  const schema::DiagnosticCode* entry = schema::find_diagnostic_code(code);
+  if (!entry || (entry->severity == schema::DiagnosticSeverity::Error) != is_error)
+    throw InternalError("diagnostic code " + code + (entry ? " raised with the wrong severity" : " is not in schema/src/diagnostic_codes.cpp"));
   std::size_t& kept = is_error ? errors_ : warnings_;
   const std::size_t limit = is_error ? schema::limits::kMaxErrorsPerFile : schema::limits::kMaxWarningsPerFile;
   if (kept < limit) {

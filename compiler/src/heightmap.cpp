@@ -74,7 +74,7 @@ void blur_y(std::vector<float>& img, int nx, int ny, double sigma_px, bool wrap)
 }  // namespace
 
 std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, std::optional<double> target_force_N,
-                                                  Diagnostics& diags) {
+                                                  Diagnostics& diags, bool keep_heights) {
   if (!target_force_N && !h.stylus()) throw InternalError("make_height_field: neither a target force nor depth + press");
   HeightImageRequest req;
   req.path = h.path;
@@ -208,6 +208,10 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
   std::ostringstream os;
   os << img->description << ", " << dx * 1e3 << " mm per sample";
   b.summary = os.str();
+  if (keep_heights) {
+    b.heights = std::move(height);
+    b.gain = gain;
+  }
   return b;
 }
 

@@ -98,7 +98,7 @@ class Parser {
   void material_block(MaterialSyntax& m) {
     next();  // 'material'
     if (peek().kind != TokenKind::String) {
-      diags_.error("E0201", peek().location, std::string("expected the material's name as a string, found ") + describe(peek()),
+      diags_.error("E0214", peek().location, std::string("expected the material's name as a string, found ") + describe(peek()),
                    "write material \"name\" { ... }");
     } else {
       m.name = peek().text;
@@ -129,7 +129,7 @@ class Parser {
       if (t.kind == TokenKind::Eof) return;
       if (t.kind == TokenKind::RBrace) {
         if (in_block) return;
-        diags_.error("E0201", t.location, "unexpected '}' with no open material block", "remove it");
+        diags_.error("E0218", t.location, "unexpected '}' with no open material block", "remove it");
         next();
         continue;
       }
@@ -223,7 +223,7 @@ class Parser {
     }
     next();
     if (peek().kind != TokenKind::String) {
-      diags_.error("E0201", peek().location, std::string("expected the source as a quoted text, found ") + describe(peek()),
+      diags_.error("E0214", peek().location, std::string("expected the source as a quoted text, found ") + describe(peek()),
                    "write source " + k.text + " \"Minsky 1995, Table 8\" (who measured it, which standard or paper, "
                    "the arithmetic, or why it was chosen)");
       throw StatementError{};
@@ -240,7 +240,7 @@ class Parser {
   // family := 'family' WORD
   FamilyStmt family() {
     if (peek().kind != TokenKind::Word) {
-      diags_.error("E0201", peek().location, std::string("expected a family name, found ") + describe(peek()),
+      diags_.error("E0217", peek().location, std::string("expected a family name, found ") + describe(peek()),
                    "write family textiles (the families are listed in library/library.toml)");
       throw StatementError{};
     }
@@ -258,7 +258,7 @@ class Parser {
   std::pair<std::string, SourceLocation> entry_name(const std::string& what, const std::string& help) {
     const Token& t = peek();
     if (t.kind != TokenKind::Word && t.kind != TokenKind::Number) {
-      diags_.error("E0201", t.location, "expected " + what + ", found " + describe(t), help);
+      diags_.error("E0217", t.location, "expected " + what + ", found " + describe(t), help);
       throw StatementError{};
     }
     SourceLocation at = t.location;
@@ -270,7 +270,7 @@ class Parser {
   // licence := ('licence' | 'license') STRING     -- an SPDX identifier such as "CC0-1.0"
   LicenceStmt licence() {
     if (peek().kind != TokenKind::String) {
-      diags_.error("E0201", peek().location, std::string("expected the licence as a quoted SPDX identifier, found ") + describe(peek()),
+      diags_.error("E0214", peek().location, std::string("expected the licence as a quoted SPDX identifier, found ") + describe(peek()),
                    "write licence \"CC0-1.0\" (or \"CC-BY-4.0\", ...)");
       throw StatementError{};
     }
@@ -281,7 +281,7 @@ class Parser {
   // deprecated := 'deprecated' 'replaced-by' NAME
   DeprecatedStmt deprecated() {
     if (!(peek().kind == TokenKind::Word && peek().text == "replaced-by")) {
-      diags_.error("E0201", peek().location, std::string("expected `replaced-by`, found ") + describe(peek()),
+      diags_.error("E0216", peek().location, std::string("expected `replaced-by`, found ") + describe(peek()),
                    "write deprecated replaced-by NAME, naming the entry to use instead");
       throw StatementError{};
     }
@@ -293,7 +293,7 @@ class Parser {
   // describes := 'describes' STRING
   DescribesStmt describes() {
     if (peek().kind != TokenKind::String) {
-      diags_.error("E0201", peek().location, std::string("expected a quoted description, found ") + describe(peek()),
+      diags_.error("E0214", peek().location, std::string("expected a quoted description, found ") + describe(peek()),
                    "write describes \"what this material is meant to feel like\"");
       throw StatementError{};
     }
@@ -311,7 +311,7 @@ class Parser {
       at.length = static_cast<int>(name.size());
       return LikeStmt{name, at};
     }
-    diags_.error("E0201", peek().location, std::string("expected a library entry's name, found ") + describe(peek()),
+    diags_.error("E0217", peek().location, std::string("expected a library entry's name, found ") + describe(peek()),
                  "write like corduroy (see `sandpaper library` for the names)");
     throw StatementError{};
   }
@@ -372,7 +372,7 @@ class Parser {
       next();
       return RoughnessStmt{std::nullopt, t.text, t.location};
     }
-    diags_.error("E0201", t.location, std::string("expected a roughness number or level, found ") + describe(t),
+    diags_.error("E0215", t.location, std::string("expected a roughness number or level, found ") + describe(t),
                  "write roughness 0.6 (ratio scale, 1 = 3.746 N) or roughness coarse");
     throw StatementError{};
   }
@@ -398,7 +398,7 @@ class Parser {
       next();
       return PerceptStmt{w.word, std::nullopt, t.text, t.location};
     }
-    diags_.error("E0201", t.location, std::string("expected a ") + w.word + " number or level, found " + describe(t),
+    diags_.error("E0215", t.location, std::string("expected a ") + w.word + " number or level, found " + describe(t),
                  std::string("write ") + w.word + " 0.5 (a ratio-scale number, 1 at the top of its map), or give it "
                      "physically: " + w.physical);
     throw StatementError{};
@@ -413,7 +413,7 @@ class Parser {
     g.location = toks_[pos_ - 1].location;
     static const std::vector<std::string> opts{"period", "hill", "amplitude", "orientation", "smoothing"};
     if (peek().kind != TokenKind::Word) {
-      diags_.error("E0201", peek().location, std::string("expected `period`, found ") + describe(peek()),
+      diags_.error("E0216", peek().location, std::string("expected `period`, found ") + describe(peek()),
                    "write grating period 2.5 mm [hill 50%] [amplitude 2 N] [orientation 0 deg]");
       throw StatementError{};
     }
@@ -435,14 +435,14 @@ class Parser {
   HeightmapStmt heightmap() {
     HeightmapStmt h;
     if (peek().kind != TokenKind::String) {
-      diags_.error("E0201", peek().location, std::string("expected the image file as a quoted path, found ") + describe(peek()),
+      diags_.error("E0214", peek().location, std::string("expected the image file as a quoted path, found ") + describe(peek()),
                    "write heightmap \"gravel.png\" size 80 mm");
       throw StatementError{};
     }
     h.path = peek().text;
     h.path_location = next().location;
     if (!(peek().kind == TokenKind::Word && peek().text == "size")) {
-      diags_.error("E0201", peek().location, std::string("expected `size`, found ") + describe(peek()),
+      diags_.error("E0216", peek().location, std::string("expected `size`, found ") + describe(peek()),
                    "an image has no physical scale: say how large it is, e.g. size 80 mm or size 80 mm x 60 mm");
       throw StatementError{};
     }
@@ -471,12 +471,12 @@ class Parser {
         }
         channel_seen = true;
         if (peek().kind != TokenKind::Word && peek().kind != TokenKind::String) {
-          diags_.error("E0201", peek().location, std::string("expected a channel name, found ") + describe(peek()),
+          diags_.error("E0217", peek().location, std::string("expected a channel name, found ") + describe(peek()),
                        "write channel R, or channel \"Z\" for a name that is not a word");
           throw StatementError{};
         }
         if (peek().text.empty()) {
-          diags_.error("E0201", peek().location, "the channel name is empty",
+          diags_.error("E0217", peek().location, "the channel name is empty",
                        "name a channel, e.g. channel R, or leave `channel` out for the luminance rule");
           throw StatementError{};
         }
@@ -496,7 +496,7 @@ class Parser {
       if (l.family == family) names.emplace_back(l.name);
     const Token& n = peek();
     if (n.kind != TokenKind::Word) {
-      diags_.error("E0201", n.location, "expected the name of a " + keyword + " law, found " + describe(n),
+      diags_.error("E0217", n.location, "expected the name of a " + keyword + " law, found " + describe(n),
                    "one of: " + join(names));
       throw StatementError{};
     }
@@ -533,7 +533,7 @@ class Parser {
       } else if (param->kind == schema::LawParamKind::Number) {
         const Token& v = peek();
         if (v.kind != TokenKind::Number) {
-          diags_.error("E0201", v.location, "expected " + what + " (a plain number), found " + describe(v), "for example 0.3");
+          diags_.error("E0215", v.location, "expected " + what + " (a plain number), found " + describe(v), "for example 0.3");
           throw StatementError{};
         }
         next();
@@ -541,7 +541,7 @@ class Parser {
       } else {
         const Token& v = peek();
         if (v.kind != TokenKind::Word || (v.text != "x" && v.text != "y" && v.text != "xy")) {
-          diags_.error("E0201", v.location, "expected the axes x, y or xy, found " + describe(v),
+          diags_.error("E0217", v.location, "expected the axes x, y or xy, found " + describe(v),
                        "write axes x (force along x only), axes y, or axes xy (a grid)");
           throw StatementError{};
         }
@@ -555,7 +555,7 @@ class Parser {
   // energy := 'energy' 'budget' ENERGY ['refill' POWER]
   EnergyStmt energy() {
     if (!(peek().kind == TokenKind::Word && peek().text == "budget")) {
-      diags_.error("E0201", peek().location, std::string("expected `budget`, found ") + describe(peek()),
+      diags_.error("E0216", peek().location, std::string("expected `budget`, found ") + describe(peek()),
                    "write energy budget 50 mJ [refill 10 mW]");
       throw StatementError{};
     }
@@ -601,7 +601,7 @@ class Parser {
       std::vector<std::string> names;
       for (const auto& r : kinds) names.emplace_back(r.kind);
       std::string guess = k.kind == TokenKind::Word ? closest_match(k.text, names) : "";
-      diags_.error("E0201", k.location, std::string("expected a pattern kind, found ") + describe(k),
+      diags_.error("E0217", k.location, std::string("expected a pattern kind, found ") + describe(k),
                    guess.empty() ? "pattern kinds are: bars, grid, perlin, noise, stripes" : "did you mean `" + guess + "`?");
       throw StatementError{};
     }
@@ -628,7 +628,7 @@ class Parser {
       bool have = (req == "valley" && p.valley) || (req == "hill" && p.hill) || (req == "feature" && p.feature) ||
                   (req == "count" && p.count);
       if (!have) {
-        diags_.error("E0201", p.kind_location, stmt + " needs `" + req + "`", std::string("for example ") + rule->example);
+        diags_.error("E0219", p.kind_location, stmt + " needs `" + req + "`", std::string("for example ") + rule->example);
         throw StatementError{};
       }
     }
@@ -639,7 +639,7 @@ class Parser {
   QuantizeStmt quantize() {
     QuantizeStmt q{plain_number("the number of bits", "quantize 8 bit")};
     if (!(peek().kind == TokenKind::Word && (peek().text == "bit" || peek().text == "bits"))) {
-      diags_.error("E0201", peek().location, std::string("expected `bit` after the number of bits, found ") + describe(peek()),
+      diags_.error("E0216", peek().location, std::string("expected `bit` after the number of bits, found ") + describe(peek()),
                    "write quantize 8 bit");
       throw StatementError{};
     }
@@ -651,7 +651,7 @@ class Parser {
   PlainNumber plain_number(const char* what, const char* example_text) {
     const Token& n = peek();
     if (n.kind != TokenKind::Number) {
-      diags_.error("E0201", n.location, std::string("expected ") + what + " (a plain number), found " + describe(n),
+      diags_.error("E0215", n.location, std::string("expected ") + what + " (a plain number), found " + describe(n),
                    std::string("for example ") + example_text);
       throw StatementError{};
     }
@@ -692,7 +692,7 @@ class Parser {
     const Token& n = peek();
     std::string units = schema::units_of(dim);
     if (n.kind != TokenKind::Number) {
-      diags_.error("E0201", n.location, std::string("expected ") + what + " (a number and a " +
+      diags_.error("E0215", n.location, std::string("expected ") + what + " (a number and a " +
                    std::string(schema::dimension_name(dim)) + " unit), found " + describe(n),
                    "for example " + example(dim));
       throw StatementError{};

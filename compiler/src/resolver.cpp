@@ -548,7 +548,7 @@ class Resolver {
   void grating(const GratingStmt& g, const Statement& st, ResolvedMaterial& m) {
     const auto* base = std::get_if<ResolvedGrating>(&m.texture);
     if (!g.period && !base) {
-      diags_.error("E0201", g.location, "this grating has no period, and the file inherits no grating to take it from",
+      diags_.error("E0315", g.location, "this grating has no period, and the file inherits no grating to take it from",
                    "give it one: grating period 2.5 mm" + std::string(g.hill ? " " + g.hill->text() : std::string()) +
                        ", or start from a grating with `like corduroy`");
       return;

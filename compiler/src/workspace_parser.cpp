@@ -34,7 +34,7 @@ class WorkspaceParser {
     }
     next();
     if (peek().kind != TokenKind::String) {
-      diags_.error("E0501", peek().location, "expected the workspace's name as a string, found " + describe(peek()),
+      diags_.error("E0531", peek().location, "expected the workspace's name as a string, found " + describe(peek()),
                    "write workspace \"name\" { ... }");
     } else {
       ws.name = peek().text;
@@ -72,7 +72,7 @@ class WorkspaceParser {
         statement(ws);
         const Token& t = peek();
         if (!(t.kind == TokenKind::End || t.kind == TokenKind::Eof || t.kind == TokenKind::RBrace)) {
-          diags_.error("E0501", t.location, "unexpected " + describe(t) + " after the statement",
+          diags_.error("E0534", t.location, "unexpected " + describe(t) + " after the statement",
                        "put one statement on each line, or separate statements with ';'");
           throw StatementError{};
         }
@@ -133,7 +133,7 @@ class WorkspaceParser {
     PatchPlacementSyntax p;
     p.location = keyword;
     if (peek().kind != TokenKind::String) {
-      diags_.error("E0501", peek().location, "expected the patch's material as a quoted string, found " + describe(peek()),
+      diags_.error("E0531", peek().location, "expected the patch's material as a quoted string, found " + describe(peek()),
                    "write patch \"corduroy\" (a library name), patch \"roughness 0.4; grating period 2 mm\" or "
                    "patch \"stone.hmat\", then at X, Y size W x H");
       throw StatementError{};
@@ -147,14 +147,14 @@ class WorkspaceParser {
       throw StatementError{};
     }
     if (!(peek().kind == TokenKind::Word && peek().text == "at")) {
-      diags_.error("E0501", peek().location, "expected `at` and the patch centre, found " + describe(peek()),
+      diags_.error("E0532", peek().location, "expected `at` and the patch centre, found " + describe(peek()),
                    "write at X, Y with units, e.g. at -60 mm, 0 mm (the workspace centre is 0, 0)");
       throw StatementError{};
     }
     next();
     p.x = length("the patch centre's x");
     if (peek().kind != TokenKind::Comma) {
-      diags_.error("E0501", peek().location, "expected ',' between the centre's x and y, found " + describe(peek()),
+      diags_.error("E0532", peek().location, "expected ',' between the centre's x and y, found " + describe(peek()),
                    "write at X, Y, e.g. at -60 mm, 0 mm");
       throw StatementError{};
     }
@@ -189,7 +189,7 @@ class WorkspaceParser {
     const std::string units = schema::units_of(dim);
     const Token& n = peek();
     if (n.kind != TokenKind::Number) {
-      diags_.error("E0501", n.location, std::string("expected ") + what + " (a number and a length unit), found " + describe(n),
+      diags_.error("E0533", n.location, std::string("expected ") + what + " (a number and a length unit), found " + describe(n),
                    "for example 40 mm");
       throw StatementError{};
     }

@@ -188,4 +188,16 @@ TEST(Api, PlayerRefusesToStartWithNothingLoadedOrTwice) {
   EXPECT_EQ(player.stop().stop_cause, StopCause::StopRequested);
 }
 
+// With a calibrated joystick plugged in, usb() opens it and names the calibration to compile for;
+// without one (CI has no USB bus) it throws DeviceError naming the joysticks the calibration knows.
+TEST(Api, UsbPlayerOpensACalibratedJoystickOrSaysWhichItKnows) {
+  EXPECT_EQ(Player::simulated().device_calibration(), "");
+  try {
+    Player player = Player::usb(shipped());
+    EXPECT_FALSE(player.device_calibration().empty());
+  } catch (const sandpaper::DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("openffboard-2axis (1209:ffb0)"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace

@@ -63,6 +63,23 @@ int main(void) {
 
   /* Playing: state errors, then a timed run and a run stopped from here. */
   CHECK(sp_player_open_simulated(&player) == SP_OK, "%s", sp_last_error());
+  CHECK(strcmp(sp_player_device_calibration(player), "") == 0, "the simulated player plays any material");
+
+  /* USB: a joystick the calibration knows opens; without one (CI, this sandbox) the error names
+   * the joysticks it knows and leaves the out-parameter alone. */
+  {
+    sp_player* usb = (sp_player*)&checks;
+    const sp_status st = sp_player_open_usb(lib, &usb);
+    if (st == SP_OK) {
+      CHECK(strcmp(sp_player_device_calibration(usb), "") != 0, "a USB player without its device calibration");
+      sp_player_close(usb);
+    } else {
+      CHECK(st == SP_ERROR_DEVICE, "sp_player_open_usb: status %d: %s", (int)st, sp_last_error());
+      CHECK(contains(sp_last_error(), "openffboard-2axis (1209:ffb0)"), "%s", sp_last_error());
+      CHECK(usb == (sp_player*)&checks, "out-parameter changed by a failed open");
+    }
+    CHECK(sp_player_open_usb(NULL, &usb) == SP_ERROR_ARGUMENT, "NULL library accepted");
+  }
   CHECK(sp_player_start(player, 1000.0, 0.3) == SP_ERROR_STATE, "start with nothing loaded");
   CHECK(sp_player_wait(player, &report) == SP_ERROR_STATE, "wait before start");
   CHECK(sp_player_load(player, corduroy) == SP_OK, "%s", sp_last_error());

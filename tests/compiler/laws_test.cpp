@@ -174,7 +174,7 @@ TEST(Laws, BadLawsAreErrorsThatSayWhatToWrite) {
   EXPECT_EQ(codes_of("force Spring stiffnes 3 N/m"), std::vector<std::string>{"E0209"});
   EXPECT_EQ(codes_of("force Spring stiffness 3 N/m stiffness 4 N/m"), std::vector<std::string>{"E0206"});
   EXPECT_EQ(codes_of("force Spring stiffness -3 N/m"), std::vector<std::string>{"E0304"});
-  EXPECT_EQ(codes_of("force Wave amplitude 1 N period 2 mm axes z"), std::vector<std::string>{"E0201"});
+  EXPECT_EQ(codes_of("force Wave amplitude 1 N period 2 mm axes z"), std::vector<std::string>{"E0217"});
   EXPECT_EQ(codes_of("force Nothing stiffness 3 N/m"), std::vector<std::string>{"E0209"});
   EXPECT_EQ(codes_of("damper -2 N*s/m"), std::vector<std::string>{"E0304"});
   // A light mass on a stiff spring cannot be integrated at 900 Hz within the substep cap.

@@ -213,8 +213,8 @@ TEST(Pattern, StatementErrors) {
   const auto& c = test::shipped_compiler();
   auto codes = [&](const std::string& text) { return test::codes(c.compile_text(text)); };
   using V = std::vector<std::string>;
-  EXPECT_EQ(codes("pattern bars valley 5.55 mm amplitude 1 N"), V{"E0201"});          // needs hill
-  EXPECT_EQ(codes("pattern waves valley 5.55 mm"), V{"E0201"});                       // unknown kind
+  EXPECT_EQ(codes("pattern bars valley 5.55 mm amplitude 1 N"), V{"E0219"});          // needs hill
+  EXPECT_EQ(codes("pattern waves valley 5.55 mm"), V{"E0217"});                       // unknown kind
   EXPECT_EQ(codes("pattern perlin feature 1 mm offset 1 mm"), V{"E0209"});            // option of another kind
   EXPECT_EQ(codes("pattern bars valley 1 mm hill 1 mm kernel 2 mm"), V{"E0205"});     // kernel is in pixels
   EXPECT_EQ(codes("pattern bars valley 1 mm hill 1 mm kernel 2 kernel 3"), V{"E0206"});
@@ -225,7 +225,7 @@ TEST(Pattern, StatementErrors) {
   EXPECT_EQ(codes("pattern perlin feature 1 mm pixel 0.01 mm amplitude 1 N"), V{"E0304"});  // 9500 px a side
   EXPECT_EQ(codes("pattern bars valley 1 mm hill 1 mm"), V{"E0308"});                 // no force
   EXPECT_EQ(codes("pattern bars valley 1 mm hill 1 mm amplitude 1 N; grating period 2 mm"), V{"E0302"});
-  EXPECT_EQ(codes("quantize 8; grating period 2 mm amplitude 1 N"), V{"E0201"});
+  EXPECT_EQ(codes("quantize 8; grating period 2 mm amplitude 1 N"), V{"E0216"});
   EXPECT_EQ(codes("quantize 0 bit; grating period 2 mm amplitude 1 N"), V{"E0304"});
   EXPECT_EQ(codes("quantize 8.5 bit; grating period 2 mm amplitude 1 N"), V{"E0304"});
   EXPECT_EQ(codes("quantize 8 bit; quantize 4 bit; grating period 2 mm amplitude 1 N"), V{"E0302"});

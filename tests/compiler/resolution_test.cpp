@@ -47,10 +47,10 @@ TEST(Resolution, GratingWithoutPeriodOverridesOnlyWhatItSays) {
   EXPECT_EQ(provenance(*r.program, "texture.period").layer, "representative");
   // Nothing to inherit a period from: one error at the statement, saying what to write.
   auto none = test::shipped_compiler().compile_text("grating hill 40%; roughness 0.5");
-  EXPECT_EQ(test::codes(none), std::vector<std::string>{"E0201"});
+  EXPECT_EQ(test::codes(none), std::vector<std::string>{"E0315"});
   EXPECT_NE(compiler::format_diagnostics(none.diagnostics).find("grating period 2.5 mm"), std::string::npos);
   // A bare `grating` still asks for its options.
-  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("grating; roughness 0.5")), std::vector<std::string>{"E0201"});
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("grating; roughness 0.5")), std::vector<std::string>{"E0216"});
 }
 
 // A missing image is reported alone: not after a warning about how its roughness would extrapolate.

@@ -249,7 +249,7 @@ TEST(ThesisStimuli, OcrSpellingsAndNamesStartingWithDigits) {
     EXPECT_TRUE(s.ok()) << text << "\n" << compiler::format_diagnostics(s.diagnostics);
   }
   // A space splits the name: `like 2 StripesWeak` is not a name.
-  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("like 2 StripesWeak")), std::vector<std::string>{"E0201"});
+  EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("like 2 StripesWeak")), std::vector<std::string>{"E0217"});
 }
 
 TEST(ThesisStimuli, ExplainNamesTheGenerator) {

@@ -125,3 +125,14 @@ def test_bad_rates_and_hands_are_value_errors(lib):
         p.start(rate_hz=50, duration_s=0.1)
     with pytest.raises(ValueError):
         sandpaper.Player.simulated(hand="zigzag")
+
+
+def test_usb_opens_a_calibrated_joystick_or_raises_device_error(lib):
+    assert sandpaper.Player.simulated().device_calibration == ""
+    try:
+        p = sandpaper.Player.usb(lib)
+    except sandpaper.DeviceError as e:
+        assert isinstance(e, sandpaper.Error)
+        assert "openffboard-2axis (1209:ffb0)" in str(e)
+    else:
+        assert p.device_calibration != ""

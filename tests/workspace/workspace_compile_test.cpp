@@ -112,7 +112,7 @@ TEST(WorkspaceCompile, UnitsAreRequired) {
 TEST(WorkspaceCompile, SyntaxErrors) {
   EXPECT_EQ(codes(compile("patch \"corduroy\" at 0 mm, 0 mm\n").diagnostics), std::vector<std::string>{"E0501"});
   EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm 0 mm\n}\n").diagnostics),
-            std::vector<std::string>{"E0501"});
+            std::vector<std::string>{"E0532"});
   EXPECT_EQ(codes(compile("workspace \"w\" {\n  pach \"corduroy\" at 0 mm, 0 mm\n}\n").diagnostics),
             std::vector<std::string>{"E0502"});
   EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm, 0 mm\n").diagnostics),

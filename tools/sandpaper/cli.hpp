@@ -98,6 +98,20 @@ int cmd_array(const ArrayOptions& o);
 // `sandpaper preview`: height.png, field.png, scan.svg and preview.json in `out_dir`, pictures at most
 // `side` pixels on their longer side (cmd_preview.cpp; docs/STUDIO.md).
 int cmd_preview(const CommonOptions& o, const std::string& out_dir, int side);
+// `sandpaper export FILE --format gltf -o OUT.gltf` (cmd_export.cpp, docs/GLTF.md): a material or
+// workspace as glTF 2.0 with MPEG_haptic_material. `sandpaper compile ASSET.gltf` reads one back
+// (cmd_import.cpp): a .patch, or a workspace program.
+int cmd_export(const CommonOptions& o, const std::string& format, const std::string& output);
+int cmd_compile_gltf(const CommonOptions& o, const std::string& output);
+inline bool is_gltf_input(const CommonOptions& o) {
+  return o.expression.empty() && std::filesystem::path(o.file).extension() == ".gltf";
+}
+// `sandpaper lsp`: the language server on stdin/stdout (tools/lsp, docs/EDITORS.md) until the
+// client's `exit`; 0 after a clean shutdown, 1 otherwise.
+int cmd_lsp(const CommonOptions& o);
+// `sandpaper diagnostics`: the table of diagnostic codes (schema/diagnostic_codes.hpp) as text,
+// markdown (what schema/LANGUAGE.md holds) or JSON.
+int cmd_diagnostics(bool markdown, bool json);
 
 }  // namespace sandpaper::cli
 

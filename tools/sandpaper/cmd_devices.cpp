@@ -9,7 +9,7 @@
 #include "play.hpp"
 #include "usb_devices.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
-#include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
+#include "sandpaper/runtime/usb/owned_joystick.hpp"
 #include "sandpaper/runtime/usb/libusb_transport.hpp"
 
 namespace sandpaper::cli {
@@ -38,28 +38,6 @@ int cmd_devices(const CommonOptions& o) {
   return denied ? kExitUsage : kExitOk;
 }
 
-namespace {
-
-// A USB joystick that owns its transport, for callers that keep a Device for their own lifetime (the studio).
-class OwnedUsbJoystick final : public runtime::Device {
- public:
-  OwnedUsbJoystick(std::unique_ptr<runtime::usb::LibusbTransport> transport, const calibration::DeviceCalibration& cal)
-      : transport_(std::move(transport)), joystick_(*transport_, cal) {}
-  ~OwnedUsbJoystick() override { joystick_.close(); }
-  const runtime::DeviceLimits& limits() const noexcept override { return joystick_.limits(); }
-  bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override {
-    return joystick_.read_position_rt(t_s, position_m);
-  }
-  bool write_force_rt(glm::dvec2 force_N) noexcept override { return joystick_.write_force_rt(force_N); }
-  runtime::DeviceFault last_fault_rt() const noexcept override { return joystick_.last_fault_rt(); }
-
- private:
-  std::unique_ptr<runtime::usb::LibusbTransport> transport_;
-  runtime::usb::HidPidJoystick joystick_;
-};
-
-}  // namespace
-
 std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error) {
   CommonOptions base = o;
   base.device = "sim";
@@ -84,7 +62,7 @@ std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::
       device_name = f.calibration->name;
       // The calibration lives in `probe`, which goes out of scope: the joystick keeps what it needs
       // of it (limits, command scale) at construction.
-      return std::make_unique<OwnedUsbJoystick>(std::move(transport), *f.calibration);
+      return std::make_unique<runtime::usb::OwnedHidPidJoystick>(std::move(transport), *f.calibration);
     } catch (const runtime::usb::HidPidError& e) {
       error = e.what();
       return nullptr;

@@ -3,6 +3,7 @@
 #include "cli.hpp"
 #include "play_patch.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
+#include "sandpaper/compiler/gltf_import.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
 namespace sandpaper::cli {
@@ -20,6 +21,17 @@ std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Co
   if (o.expression.empty() && allow_patch && schema::looks_like_patch_file(o.file)) {
     in.program = schema::read_patch_file(o.file);  // PatchFormatError is reported by main
     return in;
+  }
+  if (allow_patch && is_gltf_input(o)) {  // an asset `sandpaper export` wrote (docs/GLTF.md)
+    auto g = compiler::import_gltf_file(c, o.file);
+    std::cerr << compiler::format_diagnostics(g.diagnostics);
+    if (g.ok() && g.program) {
+      in.program = std::move(*g.program);
+      return in;
+    }
+    if (g.ok()) std::cerr << "sandpaper: " << o.file << " holds a workspace: `sandpaper compile " << o.file << " -o ws.wsp`, then run ws.wsp\n";
+    if (o.json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(g.diagnostics)}}.dump(2) << "\n";
+    return std::nullopt;
   }
   auto r = o.expression.empty() ? c.compile_file(o.file) : c.compile_text(o.expression);
   std::cerr << compiler::format_diagnostics(r.diagnostics);

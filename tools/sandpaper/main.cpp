@@ -110,6 +110,12 @@ int main(int argc, char** argv) {
   preview->add_option("-o,--output", preview_dir, "folder to write height.png, field.png, scan.svg and preview.json into")->required();
   preview->add_option("--side", preview_side, "longer side of the pictures, pixels")->capture_default_str();
 
+  auto* export_cmd = app.add_subcommand("export", "write a material or workspace as a glTF 2.0 asset with the MPEG_haptic_material extension (docs/GLTF.md)");
+  add_common(export_cmd, o, true);
+  std::string export_format, export_output;
+  export_cmd->add_option("--format", export_format, "gltf (glTF 2.0, one self-contained .gltf file)")->required();
+  export_cmd->add_option("-o,--output", export_output, "file to write, e.g. out.gltf")->required();
+
   auto* studio = app.add_subcommand("studio", "serve Sandpaper Studio: edit, see and feel a material while it plays (docs/STUDIO.md)");
   StudioOptions studio_opts;
   studio->add_option("path", studio_opts.path, "a material (.hmat), a workspace (.hws) or a folder; the studio works inside its folder")->capture_default_str();
@@ -118,6 +124,13 @@ int main(int argc, char** argv) {
   studio->add_option("--rate", studio_opts.rate_hz, "servo rate, Hz")->capture_default_str();
   studio->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   studio->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
+
+  auto* lsp = app.add_subcommand("lsp", "serve the Language Server Protocol on stdin/stdout for editors (docs/EDITORS.md)");
+  add_common(lsp, o, false);
+  auto* diagnostics = app.add_subcommand("diagnostics", "list every diagnostic code with its severity and meaning");
+  bool diagnostics_markdown = false;
+  diagnostics->add_flag("--markdown", diagnostics_markdown, "print the markdown table schema/LANGUAGE.md holds");
+  diagnostics->add_flag("--json", o.json, "print JSON");
 
   CalibrateOptions calibrate_opts;
   add_calibrate_command(app, calibrate_opts);
@@ -151,6 +164,7 @@ int main(int argc, char** argv) {
       }
       if (compile_inputs.size() == 1) o.file = compile_inputs[0];
       if (!needs_input(compile)) return kExitUsage;
+      if (is_gltf_input(o)) return cmd_compile_gltf(o, output);
       return is_workspace_input(o) ? cmd_workspace_compile(o, output, false) : cmd_compile(o, output, false);
     }
     if (explain->parsed()) {
@@ -191,11 +205,17 @@ int main(int argc, char** argv) {
       if (!needs_input(preview)) return kExitUsage;
       return cmd_preview(o, preview_dir, preview_side);
     }
+    if (export_cmd->parsed()) {
+      if (!needs_input(export_cmd)) return kExitUsage;
+      return cmd_export(o, export_format, export_output);
+    }
     if (studio->parsed()) {
       studio_opts.listen_given = studio->count("--listen") > 0;
       return cmd_studio(o, studio_opts);
     }
     if (devices->parsed()) return cmd_devices(o);
+    if (lsp->parsed()) return cmd_lsp(o);
+    if (diagnostics->parsed()) return cmd_diagnostics(diagnostics_markdown, o.json);
     if (const int rc = cmd_calibrate(calibrate_opts); rc >= 0) return rc;
     if (const int rc = cmd_experiment(experiment_opts); rc >= 0) return rc;
   } catch (const sandpaper::schema::PatchFormatError& e) {

@@ -39,6 +39,8 @@ typedef enum sp_status {
   SP_ERROR_COMPILE = 3,        /* the material did not compile: sp_last_error() has the diagnostics */
   SP_ERROR_UNKNOWN_LEVEL = 4,  /* a roughness level name calibration/levels/ does not define */
   SP_ERROR_STATE = 5,          /* start with nothing loaded or while playing; stop or wait before start */
+  SP_ERROR_DEVICE = 6,         /* no joystick plugged in that the calibration knows, it cannot be opened, or a
+                                  material compiled for another device */
   SP_ERROR_INTERNAL = 99       /* a defect in Sandpaper (or out of memory): please report it */
 } sp_status;
 
@@ -87,6 +89,14 @@ const char* sp_material_warnings(const sp_material* material);
 /* A player on the simulated joystick (calibration/devices/sim.toml): a scripted hand scanning
  * +-30 mm along x at 50 mm/s through the patch centre. */
 sp_status sp_player_open_simulated(sp_player** out);
+/* A player on the first USB HID PID force-feedback joystick plugged in whose IDs one of `library`'s
+ * device calibrations names (docs/USB_PID.md). Compile its materials with a library opened for that
+ * device: sp_player_device_calibration() names it. SP_ERROR_DEVICE when there is none or it cannot
+ * be opened (sp_last_error() says why: for a permission problem, the udev rule to add). */
+sp_status sp_player_open_usb(const sp_library* library, sp_player** out);
+/* The device calibration the player's materials must be compiled for ("openffboard-2axis"), or ""
+ * for the simulated player (any material plays there). Owned by the player. */
+const char* sp_player_device_calibration(const sp_player* player);
 /* Stops the servo thread if it is still running, then frees the player. */
 void sp_player_close(sp_player* player);
 

@@ -28,6 +28,13 @@
 #include <sandpaper/package_location.h>
 #endif
 
+namespace sandpaper::compiler {
+class Compiler;
+}
+namespace sandpaper::calibration {
+class CalibrationSet;
+}
+
 namespace sandpaper {
 
 // Base of everything this API throws for bad input or missing data; what() says how to fix it.
@@ -56,6 +63,12 @@ class UnknownLevel : public Error {
  private:
   std::string name_;
   std::vector<std::string> known_;
+};
+
+// No force-feedback device to play on: none plugged in, none the calibration knows, or one that
+// cannot be opened (what() says which, and for a permission problem the udev rule to add).
+struct DeviceError : Error {
+  using Error::Error;
 };
 
 // A compiled material: a patch program (schema/patch_program.hpp, SI units) ready to play.
@@ -113,6 +126,8 @@ class Library {
   // Roughness level names, weakest first, and a level's ratio-scale value (throws UnknownLevel).
   std::vector<std::string> roughness_levels() const;
   double roughness_level_value(const std::string& level) const;
+  // The compiler behind it (its calibration, device and library), for anything this API does not cover.
+  const ::sandpaper::compiler::Compiler& compiler() const noexcept;
   // The directories in use (absolute when given so), for reports.
   const std::filesystem::path& library_dir() const noexcept;
   const std::filesystem::path& calibration_dir() const noexcept;
@@ -134,6 +149,15 @@ class Player {
   // The simulated joystick (runtime::SimJoystick, limits of calibration/devices/sim.toml): a
   // scripted hand, by default scanning +-30 mm along x at 50 mm/s through the patch centre.
   static Player simulated(runtime::HandScript hand = {});
+  // The first USB HID PID force-feedback joystick present whose vendor and product IDs one of
+  // `library`'s device calibrations names (calibration/devices/*.toml [usb]; docs/USB_PID.md),
+  // opened with its effects created; its forces go out in that calibration's command units.
+  // Materials must be compiled for it: Library(LibraryOptions{.device = player.device_calibration()}).
+  // Throws DeviceError when USB cannot be searched, no calibrated joystick is plugged in (the
+  // message lists the IDs the calibration knows) or it cannot be opened.
+  static Player usb(const Library& library);
+  // The same, matching against any calibration set (compiler::Compiler::calibration()).
+  static Player usb(const calibration::CalibrationSet& set);
   // Any device (a USB HID PID joystick, a replay, your own runtime::Device); the player owns it.
   explicit Player(std::unique_ptr<runtime::Device> device);
   ~Player();  // stops and joins if still playing
@@ -141,7 +165,8 @@ class Player {
   Player& operator=(Player&&) noexcept;
 
   // Plays `material` from the next start(), or at once if playing. The program is kept alive for
-  // as long as the servo thread may use it.
+  // as long as the servo thread may use it. Throws DeviceError if the material was compiled for
+  // another device than device_calibration() (when that is set).
   void load(const Material& material);
   // Starts the servo thread. Throws Error if nothing is loaded or already playing, and
   // std::invalid_argument for a rate outside the device's limits or a bad duration.
@@ -153,8 +178,12 @@ class Player {
   runtime::ServoReport wait();
   bool playing() const noexcept;
   runtime::Device& device() noexcept;
+  // The device calibration materials must be compiled for: the joystick's for usb(); empty for
+  // simulated() and a Device given directly (any material plays there).
+  const std::string& device_calibration() const noexcept;
 
  private:
+  void set_device_calibration_nonrt(std::string name);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

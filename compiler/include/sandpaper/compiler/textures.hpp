@@ -31,6 +31,10 @@ struct HeightFieldBuild {
   double max_lateral_force_N = 0;  // largest |F| inside the rim, N
   double steepest_slope = 0;       // stylus reading: largest |grad h| inside the rim, m/m; else 0
   std::string summary;             // the image, its channels and sampling, for provenance
+  // With keep_heights: the smoothed heights the gradient was taken of (nx * ny, row 0 at -y, in the
+  // image's unit, or m for the stylus reading) and k of F = -k grad h (N per unit of slope).
+  std::vector<float> heights;
+  double gain = 0;
 };
 
 // Reads the image (height_image.hpp) and builds its lateral-force field F = -k grad h. With a
@@ -38,7 +42,8 @@ struct HeightFieldBuild {
 // thesis 3.4 EQ 5-11, F = m g tan(theta)): h.depth and h.press must be set; the image's height
 // range maps to 0..depth metres and k = press. Unusable images (E0401-E0406) and smoothing too
 // wide for the rim (E0304) go to `diags` at the heightmap statement; returns nullopt then.
+// keep_heights: also return the heights (the glTF export's haptic texture, docs/GLTF.md).
 std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, std::optional<double> target_force_N,
-                                                  Diagnostics& diags);
+                                                  Diagnostics& diags, bool keep_heights = false);
 
 }  // namespace sandpaper::compiler

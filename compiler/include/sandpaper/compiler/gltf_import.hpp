@@ -1,0 +1,45 @@
+#pragma once
+// Reading back a glTF 2.0 asset that `sandpaper export --format gltf` wrote (docs/GLTF.md): each
+// mesh's MPEG_haptic_material (ISO/IEC 23090-14; Khronos glTF extensions/2.0/Vendor/
+// MPEG_haptic_material) with Sandpaper's `extras` becomes a patch program whose forces are the
+// heights' F = -k grad h, compiled for the compiler's device. The file is outside input: every
+// problem is a diagnostic (E0710-E0719), and sizes are limited before anything is allocated.
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/schema/workspace_program.hpp"
+
+namespace sandpaper::compiler {
+
+// A glTF file: 128 MiB (a 4096 x 4096 16-bit texture is at most 43 MiB of base64).
+inline constexpr std::size_t kMaxGltfBytes = std::size_t{128} << 20;
+// JSON values in the asset (a shipped workspace has a few hundred) and their nesting depth.
+inline constexpr std::size_t kMaxGltfJsonValues = std::size_t{1} << 20;
+inline constexpr std::size_t kMaxGltfJsonDepth = 64;
+// Texels decoded over the whole asset: two of the largest height maps (compiler kMaxImagePixels).
+inline constexpr long long kMaxGltfTexels = 2 * 4096LL * 4096LL;
+
+struct GltfImportResult {
+  Diagnostics diagnostics;
+  std::optional<schema::PatchProgram> program;        // an asset of one material
+  std::optional<schema::WorkspaceProgram> workspace;  // an asset written from a workspace
+  bool ok() const { return (program || workspace) && !diagnostics.has_errors(); }
+};
+
+// Whether `path` names a glTF file (extension .gltf).
+bool is_gltf_path(const std::filesystem::path& path);
+
+// Reads `path` (shown as given) and builds the program(s) for `compiler`'s device. Errors:
+// E0710 unreadable or too large, E0711 not JSON (or binary .glb, or over the JSON limits), E0712 not
+// a glTF 2.0 asset Sandpaper reads, E0713 no usable MPEG_haptic_material, E0714 Sandpaper's extras
+// missing or of the wrong type or range, E0715 a haptic texture that cannot be found or is not an
+// embedded PNG, E0716 a PNG that does not decode, E0717 texture sizes out of limits or not matching
+// the extras, E0718 forces the device cannot play. Warning W0703: parts the asset says it left out.
+GltfImportResult import_gltf_file(const Compiler& compiler, const std::filesystem::path& path);
+// The same for the file's bytes.
+GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& bytes, const std::string& shown_name);
+
+}  // namespace sandpaper::compiler

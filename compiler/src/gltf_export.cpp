@@ -1,0 +1,377 @@
+// Compiled patches -> glTF 2.0 with MPEG_haptic_material (docs/GLTF.md). The heights written are
+// chosen so that the reader's force rules (gltf_support.hpp) give the compiled forces back; the
+// writer measures that on its own 16-bit output and says how closely it holds.
+#include "sandpaper/compiler/gltf_export.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "gltf_support.hpp"
+#include "sandpaper/compiler/textures.hpp"
+#include "sandpaper/schema/term_kinds.hpp"
+
+namespace sandpaper::compiler {
+namespace {
+
+// glTF constants (glTF 2.0 specification, 5.x): component types, buffer targets, sampler values.
+constexpr int kFloat = 5126, kUnsignedShort = 5123;
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+constexpr int kLinear = 9729, kRepeat = 10497, kClampToEdge = 33071;
+
+constexpr const char* kCannotCarry =
+    "glTF's MPEG_haptic_material carries a height texture only: force laws with state or of velocity (springs, "
+    "dampers, anti-viscous terms, physics models, friction, followers, attractors), constant and periodic force "
+    "laws, energy budgets and perceptual targets are not carried; a patch's forces outside its height grid are "
+    "zero in Sandpaper but clamped to the edge texels by a glTF sampler";
+
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
+// A haptic texture and what it came to, for one distinct program.
+struct Texture {
+  std::string kind = "none";  // "grating", "height_field", "none"
+  int nx = 0, ny = 0;
+  std::vector<std::uint16_t> texels;  // PNG order: row 0 the top (+y) row
+  double k_N = 0, range_m = 0;
+  bool nominal = true;
+  double period_m = 0, orientation_rad = 0;                  // grating
+  double origin_m[2] = {0, 0}, spacing_m[2] = {0, 0};        // height field
+  bool repeat = false;
+  double error = 0;  // largest |F' - F| / maximum lateral force
+  std::vector<std::string> not_carried;
+};
+
+// Heights -> 16-bit texels and the range they span; false for a flat field.
+bool quantize(const std::vector<double>& h, std::vector<std::uint16_t>& texels, std::vector<double>& back, double& range) {
+  const auto [lo, hi] = std::minmax_element(h.begin(), h.end());
+  range = *hi - *lo;
+  if (!(range > 0) || !std::isfinite(range)) return false;
+  texels.resize(h.size());
+  back.resize(h.size());
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    texels[i] = static_cast<std::uint16_t>(std::lround((h[i] - *lo) / range * gltf::kTexelMax));
+    back[i] = texels[i] / gltf::kTexelMax * range;
+  }
+  return true;
+}
+
+double worst(const std::vector<float>& a, const std::vector<float>& b) {
+  double w = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) w = std::max(w, std::abs(static_cast<double>(a[i]) - b[i]));
+  return w;
+}
+
+bool grating_texture(const schema::GratingTerm& g, double max_force_N, Texture& t, std::string& why) {
+  const std::size_t n = g.force_N.size();
+  double mean = 0, k = 0;
+  for (float f : g.force_N) mean += f, k = std::max(k, std::abs(static_cast<double>(f)));
+  mean /= static_cast<double>(n);
+  if (!(k > 0) || n < 2) {
+    why = "its grating has no force";
+    return false;
+  }
+  // Backward differences (gltf_support.hpp) inverted exactly: h_i = h_{i-1} - du F_i / k. The
+  // table's mean (float rounding) is taken out so that the heights close on themselves.
+  const double du = g.period_m / static_cast<double>(n);
+  std::vector<double> h(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) h[i] = h[i - 1] - du * (g.force_N[i] - mean) / k;
+  std::vector<double> back;
+  if (!quantize(h, t.texels, back, t.range_m)) {
+    why = "its grating is flat";
+    return false;
+  }
+  t.kind = "grating";
+  t.nx = static_cast<int>(n);
+  t.ny = 1;
+  t.k_N = k;  // steepest slope 1 (45 degrees): a nominal relief
+  t.period_m = g.period_m;
+  t.orientation_rad = g.orientation_rad;
+  t.error = worst(gltf::grating_forces(back, g.period_m, k), g.force_N) / (max_force_N > 0 ? max_force_N : k);
+  return true;
+}
+
+bool height_field_texture(const schema::HeightFieldTerm& term, const schema::PatchProgram& program,
+                          const ResolvedMaterial* material, Texture& t, std::string& why) {
+  const auto* hm = material ? std::get_if<ResolvedHeightmap>(&material->texture) : nullptr;
+  if (!hm) {
+    why = material ? "its height field is a generated pattern, whose heights are not exported yet"
+                   : "its height field's heights are not known (a compiled program keeps only its forces)";
+    return false;
+  }
+  // Built again as codegen built it, keeping the heights this time.
+  const bool stylus = hm->stylus() && !material->max_lateral_force;
+  Diagnostics scratch;
+  auto build = make_height_field(*hm, stylus ? std::nullopt : std::optional<double>(program.max_lateral_force_N), scratch,
+                                 /*keep_heights=*/true);
+  if (!build || build->term.nx != term.nx || build->term.ny != term.ny) {
+    why = "its height map '" + hm->stated_path + "' no longer gives the compiled field";
+    return false;
+  }
+  const int nx = static_cast<int>(term.nx), ny = static_cast<int>(term.ny);
+  // Heights in metres: the stylus reading's are (k = press); otherwise a nominal relief whose
+  // steepest slope inside the rim is 1, so k is the maximum lateral force.
+  t.nominal = !stylus;
+  t.k_N = stylus ? build->gain : program.max_lateral_force_N;
+  const double to_m = stylus ? 1.0 : build->gain / t.k_N;
+  std::vector<double> h(build->heights.size());
+  for (std::size_t i = 0; i < h.size(); ++i) h[i] = build->heights[i] * to_m;
+  std::vector<std::uint16_t> grid_texels;
+  std::vector<double> back;
+  if (!quantize(h, grid_texels, back, t.range_m)) {
+    why = "its height map is flat";
+    return false;
+  }
+  t.texels.resize(grid_texels.size());
+  for (int r = 0; r < ny; ++r)  // PNG row 0 is the top edge (+y); grid row 0 is the bottom
+    std::copy_n(grid_texels.begin() + static_cast<std::ptrdiff_t>(ny - 1 - r) * nx, nx,
+                t.texels.begin() + static_cast<std::ptrdiff_t>(r) * nx);
+  t.kind = "height_field";
+  t.nx = nx;
+  t.ny = ny;
+  std::copy_n(term.origin_m, 2, t.origin_m);
+  std::copy_n(term.spacing_m, 2, t.spacing_m);
+  t.repeat = term.repeat;
+  std::vector<float> fx, fy;
+  gltf::height_field_forces(back, nx, ny, term.spacing_m[0], term.spacing_m[1], term.repeat, t.k_N, fx, fy);
+  t.error = std::max(worst(fx, term.force_x_N), worst(fy, term.force_y_N)) / program.max_lateral_force_N;
+  return true;
+}
+
+// The program's texture (its first grating or height field) and the rest, listed as not carried.
+// False, with `why`, for a texture that cannot be exported.
+bool make_texture(const schema::PatchProgram& program, const ResolvedMaterial* material, Texture& t, std::string& why) {
+  bool have = false;
+  for (const auto& term : program.terms) {
+    if (!have && std::holds_alternative<schema::GratingTerm>(term)) {
+      if (!grating_texture(std::get<schema::GratingTerm>(term), program.max_lateral_force_N, t, why)) return false;
+      have = true;
+      continue;
+    }
+    if (!have && std::holds_alternative<schema::HeightFieldTerm>(term)) {
+      if (!height_field_texture(std::get<schema::HeightFieldTerm>(term), program, material, t, why)) return false;
+      have = true;
+      continue;
+    }
+    schema::terms::visit_kind(term, [&](auto kind, const auto& each) {
+      std::string what(kind.label);
+      if (kind.has_state) what += " (keeps state)";
+      if (!kind.passive(each)) what += " (not passive)";
+      t.not_carried.push_back(what);
+    });
+  }
+  if (program.energy_budget_J > 0)
+    t.not_carried.push_back("energy budget " + num(program.energy_budget_J) + " J, refilled at " +
+                            num(program.energy_refill_W) + " W");
+  return true;
+}
+
+// Little-endian bytes of the asset's one buffer.
+struct Bytes {
+  std::vector<unsigned char> data;
+  template <class T>
+  void put(T v) {
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));
+    data.insert(data.end(), b, b + sizeof(T));
+  }
+  void align4() {
+    while (data.size() % 4) data.push_back(0);
+  }
+};
+
+nlohmann::json sandpaper_extras(const schema::PatchProgram& p, const Texture& t, const std::string& source) {
+  nlohmann::json provenance = nlohmann::json::array();
+  std::string force_source;
+  for (const auto& e : p.provenance) {
+    provenance.push_back({{"parameter", e.parameter}, {"value_si", e.value_si}, {"si_unit", e.si_unit},
+                          {"stated", e.stated}, {"layer", e.layer}, {"source", e.source}});
+    if (e.parameter == "texture.max_lateral_force") force_source = e.stated + " (" + e.source + ")";
+  }
+  nlohmann::json j = {
+      {"version", gltf::kExtrasVersion},
+      {"name", p.name},
+      {"describes", p.describes},
+      {"source", source},
+      {"device", p.device},
+      {"texture", t.kind},
+      {"patch_size_m", {p.size_m[0], p.size_m[1]}},
+      {"max_lateral_force_N", p.max_lateral_force_N},
+      {"max_lateral_force_source", force_source},
+      {"roughness", p.roughness},
+      {"roughness_map", p.roughness_map},
+      {"not_carried", t.not_carried},
+      {"format_cannot_carry", kCannotCarry},
+      {"provenance", provenance},
+  };
+  if (t.kind == "none") return j;
+  j["height_rule"] = "h_m = texel / 65535 * height_range_m; F_N = -lateral_gain_N * grad(h_m) (docs/GLTF.md)";
+  j["height_range_m"] = t.range_m;
+  j["heights_nominal"] = t.nominal;
+  j["lateral_gain_N"] = t.k_N;
+  j["round_trip_force_error"] = t.error;
+  if (t.kind == "grating") {
+    j["period_m"] = t.period_m;
+    j["orientation_rad"] = t.orientation_rad;
+  } else {
+    j["grid_origin_m"] = {t.origin_m[0], t.origin_m[1]};
+    j["grid_spacing_m"] = {t.spacing_m[0], t.spacing_m[1]};
+    j["repeat"] = t.repeat;
+  }
+  return j;
+}
+
+// Texture coordinates of a patch-plane point (x, y), m: where its texel lies (docs/GLTF.md).
+std::pair<float, float> uv_of(const Texture& t, const schema::PatchProgram& p, double x, double y) {
+  if (t.kind == "grating") {
+    const double c = std::cos(t.orientation_rad), s = std::sin(t.orientation_rad);
+    return {static_cast<float>((x * c + y * s) / t.period_m), static_cast<float>((-x * s + y * c) / t.period_m)};
+  }
+  if (t.kind == "height_field") {
+    const double x0 = t.origin_m[0] - 0.5 * t.spacing_m[0], y0 = t.origin_m[1] - 0.5 * t.spacing_m[1];
+    return {static_cast<float>((x - x0) / (t.nx * t.spacing_m[0])), static_cast<float>(1 - (y - y0) / (t.ny * t.spacing_m[1]))};
+  }
+  return {static_cast<float>(x / p.size_m[0] + 0.5), static_cast<float>(0.5 - y / p.size_m[1])};
+}
+
+}  // namespace
+
+std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
+                                          const std::optional<GltfWorkspaceInfo>& workspace,
+                                          const std::string& shown_name, Diagnostics& diags) {
+  const SourceLocation at{std::make_shared<const SourceFile>(shown_name, ""), 0, 0, 1};
+  nlohmann::json haptic_materials = nlohmann::json::array(), textures = nlohmann::json::array(),
+                 images = nlohmann::json::array(), samplers = nlohmann::json::array(),
+                 meshes = nlohmann::json::array(), nodes = nlohmann::json::array(),
+                 accessors = nlohmann::json::array(), views = nlohmann::json::array();
+  std::map<const schema::PatchProgram*, std::size_t> material_of;
+  std::vector<Texture> made;
+  Bytes buffer;
+  bool failed = false;
+
+  for (std::size_t pi = 0; pi < patches.size(); ++pi) {
+    const GltfPatch& patch = patches[pi];
+    const schema::PatchProgram& p = *patch.program;
+    auto [it, fresh] = material_of.emplace(&p, made.size());
+    if (fresh) {
+      Texture t;
+      std::string why;
+      const std::string who = workspace ? "patch " + std::to_string(pi + 1) + " (" + patch.source + ")" : "'" + p.name + "'";
+      if (!make_texture(p, patch.material, t, why)) {
+        diags.error("E0702", at, "cannot export " + who + " to glTF: " + why,
+                    "export a material with a grating or a height-map image (docs/GLTF.md, \"What is exported\")");
+        failed = true;
+        made.push_back(t);
+        continue;
+      }
+      if (t.kind == "none" && !workspace) {
+        diags.error("E0701", at, "'" + p.name + "' has no texture (grating or height map) to export: glTF's haptic textures carry heights only",
+                    "export a material with a texture; its force laws are listed in docs/GLTF.md, \"What cannot be carried\"");
+        failed = true;
+      }
+      if (!t.not_carried.empty()) {
+        std::string list;
+        for (const auto& n : t.not_carried) list += (list.empty() ? "" : ", ") + n;
+        diags.warning("W0701", at, "glTF cannot carry part of " + who + ": " + list + "; the asset holds its texture only",
+                      "play the .hmat or .patch for the whole material; the asset's extras list what was left out");
+      }
+      if (t.kind != "none" && t.error > kGltfForceTolerance)
+        diags.warning("W0702", at,
+                      "the 16-bit heights of " + who + " give its forces back within " + num(t.error * 100) +
+                          " % of its maximum lateral force, more than " + num(kGltfForceTolerance * 100) + " %",
+                      "the texture's slope is small against its height range; add smoothing or use a smaller image");
+      nlohmann::json hm = {{"name", p.name}};
+      if (t.kind != "none") {
+        const std::size_t image = images.size();
+        images.push_back({{"name", p.name + " heights"}, {"mimeType", "image/png"},
+                          {"uri", std::string(gltf::kPngDataUriPrefix) + gltf::base64_encode(gltf::encode_png16(t.nx, t.ny, t.texels))}});
+        const int wrap = (t.kind == "grating" || t.repeat) ? kRepeat : kClampToEdge;
+        samplers.push_back({{"magFilter", kLinear}, {"minFilter", kLinear}, {"wrapS", wrap}, {"wrapT", wrap}});
+        textures.push_back({{"sampler", samplers.size() - 1}, {"source", image}});
+        hm["vibrotactileTexture"] = {{{"texture", {{"index", textures.size() - 1}}}, {"type", "High_Resolution"}}};
+      }
+      hm["extras"] = {{gltf::kExtrasKey, sandpaper_extras(p, t, patch.source)}};
+      haptic_materials.push_back(hm);
+      made.push_back(std::move(t));
+    }
+    if (failed) continue;
+    const Texture& t = made[it->second];
+
+    // The plane: patch x -> glTF +X, patch y -> glTF -Z, normal +Y (glTF is y-up, right-handed).
+    const double w = p.size_m[0], h = p.size_m[1];
+    const double corner[4][2] = {{-w / 2, -h / 2}, {w / 2, -h / 2}, {w / 2, h / 2}, {-w / 2, h / 2}};
+    const std::size_t first_view = views.size();
+    auto view = [&](std::size_t begin, int target) {
+      views.push_back({{"buffer", 0}, {"byteOffset", begin}, {"byteLength", buffer.data.size() - begin}, {"target", target}});
+    };
+    std::size_t begin = buffer.data.size();
+    for (const auto& c : corner) buffer.put(static_cast<float>(c[0])), buffer.put(0.0f), buffer.put(static_cast<float>(-c[1]));
+    view(begin, kArrayBuffer);
+    begin = buffer.data.size();
+    for (int i = 0; i < 4; ++i) buffer.put(0.0f), buffer.put(1.0f), buffer.put(0.0f);
+    view(begin, kArrayBuffer);
+    begin = buffer.data.size();
+    for (const auto& c : corner) {
+      const auto [u, v] = uv_of(t, p, c[0], c[1]);
+      buffer.put(u), buffer.put(v);
+    }
+    view(begin, kArrayBuffer);
+    begin = buffer.data.size();
+    for (int i : {0, 1, 2, 0, 2, 3}) buffer.put(static_cast<std::uint16_t>(i));
+    view(begin, kElementArrayBuffer);
+    buffer.align4();
+    const auto fw = static_cast<float>(w / 2), fh = static_cast<float>(h / 2);
+    accessors.push_back({{"bufferView", first_view}, {"componentType", kFloat}, {"count", 4}, {"type", "VEC3"},
+                         {"min", {-fw, 0.0f, -fh}}, {"max", {fw, 0.0f, fh}}});
+    accessors.push_back({{"bufferView", first_view + 1}, {"componentType", kFloat}, {"count", 4}, {"type", "VEC3"}});
+    accessors.push_back({{"bufferView", first_view + 2}, {"componentType", kFloat}, {"count", 4}, {"type", "VEC2"}});
+    accessors.push_back({{"bufferView", first_view + 3}, {"componentType", kUnsignedShort}, {"count", 6}, {"type", "SCALAR"}});
+    const std::size_t a = accessors.size() - 4;
+    const std::string name = workspace ? "patch " + std::to_string(pi + 1) + ": " + patch.source : p.name;
+    meshes.push_back({{"name", name},
+                      {"primitives", {{{"attributes", {{"POSITION", a}, {"NORMAL", a + 1}, {"TEXCOORD_0", a + 2}}},
+                                       {"indices", a + 3}, {"mode", 4}}}},
+                      {"extensions", {{gltf::kExtension, {{"hapticMaterialIndex", it->second}}}}}});
+    nlohmann::json node = {{"name", name}, {"mesh", meshes.size() - 1}};
+    if (patch.centre_m[0] != 0 || patch.centre_m[1] != 0) node["translation"] = {patch.centre_m[0], 0.0, -patch.centre_m[1]};
+    nodes.push_back(node);
+  }
+  if (failed || diags.has_errors()) return std::nullopt;
+
+  nlohmann::json scene_nodes = nlohmann::json::array();
+  for (std::size_t i = 0; i < nodes.size(); ++i) scene_nodes.push_back(i);
+  const std::string scene_name = workspace ? workspace->name : patches.empty() ? "" : patches.front().program->name;
+  nlohmann::json asset = {
+      {"asset", {{"version", "2.0"}, {"generator", "Sandpaper (sandpaper export --format gltf)"}}},
+      {"extensionsUsed", {gltf::kExtension}},
+      {"extensions", {{gltf::kExtension, {{"materials", haptic_materials}}}}},
+      {"scene", 0},
+      {"scenes", {{{"name", scene_name}, {"nodes", scene_nodes}}}},
+      {"nodes", nodes},
+      {"meshes", meshes},
+      {"accessors", accessors},
+      {"bufferViews", views},
+      {"buffers", {{{"byteLength", buffer.data.size()},
+                    {"uri", "data:application/octet-stream;base64," + gltf::base64_encode(buffer.data)}}}},
+  };
+  if (!images.empty()) {
+    asset["images"] = images;
+    asset["samplers"] = samplers;
+    asset["textures"] = textures;
+  }
+  if (workspace)
+    asset["extras"] = {{gltf::kExtrasKey,
+                        {{"version", gltf::kExtrasVersion},
+                         {"workspace", {{"name", workspace->name}, {"size_m", {workspace->size_m[0], workspace->size_m[1]}}}}}}};
+  return asset;
+}
+
+}  // namespace sandpaper::compiler

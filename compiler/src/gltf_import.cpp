@@ -1,0 +1,453 @@
+// glTF 2.0 + MPEG_haptic_material -> patch programs (docs/GLTF.md, "Import"). Outside input: the
+// first problem found ends the read with one diagnostic naming the JSON place, and no size is
+// trusted before it is checked against a limit.
+#include "sandpaper/compiler/gltf_import.hpp"
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "gltf_support.hpp"
+#include "sandpaper/compiler/height_image.hpp"
+#include "sandpaper/schema/input_limits.hpp"
+
+namespace sandpaper::compiler {
+namespace {
+
+using nlohmann::json;
+
+// One refusal: the code, what, how to fix it. Thrown inside the reader, caught once at its top.
+struct Refusal {
+  std::string code, message, suggestion;
+};
+
+[[noreturn]] void refuse(std::string code, std::string message, std::string suggestion = {}) {
+  throw Refusal{std::move(code), std::move(message), std::move(suggestion)};
+}
+
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+// Counts values and depth while checking the syntax, so a hostile file is refused before a DOM of
+// millions of small values is built.
+struct Census : json::json_sax_t {
+  std::size_t values = 0, depth = 0;
+  bool over = false;
+  std::string error;
+  bool value() {
+    if (++values > kMaxGltfJsonValues) over = true;
+    return !over;
+  }
+  bool open() {
+    if (++depth > kMaxGltfJsonDepth) over = true;
+    return value();
+  }
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(); }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return --depth, true; }
+  bool start_array(std::size_t) override { return open(); }
+  bool end_array() override { return --depth, true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+    error = e.what();
+    return false;
+  }
+};
+
+// JSON access that names the place of anything missing or mistyped.
+const json& member(const json& j, const char* key, const std::string& where, const char* code = "E0712") {
+  if (!j.is_object()) refuse(code, where + " is not a JSON object");
+  auto it = j.find(key);
+  if (it == j.end()) refuse(code, where + " has no \"" + key + "\"");
+  return *it;
+}
+
+const json* optional_member(const json& j, const char* key) {
+  if (!j.is_object()) return nullptr;
+  auto it = j.find(key);
+  return it == j.end() ? nullptr : &*it;
+}
+
+std::size_t index_into(const json& j, const json& array, const std::string& where, const char* code) {
+  if (!j.is_number_unsigned()) refuse(code, where + " is not an index (a non-negative integer)");
+  const auto i = j.get<std::uint64_t>();
+  if (!array.is_array() || i >= array.size())
+    refuse(code, where + " is " + std::to_string(i) + ", past the end of its array (" +
+                     std::to_string(array.is_array() ? array.size() : 0) + " entries)");
+  return static_cast<std::size_t>(i);
+}
+
+// Sandpaper's extras: every key typed and in range, its unit in its name.
+struct Extras {
+  const json& j;
+  std::string where;
+  const json& at(const char* key) const {
+    auto it = j.find(key);
+    if (it == j.end())
+      refuse("E0714", where + " has no \"" + key + "\"", "export the material again with `sandpaper export --format gltf`");
+    return *it;
+  }
+  double number(const char* key, double lo, double hi) const {
+    const json& v = at(key);
+    if (!v.is_number()) refuse("E0714", where + "." + key + " is " + v.type_name() + ", not a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi)
+      refuse("E0714", where + "." + key + " is " + num(x) + ", outside " + num(lo) + " to " + num(hi));
+    return x;
+  }
+  void pair(const char* key, double lo, double hi, double out[2]) const {
+    const json& v = at(key);
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+      refuse("E0714", where + "." + key + " is not a pair of numbers [x, y]");
+    for (int a = 0; a < 2; ++a) {
+      out[a] = v[static_cast<std::size_t>(a)].get<double>();
+      if (!std::isfinite(out[a]) || out[a] < lo || out[a] > hi)
+        refuse("E0714", where + "." + key + "[" + std::to_string(a) + "] is " + num(out[a]) + ", outside " + num(lo) +
+                            " to " + num(hi));
+    }
+  }
+  std::string text(const char* key) const {
+    const json& v = at(key);
+    if (!v.is_string()) refuse("E0714", where + "." + key + " is " + v.type_name() + ", not a string");
+    return v.get<std::string>();
+  }
+  bool flag(const char* key) const {
+    const json& v = at(key);
+    if (!v.is_boolean()) refuse("E0714", where + "." + key + " is " + v.type_name() + ", not true or false");
+    return v.get<bool>();
+  }
+};
+
+class Reader {
+ public:
+  Reader(const Compiler& c, const json& root, std::string shown, Diagnostics& diags)
+      : c_(c), root_(root), shown_(std::move(shown)), diags_(diags) {}
+
+  // The program of haptic material `index` (built once, shared by every mesh naming it).
+  std::shared_ptr<const schema::PatchProgram> program(std::size_t index) {
+    auto it = built_.find(index);
+    if (it != built_.end()) return it->second;
+    auto p = std::make_shared<const schema::PatchProgram>(build(index));
+    built_.emplace(index, p);
+    return p;
+  }
+
+  const json& haptic_materials() const { return materials_; }
+  void set_materials(const json& m) { materials_ = m; }
+
+ private:
+  schema::PatchProgram build(std::size_t index) {
+    const std::string where = "extensions.MPEG_haptic_material.materials[" + std::to_string(index) + "]";
+    const json& m = materials_[index];
+    if (!m.is_object()) refuse("E0713", where + " is not a JSON object");
+    const json* extras = optional_member(m, "extras");
+    const json* ours = extras ? optional_member(*extras, gltf::kExtrasKey) : nullptr;
+    if (!ours || !ours->is_object())
+      refuse("E0714", where + " has no extras.sandpaper object: the asset was not written by Sandpaper",
+             "Sandpaper reads back the assets `sandpaper export --format gltf` writes (docs/GLTF.md)");
+    const Extras x{*ours, where + ".extras.sandpaper"};
+    if (x.number("version", 0, 1e9) != gltf::kExtrasVersion)
+      refuse("E0714", x.where + ".version is not " + std::to_string(gltf::kExtrasVersion), "export it again with this Sandpaper");
+    const auto& device = c_.device();
+    schema::PatchProgram p;
+    p.name = x.text("name");
+    p.describes = x.text("describes");
+    p.device = device.name;
+    x.pair("patch_size_m", 1e-6, 10, p.size_m);
+    const std::string kind = x.text("texture");
+    const std::string source = x.text("source");
+    p.provenance.push_back({"patch.width", p.size_m[0], "m", num(p.size_m[0] * 1e3) + " mm", "physical", shown_ + " (glTF extras)"});
+    p.provenance.push_back({"patch.height", p.size_m[1], "m", num(p.size_m[1] * 1e3) + " mm", "physical", shown_ + " (glTF extras)"});
+    if (const json* nc = optional_member(*ours, "not_carried"); nc && nc->is_array() && !nc->empty()) {
+      std::string list;
+      for (const auto& n : *nc)
+        if (n.is_string() && list.size() < 1000) list += (list.empty() ? "" : ", ") + n.get<std::string>();
+      diags_.warning("W0703", at(), "'" + p.name + "' had parts glTF does not carry, left out of the asset: " + list,
+                     "compile the original material (" + source.substr(0, 200) + ") for the whole of it");
+    }
+    if (kind == "none") return finish(p, 0);
+    if (kind != "grating" && kind != "height_field")
+      refuse("E0714", x.where + ".texture is \"" + kind.substr(0, 40) + "\", not \"grating\", \"height_field\" or \"none\"");
+    const double force = x.number("max_lateral_force_N", 0, 1e4);
+    const double k = x.number("lateral_gain_N", 1e-12, 1e4);
+    const double range = x.number("height_range_m", 1e-15, 1);
+    const gltf::Png16 png = texture(m, where, kind);
+    std::vector<double> h(png.texels.size());
+    if (kind == "grating") {
+      if (png.ny != 1 || png.nx < 2)
+        refuse("E0717", "the grating texture of " + where + " is " + std::to_string(png.nx) + " x " + std::to_string(png.ny) +
+                            " px; a grating is one row of at least 2 texels (one period)");
+      schema::GratingTerm g;
+      g.period_m = x.number("period_m", 1e-6, 1);
+      g.orientation_rad = x.number("orientation_rad", -1e3, 1e3);
+      for (std::size_t i = 0; i < h.size(); ++i) h[i] = png.texels[i] / gltf::kTexelMax * range;
+      g.force_N = gltf::grating_forces(h, g.period_m, k);
+      p.terms.emplace_back(std::move(g));
+      p.provenance.push_back({"texture.period", std::get<schema::GratingTerm>(p.terms.back()).period_m, "m",
+                              "period_m in the glTF extras", "physical", shown_ + " (glTF extras)"});
+    } else {
+      schema::HeightFieldTerm f;
+      f.nx = static_cast<std::uint32_t>(png.nx);
+      f.ny = static_cast<std::uint32_t>(png.ny);
+      x.pair("grid_spacing_m", 1e-9, 1, f.spacing_m);
+      x.pair("grid_origin_m", -10, 10, f.origin_m);
+      f.repeat = x.flag("repeat");
+      for (int r = 0; r < png.ny; ++r)  // PNG row 0 is the top (+y) edge; the grid's row 0 the bottom
+        for (int c = 0; c < png.nx; ++c)
+          h[static_cast<std::size_t>(png.ny - 1 - r) * png.nx + c] = png.texels[static_cast<std::size_t>(r) * png.nx + c] / gltf::kTexelMax * range;
+      gltf::height_field_forces(h, png.nx, png.ny, f.spacing_m[0], f.spacing_m[1], f.repeat, k, f.force_x_N, f.force_y_N);
+      p.terms.emplace_back(std::move(f));
+    }
+    // What the heights ask for, against the device: the reader's own check, not the extras' word.
+    double peak = 0;
+    for (const auto& term : p.terms) {
+      if (const auto* g = std::get_if<schema::GratingTerm>(&term))
+        for (float f : g->force_N) peak = std::max(peak, static_cast<double>(std::abs(f)));
+      if (const auto* f = std::get_if<schema::HeightFieldTerm>(&term))
+        for (std::size_t i = 0; i < f->force_x_N.size(); ++i)
+          peak = std::max(peak, std::hypot(static_cast<double>(f->force_x_N[i]), static_cast<double>(f->force_y_N[i])));
+    }
+    if (!std::isfinite(peak) || peak > device.max_force_N || force > device.max_force_N)
+      refuse("E0718",
+             "the texture of " + where + " asks for " + num(std::max(peak, force)) + " N of lateral force; device '" +
+                 device.name + "' reaches " + num(device.max_force_N) + " N at most (" + device.file + ")",
+             "compile for a stronger device (--device), or export the material again with less force");
+    p.provenance.push_back({"texture.max_lateral_force", force, "N", num(force) + " N (max_lateral_force_N)", "physical",
+                            shown_ + " (glTF extras; " + source.substr(0, 200) + ")"});
+    return finish(p, force);
+  }
+
+  // The device's command scale and the roughness map's prediction, as codegen records them.
+  schema::PatchProgram finish(schema::PatchProgram& p, double force) {
+    const auto& device = c_.device();
+    const auto& map = c_.calibration().roughness_map();
+    p.command.device_file = device.file;
+    p.command.command_unit = device.command_unit;
+    p.command.command_max = device.command_max;
+    p.command.max_force_N = device.max_force_N;
+    p.command.calibrated = device.calibrated();
+    for (int a = 0; a < 2; ++a) p.command.newtons_per_command_unit[a] = device.axis_scale(a).step_N(force);
+    p.max_lateral_force_N = force;
+    p.roughness = force > 0 ? map.percept_of(force) : 0;
+    p.roughness_map = map.id;
+    p.roughness_map_file = map.file;
+    if (force > 0)
+      p.provenance.push_back({"texture.roughness", p.roughness, "1", "from the maximum lateral force", "derived", map.provenance()});
+    return std::move(p);
+  }
+
+  // The material's haptic texture, decoded: vibrotactileTexture[0] -> textures -> images -> PNG.
+  gltf::Png16 texture(const json& m, const std::string& where, const std::string& kind) {
+    const json* list = optional_member(m, "vibrotactileTexture");
+    if (!list || !list->is_array() || list->empty())
+      refuse("E0715", where + " has no vibrotactileTexture, but its extras say it has a " + kind + " texture");
+    const json& info = member((*list)[0], "texture", where + ".vibrotactileTexture[0]", "E0715");
+    const json& textures = member(root_, "textures", "the asset", "E0715");
+    const std::size_t ti = index_into(member(info, "index", where + ".vibrotactileTexture[0].texture", "E0715"), textures,
+                                      where + ".vibrotactileTexture[0].texture.index", "E0715");
+    const std::string tw = "textures[" + std::to_string(ti) + "]";
+    const json& images = member(root_, "images", "the asset", "E0715");
+    const std::size_t ii = index_into(member(textures[ti], "source", tw, "E0715"), images, tw + ".source", "E0715");
+    const std::string iw = "images[" + std::to_string(ii) + "]";
+    const json* uri = optional_member(images[ii], "uri");
+    if (!uri || !uri->is_string())
+      refuse("E0715", iw + " has no uri: Sandpaper reads haptic textures embedded as data:image/png;base64 URIs",
+             "export the material again with `sandpaper export --format gltf`");
+    const std::string& u = uri->get_ref<const std::string&>();
+    const std::string prefix = gltf::kPngDataUriPrefix;
+    if (u.compare(0, prefix.size(), prefix) != 0)
+      refuse("E0715", iw + ".uri is not a data:image/png;base64 URI" + (u.rfind("data:", 0) == 0 ? "" : " (files beside the asset are not read)"),
+             "export the material again with `sandpaper export --format gltf`");
+    auto bytes = gltf::base64_decode(std::string_view(u).substr(prefix.size()));
+    if (!bytes) refuse("E0715", iw + ".uri is not valid base64");
+    std::string why;
+    const long long budget = kMaxGltfTexels - texels_;
+    const long long limit = std::min<long long>(kind == "grating" ? 65536 : kMaxImagePixels, budget);
+    auto png = gltf::decode_png16(*bytes, std::max<long long>(limit, 0), why);
+    if (!png) refuse(why.find("over the limit") != std::string::npos ? "E0717" : "E0716", iw + ": " + why);
+    texels_ += static_cast<long long>(png->texels.size());
+    return std::move(*png);
+  }
+
+  SourceLocation at() const { return SourceLocation{std::make_shared<const SourceFile>(shown_, ""), 0, 0, 1}; }
+
+  const Compiler& c_;
+  const json& root_;
+  std::string shown_;
+  Diagnostics& diags_;
+  json materials_;
+  std::map<std::size_t, std::shared_ptr<const schema::PatchProgram>> built_;
+  long long texels_ = 0;
+};
+
+// The scene's nodes that carry a haptic material: (node index, haptic material index).
+std::vector<std::pair<std::size_t, std::size_t>> haptic_nodes(const json& root, std::size_t materials) {
+  const json* nodes = optional_member(root, "nodes");
+  if (!nodes || !nodes->is_array()) refuse("E0713", "the asset has no nodes, so no mesh carries a haptic material");
+  std::vector<std::size_t> order;
+  if (const json* scenes = optional_member(root, "scenes")) {
+    std::size_t s = 0;
+    if (const json* scene = optional_member(root, "scene")) s = index_into(*scene, *scenes, "scene", "E0712");
+    if (!scenes->is_array() || scenes->empty()) refuse("E0712", "scenes is not a non-empty array");
+    const json* list = optional_member((*scenes)[s], "nodes");
+    if (list) {
+      if (!list->is_array()) refuse("E0712", "scenes[" + std::to_string(s) + "].nodes is not an array");
+      for (std::size_t i = 0; i < list->size(); ++i)
+        order.push_back(index_into((*list)[i], *nodes, "scenes[" + std::to_string(s) + "].nodes[" + std::to_string(i) + "]", "E0712"));
+    }
+  } else {
+    for (std::size_t i = 0; i < nodes->size(); ++i) order.push_back(i);
+  }
+  const json* meshes = optional_member(root, "meshes");
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t n : order) {
+    const std::string nw = "nodes[" + std::to_string(n) + "]";
+    const json& node = (*nodes)[n];
+    if (!node.is_object()) refuse("E0712", nw + " is not a JSON object");
+    const json* mesh = optional_member(node, "mesh");
+    if (!mesh) continue;
+    if (!meshes) refuse("E0712", nw + ".mesh names a mesh, but the asset has no meshes");
+    const std::size_t mi = index_into(*mesh, *meshes, nw + ".mesh", "E0712");
+    const json* ext = optional_member((*meshes)[mi], "extensions");
+    const json* hm = ext ? optional_member(*ext, gltf::kExtension) : nullptr;
+    if (!hm) continue;  // a mesh without haptics is scenery, not a patch
+    for (const char* k : {"rotation", "scale", "matrix", "children"})
+      if (optional_member(node, k))
+        refuse("E0712", nw + " has a \"" + k + "\": Sandpaper reads patches placed by translation alone, on the ground plane",
+               "export the asset again from Sandpaper, or remove the transform");
+    if (materials == 0) refuse("E0713", "the asset has no MPEG_haptic_material materials for meshes[" + std::to_string(mi) + "] to name");
+    const std::string where = "meshes[" + std::to_string(mi) + "].extensions.MPEG_haptic_material.hapticMaterialIndex";
+    const json& index = member(*hm, "hapticMaterialIndex", "meshes[" + std::to_string(mi) + "].extensions.MPEG_haptic_material", "E0713");
+    if (!index.is_number_unsigned() || index.get<std::uint64_t>() >= materials)
+      refuse("E0713", where + " is not an index into the " + std::to_string(materials) + " haptic materials");
+    out.emplace_back(n, static_cast<std::size_t>(index.get<std::uint64_t>()));
+    if (out.size() > schema::limits::kMaxWorkspacePatches)
+      refuse("E0719", "the asset has more than " + std::to_string(schema::limits::kMaxWorkspacePatches) + " haptic meshes");
+  }
+  return out;
+}
+
+// The node's place on the workspace: glTF (x, 0, z) is patch (x, -z).
+void centre_of(const json& node, std::size_t n, double centre[2]) {
+  centre[0] = centre[1] = 0;
+  const json* t = optional_member(node, "translation");
+  if (!t) return;
+  const std::string w = "nodes[" + std::to_string(n) + "].translation";
+  if (!t->is_array() || t->size() != 3) refuse("E0712", w + " is not three numbers");
+  double v[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!(*t)[i].is_number()) refuse("E0712", w + " is not three numbers");
+    v[i] = (*t)[i].get<double>();
+    if (!std::isfinite(v[i]) || std::abs(v[i]) > 10) refuse("E0712", w + "[" + std::to_string(i) + "] is not within 10 m");
+  }
+  if (v[1] != 0) refuse("E0712", w + " lifts the patch off the ground plane (y = " + num(v[1]) + " m)");
+  centre[0] = v[0];
+  centre[1] = v[2] == 0 ? 0 : -v[2];
+}
+
+void read(const Compiler& c, const std::string& bytes, const std::string& shown, GltfImportResult& r) {
+  if (bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0)
+    refuse("E0711", "'" + shown + "' is a binary glTF (.glb); Sandpaper reads the JSON form (.gltf)",
+           "export with `sandpaper export --format gltf -o FILE.gltf`");
+  Census census;
+  const bool parsed = json::sax_parse(bytes, &census);
+  if (census.over)
+    refuse("E0711", "'" + shown + "' has more than " + std::to_string(kMaxGltfJsonValues) + " JSON values or is nested deeper than " +
+                        std::to_string(kMaxGltfJsonDepth));
+  if (!parsed)
+    refuse("E0711", "'" + shown + "' is not JSON: " + (census.error.empty() ? std::string("parse error") : census.error),
+           "a .gltf file is JSON; was it cut short?");
+  const json root = json::parse(bytes);
+  if (!root.is_object()) refuse("E0712", "'" + shown + "' is JSON but not a glTF asset (not an object)");
+  const json& asset = member(root, "asset", "the asset");
+  const json& version = member(asset, "version", "asset");
+  if (!version.is_string() || version.get<std::string>() != "2.0")
+    refuse("E0712", "asset.version is not \"2.0\": Sandpaper reads glTF 2.0");
+  const json* ext = optional_member(root, "extensions");
+  const json* top = ext ? optional_member(*ext, gltf::kExtension) : nullptr;
+  if (!top) refuse("E0713", "the asset has no MPEG_haptic_material extension, so nothing in it has haptics",
+                   "export a material with `sandpaper export --format gltf`");
+  const json& materials = member(*top, "materials", "extensions.MPEG_haptic_material", "E0713");
+  if (!materials.is_array() || materials.empty())
+    refuse("E0713", "extensions.MPEG_haptic_material.materials is not a non-empty array");
+  const auto placed = haptic_nodes(root, materials.size());
+  if (placed.empty()) refuse("E0713", "no mesh in the scene names a haptic material (meshes[].extensions.MPEG_haptic_material)");
+  Reader reader(c, root, shown, r.diagnostics);
+  reader.set_materials(materials);
+  const json* extras = optional_member(root, "extras");
+  const json* ours = extras ? optional_member(*extras, gltf::kExtrasKey) : nullptr;
+  const json* ws = ours ? optional_member(*ours, "workspace") : nullptr;
+  if (!ws) {
+    if (placed.size() != 1)
+      refuse("E0713", std::to_string(placed.size()) + " meshes carry haptic materials, but the asset is not a workspace (no extras.sandpaper.workspace)",
+             "export a workspace (.hws) to get an asset of several patches");
+    r.program = *reader.program(placed.front().second);
+    return;
+  }
+  if (!ws->is_object()) refuse("E0714", "extras.sandpaper.workspace is not a JSON object");
+  const Extras x{*ws, "extras.sandpaper.workspace"};
+  schema::WorkspaceProgram w;
+  w.name = x.text("name");
+  x.pair("size_m", 1e-6, 10, w.size_m);
+  const json& nodes = root["nodes"];
+  for (const auto& [n, mi] : placed) {
+    double centre[2];
+    centre_of(nodes[n], n, centre);
+    auto program = reader.program(mi);
+    const json& name = materials[mi]["extras"][gltf::kExtrasKey]["source"];
+    w.patches.push_back(schema::place_shared_patch(program, centre, name.get<std::string>()));
+  }
+  r.workspace = std::move(w);
+}
+
+}  // namespace
+
+bool is_gltf_path(const std::filesystem::path& path) { return path.extension() == ".gltf"; }
+
+GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& bytes, const std::string& shown_name) {
+  GltfImportResult r;
+  const SourceLocation at{std::make_shared<const SourceFile>(shown_name, ""), 0, 0, 1};
+  try {
+    if (bytes.size() > kMaxGltfBytes)
+      refuse("E0710", "'" + shown_name + "' is larger than the limit of " + std::to_string(kMaxGltfBytes >> 20) + " MiB for a glTF file");
+    read(compiler, bytes, shown_name, r);
+  } catch (const Refusal& e) {
+    r.program.reset();
+    r.workspace.reset();
+    r.diagnostics.error(e.code, at, e.message, e.suggestion);
+  } catch (const json::exception& e) {
+    // Every access above is checked first; this is a defect's safety net, still the input's error.
+    r.program.reset();
+    r.workspace.reset();
+    r.diagnostics.error("E0712", at, std::string("'") + shown_name + "' is not a glTF asset Sandpaper reads: " + e.what());
+  }
+  return r;
+}
+
+GltfImportResult import_gltf_file(const Compiler& compiler, const std::filesystem::path& path) {
+  std::string bytes;
+  try {
+    bytes = schema::read_input_file(path, kMaxGltfBytes);
+  } catch (const schema::InputFileError& e) {
+    GltfImportResult r;
+    r.diagnostics.error("E0710", SourceLocation{std::make_shared<const SourceFile>(path.string(), ""), 0, 0, 1},
+                        "cannot read glTF file '" + path.string() + "': " + e.reason, "check the path");
+    return r;
+  }
+  return import_gltf_text(compiler, bytes, path.string());
+}
+
+}  // namespace sandpaper::compiler

@@ -1,0 +1,227 @@
+#include "gltf_support.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <stdexcept>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <zlib.h>
+
+namespace sandpaper::compiler::gltf {
+namespace {
+
+constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+
+std::string first_line(const std::string& log) {
+  const auto end = log.find('\n');
+  return end == std::string::npos ? log : log.substr(0, end);
+}
+
+}  // namespace
+
+std::string base64_encode(const std::vector<unsigned char>& bytes) {
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const std::uint32_t v = (std::uint32_t{bytes[i]} << 16) | (std::uint32_t{bytes[i + 1]} << 8) | bytes[i + 2];
+    for (int s = 18; s >= 0; s -= 6) out.push_back(kAlphabet[(v >> s) & 63]);
+  }
+  if (i < bytes.size()) {
+    std::uint32_t v = std::uint32_t{bytes[i]} << 16;
+    if (i + 1 < bytes.size()) v |= std::uint32_t{bytes[i + 1]} << 8;
+    out.push_back(kAlphabet[(v >> 18) & 63]);
+    out.push_back(kAlphabet[(v >> 12) & 63]);
+    out.push_back(i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63] : '=');
+    out.push_back('=');
+  }
+  return out;
+}
+
+std::optional<std::vector<unsigned char>> base64_decode(std::string_view text) {
+  if (text.size() % 4 != 0) return std::nullopt;
+  std::array<int, 256> value{};
+  value.fill(-1);
+  for (int c = 0; c < 64; ++c) value[static_cast<unsigned char>(kAlphabet[c])] = c;
+  std::vector<unsigned char> out;
+  out.reserve(text.size() / 4 * 3);
+  for (std::size_t i = 0; i < text.size(); i += 4) {
+    const bool last = i + 4 == text.size();
+    int pad = 0;
+    std::uint32_t v = 0;
+    for (std::size_t j = 0; j < 4; ++j) {
+      const unsigned char c = static_cast<unsigned char>(text[i + j]);
+      if (c == '=' && last && j >= 2) {
+        ++pad;
+        v <<= 6;
+        continue;
+      }
+      if (pad > 0 || value[c] < 0) return std::nullopt;  // '=' only at the very end
+      v = (v << 6) | static_cast<std::uint32_t>(value[c]);
+    }
+    out.push_back(static_cast<unsigned char>(v >> 16));
+    if (pad < 2) out.push_back(static_cast<unsigned char>(v >> 8));
+    if (pad < 1) out.push_back(static_cast<unsigned char>(v));
+  }
+  return out;
+}
+
+std::vector<unsigned char> encode_png16(int nx, int ny, const std::vector<std::uint16_t>& texels) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput proxy(bytes);
+  auto out = OIIO::ImageOutput::create("png");
+  if (!out) throw std::runtime_error("OpenImageIO cannot write PNG: " + first_line(OIIO::geterror()));
+  OIIO::ImageSpec spec(nx, ny, 1, OIIO::TypeDesc::UINT16);
+  spec.channelnames = {"Y"};
+  if (!out->set_ioproxy(&proxy) || !out->open("haptic.png", spec) ||
+      !out->write_image(OIIO::TypeDesc::UINT16, texels.data()) || !out->close())
+    throw std::runtime_error("OpenImageIO failed to write a 16-bit PNG: " + first_line(out->geterror()));
+  return bytes;
+}
+
+std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long long max_pixels, std::string& why) {
+  // Decoded here rather than by libpng: libpng reports a corrupt stream by longjmp, which leaks
+  // inside OpenImageIO's reader (found by the `gltf` fuzz target), and the reader needs only what
+  // the writer writes. Every chunk's length and CRC are checked, and the image data inflates to
+  // exactly the bytes its header promises, into a buffer sized from the header after the limit.
+  auto fail = [&](std::string w) {
+    why = std::move(w);
+    return std::nullopt;
+  };
+  if (bytes.size() < sizeof kPngSignature || std::memcmp(bytes.data(), kPngSignature, sizeof kPngSignature) != 0)
+    return fail("not a PNG (its first bytes are not the PNG signature)");
+  auto be32 = [&](std::size_t at) {
+    return (std::uint32_t{bytes[at]} << 24) | (std::uint32_t{bytes[at + 1]} << 16) | (std::uint32_t{bytes[at + 2]} << 8) | bytes[at + 3];
+  };
+  std::size_t at = sizeof kPngSignature;
+  std::uint32_t width = 0, height = 0;
+  std::vector<unsigned char> raw;  // the filtered rows, inflated
+  z_stream z{};
+  bool inflating = false, ended = false, seen_header = false;
+  struct End {
+    z_stream& z;
+    bool& on;
+    ~End() {
+      if (on) inflateEnd(&z);
+    }
+  } end{z, inflating};
+  while (!ended) {
+    if (bytes.size() - at < 12) return fail("the PNG is cut short (a chunk runs past its end)");
+    const std::uint32_t length = be32(at);
+    if (length > bytes.size() - at - 12) return fail("the PNG is cut short (a chunk runs past its end)");
+    const unsigned char* type = bytes.data() + at + 4;
+    const unsigned char* data = type + 4;
+    if (crc32(crc32(0, nullptr, 0), type, length + 4) != be32(at + 8 + length))
+      return fail("the PNG is corrupt (a chunk's CRC does not match)");
+    const std::string name(reinterpret_cast<const char*>(type), 4);
+    if (!seen_header && name != "IHDR") return fail("the PNG does not start with its header chunk");
+    if (name == "IHDR") {
+      if (seen_header || length != 13) return fail("the PNG's header chunk is malformed");
+      seen_header = true;
+      width = be32(at + 8);
+      height = be32(at + 12);
+      if (width == 0 || height == 0) return fail("the PNG has no pixels");
+      if (static_cast<std::uint64_t>(width) * height > static_cast<std::uint64_t>(max_pixels))
+        return fail("the PNG claims " + std::to_string(width) + " x " + std::to_string(height) +
+                    " px, over the limit of " + std::to_string(max_pixels) + " px");
+      if (data[8] != 16 || data[9] != 0 || data[10] != 0 || data[11] != 0 || data[12] != 0)
+        return fail("the PNG is not 16-bit greyscale without interlacing (bit depth " + std::to_string(data[8]) +
+                    ", colour type " + std::to_string(data[9]) + "), the form Sandpaper writes haptic textures in");
+      raw.resize(static_cast<std::size_t>(height) * (1 + 2 * static_cast<std::size_t>(width)));
+      if (inflateInit(&z) != Z_OK) return fail("zlib cannot start");
+      inflating = true;
+      z.next_out = raw.data();
+      z.avail_out = static_cast<uInt>(raw.size());
+    } else if (name == "IDAT") {
+      if (!inflating) return fail("the PNG's image data comes after its end");
+      z.next_in = const_cast<unsigned char*>(data);
+      z.avail_in = length;
+      while (z.avail_in > 0) {
+        const int rc = inflate(&z, Z_NO_FLUSH);
+        if (rc == Z_STREAM_END) break;
+        if (rc != Z_OK) return fail("the PNG's image data is corrupt (zlib: " + std::string(z.msg ? z.msg : "error") + ")");
+        if (z.avail_out == 0 && z.avail_in > 0) return fail("the PNG's image data is longer than its header says");
+      }
+    } else if (name == "IEND") {
+      ended = true;
+    } else if (!(type[0] & 0x20)) {
+      return fail("the PNG has a critical chunk Sandpaper does not read (" + name + ")");
+    }
+    at += 12 + length;
+  }
+  if (!inflating || z.avail_out != 0) return fail("the PNG's image data is shorter than its header says");
+  // Undo the row filters (PNG spec 9.2), two bytes per texel, then big-endian samples.
+  const std::size_t stride = 2 * static_cast<std::size_t>(width);
+  std::vector<unsigned char> prior(stride, 0), row(stride);
+  Png16 png;
+  png.nx = static_cast<int>(width);
+  png.ny = static_cast<int>(height);
+  png.texels.resize(static_cast<std::size_t>(width) * height);
+  for (std::size_t y = 0; y < height; ++y) {
+    const unsigned char* in = raw.data() + y * (stride + 1);
+    const unsigned filter = in[0];
+    for (std::size_t i = 0; i < stride; ++i) {
+      const int a = i >= 2 ? row[i - 2] : 0, b = prior[i], c = i >= 2 ? prior[i - 2] : 0;
+      int predicted;
+      switch (filter) {
+        case 0: predicted = 0; break;
+        case 1: predicted = a; break;
+        case 2: predicted = b; break;
+        case 3: predicted = (a + b) / 2; break;
+        case 4: {
+          const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+          predicted = pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+          break;
+        }
+        default: return fail("the PNG's row " + std::to_string(y) + " has an unknown filter (" + std::to_string(filter) + ")");
+      }
+      row[i] = static_cast<unsigned char>(in[1 + i] + predicted);
+    }
+    for (std::size_t x = 0; x < width; ++x)
+      png.texels[y * width + x] = static_cast<std::uint16_t>((row[2 * x] << 8) | row[2 * x + 1]);
+    prior.swap(row);
+  }
+  return png;
+}
+
+}  // namespace sandpaper::compiler::gltf
+
+namespace sandpaper::compiler::gltf {
+
+std::vector<float> grating_forces(const std::vector<double>& h, double period_m, double k_N) {
+  const std::size_t n = h.size();
+  const double du = period_m / static_cast<double>(n);
+  std::vector<float> f(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double before = h[(i + n - 1) % n];
+    f[i] = static_cast<float>(-k_N * (h[i] - before) / du);
+  }
+  return f;
+}
+
+void height_field_forces(const std::vector<double>& h, int nx, int ny, double dx_m, double dy_m, bool repeat,
+                         double k_N, std::vector<float>& fx, std::vector<float>& fy) {
+  const std::size_t size = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+  fx.assign(size, 0.0f);
+  fy.assign(size, 0.0f);
+  auto H = [&](int x, int y) { return h[static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(x)]; };
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      int xl, xr, yd, yu;
+      if (repeat) {
+        xl = (x - 1 + nx) % nx, xr = (x + 1) % nx, yd = (y - 1 + ny) % ny, yu = (y + 1) % ny;
+      } else {
+        xl = std::max(x - 1, 0), xr = std::min(x + 1, nx - 1), yd = std::max(y - 1, 0), yu = std::min(y + 1, ny - 1);
+      }
+      const int span_x = repeat ? 2 : xr - xl, span_y = repeat ? 2 : yu - yd;
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(x);
+      // A single row or column has no slope across it.
+      if (span_x > 0) fx[i] = static_cast<float>(-k_N * (H(xr, y) - H(xl, y)) / (span_x * dx_m));
+      if (span_y > 0) fy[i] = static_cast<float>(-k_N * (H(x, yu) - H(x, yd)) / (span_y * dy_m));
+    }
+}
+
+}  // namespace sandpaper::compiler::gltf

@@ -1,0 +1,11 @@
+#include "sandpaper/runtime/usb/owned_joystick.hpp"
+
+namespace sandpaper::runtime::usb {
+
+OwnedHidPidJoystick::OwnedHidPidJoystick(std::unique_ptr<LibusbTransport> transport,
+                                         const calibration::DeviceCalibration& calibration)
+    : transport_(std::move(transport)), joystick_(*transport_, calibration) {}
+
+OwnedHidPidJoystick::~OwnedHidPidJoystick() { joystick_.close(); }
+
+}  // namespace sandpaper::runtime::usb

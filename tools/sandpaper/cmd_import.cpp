@@ -1,0 +1,48 @@
+// `sandpaper compile ASSET.gltf`: a glTF asset that `sandpaper export` wrote, read back and compiled
+// for the device (compiler/gltf_import.hpp, docs/GLTF.md, "Import"): a .patch for a material, a
+// workspace program (.wsp, or its JSON view) for a workspace.
+#include <iostream>
+
+#include "cli.hpp"
+#include "sandpaper/compiler/gltf_import.hpp"
+#include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/patch_io.hpp"
+#include "sandpaper/schema/workspace_io.hpp"
+#include "sandpaper/schema/workspace_json.hpp"
+
+namespace sandpaper::cli {
+
+int cmd_compile_gltf(const CommonOptions& o, const std::string& output) {
+  auto c = make_compiler(o);
+  auto r = compiler::import_gltf_file(c, o.file);
+  std::cerr << compiler::format_diagnostics(r.diagnostics);
+  if (!r.ok()) {
+    if (o.json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}.dump(2) << "\n";
+    return kExitBadInput;
+  }
+  std::string out = output;
+  nlohmann::json j{{"ok", true}, {"diagnostics", diagnostics_json(r.diagnostics)}};
+  if (r.program) {
+    if (out.empty()) out = std::filesystem::path(o.file).replace_extension(".patch").string();
+    schema::write_patch_file(out, *r.program, {o.compact});
+    j.update({{"name", r.program->name}, {"max_lateral_force_N", r.program->max_lateral_force_N},
+              {"roughness", r.program->roughness}, {"device", r.program->device}, {"output", out}});
+    if (!o.json)
+      std::cout << r.program->name << ": maximum lateral force " << r.program->max_lateral_force_N << " N, roughness "
+                << r.program->roughness << ", " << r.program->terms.size() << " term(s) for device " << r.program->device
+                << " (from glTF) -> " << out << "\n";
+  } else {
+    if (out.empty()) out = std::filesystem::path(o.file).replace_extension(".wsp").string();
+    if (std::filesystem::path(out).extension() == ".wsp")
+      schema::write_workspace_program_file(out, *r.workspace, {o.compact});
+    else
+      schema::write_file_atomically(out, schema::to_json(*r.workspace).dump(2) + "\n");
+    j.update({{"name", r.workspace->name}, {"patches", r.workspace->patches.size()}, {"output", out}});
+    if (!o.json)
+      std::cout << r.workspace->name << ": workspace of " << r.workspace->patches.size() << " patch(es) (from glTF) -> " << out << "\n";
+  }
+  if (o.json) std::cout << j.dump(2) << "\n";
+  return kExitOk;
+}
+
+}  // namespace sandpaper::cli
