@@ -17,6 +17,7 @@
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/compiler/data_dirs.hpp"
 #include "sandpaper/compiler/explain_json.hpp"
+#include "sandpaper/compiler/texture_heights.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/recording_device.hpp"
 #include "sandpaper/sandpaper.h"
@@ -113,6 +114,34 @@ py::dict lateral_force_field(const PyMaterial& m, int n) {
   return out;
 }
 
+// The heights the texture is the gradient of (compiler/texture_heights.hpp), as numpy arrays.
+py::dict height_field(const PyMaterial& m) {
+  std::string why;
+  const auto* resolved = m.result->material ? &*m.result->material : nullptr;
+  const auto t = sp::compiler::texture_heights(m.material.program(), resolved, why);
+  if (!t) throw sp::Error("no height field for '" + m.material.name() + "': " + why);
+  py::array_t<double> x({t->nx}), y({t->ny}), h({t->ny, t->nx});
+  auto xs = x.mutable_unchecked<1>(), ys = y.mutable_unchecked<1>();
+  auto hs = h.mutable_unchecked<2>();
+  for (int i = 0; i < t->nx; ++i) xs(i) = t->origin_m[0] + i * t->spacing_m[0];
+  for (int j = 0; j < t->ny; ++j) ys(j) = t->origin_m[1] + j * t->spacing_m[1];
+  for (int j = 0; j < t->ny; ++j)
+    for (int i = 0; i < t->nx; ++i) hs(j, i) = t->h_m[static_cast<std::size_t>(j) * static_cast<std::size_t>(t->nx) + static_cast<std::size_t>(i)];
+  py::dict out;
+  out["kind"] = t->kind;
+  out["x_m"] = x;
+  out["y_m"] = y;
+  out["h_m"] = h;
+  out["k_N"] = t->k_N;
+  out["nominal"] = t->nominal;
+  out["repeat"] = t->repeat;
+  if (t->kind == "grating") {
+    out["period_m"] = t->period_m;
+    out["orientation_rad"] = t->orientation_rad;
+  }
+  return out;
+}
+
 py::dict report_dict(const sp::runtime::ServoReport& r) {
   py::dict d;
   d["ticks"] = r.ticks;
@@ -205,6 +234,11 @@ PYBIND11_MODULE(sandpaper, m) {
         return to_python(j);
       }, py::arg("design_speed_m_s") = 0.0,
          "what the compiler decided, as `sandpaper explain --json` prints it: a dict")
+      .def("height_field", &height_field,
+           "the heights the texture is the gradient of (F = -k_N grad h): {kind, x_m, y_m, h_m (ny, nx), k_N, nominal, "
+           "repeat[, period_m, orientation_rad]}; a grating is one period along its force direction (ny = 1); "
+           "nominal: no depth was stated, so the heights are scaled to a steepest slope of 1. Raises Error for a "
+           "material with no grating or height map")
       .def("lateral_force_field", &lateral_force_field, py::arg("n") = 128,
            "the lateral force a still hand feels on an n x n grid: {x_m, y_m, fx_N, fy_N} as numpy arrays")
       .def("__repr__", [](const PyMaterial& x) {

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "gltf_support.hpp"
-#include "sandpaper/compiler/textures.hpp"
+#include "sandpaper/compiler/texture_heights.hpp"
 #include "sandpaper/schema/term_kinds.hpp"
 
 namespace sandpaper::compiler {
@@ -70,63 +70,29 @@ double worst(const std::vector<float>& a, const std::vector<float>& b) {
   return w;
 }
 
-bool grating_texture(const schema::GratingTerm& g, double max_force_N, Texture& t, std::string& why) {
-  const std::size_t n = g.force_N.size();
-  double mean = 0, k = 0;
-  for (float f : g.force_N) mean += f, k = std::max(k, std::abs(static_cast<double>(f)));
-  mean /= static_cast<double>(n);
-  if (!(k > 0) || n < 2) {
-    why = "its grating has no force";
-    return false;
-  }
-  // Backward differences (gltf_support.hpp) inverted exactly: h_i = h_{i-1} - du F_i / k. The
-  // table's mean (float rounding) is taken out so that the heights close on themselves.
-  const double du = g.period_m / static_cast<double>(n);
-  std::vector<double> h(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) h[i] = h[i - 1] - du * (g.force_N[i] - mean) / k;
+bool grating_texture(const TextureHeights& th, const schema::GratingTerm& g, double max_force_N, Texture& t,
+                     std::string& why) {
   std::vector<double> back;
-  if (!quantize(h, t.texels, back, t.range_m)) {
+  if (!quantize(th.h_m, t.texels, back, t.range_m)) {
     why = "its grating is flat";
     return false;
   }
   t.kind = "grating";
-  t.nx = static_cast<int>(n);
+  t.nx = th.nx;
   t.ny = 1;
-  t.k_N = k;  // steepest slope 1 (45 degrees): a nominal relief
-  t.period_m = g.period_m;
-  t.orientation_rad = g.orientation_rad;
-  t.error = worst(gltf::grating_forces(back, g.period_m, k), g.force_N) / (max_force_N > 0 ? max_force_N : k);
+  t.k_N = th.k_N;
+  t.period_m = th.period_m;
+  t.orientation_rad = th.orientation_rad;
+  t.error = worst(gltf::grating_forces(back, g.period_m, th.k_N), g.force_N) / (max_force_N > 0 ? max_force_N : th.k_N);
   return true;
 }
 
-bool height_field_texture(const schema::HeightFieldTerm& term, const schema::PatchProgram& program,
-                          const ResolvedMaterial* material, Texture& t, std::string& why) {
-  const auto* hm = material ? std::get_if<ResolvedHeightmap>(&material->texture) : nullptr;
-  if (!hm) {
-    why = material ? "its height field is a generated pattern, whose heights are not exported yet"
-                   : "its height field's heights are not known (a compiled program keeps only its forces)";
-    return false;
-  }
-  // Built again as codegen built it, keeping the heights this time.
-  const bool stylus = hm->stylus() && !material->max_lateral_force;
-  Diagnostics scratch;
-  auto build = make_height_field(*hm, stylus ? std::nullopt : std::optional<double>(program.max_lateral_force_N), scratch,
-                                 /*keep_heights=*/true);
-  if (!build || build->term.nx != term.nx || build->term.ny != term.ny) {
-    why = "its height map '" + hm->stated_path + "' no longer gives the compiled field";
-    return false;
-  }
-  const int nx = static_cast<int>(term.nx), ny = static_cast<int>(term.ny);
-  // Heights in metres: the stylus reading's are (k = press); otherwise a nominal relief whose
-  // steepest slope inside the rim is 1, so k is the maximum lateral force.
-  t.nominal = !stylus;
-  t.k_N = stylus ? build->gain : program.max_lateral_force_N;
-  const double to_m = stylus ? 1.0 : build->gain / t.k_N;
-  std::vector<double> h(build->heights.size());
-  for (std::size_t i = 0; i < h.size(); ++i) h[i] = build->heights[i] * to_m;
+bool height_field_texture(const TextureHeights& th, const schema::HeightFieldTerm& term,
+                          const schema::PatchProgram& program, Texture& t, std::string& why) {
+  const int nx = th.nx, ny = th.ny;
   std::vector<std::uint16_t> grid_texels;
   std::vector<double> back;
-  if (!quantize(h, grid_texels, back, t.range_m)) {
+  if (!quantize(th.h_m, grid_texels, back, t.range_m)) {
     why = "its height map is flat";
     return false;
   }
@@ -137,9 +103,11 @@ bool height_field_texture(const schema::HeightFieldTerm& term, const schema::Pat
   t.kind = "height_field";
   t.nx = nx;
   t.ny = ny;
-  std::copy_n(term.origin_m, 2, t.origin_m);
-  std::copy_n(term.spacing_m, 2, t.spacing_m);
-  t.repeat = term.repeat;
+  t.nominal = th.nominal;
+  t.k_N = th.k_N;
+  std::copy_n(th.origin_m, 2, t.origin_m);
+  std::copy_n(th.spacing_m, 2, t.spacing_m);
+  t.repeat = th.repeat;
   std::vector<float> fx, fy;
   gltf::height_field_forces(back, nx, ny, term.spacing_m[0], term.spacing_m[1], term.repeat, t.k_N, fx, fy);
   t.error = std::max(worst(fx, term.force_x_N), worst(fy, term.force_y_N)) / program.max_lateral_force_N;
@@ -151,13 +119,14 @@ bool height_field_texture(const schema::HeightFieldTerm& term, const schema::Pat
 bool make_texture(const schema::PatchProgram& program, const ResolvedMaterial* material, Texture& t, std::string& why) {
   bool have = false;
   for (const auto& term : program.terms) {
-    if (!have && std::holds_alternative<schema::GratingTerm>(term)) {
-      if (!grating_texture(std::get<schema::GratingTerm>(term), program.max_lateral_force_N, t, why)) return false;
-      have = true;
-      continue;
-    }
-    if (!have && std::holds_alternative<schema::HeightFieldTerm>(term)) {
-      if (!height_field_texture(std::get<schema::HeightFieldTerm>(term), program, material, t, why)) return false;
+    const auto* grating = std::get_if<schema::GratingTerm>(&term);
+    const auto* field = std::get_if<schema::HeightFieldTerm>(&term);
+    if (!have && (grating || field)) {
+      const auto heights = texture_heights(program, material, why);  // of this, the first texture term
+      if (!heights) return false;
+      if (grating ? !grating_texture(*heights, *grating, program.max_lateral_force_N, t, why)
+                  : !height_field_texture(*heights, *field, program, t, why))
+        return false;
       have = true;
       continue;
     }

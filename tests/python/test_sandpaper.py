@@ -136,3 +136,22 @@ def test_usb_opens_a_calibrated_joystick_or_raises_device_error(lib):
         assert "openffboard-2axis (1209:ffb0)" in str(e)
     else:
         assert p.device_calibration != ""
+
+
+def test_the_height_field_is_what_the_forces_are_the_gradient_of(lib):
+    # A grating: one period, worked back from the force table; k * steepest slope = the peak force.
+    g = lib.compile("grating period 2.5 mm hill 50% amplitude 0.8 N").height_field()
+    assert g["kind"] == "grating" and g["h_m"].shape == (1, len(g["x_m"]))
+    assert g["period_m"] == pytest.approx(0.0025)
+    slope = np.abs(np.diff(g["h_m"][0])) / (g["x_m"][1] - g["x_m"][0])
+    assert g["k_N"] * slope.max() == pytest.approx(0.8, rel=0.02)
+    # A photograph: the image's grid, and -k grad h gives the compiled force field back.
+    m = lib.compile("gravel")
+    h = m.height_field()
+    assert h["kind"] == "height_field" and h["h_m"].shape == (len(h["y_m"]), len(h["x_m"]))
+    assert h["h_m"].std() > 0
+    dy, dx = np.gradient(h["h_m"], h["y_m"], h["x_m"])
+    inner = (slice(8, -8), slice(8, -8))
+    assert h["k_N"] * np.hypot(dx, dy)[inner].max() == pytest.approx(m.max_lateral_force_N, rel=0.05)
+    with pytest.raises(sandpaper.Error):
+        lib.compile("spring 200 N/m").height_field()
