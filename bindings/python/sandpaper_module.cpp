@@ -18,6 +18,7 @@
 #include "sandpaper/compiler/data_dirs.hpp"
 #include "sandpaper/compiler/explain_json.hpp"
 #include "sandpaper/compiler/texture_heights.hpp"
+#include "sandpaper/experiment/observer.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/recording_device.hpp"
 #include "sandpaper/sandpaper.h"
@@ -142,6 +143,13 @@ py::dict height_field(const PyMaterial& m) {
   return out;
 }
 
+// The experiments' simulated observer (tools/experiment, docs/EXPERIMENTS.md), for sessions run
+// from Python: the same answers `sandpaper experiment run --observer simulated:...` gives.
+struct PyObserver {
+  std::unique_ptr<sp::experiment::Observer> observer;
+  int trials = 0;
+};
+
 py::dict report_dict(const sp::runtime::ServoReport& r) {
   py::dict d;
   d["ticks"] = r.ticks;
@@ -259,6 +267,39 @@ PYBIND11_MODULE(sandpaper, m) {
       .def("names", [](const PyLibrary& lib) { return lib.compiler->library().names(); }, "entry names, sorted")
       .def_readonly("library_dir", &PyLibrary::library_dir)
       .def_readonly("calibration_dir", &PyLibrary::calibration_dir);
+
+  py::class_<PyObserver>(m, "SimulatedObserver",
+                         "The experiments' simulated observer (docs/EXPERIMENTS.md): magnitude estimates "
+                         "modulus * F^exponent with log-normal noise, two-interval choices at a Weber fraction.")
+      .def(py::init([](const std::string& spec, const std::string& subject) {
+             try {
+               return PyObserver{sp::experiment::make_simulated_observer(
+                                     sp::experiment::parse_simulated_observer("simulated:" + spec), subject),
+                                 0};
+             } catch (const std::invalid_argument& e) {
+               throw py::value_error(e.what());
+             }
+           }),
+           py::arg("spec") = "", py::arg("subject") = "S01",
+           "spec as after `--observer simulated:`, e.g. \"exponent=0.76,noise=0.15,seed=3\"; each subject "
+           "draws its own modulus")
+      .def("estimate", [](PyObserver& o, double felt_force_N, double period_m, bool confidence) {
+        if (!(felt_force_N >= 0)) throw py::value_error("felt_force_N must be a force in newtons, >= 0");
+        sp::experiment::Trial t;
+        t.index = o.trials++;
+        t.stimuli = {0};
+        sp::experiment::Presented p{{"stimulus"}, {felt_force_N}, {felt_force_N}, {period_m}};
+        return *o.observer->estimate(t, p, confidence);
+      }, py::arg("felt_force_N"), py::arg("period_m") = 0.0, py::arg("confidence") = false,
+         "a magnitude estimate (> 0) of a stimulus felt at this peak lateral force (N), or with "
+         "confidence=True a confidence 0-100 % that it was a texture")
+      .def("choose_interval", [](PyObserver& o, double first_N, double second_N) {
+        sp::experiment::Trial t;
+        t.index = o.trials++;
+        t.stimuli = {0, 1};
+        sp::experiment::Presented p{{"first", "second"}, {first_N, second_N}, {first_N, second_N}, {0.0, 0.0}};
+        return *o.observer->choose_interval(t, p);
+      }, py::arg("first_N"), py::arg("second_N"), "two-interval: 1 or 2, the interval that felt stronger");
 
   py::class_<PyPlayer>(m, "Player", "Plays materials on a device on a servo thread of its own.")
       .def_static("simulated", [](std::size_t record_ticks, const std::string& hand, double speed_m_s, double amplitude_m) {

@@ -155,3 +155,14 @@ def test_the_height_field_is_what_the_forces_are_the_gradient_of(lib):
     assert h["k_N"] * np.hypot(dx, dy)[inner].max() == pytest.approx(m.max_lateral_force_N, rel=0.05)
     with pytest.raises(sandpaper.Error):
         lib.compile("spring 200 N/m").height_field()
+
+
+def test_the_simulated_observer_answers_as_the_experiments_do():
+    obs = sandpaper.SimulatedObserver("exponent=0.76,noise=0,seed=1", subject="S01")
+    a, b = obs.estimate(0.5), obs.estimate(2.0)
+    assert b / a == pytest.approx(4 ** 0.76, rel=1e-9)  # noise 0: exactly Stevens' law
+    assert obs.choose_interval(1.0, 2.0) == 2
+    conf = obs.estimate(3.0, period_m=0.0025, confidence=True)
+    assert 0 <= conf <= 100
+    with pytest.raises(ValueError):
+        sandpaper.SimulatedObserver("exponent=-1")
