@@ -1,5 +1,6 @@
 // sandpaper::Library: the compiler with the shipped (or given) library and calibration, and the
 // two questions applications ask of it: a material by name, a roughness level by name.
+#include <cstdlib>
 #include <system_error>
 
 #include "sandpaper/calibration/calibration.hpp"
@@ -26,19 +27,26 @@ struct Library::Impl {
 Library::Library() : Library(LibraryOptions{}) {}
 
 Library::Library(const std::filesystem::path& library_dir)
-    : Library(LibraryOptions{.library_dir = library_dir, .calibration_dir = {}, .device = "sim"}) {}
+    : Library(LibraryOptions{.library_dir = library_dir, .calibration_dir = {}, .device = "sim", .library_path = {}}) {}
 
 Library::Library(LibraryOptions options) : impl_(std::make_unique<Impl>()) {
+  if (options.library_path.empty() && options.library_dir.empty())
+    if (const char* env = std::getenv("SANDPAPER_LIBRARY_PATH"); env && *env) options.library_path = compiler::default_library_path();
+  std::vector<std::pair<std::string, compiler::DataDirChoice>> dirs;
+  for (const auto& root : options.library_path) dirs.push_back({"library", compiler::DataDirChoice{root, "the library path"}});
+  if (!options.library_path.empty()) options.library_dir = options.library_path.front();
   auto library = given_or_found(options.library_dir, compiler::find_library_dir());
   auto calibration = given_or_found(options.calibration_dir, compiler::find_calibration_dir());
-  if (auto missing = compiler::missing_data_dirs_message({{"library", library}, {"calibration", calibration}});
+  if (dirs.empty()) dirs.push_back({"library", library});
+  dirs.push_back({"calibration", calibration});
+  if (auto missing = compiler::missing_data_dirs_message(dirs);
       !missing.empty())
     throw Error(missing);
   impl_->library_dir = std::move(library.dir);
   impl_->calibration_dir = std::move(calibration.dir);
   try {
     impl_->compiler = std::make_unique<compiler::Compiler>(
-        compiler::CompileOptions{options.device, impl_->library_dir, impl_->calibration_dir});
+        compiler::CompileOptions{options.device, impl_->library_dir, impl_->calibration_dir, options.library_path});
   } catch (const calibration::CalibrationError& e) {
     throw Error(e.what());
   } catch (const std::invalid_argument& e) {  // unknown device: the message lists the known ones

@@ -62,7 +62,7 @@ PyLibrary open_library(std::optional<std::filesystem::path> library_dir, std::op
     throw sp::Error(missing);
   try {
     auto c = std::make_shared<const sp::compiler::Compiler>(
-        sp::compiler::CompileOptions{device, library.dir, calibration.dir});
+        sp::compiler::CompileOptions{device, library.dir, calibration.dir, {}});
     return PyLibrary{std::move(c), library.dir, calibration.dir};
   } catch (const std::exception& e) {  // malformed calibration, unknown device (the message lists the known ones)
     throw sp::Error(e.what());

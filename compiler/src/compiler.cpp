@@ -44,7 +44,9 @@ Compiler::Compiler(CompileOptions options)
     : options_(std::move(options)),
       calibration_(calibration::CalibrationSet::load(
           options_.calibration_dir.empty() ? calibration::default_calibration_dir() : options_.calibration_dir)),
-      library_(options_.library_dir.empty() ? default_library_dir() : options_.library_dir) {
+      library_(!options_.library_path.empty()  ? options_.library_path
+               : !options_.library_dir.empty() ? std::vector<std::filesystem::path>{options_.library_dir}
+                                                : default_library_path()) {
   device_ = calibration_.find_device(options_.device);
   if (!device_) {
     std::string names;

@@ -51,7 +51,11 @@ class Lexer {
         std::size_t b = pos_;
         int col = col_;
         advance();  // the start character, which may be '%' (not a word character after the start)
-        while (src_[b] != '%' && pos_ < src_.size() && is_word_char(src_[pos_])) advance();
+        // A ':' between word characters joins a root's id to an entry name (like world:corduroy).
+        while (src_[b] != '%' && pos_ < src_.size() &&
+               (is_word_char(src_[pos_]) ||
+                (src_[pos_] == ':' && pos_ + 1 < src_.size() && is_word_start(src_[pos_ + 1]) && src_[pos_ + 1] != '%')))
+          advance();
         push(TokenKind::Word, src_.substr(b, pos_ - b), line_, col, static_cast<int>(pos_ - b));
       } else {
         unexpected();

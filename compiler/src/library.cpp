@@ -12,9 +12,9 @@
 
 namespace sandpaper::compiler {
 
-const LibraryFamily* LibraryManifest::family(const std::string& id) const {
+const LibraryFamily* LibraryManifest::family(const std::string& family_id) const {
   for (const auto& f : families)
-    if (f.id == id) return &f;
+    if (f.id == family_id) return &f;
   return nullptr;
 }
 
@@ -26,6 +26,7 @@ void read_entry_metadata(LibraryEntry& e) {
     else if (const auto* l = std::get_if<LicenceStmt>(&st.node)) e.licence = l->licence;
     else if (const auto* x = std::get_if<DeprecatedStmt>(&st.node)) e.deprecated_by = x->replacement;
     else if (const auto* k = std::get_if<LikeStmt>(&st.node)) e.likes.push_back(k->name);
+    else if (std::holds_alternative<OverridesStmt>(st.node)) e.overrides = true;
   }
 }
 
@@ -79,6 +80,10 @@ LibraryManifest read_manifest(const std::filesystem::path& dir, Diagnostics& dia
     return std::string();
   };
   m.name = text_of(doc, "name", true, "library.toml");
+  m.id = text_of(doc, "id", false, "library.toml");
+  if (m.id.find_first_of(": \t") != std::string::npos)
+    diags.error("E0601", manifest_location(file, doc.get("id")->source()), "library.toml: `id` must be one word without ':'",
+                "write id = \"lab\": entries of this root are then named lab:NAME");
   m.version = text_of(doc, "version", true, "library.toml");
   m.reference = text_of(doc, "reference", false, "library.toml");
   if (const auto* fams = doc.get_as<toml::table>("families")) {
@@ -111,11 +116,43 @@ LibraryManifest read_manifest(const std::filesystem::path& dir, Diagnostics& dia
 
 }  // namespace
 
-Library::Library(std::filesystem::path dir) : dir_(std::move(dir)) {
-  manifest_ = read_manifest(dir_, scan_diags_);
+Library::Library(std::filesystem::path dir) : Library(std::vector<std::filesystem::path>{std::move(dir)}) {}
+
+Library::Library(std::vector<std::filesystem::path> roots) {
+  if (roots.empty()) roots.push_back(default_library_dir());
+  for (auto& dir : roots) {
+    LibraryRoot r;
+    r.dir = std::move(dir);
+    r.manifest = read_manifest(r.dir, scan_diags_);
+    r.id = !r.manifest.id.empty() ? r.manifest.id : std::filesystem::path(r.dir).lexically_normal().filename().string();
+    if (r.id.empty()) r.id = std::filesystem::absolute(r.dir).lexically_normal().parent_path().filename().string();
+    roots_.push_back(std::move(r));
+  }
+  manifest_ = roots_.front().manifest;
+  for (std::size_t i = 1; i < roots_.size(); ++i) {
+    const auto& m = roots_[i].manifest;
+    if (manifest_.reference.empty()) manifest_.reference = m.reference;
+    for (const auto& f : m.families)
+      if (!manifest_.family(f.id)) manifest_.families.push_back(f);
+  }
+  for (std::size_t i = 0; i < roots_.size(); ++i) scan(i);
+  std::stable_sort(entries_.begin(), entries_.end(),
+                   [](const auto& a, const auto& b) { return a.name != b.name ? a.name < b.name : a.root < b.root; });
+  // Two files with one name in a root: the first (in path order) wins here; `library check`
+  // reports the clash. Across roots, the front one wins.
+  by_root_.resize(roots_.size());
+  for (std::size_t i = 0; i < entries_.size(); ++i) by_root_[entries_[i].root].emplace(entries_[i].name, i);
+  for (std::size_t i = 0; i < entries_.size(); ++i)
+    for (const auto& a : entries_[i].aliases) by_root_[entries_[i].root].emplace(a, i);
+  for (const auto& names : by_root_)
+    for (const auto& [name, i] : names) by_name_.emplace(name, i);
+}
+
+void Library::scan(std::size_t root) {
+  const auto& dir = roots_[root].dir;
   std::error_code ec;
   std::vector<std::filesystem::path> files;
-  for (auto it = std::filesystem::recursive_directory_iterator(dir_, ec); !ec && it != std::filesystem::recursive_directory_iterator();
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec); !ec && it != std::filesystem::recursive_directory_iterator();
        it.increment(ec)) {
     if (it->is_regular_file() && it->path().extension() == ".hmat") files.push_back(it->path());
   }
@@ -124,8 +161,9 @@ Library::Library(std::filesystem::path dir) : dir_(std::move(dir)) {
     LibraryEntry e;
     e.name = p.stem().string();
     e.file = p;
-    e.relative_path = std::filesystem::relative(p, dir_).generic_string();
-    auto file = std::make_shared<const SourceFile>("library/" + e.relative_path, read_text(p));
+    e.root = root;
+    e.relative_path = std::filesystem::relative(p, dir).generic_string();
+    auto file = std::make_shared<const SourceFile>(source_name(e), read_text(p));
     Diagnostics d;
     auto toks = lex(file, d);
     e.syntax = parse(toks, file, d);
@@ -134,11 +172,46 @@ Library::Library(std::filesystem::path dir) : dir_(std::move(dir)) {
     read_entry_metadata(e);
     entries_.push_back(std::move(e));
   }
-  std::sort(entries_.begin(), entries_.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  // Two files with one name: the first (in path order) wins here; `library check` reports the clash.
-  for (std::size_t i = 0; i < entries_.size(); ++i) by_name_.emplace(entries_[i].name, i);
-  for (std::size_t i = 0; i < entries_.size(); ++i)
-    for (const auto& a : entries_[i].aliases) by_name_.emplace(a, i);
+}
+
+std::string Library::qualified_name(const LibraryEntry& e) const {
+  return layered() ? roots_[e.root].id + ":" + e.name : e.name;
+}
+
+std::string Library::source_name(const LibraryEntry& e) const {
+  return layered() ? "library/" + roots_[e.root].id + "/" + e.relative_path : "library/" + e.relative_path;
+}
+
+std::optional<std::pair<std::filesystem::path, std::string>> Library::source_file(const std::string& name) const {
+  if (name.rfind("library/", 0) != 0) return std::nullopt;
+  std::string rest = name.substr(8);
+  if (!layered()) return std::make_pair(roots_.front().dir, rest);
+  const auto slash = rest.find('/');
+  if (slash == std::string::npos) return std::nullopt;
+  for (const auto& r : roots_)
+    if (r.id == rest.substr(0, slash)) return std::make_pair(r.dir, rest.substr(slash + 1));
+  return std::nullopt;
+}
+
+std::filesystem::path Library::thesis_directory() const {
+  std::error_code ec;
+  for (const auto& r : roots_)
+    if (std::filesystem::is_regular_file(r.dir / "thesis" / "version1.toml", ec)) return r.dir;
+  return roots_.front().dir;
+}
+
+const LibraryEntry* Library::shadowed_by(const LibraryEntry& e) const {
+  for (std::size_t r = e.root + 1; r < roots_.size(); ++r) {
+    for (const auto& n : [&] {
+           std::vector<std::string> v{e.name};
+           v.insert(v.end(), e.aliases.begin(), e.aliases.end());
+           return v;
+         }()) {
+      auto it = by_root_[r].find(n);
+      if (it != by_root_[r].end()) return &entries_[it->second];
+    }
+  }
+  return nullptr;
 }
 
 std::vector<std::string> Library::names() const {
@@ -149,8 +222,37 @@ std::vector<std::string> Library::names() const {
 }
 
 const LibraryEntry* Library::entry(const std::string& name_or_alias) const {
+  if (const auto colon = name_or_alias.find(':'); colon != std::string::npos) {
+    const auto id = name_or_alias.substr(0, colon);
+    for (std::size_t r = 0; r < roots_.size(); ++r)
+      if (roots_[r].id == id) {
+        auto it = by_root_[r].find(name_or_alias.substr(colon + 1));
+        return it == by_root_[r].end() ? nullptr : &entries_[it->second];
+      }
+    return nullptr;
+  }
   auto it = by_name_.find(name_or_alias);
   return it == by_name_.end() ? nullptr : &entries_[it->second];
+}
+
+std::vector<std::filesystem::path> split_library_path(const std::string& text) {
+  std::vector<std::filesystem::path> out;
+  std::size_t a = 0;
+  while (a <= text.size()) {
+    auto b = text.find(':', a);
+    if (b == std::string::npos) b = text.size();
+    if (b > a) out.emplace_back(text.substr(a, b - a));
+    a = b + 1;
+  }
+  return out;
+}
+
+std::vector<std::filesystem::path> default_library_path() {
+  if (const char* env = std::getenv("SANDPAPER_LIBRARY_PATH"); env && *env) {
+    auto roots = split_library_path(env);
+    if (!roots.empty()) return roots;
+  }
+  return {default_library_dir()};
 }
 
 std::optional<std::filesystem::path> Library::find(const std::string& name) const {

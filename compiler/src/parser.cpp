@@ -42,7 +42,8 @@ const char* source_kind_phrase(SourceKind k) {
 
 bool is_metadata(const Statement& st) {
   return std::holds_alternative<FamilyStmt>(st.node) || std::holds_alternative<AliasStmt>(st.node) ||
-         std::holds_alternative<LicenceStmt>(st.node) || std::holds_alternative<DeprecatedStmt>(st.node);
+         std::holds_alternative<LicenceStmt>(st.node) || std::holds_alternative<DeprecatedStmt>(st.node) ||
+         std::holds_alternative<OverridesStmt>(st.node);
 }
 
 bool carries_numbers(const Statement& st) {
@@ -54,7 +55,7 @@ const std::vector<std::string>& statement_keywords() {
   static const std::vector<std::string> k = [] {
     std::vector<std::string> words{"describes", "like",   "roughness", "grating", "heightmap", "pattern",    "quantize",
                                    "spring",    "damper", "force",     "physics", "energy",    "size",       "extrapolate",
-                                   "family",    "alias",  "licence",   "source",  "deprecated"};
+                                   "family",    "alias",  "licence",   "source",  "deprecated", "overrides"};
     for (const auto& w : percept_words()) words.emplace_back(w.word);
     return words;
   }();
@@ -185,6 +186,8 @@ class Parser {
     else if (k == "alias") st.node = alias();
     else if (k == "licence" || k == "license") st.node = licence();
     else if (k == "deprecated") st.node = deprecated();
+    // overrides := 'overrides'
+    else if (k == "overrides") st.node = OverridesStmt{kw.location};
     else if (first && at_end_of_input()) {
       // The whole input is one name: a representative description.
       st.keyword = "like";

@@ -115,12 +115,13 @@ std::vector<std::string> quantities_set(const Statement& st) {
 }
 
 // A statement other than `like` and the entry's own metadata (describes, family, alias, licence,
-// deprecated) changes the material it inherits.
+// deprecated, overrides) changes the material it inherits.
 bool changes_what_it_inherits(const std::vector<const Statement*>& kept) {
   for (const auto* st : kept)
     if (!std::holds_alternative<LikeStmt>(st->node) && !std::holds_alternative<DescribesStmt>(st->node) &&
         !std::holds_alternative<FamilyStmt>(st->node) && !std::holds_alternative<AliasStmt>(st->node) &&
-        !std::holds_alternative<LicenceStmt>(st->node) && !std::holds_alternative<DeprecatedStmt>(st->node))
+        !std::holds_alternative<LicenceStmt>(st->node) && !std::holds_alternative<DeprecatedStmt>(st->node) &&
+        !std::holds_alternative<OverridesStmt>(st->node))
       return true;
   return false;
 }
@@ -238,7 +239,7 @@ class Resolver {
     auto path = ctx_.library.find(like.name);
     // No file: the name may be one of the thesis' stimuli, generated from the name.
     ThesisLookup generated;
-    if (!path) generated = find_thesis_stimulus(like.name, ctx_.library.directory());
+    if (!path) generated = find_thesis_stimulus(like.name, ctx_.library.thesis_directory());
     if (!path && !generated.stimulus) {
       std::string guess = closest_match(like.name, ctx_.library.names());
       diags_.error("E0301", like.name_location,
@@ -251,7 +252,8 @@ class Resolver {
       return base;
     }
     // Aliases name the same entry, so cycles are found on entry names.
-    const std::string entry_name = lib_entry ? lib_entry->name : like.name;
+    // Qualified (world:corduroy) in a layered library, so that a lab's corduroy may build on the world's.
+    const std::string entry_name = lib_entry ? ctx_.library.qualified_name(*lib_entry) : like.name;
     for (const auto& e : ctx_.entry_stack)
       if (e == entry_name) {
         diags_.error("E0305", like.name_location,
@@ -286,9 +288,11 @@ class Resolver {
                      "fix or remove the entry's file");
         return base;
       }
-      origin = "library/" + lib_entry->relative_path;
-      label = reference ? "library " + entry_name + " (the library's reference texture for bare perceptual descriptions)"
-                        : "library " + entry_name;
+      origin = ctx_.library.source_name(*lib_entry);
+      // In a layered library the label says which root every inherited number came from.
+      const std::string shown = ctx_.library.qualified_name(*lib_entry);
+      label = reference ? "library " + shown + " (the library's reference texture for bare perceptual descriptions)"
+                        : "library " + shown;
       if (!lib_entry->deprecated_by.empty())
         diags_.warning("W0340", like.name_location,
                        "library entry '" + entry_name + "' is deprecated; use '" + lib_entry->deprecated_by + "'",
@@ -357,7 +361,7 @@ class Resolver {
     m.aliases.clear();
     m.licence.clear();
     m.deprecated_by.clear();
-    if (m.name.empty() || reference) m.name = reference ? std::string() : entry_name;
+    if (m.name.empty() || reference) m.name = reference ? std::string() : lib_entry ? lib_entry->name : like.name;
     return m;
   }
 
@@ -762,8 +766,9 @@ class Resolver {
     std::filesystem::path p(h.path);
     // A library entry reaches only inside its library: the library is shared, and an entry that
     // named "/srv/x.exr" or "../../x.exr" would read whatever the machine it is compiled on has there.
-    if (syn_.file && syn_.file->name.rfind("library/", 0) == 0) {
-      const auto inside = (std::filesystem::path(syn_.file->name.substr(8)).parent_path() / p).lexically_normal();
+    const auto in_library = syn_.file ? ctx_.library.source_file(syn_.file->name) : std::nullopt;
+    if (in_library) {
+      const auto inside = (std::filesystem::path(in_library->second).parent_path() / p).lexically_normal();
       if (p.is_absolute() || inside.empty() || *inside.begin() == "..") {
         diags_.error("E0314", h.path_location,
                      "library entry's image '" + h.path + "' is outside the library",
@@ -774,8 +779,7 @@ class Resolver {
     if (p.is_relative() && syn_.file) {
       // Relative to the material file's folder; for -e text, to the working directory.
       std::filesystem::path dir;
-      if (syn_.file->name.rfind("library/", 0) == 0)
-        dir = (ctx_.library.directory() / syn_.file->name.substr(8)).parent_path();
+      if (in_library) dir = (in_library->first / in_library->second).parent_path();
       else if (syn_.file->name != "<-e>") dir = std::filesystem::path(syn_.file->name).parent_path();
       p = dir / p;
     }

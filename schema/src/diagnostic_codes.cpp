@@ -100,6 +100,7 @@ constexpr std::array kCodes = {
     DiagnosticCode{"E0610", E, "`library check`: the entry does not compile for a device of the calibration", kLang},
     DiagnosticCode{"E0611", E, "`library check`: `library.toml`'s `reference` is not an entry", kLang},
     DiagnosticCode{"E0612", E, "`library check`: a `heightmap` image outside the library", kLang},
+    DiagnosticCode{"E0613", E, "`library check`: two roots of a layered library path have one `id`", kLang},
     // glTF import and export (docs/GLTF.md; added by the glTF work, issue 17).
     DiagnosticCode{"E0701", E, "`export --format gltf`: a material with no texture (grating or height map) for glTF's haptic textures to carry", kGltf},
     DiagnosticCode{"E0702", E, "`export --format gltf`: a texture that cannot be exported (a generated pattern, a height field without its material, a flat texture)", kGltf},
@@ -132,6 +133,8 @@ constexpr std::array kCodes = {
     DiagnosticCode{"W0520", W, "`movie show`: a shuffle whose movie is not there to check it against", kLang},
     DiagnosticCode{"W0601", W, "`library check`: JND collision, two entries of one family the thesis' knowledge cannot tell apart", kLang},
     DiagnosticCode{"W0603", W, "`library check`: a well-formed licence id not in the check's short list", kLang},
+    DiagnosticCode{"W0612", W, "`library check`: an entry hides one of a library root below it and does not say `overrides`", kLang},
+    DiagnosticCode{"W0613", W, "`library check`: an entry says `overrides` but hides nothing below it", kLang},
     DiagnosticCode{"W0701", W, "`export --format gltf`: parts of the material glTF cannot carry (force laws, state, energy budgets) were left out", kGltf},
     DiagnosticCode{"W0702", W, "`export --format gltf`: the 16-bit heights give the forces back less closely than 0.5 % of the maximum lateral force", kGltf},
     DiagnosticCode{"W0703", W, "glTF import: the asset says parts of its material were left out when it was exported", kGltf},

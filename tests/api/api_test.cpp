@@ -93,7 +93,7 @@ TEST(Api, MissingDataDirectoryIsNamed) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/sandpaper-library"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("SANDPAPER_LIBRARY"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(Library(sandpaper::LibraryOptions{.library_dir = {}, .calibration_dir = {}, .device = "no-such-device"}),
+  EXPECT_THROW(Library(sandpaper::LibraryOptions{.library_dir = {}, .calibration_dir = {}, .device = "no-such-device", .library_path = {}}),
                sandpaper::Error);
 }
 

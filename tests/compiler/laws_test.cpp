@@ -189,7 +189,7 @@ TEST(Laws, AFilesLawsReplaceTheInheritedOnes) {
   {
     std::ofstream(dir + "/sticky.hmat") << "force Viscous damping 4 N*s/m\nforce Const x 0.1 N\n";
   }
-  compiler::Compiler c({.device = "sim", .library_dir = dir, .calibration_dir = {}});
+  compiler::Compiler c({.device = "sim", .library_dir = dir, .calibration_dir = {}, .library_path = {}});
   auto inherited = c.compile_text("like sticky");
   ASSERT_TRUE(inherited.ok()) << compiler::format_diagnostics(inherited.diagnostics);
   EXPECT_EQ(inherited.program->terms.size(), 2u);

@@ -16,7 +16,7 @@ using curation::CheckResult;
 CheckResult check(const std::filesystem::path& lib, const std::filesystem::path& cal = {}) {
   std::ostringstream sink;
   curation::Progress quiet("checking", 0, true, sink, false);
-  return curation::check_library({lib, cal, {}}, quiet);
+  return curation::check_library({lib, cal, {}, {}, {}}, quiet);
 }
 
 bool ends_with(const std::string& s, const std::string& tail) {
@@ -194,6 +194,62 @@ TEST(LibraryCheck, SyntaxErrorsAreReportedWithTheCompilersCodes) {
   edit(lib / "textiles/fine-rib.hmat", "grating period 1.2 mm", "grating period 1.2");
   const auto r = check(lib);
   EXPECT_EQ(with_code(r.diagnostics, "E0203").size(), 1u) << compiler::format_diagnostics(r.diagnostics);
+}
+
+// A lab's library on top of the mini library ("world"): the lab's root is checked against the world's.
+TEST(LibraryCheck, ALayeredPathChecksEachRootAgainstTheRootsBelowIt) {
+  const auto world = mini_library_copy("check-layers");
+  edit(world / "library.toml", "name = \"curation test library\"", "id = \"world\"\nname = \"curation test library\"");
+  const auto lab = world.parent_path() / "lab";
+  write(lab / "library.toml", "id = \"lab\"\nname = \"lab\"\nversion = \"0.1.0\"\n");
+  const std::string entry_head = "  family textiles\n  licence \"CC0-1.0\"\n";
+  // Hides world:ribbed-cloth without saying so: W0612, with a note at the hidden entry.
+  write(lab / "ribbed-cloth.hmat", "material \"ribbed-cloth\" {\n  describes \"our ribbed cloth\"\n" + entry_head +
+                                        "  like world:ribbed-cloth\n  roughness 0.5\n  source by-ear \"ours is rougher\"\n}\n");
+  // Says overrides and hides world:fine-rib: fine. Says overrides and hides nothing: W0613.
+  write(lab / "fine-rib.hmat", "material \"fine-rib\" {\n  describes \"our fine rib\"\n" + entry_head +
+                                    "  overrides\n  like world:fine-rib\n}\n");
+  write(lab / "velvet.hmat", "material \"velvet\" {\n  describes \"velvet\"\n" + entry_head +
+                                  "  overrides\n  like rib-cloth\n}\n");
+  std::ostringstream sink;
+  curation::Progress quiet("checking", 0, true, sink, false);
+  curation::CheckOptions o;
+  o.library_path = {lab, world};
+  auto r = curation::check_library(o, quiet);
+  EXPECT_EQ(r.errors(), 0u) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.entries, 3u + 5u);  // the lab's three, then the world's five against nothing below
+  const auto shadow = with_code(r.diagnostics, "W0612");
+  ASSERT_EQ(shadow.size(), 1u) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NE(shadow[0]->message.find("'lab:ribbed-cloth' hides 'world:ribbed-cloth'"), std::string::npos) << shadow[0]->message;
+  EXPECT_TRUE(ends_with(shadow[0]->location.file->name, "lab/ribbed-cloth.hmat")) << shadow[0]->location.file->name;
+  ASSERT_EQ(shadow[0]->notes.size(), 1u);
+  EXPECT_TRUE(ends_with(shadow[0]->notes[0].location.file->name, "check-layers" + std::string() + "") ||
+              shadow[0]->notes[0].location.file->name.find("textiles/ribbed-cloth.hmat") != std::string::npos)
+      << shadow[0]->notes[0].location.file->name;
+  EXPECT_NE(shadow[0]->suggestion.find("overrides"), std::string::npos);
+  const auto nothing = with_code(r.diagnostics, "W0613");
+  ASSERT_EQ(nothing.size(), 1u);
+  EXPECT_TRUE(ends_with(nothing[0]->location.file->name, "lab/velvet.hmat"));
+  EXPECT_EQ(nothing[0]->location.line, 5);
+
+  // --root lab: only the lab's entries.
+  o.root = "lab";
+  r = curation::check_library(o, quiet);
+  EXPECT_EQ(r.entries, 3u);
+  o.root = "nowhere";
+  EXPECT_THROW(curation::check_library(o, quiet), std::invalid_argument);
+
+  // Without the world below, the lab does not compile (its `like world:...` names nothing).
+  o.root.clear();
+  o.library_path = {lab};
+  r = curation::check_library(o, quiet);
+  EXPECT_FALSE(with_code(r.diagnostics, "E0610").empty()) << compiler::format_diagnostics(r.diagnostics);
+
+  // Two roots with one id: E0613.
+  edit(lab / "library.toml", "id = \"lab\"", "id = \"world\"");
+  o.library_path = {lab, world};
+  r = curation::check_library(o, quiet);
+  EXPECT_EQ(with_code(r.diagnostics, "E0613").size(), 1u);
 }
 
 }  // namespace

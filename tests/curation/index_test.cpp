@@ -3,7 +3,13 @@
 #include <gtest/gtest.h>
 #include <sqlite3.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cmath>
+#include <map>
+#include <streambuf>
 #include <sstream>
 
 #include "curation_test_support.hpp"
@@ -204,6 +210,216 @@ TEST(LibraryIndex, KnowsWhenItIsStale) {
   const auto fp = library_fingerprint(b.lib, calibration::default_calibration_dir());
   write(b.lib / ".index/scratch", "y");
   EXPECT_EQ(library_fingerprint(b.lib, calibration::default_calibration_dir()), fp);
+}
+
+// Every row about each entry, as text, by entry name (all tables but meta, families and the stamps).
+std::map<std::string, std::string> rows_by_entry(const std::filesystem::path& index) {
+  std::map<std::string, std::string> out;
+  sqlite3* db = nullptr;
+  EXPECT_EQ(sqlite3_open_v2(index.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  const char* queries[] = {
+      "SELECT name, * FROM entries ORDER BY name",
+      "SELECT name, alias FROM aliases ORDER BY name, alias",
+      "SELECT name, percept, value FROM percepts ORDER BY name, rowid",
+      "SELECT name, * FROM statements ORDER BY name, ordinal",
+      "SELECT name, * FROM sources ORDER BY name, ordinal, rowid",
+      "SELECT name, * FROM provenance ORDER BY name, ordinal",
+      "SELECT name, hash FROM inputs ORDER BY name",
+      "SELECT name, aliases, describes, family, sources FROM search ORDER BY name",
+      "SELECT e.name, c.log_force_min, c.log_force_max, c.log_period_min, c.log_period_max FROM coordinates c "
+      "JOIN entries e ON e.rowid = c.id ORDER BY e.name",
+      // The two row ids must agree, or search and near would name the wrong entry.
+      "SELECT e.name, e.name = s.name FROM entries e JOIN search s ON s.rowid = e.rowid ORDER BY e.name"};
+  for (const char* q : queries) {
+    sqlite3_stmt* st = nullptr;
+    EXPECT_EQ(sqlite3_prepare_v2(db, q, -1, &st, nullptr), SQLITE_OK) << q;
+    while (sqlite3_step(st) == SQLITE_ROW) {
+      std::string row = std::string(q).substr(0, 40) + ":";
+      for (int c = 1; c < sqlite3_column_count(st); ++c) {
+        const auto* t = sqlite3_column_text(st, c);
+        row += std::string("|") + (t ? reinterpret_cast<const char*>(t) : "NULL");
+      }
+      out[reinterpret_cast<const char*>(sqlite3_column_text(st, 0))] += row + "\n";
+    }
+    sqlite3_finalize(st);
+  }
+  sqlite3_close(db);
+  return out;
+}
+
+TEST(LibraryIndex, ARebuildCompilesOnlyWhatChangedAndWhatIsBuiltOnIt) {
+  const auto b = built("index-incremental");
+  const auto before = rows_by_entry(b.index);
+  ASSERT_EQ(before.size(), 5u);
+  // Nothing changed: nothing compiled, every row as it was.
+  auto r = build(b.lib, b.index);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.compiled, 0u);
+  EXPECT_EQ(r.reused, 5u);
+  EXPECT_EQ(rows_by_entry(b.index), before);
+  // One entry changed: it, and old-grit, which is built on it (`like coarse-grit`), are compiled.
+  edit(b.lib / "abrasives/coarse-grit.hmat", "roughness 0.8", "roughness 0.85");
+  r = build(b.lib, b.index);
+  ASSERT_TRUE(r.ok) << r.error << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.compiled, 2u);
+  EXPECT_EQ(r.reused, 3u);
+  const auto after = rows_by_entry(b.index);
+  for (const auto& [name, rows] : before)
+    if (name == "coarse-grit" || name == "old-grit") EXPECT_NE(after.at(name), rows) << name;
+    else EXPECT_EQ(after.at(name), rows) << name << " changed, though nothing it is built from did";
+  // And the result is what a full build gives.
+  const auto full = b.lib.parent_path() / "full" / "library.sqlite";
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  IndexOptions o{b.lib, {}, full, "sim"};
+  o.full = true;
+  ASSERT_TRUE(build_index(o, quiet).ok);
+  EXPECT_EQ(rows_by_entry(full), after);
+  // A removed entry's rows go; nothing else is compiled.
+  std::filesystem::remove(b.lib / "textiles/fine-rib.hmat");
+  r = build(b.lib, b.index);
+  ASSERT_TRUE(r.ok);
+  EXPECT_EQ(r.compiled, 0u);
+  EXPECT_EQ(rows_by_entry(b.index).count("fine-rib"), 0u);
+}
+
+TEST(LibraryIndex, CalibrationAndManifestChangesRecompileEverything) {
+  const auto b = built("index-calibration");
+  const auto cal = calibration_copy("index-calibration");
+  IndexOptions o{b.lib, cal, b.index, "sim"};
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  // A copy of the same calibration: the same content, so the same inputs (content-addressed).
+  auto r = build_index(o, quiet);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.compiled, 0u);
+  write(cal / "knowledge/unrelated-note.md", "a file the calibration folder gained");
+  r = build_index(o, quiet);
+  EXPECT_EQ(r.compiled, 5u);
+  edit(b.lib / "library.toml", "version = \"0.1.0\"", "version = \"0.2.0\"");
+  r = build_index(o, quiet);
+  EXPECT_EQ(r.compiled, 5u);
+  EXPECT_EQ(Index(b.index).entry("fine-rib")->library_version, "0.2.0");
+}
+
+// A Progress stream that ends the process, as kill -9 would, after `lines` lines.
+class DieAfter : public std::streambuf {
+ public:
+  explicit DieAfter(int lines) : left_(lines) {}
+  int overflow(int ch) override {
+    if (ch == '\n' && --left_ == 0) ::_exit(9);
+    return ch;
+  }
+
+ private:
+  int left_;
+};
+
+TEST(LibraryIndex, AKilledBuildIsResumedAndLeavesTheIndexAsItWas) {
+  const auto b = built("index-resume");
+  const std::string index_before = read(b.index);
+  for (const char* f : {"textiles/ribbed-cloth.hmat", "textiles/fine-rib.hmat", "abrasives/coarse-grit.hmat",
+                        "abrasives/old-grit.hmat", "reference/reference-grating.hmat"})
+    write(b.lib / f, read(b.lib / f) + "# edited\n");
+  IndexOptions o{b.lib, {}, b.index, "sim"};
+  o.batch = 1;  // commit after each entry, so that the kill finds some entries done
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    DieAfter die(3);
+    std::ostream out(&die);
+    Progress progress("indexing", 5, false, out, false, 1);  // a line per entry: dies after the third
+    (void)build_index(o, progress);
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 9) << "the build was not interrupted";
+  EXPECT_EQ(read(b.index), index_before) << "an interrupted build touched the index";
+  std::size_t temporaries = 0;
+  for (const auto& f : std::filesystem::directory_iterator(b.index.parent_path()))
+    temporaries += f.path().filename().string().find(".tmp-") != std::string::npos;
+  EXPECT_GE(temporaries, 1u);
+  const auto r = build(b.lib, b.index);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.resumed);
+  EXPECT_EQ(r.reused, 3u);
+  EXPECT_EQ(r.compiled, 2u);
+  for (const auto& f : std::filesystem::directory_iterator(b.index.parent_path()))
+    EXPECT_EQ(f.path().filename(), "library.sqlite") << "left behind: " << f.path();
+  const auto full = b.lib.parent_path() / "full" / "library.sqlite";
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  IndexOptions fo{b.lib, {}, full, "sim"};
+  fo.full = true;
+  ASSERT_TRUE(build_index(fo, quiet).ok);
+  EXPECT_EQ(rows_by_entry(b.index), rows_by_entry(full));
+}
+
+TEST(LibraryIndex, QueriesCheckFolderStampsAndAnInPlaceEditOfAnOldFolderWaitsForIndex) {
+  const auto b = built("index-stamps");
+  const auto cal = calibration::default_calibration_dir();
+  EXPECT_EQ(index_state(b.index, b.lib, cal), IndexState::Fresh);
+  // Backdate everything by an hour, so no stamp is racy, and rebuild: the stamps are settled.
+  const auto hour_ago = std::filesystem::file_time_type::clock::now() - std::chrono::hours(1);
+  for (const auto& e : std::filesystem::recursive_directory_iterator(b.lib)) std::filesystem::last_write_time(e.path(), hour_ago);
+  std::filesystem::last_write_time(b.lib, hour_ago);
+  ASSERT_TRUE(build(b.lib, b.index).ok);
+  EXPECT_EQ(index_state(b.index, b.lib, cal), IndexState::Fresh);
+  // An edit in place of a file in an old folder keeps the folder's time: queries do not see it
+  // (they read no file), `library index` does (it stats every file).
+  const auto folder_time = std::filesystem::last_write_time(b.lib / "textiles");
+  edit(b.lib / "textiles/fine-rib.hmat", "roughness 0.2", "roughness 0.25");
+  ASSERT_EQ(std::filesystem::last_write_time(b.lib / "textiles"), folder_time);
+  EXPECT_EQ(index_state(b.index, b.lib, cal), IndexState::Fresh);
+  auto r = build(b.lib, b.index);
+  EXPECT_EQ(r.compiled, 1u);
+  // A new file changes its folder's time; so does a save by rename, as editors do.
+  write(b.lib / "textiles/new.hmat", read(b.lib / "textiles/fine-rib.hmat"));
+  EXPECT_EQ(index_state(b.index, b.lib, cal), IndexState::Stale);
+  std::filesystem::remove(b.lib / "textiles/new.hmat");
+  ASSERT_TRUE(build(b.lib, b.index).ok);
+  EXPECT_EQ(index_state(b.index, b.lib, cal), IndexState::Fresh);
+  write(b.lib / "textiles/.fine-rib.swp", read(b.lib / "textiles/fine-rib.hmat"));
+  std::filesystem::rename(b.lib / "textiles/.fine-rib.swp", b.lib / "textiles/fine-rib.hmat");
+  EXPECT_EQ(index_state(b.index, b.lib, cal), IndexState::Stale);
+  // The library root's files are always checked: an in-place edit of library.toml is seen.
+  ASSERT_TRUE(build(b.lib, b.index).ok);
+  edit(b.lib / "library.toml", "version = \"0.1.0\"", "version = \"0.1.1\"");
+  EXPECT_EQ(index_state(b.index, b.lib, cal), IndexState::Stale);
+}
+
+// near's R*Tree search gives exactly what comparing with every entry gives, on the shipped library.
+TEST(LibraryNear, TheRTreeSearchEqualsAFullScanOnTheShippedLibrary) {
+  const auto dir = std::filesystem::path(temp_dir("near-rtree"));
+  const auto index = dir / "library.sqlite";
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  const auto lib = std::filesystem::path(SANDPAPER_SOURCE_DIR) / "library";
+  ASSERT_TRUE(build_index({lib, {}, index, "sim"}, quiet).ok);
+  const Index idx(index);
+  const auto all = idx.entries();
+  const double weber = std::stod(idx.meta("weber_fraction"));
+  std::size_t compared = 0;
+  for (const auto& from : all) {
+    for (const std::size_t limit : {std::size_t{1}, std::size_t{7}, all.size()}) {
+      std::vector<Neighbour> scan;
+      for (const auto& e : all)
+        if (e.name != from.name) scan.push_back(distance_between(from, e, weber));
+      std::sort(scan.begin(), scan.end(), [](const auto& a, const auto& b) {
+        return a.distance != b.distance ? a.distance < b.distance : a.entry.name < b.entry.name;
+      });
+      if (scan.size() > limit) scan.resize(limit);
+      const auto got = nearest(idx, from.name, limit);
+      ASSERT_EQ(got.size(), scan.size()) << from.name << " limit " << limit;
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        EXPECT_EQ(got[i].entry.name, scan[i].entry.name) << from.name << " #" << i << " limit " << limit;
+        EXPECT_DOUBLE_EQ(got[i].distance, scan[i].distance);
+      }
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 300u);
 }
 
 TEST(LibraryNear, NearestByForceJndsPeriodAndKind) {

@@ -325,7 +325,7 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
   auto* ex = app.add_subcommand("experiment", "present stimuli to a person, record answers, analyse them into maps (docs/EXPERIMENTS.md)");
   ex->require_subcommand(1);
   auto common = [&](CLI::App* sub) {
-    sub->add_option("--library", eo.common.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+    sub->add_option("--library", eo.common.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
     sub->add_option("--calibration", eo.common.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
     sub->add_flag("--json", eo.common.json, "print one JSON object instead of text");
   };

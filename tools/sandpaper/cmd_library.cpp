@@ -31,15 +31,24 @@ std::string num(double v, int digits = 3) {
 std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
 
 void add_paths(CLI::App* sub, LibraryCommandOptions& o, bool index) {
-  sub->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+  sub->add_option("--library", o.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   if (index)
     sub->add_option("--index", o.index, "SQLite index file (default: $SANDPAPER_LIBRARY_INDEX or <library>/.index/library.sqlite)");
 }
 
 struct Paths {
-  std::filesystem::path library, calibration, index;
+  std::filesystem::path library, calibration, index;  // library: the front root
+  std::vector<std::filesystem::path> roots;           // the library path, front first (one folder unless layered)
 };
+
+// The index holds one library folder; a layered path is checked, and compiled by every command, but not indexed yet.
+void one_root(const Paths& p, const char* who) {
+  if (p.roots.size() > 1)
+    throw std::invalid_argument(std::string("sandpaper ") + who +
+                                " works on one library folder; index each root of the path on its own "
+                                "(--library DIR); `library check` and every compile take the layered path");
+}
 
 Paths paths_of(const CommonOptions& common, const LibraryCommandOptions& o) {
   Paths p;
@@ -47,9 +56,14 @@ Paths paths_of(const CommonOptions& common, const LibraryCommandOptions& o) {
   p.calibration = !o.calibration_dir.empty()       ? std::filesystem::path(o.calibration_dir)
                   : !common.calibration_dir.empty() ? std::filesystem::path(common.calibration_dir)
                                                     : calibration::default_calibration_dir();
+  p.roots = o.library_dir.empty() && common.library_dir.empty() ? compiler::default_library_path()
+                                                                 : compiler::split_library_path(p.library.string());
+  if (p.roots.empty()) throw std::invalid_argument("--library is empty (give --library DIR, or LAB:WORLD for a layered library)");
+  for (const auto& r : p.roots)
+    if (!std::filesystem::is_directory(r))
+      throw std::invalid_argument("no library folder at " + r.string() + " (give --library DIR, or LAB:WORLD for a layered library)");
+  p.library = p.roots.front();
   p.index = o.index.empty() ? cur::default_index_path(p.library) : std::filesystem::path(o.index);
-  if (!std::filesystem::is_directory(p.library))
-    throw std::invalid_argument("no library folder at " + p.library.string() + " (give --library DIR)");
   return p;
 }
 
@@ -133,9 +147,14 @@ int unknown_entry(const cur::Index& idx, const std::string& name, const char* wh
 }
 
 int run_check(const Paths& p, const LibraryCommandOptions& o) {
-  const compiler::Library scan(p.library);
-  auto progress = cur::Progress::on_stderr("checking", scan.entries().size(), o.quiet);
-  const auto r = cur::check_library({p.library, p.calibration, o.devices}, progress);
+  const compiler::Library scan(p.roots);
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < scan.roots().size(); ++i)
+    if (o.root.empty() || scan.roots()[i].id == o.root)
+      for (const auto& e : scan.entries()) total += e.root == i;
+  auto progress = cur::Progress::on_stderr("checking", total, o.quiet);
+  cur::CheckOptions co{p.library, p.calibration, o.devices, p.roots, o.root};
+  const auto r = cur::check_library(co, progress);
   const bool failed = r.errors() > 0 || (o.werror && r.warnings() > 0);
   if (o.json) {
     std::cout << nlohmann::json{{"ok", !failed},
@@ -156,14 +175,19 @@ int run_check(const Paths& p, const LibraryCommandOptions& o) {
 int run_index(const Paths& p, const LibraryCommandOptions& o) {
   const compiler::Library scan(p.library);
   auto progress = cur::Progress::on_stderr("indexing", scan.entries().size(), o.quiet);
-  const auto r = cur::build_index({p.library, p.calibration, p.index, "sim"}, progress);
+  const auto r = cur::build_index({p.library, p.calibration, p.index, "sim", o.full}, progress);
   if (!r.ok) return print_build_failure(r, "library index");
   progress.finish("indexed " + std::to_string(r.entries) + " entries");
   if (o.json)
-    std::cout << nlohmann::json{{"ok", true}, {"entries", r.entries}, {"index", r.path.string()}}.dump(2) << "\n";
+    std::cout << nlohmann::json{{"ok", true},         {"entries", r.entries},           {"compiled", r.compiled},
+                                {"reused", r.reused}, {"files_hashed", r.files_hashed}, {"resumed", r.resumed},
+                                {"index", r.path.string()}}
+                     .dump(2)
+              << "\n";
   else
     std::cout << "indexed " << r.entries << " entries of " << scan.manifest().name << " " << scan.manifest().version << " into "
-              << r.path.string() << "\n";
+              << r.path.string() << " (" << r.compiled << " compiled, " << r.reused << " unchanged"
+              << (r.resumed ? ", resumed from an interrupted build" : "") << ")\n";
   return kExitOk;
 }
 
@@ -313,10 +337,12 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.check->add_flag("--json", o.json, "print one JSON object with the diagnostics");
   o.check->add_flag("--quiet", o.quiet, "no progress on stderr");
   o.check->add_flag("--werror", o.werror, "warnings fail the check too");
+  o.check->add_option("--root", o.root, "in a layered library (--library LAB:WORLD), check only the root with this id");
 
   o.index_cmd = library.add_subcommand("index", "build the SQLite index (atomically; a failed build leaves the old one)");
   add_paths(o.index_cmd, o, true);
   o.index_cmd->add_flag("--json", o.json, "print JSON");
+  o.index_cmd->add_flag("--full", o.full, "compile every entry again (by default only entries whose inputs changed)");
   o.index_cmd->add_flag("--quiet", o.quiet, "no progress on stderr");
 
   o.search = library.add_subcommand("search", "find entries by name, alias, words and roughness range (exit 1 if none match)");
@@ -349,10 +375,10 @@ int cmd_library_sub(const CommonOptions& common, LibraryCommandOptions o) {
   try {
     const auto p = paths_of(common, o);
     if (o.check->parsed()) return run_check(p, o);
-    if (o.index_cmd->parsed()) return run_index(p, o);
-    if (o.search->parsed()) return run_search(p, o);
-    if (o.show->parsed()) return run_show(p, o);
-    return run_near(p, o);
+    if (o.index_cmd->parsed()) return one_root(p, "library index"), run_index(p, o);
+    if (o.search->parsed()) return one_root(p, "library search"), run_search(p, o);
+    if (o.show->parsed()) return one_root(p, "library show"), run_show(p, o);
+    return one_root(p, "library near"), run_near(p, o);
   } catch (const cur::IndexError& e) {
     std::cerr << "sandpaper library: " << e.what() << "\n";
     return kExitUsage;

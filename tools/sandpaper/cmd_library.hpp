@@ -15,12 +15,13 @@ namespace sandpaper::cli {
 
 struct LibraryCommandOptions {
   std::string library_dir, calibration_dir, index;  // empty: as the parent `library` command, or defaults
-  bool json = false, quiet = false, werror = false;
+  bool json = false, quiet = false, werror = false, full = false;  // full: index compiles every entry
   std::vector<std::string> devices;                  // check: empty = every device of the calibration
   std::vector<std::string> words;                    // search
   std::string roughness, family;                     // search filters
   std::size_t limit = 20;                            // search, near
   std::string name;                                  // show, near
+  std::string root;                                  // check: only this root of a layered library
   CLI::App *check = nullptr, *index_cmd = nullptr, *search = nullptr, *show = nullptr, *near = nullptr;
 };
 

@@ -28,7 +28,7 @@ CLI::App* add_library_catalog_command(CLI::App& library) {
   sub->add_option("-o,--output", o.output, "folder to write (replaced whole; an existing folder must be a catalog or empty)")
       ->required();
   sub->add_option("--device", o.common.device, "device calibration to compile for (calibration/devices/)")->capture_default_str();
-  sub->add_option("--library", o.common.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+  sub->add_option("--library", o.common.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   sub->add_option("--calibration", o.common.calibration_dir,
                   "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   sub->add_flag("--quiet", o.quiet, "no progress on stderr");

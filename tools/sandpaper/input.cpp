@@ -11,7 +11,8 @@ namespace sandpaper::cli {
 compiler::Compiler make_compiler(const CommonOptions& o) {
   compiler::CompileOptions co;
   co.device = o.device;
-  if (!o.library_dir.empty()) co.library_dir = o.library_dir;
+  // --library A:B is a layered library, front first (docs/LIBRARY.md, "Layered libraries").
+  if (!o.library_dir.empty()) co.library_path = compiler::split_library_path(o.library_dir);
   if (!o.calibration_dir.empty()) co.calibration_dir = o.calibration_dir;
   return compiler::Compiler(co);
 }

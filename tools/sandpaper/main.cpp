@@ -25,7 +25,7 @@ void add_common(CLI::App* sub, sandpaper::cli::CommonOptions& o, bool input) {
     sub->add_option("-e,--expression", o.expression, "material as one line: statements separated by ';', or a library name");
   }
   sub->add_option("--device", o.device, "device calibration to compile for (calibration/devices/); run also takes usb: the first HID PID joystick found")->capture_default_str();
-  sub->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+  sub->add_option("--library", o.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   sub->add_flag("--json", o.json, "print one JSON object instead of text");
 }
@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
   studio->add_option("--device", o.device, "sim (Dummy mode: the mouse moves the hand) or usb (the first HID PID joystick)")->capture_default_str();
   studio->add_option("--listen", studio_opts.listen, "ADDR:PORT to serve on (port 0: any free port); a non-loopback address is warned about")->capture_default_str();
   studio->add_option("--rate", studio_opts.rate_hz, "servo rate, Hz")->capture_default_str();
-  studio->add_option("--library", o.library_dir, "library folder (default: $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+  studio->add_option("--library", o.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   studio->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
 
   auto* lsp = app.add_subcommand("lsp", "serve the Language Server Protocol on stdin/stdout for editors (docs/EDITORS.md)");

@@ -96,6 +96,10 @@ struct LibraryOptions {
   std::filesystem::path library_dir;
   std::filesystem::path calibration_dir;
   std::string device = "sim";             // device calibration to compile for (calibration/devices/)
+  // A layered library: several library folders, front first (a lab's own on top of the world
+  // library; docs/LIBRARY.md, "Layered libraries"). When set, library_dir is not used; when both
+  // are empty, $SANDPAPER_LIBRARY_PATH (folders separated by ':') comes before the search above.
+  std::vector<std::filesystem::path> library_path;
 };
 
 // The world haptics library with its calibration: compiles materials by name or description.

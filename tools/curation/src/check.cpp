@@ -52,6 +52,26 @@ struct Checker {
   Diagnostics& out;
 
   SourceLocation at(const SourceLocation& loc) const { return disp.relocate(loc); }
+  // The entry its root resolves its name to (not a second file with a name the root already has).
+  bool owns_name(const LibraryEntry& e) const { return lib.entry(lib.qualified_name(e)) == &e; }
+
+  // W0612/W0613: an entry of the front root that hides one below says so with `overrides`.
+  void shadowing(const LibraryEntry& e) {
+    const auto* below = lib.shadowed_by(e);
+    if (below && !e.overrides) {
+      auto& d = out.warning("W0612", entry_loc(e),
+                            quoted(lib.qualified_name(e)) + " hides " + quoted(lib.qualified_name(*below)) +
+                                ": `like " + (below->name == e.name ? e.name : below->name) + "` now finds this entry, not the one below",
+                            "if that is meant, add `overrides` to this entry; else rename it (names are looked up front to back)");
+      d.notes.push_back({entry_loc(*below), quoted(lib.qualified_name(*below)) + " is here"});
+    } else if (!below && e.overrides) {
+      for (const auto& st : e.syntax.statements)
+        if (std::holds_alternative<compiler::OverridesStmt>(st.node))
+          out.warning("W0613", at(std::get<compiler::OverridesStmt>(st.node).location),
+                      quoted(e.name) + " says `overrides`, but no library root below has an entry of that name",
+                      "remove `overrides`, or check the library path's order (front first: --library LAB:WORLD)");
+    }
+  }
   // Where to point for something about the entry as a whole: its name, else the file's start.
   SourceLocation entry_loc(const LibraryEntry& e) const {
     if (e.syntax.name_location.file) return at(e.syntax.name_location);
@@ -172,9 +192,11 @@ struct Checker {
       d.notes.push_back({at(f.loc), f.alias ? "the alias of " + quoted(f.entry->name) : "the other entry named " + quoted(token)});
     };
     // Names first (they win over aliases when `like` looks a word up), then aliases.
-    for (const auto& e : lib.entries()) claim(e.name, e, entry_loc(e), false);
     for (const auto& e : lib.entries())
-      for (const auto& st : e.syntax.statements)
+      if (e.root == 0) claim(e.name, e, entry_loc(e), false);
+    for (const auto& e : lib.entries())
+      if (e.root == 0)
+        for (const auto& st : e.syntax.statements)
         if (const auto* a = std::get_if<compiler::AliasStmt>(&st.node))
           if (a->name != e.name) claim(a->name, e, a->location, true);
   }
@@ -183,6 +205,7 @@ struct Checker {
   void deprecations() {
     for (const auto& e : lib.entries())
       for (const auto& st : e.syntax.statements) {
+        if (e.root != 0) break;
         const auto* x = std::get_if<compiler::DeprecatedStmt>(&st.node);
         if (!x) continue;
         const auto* target = lib.entry(x->replacement);
@@ -211,11 +234,12 @@ struct Checker {
       SourceLocation loc;
     };
     std::map<std::string, std::vector<Edge>> graph;
+    // Keyed by qualified name (world:corduroy when layered): a lab's corduroy may build on the world's.
     for (const auto& e : lib.entries()) {
-      if (lib.entry(e.name) != &e) continue;  // a duplicate name: E0607 already
+      if (!owns_name(e)) continue;  // a duplicate name: E0607 already
       for (const auto& st : e.syntax.statements)
         if (const auto* l = std::get_if<compiler::LikeStmt>(&st.node))
-          if (auto to = lib.canonical_name(l->name)) graph[e.name].push_back({*to, l->name, l->name_location});
+          if (const auto* to = lib.entry(l->name)) graph[lib.qualified_name(e)].push_back({lib.qualified_name(*to), l->name, l->name_location});
     }
     std::set<std::string> in_cycle;
     std::set<std::vector<std::string>> reported;
@@ -243,7 +267,7 @@ struct Checker {
       state[n] = 2;
     };
     for (const auto& e : lib.entries())
-      if (state[e.name] == 0) visit(e.name);
+      if (e.root == 0 && state[lib.qualified_name(e)] == 0) visit(lib.qualified_name(e));
     return in_cycle;
   }
 
@@ -271,32 +295,39 @@ std::string signature(const Diagnostics& d) {
 
 }  // namespace
 
-CheckResult check_library(const CheckOptions& options, Progress& progress) {
-  CheckResult result;
-  const auto lib_dir = options.library_dir.empty() ? compiler::default_library_dir() : options.library_dir;
-  const auto cal_dir = options.calibration_dir.empty() ? calibration::default_calibration_dir() : options.calibration_dir;
-  const auto cal = calibration::CalibrationSet::load(cal_dir);
-  if (options.devices.empty())
-    for (const auto& d : cal.devices()) result.devices.push_back(d.name);
-  else
-    result.devices = options.devices;
-  for (const auto& d : result.devices)
-    if (!cal.find_device(d)) throw std::invalid_argument("no device '" + d + "' in " + cal_dir.string() + "/devices");
+namespace {
 
-  const compiler::Library lib(lib_dir);
-  const DisplayPaths disp(lib_dir);
+// Checks the front root of `roots` against the roots below it.
+void check_front_root(const std::vector<std::filesystem::path>& roots, const std::filesystem::path& cal_dir,
+                      const calibration::CalibrationSet& cal, CheckResult& result, Progress& progress) {
+  const compiler::Library lib(roots);
+  const DisplayPaths disp(lib);
   auto& out = result.diagnostics;
-  result.entries = lib.entries().size();
+  for (const auto& e : lib.entries()) result.entries += e.root == 0;
   Checker ck{lib, disp, out};
 
-  // The manifest and the entries' syntax (E0601, the compiler's E01xx/E02xx).
-  disp.append_relocated(out, lib.scan_diagnostics());
+  // The manifest and the entries' syntax (E0601, the compiler's E01xx/E02xx): the front root's.
+  {
+    Diagnostics front;
+    const std::string prefix = lib.layered() ? "library/" + lib.roots().front().id + "/" : "library/";
+    for (const auto& d : lib.scan_diagnostics().all())
+      if (!lib.layered() || (d.location.file && (d.location.file->name.rfind(prefix, 0) == 0 ||
+                                                 d.location.file->name == "library/library.toml")))
+        front.append([&] {
+          Diagnostics one;
+          auto& x = d.severity == compiler::Severity::Error ? one.error(d.code, d.location, d.message, d.suggestion)
+                                                            : one.warning(d.code, d.location, d.message, d.suggestion);
+          x.notes = d.notes;
+          return one;
+        }());
+    disp.append_relocated(out, front);
+  }
   const auto manifest_loc = [&] {
     SourceLocation l;
     l.file = std::make_shared<const compiler::SourceFile>(disp.path_of("library.toml"), "");
     return l;
   };
-  if (lib.manifest().file.empty())
+  if (lib.roots().front().manifest.file.empty())
     out.error("E0601", manifest_loc(), "the library has no library.toml",
               "add library.toml with name, version and [families.<id>] tables (docs/LIBRARY.md)");
   else if (const auto& ref = lib.manifest().reference; !ref.empty() && !lib.entry(ref))
@@ -304,23 +335,23 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
               "name the entry a bare perceptual description starts from (a grating the roughness map was measured on)");
 
   for (const auto& e : lib.entries())
-    if (e.parsed_ok) ck.metadata(e), ck.sources(e), ck.images(e);
+    if (e.root == 0 && e.parsed_ok) ck.metadata(e), ck.sources(e), ck.images(e), ck.shadowing(e);
   ck.duplicates();
   ck.deprecations();
   const auto in_cycle = ck.cycles();
 
   // Entries that cannot be compiled meaningfully: syntax errors, `like` cycles, and whatever starts
   // from them (their own errors are reported already; fix those first).
-  std::set<std::string> broken = in_cycle;
+  std::set<std::string> broken = in_cycle;  // qualified names
   for (const auto& e : lib.entries())
-    if (!e.parsed_ok) broken.insert(e.name);
+    if (!e.parsed_ok) broken.insert(lib.qualified_name(e));
   for (bool grew = true; grew;) {
     grew = false;
     for (const auto& e : lib.entries()) {
-      if (broken.count(e.name)) continue;
+      if (broken.count(lib.qualified_name(e))) continue;
       for (const auto& l : e.likes)
-        if (auto to = lib.canonical_name(l); to && broken.count(*to)) {
-          broken.insert(e.name), grew = true;
+        if (const auto* to = lib.entry(l); to && broken.count(lib.qualified_name(*to))) {
+          broken.insert(lib.qualified_name(e)), grew = true;
           break;
         }
     }
@@ -329,20 +360,21 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
   // E0610: every entry compiles for every device. Coordinates for the JND check come from `sim`
   // (or the first device).
   std::vector<compiler::Compiler> compilers;
-  for (const auto& d : result.devices) compilers.emplace_back(compiler::CompileOptions{d, lib_dir, cal_dir});
+  for (const auto& d : result.devices) compilers.emplace_back(compiler::CompileOptions{d, {}, cal_dir, roots});
   std::size_t coord_device = 0;
   for (std::size_t i = 0; i < result.devices.size(); ++i)
     if (result.devices[i] == "sim") coord_device = i;
   std::map<std::string, Percepts> percepts;
   for (const auto& e : lib.entries()) {
-    if (broken.count(e.name) || lib.entry(e.name) != &e) {
+    if (e.root != 0) continue;
+    if (broken.count(lib.qualified_name(e)) || !ck.owns_name(e)) {
       progress.step(e.name);
       continue;
     }
     // (signature, devices, diagnostics) of each distinct failure.
     std::vector<std::tuple<std::string, std::vector<std::string>, Diagnostics>> failures;
     for (std::size_t i = 0; i < compilers.size(); ++i) {
-      const auto r = compilers[i].compile_file(disp.path_of(e.relative_path));
+      const auto r = compilers[i].compile_file(disp.path_of(e));
       if (i == coord_device)
         for (const auto& w : r.diagnostics.all())
           if (w.code == "W0340") out.append([&] {
@@ -374,7 +406,7 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
                               files + ")",
                           (help.empty() ? std::string("fix what the compiler says below") : help) +
                               "; every entry must play on every shipped device (`sandpaper explain --device " + devices.front() +
-                              " " + disp.path_of(e.relative_path) + "` shows the details)");
+                              " " + disp.path_of(e) + "` shows the details)");
       for (const auto& x : diags.all()) {
         if (x.severity != compiler::Severity::Error) continue;
         const auto moved = disp.relocate(x);
@@ -387,16 +419,36 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
 
   // W0601: entries of one family that the thesis' knowledge cannot tell apart.
   const auto& jnd = cal.knowledge().force_jnd;
-  const auto& entries = lib.entries();
+  std::vector<const LibraryEntry*> entries;
+  for (const auto& e : lib.entries())
+    if (e.root == 0) entries.push_back(&e);
+  // Only pairs less than one force JND apart can collide: sorted by family and force, each entry
+  // is compared with the entries just above it, not with the whole family (100,000 entries).
+  std::vector<std::size_t> order;
   for (std::size_t i = 0; i < entries.size(); ++i) {
-    const auto& a = entries[i];
+    const auto& a = *entries[i];
     auto pa = percepts.find(a.name);
-    if (pa == percepts.end() || !a.deprecated_by.empty() || a.family.empty()) continue;
+    if (pa == percepts.end() || !pa->second.has_texture() || !a.deprecated_by.empty() || a.family.empty()) continue;
     if (const auto* fam = lib.manifest().family(a.family); fam && fam->stimulus_set) continue;
-    for (std::size_t j = i + 1; j < entries.size(); ++j) {
-      const auto& b = entries[j];
-      auto pb = percepts.find(b.name);
-      if (pb == percepts.end() || !b.deprecated_by.empty() || b.family != a.family) continue;
+    order.push_back(i);
+  }
+  auto force = [&](std::size_t i) { return percepts.at(entries[i]->name).max_lateral_force_N; };
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return entries[x]->family != entries[y]->family ? entries[x]->family < entries[y]->family : force(x) < force(y);
+  });
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (i, j), i < j in name order, as reported
+  for (std::size_t k = 0; k < order.size(); ++k)
+    for (std::size_t m = k + 1; m < order.size() && entries[order[m]]->family == entries[order[k]]->family; ++m) {
+      if (!(jnd.steps_between(force(order[k]), force(order[m])) < 1.0)) break;
+      pairs.emplace_back(std::min(order[k], order[m]), std::max(order[k], order[m]));
+    }
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [i, j] : pairs) {
+    const auto& a = *entries[i];
+    const auto& b = *entries[j];
+    const auto pa = percepts.find(a.name);
+    const auto pb = percepts.find(b.name);
+    {
       double steps = 0;
       if (!indistinguishable(pa->second, pb->second, jnd, &steps)) continue;
       const auto& A = pa->second;
@@ -413,6 +465,44 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
       d.notes.push_back({ck.entry_loc(a), quoted(a.name) + " is here"});
     }
   }
+}
+
+}  // namespace
+
+CheckResult check_library(const CheckOptions& options, Progress& progress) {
+  CheckResult result;
+  const auto cal_dir = options.calibration_dir.empty() ? calibration::default_calibration_dir() : options.calibration_dir;
+  const auto cal = calibration::CalibrationSet::load(cal_dir);
+  if (options.devices.empty())
+    for (const auto& d : cal.devices()) result.devices.push_back(d.name);
+  else
+    result.devices = options.devices;
+  for (const auto& d : result.devices)
+    if (!cal.find_device(d)) throw std::invalid_argument("no device '" + d + "' in " + cal_dir.string() + "/devices");
+  const std::vector<std::filesystem::path> roots =
+      !options.library_path.empty() ? options.library_path
+      : !options.library_dir.empty() ? std::vector<std::filesystem::path>{options.library_dir}
+                                     : std::vector<std::filesystem::path>{compiler::default_library_dir()};
+  // E0613: `like ID:NAME` needs every root's id to be its own.
+  const compiler::Library whole(roots);
+  std::map<std::string, std::filesystem::path> ids;
+  bool root_found = options.root.empty();
+  for (const auto& r : whole.roots()) {
+    root_found = root_found || r.id == options.root;
+    if (auto [it, fresh] = ids.emplace(r.id, r.dir); !fresh) {
+      SourceLocation at;
+      at.file = std::make_shared<const compiler::SourceFile>((r.dir / "library.toml").string(), "");
+      result.diagnostics.error("E0613", at,
+                               "two roots of the library path are both named '" + r.id + "' (" + it->second.string() + " and " +
+                                   r.dir.string() + ")",
+                               "give one of them another id in its library.toml (id = \"lab\"); `like ID:NAME` names a root by it");
+    }
+  }
+  if (!root_found) throw std::invalid_argument("no root named '" + options.root + "' in the library path");
+  for (std::size_t i = 0; i < roots.size(); ++i)
+    if (options.root.empty() || whole.roots()[i].id == options.root)
+      check_front_root(std::vector<std::filesystem::path>(roots.begin() + static_cast<std::ptrdiff_t>(i), roots.end()), cal_dir,
+                       cal, result, progress);
   return result;
 }
 

@@ -2,6 +2,7 @@
 
 #include "sandpaper/curation/index.hpp"
 #include "sqlite_util.hpp"
+#include "stamps.hpp"
 
 namespace sandpaper::curation {
 
@@ -95,6 +96,17 @@ std::optional<IndexedEntry> Index::entry(const std::string& name) const {
   return read_entry(db_, s);
 }
 
+std::vector<IndexedEntry> Index::entries_by_rowid(const std::vector<std::int64_t>& rowids) const {
+  std::vector<IndexedEntry> out;
+  sql::Stmt s(db_, std::string("SELECT ") + kEntryColumns + " WHERE e.rowid = ?");
+  for (const auto id : rowids) {
+    s.bind64(1, id);
+    if (s.step()) out.push_back(read_entry(db_, s));
+    s.reset();
+  }
+  return out;
+}
+
 std::optional<std::string> Index::resolve(const std::string& name) const {
   sql::Stmt s(db_, "SELECT name FROM entries WHERE name = ? UNION ALL SELECT name FROM aliases WHERE alias = ?");
   s.bind(1, name).bind(2, name);
@@ -159,9 +171,9 @@ IndexState index_state(const std::filesystem::path& index_path, const std::files
   try {
     Index idx(index_path);
     if (idx.meta("library_dir") != std::filesystem::absolute(library_dir).lexically_normal().string()) return IndexState::Stale;
-    if (idx.meta("fingerprint") != library_fingerprint(library_dir, calibration_dir)) return IndexState::Stale;
+    if (!stamps::unchanged(idx.handle(), {{"library", library_dir}, {"calibration", calibration_dir}})) return IndexState::Stale;
     return IndexState::Fresh;
-  } catch (const IndexError&) {
+  } catch (const std::exception&) {
     return IndexState::Stale;
   }
 }

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
+
+#include "sqlite_util.hpp"
 
 namespace sandpaper::curation {
 
@@ -75,14 +78,64 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
 
 std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit) {
   const auto from = index.entry(name);
-  if (!from) return {};
+  if (!from || limit == 0) return {};
   const double weber = std::stod(index.meta("weber_fraction"));
-  std::vector<Neighbour> out;
-  for (const auto& e : index.entries())
-    if (e.name != from->name) out.push_back(distance_between(*from, e, weber));
-  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.distance < b.distance; });
-  if (out.size() > limit) out.resize(limit);
-  return out;
+  sqlite3* db = index.handle();
+  std::int64_t total = 0;
+  {
+    sql::Stmt n(db, "SELECT count(*) FROM entries");
+    if (n.step()) total = n.integer64(0);
+  }
+  std::set<std::int64_t> seen;
+  std::vector<Neighbour> found;
+  auto consider = [&](sql::Stmt& ids) {
+    std::vector<std::int64_t> fresh;
+    while (ids.step())
+      if (seen.insert(ids.integer64(0)).second) fresh.push_back(ids.integer64(0));
+    for (const auto& e : index.entries_by_rowid(fresh))
+      if (e.name != from->name) found.push_back(distance_between(*from, e, weber));
+  };
+  auto within = [&](double r) {
+    return static_cast<std::size_t>(std::count_if(found.begin(), found.end(), [&](const auto& n) { return n.distance < r; }));
+  };
+  // Every entry in a box of half-width r JND around `from` in (force steps, period steps) is a
+  // candidate; outside it the distance is more than r, since the distance is at least the larger
+  // of the two (near.hpp). Grow r until `limit` candidates are within r, or all were seen.
+  double r = 2 * kJndPerPeriodDoubling;
+  if (from->max_lateral_force_N > 0) {
+    sql::Stmt box(db, "SELECT id FROM coordinates WHERE log_force_max >= ? AND log_force_min <= ? "
+                      "AND log_period_max >= ? AND log_period_min <= ?");
+    const double f = std::log(from->max_lateral_force_N);
+    const double p = from->period_m > 0 ? std::log2(from->period_m) : 0.0;
+    const double p_any = from->period_m > 0 ? 0.0 : 1e30;  // no period: the period axis does not bound the distance
+    for (;; r *= 2) {
+      const double df = r * std::log1p(weber), dp = r / kJndPerPeriodDoubling + p_any;
+      box.bind(1, f - df).bind(2, f + df).bind(3, p - dp).bind(4, p + dp);
+      consider(box);
+      box.reset();
+      // Untextured entries are kTextureSteps or more away.
+      if (r >= kTextureSteps) {
+        sql::Stmt flat(db, "SELECT rowid FROM entries WHERE max_lateral_force_N <= 0");
+        consider(flat);
+      }
+      if (within(r) >= limit || static_cast<std::int64_t>(seen.size()) >= total) break;
+    }
+  } else {
+    // No texture: force laws differ by parameters the R*Tree does not hold; the untextured
+    // entries first (textured ones are kTextureSteps or more away), then all if too few.
+    sql::Stmt flat(db, "SELECT rowid FROM entries WHERE max_lateral_force_N <= 0");
+    consider(flat);
+    r = kTextureSteps;
+    if (within(r) < limit) {
+      sql::Stmt all(db, "SELECT rowid FROM entries");
+      consider(all);
+    }
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.entry.name < b.entry.name;
+  });
+  if (found.size() > limit) found.resize(limit);
+  return found;
 }
 
 }  // namespace sandpaper::curation

@@ -2,6 +2,7 @@
 // Small RAII over the SQLite C API for the index (internal to sandpaper_curation).
 #include <sqlite3.h>
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -42,6 +43,10 @@ class Stmt {
     check(sqlite3_bind_int(s_, i, v));
     return *this;
   }
+  Stmt& bind64(int i, std::int64_t v) {
+    check(sqlite3_bind_int64(s_, i, static_cast<sqlite3_int64>(v)));
+    return *this;
+  }
   // True while there is a row.
   bool step() {
     const int rc = sqlite3_step(s_);
@@ -63,6 +68,7 @@ class Stmt {
   }
   double real(int col) const { return sqlite3_column_double(s_, col); }
   int integer(int col) const { return sqlite3_column_int(s_, col); }
+  std::int64_t integer64(int col) const { return static_cast<std::int64_t>(sqlite3_column_int64(s_, col)); }
 
  private:
   void check(int rc) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/compiler/data_dirs.hpp"
@@ -22,6 +23,9 @@ struct CompileOptions {
   std::string device = "sim";               // a device calibration in calibration/devices/
   std::filesystem::path library_dir;        // empty: default_library_dir()
   std::filesystem::path calibration_dir;    // empty: calibration::default_calibration_dir()
+  // A layered library, front root first (library.hpp); when set, library_dir is not used. Both
+  // empty: default_library_path() ($SANDPAPER_LIBRARY_PATH, else default_library_dir()).
+  std::vector<std::filesystem::path> library_path;
 };
 
 struct CompileResult {

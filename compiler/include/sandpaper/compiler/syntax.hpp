@@ -106,10 +106,13 @@ struct FamilyStmt { std::string family; SourceLocation location; };  // `family 
 struct AliasStmt { std::string name; SourceLocation location; };     // `alias corduroy-wide-wale`
 struct LicenceStmt { std::string licence; SourceLocation location; };  // `licence "CC0-1.0"` (SPDX id)
 struct DeprecatedStmt { std::string replacement; SourceLocation location; };  // `deprecated replaced-by NAME`
+// `overrides`: the entry means to hide an entry of the same name in a library root below it.
+struct OverridesStmt { SourceLocation location; };
 
 using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, GratingStmt, HeightmapStmt, SpringStmt,
                                    DamperStmt, SizeStmt, ExtrapolateStmt, LawStmt, EnergyStmt, PatternStmt,
-                                   QuantizeStmt, PerceptStmt, FamilyStmt, AliasStmt, LicenceStmt, DeprecatedStmt>;
+                                   QuantizeStmt, PerceptStmt, FamilyStmt, AliasStmt, LicenceStmt, DeprecatedStmt,
+                                   OverridesStmt>;
 
 // Where a statement's numbers come from: `source standard "FEPA 43-1:2006: P80 median 201 um"`, written
 // after the statement it sources (issue 6: every number in the library names its source).

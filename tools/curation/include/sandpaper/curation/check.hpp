@@ -16,6 +16,11 @@ struct CheckOptions {
   std::filesystem::path library_dir;       // empty: compiler::default_library_dir()
   std::filesystem::path calibration_dir;   // empty: calibration::default_calibration_dir()
   std::vector<std::string> devices;        // empty: every device of the calibration
+  // A layered library, front first: each root is checked against the roots below it (its `like`
+  // resolves through them; an entry hiding one below warns unless it says `overrides`). When set,
+  // library_dir is not used.
+  std::vector<std::filesystem::path> library_path;
+  std::string root;                        // check only the root with this id (empty: every root)
 };
 
 struct CheckResult {

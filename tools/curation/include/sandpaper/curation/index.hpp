@@ -1,9 +1,12 @@
 #pragma once
 // The library's SQLite index (`sandpaper library index`; schema in docs/LIBRARY.md): entries,
 // aliases, perceptual coordinates, a physical summary, provenance with the `source` notes, and an
-// FTS5 table for words. Built atomically: a temp file beside the index, renamed over it only when
-// every entry compiled; any failure leaves the previous index byte-identical.
+// FTS5 table for words, an R*Tree on the perceptual coordinates, and what each entry was built
+// from. Built incrementally (only entries whose inputs changed are compiled again) and atomically:
+// a temp file beside the index, renamed over it only when every entry compiled; any failure
+// leaves the previous index byte-identical; a build killed part-way is resumed by the next one.
 #include <filesystem>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -17,14 +20,14 @@ struct sqlite3;
 
 namespace sandpaper::curation {
 
-inline constexpr int kIndexSchemaVersion = 2;
+inline constexpr int kIndexSchemaVersion = 3;
 
 // $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
 std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
 
-// Hex FNV-1a 64 over every file of the library folder (relative path and bytes; hidden files and
-// folders such as .index/ left out) and over the calibration folder's files, which set the
-// roughness. It detects edits, not tampering.
+// Hex FNV-1a 64 over the list of every file of the library folder (relative path and FNV-1a 64 of
+// its bytes; hidden files and folders such as .index/ left out) and of the calibration folder,
+// which sets the roughness: the index's `fingerprint`. It detects edits, not tampering.
 std::string library_fingerprint(const std::filesystem::path& library_dir, const std::filesystem::path& calibration_dir);
 
 struct IndexOptions {
@@ -32,18 +35,24 @@ struct IndexOptions {
   std::filesystem::path calibration_dir;   // empty: calibration::default_calibration_dir()
   std::filesystem::path index_path;        // empty: default_index_path(library_dir)
   std::string device = "sim";              // coordinates are compiled on this device
+  bool full = false;                       // compile every entry; reuse nothing from a previous build
+  std::size_t batch = 256;                 // entries per transaction: a killed build keeps its whole batches
 };
 
 struct IndexBuildResult {
   bool ok = false;
   compiler::Diagnostics diagnostics;  // why it failed (entries that do not compile, ...), relocated for display
   std::string error;                  // an I/O or SQLite failure, in words
-  std::size_t entries = 0;
+  std::size_t entries = 0;             // entries in the index
+  std::size_t compiled = 0, reused = 0;  // of them: compiled now, rows kept from the previous build
+  std::size_t files_hashed = 0;        // files read to hash them (the others' stamps had not changed)
+  bool resumed = false;                // started from the rows of a build that was killed
   std::filesystem::path path;
 };
 
-// Compiles every entry on `device` and writes the index. Throws calibration::CalibrationError for
-// unreadable calibration; everything else is reported in the result.
+// Compiles on `device` every entry whose inputs (its text, images, `like` chain, the calibration,
+// library.toml, the compiler version) changed since the previous index, and writes the index.
+// Throws calibration::CalibrationError for unreadable calibration; everything else is reported in the result.
 IndexBuildResult build_index(const IndexOptions& options, Progress& progress);
 
 // One row of `entries`, with its aliases and coordinates.
@@ -83,6 +92,8 @@ class Index {
   std::string meta(const std::string& key) const;  // "" if absent
   std::vector<IndexedEntry> entries() const;       // sorted by name
   std::optional<IndexedEntry> entry(const std::string& name) const;
+  // Entries by their row ids in `entries` (the ids of `search` and `coordinates` too).
+  std::vector<IndexedEntry> entries_by_rowid(const std::vector<std::int64_t>& rowids) const;
   // The entry's name for a name or alias; nullopt if neither.
   std::optional<std::string> resolve(const std::string& name_or_alias) const;
   std::vector<std::string> names_and_aliases() const;
@@ -98,7 +109,10 @@ class Index {
 };
 
 enum class IndexState { Missing, Stale, Fresh };
-// Missing (no file, or not an index of this schema), stale (fingerprint or schema differs), fresh.
+// Missing (no file), stale (another schema or library folder, or the stamps differ), fresh. The
+// check reads no file: it compares the modification times of the library's folders, and the
+// stamps of the files of the root, the calibration and recently changed folders (docs/LIBRARY.md,
+// "When the index is stale"); an edit in place elsewhere is seen by the next `library index`.
 IndexState index_state(const std::filesystem::path& index_path, const std::filesystem::path& library_dir,
                        const std::filesystem::path& calibration_dir);
 

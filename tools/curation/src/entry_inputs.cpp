@@ -1,0 +1,71 @@
+#include "entry_inputs.hpp"
+
+#include <set>
+#include <variant>
+
+#include "stamps.hpp"
+
+namespace sandpaper::curation {
+
+namespace {
+
+class Hasher {
+ public:
+  Hasher(const compiler::Library& lib, const std::map<std::string, std::string>& files, const std::string& global)
+      : lib_(lib), files_(files), global_(global) {}
+
+  std::string of(const compiler::LibraryEntry& e) {
+    if (auto it = done_.find(e.name); it != done_.end()) return it->second;
+    // A `like` cycle: the entry does not compile, and the build reports it; any stable text will do.
+    if (!visiting_.insert(e.name).second) return "cycle:" + e.name;
+    std::string in = global_ + "\nentry " + e.relative_path + " " + file("library/" + e.relative_path);
+    bool texture = false;
+    for (const auto& st : e.syntax.statements) {
+      if (const auto* h = std::get_if<compiler::HeightmapStmt>(&st.node)) {
+        texture = true;
+        const std::filesystem::path p(h->path);
+        const auto rel = p.is_absolute()
+                             ? p.string()
+                             : (std::filesystem::path(e.relative_path).parent_path() / p).lexically_normal().generic_string();
+        in += "\nimage " + h->path + " " + file("library/" + rel);
+      } else if (std::holds_alternative<compiler::GratingStmt>(st.node) || std::holds_alternative<compiler::PatternStmt>(st.node)) {
+        texture = true;
+      }
+    }
+    for (const auto& name : e.likes) {
+      if (const auto* t = lib_.entry(name)) in += "\nlike " + name + " " + of(*t);
+      // Not an entry: a thesis stimulus, generated from its name and library/thesis/version1.toml.
+      else in += "\nlike " + name + " thesis " + file("library/thesis/version1.toml");
+    }
+    const auto& ref = lib_.manifest().reference;
+    if (e.likes.empty() && !texture && !ref.empty())
+      if (const auto* r = lib_.entry(ref); r && r->name != e.name) in += "\nreference " + of(*r);
+    visiting_.erase(e.name);
+    return done_[e.name] = stamps::fnv_hex(in);
+  }
+
+ private:
+  std::string file(const std::string& path) const {
+    const auto it = files_.find(path);
+    return it == files_.end() ? "absent" : it->second;
+  }
+  const compiler::Library& lib_;
+  const std::map<std::string, std::string>& files_;
+  const std::string& global_;
+  std::map<std::string, std::string> done_;
+  std::set<std::string> visiting_;
+};
+
+}  // namespace
+
+std::map<std::string, std::string> entry_input_hashes(const compiler::Library& lib,
+                                                      const std::map<std::string, std::string>& file_hashes,
+                                                      const std::string& global) {
+  Hasher h(lib, file_hashes, global);
+  std::map<std::string, std::string> out;
+  for (const auto& e : lib.entries())
+    if (lib.entry(e.name) == &e) out[e.name] = h.of(e);
+  return out;
+}
+
+}  // namespace sandpaper::curation

@@ -1,0 +1,62 @@
+#pragma once
+// File and folder stamps for incremental index builds and for the cheap staleness check of
+// queries (docs/LIBRARY.md, "Incremental builds"; internal to sandpaper_curation).
+//
+// A stamp is (size, modification time in ns). A build hashes only files whose stamp changed since
+// the last build. A stamp taken within kRacyWindowNs of the build is "racy": the file system's
+// clock is coarse (a jiffy, or 2 s on FAT), so an edit made just after the stamp could keep it;
+// racy files are always re-hashed and racy folders always listed (the "racy git" problem).
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+struct sqlite3;
+
+namespace sandpaper::curation::stamps {
+
+inline constexpr std::int64_t kRacyWindowNs = 2'000'000'000;
+
+struct FileStamp {
+  std::string path;    // "library/textiles/corduroy.hmat", "calibration/maps/roughness.toml"
+  std::string folder;  // "library/textiles"
+  std::int64_t size = 0, mtime_ns = 0;
+  std::string hash;    // FNV-1a 64 of the bytes, 16 hex digits
+  bool racy = false;
+};
+
+struct FolderStamp {
+  std::string path;        // "library", "library/textiles"
+  std::int64_t mtime_ns = 0;
+  bool files_checked = false;  // queries stat every file of it (roots, calibration, racy folders)
+};
+
+struct Tree {
+  std::vector<FolderStamp> folders;
+  std::vector<FileStamp> files;  // sorted by path
+  std::size_t hashed = 0;        // files read and hashed (the rest reused a known hash)
+};
+
+std::int64_t now_ns();
+
+// Walks `dir` (hidden files and folders left out) under the tag "library" or "calibration". A
+// file whose stamp equals a non-racy stamp in `known` keeps its hash; the others are read and hashed.
+// `every_file_checked`: queries will stat every file of every folder (the calibration: a few files).
+void walk(const std::filesystem::path& dir, const std::string& tag, const std::map<std::string, FileStamp>& known,
+          std::int64_t build_start_ns, bool every_file_checked, Tree& into);
+
+// Hex FNV-1a 64 of a string (for entry input hashes and the fingerprint).
+std::string fnv_hex(const std::string& bytes);
+
+// Creates (if absent) and fills the `files` and `folders` tables of an open index.
+void write(sqlite3* db, const Tree& tree);
+// The `files` table of an index, by path; empty if it has none.
+std::map<std::string, FileStamp> read_files(sqlite3* db);
+
+// The cheap check: every recorded folder still has its modification time and no folder was added
+// or removed under it; in folders marked files_checked, every file keeps its stamp (and racy files
+// their hash). `roots` maps a tag to its folder. False at the first difference.
+bool unchanged(sqlite3* db, const std::map<std::string, std::filesystem::path>& roots);
+
+}  // namespace sandpaper::curation::stamps
