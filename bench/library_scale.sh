@@ -7,6 +7,8 @@
 #   library index --quiet           after appending a comment line to one entry
 #   library search WORD             a word in a few entries' describes (default corduroy: five)
 #   library show NAME / near NAME   one generated grating
+#   in-process queries              build/bin/sandpaper_bench_library (staleness check, search, show,
+#                                   near, each with opening the index), when built beside the binary
 #   library catalog -o DIR --quiet  and the catalog's size (du -sb) and bytes per entry
 # and `sandpaper --help` (median of 5) as the process start-up, so that the queries can be read
 # net of it. Prints a Markdown table (one row per N) and, with two or more N, the growth exponent
@@ -17,7 +19,7 @@
 #
 # Environment:
 #   LIBRARY_SCALE_SKIP=catalog,check  steps to leave out: check, index, index-unchanged,
-#                                     index-touched, search, show, near, catalog
+#                                     index-touched, search, show, near, inprocess, catalog
 #   LIBRARY_SCALE_TIMEOUT=3600        seconds per step; a step that runs out shows ">timeout"
 #   LIBRARY_SCALE_REPEAT=3            runs of each query (search, show, near); the median is shown
 #   LIBRARY_SCALE_QUERY=corduroy      the search words
@@ -174,6 +176,16 @@ for N in "${sizes[@]}"; do
   [[ -n ${secs[$N:search]:-} ]] && echo "N=$N search '$query' found $(wc -l <"$OUT") lines" >&2
   query_step show "$bin" library show "${common[@]}" --quiet "$name"
   query_step near "$bin" library near "${common[@]}" --quiet "$name"
+  # In-process (no start-up): bench/library_query_bench.cpp, when built beside the binary.
+  qbench="$(dirname "$bin")/sandpaper_bench_library"
+  if [[ -x $qbench ]] && ! skipped inprocess; then
+    run inprocess env SANDPAPER_BENCH_INDEX="$lib/.index/library.sqlite" SANDPAPER_BENCH_LIBRARY="$lib" \
+      SANDPAPER_BENCH_NAME="$name" SANDPAPER_BENCH_QUERY="$query" "$qbench" --benchmark_min_time=0.2
+    cell[$N:inprocess]=$(awk '/^BM_Library/ { sub("BM_Library", "", $1); printf "%s%s %s %s", (n++ ? ", " : ""), $1, $2, $3 }' "$OUT")
+    [[ -n ${cell[$N:inprocess]} ]] || cell[$N:inprocess]="(exit $RC)"
+  else
+    cell[$N:inprocess]="-"
+  fi
 
   if step catalog "$bin" library catalog "${common[@]}" -o "$cat_dir" --quiet && [[ -d $cat_dir ]]; then
     bytes=$(du -sb "$cat_dir" | cut -f1)
@@ -187,9 +199,9 @@ for N in "${sizes[@]}"; do
 done
 
 # The table.
-cols=(generate library check diags index index-unchanged index-touched index-size search show near catalog catalog-size per-entry)
+cols=(generate library check diags index index-unchanged index-touched index-size search show near inprocess catalog catalog-size per-entry)
 heads=("generate" "library (.hmat bytes)" "check" "check diagnostics" "index (full)" "index (unchanged)"
-       "index (1 entry touched)" "index size" "search '$query'" "show" "near" "catalog" "catalog size" "catalog per entry")
+       "index (1 entry touched)" "index size" "search '$query'" "show" "near" "in-process, no start-up" "catalog" "catalog size" "catalog per entry")
 echo
 echo "sandpaper: \`$bin\`; process start-up (\`--help\`, median of 5): $startup s, $(mb "$startup_rss"). Queries: median of $repeat runs, (net) = less start-up. Times are wall-clock, memory is peak RSS."
 echo

@@ -226,7 +226,8 @@ std::map<std::string, std::string> rows_by_entry(const std::filesystem::path& in
       "SELECT name, * FROM provenance ORDER BY name, ordinal",
       "SELECT name, hash FROM inputs ORDER BY name",
       "SELECT name, aliases, describes, family, sources FROM search ORDER BY name",
-      "SELECT e.name, c.log_force_min, c.log_force_max, c.log_period_min, c.log_period_max FROM coordinates c "
+      "SELECT e.name, c.log_force_min, c.log_force_max, c.log_period_min, c.log_period_max, k.kind_terms FROM coordinates c "
+      "JOIN classes k ON k.id = c.class_min "
       "JOIN entries e ON e.rowid = c.id ORDER BY e.name",
       // The two row ids must agree, or search and near would name the wrong entry.
       "SELECT e.name, e.name = s.name FROM entries e JOIN search s ON s.rowid = e.rowid ORDER BY e.name"};

@@ -80,6 +80,17 @@ int print_build_failure(const cur::IndexBuildResult& r, const char* who) {
   return kExitBadInput;
 }
 
+// Entry files under a library folder, counted without reading them (for the progress counter:
+// parsing a large library twice would double an incremental build's cost).
+std::size_t count_entry_files(const std::filesystem::path& dir) {
+  std::size_t n = 0;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec); !ec && it != std::filesystem::recursive_directory_iterator();
+       it.increment(ec))
+    n += it->path().extension() == ".hmat";
+  return n;
+}
+
 // Whether the index at p.index can be read and was built from this library folder.
 bool previous_index_answers(const Paths& p) {
   try {
@@ -98,8 +109,7 @@ int ensure_index(const Paths& p, bool quiet, const char* who) {
   std::cerr << "sandpaper " << who << ": the index " << p.index.string() << " is "
             << (state == cur::IndexState::Missing ? "missing" : "stale (the library or calibration changed)")
             << "; building it\n";
-  const compiler::Library lib(p.library);
-  auto progress = cur::Progress::on_stderr("indexing", lib.entries().size(), quiet);
+  auto progress = cur::Progress::on_stderr("indexing", count_entry_files(p.library), quiet);
   const auto r = cur::build_index({p.library, p.calibration, p.index, "sim"}, progress);
   if (!r.ok) {
     const int rc = print_build_failure(r, who);
@@ -173,8 +183,7 @@ int run_check(const Paths& p, const LibraryCommandOptions& o) {
 }
 
 int run_index(const Paths& p, const LibraryCommandOptions& o) {
-  const compiler::Library scan(p.library);
-  auto progress = cur::Progress::on_stderr("indexing", scan.entries().size(), o.quiet);
+  auto progress = cur::Progress::on_stderr("indexing", count_entry_files(p.library), o.quiet);
   const auto r = cur::build_index({p.library, p.calibration, p.index, "sim", o.full}, progress);
   if (!r.ok) return print_build_failure(r, "library index");
   progress.finish("indexed " + std::to_string(r.entries) + " entries");
@@ -185,7 +194,8 @@ int run_index(const Paths& p, const LibraryCommandOptions& o) {
                      .dump(2)
               << "\n";
   else
-    std::cout << "indexed " << r.entries << " entries of " << scan.manifest().name << " " << scan.manifest().version << " into "
+    std::cout << "indexed " << r.entries << " entries of " << cur::Index(r.path).meta("library_name") << " "
+              << cur::Index(r.path).meta("library_version") << " into "
               << r.path.string() << " (" << r.compiled << " compiled, " << r.reused << " unchanged"
               << (r.resumed ? ", resumed from an interrupted build" : "") << ")\n";
   return kExitOk;

@@ -52,7 +52,8 @@ CREATE TABLE provenance(name TEXT NOT NULL REFERENCES entries(name), ordinal INT
 CREATE INDEX provenance_name ON provenance(name, ordinal);
 CREATE TABLE inputs(name TEXT PRIMARY KEY REFERENCES entries(name), hash TEXT NOT NULL);
 CREATE VIRTUAL TABLE search USING fts5(name, aliases, describes, family, sources, tokenize = 'unicode61 remove_diacritics 2');
-CREATE VIRTUAL TABLE coordinates USING rtree(id, log_force_min, log_force_max, log_period_min, log_period_max);
+CREATE TABLE classes(id INTEGER PRIMARY KEY, kind_terms TEXT NOT NULL UNIQUE);
+CREATE VIRTUAL TABLE coordinates USING rtree(id, log_force_min, log_force_max, log_period_min, log_period_max, class_min, class_max);
 )sql";
 
 struct Compiled {
@@ -103,7 +104,9 @@ class EntryWriter {
         src_(db, "INSERT INTO sources VALUES (?, ?, ?, ?, ?)"),
         pro_(db, "INSERT INTO provenance VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)"),
         fts_(db, "INSERT INTO search(rowid, name, aliases, describes, family, sources) VALUES (?, ?, ?, ?, ?, ?)"),
-        geo_(db, "INSERT INTO coordinates VALUES (?, ?, ?, ?, ?)"),
+        geo_(db, "INSERT INTO coordinates VALUES (?, ?, ?, ?, ?, ?, ?)"),
+        cls_(db, "INSERT OR IGNORE INTO classes(kind_terms) VALUES (?)"),
+        cls_id_(db, "SELECT id FROM classes WHERE kind_terms = ?"),
         inp_(db, "INSERT INTO inputs VALUES (?, ?)") {
     // Entries by the file name the compiler gave them, to find the statement behind each provenance row.
     for (const auto& e : lib.entries()) {
@@ -157,7 +160,14 @@ class EntryWriter {
     if (pc.max_lateral_force_N > 0) {
       const double f = std::log(pc.max_lateral_force_N);
       const double lo = pc.period_m > 0 ? std::log2(pc.period_m) : -1e30, hi = pc.period_m > 0 ? std::log2(pc.period_m) : 1e30;
-      geo_.bind64(1, rowid).bind(2, f).bind(3, f).bind(4, lo).bind(5, hi).run();
+      // Entries of another texture kind or other terms are kKindSteps or more apart: a third axis.
+      const std::string kind_terms = pc.texture_kind + "|" + pc.terms;
+      cls_.bind(1, kind_terms).run();
+      cls_id_.bind(1, kind_terms);
+      cls_id_.step();
+      const double cls = static_cast<double>(cls_id_.integer64(0));
+      cls_id_.reset();
+      geo_.bind64(1, rowid).bind(2, f).bind(3, f).bind(4, lo).bind(5, hi).bind(6, cls).bind(7, cls).run();
     }
     inp_.bind(1, e.name).bind(2, input_hash).run();
   }
@@ -166,7 +176,7 @@ class EntryWriter {
   sqlite3* db_;
   const compiler::Library& lib_;
   const calibration::CalibrationSet& cal_;
-  sql::Stmt ent_, ali_, per_, sta_, src_, pro_, fts_, geo_, inp_;
+  sql::Stmt ent_, ali_, per_, sta_, src_, pro_, fts_, geo_, cls_, cls_id_, inp_;
   std::map<std::string, const compiler::LibraryEntry*> by_file_;
 };
 

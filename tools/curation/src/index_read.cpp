@@ -46,7 +46,8 @@ const char* kEntryColumns =
     "e.roughness, e.max_lateral_force_N, e.texture_kind, e.period_m, e.period_class, e.character, e.terms, e.physical, e.term_params "
     "FROM entries e LEFT JOIN families f ON f.id = e.family";
 
-IndexedEntry read_entry(sqlite3* db, const sql::Stmt& s) {
+// `light`: the entries row only (no aliases, no other percepts), for comparing many entries.
+IndexedEntry read_entry(sqlite3* db, const sql::Stmt& s, bool light = false) {
   IndexedEntry e;
   e.name = s.text(0);
   e.family = s.text(1);
@@ -71,6 +72,7 @@ IndexedEntry read_entry(sqlite3* db, const sql::Stmt& s) {
   e.terms = s.text(15);
   e.physical = s.text(16);
   for (const auto& kv : nlohmann::json::parse(s.text(17))) e.term_params.emplace_back(kv[0].get<std::string>(), kv[1].get<double>());
+  if (light) return e;
   sql::Stmt a(db, "SELECT alias FROM aliases WHERE name = ? ORDER BY rowid");
   a.bind(1, e.name);
   while (a.step()) e.aliases.push_back(a.text(0));
@@ -105,6 +107,37 @@ std::vector<IndexedEntry> Index::entries_by_rowid(const std::vector<std::int64_t
     s.reset();
   }
   return out;
+}
+
+std::vector<IndexedEntry> Index::textured_in_box(const Box& b) const {
+  std::vector<IndexedEntry> out;
+  std::string where =
+      " JOIN coordinates c ON c.id = e.rowid WHERE c.log_force_max >= ? AND c.log_force_min <= ? AND c.log_period_max >= ? "
+      "AND c.log_period_min <= ? AND c.class_max >= ? AND c.class_min <= ?";
+  if (b.periodless) where += *b.periodless ? " AND c.log_period_min < -1e29" : " AND c.log_period_min >= -1e29";
+  sql::Stmt s(db_, std::string("SELECT ") + kEntryColumns + where);
+  s.bind(1, b.ln_force_lo).bind(2, b.ln_force_hi).bind(3, b.log2_period_lo).bind(4, b.log2_period_hi).bind(5, b.class_lo)
+      .bind(6, b.class_hi);
+  while (s.step()) out.push_back(read_entry(db_, s, true));
+  return out;
+}
+
+double Index::texture_class(const std::string& name) const {
+  sql::Stmt s(db_, "SELECT c.class_min FROM coordinates c JOIN entries e ON e.rowid = c.id WHERE e.name = ?");
+  s.bind(1, name);
+  return s.step() ? s.real(0) : -1;
+}
+
+std::vector<IndexedEntry> Index::untextured() const {
+  std::vector<IndexedEntry> out;
+  sql::Stmt s(db_, std::string("SELECT ") + kEntryColumns + " WHERE e.max_lateral_force_N <= 0");
+  while (s.step()) out.push_back(read_entry(db_, s, true));
+  return out;
+}
+
+std::size_t Index::size() const {
+  sql::Stmt s(db_, "SELECT count(*) FROM entries");
+  return s.step() ? static_cast<std::size_t>(s.integer64(0)) : 0;
 }
 
 std::optional<std::string> Index::resolve(const std::string& name) const {

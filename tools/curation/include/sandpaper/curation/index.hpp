@@ -20,7 +20,7 @@ struct sqlite3;
 
 namespace sandpaper::curation {
 
-inline constexpr int kIndexSchemaVersion = 3;
+inline constexpr int kIndexSchemaVersion = 4;
 
 // $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
 std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
@@ -94,6 +94,19 @@ class Index {
   std::optional<IndexedEntry> entry(const std::string& name) const;
   // Entries by their row ids in `entries` (the ids of `search` and `coordinates` too).
   std::vector<IndexedEntry> entries_by_rowid(const std::vector<std::int64_t>& rowids) const;
+  // For comparing many entries (near), without aliases and other percepts: the textured entries in
+  // a box of ln(maximum lateral force / 1 N), log2(period / 1 m) (a texture without a period spans
+  // the whole axis) and texture class (one number per texture kind and program terms); the
+  // untextured ones.
+  struct Box {
+    double ln_force_lo = -1e30, ln_force_hi = 1e30, log2_period_lo = -1e30, log2_period_hi = 1e30;
+    double class_lo = -1e30, class_hi = 1e30;
+    std::optional<bool> periodless;  // only textures without a period (true), with one (false), or both
+  };
+  std::vector<IndexedEntry> textured_in_box(const Box& box) const;
+  double texture_class(const std::string& name) const;  // -1 for an untextured entry
+  std::vector<IndexedEntry> untextured() const;
+  std::size_t size() const;  // entries
   // The entry's name for a name or alias; nullopt if neither.
   std::optional<std::string> resolve(const std::string& name_or_alias) const;
   std::vector<std::string> names_and_aliases() const;

@@ -22,8 +22,9 @@ struct Neighbour {
   std::string why;          // "0.8 JND weaker (1.05 vs 1.16 N); period 2.5 vs 3.2 mm (-0.36 doublings); same kind (grating)"
 };
 
-// Distance between two indexed entries with Weber fraction `weber` (0.125).
-Neighbour distance_between(const IndexedEntry& from, const IndexedEntry& to, double weber);
+// Distance between two indexed entries with Weber fraction `weber` (0.125). `explain` false: the
+// numbers only (no `why`, no copy of `to`), for comparing many entries.
+Neighbour distance_between(const IndexedEntry& from, const IndexedEntry& to, double weber, bool explain = true);
 // The `limit` nearest entries to `name` (a name; resolve aliases first), nearest first, ties by name.
 std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit);
 
