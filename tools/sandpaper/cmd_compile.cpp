@@ -155,9 +155,13 @@ int cmd_library(const CommonOptions& o) {
   nlohmann::json arr = nlohmann::json::array();
   int bad = 0;
   std::size_t width = 16;
-  for (const auto& e : c.library().entries()) width = std::max(width, e.name.size() + 2);
-  for (const auto& e : c.library().entries()) {
-    auto r = c.compile_text(e.name, "<library " + e.name + ">");
+  const auto& lib = c.library();
+  // In a layered library every root's entries are listed by qualified name (lab:corduroy), the
+  // hidden ones too, marked.
+  for (const auto& e : lib.entries()) width = std::max(width, lib.qualified_name(e).size() + 2);
+  for (const auto& e : lib.entries()) {
+    const std::string name = lib.qualified_name(e);
+    auto r = c.compile_text(name, "<library " + name + ">");
     if (!r.ok()) {
       ++bad;
       std::cerr << compiler::format_diagnostics(r.diagnostics);
@@ -165,13 +169,16 @@ int cmd_library(const CommonOptions& o) {
     }
     const auto& p = *r.program;
     if (o.json) {
-      arr.push_back({{"name", e.name}, {"family", e.family}, {"aliases", e.aliases}, {"describes", p.describes},
-                     {"max_lateral_force_N", p.max_lateral_force_N}, {"roughness", p.roughness},
-                     {"deprecated_by", e.deprecated_by}, {"file", e.relative_path}});
+      nlohmann::json j{{"name", e.name}, {"family", e.family}, {"aliases", e.aliases}, {"describes", p.describes},
+                       {"max_lateral_force_N", p.max_lateral_force_N}, {"roughness", p.roughness},
+                       {"deprecated_by", e.deprecated_by}, {"file", e.relative_path}};
+      if (lib.layered()) j["root"] = lib.roots()[e.root].id, j["hidden"] = lib.entry(e.name) != &e;
+      arr.push_back(std::move(j));
     } else {
-      std::cout << e.name << std::string(width - e.name.size(), ' ') << e.family
+      std::cout << name << std::string(width - name.size(), ' ') << e.family
                 << std::string(e.family.size() < 20 ? 20 - e.family.size() : 1, ' ') << "roughness " << p.roughness << "  \""
-                << p.describes << "\"" << (e.deprecated_by.empty() ? "" : "  [deprecated: use " + e.deprecated_by + "]") << "\n";
+                << p.describes << "\"" << (e.deprecated_by.empty() ? "" : "  [deprecated: use " + e.deprecated_by + "]")
+                << (lib.entry(e.name) == &e ? "" : "  [hidden by " + lib.qualified_name(*lib.entry(e.name)) + "]") << "\n";
     }
   }
   if (o.json) std::cout << arr.dump(2) << "\n";
