@@ -246,6 +246,9 @@ TEST(Catalog, IndexListsEveryEntryWithItsCompiledRoughness) {
     EXPECT_NE(html.find("data-name=\"" + catalog::html_escape(name) + "\""), std::string::npos) << name;
   }
   EXPECT_EQ(names, c.library().names());
+  // Array files only on request (--arrays).
+  EXPECT_FALSE(fs::exists(out / "entries" / "gravel.shade"));
+  EXPECT_EQ(read(out / "entries" / "gravel.html").find(".shade\""), std::string::npos);
   EXPECT_TRUE(fs::is_regular_file(out / "assets" / "index.js"));
   EXPECT_TRUE(fs::is_regular_file(out / "assets" / "catalog.css"));
   fs::remove_all(out.parent_path());
@@ -258,7 +261,11 @@ TEST(Catalog, EntryPageShowsDeprecationLayersAndSourceNotes) {
   const fs::path out = fs::path(test::temp_dir("catalog-small")) / "site";
   catalog::CatalogOptions o;
   o.output = out;
+  o.arrays = true;
   ASSERT_TRUE(catalog::write_catalog(c, o).failures.empty());
+  // --arrays: the picture as a .shade file too, linked from the page.
+  EXPECT_TRUE(fs::is_regular_file(out / "entries" / "rib.shade"));
+  EXPECT_NE(read(out / "entries" / "rib.html").find("href=\"rib.shade\""), std::string::npos);
   const std::string old_page = read(out / "entries" / "old-rib.html");
   EXPECT_NE(old_page.find("class=\"deprecated\""), std::string::npos);
   EXPECT_NE(old_page.find("<a href=\"rib.html\">rib</a> instead"), std::string::npos);

@@ -13,7 +13,7 @@ namespace {
 
 struct LibraryCatalogOptions {
   std::string output;
-  bool quiet = false;
+  bool quiet = false, arrays = false;
   CommonOptions common;
 };
 LibraryCatalogOptions catalog_options;
@@ -32,6 +32,7 @@ CLI::App* add_library_catalog_command(CLI::App& library) {
   sub->add_option("--calibration", o.common.calibration_dir,
                   "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   sub->add_flag("--quiet", o.quiet, "no progress on stderr");
+  sub->add_flag("--arrays", o.arrays, "also write each picture as Sandpaper's .shade array file (262 KB an entry)");
   return sub;
 }
 
@@ -43,6 +44,7 @@ int cmd_library_catalog(const CommonOptions& outer) {
   auto c = make_compiler(o.common);
   catalog::CatalogOptions co;
   co.output = o.output;
+  co.arrays = o.arrays;
   if (!o.quiet) co.progress = &std::cerr;
   co.progress_is_tty = isatty(STDERR_FILENO);
   const auto report = catalog::write_catalog(c, co);

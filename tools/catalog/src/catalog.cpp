@@ -157,13 +157,13 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
     IndexRow row;
     if (!picture.empty()) {
       view.picture_file = e.name + ".png";
-      view.shade_file = e.name + ".shade";
+      if (options.arrays) view.shade_file = e.name + ".shade";
       write_png(tmp.path / "entries" / view.picture_file, picture);
       // Thumbnails share one scale (options.thumbnail_window_m across), so that the index compares
       // materials' sizes and coarseness at a glance; the entry page's picture keeps the material's own.
       write_png(tmp.path / "entries" / (e.name + "-thumb.png"),
                 render_picture_window(program, options.thumbnail_window_m, options.thumbnail_side));
-      schema::write_shade_file(tmp.path / "entries" / view.shade_file, picture.shade);
+      if (options.arrays) schema::write_shade_file(tmp.path / "entries" / view.shade_file, picture.shade);
       row.thumbnail = "entries/" + e.name + "-thumb.png";
     }
     write_text(tmp.path / "entries" / (e.name + ".html"), entry_page_html(view));

@@ -19,6 +19,9 @@ struct CatalogOptions {
   int picture_side = 512;             // pixels, the longer side of an entry's picture at most
   int thumbnail_side = 128;           // pixels, the index's thumbnails
   double thumbnail_window_m = 0.04;   // every thumbnail shows this square (m) around its patch centre
+  // Also each picture as Sandpaper's `.shade` array file (`--arrays`): 262 KB an entry at 512 x
+  // 512, most of a catalog's size (issue 18: at most 50 KB an entry without them).
+  bool arrays = false;
 };
 
 struct CatalogFailure {
