@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <numbers>
 #include <regex>
 #include <sstream>
@@ -284,6 +285,82 @@ TEST(Catalog, EntryPageShowsDeprecationLayersAndSourceNotes) {
   ASSERT_EQ(notes.size(), 2u);
   EXPECT_EQ(notes[0].kind, compiler::SourceKind::Derived);
   fs::remove_all(out.parent_path());
+}
+
+// Every file of a catalog folder (bar the temp-free marker) by relative path, with its bytes.
+std::map<std::string, std::string> files_of(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& f : fs::recursive_directory_iterator(dir))
+    if (f.is_regular_file()) out[fs::relative(f.path(), dir).generic_string()] = read(f.path());
+  return out;
+}
+
+TEST(Catalog, ARebuildDrawsOnlyWhatChangedAndKeepsEveryOtherFileByteIdentical) {
+  const fs::path root = test::temp_dir("catalog-incremental");
+  const fs::path lib = root / "lib";
+  fs::copy(SANDPAPER_SOURCE_DIR "/tests/compiler/data/library-small", lib, fs::copy_options::recursive);
+  const fs::path out = root / "site";
+  auto run = [&] {
+    compiler::CompileOptions opts;
+    opts.library_dir = lib;
+    compiler::Compiler c(opts);
+    catalog::CatalogOptions o;
+    o.output = out;
+    return catalog::write_catalog(c, o);
+  };
+  auto r = run();
+  ASSERT_TRUE(r.failures.empty());
+  EXPECT_EQ(r.rendered, 4);
+  const auto first = files_of(out);
+  r = run();  // nothing changed: nothing drawn, every byte as it was
+  EXPECT_EQ(r.rendered, 0);
+  EXPECT_EQ(r.reused, 4);
+  EXPECT_EQ(files_of(out), first);
+  // One entry changed, that nothing is built on: its page and pictures, its index row, nothing else.
+  {
+    std::string text = read(lib / "ref.hmat");
+    const auto at = text.find("period ");
+    ASSERT_NE(at, std::string::npos) << text;
+    text.insert(at + 7, "1");  // 2.5 mm -> 12.5 mm (the same force: the index row changes by its words)
+    text.replace(text.find("the reference grating"), 21, "the coarser reference grating");
+    std::ofstream(lib / "ref.hmat") << text;
+  }
+  r = run();
+  ASSERT_TRUE(r.failures.empty());
+  EXPECT_EQ(r.rendered, 1);
+  EXPECT_EQ(r.reused, 3);
+  const auto second = files_of(out);
+  for (const auto& [path, bytes] : first) {
+    const bool ref = path.rfind("entries/ref", 0) == 0;
+    if (path == "index.html" || path == "inputs.json" || (ref && path != "entries/ref-thumb.png")) {
+      EXPECT_NE(second.at(path), bytes) << path << " should have changed";
+    } else if (!ref) {
+      EXPECT_EQ(second.at(path), bytes) << path << " changed, though its entry did not";
+    }
+  }
+  // The index's data differs in ref's row only.
+  auto data = [](const std::string& html) {
+    const auto start = html.find("id=\"catalog-data\">") + 18;
+    return nlohmann::json::parse(html.substr(start, html.find("</script>", start) - start));
+  };
+  const auto d1 = data(first.at("index.html")), d2 = data(second.at("index.html"));
+  ASSERT_EQ(d1["entries"].size(), d2["entries"].size());
+  for (std::size_t i = 0; i < d1["entries"].size(); ++i) {
+    if (d1["entries"][i]["name"] == "ref") EXPECT_NE(d1["entries"][i], d2["entries"][i]);
+    else EXPECT_EQ(d1["entries"][i], d2["entries"][i]) << d1["entries"][i]["name"];
+  }
+  // An entry others are built on: it and they are drawn again.
+  {
+    std::string text = read(lib / "cloth/rib.hmat");
+    const auto at = text.find("roughness 0.4");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 13, "roughness 0.45");
+    std::ofstream(lib / "cloth/rib.hmat") << text;
+  }
+  r = run();
+  EXPECT_GE(r.rendered, 2);  // rib and old-rib (like rib), and fine-rib if it names rib's alias
+  EXPECT_EQ(r.rendered + r.reused, 4);
+  fs::remove_all(root);
 }
 
 TEST(Catalog, AFailedRunLeavesThePreviousCatalogAndNamesTheEntry) {

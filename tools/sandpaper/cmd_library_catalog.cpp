@@ -56,7 +56,8 @@ int cmd_library_catalog(const CommonOptions& outer) {
     std::cerr << "; nothing was written (" << o.output << " is as it was)\n";
     return kExitBadInput;
   }
-  std::cout << "catalog of " << report.entries << " entries -> " << o.output << "/index.html\n";
+  std::cout << "catalog of " << report.entries << " entries -> " << o.output << "/index.html (" << report.rendered << " drawn, "
+            << report.reused << " unchanged)\n";
   return kExitOk;
 }
 

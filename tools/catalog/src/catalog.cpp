@@ -15,11 +15,14 @@
 #include <random>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "sandpaper/catalog/assets.hpp"
 #include "sandpaper/catalog/entry_page.hpp"
 #include "sandpaper/catalog/index_page.hpp"
 #include "sandpaper/catalog/plot.hpp"
 #include "sandpaper/catalog/render.hpp"
+#include "sandpaper/curation/inputs.hpp"
 #include "sandpaper/curation/progress.hpp"
 #include "sandpaper/schema/array_file.hpp"
 
@@ -111,6 +114,65 @@ void swap_in(const fs::path& fresh, const fs::path& dir) {
   fs::remove_all(old, ec);
 }
 
+// What the previous catalog says about its entries (inputs.json): each entry's input hash, its index
+// row and its files under entries/, and the settings the pictures were drawn with.
+constexpr const char* kInputsFile = "inputs.json";
+
+std::string settings_of(const CatalogOptions& o) {
+  return nlohmann::json{{"picture_side", o.picture_side}, {"thumbnail_side", o.thumbnail_side},
+                        {"thumbnail_window_m", o.thumbnail_window_m}, {"arrays", o.arrays}}
+      .dump();
+}
+
+nlohmann::json row_json(const IndexRow& r) {
+  return {{"name", r.name}, {"family", r.family}, {"describes", r.describes}, {"licence", r.licence},
+          {"deprecated_by", r.deprecated_by}, {"aliases", r.aliases},
+          {"roughness", r.roughness ? nlohmann::json(*r.roughness) : nlohmann::json(nullptr)},
+          {"max_lateral_force_N", r.max_lateral_force_N}, {"page", r.page}, {"thumbnail", r.thumbnail}};
+}
+
+IndexRow row_from(const nlohmann::json& j) {
+  IndexRow r;
+  r.name = j.at("name");
+  r.family = j.at("family");
+  r.describes = j.at("describes");
+  r.licence = j.at("licence");
+  r.deprecated_by = j.at("deprecated_by");
+  r.aliases = j.at("aliases").get<std::vector<std::string>>();
+  if (!j.at("roughness").is_null()) r.roughness = j.at("roughness").get<double>();
+  r.max_lateral_force_N = j.at("max_lateral_force_N");
+  r.page = j.at("page");
+  r.thumbnail = j.at("thumbnail");
+  return r;
+}
+
+// The previous catalog's entries, if it was drawn with these settings; empty otherwise (or unreadable).
+nlohmann::json previous_entries(const fs::path& dir, const std::string& settings) {
+  try {
+    std::ifstream in(dir / kInputsFile);
+    if (!in) return nlohmann::json::object();
+    const auto j = nlohmann::json::parse(in);
+    if (j.at("settings").get<std::string>() != settings) return nlohmann::json::object();
+    return j.at("entries");
+  } catch (const std::exception&) {
+    return nlohmann::json::object();
+  }
+}
+
+// Puts the previous catalog's files of one entry into the new folder: a hard link (same file
+// system, no copy), else a copy. False if any is missing.
+bool keep_files(const fs::path& from, const fs::path& to, const nlohmann::json& files) {
+  for (const auto& f : files) {
+    const std::string name = f.get<std::string>();
+    std::error_code ec;
+    if (!fs::is_regular_file(from / "entries" / name, ec)) return false;
+    fs::create_hard_link(from / "entries" / name, to / "entries" / name, ec);
+    if (ec) fs::copy_file(from / "entries" / name, to / "entries" / name, ec);
+    if (ec) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOptions& options) {
@@ -129,8 +191,21 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
 
   curation::Progress progress("catalog", library.entries().size(), options.progress == nullptr,
                               options.progress ? *options.progress : std::cerr, options.progress_is_tty);
+  const std::string settings = settings_of(options);
+  const auto inputs = curation::entry_input_hashes(compiler, compiler.options().calibration_dir);
+  const auto before = previous_entries(dir, settings);
+  nlohmann::json after = nlohmann::json::object();
   std::vector<IndexRow> rows;
   for (const auto& e : library.entries()) {
+    const auto hash = inputs.find(e.name);
+    if (report.failures.empty() && hash != inputs.end() && library.entry(e.name) == &e && before.contains(e.name) &&
+        before[e.name].value("hash", "") == hash->second && keep_files(dir, tmp.path, before[e.name].at("files"))) {
+      rows.push_back(row_from(before[e.name].at("row")));
+      after[e.name] = before[e.name];
+      ++report.reused;
+      progress.step(e.name);
+      continue;
+    }
     auto r = compiler.compile_file(e.file);
     progress.step(e.name);
     if (!r.ok() || !r.material) {
@@ -155,6 +230,7 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
     view.picture = &picture;
     view.scan = &scan;
     IndexRow row;
+    std::vector<std::string> files{e.name + ".html"};
     if (!picture.empty()) {
       view.picture_file = e.name + ".png";
       if (options.arrays) view.shade_file = e.name + ".shade";
@@ -165,6 +241,9 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
                 render_picture_window(program, options.thumbnail_window_m, options.thumbnail_side));
       if (options.arrays) schema::write_shade_file(tmp.path / "entries" / view.shade_file, picture.shade);
       row.thumbnail = "entries/" + e.name + "-thumb.png";
+      files.push_back(view.picture_file);
+      files.push_back(e.name + "-thumb.png");
+      if (options.arrays) files.push_back(view.shade_file);
     }
     write_text(tmp.path / "entries" / (e.name + ".html"), entry_page_html(view));
 
@@ -177,7 +256,10 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
     if (program.max_lateral_force_N > 0) row.roughness = program.roughness;
     row.max_lateral_force_N = program.max_lateral_force_N;
     row.page = "entries/" + e.name + ".html";
+    if (hash != inputs.end() && library.entry(e.name) == &e)
+      after[e.name] = {{"hash", hash->second}, {"row", row_json(row)}, {"files", files}};
     rows.push_back(std::move(row));
+    ++report.rendered;
   }
   progress.finish(report.failures.empty() ? "catalog: " + std::to_string(rows.size()) + " entries compiled and drawn"
                                           : "catalog: " + std::to_string(report.failures.size()) + " of " +
@@ -185,6 +267,7 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
   if (!report.failures.empty()) return report;
 
   write_text(tmp.path / "index.html", index_page_html(index_data(library.manifest(), rows)));
+  write_text(tmp.path / kInputsFile, nlohmann::json{{"settings", settings}, {"entries", after}}.dump(1) + "\n");
   for (const auto& a : assets()) write_text(tmp.path / "assets" / std::string(a.name), std::string(a.text));
   write_text(tmp.path / kCatalogMarker,
              "Written by `sandpaper library catalog`; the folder is replaced whole by the next run.\nlibrary " +

@@ -3,6 +3,8 @@
 #include <set>
 #include <variant>
 
+#include "sandpaper/curation/index.hpp"
+#include "sandpaper/curation/inputs.hpp"
 #include "stamps.hpp"
 
 namespace sandpaper::curation {
@@ -66,6 +68,25 @@ std::map<std::string, std::string> entry_input_hashes(const compiler::Library& l
   for (const auto& e : lib.entries())
     if (lib.entry(e.name) == &e) out[e.name] = h.of(e);
   return out;
+}
+
+std::string global_inputs(const std::map<std::string, std::string>& file_hashes, const std::string& device) {
+  std::string global = "sandpaper-library-index/" + std::to_string(kIndexSchemaVersion);
+  for (const auto& [path, hash] : file_hashes)
+    if (path.rfind("calibration/", 0) == 0 || path == "library/library.toml") global += "\n" + path + " " + hash;
+  return global + std::string("\ncompiler ") + SANDPAPER_VERSION + "\ndevice " + device;
+}
+
+std::map<std::string, std::string> entry_input_hashes(const compiler::Compiler& compiler, const std::filesystem::path& calibration_dir) {
+  const auto& lib = compiler.library();
+  if (lib.layered()) return {};
+  stamps::Tree tree;
+  stamps::walk(lib.directory(), "library", {}, stamps::now_ns(), false, tree);
+  stamps::walk(calibration_dir.empty() ? calibration::default_calibration_dir() : calibration_dir, "calibration", {},
+               stamps::now_ns(), true, tree);
+  std::map<std::string, std::string> files;
+  for (const auto& f : tree.files) files[f.path] = f.hash;
+  return entry_input_hashes(lib, files, global_inputs(files, compiler.device().name));
 }
 
 }  // namespace sandpaper::curation

@@ -18,4 +18,8 @@ std::map<std::string, std::string> entry_input_hashes(const compiler::Library& l
                                                       const std::map<std::string, std::string>& file_hashes,
                                                       const std::string& global);
 
+// `global` for entry_input_hashes from the files' hashes ("library/...", "calibration/..."): the
+// index schema, library.toml, every calibration file, the compiler version, the device.
+std::string global_inputs(const std::map<std::string, std::string>& file_hashes, const std::string& device);
+
 }  // namespace sandpaper::curation

@@ -315,14 +315,12 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
     stamps::walk(cal_dir, "calibration", known, start, true, tree);
     r.files_hashed = tree.hashed;
     std::map<std::string, std::string> file_hashes;
-    std::string all_files = "sandpaper-library-index/" + std::to_string(kIndexSchemaVersion), global = all_files;
+    std::string all_files = "sandpaper-library-index/" + std::to_string(kIndexSchemaVersion);
     for (const auto& f : tree.files) {
       file_hashes[f.path] = f.hash;
       all_files += "\n" + f.path + " " + f.hash;
-      if (f.path.rfind("calibration/", 0) == 0 || f.path == "library/library.toml") global += "\n" + f.path + " " + f.hash;
     }
-    global += std::string("\ncompiler ") + SANDPAPER_VERSION + "\ndevice " + options.device;
-    const auto inputs = entry_input_hashes(lib, file_hashes, global);
+    const auto inputs = entry_input_hashes(lib, file_hashes, global_inputs(file_hashes, options.device));
 
     // Rows of entries that are gone or whose inputs changed go first, in one transaction.
     const auto had = input_hashes_in(db);

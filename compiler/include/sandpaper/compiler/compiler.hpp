@@ -49,6 +49,7 @@ class Compiler {
   const calibration::CalibrationSet& calibration() const { return calibration_; }
   const calibration::DeviceCalibration& device() const { return *device_; }
   const Library& library() const { return library_; }
+  const CompileOptions& options() const { return options_; }  // as given (empty folders: the defaults)
 
  private:
   CompileOptions options_;

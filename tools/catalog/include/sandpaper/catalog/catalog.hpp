@@ -2,7 +2,9 @@
 // `sandpaper library catalog -o DIR`: compiles every library entry and writes the static web catalog
 // (index.html, entries/<name>.html with its picture and force plot, assets/). The catalog is built
 // in a temporary folder beside DIR and swapped in only when every entry compiled and every file was
-// written, so a failed run leaves the previous catalog as it was.
+// written, so a failed run leaves the previous catalog as it was. Entries whose inputs (curation's
+// entry_input_hashes) did not change since the previous catalog, drawn with the same settings,
+// keep their files (hard links into the new folder) and are not compiled again.
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -31,6 +33,7 @@ struct CatalogFailure {
 
 struct CatalogReport {
   int entries = 0;                        // pages written (0 when anything failed)
+  int rendered = 0, reused = 0;           // of them: compiled and drawn now, or kept from the previous catalog
   std::vector<CatalogFailure> failures;   // entries that did not compile; nothing is written then
 };
 
