@@ -184,17 +184,33 @@ TEST(CatalogPlot, SvgCurveIsTheScanOnLabelledAxes) {
   EXPECT_NE(svg.find(">lateral force (N)</text>"), std::string::npos);
   std::smatch m;
   ASSERT_TRUE(std::regex_search(svg, m, std::regex("class=\"force-along\" fill=\"none\" points=\"([^\"]*)\"")));
+  // The drawn points are samples of the scan, in order, from the first to the last; every sample
+  // left out lies within kPlotTolerancePx of the line drawn.
   std::istringstream pts(m[1].str());
   std::string pt;
+  std::vector<std::size_t> drawn;  // sample indices
   std::size_t i = 0;
   while (pts >> pt) {
-    ASSERT_LT(i, scan.s_m.size());
     const auto comma = pt.find(',');
-    EXPECT_NEAR(std::stod(pt.substr(0, comma)), axes.x_px(scan.s_m[i] * 1e3), 0.006);
-    EXPECT_NEAR(std::stod(pt.substr(comma + 1)), axes.y_px(scan.along_N[i]), 0.006);
-    ++i;
+    const double x = std::stod(pt.substr(0, comma)), y = std::stod(pt.substr(comma + 1));
+    while (i < scan.s_m.size() && std::abs(axes.x_px(scan.s_m[i] * 1e3) - x) > 0.006) ++i;
+    ASSERT_LT(i, scan.s_m.size()) << "point " << pt << " is not a sample";
+    EXPECT_NEAR(y, axes.y_px(scan.along_N[i]), 0.006);
+    drawn.push_back(i++);
   }
-  EXPECT_EQ(i, scan.s_m.size());
+  ASSERT_GE(drawn.size(), 2u);
+  EXPECT_EQ(drawn.front(), 0u);
+  EXPECT_EQ(drawn.back(), scan.s_m.size() - 1);
+  EXPECT_LT(drawn.size(), scan.s_m.size() / 2) << "a smooth grating needs far fewer points than samples";
+  for (std::size_t k = 0; k + 1 < drawn.size(); ++k) {
+    const double x0 = axes.x_px(scan.s_m[drawn[k]] * 1e3), y0 = axes.y_px(scan.along_N[drawn[k]]);
+    const double x1 = axes.x_px(scan.s_m[drawn[k + 1]] * 1e3), y1 = axes.y_px(scan.along_N[drawn[k + 1]]);
+    for (std::size_t j = drawn[k] + 1; j < drawn[k + 1]; ++j) {
+      const double x = axes.x_px(scan.s_m[j] * 1e3), y = axes.y_px(scan.along_N[j]);
+      const double d = std::abs((y1 - y0) * (x - x0) - (x1 - x0) * (y - y0)) / std::hypot(x1 - x0, y1 - y0);
+      EXPECT_LE(d, catalog::kPlotTolerancePx + 1e-9) << "sample " << j;
+    }
+  }
   // The y range holds the curve; the x range is the scan.
   EXPECT_DOUBLE_EQ(axes.x_min_mm, -10);
   EXPECT_DOUBLE_EQ(axes.x_max_mm, 10);

@@ -117,11 +117,45 @@ std::string px(double v) {
   return os.str();
 }
 
+// Ramer-Douglas-Peucker: marks the points to keep so that no dropped point is further than `tol`
+// from the line drawn. A 2001-sample scan in a 560-pixel plot is most of a page's bytes; kept
+// within kPlotTolerancePx it draws the same picture.
+void simplify(const std::vector<double>& x, const std::vector<double>& y, std::size_t i, std::size_t j, double tol,
+              std::vector<char>& keep) {
+  // Iterative, so that a long noisy scan cannot exhaust the stack.
+  std::vector<std::pair<std::size_t, std::size_t>> todo{{i, j}};
+  while (!todo.empty()) {
+    const auto [a, b] = todo.back();
+    todo.pop_back();
+    if (b <= a + 1) continue;
+    const double dx = x[b] - x[a], dy = y[b] - y[a], len = std::hypot(dx, dy);
+    double worst = -1;
+    std::size_t at = a;
+    for (std::size_t k = a + 1; k < b; ++k) {
+      const double d = len > 0 ? std::abs(dy * (x[k] - x[a]) - dx * (y[k] - y[a])) / len : std::hypot(x[k] - x[a], y[k] - y[a]);
+      if (d > worst) worst = d, at = k;
+    }
+    if (worst > tol) {
+      keep[at] = 1;
+      todo.push_back({a, at});
+      todo.push_back({at, b});
+    }
+  }
+}
+
 std::string polyline(const PlotAxes& a, const ForceScan& scan, const std::vector<double>& f, const char* cls) {
+  std::vector<double> x(f.size()), y(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) x[i] = a.x_px(scan.s_m[i] * 1e3), y[i] = a.y_px(f[i]);
+  std::vector<char> keep(f.size(), 0);
+  if (!f.empty()) keep.front() = keep.back() = 1;
+  if (f.size() > 2) simplify(x, y, 0, f.size() - 1, kPlotTolerancePx, keep);
   std::string s = "<polyline class=\"" + std::string(cls) + "\" fill=\"none\" points=\"";
+  bool first = true;
   for (std::size_t i = 0; i < f.size(); ++i) {
-    if (i) s += ' ';
-    s += px(a.x_px(scan.s_m[i] * 1e3)) + "," + px(a.y_px(f[i]));
+    if (!keep[i]) continue;
+    if (!first) s += ' ';
+    first = false;
+    s += px(x[i]) + "," + px(y[i]);
   }
   return s + "\"/>\n";
 }

@@ -3,12 +3,17 @@
 // centre (along x at y = 0, or along the normal of the program's first grating), computed by the
 // runtime's evaluator (runtime/patch_evaluator.hpp, the code the servo loop plays), drawn as SVG with
 // axes in mm and N.
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "sandpaper/schema/patch_program.hpp"
 
 namespace sandpaper::catalog {
+
+// The drawn curve leaves out samples that lie within this many pixels (of the 640 x 296 viewBox)
+// of the line through the samples kept (Ramer-Douglas-Peucker): the same picture, far fewer bytes.
+inline constexpr double kPlotTolerancePx = 0.2;
 
 struct ForceScan {
   double direction[2] = {1, 0};  // unit vector of the scan
