@@ -156,7 +156,7 @@ std::optional<double> max_gradient_steps(const ResolvedPattern& p, const Version
   std::string summary;
   double peak = 0;
   const double patch = d.patch_px * kThesisPixel_m;
-  if (!make_pattern_field(p, patch, patch, 8, 1.0, field, diags, summary, &peak)) return std::nullopt;
+  if (!make_pattern_field(p, patch, patch, 8, 1.0, field, diags, summary, &peak)) return -1.0;  // cannot be made (E0304)
   return peak;
 }
 
@@ -176,6 +176,7 @@ std::optional<double> reference_gradient(const Version1Data& d) {
 std::string proportional_force(const std::optional<double>& g, const Version1Data& d, double& pu, std::string& note) {
   const auto g_ref = reference_gradient(d);
   if (!g_ref || !(*g_ref > 0)) return "the reference stimulus " + d.reference + " of [forces] has no slope";
+  if (g && *g < 0) return "its height array cannot be made: it is past the pattern limits (E0304: pixels, kernel and smoothing time)";
   if (!g || !(*g > 0)) return "its height array has no slope, so no force";
   const double at_reference = pu;
   pu = at_reference * *g / *g_ref;

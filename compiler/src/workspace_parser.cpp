@@ -177,9 +177,12 @@ class WorkspaceParser {
   }
 
   void positive(const Quantity& q, const char* what) {
-    if (q.si > 0) return;
-    diags_.error("E0506", q.location, std::string("the ") + what + " must be positive, not " + q.text(),
-                 "give a size greater than zero");
+    if (q.si > 0 && q.si >= schema::limits::kMinPlausibleLength_m && q.si <= schema::limits::kMaxPlausibleLength_m) return;
+    if (q.si > 0)
+      diags_.error("E0506", q.location, std::string("the ") + what + " " + q.text() + " is outside what a workspace program holds (1e-12 m to 1e12 m)",
+                   "give a size a hand could feel, in mm");
+    else
+      diags_.error("E0506", q.location, std::string("the ") + what + " must be positive, not " + q.text(), "give a size greater than zero");
     throw StatementError{};
   }
 

@@ -71,7 +71,7 @@ constexpr std::array kCodes = {
     DiagnosticCode{"E0503", E, "workspace block not closed", kLang},
     DiagnosticCode{"E0504", E, "text after the workspace block", kLang},
     DiagnosticCode{"E0505", E, "the workspace size given twice", kLang},
-    DiagnosticCode{"E0506", E, "a workspace or patch size that is not positive", kLang},
+    DiagnosticCode{"E0506", E, "a workspace or patch size that is not positive, or outside 1e-12 m to 1e12 m", kLang},
     DiagnosticCode{"E0507", E, "a patch that reaches outside the workspace", kLang},
     DiagnosticCode{"E0508", E, "a patch with an empty material", kLang},
     DiagnosticCode{"E0509", E, "more than 65,536 patches in one workspace", kLang},

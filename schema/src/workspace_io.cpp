@@ -38,7 +38,9 @@ void put_str(std::vector<unsigned char>& out, const std::string& s) {
   put_bytes(out, s.data(), s.size());
 }
 
-bool plausible_length(double m) { return std::isfinite(m) && m >= 1e-12 && m <= 1e12; }
+bool plausible_length(double m) {
+  return std::isfinite(m) && m >= limits::kMinPlausibleLength_m && m <= limits::kMaxPlausibleLength_m;
+}
 
 class Cursor {
  public:

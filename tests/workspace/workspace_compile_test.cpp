@@ -121,6 +121,12 @@ TEST(WorkspaceCompile, SyntaxErrors) {
   EXPECT_EQ(codes(compile("workspace \"w\" {\n  size 1 m\n  size 2 m\n}\n").diagnostics), std::vector<std::string>{"E0505"});
   EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm, 0 mm size -2 mm\n}\n").diagnostics),
             std::vector<std::string>{"E0506"});
+  // A size the workspace program's reader would refuse (fuzz finding F9: 42e-30 mm compiled, then
+  // did not read back).
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"corduroy\" at 0 mm, 0 mm size 42e-30 mm\n}\n").diagnostics),
+            std::vector<std::string>{"E0506"});
+  EXPECT_EQ(codes(compile("workspace \"w\" {\n  size 1e16 mm\n  patch \"corduroy\" at 0 mm, 0 mm\n}\n").diagnostics),
+            std::vector<std::string>{"E0506"});
   EXPECT_EQ(codes(compile("workspace \"w\" {\n  patch \"  \" at 0 mm, 0 mm size 2 mm\n}\n").diagnostics),
             std::vector<std::string>{"E0508"});
   // Every error in the file, not just the first.

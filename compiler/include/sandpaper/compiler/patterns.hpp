@@ -16,6 +16,8 @@ namespace sandpaper::compiler {
 inline constexpr double kThesisPixel_m = 0.37e-3;
 // Largest pattern array or tile side, pixels; largest kernel size, pixels.
 inline constexpr int kMaxPatternPixels = 4096;
+// Multiply-adds a pattern's smoothing may take (a few seconds on one core); beyond it, E0304.
+inline constexpr double kMaxSmoothingOps = 2e9;
 inline constexpr double kMaxPatternKernel = 256;
 // The version-2 seed (3.5.2): 256 px per period, smoothed by a Gaussian of kernel 24.
 inline constexpr int kSeedPixels = 256;

@@ -28,6 +28,10 @@ inline constexpr std::uint64_t kMaxImageChannels = 64;
 inline constexpr std::uint64_t kMaxImageFileBytes = std::uint64_t{512} << 20;
 // A workspace: at most this many patches.
 inline constexpr std::size_t kMaxWorkspacePatches = 65536;
+// Sizes and positions a workspace program may hold (m): what its reader takes, so the compiler
+// refuses what it could not read back (fuzz finding F9: a patch 42e-30 mm wide).
+inline constexpr double kMinPlausibleLength_m = 1e-12;
+inline constexpr double kMaxPlausibleLength_m = 1e12;
 // A run: at most a day (`--duration`, s). A run that records every tick (the virtual clock, the
 // simulated joystick, `--trace`) at most 2^21 ticks, about 35 min at 1 kHz: each tick's record
 // is kept in memory until the run ends.
