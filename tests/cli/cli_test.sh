@@ -433,6 +433,9 @@ expect_exit 1 "library check fails on a missing source" -- "$sp" library check "
 has "$tmp/err" 'ribbed-cloth.hmat:6:3: error\[E0606\]: `grating` carries numbers but has no `source`' "missing source located"
 expect_exit 0 "search rebuilds a stale index" -- "$sp" library search fine-rib "${L[@]}" "${I[@]}"
 has "$tmp/err" 'is stale .* building it' "search says it rebuilds"
+expect_exit 2 "a missing root of a layered library path" -- "$sp" compile --library /no/such/lab:library -e "like corduroy" -o "$tmp/missing-root.patch"
+has "$tmp/err" 'no library folder at /no/such/lab' "the missing root is named"
+[ ! -e "$tmp/missing-root.patch" ] && ok || bad "a compile with a missing library root wrote a patch"
 expect_exit 0 "library with no subcommand still lists" -- "$sp" library
 has "$tmp/out" 'roughness' "library lists entries"
 

@@ -1,4 +1,7 @@
+#include <filesystem>
 #include <iostream>
+#include <stdexcept>
+#include <system_error>
 
 #include "cli.hpp"
 #include "play_patch.hpp"
@@ -13,6 +16,11 @@ compiler::Compiler make_compiler(const CommonOptions& o) {
   co.device = o.device;
   // --library A:B is a layered library, front first (docs/LIBRARY.md, "Layered libraries").
   if (!o.library_dir.empty()) co.library_path = compiler::split_library_path(o.library_dir);
+  // A misspelt root would otherwise only show up as "no library entry named ...".
+  for (const auto& root : co.library_path)
+    if (std::error_code ec; !std::filesystem::is_directory(root, ec))
+      throw std::invalid_argument("no library folder at " + root.string() +
+                                  " (--library takes a folder, or folders front first as LAB:WORLD)");
   if (!o.calibration_dir.empty()) co.calibration_dir = o.calibration_dir;
   return compiler::Compiler(co);
 }
