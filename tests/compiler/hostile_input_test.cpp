@@ -167,6 +167,26 @@ TEST(HostileInput, AThesisNameWithAHugeKernelIsRefused) {
   EXPECT_TRUE(test::shipped_compiler().compile_text("like gridB5W5_2", "<ok>").ok());
 }
 
+// Fuzz finding F10: a 915 px grid tile under a 222 px kernel was within the first smoothing budget
+// (2e9 multiply-adds) and took 5 s to compile, over 25 s under ASan. The budget is now 2e8, fifty
+// times the largest thesis stimulus' smoothing; a tile a third the size still compiles.
+TEST(HostileInput, ASmoothingPastTheBudgetIsRefusedBeforeItRuns) {
+  const auto r = test::shipped_compiler().compile_text("like gridB10W905_222", "<f10>");
+  ASSERT_EQ(test::codes(r), std::vector<std::string>{"E0301"});
+  EXPECT_NE(compiler::format_diagnostics(r.diagnostics).find("past the pattern limits (E0304"), std::string::npos)
+      << compiler::format_diagnostics(r.diagnostics);
+  // The same tile written as a pattern statement says which limit.
+  const auto p = test::shipped_compiler().compile_text(
+      "pattern grid valley 1 mm hill 90.5 mm pixel 0.1 mm kernel 222 amplitude 1 N", "<f10-pattern>");
+  ASSERT_EQ(test::codes(p), std::vector<std::string>{"E0304"});
+  EXPECT_NE(compiler::format_diagnostics(p.diagnostics).find("915 x 915 px tile with kernel 222 would take too long"),
+            std::string::npos)
+      << compiler::format_diagnostics(p.diagnostics);
+  EXPECT_TRUE(test::shipped_compiler()
+                  .compile_text("pattern grid valley 1 mm hill 30 mm pixel 0.1 mm kernel 222 amplitude 1 N", "<ok>")
+                  .ok());
+}
+
 // --- images ---
 
 fs::path material_with_image(const fs::path& dir, const std::string& image) {
