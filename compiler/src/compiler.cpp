@@ -41,12 +41,15 @@ CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Libra
 }  // namespace
 
 Compiler::Compiler(CompileOptions options)
+    : Compiler(options, Library(!options.library_path.empty()  ? options.library_path
+                                : !options.library_dir.empty() ? std::vector<std::filesystem::path>{options.library_dir}
+                                                                : default_library_path())) {}
+
+Compiler::Compiler(CompileOptions options, Library library)
     : options_(std::move(options)),
       calibration_(calibration::CalibrationSet::load(
           options_.calibration_dir.empty() ? calibration::default_calibration_dir() : options_.calibration_dir)),
-      library_(!options_.library_path.empty()  ? options_.library_path
-               : !options_.library_dir.empty() ? std::vector<std::filesystem::path>{options_.library_dir}
-                                                : default_library_path()) {
+      library_(std::move(library)) {
   device_ = calibration_.find_device(options_.device);
   if (!device_) {
     std::string names;

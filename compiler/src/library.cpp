@@ -119,6 +119,18 @@ LibraryManifest read_manifest(const std::filesystem::path& dir, Diagnostics& dia
 Library::Library(std::filesystem::path dir) : Library(std::vector<std::filesystem::path>{std::move(dir)}) {}
 
 Library::Library(std::vector<std::filesystem::path> roots) {
+  read_roots(std::move(roots));
+  for (std::size_t i = 0; i < roots_.size(); ++i) scan(i);
+  index_names();
+}
+
+Library::Library(std::filesystem::path dir, const std::vector<std::string>& only_files) {
+  read_roots({std::move(dir)});
+  scan(0, &only_files);
+  index_names();
+}
+
+void Library::read_roots(std::vector<std::filesystem::path> roots) {
   if (roots.empty()) roots.push_back(default_library_dir());
   for (auto& dir : roots) {
     LibraryRoot r;
@@ -135,7 +147,9 @@ Library::Library(std::vector<std::filesystem::path> roots) {
     for (const auto& f : m.families)
       if (!manifest_.family(f.id)) manifest_.families.push_back(f);
   }
-  for (std::size_t i = 0; i < roots_.size(); ++i) scan(i);
+}
+
+void Library::index_names() {
   std::stable_sort(entries_.begin(), entries_.end(),
                    [](const auto& a, const auto& b) { return a.name != b.name ? a.name < b.name : a.root < b.root; });
   // Two files with one name in a root: the first (in path order) wins here; `library check`
@@ -148,15 +162,22 @@ Library::Library(std::vector<std::filesystem::path> roots) {
     for (const auto& [name, i] : names) by_name_.emplace(name, i);
 }
 
-void Library::scan(std::size_t root) {
+void Library::scan(std::size_t root, const std::vector<std::string>* only_files) {
   const auto& dir = roots_[root].dir;
   std::error_code ec;
   std::vector<std::filesystem::path> files;
-  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec); !ec && it != std::filesystem::recursive_directory_iterator();
-       it.increment(ec)) {
-    if (it->is_regular_file() && it->path().extension() == ".hmat") files.push_back(it->path());
+  if (only_files) {
+    for (const auto& rel : *only_files)
+      if (std::filesystem::path p = dir / rel; p.extension() == ".hmat" && std::filesystem::is_regular_file(p, ec))
+        files.push_back(std::move(p));
+  } else {
+    for (auto it = std::filesystem::recursive_directory_iterator(dir, ec); !ec && it != std::filesystem::recursive_directory_iterator();
+         it.increment(ec)) {
+      if (it->is_regular_file() && it->path().extension() == ".hmat") files.push_back(it->path());
+    }
   }
   std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
   for (const auto& p : files) {
     LibraryEntry e;
     e.name = p.stem().string();

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <streambuf>
+#include <tuple>
 #include <sstream>
 
 #include "curation_test_support.hpp"
@@ -225,6 +226,7 @@ std::map<std::string, std::string> rows_by_entry(const std::filesystem::path& in
       "SELECT name, * FROM sources ORDER BY name, ordinal, rowid",
       "SELECT name, * FROM provenance ORDER BY name, ordinal",
       "SELECT name, hash FROM inputs ORDER BY name",
+      "SELECT name, kind, target FROM depends ORDER BY name, kind, target",
       "SELECT name, aliases, describes, family, sources FROM search ORDER BY name",
       "SELECT e.name, c.log_force_min, c.log_force_max, c.log_period_min, c.log_period_max, k.kind_terms FROM coordinates c "
       "JOIN classes k ON k.id = c.class_min "
@@ -276,6 +278,7 @@ TEST(LibraryIndex, ARebuildCompilesOnlyWhatChangedAndWhatIsBuiltOnIt) {
   ASSERT_TRUE(r.ok) << r.error << compiler::format_diagnostics(r.diagnostics);
   EXPECT_EQ(r.compiled, 2u);
   EXPECT_EQ(r.reused, 3u);
+  EXPECT_TRUE(r.in_place);
   const auto after = rows_by_entry(b.index);
   for (const auto& [name, rows] : before)
     if (name == "coarse-grit" || name == "old-grit") EXPECT_NE(after.at(name), rows) << name;
@@ -288,6 +291,65 @@ TEST(LibraryIndex, ARebuildCompilesOnlyWhatChangedAndWhatIsBuiltOnIt) {
   ASSERT_TRUE(r.ok);
   EXPECT_EQ(r.compiled, 0u);
   EXPECT_EQ(rows_by_entry(b.index).count("fine-rib"), 0u);
+}
+
+// A few changed entries are updated in the index itself, reading only their files and what they
+// are built on; every step must give the rows a full build gives.
+TEST(LibraryIndex, AFewChangedEntriesAreUpdatedInPlaceAsAFullBuildWould) {
+  const auto b = built("index-in-place");
+  const auto photos = std::filesystem::path(SANDPAPER_SOURCE_DIR) / "library/images";
+  std::filesystem::create_directories(b.lib / "images");
+  std::filesystem::copy_file(photos / "gravel.png", b.lib / "images/stones.png");
+  auto step = [&](const char* what, std::size_t compiled, bool in_place = true) {
+    const auto before = rows_by_entry(b.index);
+    const auto r = build(b.lib, b.index);
+    EXPECT_TRUE(r.ok) << what << ": " << r.error << compiler::format_diagnostics(r.diagnostics);
+    EXPECT_EQ(r.in_place, in_place) << what;
+    EXPECT_EQ(r.compiled, compiled) << what;
+    const auto after = rows_by_entry(b.index);
+    EXPECT_EQ(r.entries, after.size()) << what;
+    EXPECT_EQ(rows_of_a_full_build(b.lib), after) << what;
+    return std::make_pair(before, after);
+  };
+  // New entries: one built on an alias, one bare roughness (built on the reference), one photograph.
+  write(b.lib / "textiles/soft-rib.hmat",
+        "material \"soft-rib\" {\n  describes \"a softer rib\"\n  family textiles\n  licence \"CC0-1.0\"\n  like rib-cloth\n"
+        "  roughness 0.3\n  source by-ear \"soft\"\n}\n");
+  write(b.lib / "textiles/bare.hmat",
+        "material \"bare\" {\n  describes \"a roughness alone\"\n  family textiles\n  licence \"CC0-1.0\"\n  roughness 0.3\n"
+        "  source by-ear \"between\"\n}\n");
+  write(b.lib / "abrasives/stones.hmat",
+        "material \"stones\" {\n  describes \"small stones\"\n  family abrasives\n  licence \"CC0-1.0\"\n"
+        "  heightmap \"../images/stones.png\" size 20 mm\n  source by-ear \"about 1 mm stones\"\n  roughness 0.4\n"
+        "  source by-ear \"rough\"\n}\n");
+  step("three new entries", 3);
+  // An entry others are built on, through its name and its alias: it and both of them.
+  std::map<std::string, std::string> before, after;
+  edit(b.lib / "textiles/ribbed-cloth.hmat", "roughness 0.45", "roughness 0.5");
+  std::tie(before, after) = step("ribbed-cloth edited", 3);
+  for (const auto& [name, rows] : before)
+    if (name != "ribbed-cloth" && name != "fine-rib" && name != "soft-rib") {
+      EXPECT_EQ(after.at(name), rows) << name;
+    }
+  // The reference entry: it, and the bare roughness that starts from it.
+  edit(b.lib / "reference/reference-grating.hmat", "roughness 0.5", "roughness 0.55");
+  step("reference edited", 2);
+  // An image: the entry whose heightmap reads it.
+  std::filesystem::copy_file(photos / "brick.png", b.lib / "images/stones.png", std::filesystem::copy_options::overwrite_existing);
+  step("image replaced", 1);
+  // A second file with a taken name: which one counts is decided over the whole library.
+  write(b.lib / "textiles/coarse-grit.hmat", read(b.lib / "abrasives/coarse-grit.hmat"));
+  step("a name taken twice", 0, false);
+  std::filesystem::remove(b.lib / "textiles/coarse-grit.hmat");
+  // A removed entry's rows go, in place.
+  std::filesystem::remove(b.lib / "textiles/soft-rib.hmat");
+  std::tie(before, after) = step("soft-rib removed", 0);
+  EXPECT_EQ(after.count("soft-rib"), 0u);
+  // Nothing changed: nothing is written at all.
+  const auto bytes = read(b.index);
+  const auto r = build(b.lib, b.index);
+  EXPECT_TRUE(r.ok && r.in_place && r.compiled == 0 && r.reused == r.entries) << r.error;
+  EXPECT_EQ(read(b.index), bytes);
 }
 
 TEST(LibraryIndex, CalibrationAndManifestChangesRecompileEverything) {
@@ -355,6 +417,38 @@ TEST(LibraryIndex, AKilledBuildIsResumedAndLeavesTheIndexAsItWas) {
   for (const auto& f : std::filesystem::directory_iterator(b.index.parent_path()))
     EXPECT_EQ(f.path().filename(), "library.sqlite") << "left behind: " << f.path();
   EXPECT_EQ(rows_by_entry(b.index), rows_of_a_full_build(b.lib));
+}
+
+// An in-place update killed inside its transaction: readers see the old index (SQLite's journal
+// is rolled back by the next opener), and the next build does the update.
+TEST(LibraryIndex, AnInPlaceUpdateKilledBeforeItsCommitLeavesTheOldIndex) {
+  const auto b = built("index-in-place-kill");
+  const auto before = rows_by_entry(b.index);
+  const double roughness_before = Index(b.index).entry("ribbed-cloth")->roughness;
+  edit(b.lib / "textiles/ribbed-cloth.hmat", "roughness 0.45", "roughness 0.5");  // and fine-rib, built on it
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    DieAfter die(1);
+    std::ostream out(&die);
+    Progress progress("indexing", 2, false, out, false, 1);  // a line per entry written: dies after the first
+    (void)build_index({b.lib, {}, b.index, "sim"}, progress);
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 9) << "the update was not interrupted";
+  {
+    const Index idx(b.index);  // read-only, as queries open it
+    EXPECT_EQ(idx.entry("ribbed-cloth")->roughness, roughness_before);
+  }
+  EXPECT_EQ(rows_by_entry(b.index), before);
+  const auto r = build(b.lib, b.index);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.in_place);
+  EXPECT_EQ(r.compiled, 2u);
+  EXPECT_EQ(rows_by_entry(b.index), rows_of_a_full_build(b.lib));
+  EXPECT_NEAR(Index(b.index).entry("ribbed-cloth")->roughness, 0.5, 1e-9);
 }
 
 TEST(LibraryIndex, QueriesCheckFolderStampsAndAnInPlaceEditOfAnOldFolderWaitsForIndex) {

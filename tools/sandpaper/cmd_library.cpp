@@ -80,17 +80,6 @@ int print_build_failure(const cur::IndexBuildResult& r, const char* who) {
   return kExitBadInput;
 }
 
-// Entry files under a library folder, counted without reading them (for the progress counter:
-// parsing a large library twice would double an incremental build's cost).
-std::size_t count_entry_files(const std::filesystem::path& dir) {
-  std::size_t n = 0;
-  std::error_code ec;
-  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec); !ec && it != std::filesystem::recursive_directory_iterator();
-       it.increment(ec))
-    n += it->path().extension() == ".hmat";
-  return n;
-}
-
 // Whether the index at p.index can be read and was built from this library folder.
 bool previous_index_answers(const Paths& p) {
   try {
@@ -109,7 +98,7 @@ int ensure_index(const Paths& p, bool quiet, const char* who) {
   std::cerr << "sandpaper " << who << ": the index " << p.index.string() << " is "
             << (state == cur::IndexState::Missing ? "missing" : "stale (the library or calibration changed)")
             << "; building it\n";
-  auto progress = cur::Progress::on_stderr("indexing", count_entry_files(p.library), quiet);
+  auto progress = cur::Progress::on_stderr("indexing", 0, quiet);
   const auto r = cur::build_index({p.library, p.calibration, p.index, "sim"}, progress);
   if (!r.ok) {
     const int rc = print_build_failure(r, who);
@@ -183,13 +172,13 @@ int run_check(const Paths& p, const LibraryCommandOptions& o) {
 }
 
 int run_index(const Paths& p, const LibraryCommandOptions& o) {
-  auto progress = cur::Progress::on_stderr("indexing", count_entry_files(p.library), o.quiet);
+  auto progress = cur::Progress::on_stderr("indexing", 0, o.quiet);
   const auto r = cur::build_index({p.library, p.calibration, p.index, "sim", o.full}, progress);
   if (!r.ok) return print_build_failure(r, "library index");
   progress.finish("indexed " + std::to_string(r.entries) + " entries");
   if (o.json)
     std::cout << nlohmann::json{{"ok", true},         {"entries", r.entries},           {"compiled", r.compiled},
-                                {"reused", r.reused}, {"files_hashed", r.files_hashed}, {"resumed", r.resumed},
+                                {"reused", r.reused}, {"files_hashed", r.files_hashed}, {"resumed", r.resumed}, {"in_place", r.in_place},
                                 {"index", r.path.string()}}
                      .dump(2)
               << "\n";
@@ -197,7 +186,7 @@ int run_index(const Paths& p, const LibraryCommandOptions& o) {
     std::cout << "indexed " << r.entries << " entries of " << cur::Index(r.path).meta("library_name") << " "
               << cur::Index(r.path).meta("library_version") << " into "
               << r.path.string() << " (" << r.compiled << " compiled, " << r.reused << " unchanged"
-              << (r.resumed ? ", resumed from an interrupted build" : "") << ")\n";
+              << (r.resumed ? ", resumed from an interrupted build" : "") << (r.in_place ? ", updated in place" : "") << ")\n";
   return kExitOk;
 }
 

@@ -13,14 +13,18 @@ namespace {
 
 class Hasher {
  public:
-  Hasher(const compiler::Library& lib, const std::map<std::string, std::string>& files, const std::string& global)
-      : lib_(lib), files_(files), global_(global) {}
+  Hasher(const compiler::Library& lib, const std::function<std::string(const std::string&)>& file_hash, const std::string& global)
+      : lib_(lib), file_hash_(file_hash), global_(global) {}
 
-  std::string of(const compiler::LibraryEntry& e) {
+  const EntryInputs& of(const compiler::LibraryEntry& e) {
     if (auto it = done_.find(e.name); it != done_.end()) return it->second;
+    EntryInputs out;
     // A `like` cycle: the entry does not compile, and the build reports it; any stable text will do.
-    if (!visiting_.insert(e.name).second) return "cycle:" + e.name;
-    std::string in = global_ + "\nentry " + e.relative_path + " " + file("library/" + e.relative_path);
+    if (!visiting_.insert(e.name).second) {
+      cycle_.hash = "cycle:" + e.name;
+      return cycle_;
+    }
+    std::string in = global_ + "\nentry " + e.relative_path + " " + file("library/" + e.relative_path, out);
     bool texture = false;
     for (const auto& st : e.syntax.statements) {
       if (const auto* h = std::get_if<compiler::HeightmapStmt>(&st.node)) {
@@ -29,44 +33,61 @@ class Hasher {
         const auto rel = p.is_absolute()
                              ? p.string()
                              : (std::filesystem::path(e.relative_path).parent_path() / p).lexically_normal().generic_string();
-        in += "\nimage " + h->path + " " + file("library/" + rel);
+        in += "\nimage " + h->path + " " + file("library/" + rel, out);
       } else if (std::holds_alternative<compiler::GratingStmt>(st.node) || std::holds_alternative<compiler::PatternStmt>(st.node)) {
         texture = true;
       }
     }
     for (const auto& name : e.likes) {
-      if (const auto* t = lib_.entry(name)) in += "\nlike " + name + " " + of(*t);
+      out.entries.push_back(name);
+      if (const auto* t = lib_.entry(name)) in += "\nlike " + name + " " + of(*t).hash;
       // Not an entry: a thesis stimulus, generated from its name and library/thesis/version1.toml.
-      else in += "\nlike " + name + " thesis " + file("library/thesis/version1.toml");
+      else in += "\nlike " + name + " thesis " + file("library/thesis/version1.toml", out);
     }
     const auto& ref = lib_.manifest().reference;
-    if (e.likes.empty() && !texture && !ref.empty())
-      if (const auto* r = lib_.entry(ref); r && r->name != e.name) in += "\nreference " + of(*r);
+    if (e.likes.empty() && !texture && !ref.empty()) {
+      out.entries.push_back(ref);
+      if (const auto* r = lib_.entry(ref); r && r->name != e.name) in += "\nreference " + of(*r).hash;
+    }
     visiting_.erase(e.name);
-    return done_[e.name] = stamps::fnv_hex(in);
+    out.hash = stamps::fnv_hex(in);
+    return done_[e.name] = std::move(out);
   }
 
  private:
-  std::string file(const std::string& path) const {
-    const auto it = files_.find(path);
-    return it == files_.end() ? "absent" : it->second;
+  std::string file(const std::string& path, EntryInputs& out) const {
+    out.files.push_back(path);
+    return file_hash_(path);
   }
   const compiler::Library& lib_;
-  const std::map<std::string, std::string>& files_;
+  const std::function<std::string(const std::string&)>& file_hash_;
   const std::string& global_;
-  std::map<std::string, std::string> done_;
+  std::map<std::string, EntryInputs> done_;
   std::set<std::string> visiting_;
+  EntryInputs cycle_;
 };
 
 }  // namespace
 
+std::map<std::string, EntryInputs> entry_inputs(const compiler::Library& lib,
+                                                const std::function<std::string(const std::string&)>& file_hash,
+                                                const std::string& global) {
+  Hasher h(lib, file_hash, global);
+  std::map<std::string, EntryInputs> out;
+  for (const auto& e : lib.entries())
+    if (lib.entry(e.name) == &e) out[e.name] = h.of(e);
+  return out;
+}
+
 std::map<std::string, std::string> entry_input_hashes(const compiler::Library& lib,
                                                       const std::map<std::string, std::string>& file_hashes,
                                                       const std::string& global) {
-  Hasher h(lib, file_hashes, global);
+  const std::function<std::string(const std::string&)> lookup = [&](const std::string& path) {
+    const auto it = file_hashes.find(path);
+    return it == file_hashes.end() ? std::string("absent") : it->second;
+  };
   std::map<std::string, std::string> out;
-  for (const auto& e : lib.entries())
-    if (lib.entry(e.name) == &e) out[e.name] = h.of(e);
+  for (auto& [name, in] : entry_inputs(lib, lookup, global)) out[name] = std::move(in.hash);
   return out;
 }
 

@@ -9,12 +9,23 @@ namespace sandpaper::curation {
 Index::Index(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw IndexError("no index at " + path.string());
+  // A journal beside the index: an update was killed before its commit. Opening it read-write
+  // rolls that back (the old index); a reader without write access gets SQLite's error below.
+  auto journal = path;
+  journal += "-journal";
+  if (std::filesystem::exists(journal, ec)) {
+    sqlite3* rw = nullptr;
+    if (sqlite3_open_v2(path.c_str(), &rw, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK)
+      sqlite3_exec(rw, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr);
+    sqlite3_close(rw);
+  }
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
     std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
     throw IndexError("cannot open the index " + path.string() + ": " + msg);
   }
+  sqlite3_busy_timeout(db_, 10'000);  // an update commits in place (index_update.cpp)
   std::string version;
   try {
     version = meta("schema_version");

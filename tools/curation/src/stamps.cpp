@@ -7,6 +7,7 @@
 #include <ctime>
 #include <fstream>
 #include <iterator>
+#include <type_traits>
 
 #include "sqlite_util.hpp"
 
@@ -122,6 +123,51 @@ void write(sqlite3* db, const Tree& tree) {
     f.bind(1, x.path).bind(2, x.folder).bind64(3, x.size).bind64(4, x.mtime_ns).bind(5, x.hash).bind(6, x.racy ? 1 : 0).run();
   sql::Stmt d(db, "INSERT INTO folders VALUES (?, ?, ?)");
   for (const auto& x : tree.folders) d.bind(1, x.path).bind64(2, x.mtime_ns).bind(3, x.files_checked ? 1 : 0).run();
+}
+
+void update(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>& known) {
+  sql::Stmt put(db, "INSERT OR REPLACE INTO files VALUES (?, ?, ?, ?, ?, ?)");
+  std::size_t kept = 0;
+  for (const auto& x : tree.files) {
+    const auto k = known.find(x.path);
+    if (k != known.end()) {
+      ++kept;
+      const auto& o = k->second;
+      if (o.size == x.size && o.mtime_ns == x.mtime_ns && o.hash == x.hash && o.racy == x.racy) continue;
+    }
+    put.bind(1, x.path).bind(2, x.folder).bind64(3, x.size).bind64(4, x.mtime_ns).bind(5, x.hash).bind(6, x.racy ? 1 : 0).run();
+  }
+  if (kept != known.size()) {
+    sql::Stmt del(db, "DELETE FROM files WHERE path = ?");
+    for (const auto& [path, stamp] : known)
+      if (!std::binary_search(tree.files.begin(), tree.files.end(), path,
+                              [](const auto& a, const auto& b) {
+                                if constexpr (std::is_same_v<std::decay_t<decltype(a)>, std::string>) return a < b.path;
+                                else return a.path < b;
+                              }))
+        del.bind(1, path).run();
+  }
+  sql::exec(db, "DELETE FROM folders");
+  sql::Stmt d(db, "INSERT INTO folders VALUES (?, ?, ?)");
+  for (const auto& x : tree.folders) d.bind(1, x.path).bind64(2, x.mtime_ns).bind(3, x.files_checked ? 1 : 0).run();
+}
+
+bool same(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>& known) {
+  if (tree.files.size() != known.size()) return false;
+  auto k = known.begin();  // both sorted by path
+  for (const auto& x : tree.files) {
+    const auto& o = (k++)->second;
+    if (o.path != x.path || o.size != x.size || o.mtime_ns != x.mtime_ns || o.hash != x.hash || o.racy != x.racy) return false;
+  }
+  std::map<std::string, std::pair<std::int64_t, bool>> folders;
+  sql::Stmt s(db, "SELECT path, mtime_ns, files_checked FROM folders");
+  while (s.step()) folders[s.text(0)] = {s.integer64(1), s.integer(2) != 0};
+  if (folders.size() != tree.folders.size()) return false;
+  for (const auto& f : tree.folders) {
+    const auto it = folders.find(f.path);
+    if (it == folders.end() || it->second != std::make_pair(f.mtime_ns, f.files_checked)) return false;
+  }
+  return true;
 }
 
 std::map<std::string, FileStamp> read_files(sqlite3* db) {

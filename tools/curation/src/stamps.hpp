@@ -51,6 +51,11 @@ std::string fnv_hex(const std::string& bytes);
 
 // Creates (if absent) and fills the `files` and `folders` tables of an open index.
 void write(sqlite3* db, const Tree& tree);
+// Brings the `files` and `folders` tables up to `tree`, writing only the file rows that differ
+// from `known` (the tables as read by read_files): what an in-place update writes.
+void update(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>& known);
+// Whether `tree` has exactly the stamps, hashes and folders the index records.
+bool same(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>& known);
 // The `files` table of an index, by path; empty if it has none.
 std::map<std::string, FileStamp> read_files(sqlite3* db);
 

@@ -40,6 +40,9 @@ class Compiler {
   // Throws calibration::CalibrationError if the calibration data cannot be read, and
   // std::invalid_argument for an unknown device (the message lists the known ones).
   explicit Compiler(CompileOptions options);
+  // With a library already read (options' library folders are then not read): for instance the
+  // part of a library an incremental index build needs (Library's `only_files` constructor).
+  Compiler(CompileOptions options, Library library);
 
   // `path` is shown in diagnostics as given. A missing file is a diagnostic, not an exception.
   CompileResult compile_file(const std::filesystem::path& path) const;

@@ -64,6 +64,10 @@ class Library {
   explicit Library(std::filesystem::path dir);
   // Several roots, front first. An empty list is one root, default_library_dir().
   explicit Library(std::vector<std::filesystem::path> roots);
+  // Part of one folder: only these entry files ("textiles/corduroy.hmat", relative to `dir`; absent
+  // ones are left out), with its library.toml. Enough to compile entries whose `like` chains and
+  // reference lie within it; what an incremental index build uses instead of reading every file.
+  Library(std::filesystem::path dir, const std::vector<std::string>& only_files);
 
   // Entry names (file stems), sorted.
   std::vector<std::string> names() const;
@@ -94,7 +98,9 @@ class Library {
   const LibraryEntry* shadowed_by(const LibraryEntry& e) const;
 
  private:
-  void scan(std::size_t root);
+  void read_roots(std::vector<std::filesystem::path> roots);
+  void scan(std::size_t root, const std::vector<std::string>* only_files = nullptr);
+  void index_names();
   std::vector<LibraryRoot> roots_;
   LibraryManifest manifest_;
   std::vector<LibraryEntry> entries_;

@@ -20,7 +20,7 @@ struct sqlite3;
 
 namespace sandpaper::curation {
 
-inline constexpr int kIndexSchemaVersion = 4;
+inline constexpr int kIndexSchemaVersion = 5;
 
 // $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
 std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
@@ -47,6 +47,7 @@ struct IndexBuildResult {
   std::size_t compiled = 0, reused = 0;  // of them: compiled now, rows kept from the previous build
   std::size_t files_hashed = 0;        // files read to hash them (the others' stamps had not changed)
   bool resumed = false;                // started from the rows of a build that was killed
+  bool in_place = false;               // few entries changed: updated in the index itself, in one transaction
   std::filesystem::path path;
 };
 

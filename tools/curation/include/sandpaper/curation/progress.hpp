@@ -13,6 +13,8 @@ class Progress {
   Progress(std::string verb, std::size_t total, bool quiet, std::ostream& out, bool terminal, std::size_t every = 10);
   // Progress on std::cerr, as a terminal if stderr is one.
   static Progress on_stderr(std::string verb, std::size_t total, bool quiet);
+  // How many entries there are to do, once known (an incremental build knows only after its scan).
+  void set_total(std::size_t total) { total_ = total; }
   // One more entry done; `name` is shown on a terminal.
   void step(const std::string& name);
   // Ends the counter and prints `summary` on its own line (unless quiet).
