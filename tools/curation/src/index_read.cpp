@@ -2,6 +2,7 @@
 
 #include "sandpaper/curation/index.hpp"
 #include "sqlite_util.hpp"
+#include "reach.hpp"
 #include "stamps.hpp"
 
 namespace sandpaper::curation {
@@ -220,6 +221,28 @@ IndexState index_state(const std::filesystem::path& index_path, const std::files
   } catch (const std::exception&) {
     return IndexState::Stale;
   }
+}
+
+std::vector<std::pair<std::string, std::string>> Index::input_hashes() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  sql::Stmt s(db_, "SELECT name, hash FROM inputs ORDER BY name");
+  while (s.step()) out.emplace_back(s.text(0), s.text(1));
+  return out;
+}
+
+std::vector<std::string> Index::files_reached(const std::vector<std::string>& names) const {
+  std::vector<std::string> roots = names, links;
+  if (const auto ref = meta("library_reference"); !ref.empty()) roots.push_back(ref);
+  sql::Stmt d(db_, "SELECT deprecated_by FROM entries WHERE name = ? AND deprecated_by <> ''");
+  for (const auto& n : names) {
+    d.bind(1, n);
+    if (d.step()) links.push_back(d.text(0));
+    d.reset();
+  }
+  const auto files = curation::files_reached(
+      db_, roots, links, [](const std::string&) { return std::optional<ReachedEntry>(); },
+      [](const std::string&) { return false; });
+  return {files.begin(), files.end()};
 }
 
 }  // namespace sandpaper::curation

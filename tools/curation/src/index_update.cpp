@@ -9,11 +9,11 @@
 #include <algorithm>
 #include <deque>
 #include <set>
-#include <unordered_map>
 
 #include "sandpaper/curation/display.hpp"
 #include "entry_inputs.hpp"
 #include "index_write.hpp"
+#include "reach.hpp"
 #include "stamps.hpp"
 
 namespace sandpaper::curation {
@@ -70,8 +70,8 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
   stamps::walk(lib_dir, "library", known, start_ns, false, tree);
   stamps::walk(cal_dir, "calibration", known, start_ns, true, tree);
   const auto hash_of = [&](const std::string& path) -> std::string {
-    const auto it = std::lower_bound(tree.files.begin(), tree.files.end(), path, [](const auto& f, const auto& p) { return f.path < p; });
-    return it != tree.files.end() && it->path == path ? it->hash : std::string("absent");
+    const auto* f = stamps::find(tree.files, path);
+    return f ? f->hash : std::string("absent");
   };
   std::map<std::string, std::string> global_files;
   for (const auto& f : tree.files)
@@ -90,6 +90,7 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
   };
   if (stamps::same(db, tree, known)) {  // nothing to write
     r.ok = true;
+    r.in_place = false;
     r.entries = r.reused = entry_count();
     return r;
   }
@@ -97,11 +98,11 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
   // Files whose content changed, came or went.
   std::set<std::string> changed_entry_files, changed_other;
   for (const auto& f : tree.files)
-    if (const auto k = known.find(f.path); k == known.end() || k->second.hash != f.hash)
+    if (const auto* k = stamps::find(known, f.path); !k || k->hash != f.hash)
       (ends_with(f.path, ".hmat") && f.path.rfind("library/", 0) == 0 ? changed_entry_files : changed_other).insert(f.path);
-  for (const auto& [path, stamp] : known)
-    if (hash_of(path) == "absent")
-      (ends_with(path, ".hmat") && path.rfind("library/", 0) == 0 ? changed_entry_files : changed_other).insert(path);
+  for (const auto& k : known)
+    if (!stamps::find(tree.files, k.path))
+      (ends_with(k.path, ".hmat") && k.path.rfind("library/", 0) == 0 ? changed_entry_files : changed_other).insert(k.path);
   const std::size_t limit = std::max<std::size_t>(options.batch, 1);
   if (changed_entry_files.size() > limit) return std::nullopt;
 
@@ -131,15 +132,11 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
                                    "SELECT e.file FROM aliases a JOIN entries e ON e.name = a.name WHERE a.alias = ?1",
                                    n))
       if (!changed_entry_files.count("library/" + file)) return std::nullopt;
-  {
-    // A second file with a name (left out of the index): the batched build decides which one counts.
-    std::unordered_map<std::string, int> stems;
-    for (const auto& f : tree.files)
-      if (f.path.rfind("library/", 0) == 0 && ends_with(f.path, ".hmat")) ++stems[stem_of(f.path)];
-    for (const auto& n : touched)
-      if (const auto it = stems.find(n); it != stems.end() && it->second > 1) return std::nullopt;
-  }
-
+  // A second file with a name (left out of the index): the batched build decides which one counts.
+  for (const auto& f : tree.files)
+    if (f.path.rfind("library/", 0) == 0 && ends_with(f.path, ".hmat") && !changed_entry_files.count(f.path) &&
+        touched.count(stem_of(f.path)))
+      return std::nullopt;
   // What is built on them, backwards through `depends`: entries that read a changed file, or are
   // built on a touched name, then on those entries, and so on.
   std::set<std::string> affected;
@@ -162,29 +159,15 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
 
   // The part of the library they need: their files, and down their `like` chains and the
   // reference entry, each name resolved as the whole library resolves it.
-  std::set<std::string> files, seen;
-  std::deque<std::string> down(affected.begin(), affected.end());
-  if (!fresh.manifest().reference.empty()) down.push_back(fresh.manifest().reference);
-  while (!down.empty()) {
-    const auto n = down.front();
-    down.pop_front();
-    if (!seen.insert(n).second) continue;
-    if (const auto* e = fresh.entry(n)) {
-      files.insert(e->relative_path);
-      down.insert(down.end(), e->likes.begin(), e->likes.end());
-      continue;
-    }
-    auto file = column(db, "SELECT file FROM entries WHERE name = ?", n);
-    std::string name = n;
-    if (file.empty()) {
-      sql::Stmt a(db, "SELECT e.name, e.file FROM aliases a JOIN entries e ON e.name = a.name WHERE a.alias = ?");
-      a.bind(1, n);
-      if (a.step()) name = a.text(0), file = {a.text(1)};
-    }
-    if (file.empty() || changed_entry_files.count("library/" + file.front())) continue;  // a thesis stimulus, or gone
-    files.insert(file.front());
-    for (const auto& t : column(db, "SELECT target FROM depends WHERE name = ? AND kind = 'entry'", name)) down.push_back(t);
-  }
+  std::vector<std::string> roots(affected.begin(), affected.end());
+  if (!fresh.manifest().reference.empty()) roots.push_back(fresh.manifest().reference);
+  const auto files = files_reached(
+      db, roots, {},
+      [&](const std::string& n) -> std::optional<ReachedEntry> {
+        if (const auto* e = fresh.entry(n)) return ReachedEntry{e->relative_path, e->likes};
+        return std::nullopt;
+      },
+      [&](const std::string& file) { return changed_entry_files.count("library/" + file) > 0; });
   const compiler::Compiler c(compiler::CompileOptions{options.device, lib_dir, cal_dir, {}},
                              compiler::Library(lib_dir, std::vector<std::string>(files.begin(), files.end())));
   const auto& lib = c.library();

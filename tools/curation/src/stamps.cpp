@@ -1,13 +1,15 @@
 #include "stamps.hpp"
 
+#include <dirent.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <iterator>
-#include <type_traits>
 
 #include "sqlite_util.hpp"
 
@@ -46,7 +48,24 @@ std::string hex(std::uint64_t h) {
   return buf;
 }
 
-// An unreadable file hashes as "unreadable": the compile that reads it reports why.
+// An unreadable file hashes as "unreadable": the compile that reads it reports why. Takes `fd`.
+std::string hash_fd(int fd) {
+  if (fd < 0) return "unreadable";
+  std::uint64_t h = 1469598103934665603ULL;
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0) {
+      ::close(fd);
+      return "unreadable";
+    }
+    if (n == 0) break;
+    h = fnv(buf, static_cast<std::size_t>(n), h);
+  }
+  ::close(fd);
+  return hex(h);
+}
+
 std::string hash_file(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   if (!in) return "unreadable";
@@ -59,10 +78,6 @@ bool hidden(const std::filesystem::path& p) {
   return !name.empty() && name[0] == '.';
 }
 
-std::string folder_of(const std::string& path) {
-  const auto slash = path.rfind('/');
-  return slash == std::string::npos ? std::string() : path.substr(0, slash);
-}
 
 }  // namespace
 
@@ -74,41 +89,96 @@ std::int64_t now_ns() {
 
 std::string fnv_hex(const std::string& bytes) { return hex(fnv(bytes.data(), bytes.size())); }
 
-void walk(const std::filesystem::path& dir, const std::string& tag, const std::map<std::string, FileStamp>& known,
-          std::int64_t build_start_ns, bool every_file_checked, Tree& into) {
-  const std::int64_t racy_after = build_start_ns - kRacyWindowNs;
-  auto add_folder = [&](const std::filesystem::path& p, const std::string& rel) {
-    const auto s = stat_of(p);
-    // The root's own files (library.toml) are always stat'ed: the root is one folder, and the
-    // manifest is what an in-place edit most often touches.
-    into.folders.push_back({rel, s.mtime_ns, every_file_checked || rel == tag || s.mtime_ns > racy_after});
-  };
-  add_folder(dir, tag);
-  std::error_code ec;
-  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec); !ec && it != std::filesystem::recursive_directory_iterator();
-       it.increment(ec)) {
-    if (hidden(it->path())) {
-      if (it->is_directory(ec)) it.disable_recursion_pending();
-      continue;
-    }
-    const std::string rel = tag + "/" + it->path().lexically_relative(dir).generic_string();
-    const auto s = stat_of(it->path());
-    if (s.directory) {
-      add_folder(it->path(), rel);
-      continue;
-    }
-    if (!s.regular) continue;
-    FileStamp f{rel, folder_of(rel), s.size, s.mtime_ns, {}, s.mtime_ns > racy_after};
-    const auto k = known.find(rel);
-    if (k != known.end() && !k->second.racy && k->second.size == s.size && k->second.mtime_ns == s.mtime_ns) {
-      f.hash = k->second.hash;
-    } else {
-      f.hash = hash_file(it->path());
-      ++into.hashed;
-    }
-    into.files.push_back(std::move(f));
+const FileStamp* find(const Known& known, const std::string& path) {
+  const auto it = std::lower_bound(known.begin(), known.end(), path, [](const FileStamp& f, const std::string& p) { return f.path < p; });
+  return it != known.end() && it->path == path ? &*it : nullptr;
+}
+
+namespace {
+
+struct Walk {
+  const Known& known;
+  std::size_t cursor;  // into `known`: files come in path order, so each lookup moves it forward
+  std::int64_t racy_after;
+  bool every_file_checked;
+  Tree& into;
+};
+
+// One folder of a walk, by its open descriptor: readdir and fstatat relative to it, so that no
+// path is resolved from the root again. Its entries are taken in the order their paths sort
+// (a folder "a" as "a/"), so the files come out sorted and are matched against the recorded
+// stamps by one forward pass: at 100,000 files, std::filesystem's iterator, full-path stat, a
+// binary search per file and a sort at the end took 0.8 s, of which the string compares were most.
+void walk_folder(int dfd, const std::string& rel, Walk& w) {
+  DIR* d = ::fdopendir(dfd);
+  if (!d) {
+    ::close(dfd);
+    return;
   }
-  std::sort(into.files.begin(), into.files.end(), [](const auto& a, const auto& b) { return a.path < b.path; });
+  struct Item {
+    std::string key, name;
+    struct ::stat st;
+    bool enter;
+  };
+  std::vector<Item> items;
+  while (const dirent* e = ::readdir(d)) {
+    const char* name = e->d_name;
+    if (name[0] == '.') continue;  // hidden, and . and ..
+    Item it{name, name, {}, false};
+    if (::fstatat(dfd, name, &it.st, 0) != 0) continue;
+    if (S_ISDIR(it.st.st_mode)) {
+      it.key += '/';
+      // A link to a folder is stamped but not entered, as the library's own scan does not enter it.
+      bool link = e->d_type == DT_LNK;
+      if (e->d_type == DT_UNKNOWN) {
+        struct ::stat lst {};
+        link = ::fstatat(dfd, name, &lst, AT_SYMLINK_NOFOLLOW) == 0 && S_ISLNK(lst.st_mode);
+      }
+      it.enter = !link;
+    } else if (!S_ISREG(it.st.st_mode)) {
+      continue;
+    }
+    items.push_back(std::move(it));
+  }
+  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) { return a.key < b.key; });
+  for (auto& it : items) {
+    std::string path = rel + "/" + it.name;
+    const std::int64_t mtime = static_cast<std::int64_t>(it.st.st_mtim.tv_sec) * 1'000'000'000 + it.st.st_mtim.tv_nsec;
+    if (S_ISDIR(it.st.st_mode)) {
+      w.into.folders.push_back({path, mtime, w.every_file_checked || mtime > w.racy_after});
+      if (!it.enter) continue;
+      const int sub = ::openat(dfd, it.name.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (sub >= 0) walk_folder(sub, path, w);
+      continue;
+    }
+    FileStamp f{std::move(path), rel, static_cast<std::int64_t>(it.st.st_size), mtime, {}, mtime > w.racy_after};
+    while (w.cursor < w.known.size() && w.known[w.cursor].path < f.path) ++w.cursor;
+    const FileStamp* k = w.cursor < w.known.size() && w.known[w.cursor].path == f.path ? &w.known[w.cursor] : nullptr;
+    if (k && !k->racy && k->size == f.size && k->mtime_ns == f.mtime_ns) {
+      f.hash = k->hash;
+    } else {
+      f.hash = hash_fd(::openat(dfd, it.name.c_str(), O_RDONLY | O_CLOEXEC));
+      ++w.into.hashed;
+    }
+    w.into.files.push_back(std::move(f));
+  }
+  ::closedir(d);
+}
+
+}  // namespace
+
+void walk(const std::filesystem::path& dir, const std::string& tag, const Known& known, std::int64_t build_start_ns,
+          bool every_file_checked, Tree& into) {
+  const auto s = stat_of(dir);
+  into.folders.push_back({tag, s.mtime_ns, true});
+  const auto first = std::lower_bound(known.begin(), known.end(), tag, [](const FileStamp& f, const std::string& t) { return f.path < t; });
+  Walk w{known, static_cast<std::size_t>(first - known.begin()), build_start_ns - kRacyWindowNs, every_file_checked, into};
+  const std::size_t before = into.files.size();
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) walk_folder(fd, tag, w);
+  // Each walk's files are sorted; a second tag's go in among the first's.
+  const auto by_path = [](const FileStamp& a, const FileStamp& b) { return a.path < b.path; };
+  std::inplace_merge(into.files.begin(), into.files.begin() + static_cast<std::ptrdiff_t>(before), into.files.end(), by_path);
 }
 
 void write(sqlite3* db, const Tree& tree) {
@@ -125,38 +195,32 @@ void write(sqlite3* db, const Tree& tree) {
   for (const auto& x : tree.folders) d.bind(1, x.path).bind64(2, x.mtime_ns).bind(3, x.files_checked ? 1 : 0).run();
 }
 
-void update(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>& known) {
+void update(sqlite3* db, const Tree& tree, const Known& known) {
   sql::Stmt put(db, "INSERT OR REPLACE INTO files VALUES (?, ?, ?, ?, ?, ?)");
   std::size_t kept = 0;
   for (const auto& x : tree.files) {
-    const auto k = known.find(x.path);
-    if (k != known.end()) {
+    if (const auto* k = find(known, x.path)) {
       ++kept;
-      const auto& o = k->second;
+      const auto& o = *k;
       if (o.size == x.size && o.mtime_ns == x.mtime_ns && o.hash == x.hash && o.racy == x.racy) continue;
     }
     put.bind(1, x.path).bind(2, x.folder).bind64(3, x.size).bind64(4, x.mtime_ns).bind(5, x.hash).bind(6, x.racy ? 1 : 0).run();
   }
   if (kept != known.size()) {
     sql::Stmt del(db, "DELETE FROM files WHERE path = ?");
-    for (const auto& [path, stamp] : known)
-      if (!std::binary_search(tree.files.begin(), tree.files.end(), path,
-                              [](const auto& a, const auto& b) {
-                                if constexpr (std::is_same_v<std::decay_t<decltype(a)>, std::string>) return a < b.path;
-                                else return a.path < b;
-                              }))
-        del.bind(1, path).run();
+    for (const auto& k : known)
+      if (!find(tree.files, k.path)) del.bind(1, k.path).run();
   }
   sql::exec(db, "DELETE FROM folders");
   sql::Stmt d(db, "INSERT INTO folders VALUES (?, ?, ?)");
   for (const auto& x : tree.folders) d.bind(1, x.path).bind64(2, x.mtime_ns).bind(3, x.files_checked ? 1 : 0).run();
 }
 
-bool same(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>& known) {
+bool same(sqlite3* db, const Tree& tree, const Known& known) {
   if (tree.files.size() != known.size()) return false;
   auto k = known.begin();  // both sorted by path
   for (const auto& x : tree.files) {
-    const auto& o = (k++)->second;
+    const auto& o = *k++;
     if (o.path != x.path || o.size != x.size || o.mtime_ns != x.mtime_ns || o.hash != x.hash || o.racy != x.racy) return false;
   }
   std::map<std::string, std::pair<std::int64_t, bool>> folders;
@@ -170,11 +234,13 @@ bool same(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>&
   return true;
 }
 
-std::map<std::string, FileStamp> read_files(sqlite3* db) {
-  std::map<std::string, FileStamp> out;
+Known read_files(sqlite3* db) {
+  Known out;
   try {
-    sql::Stmt s(db, "SELECT path, folder, size, mtime_ns, hash, racy FROM files");
-    while (s.step()) out[s.text(0)] = {s.text(0), s.text(1), s.integer64(2), s.integer64(3), s.text(4), s.integer(5) != 0};
+    // The primary key keeps the rows in path order (SQLite's BINARY collation, as std::string's <).
+    // `folder` is left empty: only a new tree's stamps are written, and it has its own.
+    sql::Stmt s(db, "SELECT path, size, mtime_ns, hash, racy FROM files ORDER BY path");
+    while (s.step()) out.push_back({s.text(0), {}, s.integer64(1), s.integer64(2), s.text(3), s.integer(4) != 0});
   } catch (const sql::Error&) {
     return {};  // an index of an older schema: everything is hashed
   }

@@ -32,6 +32,11 @@ struct FolderStamp {
   bool files_checked = false;  // queries stat every file of it (roots, calibration, racy folders)
 };
 
+// Stamps as an index recorded them, sorted by path (read_files; `folder` not read).
+using Known = std::vector<FileStamp>;
+// The stamp of `path` in `known`, or nullptr.
+const FileStamp* find(const Known& known, const std::string& path);
+
 struct Tree {
   std::vector<FolderStamp> folders;
   std::vector<FileStamp> files;  // sorted by path
@@ -43,7 +48,7 @@ std::int64_t now_ns();
 // Walks `dir` (hidden files and folders left out) under the tag "library" or "calibration". A
 // file whose stamp equals a non-racy stamp in `known` keeps its hash; the others are read and hashed.
 // `every_file_checked`: queries will stat every file of every folder (the calibration: a few files).
-void walk(const std::filesystem::path& dir, const std::string& tag, const std::map<std::string, FileStamp>& known,
+void walk(const std::filesystem::path& dir, const std::string& tag, const Known& known,
           std::int64_t build_start_ns, bool every_file_checked, Tree& into);
 
 // Hex FNV-1a 64 of a string (for entry input hashes and the fingerprint).
@@ -53,11 +58,11 @@ std::string fnv_hex(const std::string& bytes);
 void write(sqlite3* db, const Tree& tree);
 // Brings the `files` and `folders` tables up to `tree`, writing only the file rows that differ
 // from `known` (the tables as read by read_files): what an in-place update writes.
-void update(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>& known);
+void update(sqlite3* db, const Tree& tree, const Known& known);
 // Whether `tree` has exactly the stamps, hashes and folders the index records.
-bool same(sqlite3* db, const Tree& tree, const std::map<std::string, FileStamp>& known);
-// The `files` table of an index, by path; empty if it has none.
-std::map<std::string, FileStamp> read_files(sqlite3* db);
+bool same(sqlite3* db, const Tree& tree, const Known& known);
+// The `files` table of an index, sorted by path; empty if it has none.
+Known read_files(sqlite3* db);
 
 // The cheap check: every recorded folder still has its modification time and no folder was added
 // or removed under it; in folders marked files_checked, every file keeps its stamp (and racy files

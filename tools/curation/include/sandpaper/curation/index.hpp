@@ -47,7 +47,7 @@ struct IndexBuildResult {
   std::size_t compiled = 0, reused = 0;  // of them: compiled now, rows kept from the previous build
   std::size_t files_hashed = 0;        // files read to hash them (the others' stamps had not changed)
   bool resumed = false;                // started from the rows of a build that was killed
-  bool in_place = false;               // few entries changed: updated in the index itself, in one transaction
+  bool in_place = false;               // few entries or stamps changed: updated in the index itself, in one transaction
   std::filesystem::path path;
 };
 
@@ -116,6 +116,14 @@ class Index {
   std::vector<IndexedProvenance> provenance(const std::string& name) const;
   // FTS5 match over name, aliases, describes, family and sources: (name, bm25 rank; lower is better).
   std::vector<std::pair<std::string, double>> full_text(const std::string& fts_query) const;
+  // Every entry's input hash (table `inputs`), by name: what `library catalog` compares with the
+  // hashes its pages were drawn from.
+  std::vector<std::pair<std::string, std::string>> input_hashes() const;
+  // The entry files (relative to the library) that compiling `names` reads: theirs, those of
+  // every entry they are built on (recursively) and of the reference entry, and those of the
+  // entries their `deprecated replaced-by` names. A compiler over compiler::Library(dir, these)
+  // compiles them as over the whole library.
+  std::vector<std::string> files_reached(const std::vector<std::string>& names) const;
   sqlite3* handle() const { return db_; }
 
  private:
