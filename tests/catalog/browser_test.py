@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Browser test of `sandpaper library catalog` (docs/CATALOG.md): writes the catalog of the shipped
-library, opens index.html from file:// in headless Chromium, filters by family and by a roughness range
-and checks exactly which entries remain, follows a link to an entry page and checks what it shows.
+library, opens index.html from file:// in headless Chromium, reads every entry page by page, filters by
+family and by a roughness range and checks exactly which entries remain, follows a link to an entry
+page and checks what it shows. (index_scale_browser_test.py tries the index with 100,000 entries.)
 
 The expected entries come from the library itself, not from the catalog: roughness from
 `sandpaper library --json` (which compiles each entry on its own), families from the entries' files.
@@ -47,9 +48,25 @@ def expected_entries(sandpaper, library):
     return entries
 
 
+def page_names(b):
+    return b.evaluate("Array.from(document.querySelectorAll('#entries tbody tr'))"
+                      ".filter(tr => !tr.hidden && tr.offsetParent !== null).map(tr => tr.dataset.name)")
+
+
 def visible_names(b):
-    return set(b.evaluate("Array.from(document.querySelectorAll('#entries tbody tr'))"
-                          ".filter(tr => !tr.hidden && tr.offsetParent !== null).map(tr => tr.dataset.name)"))
+    """Every entry the filters keep. The index makes only the rows of the page shown (100 a page), so
+    this turns the pages with the pager's 'next' button and reads each."""
+    names = []
+    while True:
+        names += page_names(b)
+        page, pages = b.evaluate("[Number(document.body.dataset.page), Number(document.body.dataset.pages)]")
+        if page >= pages:
+            break
+        b.click("#pager-bottom .next")
+        b.wait_for(f"document.body.dataset.page === '{page + 1}'", f"page {page + 1}")
+    if len(names) != len(set(names)):
+        check(False, f"no entry is on two pages ({len(names)} rows, {len(set(names))} names)")
+    return set(names)
 
 
 def pick_bounds(values):
@@ -87,10 +104,12 @@ def main():
         index_url = (catalog / "index.html").resolve().as_uri()
         b.navigate(index_url)
         b.wait_for("document.body.dataset.ready === 'true'", "the index's script")
+        first = page_names(b)
+        check(len(first) == min(100, len(names)), f"the first page shows {min(100, len(names))} rows ({len(first)})")
         shown = visible_names(b)
         check(shown == names, f"index lists every entry: {len(shown)} shown, {len(names)} in the library"
               + ("" if shown == names else f" (missing {sorted(names - shown)}, extra {sorted(shown - names)})"))
-        check(b.evaluate("document.getElementById('count').textContent.trim()") == f"{len(names)} entries",
+        check(b.evaluate("document.getElementById('count').textContent.trim()") == f"{len(names):,} entries",
               "the count line says how many entries")
 
         # Filter by family: the largest family, chosen from the library's data.
@@ -116,8 +135,8 @@ def main():
         got = visible_names(b)
         check(got == want, f"roughness {lo}..{hi}: shows exactly {sorted(want)}, got {sorted(got)}")
         check(0 < len(want) < len(names), f"the range keeps some entries and drops others ({len(want)} of {len(names)})")
-        check(b.evaluate("document.getElementById('count').textContent.trim()") == f"{len(want)} of {len(names)} entries",
-              "the count line follows the filter")
+        check(b.evaluate("document.getElementById('count').textContent.trim()")
+              == f"{len(want):,} of {len(names):,} entries match", "the count line follows the filter")
         h = urllib.parse.parse_qs(b.evaluate("location.hash").lstrip("#"))
         check(h.get("rmin") == [str(lo)] and h.get("rmax") == [str(hi)], f"the range is kept in the URL hash ({h})")
         b.screenshot(str(args.out / "index-filtered.png"))

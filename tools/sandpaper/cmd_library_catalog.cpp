@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
@@ -41,13 +42,17 @@ int cmd_library_catalog(const CommonOptions& outer) {
   // `sandpaper library --library X catalog ...` works too: the group's options fill what catalog's did not.
   if (o.common.library_dir.empty()) o.common.library_dir = outer.library_dir;
   if (o.common.calibration_dir.empty()) o.common.calibration_dir = outer.calibration_dir;
-  auto c = make_compiler(o.common);
   catalog::CatalogOptions co;
   co.output = o.output;
   co.arrays = o.arrays;
   if (!o.quiet) co.progress = &std::cerr;
   co.progress_is_tty = isatty(STDERR_FILENO);
-  const auto report = catalog::write_catalog(c, co);
+  // One library folder: drawn from its index (docs/CATALOG.md, "Incremental builds").
+  const auto roots = o.common.library_dir.empty() ? compiler::default_library_path() : compiler::split_library_path(o.common.library_dir);
+  auto report_from_index = roots.size() == 1 && std::filesystem::is_directory(roots.front())
+                               ? catalog::write_catalog_from_index(roots.front(), o.common.calibration_dir, o.common.device, co)
+                               : std::nullopt;
+  const auto report = report_from_index ? std::move(*report_from_index) : catalog::write_catalog(make_compiler(o.common), co);
   if (!report.failures.empty()) {
     for (const auto& f : report.failures) std::cerr << f.diagnostics;
     std::cerr << "sandpaper library catalog: " << report.failures.size() << " entr"

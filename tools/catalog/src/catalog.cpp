@@ -176,37 +176,63 @@ bool keep_files(const fs::path& from, const fs::path& to, const nlohmann::json& 
 }  // namespace
 
 CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOptions& options) {
+  CatalogSource source;
+  source.manifest = compiler.library().manifest();
+  const auto hashes = curation::entry_input_hashes(compiler, compiler.options().calibration_dir);
+  const auto& library = compiler.library();
+  for (const auto& e : library.entries())
+    if (library.entry(e.name) == &e) {  // a second file with a taken name is left out, as the index leaves it out
+      const auto h = hashes.find(e.name);
+      source.entries.emplace_back(e.name, h == hashes.end() ? std::string() : h->second);
+    }
+  source.compiler_for = [&](const std::vector<std::string>&) -> const compiler::Compiler& { return compiler; };
+  return write_catalog(source, options);
+}
+
+CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& options) {
   if (options.output.empty()) throw std::invalid_argument("give the catalog's folder with -o DIR");
   fs::path dir = fs::absolute(options.output).lexically_normal();
   if (!dir.has_filename()) dir = dir.parent_path();  // "out/" -> "out"
   if (dir == dir.root_path()) throw std::invalid_argument("the catalog cannot replace the root folder");
   check_replaceable(dir);
   remove_stale_temporaries(dir);
-  const auto& library = compiler.library();
   CatalogReport report;
 
   TempDir tmp{temp_beside(dir, "new")};
   fs::create_directories(tmp.path / "entries");
   fs::create_directories(tmp.path / "assets");
 
-  curation::Progress progress("catalog", library.entries().size(), options.progress == nullptr,
+  curation::Progress progress("catalog", source.entries.size(), options.progress == nullptr,
                               options.progress ? *options.progress : std::cerr, options.progress_is_tty);
   const std::string settings = settings_of(options);
-  const auto inputs = curation::entry_input_hashes(compiler, compiler.options().calibration_dir);
   const auto before = previous_entries(dir, settings);
+  // Entries drawn with the same inputs and settings keep their files; the rest are drawn, by one
+  // compiler that need only hold them and what they are built on.
+  std::vector<bool> kept(source.entries.size(), false);
+  std::vector<std::string> to_draw;
+  for (std::size_t i = 0; i < source.entries.size(); ++i) {
+    const auto& [name, hash] = source.entries[i];
+    kept[i] = !hash.empty() && before.contains(name) && before[name].value("hash", "") == hash &&
+              keep_files(dir, tmp.path, before[name].at("files"));
+    if (!kept[i]) to_draw.push_back(name);
+  }
+  const compiler::Compiler* drawing = to_draw.empty() ? nullptr : &source.compiler_for(to_draw);
   nlohmann::json after = nlohmann::json::object();
   std::vector<IndexRow> rows;
-  for (const auto& e : library.entries()) {
-    const auto hash = inputs.find(e.name);
-    if (report.failures.empty() && hash != inputs.end() && library.entry(e.name) == &e && before.contains(e.name) &&
-        before[e.name].value("hash", "") == hash->second && keep_files(dir, tmp.path, before[e.name].at("files"))) {
-      rows.push_back(row_from(before[e.name].at("row")));
-      after[e.name] = before[e.name];
+  for (std::size_t i = 0; i < source.entries.size(); ++i) {
+    const auto& [name, hash] = source.entries[i];
+    if (kept[i]) {
+      rows.push_back(row_from(before[name].at("row")));
+      after[name] = before[name];
       ++report.reused;
-      progress.step(e.name);
+      progress.step(name);
       continue;
     }
-    auto r = compiler.compile_file(e.file);
+    const auto& library = drawing->library();
+    const auto* entry = library.entry(name);
+    if (!entry) throw std::logic_error("write_catalog: the drawing compiler's library has no entry " + name);
+    const auto& e = *entry;
+    auto r = drawing->compile_file(e.file);
     progress.step(e.name);
     if (!r.ok() || !r.material) {
       report.failures.push_back({e.name, compiler::format_diagnostics(r.diagnostics)});
@@ -256,22 +282,23 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
     if (program.max_lateral_force_N > 0) row.roughness = program.roughness;
     row.max_lateral_force_N = program.max_lateral_force_N;
     row.page = "entries/" + e.name + ".html";
-    if (hash != inputs.end() && library.entry(e.name) == &e)
-      after[e.name] = {{"hash", hash->second}, {"row", row_json(row)}, {"files", files}};
+    if (!hash.empty()) after[e.name] = {{"hash", hash}, {"row", row_json(row)}, {"files", files}};
     rows.push_back(std::move(row));
     ++report.rendered;
   }
   progress.finish(report.failures.empty() ? "catalog: " + std::to_string(rows.size()) + " entries compiled and drawn"
                                           : "catalog: " + std::to_string(report.failures.size()) + " of " +
-                                                std::to_string(library.entries().size()) + " entries do not compile");
+                                                std::to_string(source.entries.size()) + " entries do not compile");
   if (!report.failures.empty()) return report;
 
-  write_text(tmp.path / "index.html", index_page_html(index_data(library.manifest(), rows)));
+  const auto index = index_data(source.manifest, rows);
+  write_text(tmp.path / "index.html", index_page_html(index));
+  write_text(tmp.path / kIndexDataFile, index_data_script(index));
   write_text(tmp.path / kInputsFile, nlohmann::json{{"settings", settings}, {"entries", after}}.dump(1) + "\n");
   for (const auto& a : assets()) write_text(tmp.path / "assets" / std::string(a.name), std::string(a.text));
   write_text(tmp.path / kCatalogMarker,
              "Written by `sandpaper library catalog`; the folder is replaced whole by the next run.\nlibrary " +
-                 library.manifest().name + " " + library.manifest().version + "\n");
+                 source.manifest.name + " " + source.manifest.version + "\n");
   swap_in(tmp.path, dir);
   tmp.path.clear();
   report.entries = static_cast<int>(rows.size());

@@ -6,8 +6,11 @@
 // entry_input_hashes) did not change since the previous catalog, drawn with the same settings,
 // keep their files (hard links into the new folder) and are not compiled again.
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sandpaper/compiler/compiler.hpp"
@@ -18,11 +21,13 @@ struct CatalogOptions {
   std::filesystem::path output;       // DIR
   std::ostream* progress = nullptr;   // where progress goes (stderr); nullptr: none (--quiet)
   bool progress_is_tty = false;       // a "\r" counter rather than a line every 10 entries
-  int picture_side = 512;             // pixels, the longer side of an entry's picture at most
+  // Pixels, the longer side of an entry's picture at most: the size the entry page shows it (384
+  // CSS px; 512 px made photographs' pictures 200 KB, and the catalog 52 KB an entry).
+  int picture_side = 384;
   int thumbnail_side = 128;           // pixels, the index's thumbnails
   double thumbnail_window_m = 0.04;   // every thumbnail shows this square (m) around its patch centre
-  // Also each picture as Sandpaper's `.shade` array file (`--arrays`): 262 KB an entry at 512 x
-  // 512, most of a catalog's size (issue 18: at most 50 KB an entry without them).
+  // Also each picture as Sandpaper's `.shade` array file (`--arrays`): 147 KB an entry at 384 x
+  // 384, most of a catalog's size (issue 18: at most 50 KB an entry without them).
   bool arrays = false;
 };
 
@@ -44,5 +49,26 @@ inline constexpr const char* kCatalogMarker = ".sandpaper-catalog";
 // marker, or a file), and std::runtime_error when a file cannot be written or DIR cannot be swapped;
 // DIR is unchanged then.
 CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOptions& options);
+
+// What a catalog is drawn from when the library is not read whole (`library catalog` reads the
+// entries and their input hashes off the library's index).
+struct CatalogSource {
+  compiler::LibraryManifest manifest;                          // the index page's title and families
+  std::vector<std::pair<std::string, std::string>> entries;    // (name, input hash; "" = always draw), by name
+  // A compiler whose library holds at least these entries, what they are built on and the entries
+  // they link to; called once, with the entries to draw (not called when there are none).
+  std::function<const compiler::Compiler&(const std::vector<std::string>& names)> compiler_for;
+};
+CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& options);
+
+// The catalog of one library folder drawn from its index (curation::build_index brings it up to
+// date first, in place when few entries changed): only the entries whose input hash differs from
+// the previous catalog's are read and compiled, with what they are built on; no other entry file
+// is read. nullopt when that cannot be done (a device other than the index's `sim`, or the index
+// does not build, for instance an entry that does not compile): then write_catalog(compiler, ...)
+// over the whole library does it and reports every failure. Same files as that, byte for byte.
+std::optional<CatalogReport> write_catalog_from_index(const std::filesystem::path& library_dir,
+                                                      const std::filesystem::path& calibration_dir, const std::string& device,
+                                                      const CatalogOptions& options);
 
 }  // namespace sandpaper::catalog

@@ -1,8 +1,9 @@
 #pragma once
-// The catalog's index page: every entry (name, family, roughness, thumbnail, describes) in a table,
-// filtered in the browser by family, roughness range and words (assets/index.js). The entries are
-// also embedded as JSON in the page (<script type="application/json" id="catalog-data">), so the
-// page works from file:// with no server and no fetch.
+// The catalog's index page: the entries (name, family, roughness, thumbnail, describes) a page of
+// rows at a time, filtered in the browser by family, roughness range and words (assets/index.js).
+// The page itself holds no entry: the entries are in a separate, compact data file beside it
+// (kIndexDataFile), loaded by a plain <script src>, so that the page works from file:// with no
+// server (browsers refuse fetch() of local files) and still opens fast with 100,000 entries.
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,12 +23,31 @@ struct IndexRow {
   std::string thumbnail;            // "entries/corduroy-thumb.png", or empty without a picture
 };
 
-// The embedded data: {"library": {name, version}, "families": [{id, title, describes, count}],
+// The index's data file, written beside index.html.
+inline constexpr const char* kIndexDataFile = "catalog-data.js";
+
+// Every row as JSON: {"library": {name, version}, "families": [{id, title, describes, count}],
 // "entries": [{name, family, family_title, aliases, describes, roughness|null, max_lateral_force_N,
 // licence, deprecated_by, page, thumbnail}]}, families in the manifest's order (then any an entry
 // names that the manifest lacks), entries in the order given.
 nlohmann::json index_data(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows);
-// The page: links to assets/catalog.css and assets/index.js.
+
+// The page: the filters (the family select lists index_data's families with their counts), the count
+// line, the pagers and an empty table that assets/index.js fills from kIndexDataFile; a <noscript>
+// note for browsers without JavaScript. Links to assets/catalog.css and assets/index.js.
 std::string index_page_html(const nlohmann::json& data);
+
+// The text of kIndexDataFile for index_data's JSON: one statement, in ASCII,
+// `window.sandpaperCatalog = JSON.parse('...');` with the JSON below as the string literal. Only what
+// the index shows or filters by, a column per field rather than an object per entry, so that 100,000
+// entries are a few megabytes:
+//   {"format": 1, "library": {name, version}, "families": [{id, title}],
+//    "name": [...], "family": [index into families, or -1], "roughness": [number|null, 6 significant
+//    digits], "describes": [...], "aliases": {"<entry index>": [...]} (entries with aliases only),
+//    "deprecated_by": {"<entry index>": name}, "no_thumbnail": [entry index, ...]}
+// Paths are not stored: the page is entries/<name>.html and the thumbnail entries/<name>-thumb.png, as
+// the catalog writes them. Throws std::invalid_argument for an entry whose page or thumbnail is
+// elsewhere, which the page could not find.
+std::string index_data_script(const nlohmann::json& data);
 
 }  // namespace sandpaper::catalog
