@@ -26,6 +26,53 @@ int blur_radius(double sigma_px) {
   return sigma_px > 0 ? static_cast<int>(std::min(std::ceil(3.0 * sigma_px), 1e6)) : 0;
 }
 
+// The fuzzing build (tools/fuzz.sh) instruments every comparison for coverage feedback; in the
+// blur's inner loops that is the loop bound, checked once per multiply-add, and it made a smoothing
+// within the budget take 30 times its release time (3 s, and over libFuzzer's 25 s on a loaded
+// machine: fuzz finding F11). Those comparisons carry no coverage worth having.
+#if defined(__clang__)
+#define SANDPAPER_NO_COVERAGE __attribute__((no_sanitize("coverage")))
+#else
+#define SANDPAPER_NO_COVERAGE
+#endif
+
+// One pass of a separable blur with normalised weights `w` (2r + 1 of them), along x or y.
+SANDPAPER_NO_COVERAGE void blur_pass(Heights& a, bool along_x, const std::vector<double>& w, int r) {
+  const int n = along_x ? a.nx : a.ny;
+  const int lines = along_x ? a.ny : a.nx;
+  // Each line is copied out contiguous: a column read in place strides a whole row per tap, and
+  // that cache miss, not the arithmetic, was most of a large tile's time (fuzz finding F10).
+  std::vector<double> in(static_cast<std::size_t>(n)), line(static_cast<std::size_t>(n));
+  // A tile narrower than the kernel: the kernel folded onto the tile gives the same sums with n
+  // taps instead of 2r + 1 (a 98 px grid under a 3,700 px sigma took 29 s: fuzz finding F8).
+  std::vector<double> folded;
+  if (a.wrap && 2 * r + 1 > n) {
+    folded.assign(static_cast<std::size_t>(n), 0.0);
+    for (int j = -r; j <= r; ++j) folded[static_cast<std::size_t>(((j % n) + n) % n)] += w[static_cast<std::size_t>(j + r)];
+  }
+  for (int l = 0; l < lines; ++l) {
+    for (int i = 0; i < n; ++i) in[static_cast<std::size_t>(i)] = along_x ? a.at(i, l) : a.at(l, i);
+    const double* v = in.data();
+    for (int i = 0; i < n; ++i) {
+      double s = 0;
+      if (!folded.empty()) {
+        // Taps k = 0 .. n-1 read q = i + k wrapped: two runs without a wrap test, same order of sums.
+        const double* f = folded.data();
+        for (int k = 0; k < n - i; ++k) s += f[k] * v[i + k];
+        for (int k = n - i; k < n; ++k) s += f[k] * v[i + k - n];
+      } else {
+        for (int j = -r; j <= r; ++j) {
+          int q = i + j;
+          q = a.wrap ? ((q % n) + n) % n : std::clamp(q, 0, n - 1);
+          s += w[static_cast<std::size_t>(j + r)] * v[q];
+        }
+      }
+      line[static_cast<std::size_t>(i)] = s;
+    }
+    for (int i = 0; i < n; ++i) (along_x ? a.at(i, l) : a.at(l, i)) = line[static_cast<std::size_t>(i)];
+  }
+}
+
 // Separable Gaussian of `sigma_px`, normalised discrete weights; edges wrap (tiles) or clamp.
 void blur(Heights& a, double sigma_px) {
   const int r = blur_radius(sigma_px);
@@ -34,43 +81,8 @@ void blur(Heights& a, double sigma_px) {
   double sum = 0;
   for (int i = -r; i <= r; ++i) sum += w[static_cast<std::size_t>(i + r)] = std::exp(-0.5 * i * i / (sigma_px * sigma_px));
   for (auto& x : w) x /= sum;
-  auto pass = [&](bool along_x) {
-    const int n = along_x ? a.nx : a.ny;
-    const int lines = along_x ? a.ny : a.nx;
-    // Each line is copied out contiguous: a column read in place strides a whole row per tap, and
-    // that cache miss, not the arithmetic, was most of a large tile's time (fuzz finding F10).
-    std::vector<double> in(static_cast<std::size_t>(n)), line(static_cast<std::size_t>(n));
-    // A tile narrower than the kernel: the kernel folded onto the tile gives the same sums with n
-    // taps instead of 2r + 1 (a 98 px grid under a 3,700 px sigma took 29 s: fuzz finding F8).
-    std::vector<double> folded;
-    if (a.wrap && 2 * r + 1 > n) {
-      folded.assign(static_cast<std::size_t>(n), 0.0);
-      for (int j = -r; j <= r; ++j) folded[static_cast<std::size_t>(((j % n) + n) % n)] += w[static_cast<std::size_t>(j + r)];
-    }
-    for (int l = 0; l < lines; ++l) {
-      for (int i = 0; i < n; ++i) in[static_cast<std::size_t>(i)] = along_x ? a.at(i, l) : a.at(l, i);
-      const double* v = in.data();
-      for (int i = 0; i < n; ++i) {
-        double s = 0;
-        if (!folded.empty()) {
-          // Taps k = 0 .. n-1 read q = i + k wrapped: two runs without a wrap test, same order of sums.
-          const double* f = folded.data();
-          for (int k = 0; k < n - i; ++k) s += f[k] * v[i + k];
-          for (int k = n - i; k < n; ++k) s += f[k] * v[i + k - n];
-        } else {
-          for (int j = -r; j <= r; ++j) {
-            int q = i + j;
-            q = a.wrap ? ((q % n) + n) % n : std::clamp(q, 0, n - 1);
-            s += w[static_cast<std::size_t>(j + r)] * v[q];
-          }
-        }
-        line[static_cast<std::size_t>(i)] = s;
-      }
-      for (int i = 0; i < n; ++i) (along_x ? a.at(i, l) : a.at(l, i)) = line[static_cast<std::size_t>(i)];
-    }
-  };
-  pass(true);
-  pass(false);
+  blur_pass(a, true, w, r);
+  blur_pass(a, false, w, r);
 }
 
 // Multiply-adds the smoothing of an nx x ny image with these sigmas would take (blur above).
