@@ -155,6 +155,13 @@ bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double p
                   "use at most " + std::to_string(kMaxPatternPixels) + " pixels of valley and hill together");
       return false;
     }
+    if (double(a.nx) * a.ny > kMaxPatternArea) {
+      diags.error("E0304", p.location,
+                  "the pattern's tile would be " + std::to_string(a.nx) + " x " + std::to_string(a.ny) + " px, over " +
+                      std::to_string(static_cast<long>(kMaxPatternArea)) + " px in all",
+                  "use a larger pixel, or fewer pixels of valley and hill");
+      return false;
+    }
     if (smoothing_ops(a.nx, a.ny, true, sigma1, sigma2) > kMaxSmoothingOps) {
       diags.error("E0304", p.location, "smoothing the pattern's " + std::to_string(a.nx) + " x " + std::to_string(a.ny) + " px tile with kernel " +
                                            num(p.kernel ? p.kernel->si : 0) + " would take too long",
@@ -177,6 +184,13 @@ bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double p
     a.nx = n_x + 2 * margin;
     a.ny = n_y + 2 * margin;
     // The margin grows with the kernel: bound the image and its smoothing before allocating.
+    if (double(a.nx) * a.ny > kMaxPatternArea) {
+      diags.error("E0304", p.location,
+                  "the pattern's array would be " + std::to_string(a.nx) + " x " + std::to_string(a.ny) + " px (kernel margin " +
+                      std::to_string(margin) + " px), over " + std::to_string(static_cast<long>(kMaxPatternArea)) + " px in all",
+                  "use a larger pixel, a smaller patch or a smaller kernel");
+      return false;
+    }
     if (a.nx > 4 * kMaxPatternPixels || a.ny > 4 * kMaxPatternPixels ||
         smoothing_ops(a.nx, a.ny, false, sigma1, sigma2) > kMaxSmoothingOps) {
       diags.error("E0304", p.location, "smoothing the pattern (" + std::to_string(n_x) + " x " + std::to_string(n_y) +

@@ -187,6 +187,26 @@ TEST(HostileInput, ASmoothingPastTheBudgetIsRefusedBeforeItRuns) {
                   .ok());
 }
 
+// Fuzz finding F12: a tile's sides were bounded (4096 px) but not its area, and `gridB4000W95off5`
+// made a 4095 x 8190 px tile: 8.8 s, 1.2 GB and a 268 MB patch. A tile or array is now at most
+// 2048 x 2048 px in all; a 1599 x 1599 tile (gridB1598W1) still compiles.
+TEST(HostileInput, APatternArrayPastItsAreaIsRefusedBeforeAllocating) {
+  const auto r = test::shipped_compiler().compile_text("like gridB4000W95off5", "<f12>");
+  ASSERT_EQ(test::codes(r), std::vector<std::string>{"E0301"});
+  EXPECT_NE(compiler::format_diagnostics(r.diagnostics).find("past the pattern limits (E0304"), std::string::npos)
+      << compiler::format_diagnostics(r.diagnostics);
+  const auto p = test::shipped_compiler().compile_text("pattern grid valley 1 mm hill 300 mm pixel 0.1 mm amplitude 1 N", "<f12-pattern>");
+  ASSERT_EQ(test::codes(p), std::vector<std::string>{"E0304"});
+  EXPECT_NE(compiler::format_diagnostics(p.diagnostics).find("3010 x 3010 px, over 4194304 px in all"), std::string::npos)
+      << compiler::format_diagnostics(p.diagnostics);
+  const auto q = test::shipped_compiler().compile_text(
+      "pattern perlin feature 1 mm pixel 0.05 mm amplitude 1 N; size 120 mm", "<f12-perlin>");
+  ASSERT_EQ(test::codes(q), std::vector<std::string>{"E0304"});
+  EXPECT_NE(compiler::format_diagnostics(q.diagnostics).find("over 4194304 px in all"), std::string::npos)
+      << compiler::format_diagnostics(q.diagnostics);
+  EXPECT_TRUE(test::shipped_compiler().compile_text("like gridB1598W1", "<ok>").ok());
+}
+
 // --- images ---
 
 fs::path material_with_image(const fs::path& dir, const std::string& image) {

@@ -16,6 +16,10 @@ namespace sandpaper::compiler {
 inline constexpr double kThesisPixel_m = 0.37e-3;
 // Largest pattern array or tile side, pixels; largest kernel size, pixels.
 inline constexpr int kMaxPatternPixels = 4096;
+// Largest pattern array in all (a tile, or a covering array with its smoothing margin), pixels:
+// 2048 x 2048, 4.6 times the largest shipped (952 x 952). Sides alone let a nine-character grid
+// name make a 4095 x 8190 px tile: 8.8 s, 1.2 GB and a 268 MB patch (fuzz finding F12).
+inline constexpr double kMaxPatternArea = 4194304;
 // Multiply-adds a pattern's smoothing may take, beyond it E0304: about 0.5 s on one core in a
 // release build, 50 times what the largest thesis stimulus or shipped pattern needs (4e6; 2e9 let a
 // 915 px grid tile take 5 s and over 25 s under ASan: fuzz finding F10, docs/RELIABILITY.md).
