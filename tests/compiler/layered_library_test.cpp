@@ -15,11 +15,6 @@ using namespace sandpaper;
 
 namespace {
 
-void put(const std::filesystem::path& file, const std::string& text) {
-  std::filesystem::create_directories(file.parent_path());
-  std::ofstream(file) << text;
-}
-
 struct Layers {
   std::filesystem::path lab, world;
 };
@@ -29,19 +24,19 @@ struct Layers {
 Layers make_layers(const std::string& tag) {
   const std::filesystem::path root = test::temp_dir(tag);
   Layers l{root / "lab", root / "world"};
-  put(l.world / "library.toml",
+  test::write_text(l.world / "library.toml",
       "id = \"world\"\nname = \"world\"\nversion = \"1.0.0\"\nreference = \"reference-grating\"\n"
       "[families.cloth]\ntitle = \"Cloth\"\n");
-  put(l.world / "cloth/corduroy.hmat",
+  test::write_text(l.world / "cloth/corduroy.hmat",
       "material \"corduroy\" {\n  family cloth\n  alias wide-wale\n  grating period 3 mm hill 60%\n  roughness 0.4\n}\n");
-  put(l.world / "cloth/reference-grating.hmat", "material \"reference-grating\" {\n  grating period 2.5 mm\n  roughness 0.5\n}\n");
-  put(l.world / "cloth/gravel.hmat",
+  test::write_text(l.world / "cloth/reference-grating.hmat", "material \"reference-grating\" {\n  grating period 2.5 mm\n  roughness 0.5\n}\n");
+  test::write_text(l.world / "cloth/gravel.hmat",
       "material \"gravel\" {\n  heightmap \"../images/gravel.png\" size 95 mm smoothing 1 mm\n  roughness 0.6\n}\n");
   std::filesystem::create_directories(l.world / "images");
   std::filesystem::copy_file(std::filesystem::path(SANDPAPER_SOURCE_DIR) / "library/images/gravel.png", l.world / "images/gravel.png");
-  put(l.lab / "library.toml", "id = \"lab\"\nname = \"lab\"\nversion = \"0.1.0\"\n");
-  put(l.lab / "corduroy.hmat", "material \"corduroy\" {\n  overrides\n  like world:corduroy\n  roughness 0.6\n}\n");
-  put(l.lab / "felt.hmat", "material \"felt\" {\n  like wide-wale\n  grating period 5 mm\n}\n");
+  test::write_text(l.lab / "library.toml", "id = \"lab\"\nname = \"lab\"\nversion = \"0.1.0\"\n");
+  test::write_text(l.lab / "corduroy.hmat", "material \"corduroy\" {\n  overrides\n  like world:corduroy\n  roughness 0.6\n}\n");
+  test::write_text(l.lab / "felt.hmat", "material \"felt\" {\n  like wide-wale\n  grating period 5 mm\n}\n");
   return l;
 }
 
@@ -112,7 +107,7 @@ TEST(LayeredLibrary, ProvenanceSaysWhichRootEveryInheritedNumberCameFrom) {
 
 TEST(LayeredLibrary, ImagesResolveInsideTheirOwnRootAndCyclesAreStillFound) {
   const auto l = make_layers("layers-images");
-  put(l.lab / "loop.hmat", "material \"loop\" {\n  like loop\n}\n");
+  test::write_text(l.lab / "loop.hmat", "material \"loop\" {\n  like loop\n}\n");
   const auto c = layered(l);
   const auto g = c.compile_text("like gravel");
   ASSERT_TRUE(g.ok()) << compiler::format_diagnostics(g.diagnostics);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -38,6 +39,11 @@ std::string temp_dir(const std::string& tag) {
   auto p = std::filesystem::temp_directory_path() / ("sandpaper-" + tag + "-" + std::to_string(rd()));
   std::filesystem::create_directories(p);
   return p.string();
+}
+
+void write_text(const std::filesystem::path& file, const std::string& text) {
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file) << text;
 }
 
 double expected_force_for_roughness(double r) { return 382 * 9.80665e-3 * std::pow(r, 1 / 0.759593); }

@@ -1,4 +1,5 @@
 #pragma once
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@ std::vector<std::string> codes(const compiler::CompileResult& r, compiler::Sever
 const schema::Provenance& provenance(const schema::PatchProgram& p, const std::string& parameter);
 // A fresh empty directory under the system temp dir.
 std::string temp_dir(const std::string& tag);
+// Writes `text` to `file`, making its folders first.
+void write_text(const std::filesystem::path& file, const std::string& text);
 
 // Independent restatement of the ratio scale (Minsky 1995 Fig. 19; issue 2):
 // F = 382 gf * r^(1 / 0.759593), 1 gf = 9.80665 mN.

@@ -12,6 +12,7 @@
 #include "sandpaper/curation/check.hpp"
 #include "sandpaper/curation/display.hpp"
 #include "sandpaper/curation/index.hpp"
+#include "sandpaper/curation/layers.hpp"
 #include "sandpaper/curation/near.hpp"
 #include "sandpaper/curation/search.hpp"
 
@@ -38,17 +39,14 @@ void add_paths(CLI::App* sub, LibraryCommandOptions& o, bool index) {
 }
 
 struct Paths {
-  std::filesystem::path library, calibration, index;  // library: the front root
+  std::filesystem::path library, calibration, index;  // library: the front root; index: its index
   std::vector<std::filesystem::path> roots;           // the library path, front first (one folder unless layered)
+  std::vector<std::filesystem::path> indexes;         // each root's index, parallel to roots
+  bool layered() const { return roots.size() > 1; }
+  std::vector<std::filesystem::path> below(std::size_t i) const {
+    return {roots.begin() + static_cast<std::ptrdiff_t>(i) + 1, roots.end()};
+  }
 };
-
-// The index holds one library folder; a layered path is checked, and compiled by every command, but not indexed yet.
-void one_root(const Paths& p, const char* who) {
-  if (p.roots.size() > 1)
-    throw std::invalid_argument(std::string("sandpaper ") + who +
-                                " works on one library folder; index each root of the path on its own "
-                                "(--library DIR); `library check` and every compile take the layered path");
-}
 
 Paths paths_of(const CommonOptions& common, const LibraryCommandOptions& o) {
   Paths p;
@@ -63,7 +61,15 @@ Paths paths_of(const CommonOptions& common, const LibraryCommandOptions& o) {
     if (!std::filesystem::is_directory(r))
       throw std::invalid_argument("no library folder at " + r.string() + " (give --library DIR, or LAB:WORLD for a layered library)");
   p.library = p.roots.front();
-  p.index = o.index.empty() ? cur::default_index_path(p.library) : std::filesystem::path(o.index);
+  if (p.layered() && !o.index.empty())
+    throw std::invalid_argument("--index names one file; a layered library path keeps an index in each root "
+                                "(<root>/.index/library.sqlite): leave --index out");
+  p.index = o.index.empty() ? (p.layered() ? cur::layer_index_path(p.library) : cur::default_index_path(p.library))
+                            : std::filesystem::path(o.index);
+  if (p.layered())
+    for (const auto& r : p.roots) p.indexes.push_back(cur::layer_index_path(r));
+  else
+    p.indexes = {p.index};
   return p;
 }
 
@@ -80,45 +86,57 @@ int print_build_failure(const cur::IndexBuildResult& r, const char* who) {
   return kExitBadInput;
 }
 
-// Whether the index at p.index can be read and was built from this library folder.
-bool previous_index_answers(const Paths& p) {
+// Whether the index at `index` can be read and was built from this library folder (over these roots).
+bool previous_index_answers(const std::filesystem::path& index, const std::filesystem::path& root, const std::string& below) {
   try {
-    const cur::Index idx(p.index);
-    return idx.meta("library_dir") == std::filesystem::absolute(p.library).lexically_normal().string();
+    const cur::Index idx(index);
+    return idx.meta("library_dir") == std::filesystem::absolute(root).lexically_normal().string() && idx.meta("below") == below;
   } catch (const cur::IndexError&) {
     return false;
   }
 }
 
-// Builds the index when it is missing or stale; returns the exit code of a failed build, or 0
-// (also when the rebuild failed but the previous index of this library can still answer).
+std::string below_text(const std::vector<std::filesystem::path>& below) {
+  std::string out;
+  for (const auto& b : below) out += std::filesystem::absolute(b).lexically_normal().string() + "\n";
+  return out;
+}
+
+// Builds each root's index that is missing or stale, the bottom root first (a root's index is
+// built over those below it); returns the exit code of a failed build, or 0 (also when a rebuild
+// failed but the previous index of that root can still answer).
 int ensure_index(const Paths& p, bool quiet, const char* who) {
-  const auto state = cur::index_state(p.index, p.library, p.calibration);
-  if (state == cur::IndexState::Fresh) return kExitOk;
-  std::cerr << "sandpaper " << who << ": the index " << p.index.string() << " is "
-            << (state == cur::IndexState::Missing ? "missing" : "stale (the library or calibration changed)")
-            << "; building it\n";
-  auto progress = cur::Progress::on_stderr("indexing", 0, quiet);
-  const auto r = cur::build_index({p.library, p.calibration, p.index, "sim"}, progress);
-  if (!r.ok) {
-    const int rc = print_build_failure(r, who);
-    // A library mid-edit should not stop curators searching it: the last good index still answers,
-    // marked as such, as long as it is an index of this library in this schema.
-    if (state == cur::IndexState::Stale && previous_index_answers(p)) {
-      std::cerr << "sandpaper " << who << ": answering from the previous index, built before the library changed; "
-                << "fix the errors above and it is rebuilt\n";
-      return kExitOk;
+  for (std::size_t i = p.roots.size(); i-- > 0;) {
+    const auto below = p.below(i);
+    const auto state = cur::index_state(p.indexes[i], p.roots[i], p.calibration, below);
+    if (state == cur::IndexState::Fresh) continue;
+    std::cerr << "sandpaper " << who << ": the index " << p.indexes[i].string() << " is "
+              << (state == cur::IndexState::Missing ? "missing" : "stale (the library or calibration changed)")
+              << "; building it\n";
+    auto progress = cur::Progress::on_stderr("indexing", 0, quiet);
+    cur::IndexOptions io{p.roots[i], p.calibration, p.indexes[i], "sim"};
+    io.below = below;
+    const auto r = cur::build_index(io, progress);
+    if (!r.ok) {
+      const int rc = print_build_failure(r, who);
+      // A library mid-edit should not stop curators searching it: the last good index still answers,
+      // marked as such, as long as it is an index of this library in this schema.
+      if (state == cur::IndexState::Stale && previous_index_answers(p.indexes[i], p.roots[i], below_text(below))) {
+        std::cerr << "sandpaper " << who << ": answering from the previous index, built before the library changed; "
+                  << "fix the errors above and it is rebuilt\n";
+        continue;
+      }
+      return rc;
     }
-    return rc;
+    progress.finish("indexed " + std::to_string(r.entries) + " entries into " + r.path.string());
   }
-  progress.finish("indexed " + std::to_string(r.entries) + " entries into " + r.path.string());
   return kExitOk;
 }
 
-nlohmann::json entry_json(const cur::IndexedEntry& e) {
+nlohmann::json entry_json(const cur::IndexedEntry& e, bool layered) {
   nlohmann::json others = nlohmann::json::object();
   for (const auto& [k, v] : e.others) others[k] = v;
-  return {{"name", e.name},
+  nlohmann::json j = {{"name", e.name},
           {"aliases", e.aliases},
           {"family", e.family},
           {"describes", e.describes},
@@ -136,9 +154,14 @@ nlohmann::json entry_json(const cur::IndexedEntry& e) {
           {"terms", e.terms},
           {"other_percepts", others},
           {"physical", e.physical}};
+  if (layered) j["root"] = e.root;  // the id of the root it is from: `like ROOT:NAME` names it
+  return j;
 }
 
-int unknown_entry(const cur::Index& idx, const std::string& name, const char* who) {
+// "world:corduroy" for an entry of a layered path, else its name.
+std::string shown_name(const cur::IndexedEntry& e, bool layered) { return layered ? e.root + ":" + e.name : e.name; }
+
+int unknown_entry(const cur::LayeredIndex& idx, const std::string& name, const char* who) {
   const auto guess = compiler::closest_match(name, idx.names_and_aliases());
   std::cerr << "sandpaper " << who << ": no library entry or alias named '" << name << "'; "
             << (guess.empty() ? "`sandpaper library search WORDS` finds entries by words" : "did you mean '" + guess + "'?") << "\n";
@@ -172,21 +195,28 @@ int run_check(const Paths& p, const LibraryCommandOptions& o) {
 }
 
 int run_index(const Paths& p, const LibraryCommandOptions& o) {
-  auto progress = cur::Progress::on_stderr("indexing", 0, o.quiet);
-  const auto r = cur::build_index({p.library, p.calibration, p.index, "sim", o.full}, progress);
-  if (!r.ok) return print_build_failure(r, "library index");
-  progress.finish("indexed " + std::to_string(r.entries) + " entries");
-  if (o.json)
-    std::cout << nlohmann::json{{"ok", true},         {"entries", r.entries},           {"compiled", r.compiled},
-                                {"reused", r.reused}, {"files_hashed", r.files_hashed}, {"resumed", r.resumed}, {"in_place", r.in_place},
-                                {"index", r.path.string()}}
-                     .dump(2)
-              << "\n";
-  else
-    std::cout << "indexed " << r.entries << " entries of " << cur::Index(r.path).meta("library_name") << " "
-              << cur::Index(r.path).meta("library_version") << " into "
-              << r.path.string() << " (" << r.compiled << " compiled, " << r.reused << " unchanged"
-              << (r.resumed ? ", resumed from an interrupted build" : "") << (r.in_place ? ", updated in place" : "") << ")\n";
+  nlohmann::json roots = nlohmann::json::array();
+  // The bottom root first: a root's index is built over the indexes of the roots below it.
+  for (std::size_t i = p.roots.size(); i-- > 0;) {
+    auto progress = cur::Progress::on_stderr("indexing", 0, o.quiet);
+    cur::IndexOptions io{p.roots[i], p.calibration, p.indexes[i], "sim", o.full};
+    io.below = p.below(i);
+    const auto r = cur::build_index(io, progress);
+    if (!r.ok) return print_build_failure(r, "library index");
+    progress.finish("indexed " + std::to_string(r.entries) + " entries");
+    const cur::Index built(r.path);
+    const nlohmann::json j{{"ok", true},         {"entries", r.entries},           {"compiled", r.compiled},
+                           {"reused", r.reused}, {"files_hashed", r.files_hashed}, {"resumed", r.resumed}, {"in_place", r.in_place},
+                           {"index", r.path.string()}, {"root", cur::root_id(built, p.roots[i])}};
+    roots.insert(roots.begin(), j);
+    if (!o.json)
+      std::cout << "indexed " << r.entries << " entries of " << built.meta("library_name") << " " << built.meta("library_version")
+                << (p.layered() ? " (root " + cur::root_id(built, p.roots[i]) + ")" : std::string()) << " into " << r.path.string() << " ("
+                << r.compiled << " compiled, " << r.reused << " unchanged" << (r.resumed ? ", resumed from an interrupted build" : "")
+                << (r.in_place ? ", updated in place" : "") << ")\n";
+  }
+  // One root: its object, as before layering; several: every root's, front first.
+  if (o.json) std::cout << (p.layered() ? nlohmann::json{{"ok", true}, {"roots", roots}} : roots.front()).dump(2) << "\n";
   return kExitOk;
 }
 
@@ -197,12 +227,12 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
   q.limit = o.limit;
   if (!o.roughness.empty()) q.roughness = cur::parse_roughness_range(o.roughness);  // invalid_argument: exit 2
   if (const int rc = ensure_index(p, o.quiet, "library search")) return rc;
-  const cur::Index idx(p.index);
-  const auto hits = cur::search(idx, q);
+  const cur::LayeredIndex idx(p.roots, p.indexes);
+  const auto hits = idx.search(q);
   if (o.json) {
     auto arr = nlohmann::json::array();
     for (const auto& h : hits) {
-      auto j = entry_json(h.entry);
+      auto j = entry_json(h.entry, p.layered());
       j["matched"] = h.why;
       j["matched_alias"] = h.matched_alias.empty() ? nlohmann::json(nullptr) : nlohmann::json(h.matched_alias);
       arr.push_back(j);
@@ -210,9 +240,10 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
     std::cout << arr.dump(2) << "\n";
   } else {
     std::size_t wn = 0, wf = 0;
-    for (const auto& h : hits) wn = std::max(wn, h.entry.name.size()), wf = std::max(wf, h.entry.family.size());
+    for (const auto& h : hits)
+      wn = std::max(wn, shown_name(h.entry, p.layered()).size()), wf = std::max(wf, h.entry.family.size());
     for (const auto& h : hits) {
-      std::cout << pad(h.entry.name, wn) << "  " << pad(h.entry.family, wf) << "  roughness " << std::fixed
+      std::cout << pad(shown_name(h.entry, p.layered()), wn) << "  " << pad(h.entry.family, wf) << "  roughness " << std::fixed
                 << std::setprecision(2) << h.entry.roughness << std::defaultfloat << "  \"" << h.entry.describes << "\"";
       if (!h.matched_alias.empty()) std::cout << "  (alias " << h.matched_alias << ")";
       if (!h.entry.deprecated_by.empty()) std::cout << "  [deprecated: use " << h.entry.deprecated_by << "]";
@@ -228,14 +259,17 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
 
 int run_show(const Paths& p, const LibraryCommandOptions& o) {
   if (const int rc = ensure_index(p, o.quiet, "library show")) return rc;
-  const cur::Index idx(p.index);
-  const auto name = idx.resolve(o.name);
-  if (!name) return unknown_entry(idx, o.name, "library show");
-  const auto e = *idx.entry(*name);
-  const auto statements = idx.statements(*name);
-  const auto prov = idx.provenance(*name);
+  const cur::LayeredIndex layers(p.roots, p.indexes);
+  const auto found = layers.resolve(o.name);
+  if (!found) return unknown_entry(layers, o.name, "library show");
+  const auto& [layer, name] = *found;
+  const auto& idx = layers.index(layer);
+  const auto e = *layers.entry(layer, name);
+  const auto statements = idx.statements(name);
+  const auto prov = idx.provenance(name);
+  const cur::DisplayPaths shown(p.roots[layer]);
   if (o.json) {
-    auto j = entry_json(e);
+    auto j = entry_json(e, p.layered());
     j["family_title"] = e.family_title;
     j["statements"] = nlohmann::json::array();
     for (const auto& s : statements) {
@@ -254,7 +288,7 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
     std::cout << j.dump(2) << "\n";
     return kExitOk;
   }
-  std::cout << e.name;
+  std::cout << shown_name(e, p.layered());
   if (!e.aliases.empty()) {
     std::string a;
     for (const auto& x : e.aliases) a += (a.empty() ? "" : ", ") + x;
@@ -263,7 +297,13 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
   std::cout << "\n  describes  \"" << e.describes << "\"\n"
             << "  family     " << e.family << (e.family_title.empty() ? "" : " (" + e.family_title + ")") << "\n"
             << "  licence    " << e.licence << "\n"
-            << "  file       " << cur::DisplayPaths(p.library).path_of(e.file) << " (library " << e.library_version << ")\n";
+            << "  file       " << shown.path_of(e.file) << " (library " << e.library_version << ")\n";
+  if (p.layered()) {
+    std::cout << "  root       " << e.root << " (" << layer + 1 << " of " << p.roots.size() << " in the library path)";
+    for (std::size_t i = layer + 1; i < layers.size(); ++i)
+      if (layers.index(i).resolve(e.name) == e.name) std::cout << "; hides " << layers.id(i) << ":" << e.name;
+    std::cout << "\n";
+  }
   if (!e.deprecated_by.empty()) std::cout << "  DEPRECATED replaced by " << e.deprecated_by << "\n";
   if (!e.likes.empty()) {
     std::string l;
@@ -284,7 +324,7 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
   }
   for (const auto& [k, v] : e.others) std::cout << "  " << pad(k, 23) << num(v) << " (ratio scale)\n";
   std::cout << "physical\n  " << e.physical << "\n  terms: " << (e.terms.empty() ? "none" : e.terms) << "\n";
-  std::cout << "statements (" << cur::DisplayPaths(p.library).path_of(e.file) << ")\n";
+  std::cout << "statements (" << shown.path_of(e.file) << ")\n";
   for (const auto& s : statements) {
     std::cout << "  " << std::setw(3) << s.line << "  " << s.text << "\n";
     for (const auto& [k, t] : s.sources) std::cout << "         source " << k << " \"" << t << "\"\n";
@@ -303,27 +343,33 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
 
 int run_near(const Paths& p, const LibraryCommandOptions& o) {
   if (const int rc = ensure_index(p, o.quiet, "library near")) return rc;
-  const cur::Index idx(p.index);
-  const auto name = idx.resolve(o.name);
-  if (!name) return unknown_entry(idx, o.name, "library near");
-  const auto ns = cur::nearest(idx, *name, o.limit);
+  const cur::LayeredIndex layers(p.roots, p.indexes);
+  const auto found = layers.resolve(o.name);
+  if (!found) return unknown_entry(layers, o.name, "library near");
+  const auto& [layer, name] = *found;
+  const auto& idx = layers.index(layer);
+  const auto ns = layers.nearest(layer, name, o.limit);
+  const std::string from = p.layered() ? layers.id(layer) + ":" + name : name;
   if (o.json) {
     auto arr = nlohmann::json::array();
-    for (const auto& n : ns)
-      arr.push_back({{"name", n.entry.name}, {"family", n.entry.family}, {"roughness", n.entry.roughness},
-                     {"distance_jnd", n.distance}, {"force_jnd", n.force_steps}, {"period_doublings", n.period_doublings},
-                     {"why", n.why}});
-    std::cout << nlohmann::json{{"from", *name}, {"weber_fraction", std::stod(idx.meta("weber_fraction"))}, {"nearest", arr}}.dump(2)
+    for (const auto& n : ns) {
+      nlohmann::json j{{"name", n.entry.name}, {"family", n.entry.family}, {"roughness", n.entry.roughness},
+                       {"distance_jnd", n.distance}, {"force_jnd", n.force_steps}, {"period_doublings", n.period_doublings},
+                       {"why", n.why}};
+      if (p.layered()) j["root"] = n.entry.root;
+      arr.push_back(j);
+    }
+    std::cout << nlohmann::json{{"from", from}, {"weber_fraction", std::stod(idx.meta("weber_fraction"))}, {"nearest", arr}}.dump(2)
               << "\n";
     return kExitOk;
   }
-  std::cout << "nearest to " << *name << " (distance in force JND steps of " << num(std::stod(idx.meta("weber_fraction")) * 100)
+  std::cout << "nearest to " << from << " (distance in force JND steps of " << num(std::stod(idx.meta("weber_fraction")) * 100)
             << " %; a period doubling counts " << num(cur::kJndPerPeriodDoubling) << ", docs/LIBRARY.md)\n";
   std::size_t wn = 0;
-  for (const auto& n : ns) wn = std::max(wn, n.entry.name.size());
+  for (const auto& n : ns) wn = std::max(wn, shown_name(n.entry, p.layered()).size());
   for (const auto& n : ns)
     std::cout << "  " << std::setw(6) << std::fixed << std::setprecision(1) << n.distance << std::defaultfloat << "  "
-              << pad(n.entry.name, wn) << "  " << n.why << "\n";
+              << pad(shown_name(n.entry, p.layered()), wn) << "  " << n.why << "\n";
   return kExitOk;
 }
 
@@ -374,10 +420,10 @@ int cmd_library_sub(const CommonOptions& common, LibraryCommandOptions o) {
   try {
     const auto p = paths_of(common, o);
     if (o.check->parsed()) return run_check(p, o);
-    if (o.index_cmd->parsed()) return one_root(p, "library index"), run_index(p, o);
-    if (o.search->parsed()) return one_root(p, "library search"), run_search(p, o);
-    if (o.show->parsed()) return one_root(p, "library show"), run_show(p, o);
-    return one_root(p, "library near"), run_near(p, o);
+    if (o.index_cmd->parsed()) return run_index(p, o);
+    if (o.search->parsed()) return run_search(p, o);
+    if (o.show->parsed()) return run_show(p, o);
+    return run_near(p, o);
   } catch (const cur::IndexError& e) {
     std::cerr << "sandpaper library: " << e.what() << "\n";
     return kExitUsage;

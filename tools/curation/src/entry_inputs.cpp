@@ -17,10 +17,15 @@ class Hasher {
       : lib_(lib), file_hash_(file_hash), global_(global) {}
 
   const EntryInputs& of(const compiler::LibraryEntry& e) {
-    if (auto it = done_.find(e.name); it != done_.end()) return it->second;
+    if (auto it = done_.find(&e); it != done_.end()) return it->second;
     EntryInputs out;
+    // An entry of a root below, in a layered path: its inputs are that root's index fingerprint, in `global`.
+    if (e.root != 0) {
+      out.hash = "below " + lib_.qualified_name(e);
+      return done_[&e] = std::move(out);
+    }
     // A `like` cycle: the entry does not compile, and the build reports it; any stable text will do.
-    if (!visiting_.insert(e.name).second) {
+    if (!visiting_.insert(&e).second) {
       cycle_.hash = "cycle:" + e.name;
       return cycle_;
     }
@@ -49,9 +54,9 @@ class Hasher {
       out.entries.push_back(ref);
       if (const auto* r = lib_.entry(ref); r && r->name != e.name) in += "\nreference " + of(*r).hash;
     }
-    visiting_.erase(e.name);
+    visiting_.erase(&e);
     out.hash = stamps::fnv_hex(in);
-    return done_[e.name] = std::move(out);
+    return done_[&e] = std::move(out);
   }
 
  private:
@@ -62,8 +67,8 @@ class Hasher {
   const compiler::Library& lib_;
   const std::function<std::string(const std::string&)>& file_hash_;
   const std::string& global_;
-  std::map<std::string, EntryInputs> done_;
-  std::set<std::string> visiting_;
+  std::map<const compiler::LibraryEntry*, EntryInputs> done_;
+  std::set<const compiler::LibraryEntry*> visiting_;
   EntryInputs cycle_;
 };
 
@@ -75,7 +80,7 @@ std::map<std::string, EntryInputs> entry_inputs(const compiler::Library& lib,
   Hasher h(lib, file_hash, global);
   std::map<std::string, EntryInputs> out;
   for (const auto& e : lib.entries())
-    if (lib.entry(e.name) == &e) out[e.name] = h.of(e);
+    if (e.root == 0 && lib.entry(e.name) == &e) out[e.name] = h.of(e);
   return out;
 }
 

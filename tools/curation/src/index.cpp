@@ -19,6 +19,7 @@
 #include "sandpaper/curation/display.hpp"
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/percepts.hpp"
+#include "below.hpp"
 #include "entry_inputs.hpp"
 #include "index_update.hpp"
 #include "index_write.hpp"
@@ -29,11 +30,13 @@ namespace sandpaper::curation {
 
 namespace {
 
-// Whether `path` is an index of this schema, library folder and device: then its rows can be reused.
-bool reusable(const std::filesystem::path& path, const std::string& library_dir, const std::string& device) {
+// Whether `path` is an index of this schema, library folder (over the same roots) and device: then
+// its rows can be reused.
+bool reusable(const std::filesystem::path& path, const std::string& library_dir, const std::string& device,
+              const std::string& below) {
   try {
     const Index idx(path);
-    return idx.meta("library_dir") == library_dir && idx.meta("device") == device;
+    return idx.meta("library_dir") == library_dir && idx.meta("device") == device && idx.meta("below") == below;
   } catch (const std::exception&) {
     return false;
   }
@@ -49,7 +52,8 @@ std::map<std::string, std::string> input_hashes_in(sqlite3* db) {
 // "<index>.tmp-PID" files of runs that died (kill -9 runs no clean-up): the newest one that is an
 // index of this library is returned, to resume from; the others are removed. A running build's
 // file is left alone.
-std::filesystem::path stale_temporaries(const std::filesystem::path& index, const std::string& library_dir, const std::string& device) {
+std::filesystem::path stale_temporaries(const std::filesystem::path& index, const std::string& library_dir, const std::string& device,
+                                        const std::string& below) {
   std::error_code ec;
   const auto parent = index.parent_path().empty() ? std::filesystem::path(".") : index.parent_path();
   const std::string prefix = index.filename().string() + ".tmp-";
@@ -77,7 +81,7 @@ std::filesystem::path stale_temporaries(const std::filesystem::path& index, cons
       } catch (const std::exception&) {
       }
     }
-    if (ok && reusable(d, library_dir, device)) {
+    if (ok && reusable(d, library_dir, device, below)) {
       resume = d;
       continue;
     }
@@ -111,7 +115,8 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
   const auto start = stamps::now_ns();
   // A few entries changed, and no build was cut off: update the index in place.
   std::error_code exists_ec;
-  if (!options.full && !temporaries_beside(r.path) && std::filesystem::is_regular_file(r.path, exists_ec)) {
+  // (A root of a layered path is small beside the roots under it, and is rebuilt in batches.)
+  if (!options.full && options.below.empty() && !temporaries_beside(r.path) && std::filesystem::is_regular_file(r.path, exists_ec)) {
     try {
       if (auto updated = update_in_place(options, lib_dir, cal_dir, r.path, start, progress)) return *updated;
     } catch (const std::exception& e) {
@@ -119,9 +124,22 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
       return r;
     }
   }
-  const compiler::Compiler c(compiler::CompileOptions{options.device, lib_dir, cal_dir, {}});
+  const bool layered = !options.below.empty();
+  std::vector<std::filesystem::path> library_path{lib_dir};
+  if (layered) library_path.insert(library_path.end(), options.below.begin(), options.below.end());
+  const compiler::Compiler c(compiler::CompileOptions{options.device, lib_dir, cal_dir, library_path});
   const auto& lib = c.library();
-  const DisplayPaths disp(lib_dir);
+  const DisplayPaths disp(lib);
+  const auto below = below_paths(options.below);
+  std::string below_fp;
+  if (layered) {
+    const auto fp = below_fingerprint(options.below, cal_dir);
+    if (!fp) {
+      r.error = "the index of a root below " + lib_dir.string() + " is missing or stale: index the roots of the path from the bottom up";
+      return r;
+    }
+    below_fp = *fp;
+  }
 
   for (const auto& d : lib.scan_diagnostics().all())
     if (d.severity == compiler::Severity::Error) {
@@ -142,12 +160,12 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
   try {
     // What to start from: the rows of a build that was killed (resume), else of the previous
     // index, if either is an index of this library for this device; else nothing (a full build).
-    std::filesystem::path base = options.full ? std::filesystem::path() : stale_temporaries(r.path, lib_abs, options.device);
+    std::filesystem::path base = options.full ? std::filesystem::path() : stale_temporaries(r.path, lib_abs, options.device, below);
     discard();
     if (!base.empty()) {
       r.resumed = true;
       std::filesystem::rename(base, tmp);
-    } else if (!options.full && reusable(r.path, lib_abs, options.device)) {
+    } else if (!options.full && reusable(r.path, lib_abs, options.device, below)) {
       std::filesystem::copy_file(r.path, tmp);
     }
     const bool incremental = std::filesystem::exists(tmp);
@@ -168,7 +186,8 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
       file_hashes[f.path] = f.hash;
       all_files += "\n" + f.path + " " + f.hash;
     }
-    const auto global = global_inputs(file_hashes, options.device);
+    // Over roots below: what they hold is in their fingerprints, so a change there redoes every entry here.
+    const auto global = global_inputs(file_hashes, options.device) + (layered ? "\nbelow\n" + below_fp : std::string());
     const auto inputs = entry_inputs(
         lib,
         [&](const std::string& path) {
@@ -193,11 +212,13 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
       sql::exec(db, "COMMIT");
     }
 
-    progress.set_total(lib.entries().size());
+    progress.set_total(static_cast<std::size_t>(
+        std::count_if(lib.entries().begin(), lib.entries().end(), [](const auto& e) { return e.root == 0; })));
     EntryWriter writer(db, lib, c.calibration(), disp);
     std::size_t in_batch = 0;
     sql::exec(db, "BEGIN");
     for (const auto& e : lib.entries()) {
+      if (e.root != 0) continue;  // indexed with its own root
       if (lib.entry(e.name) != &e) {  // a second file with a taken name: `library check` reports it (E0607)
         progress.step(e.name);
         continue;
@@ -209,7 +230,7 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
         progress.step(e.name);
         continue;
       }
-      auto res = c.compile_file(disp.path_of(e.relative_path));
+      auto res = c.compile_file(disp.path_of(e));
       if (!res.ok()) {
         compiler::Diagnostics errors;
         for (const auto& d : res.diagnostics.all())
@@ -233,7 +254,9 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
       discard();
       return r;
     }
-    const auto meta = index_meta(c, lib_abs, cal_dir, options.device, stamps::fnv_hex(all_files), stamps::fnv_hex(global));
+    auto meta = index_meta(c, lib_abs, cal_dir, options.device, stamps::fnv_hex(all_files), stamps::fnv_hex(global));
+    meta["below"] = below;
+    meta["below_fingerprint"] = below_fp;
     sql::exec(db, "BEGIN");
     write_families_and_meta(db, lib, meta);
     stamps::write(db, tree);

@@ -1,6 +1,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/curation/index.hpp"
+#include "below.hpp"
 #include "sqlite_util.hpp"
 #include "reach.hpp"
 #include "stamps.hpp"
@@ -140,6 +141,12 @@ double Index::texture_class(const std::string& name) const {
   return s.step() ? s.real(0) : -1;
 }
 
+double Index::class_of(const std::string& kind_terms) const {
+  sql::Stmt s(db_, "SELECT id FROM classes WHERE kind_terms = ?");
+  s.bind(1, kind_terms);
+  return s.step() ? static_cast<double>(s.integer64(0)) : -2;
+}
+
 std::vector<IndexedEntry> Index::untextured() const {
   std::vector<IndexedEntry> out;
   sql::Stmt s(db_, std::string("SELECT ") + kEntryColumns + " WHERE e.max_lateral_force_N <= 0");
@@ -209,8 +216,8 @@ std::vector<std::pair<std::string, double>> Index::full_text(const std::string& 
   return out;
 }
 
-IndexState index_state(const std::filesystem::path& index_path, const std::filesystem::path& library_dir,
-                       const std::filesystem::path& calibration_dir) {
+IndexState root_index_state(const std::filesystem::path& index_path, const std::filesystem::path& library_dir,
+                            const std::filesystem::path& calibration_dir) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(index_path, ec)) return IndexState::Missing;
   try {

@@ -58,7 +58,7 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
   };
   try {
     if (meta("schema_version") != std::to_string(kIndexSchemaVersion) || meta("library_dir") != lib_abs ||
-        meta("device") != options.device)
+        meta("device") != options.device || !meta("below").empty())  // a root of a layered path: index.cpp
       return std::nullopt;
   } catch (const sql::Error&) {
     return std::nullopt;  // not an index

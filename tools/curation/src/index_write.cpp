@@ -91,8 +91,8 @@ EntryWriter::EntryWriter(sqlite3* db, const compiler::Library& lib, const calibr
         dep_(db, "INSERT INTO depends VALUES (?, ?, ?)") {
     // Entries by the file name the compiler gave them, to find the statement behind each provenance row.
     for (const auto& e : lib.entries()) {
-      by_file_["library/" + e.relative_path] = &e;
-      by_file_[disp.path_of(e.relative_path)] = &e;
+      by_file_[lib.source_name(e)] = &e;
+      by_file_[disp.path_of(e)] = &e;
     }
 }
 
@@ -185,6 +185,7 @@ std::map<std::string, std::string> index_meta(const compiler::Compiler& c, const
       {"fingerprint", fingerprint},
       {"global_inputs", global},
       {"library_name", lib.manifest().name},
+      {"library_id", lib.roots().front().id},
       {"library_version", lib.manifest().version},
       {"library_reference", lib.manifest().reference},
       {"library_dir", library_dir_abs},

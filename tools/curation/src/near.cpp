@@ -76,9 +76,15 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
 
 std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit) {
   const auto from = index.entry(name);
-  if (!from || limit == 0) return {};
-  const double weber = std::stod(index.meta("weber_fraction"));
-  const std::size_t total = index.size();
+  if (!from) return {};
+  return nearest_to(index, *from, limit, std::stod(index.meta("weber_fraction")));
+}
+
+std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_entry, std::size_t limit, double weber) {
+  if (limit == 0) return {};
+  const auto* from = &from_entry;
+  // Every entry but `from` itself, when it is one of this index's.
+  const std::size_t total = index.size() + (index.entry(from->name) ? 0 : 1);
   std::set<std::string> seen{from->name};
   std::vector<Neighbour> found;
   auto consider = [&](const std::vector<IndexedEntry>& entries) {
@@ -100,7 +106,7 @@ std::vector<Neighbour> nearest(const Index& index, const std::string& name, std:
     const double f = std::log(from->max_lateral_force_N), step = std::log1p(weber);
     const bool periodic = from->period_m > 0;
     const double p = periodic ? std::log2(from->period_m) : 0.0;
-    const double cls = index.texture_class(from->name);
+    const double cls = index.class_of(from->texture_kind + "|" + from->terms);
     bool untextured_read = false;
     for (double r = 1;; r *= 2) {  // JND steps; small first: a large library is dense
       Index::Box same;  // same kind and terms, same period-ness: force and period within r

@@ -25,6 +25,10 @@ inline constexpr int kIndexSchemaVersion = 5;
 // $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
 std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
 
+// In a layered path every root has its own index, <root>/.index/library.sqlite ($SANDPAPER_LIBRARY_INDEX
+// names one file, so it is not used there).
+std::filesystem::path layer_index_path(const std::filesystem::path& root_dir);
+
 // Hex FNV-1a 64 over the list of every file of the library folder (relative path and FNV-1a 64 of
 // its bytes; hidden files and folders such as .index/ left out) and of the calibration folder,
 // which sets the roughness: the index's `fingerprint`. It detects edits, not tampering.
@@ -37,6 +41,10 @@ struct IndexOptions {
   std::string device = "sim";              // coordinates are compiled on this device
   bool full = false;                       // compile every entry; reuse nothing from a previous build
   std::size_t batch = 256;                 // entries per transaction: a killed build keeps its whole batches
+  // The roots below this one in a layered path (front first). Then the index holds this root's
+  // entries only, compiled over the whole path, and records each lower root's index fingerprint:
+  // their indexes (layer_index_path) must be fresh, and a change below redoes this root's entries.
+  std::vector<std::filesystem::path> below = {};
 };
 
 struct IndexBuildResult {
@@ -64,6 +72,7 @@ struct IndexedEntry {
   std::string texture_kind, period_class, character, terms, physical;
   std::vector<std::pair<std::string, double>> others;  // other percepts
   std::vector<std::pair<std::string, double>> term_params;  // Percepts::term_params
+  std::string root;  // in a layered path, the id of the root it is from (curation/layers.hpp); else ""
 };
 
 struct IndexedStatement {
@@ -106,6 +115,8 @@ class Index {
   };
   std::vector<IndexedEntry> textured_in_box(const Box& box) const;
   double texture_class(const std::string& name) const;  // -1 for an untextured entry
+  // The class of texture kind and program terms "kind|terms" in this index; -2 if no entry has it.
+  double class_of(const std::string& kind_terms) const;
   std::vector<IndexedEntry> untextured() const;
   std::size_t size() const;  // entries
   // The entry's name for a name or alias; nullopt if neither.
@@ -137,5 +148,9 @@ enum class IndexState { Missing, Stale, Fresh };
 // "When the index is stale"); an edit in place elsewhere is seen by the next `library index`.
 IndexState index_state(const std::filesystem::path& index_path, const std::filesystem::path& library_dir,
                        const std::filesystem::path& calibration_dir);
+// The same for one root of a layered path with `below` under it: also stale when it was built over
+// other roots, when a lower root's index is not fresh, or when one changed since (its fingerprint).
+IndexState index_state(const std::filesystem::path& index_path, const std::filesystem::path& library_dir,
+                       const std::filesystem::path& calibration_dir, const std::vector<std::filesystem::path>& below);
 
 }  // namespace sandpaper::curation

@@ -27,5 +27,8 @@ struct Neighbour {
 Neighbour distance_between(const IndexedEntry& from, const IndexedEntry& to, double weber, bool explain = true);
 // The `limit` nearest entries to `name` (a name; resolve aliases first), nearest first, ties by name.
 std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit);
+// The same for an entry that may be another index's (a root in front, in a layered path), with
+// that index's Weber fraction; an entry of this index with from's name is not a neighbour.
+std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from, std::size_t limit, double weber);
 
 }  // namespace sandpaper::curation

@@ -1,0 +1,145 @@
+#include "sandpaper/curation/layers.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include "sandpaper/compiler/diagnostic.hpp"
+
+namespace sandpaper::curation {
+
+namespace {
+
+// The order search() gives within one index, as a key comparable across indexes.
+int category(const SearchHit& h) { return h.why == "name" ? 0 : h.why == "alias" ? 1 : 2; }
+double order(const SearchHit& h) { return h.why == "all" ? h.entry.roughness : h.rank; }
+
+}  // namespace
+
+std::string root_id(const Index& index, const std::filesystem::path& root_dir) {
+  // Indexes built before schema 5's `library_id` row: the folder's name, as the compiler falls back to.
+  auto id = index.meta("library_id");
+  if (id.empty()) id = std::filesystem::absolute(root_dir).lexically_normal().filename().string();
+  return id;
+}
+
+LayeredIndex::LayeredIndex(const std::vector<std::filesystem::path>& roots, const std::vector<std::filesystem::path>& index_paths) {
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    const auto& r = roots[i];
+    Layer l;
+    try {
+      l.index = std::make_unique<Index>(i < index_paths.size() ? index_paths[i] : layer_index_path(r));
+    } catch (const IndexError& e) {
+      throw IndexError("the index of library root " + r.string() + ": " + e.what());
+    }
+    l.id = root_id(*l.index, r);
+    layers_.push_back(std::move(l));
+  }
+}
+
+std::optional<std::pair<std::size_t, std::string>> LayeredIndex::resolve(const std::string& name) const {
+  if (const auto colon = name.find(':'); colon != std::string::npos) {
+    const auto id = name.substr(0, colon);
+    for (std::size_t i = 0; i < layers_.size(); ++i)
+      if (layers_[i].id == id) {
+        if (auto n = layers_[i].index->resolve(name.substr(colon + 1))) return std::make_pair(i, *n);
+        return std::nullopt;
+      }
+    return std::nullopt;
+  }
+  // The first root that has it as a name or an alias (names first within a root), as the
+  // compiler's Library resolves `like NAME`.
+  for (std::size_t i = 0; i < layers_.size(); ++i)
+    if (auto n = layers_[i].index->resolve(name)) return std::make_pair(i, *n);
+  return std::nullopt;
+}
+
+bool LayeredIndex::hidden(std::size_t layer, const std::string& name) const {
+  for (std::size_t i = 0; i < layer && i < layers_.size(); ++i)
+    if (layers_[i].index->resolve(name)) return true;
+  return false;
+}
+
+std::optional<IndexedEntry> LayeredIndex::entry(std::size_t layer, const std::string& name) const {
+  auto e = layers_.at(layer).index->entry(name);
+  if (e) e->root = layers_[layer].id;
+  return e;
+}
+
+std::vector<SearchHit> LayeredIndex::search(const SearchQuery& q) const {
+  if (!q.family.empty()) {
+    std::vector<std::string> all;
+    for (const auto& l : layers_)
+      for (auto& f : l.index->families()) all.push_back(std::move(f));
+    if (std::find(all.begin(), all.end(), q.family) == all.end()) (void)curation::search(*layers_.front().index, q);  // throws, with "did you mean"
+  }
+  std::vector<std::pair<std::size_t, SearchHit>> hits;
+  for (std::size_t i = 0; i < layers_.size(); ++i) {
+    const auto& idx = *layers_[i].index;
+    const auto fams = q.family.empty() ? std::vector<std::string>{} : idx.families();
+    if (!q.family.empty() && std::find(fams.begin(), fams.end(), q.family) == fams.end()) continue;
+    // Hidden entries take places in a root's own ranking: ask for more until `limit` are left.
+    for (auto lq = q;; lq.limit *= 2) {
+      std::vector<SearchHit> kept;
+      const auto got = curation::search(idx, lq);
+      // A hidden entry is still what its alias names if no root in front has that alias.
+      for (const auto& h : got)
+        if (h.why == "alias" ? resolve(h.matched_alias) == std::make_pair(i, h.entry.name) : !hidden(i, h.entry.name))
+          kept.push_back(h);
+      if (kept.size() >= q.limit || got.size() < lq.limit) {
+        for (auto& h : kept) {
+          h.entry.root = layers_[i].id;
+          hits.emplace_back(i, std::move(h));
+        }
+        break;
+      }
+    }
+  }
+  std::stable_sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
+    const int ca = category(a.second), cb = category(b.second);
+    if (ca != cb) return ca < cb;
+    if (order(a.second) != order(b.second)) return order(a.second) < order(b.second);
+    return a.first < b.first;
+  });
+  std::vector<SearchHit> out;
+  for (auto& [layer, h] : hits)
+    if (out.size() < q.limit) out.push_back(std::move(h));
+  return out;
+}
+
+std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::string& name, std::size_t limit) const {
+  const auto from = entry(layer, name);
+  if (!from) return {};
+  const double weber = std::stod(layers_.at(layer).index->meta("weber_fraction"));
+  std::vector<Neighbour> found;
+  for (std::size_t i = 0; i < layers_.size(); ++i)
+    for (std::size_t lim = limit;; lim *= 2) {
+      std::vector<Neighbour> kept;
+      const auto got = nearest_to(*layers_[i].index, *from, lim, weber);
+      for (const auto& n : got)
+        if (!hidden(i, n.entry.name) && n.entry.name != from->name) kept.push_back(n);
+      if (kept.size() >= limit || got.size() < lim) {
+        for (auto& n : kept) {
+          n.entry.root = layers_[i].id;
+          found.push_back(std::move(n));
+        }
+        break;
+      }
+    }
+  std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.entry.name < b.entry.name;
+  });
+  if (found.size() > limit) found.resize(limit);
+  return found;
+}
+
+std::vector<std::string> LayeredIndex::names_and_aliases() const {
+  std::vector<std::string> out;
+  for (const auto& l : layers_)
+    for (const auto& n : l.index->names_and_aliases()) {
+      out.push_back(n);
+      out.push_back(l.id + ":" + n);
+    }
+  return out;
+}
+
+}  // namespace sandpaper::curation
