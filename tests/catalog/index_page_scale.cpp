@@ -119,9 +119,8 @@ int main(int argc, char** argv) {
         ++drawn;
       }
     // As tools/catalog/src/catalog.cpp writes the index.
-    const auto data = sandpaper::catalog::index_data(manifest, rows);
-    write_text(out / "index.html", sandpaper::catalog::index_page_html(data));
-    write_text(out / sandpaper::catalog::kIndexDataFile, sandpaper::catalog::index_data_script(data));
+    write_text(out / "index.html", sandpaper::catalog::index_page_html(manifest, rows));
+    write_text(out / sandpaper::catalog::kIndexDataFile, sandpaper::catalog::index_data_script(manifest, rows));
     for (const auto& a : sandpaper::catalog::assets())
       write_text(out / "assets" / std::string(a.name), std::string(a.text));
   } catch (const std::exception& e) {

@@ -291,9 +291,8 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
                                                 std::to_string(source.entries.size()) + " entries do not compile");
   if (!report.failures.empty()) return report;
 
-  const auto index = index_data(source.manifest, rows);
-  write_text(tmp.path / "index.html", index_page_html(index));
-  write_text(tmp.path / kIndexDataFile, index_data_script(index));
+  write_text(tmp.path / "index.html", index_page_html(source.manifest, rows));
+  write_text(tmp.path / kIndexDataFile, index_data_script(source.manifest, rows));
   write_text(tmp.path / kInputsFile, nlohmann::json{{"settings", settings}, {"entries", after}}.dump(1) + "\n");
   for (const auto& a : assets()) write_text(tmp.path / "assets" / std::string(a.name), std::string(a.text));
   write_text(tmp.path / kCatalogMarker,

