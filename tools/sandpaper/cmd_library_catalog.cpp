@@ -62,7 +62,7 @@ int cmd_library_catalog(const CommonOptions& outer) {
     return kExitBadInput;
   }
   std::cout << "catalog of " << report.entries << " entries -> " << o.output << "/index.html (" << report.rendered << " drawn, "
-            << report.reused << " unchanged)\n";
+            << report.reused << " unchanged" << (report.in_place && report.rendered > 0 ? ", updated in place" : "") << ")\n";
   return kExitOk;
 }
 

@@ -39,6 +39,7 @@ struct CatalogFailure {
 struct CatalogReport {
   int entries = 0;                        // pages written (0 when anything failed)
   int rendered = 0, reused = 0;           // of them: compiled and drawn now, or kept from the previous catalog
+  bool in_place = false;                  // few entries changed: their files replaced in the catalog itself (catalog.cpp)
   std::vector<CatalogFailure> failures;   // entries that did not compile; nothing is written then
 };
 

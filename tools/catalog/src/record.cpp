@@ -1,0 +1,139 @@
+#include "record.hpp"
+
+#include <sqlite3.h>
+
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace sandpaper::catalog {
+
+namespace {
+
+constexpr const char* kSchema =
+    "CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+    "CREATE TABLE IF NOT EXISTS entries(name TEXT PRIMARY KEY, hash TEXT NOT NULL, family TEXT NOT NULL,"
+    " describes TEXT NOT NULL, licence TEXT NOT NULL, deprecated_by TEXT NOT NULL, aliases TEXT NOT NULL,"
+    " roughness REAL, max_lateral_force_N REAL NOT NULL, page TEXT NOT NULL, thumbnail TEXT NOT NULL, files TEXT NOT NULL);";
+
+void check(sqlite3* db, int rc, const char* what) {
+  if (rc != SQLITE_OK && rc != SQLITE_DONE && rc != SQLITE_ROW)
+    throw std::runtime_error(std::string("catalog record: ") + what + ": " + (db ? sqlite3_errmsg(db) : sqlite3_errstr(rc)));
+}
+
+void exec(sqlite3* db, const char* sql) { check(db, sqlite3_exec(db, sql, nullptr, nullptr, nullptr), sql); }
+
+std::string text(sqlite3_stmt* s, int col) {
+  const auto* p = sqlite3_column_text(s, col);
+  return p ? reinterpret_cast<const char*>(p) : "";
+}
+
+struct Stmt {
+  sqlite3_stmt* s = nullptr;
+  Stmt(sqlite3* db, const char* sql) { check(db, sqlite3_prepare_v2(db, sql, -1, &s, nullptr), sql); }
+  ~Stmt() { sqlite3_finalize(s); }
+  Stmt(const Stmt&) = delete;
+  Stmt& operator=(const Stmt&) = delete;
+};
+
+void bind_text(sqlite3_stmt* s, int i, const std::string& v) { sqlite3_bind_text(s, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
+
+}  // namespace
+
+std::optional<std::map<std::string, RecordedEntry>> read_record(const std::filesystem::path& dir, const std::string& settings) {
+  std::error_code ec;
+  const auto file = dir / kRecordFile;
+  if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
+  sqlite3* db = nullptr;
+  // Read-write: opening rolls back a transaction that a killed run left in the journal.
+  if (sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
+    sqlite3_close(db);
+    return std::nullopt;
+  }
+  std::map<std::string, RecordedEntry> out;
+  try {
+    sqlite3_busy_timeout(db, 10'000);
+    {
+      Stmt m(db, "SELECT value FROM meta WHERE key = 'settings'");
+      if (sqlite3_step(m.s) != SQLITE_ROW || text(m.s, 0) != settings) {
+        sqlite3_close(db);
+        return std::nullopt;
+      }
+    }
+    Stmt s(db, "SELECT name, hash, family, describes, licence, deprecated_by, aliases, roughness, max_lateral_force_N, page, "
+               "thumbnail, files FROM entries");
+    while (sqlite3_step(s.s) == SQLITE_ROW) {
+      RecordedEntry e;
+      e.hash = text(s.s, 1);
+      auto& r = e.row;
+      r.name = text(s.s, 0);
+      r.family = text(s.s, 2);
+      r.describes = text(s.s, 3);
+      r.licence = text(s.s, 4);
+      r.deprecated_by = text(s.s, 5);
+      if (const auto a = text(s.s, 6); a != "[]") r.aliases = nlohmann::json::parse(a).get<std::vector<std::string>>();
+      if (sqlite3_column_type(s.s, 7) != SQLITE_NULL) r.roughness = sqlite3_column_double(s.s, 7);
+      r.max_lateral_force_N = sqlite3_column_double(s.s, 8);
+      r.page = text(s.s, 9);
+      r.thumbnail = text(s.s, 10);
+      e.files = nlohmann::json::parse(text(s.s, 11)).get<std::vector<std::string>>();
+      out.emplace(r.name, std::move(e));
+    }
+  } catch (const std::exception&) {
+    sqlite3_close(db);
+    return std::nullopt;  // not a record of this program: draw everything
+  }
+  sqlite3_close(db);
+  return out;
+}
+
+RecordWriter::RecordWriter(const std::filesystem::path& file, const std::string& settings) {
+  if (sqlite3_open_v2(file.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+    const std::string why = sqlite3_errmsg(db_);
+    sqlite3_close(db_);
+    throw std::runtime_error("cannot open " + file.string() + ": " + why);
+  }
+  sqlite3_busy_timeout(db_, 10'000);
+  exec(db_, "PRAGMA journal_mode = DELETE; PRAGMA synchronous = FULL; BEGIN IMMEDIATE");
+  open_ = true;
+  exec(db_, kSchema);
+  Stmt m(db_, "INSERT OR REPLACE INTO meta VALUES ('settings', ?)");
+  bind_text(m.s, 1, settings);
+  check(db_, sqlite3_step(m.s), "settings");
+}
+
+RecordWriter::~RecordWriter() {
+  if (open_) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  sqlite3_close(db_);
+}
+
+void RecordWriter::put(const std::string& name, const RecordedEntry& e) {
+  Stmt s(db_, "INSERT OR REPLACE INTO entries VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  const auto& r = e.row;
+  bind_text(s.s, 1, name);
+  bind_text(s.s, 2, e.hash);
+  bind_text(s.s, 3, r.family);
+  bind_text(s.s, 4, r.describes);
+  bind_text(s.s, 5, r.licence);
+  bind_text(s.s, 6, r.deprecated_by);
+  bind_text(s.s, 7, nlohmann::json(r.aliases).dump());
+  if (r.roughness) sqlite3_bind_double(s.s, 8, *r.roughness);
+  sqlite3_bind_double(s.s, 9, r.max_lateral_force_N);
+  bind_text(s.s, 10, r.page);
+  bind_text(s.s, 11, r.thumbnail);
+  bind_text(s.s, 12, nlohmann::json(e.files).dump());
+  check(db_, sqlite3_step(s.s), "put");
+}
+
+void RecordWriter::erase(const std::string& name) {
+  Stmt s(db_, "DELETE FROM entries WHERE name = ?");
+  bind_text(s.s, 1, name);
+  check(db_, sqlite3_step(s.s), "erase");
+}
+
+void RecordWriter::commit() {
+  exec(db_, "COMMIT");
+  open_ = false;
+}
+
+}  // namespace sandpaper::catalog

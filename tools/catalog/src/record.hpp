@@ -1,0 +1,46 @@
+#pragma once
+// The catalog's record of what it drew (internal to sandpaper_catalog): inputs.sqlite in the
+// catalog folder, one row an entry (its input hash, its index row, its files under entries/) and
+// the picture settings. SQLite rather than one JSON file: at 100,000 entries the JSON was 59 MB
+// to read and write whole, where an update of a few entries changes a few rows in a transaction.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sandpaper/catalog/index_page.hpp"
+
+struct sqlite3;
+
+namespace sandpaper::catalog {
+
+inline constexpr const char* kRecordFile = "inputs.sqlite";
+
+struct RecordedEntry {
+  std::string hash;                // the entry's input hash when drawn (docs/LIBRARY.md, "Incremental builds")
+  IndexRow row;
+  std::vector<std::string> files;  // under entries/
+};
+
+// The record in `dir`, if there is one drawn with `settings` (else nullopt: draw everything).
+std::optional<std::map<std::string, RecordedEntry>> read_record(const std::filesystem::path& dir, const std::string& settings);
+
+// Writes a record: a new file, or the catalog's own in place. Rows go in one transaction, which
+// commit() ends; destroyed before commit(), nothing it wrote is kept.
+class RecordWriter {
+ public:
+  RecordWriter(const std::filesystem::path& file, const std::string& settings);
+  ~RecordWriter();
+  RecordWriter(const RecordWriter&) = delete;
+  RecordWriter& operator=(const RecordWriter&) = delete;
+  void put(const std::string& name, const RecordedEntry& e);
+  void erase(const std::string& name);
+  void commit();
+
+ private:
+  sqlite3* db_ = nullptr;
+  bool open_ = false;
+};
+
+}  // namespace sandpaper::catalog
