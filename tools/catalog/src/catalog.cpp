@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <unordered_set>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -189,14 +190,15 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   curation::Progress progress("catalog", source.entries.size(), options.progress == nullptr,
                               options.progress ? *options.progress : std::cerr, options.progress_is_tty);
   const std::string settings = settings_of(options);
-  const auto recorded = read_record(dir, settings);
-  const std::map<std::string, RecordedEntry> none;
-  const auto& before = recorded ? *recorded : none;
+  auto recorded = read_record(dir, settings);
+  Record none;
+  auto& before = recorded ? *recorded : none;
   // Entries drawn with the same inputs and settings keep their files; the rest are drawn, by one
   // compiler that need only hold them and what they are built on.
   std::vector<bool> kept(source.entries.size(), false);
   std::vector<std::string> to_draw;
-  std::set<std::string> present;
+  std::unordered_set<std::string> present;
+  present.reserve(source.entries.size());
   for (std::size_t i = 0; i < source.entries.size(); ++i) {
     const auto& [name, hash] = source.entries[i];
     present.insert(name);
@@ -213,7 +215,7 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   report.in_place = recorded && fs::is_regular_file(dir / kIndexDataFile) && to_draw.size() + removed.size() <= kInPlaceLimit;
   if (!report.in_place)
     for (std::size_t i = 0; i < source.entries.size(); ++i)
-      if (kept[i] && !keep_files(dir, tmp.path, before.at(source.entries[i].first).files)) {
+      if (kept[i] && !keep_files(dir, tmp.path, before.at(source.entries[i].first).files())) {
         kept[i] = false;
         to_draw.push_back(source.entries[i].first);
       }
@@ -223,7 +225,9 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   for (std::size_t i = 0; i < source.entries.size(); ++i) {
     const auto& [name, hash] = source.entries[i];
     if (kept[i]) {
-      rows.push_back(before.at(name).row);
+      // In place the record keeps its rows; a whole build writes them again from `before`.
+      auto& row = before.at(name).row;
+      rows.push_back(report.in_place ? std::move(row) : row);
       ++report.reused;
       progress.step(name);
       continue;
@@ -282,7 +286,7 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     if (program.max_lateral_force_N > 0) row.roughness = program.roughness;
     row.max_lateral_force_N = program.max_lateral_force_N;
     row.page = "entries/" + e.name + ".html";
-    drawn[e.name] = RecordedEntry{hash, row, files};
+    drawn[e.name] = RecordedEntry{hash, row, nlohmann::json(files).dump()};
     rows.push_back(std::move(row));
     ++report.rendered;
   }
@@ -301,17 +305,18 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     if (!drawn.empty() || !removed.empty()) opened.emplace(dir / kRecordFile, settings);
     std::set<std::string> stale;
     for (const auto& [name, e] : drawn) {
-      for (const auto& f : e.files)
+      const auto files = e.files();
+      for (const auto& f : files)
         if (f != name + ".html") fs::rename(tmp.path / "entries" / f, dir / "entries" / f);
       fs::rename(tmp.path / "entries" / (name + ".html"), dir / "entries" / (name + ".html"));
       if (const auto it = before.find(name); it != before.end())
-        for (const auto& f : it->second.files)
-          if (std::find(e.files.begin(), e.files.end(), f) == e.files.end()) stale.insert(f);
+        for (const auto& f : it->second.files())
+          if (std::find(files.begin(), files.end(), f) == files.end()) stale.insert(f);
       if (!e.hash.empty()) opened->put(name, e);
       else opened->erase(name);
     }
     for (const auto& name : removed) {
-      for (const auto& f : before.at(name).files) stale.insert(f);
+      for (const auto& f : before.at(name).files()) stale.insert(f);
       opened->erase(name);
     }
     // Written only where they differ: with nothing changed, nothing is written.

@@ -40,7 +40,11 @@ void bind_text(sqlite3_stmt* s, int i, const std::string& v) { sqlite3_bind_text
 
 }  // namespace
 
-std::optional<std::map<std::string, RecordedEntry>> read_record(const std::filesystem::path& dir, const std::string& settings) {
+std::vector<std::string> RecordedEntry::files() const {
+  return files_json.empty() ? std::vector<std::string>{} : nlohmann::json::parse(files_json).get<std::vector<std::string>>();
+}
+
+std::optional<Record> read_record(const std::filesystem::path& dir, const std::string& settings) {
   std::error_code ec;
   const auto file = dir / kRecordFile;
   if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
@@ -50,9 +54,13 @@ std::optional<std::map<std::string, RecordedEntry>> read_record(const std::files
     sqlite3_close(db);
     return std::nullopt;
   }
-  std::map<std::string, RecordedEntry> out;
+  Record out;
   try {
     sqlite3_busy_timeout(db, 10'000);
+    {
+      Stmt n(db, "SELECT count(*) FROM entries");
+      if (sqlite3_step(n.s) == SQLITE_ROW) out.reserve(static_cast<std::size_t>(sqlite3_column_int64(n.s, 0)));
+    }
     {
       Stmt m(db, "SELECT value FROM meta WHERE key = 'settings'");
       if (sqlite3_step(m.s) != SQLITE_ROW || text(m.s, 0) != settings) {
@@ -76,8 +84,9 @@ std::optional<std::map<std::string, RecordedEntry>> read_record(const std::files
       r.max_lateral_force_N = sqlite3_column_double(s.s, 8);
       r.page = text(s.s, 9);
       r.thumbnail = text(s.s, 10);
-      e.files = nlohmann::json::parse(text(s.s, 11)).get<std::vector<std::string>>();
-      out.emplace(r.name, std::move(e));
+      e.files_json = text(s.s, 11);
+      auto key = r.name;
+      out.emplace(std::move(key), std::move(e));
     }
   } catch (const std::exception&) {
     sqlite3_close(db);
@@ -121,7 +130,7 @@ void RecordWriter::put(const std::string& name, const RecordedEntry& e) {
   sqlite3_bind_double(s.s, 9, r.max_lateral_force_N);
   bind_text(s.s, 10, r.page);
   bind_text(s.s, 11, r.thumbnail);
-  bind_text(s.s, 12, nlohmann::json(e.files).dump());
+  bind_text(s.s, 12, e.files_json);
   check(db_, sqlite3_step(s.s), "put");
 }
 

@@ -4,7 +4,7 @@
 // the picture settings. SQLite rather than one JSON file: at 100,000 entries the JSON was 59 MB
 // to read and write whole, where an update of a few entries changes a few rows in a transaction.
 #include <filesystem>
-#include <map>
+#include <unordered_map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,13 +18,15 @@ namespace sandpaper::catalog {
 inline constexpr const char* kRecordFile = "inputs.sqlite";
 
 struct RecordedEntry {
-  std::string hash;                // the entry's input hash when drawn (docs/LIBRARY.md, "Incremental builds")
+  std::string hash;        // the entry's input hash when drawn (docs/LIBRARY.md, "Incremental builds")
   IndexRow row;
-  std::vector<std::string> files;  // under entries/
+  std::string files_json;  // its files under entries/, a JSON array: parsed only for the entries a run touches
+  std::vector<std::string> files() const;
 };
+using Record = std::unordered_map<std::string, RecordedEntry>;
 
 // The record in `dir`, if there is one drawn with `settings` (else nullopt: draw everything).
-std::optional<std::map<std::string, RecordedEntry>> read_record(const std::filesystem::path& dir, const std::string& settings);
+std::optional<Record> read_record(const std::filesystem::path& dir, const std::string& settings);
 
 // Writes a record: a new file, or the catalog's own in place. Rows go in one transaction, which
 // commit() ends; destroyed before commit(), nothing it wrote is kept.
