@@ -189,6 +189,36 @@ TEST(LibraryCheck, EntriesOfOneFamilyWithinAForceJndAndOnePeriodClassWarn) {
   EXPECT_TRUE(with_code(check(lib).diagnostics, "W0601").empty());
 }
 
+TEST(LibraryCheck, ADenseFamilyWarnsOncePerEntryNamingItsNearestLookAlike) {
+  // Five more ribbed cloths within one force JND of ribbed-cloth and of each other: 15 pairs, but
+  // one warning an entry (the later of each pair in name order), its nearest partner first.
+  const auto lib = mini_library_copy("check-jnd-dense");
+  const char* roughness[] = {"0.44", "0.45", "0.451", "0.452", "0.453"};
+  for (int k = 0; k < 5; ++k)
+    write(lib / ("textiles/ribbed-twin" + std::to_string(k) + ".hmat"),
+          "material \"ribbed-twin" + std::to_string(k) + "\" {\n  describes \"another ribbed cloth\"\n  family textiles\n"
+          "  licence \"CC0-1.0\"\n  grating period 3 mm hill 60%\n  source by-ear \"a little finer\"\n  roughness " +
+              std::string(roughness[k]) + "\n  source by-ear \"as rough as the ribbed cloth\"\n}\n");
+  const auto r = check(lib);
+  const auto w = with_code(r.diagnostics, "W0601");
+  ASSERT_EQ(w.size(), 5u);  // ribbed-twin0..4 each after ribbed-cloth, or after the twins before them
+  std::size_t with_more = 0;
+  for (const auto* d : w) {
+    EXPECT_LE(d->notes.size(), 4u);
+    with_more += d->message.find(" more entr") != std::string::npos ? 1u : 0u;
+  }
+  EXPECT_GE(with_more, 4u);  // every twin has a look-alike besides its nearest
+  const auto last = std::find_if(w.begin(), w.end(), [](const auto* d) {
+    return d->location.file && d->location.file->name.find("ribbed-twin4.hmat") != std::string::npos;
+  });
+  ASSERT_NE(last, w.end());
+  EXPECT_NE((*last)->message.find("'ribbed-twin4' may feel the same as 'ribbed-twin3'"), std::string::npos) << (*last)->message;
+  EXPECT_NE((*last)->message.find("4 more entries of the family, earlier in name order, are also within one force JND"),
+            std::string::npos)
+      << (*last)->message;
+  EXPECT_EQ((*last)->notes.size(), 4u);  // the nearest and three more
+}
+
 TEST(LibraryCheck, SyntaxErrorsAreReportedWithTheCompilersCodes) {
   const auto lib = mini_library_copy("check-syntax");
   edit(lib / "textiles/fine-rib.hmat", "grating period 1.2 mm", "grating period 1.2");

@@ -442,28 +442,38 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
       if (!(jnd.steps_between(force(order[k]), force(order[m])) < 1.0)) break;
       pairs.emplace_back(std::min(order[k], order[m]), std::max(order[k], order[m]));
     }
-  std::sort(pairs.begin(), pairs.end());
+  // One warning an entry, on the later of a pair in name order, naming its nearest look-alike: a
+  // dense family of 100,000 generated gratings has millions of pairs, and a curator needs each
+  // entry's worst one, not every one (the notes name up to kMaxLookAlikeNotes, then a count).
+  constexpr std::size_t kMaxLookAlikeNotes = 3;
+  std::map<std::size_t, std::vector<std::pair<double, std::size_t>>> alike;  // j -> (|steps|, i)
   for (const auto& [i, j] : pairs) {
-    const auto& a = *entries[i];
+    double steps = 0;
+    if (indistinguishable(percepts.at(entries[i]->name), percepts.at(entries[j]->name), jnd, &steps))
+      alike[j].emplace_back(std::abs(steps), i);
+  }
+  for (auto& [j, partners] : alike) {
+    std::sort(partners.begin(), partners.end());
+    const auto& a = *entries[partners.front().second];
     const auto& b = *entries[j];
-    const auto pa = percepts.find(a.name);
-    const auto pb = percepts.find(b.name);
-    {
-      double steps = 0;
-      if (!indistinguishable(pa->second, pb->second, jnd, &steps)) continue;
-      const auto& A = pa->second;
-      const auto& B = pb->second;
-      auto& d = out.warning(
-          "W0601", ck.entry_loc(b),
-          quoted(b.name) + " may feel the same as " + quoted(a.name) + " (family " + a.family + "): maximum lateral forces " +
-              fmt(B.max_lateral_force_N) + " and " + fmt(A.max_lateral_force_N) + " N are " + fmt(std::abs(steps), 2) +
-              " force JND apart (" + fmt(jnd.weber_fraction * 100) + " %, " + jnd.file + "; Minsky 1995 5.4.2), both " +
-              A.texture_kind + "s of period class " + quoted(A.period_class) + " (" + fmt(A.period_m * 1000) + " and " +
-              fmt(B.period_m * 1000) + " mm; 6.3.6)",
-          "make them differ by at least one force JND (a roughness further apart) or in period class, or deprecate one; "
-          "if both are wanted (the thesis' own stimuli share force levels), this warning can stay");
-      d.notes.push_back({ck.entry_loc(a), quoted(a.name) + " is here"});
-    }
+    const auto& A = percepts.at(a.name);
+    const auto& B = percepts.at(b.name);
+    const double steps = partners.front().first;
+    const std::size_t more = partners.size() - 1;
+    auto& d = out.warning(
+        "W0601", ck.entry_loc(b),
+        quoted(b.name) + " may feel the same as " + quoted(a.name) + " (family " + a.family + "): maximum lateral forces " +
+            fmt(B.max_lateral_force_N) + " and " + fmt(A.max_lateral_force_N) + " N are " + fmt(steps, 2) +
+            " force JND apart (" + fmt(jnd.weber_fraction * 100) + " %, " + jnd.file + "; Minsky 1995 5.4.2), both " +
+            A.texture_kind + "s of period class " + quoted(A.period_class) + " (" + fmt(A.period_m * 1000) + " and " +
+            fmt(B.period_m * 1000) + " mm; 6.3.6)" +
+            (more == 0 ? std::string()
+                       : "; " + std::to_string(more) + " more entr" + (more == 1 ? "y" : "ies") +
+                             " of the family, earlier in name order, " + (more == 1 ? "is" : "are") + " also within one force JND"),
+        "make them differ by at least one force JND (a roughness further apart) or in period class, or deprecate one; "
+        "if both are wanted (the thesis' own stimuli share force levels), this warning can stay");
+    for (std::size_t k = 0; k < partners.size() && k <= kMaxLookAlikeNotes; ++k)
+      d.notes.push_back({ck.entry_loc(*entries[partners[k].second]), quoted(entries[partners[k].second]->name) + " is here"});
   }
 }
 
