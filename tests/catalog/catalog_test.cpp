@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <random>
 #include <sys/stat.h>
 #include <nlohmann/json.hpp>
 
@@ -314,6 +315,60 @@ TEST(CatalogIndex, DataFileKeepsEveryFieldTheIndexShowsAndFiltersBy) {
   // The page finds pages and thumbnails by name; a row that says otherwise cannot be written.
   rows[2].page = "elsewhere/spring.html";
   EXPECT_THROW(catalog::index_data_script(catalog::index_data(manifest, rows)), std::invalid_argument);
+}
+
+TEST(CatalogIndex, PatchingRowsGivesTheSameFilesAsWritingThemWhole) {
+  // The in-place update puts changed rows into the data file's text (patch_index); it must give
+  // exactly what index_data_script and index_page_html give for the whole changed list.
+  compiler::LibraryManifest manifest;
+  manifest.name = "patch \"test\" <lib>";
+  manifest.version = "1.2.3";
+  manifest.families = {{"cloth", "Cloth", "", false}, {"stone", "Stone <hard>", "", false}};
+  std::mt19937 rng(7);
+  auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<unsigned>(n)); };
+  const char* words[] = {"ribbed", "caf\xC3\xA9 <b>", "quote \" and \\ slash", "it's", "\xF0\x9F\x98\x80 grin", "plain"};
+  auto random_row = [&](const std::string& name) {
+    catalog::IndexRow r;
+    r.name = name;
+    const int f = pick(4);
+    r.family = f == 0 ? "" : f == 1 ? "cloth" : f == 2 ? "stone" : "extra";  // "extra": not in the manifest
+    r.describes = std::string(words[pick(6)]) + " " + std::to_string(pick(1000));
+    if (pick(3) == 0) r.aliases = {name + "-a", std::string(words[pick(6)])};
+    if (pick(5) == 0) r.deprecated_by = "e" + std::to_string(pick(300));
+    if (pick(4) != 0) r.roughness = pick(1000) / 997.0;
+    r.page = "entries/" + name + ".html";
+    if (pick(3) != 0) r.thumbnail = "entries/" + name + "-thumb.png";
+    return r;
+  };
+  std::vector<catalog::IndexRow> rows;
+  for (int i = 0; i < 300; ++i) rows.push_back(random_row("e" + std::to_string(i)));
+  rows[5].family = rows[6].family = "extra";  // the extra family keeps members below
+  int patched = 0;
+  for (int round = 0; round < 40; ++round) {
+    const std::string before = catalog::index_data_script(manifest, rows);
+    std::vector<catalog::IndexRow> changed;
+    for (int k = 0; k < 1 + pick(5); ++k) {
+      const int i = 10 + pick(290);
+      auto r = random_row(rows[static_cast<std::size_t>(i)].name);
+      if (r.family == "extra") r.family = "cloth";  // keep the families list as it is
+      rows[static_cast<std::size_t>(i)] = r;
+      changed.push_back(r);
+    }
+    const auto p = catalog::patch_index(before, manifest, changed);
+    ASSERT_TRUE(p.has_value()) << "round " << round;
+    EXPECT_TRUE(p->script == catalog::index_data_script(manifest, rows)) << "round " << round;
+    EXPECT_TRUE(p->page == catalog::index_page_html(manifest, rows)) << "round " << round;
+    ++patched;
+  }
+  EXPECT_EQ(patched, 40);
+  // What it cannot do, it declines (the whole file is written then).
+  const std::string now = catalog::index_data_script(manifest, rows);
+  auto stranger = random_row("not-there");
+  EXPECT_FALSE(catalog::patch_index(now, manifest, {stranger}).has_value());
+  auto moved = rows[5];
+  moved.family = "new-family";
+  EXPECT_FALSE(catalog::patch_index(now, manifest, {moved}).has_value());
+  EXPECT_FALSE(catalog::patch_index("window.x = 1;\n", manifest, {rows[20]}).has_value());
 }
 
 TEST(Catalog, IndexListsEveryEntryWithItsCompiledRoughness) {

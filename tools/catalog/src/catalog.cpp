@@ -143,6 +143,11 @@ bool keep_files(const fs::path& from, const fs::path& to, const std::vector<std:
   return true;
 }
 
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 // Writes `file` whole beside itself, then renames it over, if its text differs: a reader sees the
 // old file or the new one.
 void replace_if_changed(const fs::path& file, const std::string& text) {
@@ -190,44 +195,55 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   curation::Progress progress("catalog", source.entries.size(), options.progress == nullptr,
                               options.progress ? *options.progress : std::cerr, options.progress_is_tty);
   const std::string settings = settings_of(options);
-  auto recorded = read_record(dir, settings);
-  Record none;
-  auto& before = recorded ? *recorded : none;
+  // What was drawn with which inputs: the hashes of every entry; rows and files only where needed.
+  const auto recorded = read_record_hashes(dir, settings);
+  const std::unordered_map<std::string, std::string> no_hashes;
+  const auto& hashes = recorded ? *recorded : no_hashes;
   // Entries drawn with the same inputs and settings keep their files; the rest are drawn, by one
   // compiler that need only hold them and what they are built on.
   std::vector<bool> kept(source.entries.size(), false);
   std::vector<std::string> to_draw;
   std::unordered_set<std::string> present;
   present.reserve(source.entries.size());
+  bool added = false;  // an entry the record does not have
   for (std::size_t i = 0; i < source.entries.size(); ++i) {
     const auto& [name, hash] = source.entries[i];
     present.insert(name);
-    const auto it = before.find(name);
-    kept[i] = !hash.empty() && it != before.end() && it->second.hash == hash;
+    const auto it = hashes.find(name);
+    added = added || it == hashes.end();
+    kept[i] = !hash.empty() && it != hashes.end() && it->second == hash;
     if (!kept[i]) to_draw.push_back(name);
   }
   std::vector<std::string> removed;
-  for (const auto& [name, e] : before)
+  for (const auto& [name, hash] : hashes)
     if (!present.count(name)) removed.push_back(name);
+  std::sort(removed.begin(), removed.end());
   // Few changes: the drawn files replace theirs in the catalog itself, one rename each, rather than
   // a new folder of 3 hard links an entry swapped in (10 s at 100,000 entries); the same bound as
   // the index's in-place update.
   report.in_place = recorded && fs::is_regular_file(dir / kIndexDataFile) && to_draw.size() + removed.size() <= kInPlaceLimit;
+  // In place, the rows and files of the entries drawn or removed; whole, of every entry.
+  Record before;
+  if (recorded) {
+    std::vector<std::string> touched = to_draw;
+    touched.insert(touched.end(), removed.begin(), removed.end());
+    before = read_record(dir, settings, report.in_place ? &touched : nullptr).value_or(Record{});
+  }
   if (!report.in_place)
-    for (std::size_t i = 0; i < source.entries.size(); ++i)
-      if (kept[i] && !keep_files(dir, tmp.path, before.at(source.entries[i].first).files())) {
+    for (std::size_t i = 0; i < source.entries.size(); ++i) {
+      const auto it = kept[i] ? before.find(source.entries[i].first) : before.end();
+      if (kept[i] && (it == before.end() || !keep_files(dir, tmp.path, it->second.files()))) {
         kept[i] = false;
         to_draw.push_back(source.entries[i].first);
       }
+    }
   const compiler::Compiler* drawing = to_draw.empty() ? nullptr : &source.compiler_for(to_draw);
   std::map<std::string, RecordedEntry> drawn;
   std::vector<IndexRow> rows;
   for (std::size_t i = 0; i < source.entries.size(); ++i) {
     const auto& [name, hash] = source.entries[i];
     if (kept[i]) {
-      // In place the record keeps its rows; a whole build writes them again from `before`.
-      auto& row = before.at(name).row;
-      rows.push_back(report.in_place ? std::move(row) : row);
+      if (!report.in_place) rows.push_back(before.at(name).row);  // in place, the data file keeps its row
       ++report.reused;
       progress.step(name);
       continue;
@@ -290,7 +306,7 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     rows.push_back(std::move(row));
     ++report.rendered;
   }
-  progress.finish(report.failures.empty() ? "catalog: " + std::to_string(rows.size()) + " entries compiled and drawn"
+  progress.finish(report.failures.empty() ? "catalog: " + std::to_string(source.entries.size()) + " entries compiled and drawn"
                                           : "catalog: " + std::to_string(report.failures.size()) + " of " +
                                                 std::to_string(source.entries.size()) + " entries do not compile");
   if (!report.failures.empty()) return report;
@@ -319,15 +335,29 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
       for (const auto& f : before.at(name).files()) stale.insert(f);
       opened->erase(name);
     }
-    // Written only where they differ: with nothing changed, nothing is written.
-    replace_if_changed(dir / kIndexDataFile, index_data_script(source.manifest, rows));
-    replace_if_changed(dir / "index.html", index_page_html(source.manifest, rows));
+    // The drawn entries' rows put in the data file at their places (an entry added or removed, or a
+    // family gained or lost: the whole file, from every row of the record). Written only where
+    // they differ: with nothing changed, nothing is written.
+    if (!drawn.empty() || !removed.empty()) {
+      std::optional<PatchedIndex> patched;
+      if (!added && removed.empty()) patched = patch_index(read_text(dir / kIndexDataFile), source.manifest, rows);
+      if (!patched) {
+        auto all = read_record(dir, settings).value_or(Record{});
+        std::vector<IndexRow> every;
+        for (const auto& [name, hash] : source.entries)
+          if (const auto d = drawn.find(name); d != drawn.end()) every.push_back(d->second.row);
+          else if (const auto a = all.find(name); a != all.end()) every.push_back(std::move(a->second.row));
+        patched = PatchedIndex{index_data_script(source.manifest, every), index_page_html(source.manifest, every)};
+      }
+      replace_if_changed(dir / kIndexDataFile, patched->script);
+      replace_if_changed(dir / "index.html", patched->page);
+    }
     for (const auto& a : assets()) replace_if_changed(dir / "assets" / std::string(a.name), std::string(a.text));
     replace_if_changed(dir / kCatalogMarker, marker);
     std::error_code ec;
     for (const auto& f : stale) fs::remove(dir / "entries" / f, ec);
     if (opened) opened->commit();
-    report.entries = static_cast<int>(rows.size());
+    report.entries = static_cast<int>(source.entries.size());
     return report;
   }
   write_text(tmp.path / "index.html", index_page_html(source.manifest, rows));

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <string_view>
+#include <unordered_map>
 #include <sstream>
 #include <stdexcept>
 
@@ -127,6 +129,22 @@ std::string page_html(const std::string& library_name, const std::string& versio
   return o.str();
 }
 
+constexpr std::string_view kScriptHead = "window.sandpaperCatalog = JSON.parse('", kScriptTail = "');\n";
+
+// The data file's text for its JSON.
+std::string js_literal(const std::string& json_text) {
+  std::string out(kScriptHead);
+  out.reserve(json_text.size() + json_text.size() / 16 + 64);
+  for (char c : json_text) {
+    if (c == '<') out += "\\\\u003c";  // \u003c in the JSON, its backslash escaped for the string literal
+    else if (c == '>') out += "\\\\u003e";
+    else if (c == '\\' || c == '\'') out += {'\\', c};
+    else out += c;
+  }
+  out += kScriptTail;
+  return out;
+}
+
 // The data file's text, written straight from the rows: a JSON tree of 100,000 entries took 2 s
 // and 500 MB. The same text as nlohmann's dump(-1, ' ', ensure_ascii) of the object the header
 // describes: keys in sorted order, each string and number as nlohmann writes it.
@@ -181,16 +199,7 @@ std::string data_script(const std::string& library_name, const std::string& vers
   // JavaScript (a third less time to the first rows at 100,000 entries). The JSON is ASCII (\uXXXX
   // escapes), so that the file reads the same whatever encoding the browser assumes for it, and has no
   // < or >, so that it could be put inside a <script> element unchanged.
-  std::string out = "window.sandpaperCatalog = JSON.parse('";
-  out.reserve(j.size() + j.size() / 16 + 64);
-  for (char c : j) {
-    if (c == '<') out += "\\\\u003c";  // \u003c in the JSON, its backslash escaped for the string literal
-    else if (c == '>') out += "\\\\u003e";
-    else if (c == '\\' || c == '\'') out += {'\\', c};
-    else out += c;
-  }
-  out += "');\n";
-  return out;
+  return js_literal(j);
 }
 
 // The rows and families of index_data's JSON.
@@ -241,6 +250,210 @@ std::string index_data_script(const nlohmann::json& data) {
 
 std::string index_data_script(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows) {
   return data_script(manifest.name, manifest.version, families_of(manifest, rows), rows);
+}
+
+namespace {
+
+// Reading the data file's JSON as text: nlohmann's dump(-1) writes no whitespace, so a value's
+// extent is found by scanning it, without building a tree of 100,000 entries (0.6 s).
+struct BadText : std::runtime_error {
+  BadText() : std::runtime_error("not a data file of this format") {}
+};
+
+// The position just past the JSON value that starts at `p`.
+std::size_t skip_value(const std::string& t, std::size_t p) {
+  if (p >= t.size()) throw BadText();
+  const char c = t[p];
+  if (c == '"') {
+    for (++p; p < t.size() && t[p] != '"'; ++p)
+      if (t[p] == '\\') ++p;
+    if (p >= t.size()) throw BadText();
+    return p + 1;
+  }
+  if (c == '[' || c == '{') {
+    const char close = c == '[' ? ']' : '}';
+    ++p;
+    while (p < t.size() && t[p] != close) {
+      if (c == '{') {  // "key":
+        p = skip_value(t, p);
+        if (p >= t.size() || t[p] != ':') throw BadText();
+        ++p;
+      }
+      p = skip_value(t, p);
+      if (p < t.size() && t[p] == ',') ++p;
+      else if (p >= t.size() || t[p] != close) throw BadText();
+    }
+    if (p >= t.size()) throw BadText();
+    return p + 1;
+  }
+  const std::size_t start = p;
+  while (p < t.size() && t[p] != ',' && t[p] != ']' && t[p] != '}') ++p;
+  if (p == start) throw BadText();
+  return p;
+}
+
+// The [begin, end) of every top-level key's value, in one walk over the text.
+std::map<std::string, std::pair<std::size_t, std::size_t>> top_level(const std::string& t) {
+  if (t.empty() || t[0] != '{') throw BadText();
+  std::map<std::string, std::pair<std::size_t, std::size_t>> out;
+  std::size_t p = 1;
+  while (p < t.size() && t[p] != '}') {
+    const std::size_t key_end = skip_value(t, p);
+    if (key_end >= t.size() || t[key_end] != ':' || key_end < p + 2) throw BadText();
+    const std::size_t v = key_end + 1, v_end = skip_value(t, v);
+    out[t.substr(p + 1, key_end - p - 2)] = {v, v_end};
+    p = v_end < t.size() && t[v_end] == ',' ? v_end + 1 : v_end;
+  }
+  return out;
+}
+
+// The elements of the array at [b, e) as [begin, end) pairs.
+std::vector<std::pair<std::size_t, std::size_t>> elements(const std::string& t, std::size_t b, std::size_t e) {
+  if (t[b] != '[') throw BadText();
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t p = b + 1; p < e - 1;) {
+    const std::size_t q = skip_value(t, p);
+    out.emplace_back(p, q);
+    p = q + 1;
+  }
+  return out;
+}
+
+// The members of the object at [b, e): key (unquoted, as the index is written) -> value text.
+std::map<std::string, std::string> members(const std::string& t, std::size_t b, std::size_t e) {
+  if (t[b] != '{') throw BadText();
+  std::map<std::string, std::string> out;
+  for (std::size_t p = b + 1; p < e - 1;) {
+    const std::size_t k = skip_value(t, p);
+    const std::size_t v = skip_value(t, k + 1);
+    out.emplace(t.substr(p + 1, k - p - 2), t.substr(k + 1, v - k - 1));
+    p = v + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<PatchedIndex> patch_index(const std::string& script, const compiler::LibraryManifest& manifest,
+                                        const std::vector<IndexRow>& changed) {
+  using nlohmann::json;
+  if (script.size() < kScriptHead.size() + kScriptTail.size() || script.compare(0, kScriptHead.size(), kScriptHead) != 0 ||
+      script.compare(script.size() - kScriptTail.size(), kScriptTail.size(), kScriptTail) != 0)
+    return std::nullopt;
+  // The string literal's escapes undone: \\ and \' (js_literal writes no other).
+  std::string t;
+  t.reserve(script.size());
+  const std::size_t end = script.size() - kScriptTail.size();
+  for (std::size_t k = kScriptHead.size(); k < end; ++k) {
+    if (script[k] == '\\' && ++k == end) return std::nullopt;
+    t += script[k];
+  }
+  try {
+    const auto top = top_level(t);
+    const auto value_of = [&](const char* key) { return top.at(key); };  // std::out_of_range: not this format
+    const auto [fb, fe] = value_of("families");
+    const json families = json::parse(t.substr(fb, fe - fb));
+    if (families.size() < manifest.families.size()) return std::nullopt;
+    std::map<std::string, int> family_index;
+    for (std::size_t f = 0; f < families.size(); ++f) {
+      if (f < manifest.families.size() &&
+          (families[f].at("id") != manifest.families[f].id || families[f].at("title") != manifest.families[f].title))
+        return std::nullopt;
+      family_index.emplace(families[f].at("id").get<std::string>(), static_cast<int>(f));
+    }
+    if (const auto [ob, oe] = value_of("format"); t.compare(ob, oe - ob, "1") != 0) return std::nullopt;
+    const auto [nb, ne] = value_of("name");
+    const auto [cb, ce] = value_of("family");
+    const auto [rb, re] = value_of("roughness");
+    const auto [db, de] = value_of("describes");
+    const auto [ab, ae] = value_of("aliases");
+    const auto [xb, xe] = value_of("deprecated_by");
+    const auto [tb, te] = value_of("no_thumbnail");
+    const auto names = elements(t, nb, ne);
+    auto family = elements(t, cb, ce);
+    const auto roughness = elements(t, rb, re), describes = elements(t, db, de);
+    if (family.size() != names.size() || roughness.size() != names.size() || describes.size() != names.size()) return std::nullopt;
+    std::unordered_map<std::string, std::size_t> at;
+    at.reserve(names.size());
+    for (std::size_t i = 0; i < names.size(); ++i) at.emplace(t.substr(names[i].first, names[i].second - names[i].first), i);
+    auto aliases = members(t, ab, ae), deprecated = members(t, xb, xe);
+    std::set<std::size_t> thumbless;
+    for (const auto& [b, e] : elements(t, tb, te)) thumbless.insert(std::stoul(t.substr(b, e - b)));
+
+    std::map<std::size_t, std::pair<std::size_t, std::string>> edits;  // begin -> (end, new text)
+    std::map<std::size_t, int> new_family;
+    for (const auto& r : changed) {
+      const auto it = at.find(json_string(r.name));  // names as the file has them: JSON strings
+      if (it == at.end() || r.page != "entries/" + r.name + ".html") return std::nullopt;
+      if (!r.thumbnail.empty() && r.thumbnail != "entries/" + r.name + "-thumb.png") return std::nullopt;
+      const std::size_t i = it->second;
+      const std::string key = std::to_string(i);
+      int f = -1;
+      if (!r.family.empty()) {
+        const auto fi = family_index.find(r.family);
+        if (fi == family_index.end()) return std::nullopt;  // a family the list lacks: the whole file is written
+        f = fi->second;
+      }
+      new_family[i] = f;
+      edits[family[i].first] = {family[i].second, std::to_string(f)};
+      std::string rough = "null";
+      if (r.roughness) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.6g", *r.roughness);
+        rough = json(std::strtod(buf, nullptr)).dump();
+      }
+      edits[roughness[i].first] = {roughness[i].second, rough};
+      edits[describes[i].first] = {describes[i].second, json_string(r.describes)};
+      if (r.aliases.empty()) aliases.erase(key);
+      else aliases[key] = json(r.aliases).dump(-1, ' ', true);
+      if (r.deprecated_by.empty()) deprecated.erase(key);
+      else deprecated[key] = json_string(r.deprecated_by);
+      if (r.thumbnail.empty()) thumbless.insert(i);
+      else thumbless.erase(i);
+    }
+    auto object = [](const std::map<std::string, std::string>& m) {
+      std::string o = "{";
+      for (const auto& [k, v] : m) o += (o.size() > 1 ? ",\"" : "\"") + k + "\":" + v;
+      return o + "}";
+    };
+    std::string thumbs = "[";
+    for (const auto i : thumbless) thumbs += (thumbs.size() > 1 ? "," : "") + std::to_string(i);
+    thumbs += "]";
+    edits[ab] = {ae, object(aliases)};
+    edits[xb] = {xe, object(deprecated)};
+    edits[tb] = {te, thumbs};
+    std::string out;
+    out.reserve(t.size() + 4096);
+    std::size_t p = 0;
+    for (const auto& [b, e_text] : edits) {
+      out.append(t, p, b - p);
+      out += e_text.second;
+      p = e_text.first;
+    }
+    out.append(t, p, std::string::npos);
+
+    // The page's family counts; a family only entries named that now has none: the whole file is written.
+    std::vector<FamilyCount> counts;
+    for (const auto& f : families) counts.push_back({f.at("id").get<std::string>(), f.at("title").get<std::string>(), "", 0});
+    bool unfiled = false;
+    for (std::size_t i = 0; i < family.size(); ++i) {
+      const auto nf = new_family.find(i);
+      const int v = nf != new_family.end() ? nf->second : std::stoi(t.substr(family[i].first, family[i].second - family[i].first));
+      if (v < 0) unfiled = true;
+      else if (static_cast<std::size_t>(v) < counts.size()) ++counts[static_cast<std::size_t>(v)].count;
+      else return std::nullopt;
+    }
+    for (std::size_t f = manifest.families.size(); f < counts.size(); ++f)
+      if (counts[f].count == 0) return std::nullopt;
+    const auto [lb, le] = value_of("library");
+    const json library = json::parse(t.substr(lb, le - lb));
+    PatchedIndex result;
+    result.script = js_literal(out);
+    result.page = page_html(library.at("name").get<std::string>(), library.at("version").get<std::string>(), counts, names.size(), unfiled);
+    return result;
+  } catch (const std::exception&) {
+    return std::nullopt;  // not a data file of this format
+  }
 }
 
 }  // namespace sandpaper::catalog

@@ -44,55 +44,105 @@ std::vector<std::string> RecordedEntry::files() const {
   return files_json.empty() ? std::vector<std::string>{} : nlohmann::json::parse(files_json).get<std::vector<std::string>>();
 }
 
-std::optional<Record> read_record(const std::filesystem::path& dir, const std::string& settings) {
+namespace {
+
+// Opens the record in `dir` if it was drawn with `settings`; nullptr otherwise. Read-write: opening
+// rolls back a transaction that a killed run left in the journal.
+sqlite3* open_record(const std::filesystem::path& dir, const std::string& settings) {
   std::error_code ec;
   const auto file = dir / kRecordFile;
-  if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
+  if (!std::filesystem::is_regular_file(file, ec)) return nullptr;
   sqlite3* db = nullptr;
-  // Read-write: opening rolls back a transaction that a killed run left in the journal.
   if (sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
     sqlite3_close(db);
-    return std::nullopt;
+    return nullptr;
   }
-  Record out;
   try {
     sqlite3_busy_timeout(db, 10'000);
+    Stmt m(db, "SELECT value FROM meta WHERE key = 'settings'");
+    if (sqlite3_step(m.s) == SQLITE_ROW && text(m.s, 0) == settings) return db;
+  } catch (const std::exception&) {
+  }
+  sqlite3_close(db);
+  return nullptr;
+}
+
+struct Closer {
+  sqlite3* db;
+  ~Closer() { sqlite3_close(db); }
+};
+
+RecordedEntry entry_of(sqlite3_stmt* s) {
+  RecordedEntry e;
+  e.hash = text(s, 1);
+  auto& r = e.row;
+  r.name = text(s, 0);
+  r.family = text(s, 2);
+  r.describes = text(s, 3);
+  r.licence = text(s, 4);
+  r.deprecated_by = text(s, 5);
+  if (const auto a = text(s, 6); a != "[]") r.aliases = nlohmann::json::parse(a).get<std::vector<std::string>>();
+  if (sqlite3_column_type(s, 7) != SQLITE_NULL) r.roughness = sqlite3_column_double(s, 7);
+  r.max_lateral_force_N = sqlite3_column_double(s, 8);
+  r.page = text(s, 9);
+  r.thumbnail = text(s, 10);
+  e.files_json = text(s, 11);
+  return e;
+}
+
+constexpr const char* kColumns =
+    "SELECT name, hash, family, describes, licence, deprecated_by, aliases, roughness, max_lateral_force_N, page, thumbnail, files "
+    "FROM entries";
+
+}  // namespace
+
+std::optional<Record> read_record(const std::filesystem::path& dir, const std::string& settings, const std::vector<std::string>* only) {
+  sqlite3* db = open_record(dir, settings);
+  if (!db) return std::nullopt;
+  Closer closer{db};
+  Record out;
+  try {
+    if (only) {
+      Stmt s(db, (std::string(kColumns) + " WHERE name = ?").c_str());
+      for (const auto& name : *only) {
+        bind_text(s.s, 1, name);
+        if (sqlite3_step(s.s) == SQLITE_ROW) out.emplace(name, entry_of(s.s));
+        sqlite3_reset(s.s);
+      }
+      return out;
+    }
     {
       Stmt n(db, "SELECT count(*) FROM entries");
       if (sqlite3_step(n.s) == SQLITE_ROW) out.reserve(static_cast<std::size_t>(sqlite3_column_int64(n.s, 0)));
     }
-    {
-      Stmt m(db, "SELECT value FROM meta WHERE key = 'settings'");
-      if (sqlite3_step(m.s) != SQLITE_ROW || text(m.s, 0) != settings) {
-        sqlite3_close(db);
-        return std::nullopt;
-      }
-    }
-    Stmt s(db, "SELECT name, hash, family, describes, licence, deprecated_by, aliases, roughness, max_lateral_force_N, page, "
-               "thumbnail, files FROM entries");
+    Stmt s(db, kColumns);
     while (sqlite3_step(s.s) == SQLITE_ROW) {
-      RecordedEntry e;
-      e.hash = text(s.s, 1);
-      auto& r = e.row;
-      r.name = text(s.s, 0);
-      r.family = text(s.s, 2);
-      r.describes = text(s.s, 3);
-      r.licence = text(s.s, 4);
-      r.deprecated_by = text(s.s, 5);
-      if (const auto a = text(s.s, 6); a != "[]") r.aliases = nlohmann::json::parse(a).get<std::vector<std::string>>();
-      if (sqlite3_column_type(s.s, 7) != SQLITE_NULL) r.roughness = sqlite3_column_double(s.s, 7);
-      r.max_lateral_force_N = sqlite3_column_double(s.s, 8);
-      r.page = text(s.s, 9);
-      r.thumbnail = text(s.s, 10);
-      e.files_json = text(s.s, 11);
-      auto key = r.name;
+      auto e = entry_of(s.s);
+      auto key = e.row.name;
       out.emplace(std::move(key), std::move(e));
     }
   } catch (const std::exception&) {
-    sqlite3_close(db);
     return std::nullopt;  // not a record of this program: draw everything
   }
-  sqlite3_close(db);
+  return out;
+}
+
+std::optional<std::unordered_map<std::string, std::string>> read_record_hashes(const std::filesystem::path& dir,
+                                                                               const std::string& settings) {
+  sqlite3* db = open_record(dir, settings);
+  if (!db) return std::nullopt;
+  Closer closer{db};
+  std::unordered_map<std::string, std::string> out;
+  try {
+    {
+      Stmt n(db, "SELECT count(*) FROM entries");
+      if (sqlite3_step(n.s) == SQLITE_ROW) out.reserve(static_cast<std::size_t>(sqlite3_column_int64(n.s, 0)));
+    }
+    Stmt s(db, "SELECT name, hash FROM entries");
+    while (sqlite3_step(s.s) == SQLITE_ROW) out.emplace(text(s.s, 0), text(s.s, 1));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
   return out;
 }
 

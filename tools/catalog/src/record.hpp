@@ -26,7 +26,12 @@ struct RecordedEntry {
 using Record = std::unordered_map<std::string, RecordedEntry>;
 
 // The record in `dir`, if there is one drawn with `settings` (else nullopt: draw everything).
-std::optional<Record> read_record(const std::filesystem::path& dir, const std::string& settings);
+// `only`: just these entries (those absent are left out); nullptr: every entry.
+std::optional<Record> read_record(const std::filesystem::path& dir, const std::string& settings,
+                                  const std::vector<std::string>* only = nullptr);
+// Just each entry's input hash: what a run compares to decide what to draw.
+std::optional<std::unordered_map<std::string, std::string>> read_record_hashes(const std::filesystem::path& dir,
+                                                                               const std::string& settings);
 
 // Writes a record: a new file, or the catalog's own in place. Rows go in one transaction, which
 // commit() ends; destroyed before commit(), nothing it wrote is kept.
