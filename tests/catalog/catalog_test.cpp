@@ -369,6 +369,9 @@ TEST(CatalogIndex, PatchingRowsGivesTheSameFilesAsWritingThemWhole) {
   moved.family = "new-family";
   EXPECT_FALSE(catalog::patch_index(now, manifest, {moved}).has_value());
   EXPECT_FALSE(catalog::patch_index("window.x = 1;\n", manifest, {rows[20]}).has_value());
+  // A data file edited into a deep nest is declined, not followed down the stack.
+  const std::string deep = "window.sandpaperCatalog = JSON.parse('{\"aliases\":" + std::string(1000000, '[') + "');\n";
+  EXPECT_FALSE(catalog::patch_index(deep, manifest, {rows[20]}).has_value());
 }
 
 TEST(Catalog, IndexListsEveryEntryWithItsCompiledRoughness) {

@@ -260,9 +260,10 @@ struct BadText : std::runtime_error {
   BadText() : std::runtime_error("not a data file of this format") {}
 };
 
-// The position just past the JSON value that starts at `p`.
-std::size_t skip_value(const std::string& t, std::size_t p) {
-  if (p >= t.size()) throw BadText();
+// The position just past the JSON value that starts at `p`. The format nests three deep; a file
+// nested deeper is not one (and would otherwise take the stack).
+std::size_t skip_value(const std::string& t, std::size_t p, int depth = 0) {
+  if (p >= t.size() || depth > 8) throw BadText();
   const char c = t[p];
   if (c == '"') {
     for (++p; p < t.size() && t[p] != '"'; ++p)
@@ -275,11 +276,11 @@ std::size_t skip_value(const std::string& t, std::size_t p) {
     ++p;
     while (p < t.size() && t[p] != close) {
       if (c == '{') {  // "key":
-        p = skip_value(t, p);
+        p = skip_value(t, p, depth + 1);
         if (p >= t.size() || t[p] != ':') throw BadText();
         ++p;
       }
-      p = skip_value(t, p);
+      p = skip_value(t, p, depth + 1);
       if (p < t.size() && t[p] == ',') ++p;
       else if (p >= t.size() || t[p] != close) throw BadText();
     }
