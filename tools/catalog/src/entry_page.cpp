@@ -242,14 +242,18 @@ std::vector<compiler::SourceNote> notes_for(const compiler::Library& library, co
       if (fs::equivalent(cand, file, ec)) return true;
     return false;
   };
-  for (const auto& e : library.entries()) {
-    if (!same(e.file)) continue;
+  auto notes_of = [&](const compiler::LibraryEntry& e) {
     // The statement the location falls in: the last one starting on or before its line.
     const compiler::Statement* hit = nullptr;
     for (const auto& st : e.syntax.statements)
       if (st.location.line <= line && (!hit || st.location.line >= hit->location.line)) hit = &st;
     return hit ? hit->sources : std::vector<compiler::SourceNote>{};
-  }
+  };
+  // An entry's file is named after it: look there first. Trying every entry (a few stats each)
+  // for every provenance row of every page made a catalog of N entries take N^2 stats.
+  if (const auto* e = library.entry(named.stem().string()); e && same(e->file)) return notes_of(*e);
+  for (const auto& e : library.entries())
+    if (same(e.file)) return notes_of(e);
   return {};
 }
 
