@@ -468,6 +468,11 @@ TEST(Catalog, ARebuildDrawsOnlyWhatChangedAndKeepsEveryOtherFileByteIdentical) {
   EXPECT_EQ(r.rendered, 0);
   EXPECT_EQ(r.reused, 4);
   EXPECT_TRUE(files_of(out) == first) << "a run with nothing changed rewrote a file";
+  // A data file emptied by hand is written again, even with nothing to draw.
+  std::ofstream(out / catalog::kIndexDataFile, std::ios::trunc).close();
+  r = run();
+  EXPECT_EQ(r.rendered, 0);
+  EXPECT_TRUE(files_of(out) == first) << "the emptied data file was not written again";
   // One entry changed, that nothing is built on: its page and pictures, its index row, nothing else.
   {
     std::string text = read(lib / "ref.hmat");

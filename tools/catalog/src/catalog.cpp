@@ -335,10 +335,10 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
       for (const auto& f : before.at(name).files()) stale.insert(f);
       opened->erase(name);
     }
-    // The drawn entries' rows put in the data file at their places (an entry added or removed, or a
-    // family gained or lost: the whole file, from every row of the record). Written only where
-    // they differ: with nothing changed, nothing is written.
-    if (!drawn.empty() || !removed.empty()) {
+    // The drawn entries' rows put in the data file at their places (an entry added or removed, a
+    // family gained or lost, or a data file that is not one: the whole file, from every row of the
+    // record). Written only where they differ: with nothing changed, nothing is written.
+    {
       std::optional<PatchedIndex> patched;
       if (!added && removed.empty()) patched = patch_index(read_text(dir / kIndexDataFile), source.manifest, rows);
       if (!patched) {
