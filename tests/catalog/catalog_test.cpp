@@ -436,6 +436,9 @@ TEST(Catalog, EntryPageShowsDeprecationLayersAndSourceNotes) {
   const auto notes = catalog::notes_for(c.library(), "library rib (" + c.library().entry("rib")->file.string() + ":8:3)");
   ASSERT_EQ(notes.size(), 2u);
   EXPECT_EQ(notes[0].kind, compiler::SourceKind::Derived);
+  // And by the name the compiler gives an inherited number's file ("library/" and the path in the
+  // library's folder), whatever the folder is called (here library-small).
+  EXPECT_EQ(catalog::notes_for(c.library(), "library rib (library/cloth/rib.hmat:8:3)").size(), 2u);
   fs::remove_all(out.parent_path());
 }
 

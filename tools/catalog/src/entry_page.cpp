@@ -236,9 +236,14 @@ std::vector<compiler::SourceNote> notes_for(const compiler::Library& library, co
   namespace fs = std::filesystem;
   const fs::path named = m[1].str();
   const int line = std::stoi(m[2].str());
+  // The compiler names a library file "library/<path in its root>" ("library/<id>/..." when
+  // layered): source_file() gives the root and the path; a name as given on a command line is a path.
+  std::vector<fs::path> candidates{named, library.directory() / named, library.directory().parent_path() / named};
+  const auto in_root = library.source_file(named.generic_string());
+  if (in_root) candidates.insert(candidates.begin(), in_root->first / in_root->second);
   auto same = [&](const fs::path& file) {
     std::error_code ec;
-    for (const fs::path& cand : {named, library.directory() / named, library.directory().parent_path() / named})
+    for (const auto& cand : candidates)
       if (fs::equivalent(cand, file, ec)) return true;
     return false;
   };
@@ -252,6 +257,7 @@ std::vector<compiler::SourceNote> notes_for(const compiler::Library& library, co
   // An entry's file is named after it: look there first. Trying every entry (a few stats each)
   // for every provenance row of every page made a catalog of N entries take N^2 stats.
   if (const auto* e = library.entry(named.stem().string()); e && same(e->file)) return notes_of(*e);
+  if (!in_root) return {};  // not a library file: no entry has it
   for (const auto& e : library.entries())
     if (same(e.file)) return notes_of(e);
   return {};
