@@ -14,7 +14,7 @@ set_target_properties(sandpaper_calibration PROPERTIES EXPORT_NAME calibration)
 set_target_properties(sandpaper_compiler PROPERTIES EXPORT_NAME compiler)
 set_target_properties(sandpaper_runtime PROPERTIES EXPORT_NAME runtime)
 set_target_properties(sandpaper_usb PROPERTIES EXPORT_NAME usb)
-install(TARGETS sandpaper_api sandpaper_compiler sandpaper_data_dirs_installed sandpaper_calibration
+install(TARGETS sandpaper_api sandpaper_compiler sandpaper_image_io sandpaper_data_dirs_installed sandpaper_calibration
                 sandpaper_runtime sandpaper_usb sandpaper_schema
   EXPORT SandpaperTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

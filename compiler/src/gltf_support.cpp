@@ -1,12 +1,12 @@
 #include "gltf_support.hpp"
 
+#include "sandpaper/compiler/image_io.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstring>
 #include <stdexcept>
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <zlib.h>
 
 namespace sandpaper::compiler::gltf {
@@ -14,11 +14,6 @@ namespace {
 
 constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-
-std::string first_line(const std::string& log) {
-  const auto end = log.find('\n');
-  return end == std::string::npos ? log : log.substr(0, end);
-}
 
 }  // namespace
 
@@ -71,14 +66,8 @@ std::optional<std::vector<unsigned char>> base64_decode(std::string_view text) {
 
 std::vector<unsigned char> encode_png16(int nx, int ny, const std::vector<std::uint16_t>& texels) {
   std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput proxy(bytes);
-  auto out = OIIO::ImageOutput::create("png");
-  if (!out) throw std::runtime_error("OpenImageIO cannot write PNG: " + first_line(OIIO::geterror()));
-  OIIO::ImageSpec spec(nx, ny, 1, OIIO::TypeDesc::UINT16);
-  spec.channelnames = {"Y"};
-  if (!out->set_ioproxy(&proxy) || !out->open("haptic.png", spec) ||
-      !out->write_image(OIIO::TypeDesc::UINT16, texels.data()) || !out->close())
-    throw std::runtime_error("OpenImageIO failed to write a 16-bit PNG: " + first_line(out->geterror()));
+  std::string why;
+  if (!image_io::api().encode_png16(nx, ny, texels.data(), bytes, why)) throw std::runtime_error(why);
   return bytes;
 }
 

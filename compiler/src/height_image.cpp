@@ -10,12 +10,10 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
-
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/imageio.h>
+#include <utility>
 
 #include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/compiler/image_io.hpp"
 #include "sandpaper/schema/array_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 
@@ -103,71 +101,87 @@ bool read_depth_file(const HeightImageRequest& r, RawImage& raw, HeightImageErro
   return true;
 }
 
+// A picture opened through the image table, closed when it goes.
+class OpenPicture {
+ public:
+  OpenPicture() = default;
+  explicit OpenPicture(void* p) : p_(p) {}
+  OpenPicture(OpenPicture&& o) noexcept : p_(std::exchange(o.p_, nullptr)) {}
+  OpenPicture& operator=(OpenPicture&&) = delete;
+  ~OpenPicture() {
+    if (p_) image_io::api().close(p_);
+  }
+  explicit operator bool() const { return p_ != nullptr; }
+  void* get() const { return p_; }
+
+ private:
+  void* p_ = nullptr;
+};
+
 // Opens the picture and reads its header: nothing is allocated for pixels yet.
-std::unique_ptr<OIIO::ImageInput> open_picture(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
+OpenPicture open_picture(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
   // A device or FIFO (/dev/zero, a pipe) would make a format probe read forever or block.
   std::error_code ec;
   const auto status = std::filesystem::status(r.path, ec);
   if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
     fail(e, "E0401", "cannot read image '" + r.shown_path + "': not a regular file (a device, FIFO or directory)",
          "give an image file on disk");
-    return nullptr;
+    return {};
   }
   if (!ec && std::filesystem::exists(status) && std::filesystem::file_size(r.path, ec) > schema::limits::kMaxImageFileBytes) {
     fail(e, "E0401",
          "image '" + r.shown_path + "' is larger than the limit of " +
              std::to_string(schema::limits::kMaxImageFileBytes >> 20) + " MiB for a height-map file",
          "scale the image down, or crop it, before using it");
-    return nullptr;
+    return {};
   }
   // Heights are the values as stored: no premultiplying by alpha (PNG, TIFF and others would).
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(r.path, &config);
+  image_io::PictureHeader spec;
+  std::string why;
+  OpenPicture in(image_io::api().open(r.path, spec, why));
   if (!in) {
-    std::string why = first_line(OIIO::geterror());
+    why = first_line(why);
     fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + (why.empty() ? "unreadable" : why),
          "check the path (relative to the material file's folder) and that the file is an image");
-    return nullptr;
+    return {};
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  if (!check_dimensions(r, spec.width, spec.height, "px", e)) return nullptr;
-  if (spec.nchannels < 1) {
+  if (!check_dimensions(r, spec.width, spec.height, "px", e)) return {};
+  if (spec.channels < 1) {
     fail(e, "E0402", "image '" + r.shown_path + "' has no channels", "use an image with at least one channel");
-    return nullptr;
+    return {};
   }
-  if (static_cast<std::uint64_t>(spec.nchannels) > schema::limits::kMaxImageChannels) {
+  if (static_cast<std::uint64_t>(spec.channels) > schema::limits::kMaxImageChannels) {
     fail(e, "E0402",
-         "image '" + r.shown_path + "' claims " + std::to_string(spec.nchannels) + " channels, more than the limit of " +
+         "image '" + r.shown_path + "' claims " + std::to_string(spec.channels) + " channels, more than the limit of " +
              std::to_string(schema::limits::kMaxImageChannels),
          "save the channel that holds the heights as a grey image");
-    return nullptr;
+    return {};
   }
   // The decoder works a scanline or strip of all channels at a time, whichever it is asked for: the
   // whole image as stored must fit the budget too (a 320-byte header can claim gigabytes).
   const std::uint64_t stored = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height) *
-                               static_cast<std::uint64_t>(spec.nchannels) * std::max<std::uint64_t>(1, spec.format.size());
+                               static_cast<std::uint64_t>(spec.channels) * std::max<std::uint64_t>(1, spec.format_bytes);
   if (stored > kMaxImageReadBytes) {
     fail(e, "E0402",
          "image '" + r.shown_path + "' claims " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
-             " px of " + std::to_string(spec.nchannels) + " channels (" + std::to_string(stored >> 20) +
+             " px of " + std::to_string(spec.channels) + " channels (" + std::to_string(stored >> 20) +
              " MiB), over the limit of " + std::to_string(kMaxImageReadBytes >> 20) + " MiB",
          "scale the image down, or save the channel that holds the heights as a grey image");
-    return nullptr;
+    return {};
   }
   raw.nx = spec.width;
   raw.ny = spec.height;
-  raw.nc = spec.nchannels;
+  raw.nc = spec.channels;
   for (int c = 0; c < raw.nc; ++c) {
-    std::string name = c < static_cast<int>(spec.channelnames.size()) ? spec.channelnames[static_cast<std::size_t>(c)] : "";
+    std::string name = c < static_cast<int>(spec.channel_names.size()) ? spec.channel_names[static_cast<std::size_t>(c)] : "";
     raw.channel_names.push_back(name.empty() ? "channel" + std::to_string(c) : name);
   }
-  raw.format = spec.format.c_str();
+  raw.format = spec.format;
   return in;
 }
 
 // Reads the channels [first, last] of an open picture, within a stated memory budget.
-bool read_channels(const HeightImageRequest& r, OIIO::ImageInput& in, int first, int last, RawImage& raw,
+bool read_channels(const HeightImageRequest& r, const OpenPicture& in, int first, int last, RawImage& raw,
                    HeightImageError& e) {
   raw.first = first;
   raw.read = last - first + 1;
@@ -180,13 +194,11 @@ bool read_channels(const HeightImageRequest& r, OIIO::ImageInput& in, int first,
                 "scale the image down, or name the one channel that holds the heights with `channel NAME`");
   raw.pixels.resize(static_cast<std::size_t>(raw.nx) * raw.ny * raw.read);
   // Integer pixels arrive normalised to 0..1; float pixels as stored (no assumption of 0..1).
-  const bool ok = in.read_image(0, 0, first, last + 1, OIIO::TypeDesc::FLOAT, raw.pixels.data());
-  // OpenImageIO can report success for a truncated file and only log the error: ask it as well.
-  std::string why = first_line(in.geterror());
-  if (!ok || !why.empty())
-    return fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + (why.empty() ? "read failed" : why),
+  // The table also fails a read that OpenImageIO reports as done but logged an error (truncated).
+  std::string why;
+  if (!image_io::api().read(in.get(), first, last, raw.pixels.data(), why))
+    return fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + first_line(why),
                 "the file may be truncated or corrupt; save it again");
-  in.close();
   return true;
 }
 
@@ -267,7 +279,7 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
     int first = raw.nc, last = -1;
     for (int c = 0; c < raw.nc; ++c)
       if (weight[static_cast<std::size_t>(c)] != 0.0f) first = std::min(first, c), last = std::max(last, c);
-    if (last < 0 || !read_channels(r, *in, first, last, raw, e)) return std::nullopt;
+    if (last < 0 || !read_channels(r, in, first, last, raw, e)) return std::nullopt;
   }
   combine(raw, weight, img.values);
   raw.pixels = {};
@@ -319,14 +331,13 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
       return std::nullopt;
     }
     if (tx != raw.nx || ty != raw.ny) {
-      OIIO::ImageBuf src(OIIO::ImageSpec(raw.nx, raw.ny, 1, OIIO::TypeDesc::FLOAT), img.values.data());
       // Lanczos-3 to shrink (OpenImageIO's default); to enlarge, Catmull-Rom, an interpolating
       // cubic: it keeps a ramp's slope, where the default Blackman-Harris bump ripples it.
       const char* filter = tx > raw.nx || ty > raw.ny ? "catmull-rom" : "lanczos3";
-      OIIO::ImageBuf dst = OIIO::ImageBufAlgo::resize(src, filter, 0.0f, OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1));
       std::vector<float> resized(static_cast<std::size_t>(tx) * ty);
-      if (dst.has_error() || !dst.get_pixels(OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, resized.data()))
-        throw InternalError("resize of '" + r.shown_path + "' failed: " + dst.geterror());
+      std::string why;
+      if (!image_io::api().resize(img.values.data(), raw.nx, raw.ny, resized.data(), tx, ty, filter, why))
+        throw InternalError("resize of '" + r.shown_path + "' failed: " + why);
       img.values = std::move(resized);
       img.nx = tx;
       img.ny = ty;

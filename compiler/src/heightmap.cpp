@@ -1,26 +1,37 @@
 // Image -> height field -> lateral-force gradient (thesis 3.2.2 "textures from real-world data",
 // 3.4 EQ 12-13). Computed once, in float, here; the runtime only samples the result.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <thread>
 #include <tuple>
 #include <utility>
 #include <vector>
-
-#include <OpenImageIO/parallel.h>
 
 #include "sandpaper/compiler/textures.hpp"
 
 namespace sandpaper::compiler {
 namespace {
 
-// Rows are independent in every pass below: OpenImageIO's thread pool (the compiler links it to
-// read images) spreads them over the cores. Each output value is summed in the same order as a
-// single thread would, so the result does not depend on the number of threads.
+// Rows are independent in every pass below, so they are spread over the cores (up to 8 threads,
+// each taking the next row). Each output value is summed in the same order as a single thread
+// would, so the result does not depend on the number of threads. Small grids stay on this thread.
 template <class F>
 void for_each_row(int rows, F&& f) {
-  OIIO::parallel_for(std::int64_t{0}, std::int64_t{rows}, [&f](std::int64_t y) { f(static_cast<int>(y)); });
+  const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
+  if (threads == 1 || rows < 64) {
+    for (int y = 0; y < rows; ++y) f(y);
+    return;
+  }
+  std::atomic<int> next{0};
+  auto work = [&] {
+    for (int y = next++; y < rows; y = next++) f(y);
+  };
+  std::vector<std::jthread> helpers;
+  for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
+  work();
 }
 
 std::vector<double> gaussian_kernel(double sigma_px, int& radius) {

@@ -69,6 +69,8 @@ echo "$(wc -l < "$work/paths.txt") entries"
 has() { grep -q -x -E "$1" "$work/paths.txt" || fail "not in the package: $1"; }
 has '/usr/bin/sandpaper'
 has '/usr/bin/sandpaper-play'
+has '/usr/lib(/[^/]+)?/sandpaper/libsandpaper_image_io\.so'
+has '/usr/lib(/[^/]+)?/libsandpaper_image_io\.a'
 has '/usr/share/sandpaper/library/.+/corduroy\.hmat'
 has '/usr/share/sandpaper/calibration/levels/roughness-levels\.toml'
 has '/usr/share/sandpaper/calibration/devices/sim\.toml'
@@ -111,6 +113,8 @@ sp=$root/usr/bin/sandpaper
 out=$("$sp" compile "$src/examples/corduroy.hmat" -o "$work/corduroy.patch" 2>&1) || fail "unpacked sandpaper compile: $out"
 echo "compile: $out"
 [[ -s $work/corduroy.patch ]] || fail "no patch written"
+# A picture: the program loads the package's picture module from beside itself (compiler/image_io.hpp).
+out=$("$sp" compile "$src/examples/grass.hmat" -o "$work/grass.patch" 2>&1) || fail "unpacked sandpaper compile of a picture: $out"
 out=$("$sp" run "$work/corduroy.patch" --duration 0.2 --virtual-clock 2>&1) || fail "unpacked sandpaper run (through sandpaper-play beside it): $out"
 echo "run: $(tail -1 <<<"$out")"
 # The data it used is the root's: take an entry, then a device, away there and it must notice.

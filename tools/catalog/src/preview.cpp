@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <unistd.h>
 
-#include <OpenImageIO/imagebuf.h>
+#include "sandpaper/compiler/image_io.hpp"
 
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
@@ -176,14 +176,14 @@ double draw_scale_bar(Image& im) {
 
 void write_image_png(const std::filesystem::path& file, const Image& image) {
   if (image.nx <= 0 || image.ny <= 0) throw std::invalid_argument("write_image_png: the image is empty");
-  OIIO::ImageSpec spec(image.nx, image.ny, image.channels, OIIO::TypeDesc::UINT8);
-  OIIO::ImageBuf buf(spec, const_cast<std::uint8_t*>(image.pixels.data()));
   // A name ending in .png, so that OpenImageIO picks the format; renamed over `file` once complete.
   const auto tmp = file.parent_path() / ("." + file.stem().string() + ".tmp-" + std::to_string(::getpid()) + ".png");
-  if (!buf.write(tmp.string(), OIIO::TypeDesc::UINT8, "png")) {
+  std::string why;
+  if (!compiler::image_io::api().write_png8(tmp.string(), image.nx, image.ny, image.channels, image.pixels.data(), image.nx,
+                                            image.ny, why)) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("cannot write " + file.string() + ": " + buf.geterror());
+    throw std::runtime_error("cannot write " + file.string() + ": " + why);
   }
   std::filesystem::rename(tmp, file);
 }

@@ -7,8 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "sandpaper/compiler/image_io.hpp"
 
 #include "sandpaper/catalog/html.hpp"
 #include "sandpaper/compiler/array_export.hpp"
@@ -182,20 +181,17 @@ Picture render_picture_window(const schema::PatchProgram& program, double window
 
 void write_png(const std::filesystem::path& file, const Picture& picture, int side) {
   if (picture.empty()) throw std::invalid_argument("write_png: the picture is empty");
-  OIIO::ImageSpec spec(picture.nx, picture.ny, 1, OIIO::TypeDesc::UINT8);
   std::vector<std::uint8_t> grey(picture.shade.values.size());
   for (std::size_t i = 0; i < grey.size(); ++i) grey[i] = static_cast<std::uint8_t>(255 - picture.shade.values[i]);
-  OIIO::ImageBuf buf(spec, grey.data());
-  OIIO::ImageBuf out = buf;
+  int w = picture.nx, h = picture.ny;
   if (side > 0 && std::max(picture.nx, picture.ny) > side) {
     const double f = static_cast<double>(side) / std::max(picture.nx, picture.ny);
-    const int w = std::max(1, static_cast<int>(std::lround(picture.nx * f)));
-    const int h = std::max(1, static_cast<int>(std::lround(picture.ny * f)));
-    out = OIIO::ImageBufAlgo::resize(buf, "", 0, OIIO::ROI(0, w, 0, h, 0, 1, 0, 1));
-    if (out.has_error()) throw std::runtime_error("cannot resize the picture for " + file.string() + ": " + out.geterror());
+    w = std::max(1, static_cast<int>(std::lround(picture.nx * f)));
+    h = std::max(1, static_cast<int>(std::lround(picture.ny * f)));
   }
-  if (!out.write(file.string(), OIIO::TypeDesc::UINT8, "png"))
-    throw std::runtime_error("cannot write " + file.string() + ": " + out.geterror());
+  std::string why;
+  if (!compiler::image_io::api().write_png8(file.string(), picture.nx, picture.ny, 1, grey.data(), w, h, why))
+    throw std::runtime_error("cannot write " + file.string() + ": " + why);
 }
 
 }  // namespace sandpaper::catalog

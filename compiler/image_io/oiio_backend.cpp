@@ -1,0 +1,132 @@
+// The picture table (sandpaper/compiler/image_io.hpp) on OpenImageIO. Built twice: as the module
+// libsandpaper_image_io.so that the command-line programs load on first use (SANDPAPER_IMAGE_IO_MODULE
+// defined: exports sandpaper_image_io_table), and as the static Sandpaper::image_io that applications
+// link (defines api() itself).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include "sandpaper/compiler/image_io.hpp"
+
+namespace sandpaper::compiler::image_io {
+namespace {
+
+std::string first_line(std::string s) {
+  const auto nl = s.find('\n');
+  if (nl != std::string::npos) s.resize(nl);
+  return s;
+}
+
+void* open_picture(const std::string& path, PictureHeader& header, std::string& why) {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    why = first_line(OIIO::geterror());
+    return nullptr;
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  header.width = spec.width;
+  header.height = spec.height;
+  header.channels = spec.nchannels;
+  header.channel_names.assign(spec.channelnames.begin(), spec.channelnames.end());
+  header.format = spec.format.c_str();
+  header.format_bytes = spec.format.size();
+  return in.release();
+}
+
+bool read_picture(void* picture, int first, int last, float* pixels, std::string& why) {
+  auto& in = *static_cast<OIIO::ImageInput*>(picture);
+  const bool ok = in.read_image(0, 0, first, last + 1, OIIO::TypeDesc::FLOAT, pixels);
+  // OpenImageIO can report success for a truncated file and only log the error: ask it as well.
+  why = first_line(in.geterror());
+  if (ok && why.empty()) return true;
+  if (why.empty()) why = "read failed";
+  return false;
+}
+
+void close_picture(void* picture) {
+  std::unique_ptr<OIIO::ImageInput> in(static_cast<OIIO::ImageInput*>(picture));
+  if (in) in->close();
+}
+
+bool resize(const float* src, int nx, int ny, float* dst, int tx, int ty, const char* filter, std::string& why) {
+  OIIO::ImageBuf in(OIIO::ImageSpec(nx, ny, 1, OIIO::TypeDesc::FLOAT), const_cast<float*>(src));
+  OIIO::ImageBuf out = OIIO::ImageBufAlgo::resize(in, filter, 0.0f, OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1));
+  if (out.has_error() || !out.get_pixels(OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, dst)) {
+    why = out.geterror();
+    return false;
+  }
+  return true;
+}
+
+bool write_png8(const std::string& path, int nx, int ny, int channels, const std::uint8_t* pixels, int tx, int ty,
+                std::string& why) {
+  OIIO::ImageBuf buf(OIIO::ImageSpec(nx, ny, channels, OIIO::TypeDesc::UINT8), const_cast<std::uint8_t*>(pixels));
+  OIIO::ImageBuf out = buf;
+  if (tx != nx || ty != ny) {
+    out = OIIO::ImageBufAlgo::resize(buf, "", 0, OIIO::ROI(0, tx, 0, ty, 0, channels, 0, 1));
+    if (out.has_error()) {
+      why = "cannot resize: " + out.geterror();
+      return false;
+    }
+  }
+  if (!out.write(path, OIIO::TypeDesc::UINT8, "png")) {
+    why = out.geterror();
+    return false;
+  }
+  return true;
+}
+
+bool encode_png16(int nx, int ny, const std::uint16_t* texels, std::vector<unsigned char>& png, std::string& why) {
+  png.clear();
+  OIIO::Filesystem::IOVecOutput proxy(png);
+  auto out = OIIO::ImageOutput::create("png");
+  if (!out) {
+    why = "OpenImageIO cannot write PNG: " + first_line(OIIO::geterror());
+    return false;
+  }
+  OIIO::ImageSpec spec(nx, ny, 1, OIIO::TypeDesc::UINT16);
+  spec.channelnames = {"Y"};
+  if (!out->set_ioproxy(&proxy) || !out->open("haptic.png", spec) || !out->write_image(OIIO::TypeDesc::UINT16, texels) ||
+      !out->close()) {
+    why = "OpenImageIO failed to write a 16-bit PNG: " + first_line(out->geterror());
+    return false;
+  }
+  return true;
+}
+
+Api make_table() {
+  Api a;
+  a.abi = kAbi;
+  a.build = SANDPAPER_IMAGE_IO_BUILD;
+  a.open = open_picture;
+  a.read = read_picture;
+  a.close = close_picture;
+  a.resize = resize;
+  a.write_png8 = write_png8;
+  a.encode_png16 = encode_png16;
+  return a;
+}
+
+const Api kTable = make_table();
+
+}  // namespace
+
+#ifndef SANDPAPER_IMAGE_IO_MODULE
+const Api& api() { return kTable; }
+std::string provider() { return "linked"; }
+#endif
+
+}  // namespace sandpaper::compiler::image_io
+
+#ifdef SANDPAPER_IMAGE_IO_MODULE
+extern "C" __attribute__((visibility("default"))) const sandpaper::compiler::image_io::Api* sandpaper_image_io_table() {
+  return &sandpaper::compiler::image_io::kTable;
+}
+#endif
