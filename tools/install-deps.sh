@@ -10,6 +10,7 @@ pkgs=(
   libcli11-dev libfmt-dev                   # command line, formatting
   nlohmann-json3-dev libtomlplusplus-dev    # JSON output, TOML calibration files
   zlib1g-dev                                # CRC-32 of patch programs
+  libpng-dev                                # the catalog's and studio's PNG pictures, without loading OpenImageIO
   libeigen3-dev libboost-math-dev           # least squares and t/F distributions for calibration fits
   libsqlite3-dev                            # the library index (`sandpaper library index`; FTS5 full text)
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <unistd.h>
 
-#include "sandpaper/compiler/image_io.hpp"
+#include "png_file.hpp"
 
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
@@ -176,11 +176,10 @@ double draw_scale_bar(Image& im) {
 
 void write_image_png(const std::filesystem::path& file, const Image& image) {
   if (image.nx <= 0 || image.ny <= 0) throw std::invalid_argument("write_image_png: the image is empty");
-  // A name ending in .png, so that OpenImageIO picks the format; renamed over `file` once complete.
+  // Written beside `file` and renamed over it once complete.
   const auto tmp = file.parent_path() / ("." + file.stem().string() + ".tmp-" + std::to_string(::getpid()) + ".png");
   std::string why;
-  if (!compiler::image_io::api().write_png8(tmp.string(), image.nx, image.ny, image.channels, image.pixels.data(), image.nx,
-                                            image.ny, why)) {
+  if (!write_png_file(tmp, image.nx, image.ny, image.channels, image.pixels.data(), why)) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
     throw std::runtime_error("cannot write " + file.string() + ": " + why);

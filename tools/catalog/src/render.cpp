@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "png_file.hpp"
 #include "sandpaper/compiler/image_io.hpp"
 
 #include "sandpaper/catalog/html.hpp"
@@ -190,8 +191,11 @@ void write_png(const std::filesystem::path& file, const Picture& picture, int si
     h = std::max(1, static_cast<int>(std::lround(picture.ny * f)));
   }
   std::string why;
-  if (!compiler::image_io::api().write_png8(file.string(), picture.nx, picture.ny, 1, grey.data(), w, h, why))
-    throw std::runtime_error("cannot write " + file.string() + ": " + why);
+  // Resampling is OpenImageIO's; a picture drawn at its size (the catalog's) is written by libpng alone.
+  const bool written = w == picture.nx && h == picture.ny
+                           ? write_png_file(file, picture.nx, picture.ny, 1, grey.data(), why)
+                           : compiler::image_io::api().write_png8(file.string(), picture.nx, picture.ny, 1, grey.data(), w, h, why);
+  if (!written) throw std::runtime_error("cannot write " + file.string() + ": " + why);
 }
 
 }  // namespace sandpaper::catalog
