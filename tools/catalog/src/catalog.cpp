@@ -241,6 +241,7 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
       }
     }
   const compiler::Compiler* drawing = to_draw.empty() ? nullptr : &source.compiler_for(to_draw);
+  progress.set_total(to_draw.size());  // what is drawn; the kept entries cost nothing to count
   std::map<std::string, RecordedEntry> drawn;
   std::vector<IndexRow> rows;
   for (std::size_t i = 0; i < source.entries.size(); ++i) {
@@ -248,7 +249,6 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     if (kept[i]) {
       if (!report.in_place) rows.push_back(before.at(name).row);  // in place, the data file keeps its row
       ++report.reused;
-      progress.step(name);
       continue;
     }
     const auto& library = drawing->library();
@@ -309,7 +309,8 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     rows.push_back(std::move(row));
     ++report.rendered;
   }
-  progress.finish(report.failures.empty() ? "catalog: " + std::to_string(source.entries.size()) + " entries compiled and drawn"
+  progress.finish(report.failures.empty() ? "catalog: " + std::to_string(report.rendered) + " of " +
+                                                std::to_string(source.entries.size()) + " entries compiled and drawn"
                                           : "catalog: " + std::to_string(report.failures.size()) + " of " +
                                                 std::to_string(source.entries.size()) + " entries do not compile");
   if (!report.failures.empty()) return report;
