@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <random>
 #include <sys/stat.h>
+#include <sqlite3.h>
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/catalog/catalog.hpp"
@@ -564,6 +565,63 @@ TEST(Catalog, AnInPlaceUpdateCutOffBeforeItsRecordIsFinishedByTheNextRun) {
   EXPECT_TRUE(files_of(out) == done) << "the finished update differs from the uninterrupted one";
   r = run();
   EXPECT_EQ(r.rendered, 0);
+  fs::remove_all(root);
+}
+
+// The record (inputs.sqlite) lists each entry's files, which a run deletes when the entry goes or
+// stops drawing them, and links into a rebuilt folder. A record from elsewhere (a catalog folder
+// copied or downloaded) naming "../../x" must not reach outside entries/: its lists are not trusted.
+TEST(Catalog, ARecordNamingFilesOutsideTheCatalogNeitherDeletesNorLinksThem) {
+  const fs::path root = test::temp_dir("catalog-hostile-record");
+  const fs::path lib = root / "lib";
+  fs::copy(SANDPAPER_SOURCE_DIR "/tests/compiler/data/library-small", lib, fs::copy_options::recursive);
+  const fs::path out = root / "site";
+  auto run = [&] {
+    compiler::CompileOptions opts;
+    opts.library_dir = lib;
+    compiler::Compiler c(opts);
+    catalog::CatalogOptions o;
+    o.output = out;
+    return catalog::write_catalog(c, o);
+  };
+  ASSERT_TRUE(run().failures.empty());
+  std::ofstream(root / "outside.txt") << "not the catalog's\n";
+  auto set_files = [&](const std::string& name, const std::string& files) {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open((out / "inputs.sqlite").c_str(), &db), SQLITE_OK);
+    const std::string sql = "UPDATE entries SET files = '" + files + "' WHERE name = '" + name + "'";
+    EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+    EXPECT_EQ(sqlite3_changes(db), 1);
+    sqlite3_close(db);
+  };
+  // In place: ref removed from the library; its recorded files include one outside the catalog.
+  set_files("ref", R"(["ref.html","ref.png","../../outside.txt"])");
+  set_files("rib", "not JSON");
+  fs::remove(lib / "ref.hmat");
+  {
+    std::string text = read(lib / "library.toml");
+    const std::string from = "reference = \"ref\"";
+    text.replace(text.find(from), from.size(), "reference = \"rib\"");
+    std::ofstream(lib / "library.toml") << text;
+  }
+  auto r = run();
+  ASSERT_TRUE(r.failures.empty());
+  EXPECT_TRUE(r.in_place);
+  EXPECT_TRUE(fs::exists(root / "outside.txt")) << "a recorded \"../../outside.txt\" was deleted";
+  // The files it would have written for that name go instead.
+  EXPECT_FALSE(fs::exists(out / "entries" / "ref.html"));
+  EXPECT_FALSE(fs::exists(out / "entries" / "ref-thumb.png"));
+  // Rebuilt whole (a new folder, the unchanged entries' files linked in): a list reaching outside
+  // is not linked, its entry is drawn again.
+  set_files("old-rib", R"(["old-rib.html","../../outside.txt"])");
+  fs::remove(out / catalog::kIndexDataFile);  // no data file: the whole folder is rebuilt
+  r = run();
+  ASSERT_TRUE(r.failures.empty());
+  EXPECT_FALSE(r.in_place);
+  EXPECT_GE(r.rendered, 1);
+  for (const auto& f : fs::recursive_directory_iterator(out))
+    EXPECT_NE(f.path().filename(), "outside.txt") << "a file outside the catalog was published: " << f.path();
+  EXPECT_TRUE(fs::exists(root / "outside.txt"));
   fs::remove_all(root);
 }
 

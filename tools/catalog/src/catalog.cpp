@@ -121,6 +121,14 @@ void swap_in(const fs::path& fresh, const fs::path& dir) {
   fs::remove_all(old, ec);
 }
 
+// An entry's files as the record lists them, or, where the list is not one this program wrote, the
+// files this program would have written for that name (none for a name that is not a plain stem).
+std::vector<std::string> recorded_files(const std::string& name, const RecordedEntry& e) {
+  if (auto files = e.files()) return std::move(*files);
+  if (!plain_file_name(name)) return {};
+  return {name + ".html", name + ".png", name + "-thumb.png", name + ".shade"};
+}
+
 // At most this many entries drawn or removed for an in-place update.
 constexpr std::size_t kInPlaceLimit = 256;
 
@@ -235,7 +243,8 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   if (!report.in_place)
     for (std::size_t i = 0; i < source.entries.size(); ++i) {
       const auto it = kept[i] ? before.find(source.entries[i].first) : before.end();
-      if (kept[i] && (it == before.end() || !keep_files(dir, tmp.path, it->second.files()))) {
+      const auto files = it == before.end() ? std::nullopt : it->second.files();
+      if (kept[i] && (!files || !keep_files(dir, tmp.path, *files))) {
         kept[i] = false;
         to_draw.push_back(source.entries[i].first);
       }
@@ -325,18 +334,20 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     if (!drawn.empty() || !removed.empty()) opened.emplace(dir / kRecordFile, settings);
     std::set<std::string> stale;
     for (const auto& [name, e] : drawn) {
-      const auto files = e.files();
+      const auto files = e.files().value();  // written by this run
       for (const auto& f : files)
         if (f != name + ".html") fs::rename(tmp.path / "entries" / f, dir / "entries" / f);
       fs::rename(tmp.path / "entries" / (name + ".html"), dir / "entries" / (name + ".html"));
+      // A recorded list that is not one this program wrote is not trusted (recorded_files).
       if (const auto it = before.find(name); it != before.end())
-        for (const auto& f : it->second.files())
+        for (const auto& f : recorded_files(name, it->second))
           if (std::find(files.begin(), files.end(), f) == files.end()) stale.insert(f);
       if (!e.hash.empty()) opened->put(name, e);
       else opened->erase(name);
     }
     for (const auto& name : removed) {
-      for (const auto& f : before.at(name).files()) stale.insert(f);
+      if (const auto it = before.find(name); it != before.end())
+        for (const auto& f : recorded_files(name, it->second)) stale.insert(f);
       opened->erase(name);
     }
     // The drawn entries' rows put in the data file at their places (an entry added or removed, a

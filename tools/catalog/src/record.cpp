@@ -40,8 +40,22 @@ void bind_text(sqlite3_stmt* s, int i, const std::string& v) { sqlite3_bind_text
 
 }  // namespace
 
-std::vector<std::string> RecordedEntry::files() const {
-  return files_json.empty() ? std::vector<std::string>{} : nlohmann::json::parse(files_json).get<std::vector<std::string>>();
+bool plain_file_name(std::string_view name) {
+  return !name.empty() && name[0] != '.' && name.find_first_of(std::string_view("/\\\0", 3)) == std::string_view::npos;
+}
+
+std::optional<std::vector<std::string>> RecordedEntry::files() const {
+  if (files_json.empty()) return std::vector<std::string>{};
+  const auto j = nlohmann::json::parse(files_json, nullptr, false);
+  if (!j.is_array()) return std::nullopt;
+  std::vector<std::string> out;
+  for (const auto& f : j) {
+    if (!f.is_string()) return std::nullopt;
+    auto name = f.get<std::string>();
+    if (!plain_file_name(name)) return std::nullopt;
+    out.push_back(std::move(name));
+  }
+  return out;
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sandpaper/catalog/index_page.hpp"
@@ -17,11 +18,18 @@ namespace sandpaper::catalog {
 
 inline constexpr const char* kRecordFile = "inputs.sqlite";
 
+// A name this program writes under entries/: not empty, no folder separator, no NUL, no leading dot
+// (so neither "." nor ".." nor a hidden file).
+bool plain_file_name(std::string_view name);
+
 struct RecordedEntry {
   std::string hash;        // the entry's input hash when drawn (docs/LIBRARY.md, "Incremental builds")
   IndexRow row;
   std::string files_json;  // its files under entries/, a JSON array: parsed only for the entries a run touches
-  std::vector<std::string> files() const;
+  // Those files, if the record names them as this program writes them: plain file names (no folder,
+  // no "..", no leading dot). nullopt otherwise (bad JSON, or a name reaching outside entries/): a
+  // record from elsewhere must not make a run delete, link or publish a file outside the catalog.
+  std::optional<std::vector<std::string>> files() const;
 };
 using Record = std::unordered_map<std::string, RecordedEntry>;
 
