@@ -451,19 +451,29 @@ std::map<std::string, std::string> files_of(const fs::path& dir) {
   return out;
 }
 
-TEST(Catalog, ARebuildDrawsOnlyWhatChangedAndKeepsEveryOtherFileByteIdentical) {
-  const fs::path root = test::temp_dir("catalog-incremental");
-  const fs::path lib = root / "lib";
-  fs::copy(SANDPAPER_SOURCE_DIR "/tests/compiler/data/library-small", lib, fs::copy_options::recursive);
-  const fs::path out = root / "site";
-  auto run = [&] {
+// A copy of tests/compiler/data/library-small in a fresh folder, and its catalog drawn into site/
+// by write_catalog over the whole library.
+struct SmallCatalog {
+  fs::path root, lib, out;
+  explicit SmallCatalog(const std::string& name)
+      : root(test::temp_dir(name)), lib(root / "lib"), out(root / "site") {
+    fs::copy(SANDPAPER_SOURCE_DIR "/tests/compiler/data/library-small", lib, fs::copy_options::recursive);
+  }
+  ~SmallCatalog() { fs::remove_all(root); }
+  catalog::CatalogReport run() const {
     compiler::CompileOptions opts;
     opts.library_dir = lib;
     compiler::Compiler c(opts);
     catalog::CatalogOptions o;
     o.output = out;
     return catalog::write_catalog(c, o);
-  };
+  }
+};
+
+TEST(Catalog, ARebuildDrawsOnlyWhatChangedAndKeepsEveryOtherFileByteIdentical) {
+  const SmallCatalog small("catalog-incremental");
+  const fs::path &lib = small.lib, &out = small.out;
+  auto run = [&] { return small.run(); };
   auto r = run();
   ASSERT_TRUE(r.failures.empty());
   EXPECT_EQ(r.rendered, 4);
@@ -528,25 +538,15 @@ TEST(Catalog, ARebuildDrawsOnlyWhatChangedAndKeepsEveryOtherFileByteIdentical) {
   r = run();
   EXPECT_GE(r.rendered, 2);  // rib and old-rib (like rib), and fine-rib if it names rib's alias
   EXPECT_EQ(r.rendered + r.reused, 4);
-  fs::remove_all(root);
 }
 
 TEST(Catalog, AnInPlaceUpdateCutOffBeforeItsRecordIsFinishedByTheNextRun) {
   // A kill during an in-place update leaves the drawn files renamed in and the record as it was
   // (it is committed last). Made here without a kill: the update runs, then the old record is put
   // back. The next run must see those entries as changed, draw them again and end as the update did.
-  const fs::path root = test::temp_dir("catalog-cut-off");
-  const fs::path lib = root / "lib";
-  fs::copy(SANDPAPER_SOURCE_DIR "/tests/compiler/data/library-small", lib, fs::copy_options::recursive);
-  const fs::path out = root / "site";
-  auto run = [&] {
-    compiler::CompileOptions opts;
-    opts.library_dir = lib;
-    compiler::Compiler c(opts);
-    catalog::CatalogOptions o;
-    o.output = out;
-    return catalog::write_catalog(c, o);
-  };
+  const SmallCatalog small("catalog-cut-off");
+  const fs::path &lib = small.lib, &out = small.out;
+  auto run = [&] { return small.run(); };
   ASSERT_TRUE(run().failures.empty());
   const std::string old_record = read(out / "inputs.sqlite");
   {
@@ -565,25 +565,15 @@ TEST(Catalog, AnInPlaceUpdateCutOffBeforeItsRecordIsFinishedByTheNextRun) {
   EXPECT_TRUE(files_of(out) == done) << "the finished update differs from the uninterrupted one";
   r = run();
   EXPECT_EQ(r.rendered, 0);
-  fs::remove_all(root);
 }
 
 // The record (inputs.sqlite) lists each entry's files, which a run deletes when the entry goes or
 // stops drawing them, and links into a rebuilt folder. A record from elsewhere (a catalog folder
 // copied or downloaded) naming "../../x" must not reach outside entries/: its lists are not trusted.
 TEST(Catalog, ARecordNamingFilesOutsideTheCatalogNeitherDeletesNorLinksThem) {
-  const fs::path root = test::temp_dir("catalog-hostile-record");
-  const fs::path lib = root / "lib";
-  fs::copy(SANDPAPER_SOURCE_DIR "/tests/compiler/data/library-small", lib, fs::copy_options::recursive);
-  const fs::path out = root / "site";
-  auto run = [&] {
-    compiler::CompileOptions opts;
-    opts.library_dir = lib;
-    compiler::Compiler c(opts);
-    catalog::CatalogOptions o;
-    o.output = out;
-    return catalog::write_catalog(c, o);
-  };
+  const SmallCatalog small("catalog-hostile-record");
+  const fs::path &root = small.root, &lib = small.lib, &out = small.out;
+  auto run = [&] { return small.run(); };
   ASSERT_TRUE(run().failures.empty());
   std::ofstream(root / "outside.txt") << "not the catalog's\n";
   auto set_files = [&](const std::string& name, const std::string& files) {
@@ -622,7 +612,6 @@ TEST(Catalog, ARecordNamingFilesOutsideTheCatalogNeitherDeletesNorLinksThem) {
   for (const auto& f : fs::recursive_directory_iterator(out))
     EXPECT_NE(f.path().filename(), "outside.txt") << "a file outside the catalog was published: " << f.path();
   EXPECT_TRUE(fs::exists(root / "outside.txt"));
-  fs::remove_all(root);
 }
 
 TEST(Catalog, AFailedRunLeavesThePreviousCatalogAndNamesTheEntry) {

@@ -129,6 +129,9 @@ std::vector<std::string> recorded_files(const std::string& name, const RecordedE
   return {name + ".html", name + ".png", name + "-thumb.png", name + ".shade"};
 }
 
+// The largest data file an in-place update reads back: 100,000 entries make 4.7 MB.
+constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t{256} << 20;
+
 // At most this many entries drawn or removed for an in-place update.
 constexpr std::size_t kInPlaceLimit = 256;
 
@@ -355,7 +358,11 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     // record). Written only where they differ: with nothing changed, nothing is written.
     {
       std::optional<PatchedIndex> patched;
-      if (!added && removed.empty()) patched = patch_index(read_text(dir / kIndexDataFile), source.manifest, rows);
+      // A data file far larger than any this program writes (47 bytes an entry) is not read into memory.
+      std::error_code size_ec;
+      const auto data_size = fs::file_size(dir / kIndexDataFile, size_ec);
+      if (!added && removed.empty() && !size_ec && data_size <= kMaxDataFileBytes)
+        patched = patch_index(read_text(dir / kIndexDataFile), source.manifest, rows);
       if (!patched) {
         auto all = read_record(dir, settings).value_or(Record{});
         std::vector<IndexRow> every;
