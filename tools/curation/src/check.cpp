@@ -424,42 +424,53 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
     if (e.root == 0) entries.push_back(&e);
   // Only pairs less than one force JND apart can collide: sorted by family and force, each entry
   // is compared with the entries just above it, not with the whole family (100,000 entries).
+  // A dense family still has tens of millions of such pairs (60,000 generated gratings over a few
+  // dozen JND): each is looked at through pointers, never by name, and not kept.
   std::vector<std::size_t> order;
+  std::vector<const Percepts*> pc(entries.size(), nullptr);
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const auto& a = *entries[i];
     auto pa = percepts.find(a.name);
     if (pa == percepts.end() || !pa->second.has_texture() || !a.deprecated_by.empty() || a.family.empty()) continue;
     if (const auto* fam = lib.manifest().family(a.family); fam && fam->stimulus_set) continue;
+    pc[i] = &pa->second;
     order.push_back(i);
   }
-  auto force = [&](std::size_t i) { return percepts.at(entries[i]->name).max_lateral_force_N; };
+  auto force = [&](std::size_t i) { return pc[i]->max_lateral_force_N; };
   std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
     return entries[x]->family != entries[y]->family ? entries[x]->family < entries[y]->family : force(x) < force(y);
   });
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (i, j), i < j in name order, as reported
+  // One warning an entry, on the later of a pair in name order (i < j), naming its nearest look-alike:
+  // a curator needs each entry's worst pair, not every one (the notes name up to kMaxLookAlikeNotes,
+  // then a count). Per entry: how many look-alikes, and the nearest few by (JND steps, name order).
+  constexpr std::size_t kMaxLookAlikeNotes = 3;
+  struct LookAlikes {
+    std::size_t count = 0;
+    std::vector<std::pair<double, std::size_t>> nearest;  // sorted, at most kMaxLookAlikeNotes + 1
+  };
+  std::vector<LookAlikes> alike(entries.size());
   for (std::size_t k = 0; k < order.size(); ++k)
     for (std::size_t m = k + 1; m < order.size() && entries[order[m]]->family == entries[order[k]]->family; ++m) {
       if (!(jnd.steps_between(force(order[k]), force(order[m])) < 1.0)) break;
-      pairs.emplace_back(std::min(order[k], order[m]), std::max(order[k], order[m]));
+      const std::size_t i = std::min(order[k], order[m]), j = std::max(order[k], order[m]);
+      double steps = 0;
+      if (!indistinguishable(*pc[i], *pc[j], jnd, &steps)) continue;
+      auto& a = alike[j];
+      ++a.count;
+      const std::pair<double, std::size_t> p{std::abs(steps), i};
+      if (a.nearest.size() > kMaxLookAlikeNotes && !(p < a.nearest.back())) continue;
+      a.nearest.insert(std::upper_bound(a.nearest.begin(), a.nearest.end(), p), p);
+      if (a.nearest.size() > kMaxLookAlikeNotes + 1) a.nearest.pop_back();
     }
-  // One warning an entry, on the later of a pair in name order, naming its nearest look-alike: a
-  // dense family of 100,000 generated gratings has millions of pairs, and a curator needs each
-  // entry's worst one, not every one (the notes name up to kMaxLookAlikeNotes, then a count).
-  constexpr std::size_t kMaxLookAlikeNotes = 3;
-  std::map<std::size_t, std::vector<std::pair<double, std::size_t>>> alike;  // j -> (|steps|, i)
-  for (const auto& [i, j] : pairs) {
-    double steps = 0;
-    if (indistinguishable(percepts.at(entries[i]->name), percepts.at(entries[j]->name), jnd, &steps))
-      alike[j].emplace_back(std::abs(steps), i);
-  }
-  for (auto& [j, partners] : alike) {
-    std::sort(partners.begin(), partners.end());
+  for (std::size_t j = 0; j < alike.size(); ++j) {
+    if (alike[j].count == 0) continue;
+    const auto& partners = alike[j].nearest;
     const auto& a = *entries[partners.front().second];
     const auto& b = *entries[j];
-    const auto& A = percepts.at(a.name);
-    const auto& B = percepts.at(b.name);
+    const auto& A = *pc[partners.front().second];
+    const auto& B = *pc[j];
     const double steps = partners.front().first;
-    const std::size_t more = partners.size() - 1;
+    const std::size_t more = alike[j].count - 1;
     auto& d = out.warning(
         "W0601", ck.entry_loc(b),
         quoted(b.name) + " may feel the same as " + quoted(a.name) + " (family " + a.family + "): maximum lateral forces " +
@@ -472,7 +483,7 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
                              " of the family, earlier in name order, " + (more == 1 ? "is" : "are") + " also within one force JND"),
         "make them differ by at least one force JND (a roughness further apart) or in period class, or deprecate one; "
         "if both are wanted (the thesis' own stimuli share force levels), this warning can stay");
-    for (std::size_t k = 0; k < partners.size() && k <= kMaxLookAlikeNotes; ++k)
+    for (std::size_t k = 0; k < partners.size(); ++k)
       d.notes.push_back({ck.entry_loc(*entries[partners[k].second]), quoted(entries[partners[k].second]->name) + " is here"});
   }
 }
