@@ -21,6 +21,25 @@ python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if j["er
 "$sp" library index --library "$tmp/a" --quiet --json >"$tmp/index.json" 2>&1 || bad "library index failed"
 grep -q '"compiled": 60' "$tmp/index.json" && ok || bad "not every entry indexed: $(cat "$tmp/index.json")"
 [ "$("$sp" library search corduroy --library "$tmp/a" --quiet | wc -l)" -eq 5 ] && ok || bad "search corduroy should find 5"
+# Told which file changed (one a line on stdin, as `git diff --name-only` prints them), the index
+# updates that entry in place; a file of another folder is refused and changes nothing.
+one=""  # an entry nothing is built on
+for f in $(find "$tmp/a" -name 'gen-grating-*.hmat' | sort); do
+  grep -rqE "^\s*like $(basename "$f" .hmat)\s*$" "$tmp/a" || { one=$f; break; }
+done
+echo "# edited" >>"$one"
+printf '%s\n' "$one" | "$sp" library index --library "$tmp/a" --changed - --quiet --json >"$tmp/changed.json" 2>&1 || bad "--changed failed"
+python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if j["compiled"] == 1 and j["in_place"] else 1)' \
+  "$tmp/changed.json" && ok || bad "--changed did not update one entry in place: $(cat "$tmp/changed.json")"
+# The catalog takes the same list for its index update, and draws that entry alone.
+"$sp" library catalog --library "$tmp/a" -o "$tmp/cat" --quiet >/dev/null 2>&1 || bad "library catalog failed"
+echo "# edited again" >>"$one"
+out=$("$sp" library catalog --library "$tmp/a" -o "$tmp/cat" --quiet --changed "$one" 2>&1)
+[[ $out == *"(1 drawn, 59 unchanged, updated in place)"* ]] && ok || bad "catalog --changed: $out"
+cp "$tmp/a/.index/library.sqlite" "$tmp/index.before"
+"$sp" library index --library "$tmp/a" --changed "$tmp/check.json" --quiet >/dev/null 2>"$tmp/outside.err"
+[ $? -eq 2 ] && grep -q "neither the library folder" "$tmp/outside.err" && cmp -s "$tmp/index.before" "$tmp/a/.index/library.sqlite" && ok ||
+  bad "a changed file outside the library: $(cat "$tmp/outside.err")"
 mkdir -p "$tmp/c" && echo "a curator's notes" >"$tmp/c/notes.txt"
 python3 "$gen" 60 "$tmp/c" >/dev/null 2>&1 && bad "wrote into a folder that is not a generated library" || ok
 [ -f "$tmp/c/notes.txt" ] && ok || bad "the folder's own file was removed"

@@ -484,6 +484,98 @@ TEST(LibraryIndex, QueriesCheckFolderStampsAndAnInPlaceEditOfAnOldFolderWaitsFor
   EXPECT_EQ(index_state(b.index, b.lib, cal), IndexState::Stale);
 }
 
+// Told which files changed (`library index --changed`), the update stats those alone: an edit it
+// was not told of waits for a build that walks; what it writes (rows, stamps, folders, fingerprint)
+// is what a walking build writes, so that build then finds nothing to do.
+TEST(LibraryIndex, AnUpdateToldWhichFilesChangedLooksAtThemAloneAndAgreesWithAWalk) {
+  const auto b = built("index-listed");
+  const auto cal = calibration::default_calibration_dir();
+  // Every stamp an hour old and each one different, so that none is racy (stamps.hpp) however
+  // slowly this runs, and every step's files and folders get a stamp of their own.
+  auto stamp = std::filesystem::file_time_type::clock::now() - std::chrono::hours(1);
+  auto settle = [&](std::initializer_list<std::filesystem::path> paths) {
+    for (const auto& p : paths) std::filesystem::last_write_time(p, stamp += std::chrono::seconds(1));
+  };
+  write(b.lib / ".index/scratch", "x");
+  for (const auto& e : std::filesystem::recursive_directory_iterator(b.lib)) settle({e.path()});
+  settle({b.lib});
+  ASSERT_TRUE(build(b.lib, b.index).ok);
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  auto listed = [&](std::vector<std::filesystem::path> files) {
+    IndexOptions o{b.lib, {}, b.index, "sim"};
+    o.changed = std::move(files);
+    return build_index(o, quiet);
+  };
+  // What a walking build says afterwards: nothing changed, and the index's bytes stay.
+  auto walk_finds_nothing = [&](const char* what) {
+    EXPECT_EQ(Index(b.index).meta("fingerprint"), library_fingerprint(b.lib, cal)) << what;
+    const auto bytes = read(b.index);
+    const auto r = build(b.lib, b.index);
+    EXPECT_TRUE(r.ok && !r.in_place && r.compiled == 0) << what << ": a walk found " << r.compiled << " to compile";
+    EXPECT_EQ(read(b.index), bytes) << what;
+  };
+  const double coarse_before = Index(b.index).entry("coarse-grit")->roughness;
+  edit(b.lib / "textiles/ribbed-cloth.hmat", "roughness 0.45", "roughness 0.5");  // fine-rib is built on it
+  edit(b.lib / "abrasives/coarse-grit.hmat", "roughness 0.8", "roughness 0.85");  // not listed
+  settle({b.lib / "textiles/ribbed-cloth.hmat", b.lib / "abrasives/coarse-grit.hmat"});
+  auto r = listed({b.lib / "textiles/ribbed-cloth.hmat"});
+  ASSERT_TRUE(r.ok) << r.error << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_TRUE(r.in_place);
+  EXPECT_EQ(r.compiled, 2u);
+  EXPECT_EQ(r.files_hashed, 1u);
+  EXPECT_NEAR(Index(b.index).entry("ribbed-cloth")->roughness, 0.5, 1e-9);
+  EXPECT_EQ(Index(b.index).entry("coarse-grit")->roughness, coarse_before) << "read a file it was not told of";
+  // The walk finds the edit the list left out, and it and old-grit (built on it) are compiled.
+  r = build(b.lib, b.index);
+  EXPECT_TRUE(r.ok && r.in_place);
+  EXPECT_EQ(r.compiled, 2u);
+  EXPECT_EQ(rows_by_entry(b.index), rows_of_a_full_build(b.lib));
+  walk_finds_nothing("after the walk");
+
+  edit(b.lib / "textiles/fine-rib.hmat", "roughness 0.2", "roughness 0.25");
+  settle({b.lib / "textiles/fine-rib.hmat"});
+  r = listed({b.lib / "textiles/fine-rib.hmat"});
+  EXPECT_TRUE(r.ok && r.in_place && r.compiled == 1) << r.error;
+  EXPECT_EQ(rows_by_entry(b.index), rows_of_a_full_build(b.lib));
+  walk_finds_nothing("an edit");
+  // A new file in a new folder (its folder and the root's stamps change), given relative to the
+  // working directory and twice.
+  write(b.lib / "leather/suede.hmat",
+        "material \"suede\" {\n  describes \"soft suede\"\n  family textiles\n  licence \"CC0-1.0\"\n  like rib-cloth\n"
+        "  roughness 0.2\n  source by-ear \"soft\"\n}\n");
+  settle({b.lib / "leather/suede.hmat", b.lib / "leather", b.lib});
+  const auto suede = std::filesystem::relative(b.lib / "leather/suede.hmat");
+  r = listed({suede, b.lib / "leather/suede.hmat"});
+  EXPECT_TRUE(r.ok && r.in_place && r.compiled == 1) << r.error;
+  ASSERT_TRUE(Index(b.index).entry("suede"));
+  walk_finds_nothing("a new file");
+  // A removed file: its rows go.
+  std::filesystem::remove(b.lib / "leather/suede.hmat");
+  settle({b.lib / "leather"});
+  r = listed({b.lib / "leather/suede.hmat"});
+  EXPECT_TRUE(r.ok && r.in_place && r.compiled == 0) << r.error;
+  EXPECT_FALSE(Index(b.index).entry("suede"));
+  walk_finds_nothing("a removed file");
+  // Hidden files are not the library's; a listed file that did not change writes nothing.
+  write(b.lib / ".index/scratch", "y");
+  const auto bytes = read(b.index);
+  r = listed({b.lib / ".index/scratch", b.lib / "textiles/fine-rib.hmat"});
+  EXPECT_TRUE(r.ok && !r.in_place && r.compiled == 0) << r.error;
+  EXPECT_EQ(read(b.index), bytes);
+  // A second file with a taken name: decided over the whole library, by the walking build.
+  write(b.lib / "textiles/coarse-grit.hmat", read(b.lib / "abrasives/coarse-grit.hmat"));
+  r = listed({b.lib / "textiles/coarse-grit.hmat"});
+  EXPECT_TRUE(r.ok && !r.in_place) << r.error;
+  std::filesystem::remove(b.lib / "textiles/coarse-grit.hmat");
+  // A file of neither folder is refused, and the index is left as it was.
+  const auto before = read(b.index);
+  r = listed({b.lib.parent_path() / "elsewhere.hmat"});
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("neither the library folder"), std::string::npos) << r.error;
+  EXPECT_EQ(read(b.index), before);
+}
+
 // near's R*Tree search gives exactly what comparing with every entry gives, on the shipped library.
 TEST(LibraryNear, TheRTreeSearchEqualsAFullScanOnTheShippedLibrary) {
   const auto dir = std::filesystem::path(temp_dir("near-rtree"));

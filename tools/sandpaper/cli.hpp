@@ -136,6 +136,8 @@ void add_calibrate_command(CLI::App& app, CalibrateOptions& o);
 int cmd_calibrate(const CalibrateOptions& o);
 // `sandpaper library catalog -o DIR` (cmd_library_catalog.cpp, docs/CATALOG.md): registers it under
 // `library`; runs it with the `library` group's options `o` filling what catalog's own leave unset.
+// The files of a `--changed` option, "-" replaced by stdin's lines (cmd_library.cpp).
+std::vector<std::filesystem::path> changed_files(const std::vector<std::string>& listed);
 CLI::App* add_library_catalog_command(CLI::App& library);
 int cmd_library_catalog(const CommonOptions& o);
 

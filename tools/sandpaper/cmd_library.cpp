@@ -76,7 +76,7 @@ Paths paths_of(const CommonOptions& common, const LibraryCommandOptions& o) {
 int print_build_failure(const cur::IndexBuildResult& r, const char* who) {
   std::cerr << compiler::format_diagnostics(r.diagnostics);
   if (!r.error.empty()) {
-    std::cerr << "sandpaper " << who << ": cannot write the index: " << r.error << "\n";
+    std::cerr << "sandpaper " << who << ": index not written: " << r.error << "\n";
     return kExitUsage;
   }
   std::size_t errors = 0;
@@ -195,12 +195,18 @@ int run_check(const Paths& p, const LibraryCommandOptions& o) {
 }
 
 int run_index(const Paths& p, const LibraryCommandOptions& o) {
+  if (!o.changed.empty() && p.layered()) {
+    std::cerr << "sandpaper library index: --changed updates one library root; with a layered path, run it with "
+                 "--library ROOT for the root that changed, then without --changed for the roots above it\n";
+    return kExitUsage;
+  }
   nlohmann::json roots = nlohmann::json::array();
   // The bottom root first: a root's index is built over the indexes of the roots below it.
   for (std::size_t i = p.roots.size(); i-- > 0;) {
     auto progress = cur::Progress::on_stderr("indexing", 0, o.quiet);
     cur::IndexOptions io{p.roots[i], p.calibration, p.indexes[i], "sim", o.full};
     io.below = p.below(i);
+    if (!o.changed.empty()) io.changed = changed_files(o.changed);
     const auto r = cur::build_index(io, progress);
     if (!r.ok) return print_build_failure(r, "library index");
     progress.finish("indexed " + std::to_string(r.entries) + " entries");
@@ -375,6 +381,23 @@ int run_near(const Paths& p, const LibraryCommandOptions& o) {
 
 }  // namespace
 
+// The files of `--changed`, with "-" replaced by the lines of stdin (cli.hpp).
+std::vector<std::filesystem::path> changed_files(const std::vector<std::string>& listed) {
+  std::vector<std::filesystem::path> out;
+  for (const auto& f : listed) {
+    if (f != "-") {
+      out.emplace_back(f);
+      continue;
+    }
+    for (std::string line; std::getline(std::cin, line);) {
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (!line.empty()) out.emplace_back(line);
+    }
+  }
+  return out;
+}
+
+
 void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.check = library.add_subcommand("check", "validate every entry: metadata, sources, names, cycles, compiles on every device, JND collisions");
   add_paths(o.check, o, false);
@@ -389,6 +412,12 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.index_cmd->add_flag("--json", o.json, "print JSON");
   o.index_cmd->add_flag("--full", o.full, "compile every entry again (by default only entries whose inputs changed)");
   o.index_cmd->add_flag("--quiet", o.quiet, "no progress on stderr");
+  o.index_cmd
+      ->add_option("--changed", o.changed,
+                   "only these files changed (a save hook, a watcher, `git diff --name-only`; - reads them from stdin, one a line): "
+                   "update the index from them without looking at the rest of the library")
+      ->expected(1, -1)
+      ->excludes("--full");
 
   o.search = library.add_subcommand("search", "find entries by name, alias, words and roughness range (exit 1 if none match)");
   o.search->add_option("words", o.words, "words to look for (name, alias, description, family, sources)");

@@ -22,6 +22,7 @@ struct LibraryCommandOptions {
   std::size_t limit = 20;                            // search, near
   std::string name;                                  // show, near
   std::string root;                                  // check: only this root of a layered library
+  std::vector<std::string> changed;                  // index: the files that changed ("-": read from stdin)
   CLI::App *check = nullptr, *index_cmd = nullptr, *search = nullptr, *show = nullptr, *near = nullptr;
 };
 

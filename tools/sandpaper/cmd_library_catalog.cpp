@@ -15,6 +15,7 @@ namespace {
 struct LibraryCatalogOptions {
   std::string output;
   bool quiet = false, arrays = false;
+  std::vector<std::string> changed;
   CommonOptions common;
 };
 LibraryCatalogOptions catalog_options;
@@ -34,6 +35,10 @@ CLI::App* add_library_catalog_command(CLI::App& library) {
                   "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   sub->add_flag("--quiet", o.quiet, "no progress on stderr");
   sub->add_flag("--arrays", o.arrays, "also write each picture as Sandpaper's .shade array file (262 KB an entry)");
+  sub->add_option("--changed", o.changed,
+                  "only these library files changed (as `library index --changed`; - reads them from stdin): "
+                  "bring the index up to date from them without looking at the rest of the library")
+      ->expected(1, -1);
   return sub;
 }
 
@@ -49,6 +54,13 @@ int cmd_library_catalog(const CommonOptions& outer) {
   co.progress_is_tty = isatty(STDERR_FILENO);
   // One library folder: drawn from its index (docs/CATALOG.md, "Incremental builds").
   const auto roots = o.common.library_dir.empty() ? compiler::default_library_path() : compiler::split_library_path(o.common.library_dir);
+  if (!o.changed.empty()) {
+    if (roots.size() != 1 || o.common.device != "sim") {
+      std::cerr << "sandpaper library catalog: --changed works on one library folder drawn for the sim device (from its index)\n";
+      return kExitUsage;
+    }
+    co.changed = changed_files(o.changed);
+  }
   auto report_from_index = roots.size() == 1 && std::filesystem::is_directory(roots.front())
                                ? catalog::write_catalog_from_index(roots.front(), o.common.calibration_dir, o.common.device, co)
                                : std::nullopt;

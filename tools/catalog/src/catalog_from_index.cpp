@@ -2,6 +2,7 @@
 // that a catalog run reads only the entries it draws (at 100,000 entries, reading and hashing
 // every entry file was most of a one-entry update).
 #include <sstream>
+#include <stdexcept>
 
 #include "sandpaper/catalog/catalog.hpp"
 #include "sandpaper/curation/index.hpp"
@@ -15,7 +16,12 @@ std::optional<CatalogReport> write_catalog_from_index(const std::filesystem::pat
   const auto index_path = curation::default_index_path(library_dir);
   std::ostringstream sink;
   curation::Progress quiet("indexing", 0, true, sink, false);
-  if (!curation::build_index({library_dir, calibration_dir, index_path, device}, quiet).ok) return std::nullopt;
+  curation::IndexOptions io{library_dir, calibration_dir, index_path, device};
+  io.changed = options.changed;
+  const auto indexed = curation::build_index(io, quiet);
+  // A list naming files of another folder is the caller's mistake, not a reason to draw without the index.
+  if (options.changed && !indexed.ok && indexed.error.find("the changed file") == 0) throw std::invalid_argument(indexed.error);
+  if (!indexed.ok) return std::nullopt;
   const curation::Index idx(index_path);
   CatalogSource source;
   source.manifest = compiler::Library(library_dir, std::vector<std::string>{}).manifest();

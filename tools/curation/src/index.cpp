@@ -113,6 +113,18 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
   const auto lib_abs = std::filesystem::absolute(lib_dir).lexically_normal().string();
   // Stamps first: an edit made while we compile makes the index stale, not wrongly fresh.
   const auto start = stamps::now_ns();
+  if (options.changed) {
+    if (options.full || !options.below.empty()) {
+      r.error = "a list of changed files is for one library root updated in place, not with a full build or a layered path";
+      return r;
+    }
+    std::string error;
+    (void)tag_changed(*options.changed, lib_dir, cal_dir, error);
+    if (!error.empty()) {
+      r.error = error;
+      return r;
+    }
+  }
   // A few entries changed, and no build was cut off: update the index in place.
   std::error_code exists_ec;
   // (A root of a layered path is small beside the roots under it, and is rebuilt in batches.)
@@ -181,11 +193,7 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
     stamps::walk(cal_dir, "calibration", known, start, true, tree);
     r.files_hashed = tree.hashed;
     std::map<std::string, std::string> file_hashes;
-    std::string all_files = "sandpaper-library-index/" + std::to_string(kIndexSchemaVersion);
-    for (const auto& f : tree.files) {
-      file_hashes[f.path] = f.hash;
-      all_files += "\n" + f.path + " " + f.hash;
-    }
+    for (const auto& f : tree.files) file_hashes[f.path] = f.hash;
     // Over roots below: what they hold is in their fingerprints, so a change there redoes every entry here.
     const auto global = global_inputs(file_hashes, options.device) + (layered ? "\nbelow\n" + below_fp : std::string());
     const auto inputs = entry_inputs(
@@ -254,7 +262,7 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
       discard();
       return r;
     }
-    auto meta = index_meta(c, lib_abs, cal_dir, options.device, stamps::fnv_hex(all_files), stamps::fnv_hex(global));
+    auto meta = index_meta(c, lib_abs, cal_dir, options.device, stamps::fingerprint(tree.files), stamps::fnv_hex(global));
     meta["below"] = below;
     meta["below_fingerprint"] = below_fp;
     sql::exec(db, "BEGIN");

@@ -24,12 +24,6 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-std::string stem_of(const std::string& path) {
-  const auto slash = path.rfind('/');
-  const auto base = slash == std::string::npos ? path : path.substr(slash + 1);
-  return base.substr(0, base.rfind('.'));
-}
-
 std::vector<std::string> column(sqlite3* db, const char* query, const std::string& arg) {
   sql::Stmt s(db, query);
   s.bind(1, arg);
@@ -39,6 +33,40 @@ std::vector<std::string> column(sqlite3* db, const char* query, const std::strin
 }
 
 }  // namespace
+
+std::vector<stamps::Listed> tag_changed(const std::vector<std::filesystem::path>& changed, const std::filesystem::path& lib_dir,
+                                        const std::filesystem::path& cal_dir, std::string& error) {
+  const auto under = [](const std::filesystem::path& file, const std::filesystem::path& dir) -> std::optional<std::filesystem::path> {
+    const auto rel = file.lexically_relative(dir);
+    if (rel.empty() || *rel.begin() == "..") return std::nullopt;
+    return rel;
+  };
+  const std::pair<const char*, std::filesystem::path> roots[] = {
+      {"library", std::filesystem::absolute(lib_dir).lexically_normal()},
+      {"calibration", std::filesystem::absolute(cal_dir).lexically_normal()}};
+  std::vector<stamps::Listed> out;
+  for (const auto& p : changed) {
+    const auto abs = std::filesystem::absolute(p).lexically_normal();
+    std::optional<std::pair<std::string, std::filesystem::path>> found;
+    for (const auto& [tag, dir] : roots)
+      if (auto rel = under(abs, dir); rel && !found) found = {{tag, *rel}};
+    // Through links (a library folder named by a link, a path given by its real name).
+    std::error_code ec;
+    for (const auto& [tag, dir] : roots)
+      if (!found)
+        if (auto rel = under(std::filesystem::weakly_canonical(abs, ec), std::filesystem::weakly_canonical(dir, ec))) found = {{tag, *rel}};
+    if (!found) {
+      error = "the changed file " + p.string() + " is in neither the library folder " + roots[0].second.string() +
+              " nor the calibration folder " + roots[1].second.string() + "; list only files of this library";
+      return {};
+    }
+    const auto& [tag, rel] = *found;
+    // Hidden files and folders are not the library's (the index's own .index/, editors' swap files).
+    if (std::any_of(rel.begin(), rel.end(), [](const auto& part) { return part.string().rfind('.', 0) == 0 && part != "."; })) continue;
+    out.push_back({rel == "." ? std::string(tag) : std::string(tag) + "/" + rel.generic_string(), abs});
+  }
+  return out;
+}
 
 std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, const std::filesystem::path& lib_dir,
                                                 const std::filesystem::path& cal_dir, const std::filesystem::path& index_path,
@@ -64,14 +92,34 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
     return std::nullopt;  // not an index
   }
 
-  // Every file's stamp, hashing only files whose stamp changed.
+  // Every file's stamp, hashing only files whose stamp changed; or, told which files changed, their
+  // stamps alone (and the calibration's, a few files): then nothing here grows with the library.
+  const bool listed = options.changed.has_value();
   stamps::Tree tree;
-  const auto known = stamps::read_files(db);
-  stamps::walk(lib_dir, "library", known, start_ns, false, tree);
+  stamps::Known known;
+  std::set<std::string> stamped_now;  // listed: the paths stamped now (the rest keep their rows)
+  if (listed) {
+    std::string error;
+    auto files = tag_changed(*options.changed, lib_dir, cal_dir, error);
+    if (!error.empty()) return std::nullopt;  // build_index reports it
+    files.push_back({"library/library.toml", lib_dir / "library.toml"});
+    std::vector<std::string> paths;
+    for (const auto& f : files) {
+      paths.push_back(f.path);
+      stamped_now.insert(f.path);
+    }
+    known = stamps::read_files_of(db, paths, {"calibration"});
+    if (!stamps::stamp_listed(files, {{"library", lib_dir}, {"calibration", cal_dir}}, known, start_ns, tree)) return std::nullopt;
+  } else {
+    known = stamps::read_files(db);
+    stamps::walk(lib_dir, "library", known, start_ns, false, tree);
+  }
   stamps::walk(cal_dir, "calibration", known, start_ns, true, tree);
   const auto hash_of = [&](const std::string& path) -> std::string {
-    const auto* f = stamps::find(tree.files, path);
-    return f ? f->hash : std::string("absent");
+    if (const auto* f = stamps::find(tree.files, path)) return f->hash;
+    if (!listed || stamped_now.count(path) || path.rfind("calibration/", 0) == 0) return "absent";
+    const auto recorded = column(db, "SELECT hash FROM files WHERE path = ?", path);
+    return recorded.empty() ? std::string("absent") : recorded.front();
   };
   std::map<std::string, std::string> global_files;
   for (const auto& f : tree.files)
@@ -88,7 +136,7 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
     n.step();
     return static_cast<std::size_t>(n.integer64(0));
   };
-  if (stamps::same(db, tree, known)) {  // nothing to write
+  if (listed ? stamps::same_part(db, tree, known, {"calibration"}) : stamps::same(db, tree, known)) {  // nothing to write
     r.ok = true;
     r.in_place = false;
     r.entries = r.reused = entry_count();
@@ -133,10 +181,10 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
                                    n))
       if (!changed_entry_files.count("library/" + file)) return std::nullopt;
   // A second file with a name (left out of the index): the batched build decides which one counts.
-  for (const auto& f : tree.files)
-    if (f.path.rfind("library/", 0) == 0 && ends_with(f.path, ".hmat") && !changed_entry_files.count(f.path) &&
-        touched.count(stem_of(f.path)))
-      return std::nullopt;
+  // An unchanged file has its recorded row, so the stamps' index on names finds it.
+  for (const auto& n : touched)
+    for (const auto& path : stamps::entry_files_named(db, n))
+      if (!changed_entry_files.count(path)) return std::nullopt;
   // What is built on them, backwards through `depends`: entries that read a changed file, or are
   // built on a touched name, then on those entries, and so on.
   std::set<std::string> affected;
@@ -191,8 +239,7 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
     compiled.push_back({e, std::move(*res.material), std::move(*res.program)});
   }
 
-  std::string all_files = "sandpaper-library-index/" + std::to_string(kIndexSchemaVersion);
-  for (const auto& f : tree.files) all_files += "\n" + f.path + " " + f.hash;
+  const auto fingerprint = listed ? stamps::fingerprint_update(meta("fingerprint"), known, tree.files) : stamps::fingerprint(tree.files);
   // One transaction, in the index itself: a kill before COMMIT leaves a journal that the next
   // opener rolls back, so readers see the old index or the new one.
   sql::exec(db, "PRAGMA synchronous = FULL; BEGIN IMMEDIATE");
@@ -204,9 +251,11 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
       writer.insert(x, inputs.at(x.entry->name));
       progress.step(x.entry->name);
     }
-    stamps::update(db, tree, known);
-    write_families_and_meta(db, lib,
-                            index_meta(c, lib_abs, cal_dir, options.device, stamps::fnv_hex(all_files), stamps::fnv_hex(global)));
+    if (listed)
+      stamps::update_part(db, tree, known, {"calibration"});
+    else
+      stamps::update(db, tree, known);
+    write_families_and_meta(db, lib, index_meta(c, lib_abs, cal_dir, options.device, fingerprint, stamps::fnv_hex(global)));
     sql::exec(db, "COMMIT");
   } catch (...) {
     sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);

@@ -6,8 +6,14 @@
 #include <optional>
 
 #include "sandpaper/curation/index.hpp"
+#include "stamps.hpp"
 
 namespace sandpaper::curation {
+
+// IndexOptions::changed as tagged paths ("library/textiles/corduroy.hmat"), hidden ones left out;
+// sets `error` (and returns nothing) for a path in neither folder.
+std::vector<stamps::Listed> tag_changed(const std::vector<std::filesystem::path>& changed, const std::filesystem::path& lib_dir,
+                                        const std::filesystem::path& cal_dir, std::string& error);
 
 // Updates the index at `index_path` in place, in one transaction, if at most options.batch
 // entries need compiling and nothing needs the whole library; nullopt: nothing was written, and

@@ -10,7 +10,9 @@
 #include <ctime>
 #include <fstream>
 #include <iterator>
+#include <string_view>
 
+#include "sandpaper/curation/index.hpp"
 #include "sqlite_util.hpp"
 
 namespace sandpaper::curation::stamps {
@@ -78,6 +80,35 @@ bool hidden(const std::filesystem::path& p) {
   return !name.empty() && name[0] == '.';
 }
 
+// The entry name an entry file would give ("corduroy" for "library/textiles/corduroy.hmat"), else
+// "": kept in `files` so that an update told which files changed finds a second file with a
+// name without reading every path.
+std::string stem_of(const std::string& path) {
+  constexpr std::string_view ext = ".hmat";
+  if (path.rfind("library/", 0) != 0 || path.size() < ext.size() || path.compare(path.size() - ext.size(), ext.size(), ext) != 0)
+    return {};
+  const auto slash = path.rfind('/');
+  return path.substr(slash + 1, path.size() - ext.size() - slash - 1);
+}
+
+constexpr const char* kPutFile = "INSERT OR REPLACE INTO files VALUES (?, ?, ?, ?, ?, ?, ?)";
+void put_file(sql::Stmt& put, const FileStamp& x) {
+  put.bind(1, x.path).bind(2, x.folder).bind64(3, x.size).bind64(4, x.mtime_ns).bind(5, x.hash).bind(6, x.racy ? 1 : 0).bind(7, stem_of(x.path)).run();
+}
+
+std::uint64_t line_hash(const FileStamp& f) {
+  const std::string line = f.path + " " + f.hash;
+  return fnv(line.data(), line.size());
+}
+
+std::uint64_t from_hex(const std::string& h) { return std::strtoull(h.c_str(), nullptr, 16); }
+
+// The parent of a tagged path ("library/a/b.hmat" -> "library/a"), or "" for a root.
+std::string parent_of(const std::string& path) {
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash);
+}
+
 
 }  // namespace
 
@@ -88,6 +119,20 @@ std::int64_t now_ns() {
 }
 
 std::string fnv_hex(const std::string& bytes) { return hex(fnv(bytes.data(), bytes.size())); }
+
+std::string fingerprint(const std::vector<FileStamp>& files) {
+  const std::string head = "sandpaper-library-index/" + std::to_string(kIndexSchemaVersion);
+  std::uint64_t sum = fnv(head.data(), head.size());
+  for (const auto& f : files) sum += line_hash(f);
+  return hex(sum);
+}
+
+std::string fingerprint_update(const std::string& old, const std::vector<FileStamp>& removed, const std::vector<FileStamp>& added) {
+  std::uint64_t sum = from_hex(old);
+  for (const auto& f : removed) sum -= line_hash(f);
+  for (const auto& f : added) sum += line_hash(f);
+  return hex(sum);
+}
 
 const FileStamp* find(const Known& known, const std::string& path) {
   const auto it = std::lower_bound(known.begin(), known.end(), path, [](const FileStamp& f, const std::string& p) { return f.path < p; });
@@ -185,18 +230,18 @@ void write(sqlite3* db, const Tree& tree) {
   sql::exec(db,
             "DROP TABLE IF EXISTS files; DROP TABLE IF EXISTS folders;"
             "CREATE TABLE files(path TEXT PRIMARY KEY, folder TEXT NOT NULL, size INTEGER NOT NULL, mtime_ns INTEGER NOT NULL,"
-            "  hash TEXT NOT NULL, racy INTEGER NOT NULL);"
+            "  hash TEXT NOT NULL, racy INTEGER NOT NULL, stem TEXT NOT NULL);"
             "CREATE INDEX files_folder ON files(folder);"
+            "CREATE INDEX files_stem ON files(stem) WHERE stem <> '';"
             "CREATE TABLE folders(path TEXT PRIMARY KEY, mtime_ns INTEGER NOT NULL, files_checked INTEGER NOT NULL);");
-  sql::Stmt f(db, "INSERT INTO files VALUES (?, ?, ?, ?, ?, ?)");
-  for (const auto& x : tree.files)
-    f.bind(1, x.path).bind(2, x.folder).bind64(3, x.size).bind64(4, x.mtime_ns).bind(5, x.hash).bind(6, x.racy ? 1 : 0).run();
+  sql::Stmt f(db, kPutFile);
+  for (const auto& x : tree.files) put_file(f, x);
   sql::Stmt d(db, "INSERT INTO folders VALUES (?, ?, ?)");
   for (const auto& x : tree.folders) d.bind(1, x.path).bind64(2, x.mtime_ns).bind(3, x.files_checked ? 1 : 0).run();
 }
 
 void update(sqlite3* db, const Tree& tree, const Known& known) {
-  sql::Stmt put(db, "INSERT OR REPLACE INTO files VALUES (?, ?, ?, ?, ?, ?)");
+  sql::Stmt put(db, kPutFile);
   std::size_t kept = 0;
   for (const auto& x : tree.files) {
     if (const auto* k = find(known, x.path)) {
@@ -204,7 +249,7 @@ void update(sqlite3* db, const Tree& tree, const Known& known) {
       const auto& o = *k;
       if (o.size == x.size && o.mtime_ns == x.mtime_ns && o.hash == x.hash && o.racy == x.racy) continue;
     }
-    put.bind(1, x.path).bind(2, x.folder).bind64(3, x.size).bind64(4, x.mtime_ns).bind(5, x.hash).bind(6, x.racy ? 1 : 0).run();
+    put_file(put, x);
   }
   if (kept != known.size()) {
     sql::Stmt del(db, "DELETE FROM files WHERE path = ?");
@@ -284,6 +329,132 @@ bool unchanged(sqlite3* db, const std::map<std::string, std::filesystem::path>& 
     if (recorded != present.size()) return false;
   }
   return seen > 0;
+}
+
+namespace {
+
+// Rows of `files` for a statement whose first columns are path, size, mtime_ns, hash, racy.
+void collect(sql::Stmt& s, Known& out) {
+  while (s.step()) out.push_back({s.text(0), {}, s.integer64(1), s.integer64(2), s.text(3), s.integer(4) != 0});
+  s.reset();
+}
+
+// The folder rows of a tag walked whole ("calibration": the tag itself and every folder under it).
+constexpr const char* kFoldersOfTag = "FROM folders WHERE path = ?1 OR (path >= ?1 || '/' AND path < ?1 || '0')";
+
+}  // namespace
+
+bool stamp_listed(const std::vector<Listed>& files, const std::map<std::string, std::filesystem::path>& roots, const Known& known,
+                  std::int64_t build_start_ns, Tree& into) {
+  const std::int64_t racy_after = build_start_ns - kRacyWindowNs;
+  std::map<std::string, FolderStamp> folders;
+  std::vector<FileStamp> stamped;
+  for (const auto& l : files) {
+    const auto s = stat_of(l.on_disk);  // through a link, as the walk's fstatat
+    if (s.ok && !s.regular) return false;
+    if (s.ok) {
+      FileStamp f{l.path, parent_of(l.path), s.size, s.mtime_ns, {}, s.mtime_ns > racy_after};
+      if (const auto* k = find(known, l.path); k && !k->racy && k->size == f.size && k->mtime_ns == f.mtime_ns) {
+        f.hash = k->hash;
+      } else {
+        f.hash = hash_fd(::open(l.on_disk.c_str(), O_RDONLY | O_CLOEXEC));
+        ++into.hashed;
+      }
+      stamped.push_back(std::move(f));
+    }
+    for (auto folder = parent_of(l.path); !folder.empty() && !folders.count(folder); folder = parent_of(folder)) {
+      const auto slash = folder.find('/');
+      const auto root = roots.find(folder.substr(0, slash));
+      if (root == roots.end()) return false;
+      const auto dir = slash == std::string::npos ? root->second : root->second / folder.substr(slash + 1);
+      struct ::stat lst {};
+      // The walk does not enter a link to a folder, so a file under one is not the library's.
+      if (::lstat(dir.c_str(), &lst) == 0 && S_ISLNK(lst.st_mode) && slash != std::string::npos) return false;
+      const auto fs = stat_of(dir);
+      if (!fs.directory) return false;
+      folders[folder] = {folder, fs.mtime_ns, slash == std::string::npos || fs.mtime_ns > racy_after};
+    }
+  }
+  std::sort(stamped.begin(), stamped.end(), [](const FileStamp& a, const FileStamp& b) { return a.path < b.path; });
+  stamped.erase(std::unique(stamped.begin(), stamped.end(), [](const FileStamp& a, const FileStamp& b) { return a.path == b.path; }),
+                stamped.end());
+  const auto before = into.files.size();
+  std::move(stamped.begin(), stamped.end(), std::back_inserter(into.files));
+  const auto by_path = [](const FileStamp& a, const FileStamp& b) { return a.path < b.path; };
+  std::inplace_merge(into.files.begin(), into.files.begin() + static_cast<std::ptrdiff_t>(before), into.files.end(), by_path);
+  for (auto& [path, f] : folders) into.folders.push_back(std::move(f));
+  return true;
+}
+
+Known read_files_of(sqlite3* db, const std::vector<std::string>& paths, const std::vector<std::string>& folders) {
+  Known out;
+  sql::Stmt one(db, "SELECT path, size, mtime_ns, hash, racy FROM files WHERE path = ?");
+  for (const auto& p : paths) {
+    one.bind(1, p);
+    collect(one, out);
+  }
+  // '0' follows '/': the range holds exactly the paths under the folder.
+  sql::Stmt under(db, "SELECT path, size, mtime_ns, hash, racy FROM files WHERE path >= ?1 || '/' AND path < ?1 || '0'");
+  for (const auto& f : folders) {
+    under.bind(1, f);
+    collect(under, out);
+  }
+  std::sort(out.begin(), out.end(), [](const FileStamp& a, const FileStamp& b) { return a.path < b.path; });
+  out.erase(std::unique(out.begin(), out.end(), [](const FileStamp& a, const FileStamp& b) { return a.path == b.path; }), out.end());
+  return out;
+}
+
+void update_part(sqlite3* db, const Tree& tree, const Known& known, const std::vector<std::string>& walked_tags) {
+  sql::Stmt put(db, kPutFile);
+  for (const auto& x : tree.files) {
+    const auto* k = find(known, x.path);
+    if (k && k->size == x.size && k->mtime_ns == x.mtime_ns && k->hash == x.hash && k->racy == x.racy) continue;
+    put_file(put, x);
+  }
+  sql::Stmt del(db, "DELETE FROM files WHERE path = ?");
+  for (const auto& k : known)
+    if (!find(tree.files, k.path)) del.bind(1, k.path).run();
+  sql::Stmt drop(db, std::string("DELETE ") + kFoldersOfTag);
+  for (const auto& t : walked_tags) drop.bind(1, t).run();
+  sql::Stmt d(db, "INSERT OR REPLACE INTO folders VALUES (?, ?, ?)");
+  for (const auto& x : tree.folders) d.bind(1, x.path).bind64(2, x.mtime_ns).bind(3, x.files_checked ? 1 : 0).run();
+}
+
+bool same_part(sqlite3* db, const Tree& tree, const Known& known, const std::vector<std::string>& walked_tags) {
+  if (tree.files.size() != known.size()) return false;
+  auto k = known.begin();
+  for (const auto& x : tree.files) {
+    const auto& o = *k++;
+    if (o.path != x.path || o.size != x.size || o.mtime_ns != x.mtime_ns || o.hash != x.hash || o.racy != x.racy) return false;
+  }
+  sql::Stmt f(db, "SELECT mtime_ns, files_checked FROM folders WHERE path = ?");
+  for (const auto& x : tree.folders) {
+    f.bind(1, x.path);
+    const bool ok = f.step() && f.integer64(0) == x.mtime_ns && (f.integer(1) != 0) == x.files_checked;
+    f.reset();
+    if (!ok) return false;
+  }
+  sql::Stmt n(db, std::string("SELECT count(*) ") + kFoldersOfTag);
+  for (const auto& t : walked_tags) {
+    n.bind(1, t);
+    n.step();
+    const auto recorded = static_cast<std::size_t>(n.integer64(0));
+    n.reset();
+    const auto walked = static_cast<std::size_t>(std::count_if(tree.folders.begin(), tree.folders.end(), [&](const FolderStamp& x) {
+      return x.path == t || x.path.rfind(t + "/", 0) == 0;
+    }));
+    if (recorded != walked) return false;
+  }
+  return true;
+}
+
+std::vector<std::string> entry_files_named(sqlite3* db, const std::string& name) {
+  // `stem <> ''` lets SQLite use the partial index files_stem.
+  sql::Stmt s(db, "SELECT path FROM files WHERE stem = ?1 AND stem <> ''");
+  s.bind(1, name);
+  std::vector<std::string> out;
+  while (s.step()) out.push_back(s.text(0));
+  return out;
 }
 
 }  // namespace sandpaper::curation::stamps

@@ -51,8 +51,29 @@ std::int64_t now_ns();
 void walk(const std::filesystem::path& dir, const std::string& tag, const Known& known,
           std::int64_t build_start_ns, bool every_file_checked, Tree& into);
 
-// Hex FNV-1a 64 of a string (for entry input hashes and the fingerprint).
+// Hex FNV-1a 64 of a string (for entry input hashes).
 std::string fnv_hex(const std::string& bytes);
+
+// The index's `fingerprint` of the stamps of every file: FNV-1a 64 of the schema's name plus the
+// sum (mod 2^64) of each "path hash" line's FNV-1a 64. A sum, so that an update told which files
+// changed can take their old lines out and put their new ones in (fingerprint_update) without
+// the other files. It detects edits, not tampering.
+std::string fingerprint(const std::vector<FileStamp>& files);
+// `old` (a fingerprint) with the lines of `removed` taken out and those of `added` put in.
+std::string fingerprint_update(const std::string& old, const std::vector<FileStamp>& removed, const std::vector<FileStamp>& added);
+
+// A file named by the caller as changed (`library index --changed`): its tagged path
+// ("library/textiles/corduroy.hmat") and where it is on disk.
+struct Listed {
+  std::string path;
+  std::filesystem::path on_disk;
+};
+// The stamps of the listed files alone, without walking: a file that is gone is left out; each
+// one's folders, up to its root, are stamped too (a file added or removed changes its folder's
+// time, which queries check). `known` holds at least their recorded stamps. False when only a
+// walk can tell: a listed path is a folder or not a regular file, or one of its folders is gone.
+bool stamp_listed(const std::vector<Listed>& files, const std::map<std::string, std::filesystem::path>& roots, const Known& known,
+                  std::int64_t build_start_ns, Tree& into);
 
 // Creates (if absent) and fills the `files` and `folders` tables of an open index.
 void write(sqlite3* db, const Tree& tree);
@@ -63,6 +84,18 @@ void update(sqlite3* db, const Tree& tree, const Known& known);
 bool same(sqlite3* db, const Tree& tree, const Known& known);
 // The `files` table of an index, sorted by path; empty if it has none.
 Known read_files(sqlite3* db);
+
+// For a tree of some files only (stamp_listed, plus walks of small folders) and `known`, the
+// recorded stamps of exactly those paths (read_files_of): update() and same() for those rows and
+// the tree's folders alone; every other row is kept as it is.
+// `walked_tags`: roots walked whole ("calibration"), whose folder rows are replaced, not merged.
+void update_part(sqlite3* db, const Tree& tree, const Known& known, const std::vector<std::string>& walked_tags);
+bool same_part(sqlite3* db, const Tree& tree, const Known& known, const std::vector<std::string>& walked_tags);
+// The recorded stamps of `paths` and of every path under one of `folders` ("calibration"),
+// sorted by path.
+Known read_files_of(sqlite3* db, const std::vector<std::string>& paths, const std::vector<std::string>& folders);
+// The recorded paths of entry files ("library/.../NAME.hmat") whose name is `name`.
+std::vector<std::string> entry_files_named(sqlite3* db, const std::string& name);
 
 // The cheap check: every recorded folder still has its modification time and no folder was added
 // or removed under it; in folders marked files_checked, every file keeps its stamp (and racy files

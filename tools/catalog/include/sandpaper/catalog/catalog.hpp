@@ -29,6 +29,9 @@ struct CatalogOptions {
   // Also each picture as Sandpaper's `.shade` array file (`--arrays`): 147 KB an entry at 384 x
   // 384, most of a catalog's size (issue 18: at most 50 KB an entry without them).
   bool arrays = false;
+  // The library files that changed since the index was built (write_catalog_from_index; as
+  // curation::IndexOptions::changed): the index is brought up to date from them alone.
+  std::optional<std::vector<std::filesystem::path>> changed = std::nullopt;
 };
 
 struct CatalogFailure {
@@ -68,6 +71,7 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
 // is read. nullopt when that cannot be done (a device other than the index's `sim`, or the index
 // does not build, for instance an entry that does not compile): then write_catalog(compiler, ...)
 // over the whole library does it and reports every failure. Same files as that, byte for byte.
+// Throws std::invalid_argument when options.changed names a file of neither the library nor the calibration.
 std::optional<CatalogReport> write_catalog_from_index(const std::filesystem::path& library_dir,
                                                       const std::filesystem::path& calibration_dir, const std::string& device,
                                                       const CatalogOptions& options);

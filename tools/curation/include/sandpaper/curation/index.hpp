@@ -20,7 +20,7 @@ struct sqlite3;
 
 namespace sandpaper::curation {
 
-inline constexpr int kIndexSchemaVersion = 5;
+inline constexpr int kIndexSchemaVersion = 6;
 
 // $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
 std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
@@ -29,9 +29,9 @@ std::filesystem::path default_index_path(const std::filesystem::path& library_di
 // names one file, so it is not used there).
 std::filesystem::path layer_index_path(const std::filesystem::path& root_dir);
 
-// Hex FNV-1a 64 over the list of every file of the library folder (relative path and FNV-1a 64 of
-// its bytes; hidden files and folders such as .index/ left out) and of the calibration folder,
-// which sets the roughness: the index's `fingerprint`. It detects edits, not tampering.
+// The index's `fingerprint`: a hash over every file of the library folder (relative path and
+// FNV-1a 64 of its bytes; hidden files and folders such as .index/ left out) and of the calibration
+// folder, which sets the roughness (a sum of one hash per file: stamps.hpp). It detects edits, not tampering.
 std::string library_fingerprint(const std::filesystem::path& library_dir, const std::filesystem::path& calibration_dir);
 
 struct IndexOptions {
@@ -45,6 +45,13 @@ struct IndexOptions {
   // entries only, compiled over the whole path, and records each lower root's index fingerprint:
   // their indexes (layer_index_path) must be fresh, and a change below redoes this root's entries.
   std::vector<std::filesystem::path> below = {};
+  // The files that changed since the index was built, as an editor's save hook, a file watcher or
+  // `git diff --name-only` knows (paths on disk, in the library or calibration folder; hidden ones
+  // are ignored): the update stats these and the calibration alone, without walking the library,
+  // and takes every other file's recorded stamp as it is. A build without them still finds what
+  // the list left out. When the change needs more than an in-place update, the whole build runs.
+  // Not with `below`, nor with `full`.
+  std::optional<std::vector<std::filesystem::path>> changed = std::nullopt;
 };
 
 struct IndexBuildResult {
