@@ -3,6 +3,8 @@
 # for each LIBRARY:CATALOG:ENTRY given, three runs each of `library catalog` after appending a comment
 # to ENTRY (an entry nothing is built on), `library index` after the same, `library index` with
 # nothing changed, `library catalog` after `library index`, and `library search`, `show` and `near`.
+# First, the one-entry runs with `--changed FILE` (index-changed, index-changed-none, catalog-changed); with
+# ONE_ENTRY_ONLY_CHANGED=1 only those.
 # Prints "<library> <what> <wall> s <user> u <system> s <max RSS> KB" per run (/usr/bin/time).
 #   bench/library_one_entry.sh BIN /tmp/g1k:/tmp/cat1k:gen-gratings/000/gen-grating-000009.hmat ...
 # The libraries come from tools/library_gen.py; a catalog may be seeded by bench/catalog_seed.py.
@@ -23,6 +25,14 @@ for spec in "$@"; do
   "$B" library index --library "$lib" --quiet >/dev/null
   "$B" library catalog --library "$lib" -o "$cat" --quiet >/dev/null
   sleep 3  # past the 2 s window in which a file's stamp is racy (tools/curation/src/stamps.hpp)
+  # Told which file changed (`--changed`): nothing walked.
+  for i in 1 2 3; do echo "# touched l$i" >>"$f"; timed "$n index-changed" "$B" library index --library "$lib" --quiet --changed "$f"; done
+  for i in 1 2 3; do timed "$n index-changed-none" "$B" library index --library "$lib" --quiet --changed "$f"; done
+  for i in 1 2 3; do
+    echo "# touched m$i" >>"$f"
+    timed "$n catalog-changed" "$B" library catalog --library "$lib" -o "$cat" --quiet --changed "$f"
+  done
+  [ -n "${ONE_ENTRY_ONLY_CHANGED:-}" ] && continue
   for i in 1 2 3; do echo "# touched c$i" >>"$f"; timed "$n catalog-one" "$B" library catalog --library "$lib" -o "$cat" --quiet; done
   for i in 1 2 3; do echo "# touched i$i" >>"$f"; timed "$n index-one" "$B" library index --library "$lib" --quiet; done
   sleep 3

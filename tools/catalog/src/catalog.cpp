@@ -206,31 +206,53 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   fs::create_directories(tmp.path / "entries");
   fs::create_directories(tmp.path / "assets");
 
-  curation::Progress progress("catalog", source.entries.size(), options.progress == nullptr,
-                              options.progress ? *options.progress : std::cerr, options.progress_is_tty);
   const std::string settings = settings_of(options);
-  // What was drawn with which inputs: the hashes of every entry; rows and files only where needed.
-  const auto recorded = read_record_hashes(dir, settings);
+  const std::vector<std::pair<std::string, std::string>>* entries = &source.entries;
+  std::vector<std::pair<std::string, std::string>> every;
+  const std::string recorded_fingerprint = recorded_index_fingerprint(dir, settings);
+  // `entries` holds only some entries (source.since): usable if the record was compared with the
+  // index as it was, and if no entry among them is new (the record lacks it: a new entry rewrites
+  // the whole data file, which needs every row). Otherwise every_entry() gives them all.
+  bool partial = source.since && !source.since->empty() && source.entries.size() <= kInPlaceLimit &&
+                 recorded_fingerprint == *source.since && fs::is_regular_file(dir / kIndexDataFile);
+  std::vector<std::string> partial_names;
+  if (partial)
+    for (const auto& e : source.entries) partial_names.push_back(e.first);
+  // What was drawn with which inputs: the hashes of the entries compared; rows and files only where needed.
+  auto recorded = partial ? read_record_hashes(dir, settings, &partial_names) : std::nullopt;
+  if (partial && (!recorded || recorded->size() != partial_names.size())) partial = false;
+  if (source.since && !partial) {
+    if (!source.every_entry) throw std::logic_error("write_catalog: a partial list of entries without every_entry");
+    every = source.every_entry();
+    entries = &every;
+  }
+  if (!partial) recorded = read_record_hashes(dir, settings);
+  const std::size_t entry_count = partial ? source.entry_count : entries->size();
+  report.compared = entries->size();
+
+  curation::Progress progress("catalog", entry_count, options.progress == nullptr,
+                              options.progress ? *options.progress : std::cerr, options.progress_is_tty);
   const std::unordered_map<std::string, std::string> no_hashes;
   const auto& hashes = recorded ? *recorded : no_hashes;
   // Entries drawn with the same inputs and settings keep their files; the rest are drawn, by one
   // compiler that need only hold them and what they are built on.
-  std::vector<bool> kept(source.entries.size(), false);
+  std::vector<bool> kept(entries->size(), false);
   std::vector<std::string> to_draw;
   std::unordered_set<std::string> present;
-  present.reserve(source.entries.size());
+  present.reserve(entries->size());
   bool added = false;  // an entry the record does not have
-  for (std::size_t i = 0; i < source.entries.size(); ++i) {
-    const auto& [name, hash] = source.entries[i];
+  for (std::size_t i = 0; i < entries->size(); ++i) {
+    const auto& [name, hash] = (*entries)[i];
     present.insert(name);
     const auto it = hashes.find(name);
     added = added || it == hashes.end();
     kept[i] = !hash.empty() && it != hashes.end() && it->second == hash;
     if (!kept[i]) to_draw.push_back(name);
   }
-  std::vector<std::string> removed;
-  for (const auto& [name, hash] : hashes)
-    if (!present.count(name)) removed.push_back(name);
+  std::vector<std::string> removed;  // partial: none (every listed entry is in the record and the index)
+  if (!partial)
+    for (const auto& [name, hash] : hashes)
+      if (!present.count(name)) removed.push_back(name);
   std::sort(removed.begin(), removed.end());
   // Few changes: the drawn files replace theirs in the catalog itself, one rename each, rather than
   // a new folder of 3 hard links an entry swapped in (10 s at 100,000 entries); the same bound as
@@ -244,20 +266,20 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     before = read_record(dir, settings, report.in_place ? &touched : nullptr).value_or(Record{});
   }
   if (!report.in_place)
-    for (std::size_t i = 0; i < source.entries.size(); ++i) {
-      const auto it = kept[i] ? before.find(source.entries[i].first) : before.end();
+    for (std::size_t i = 0; i < entries->size(); ++i) {
+      const auto it = kept[i] ? before.find((*entries)[i].first) : before.end();
       const auto files = it == before.end() ? std::nullopt : it->second.files();
       if (kept[i] && (!files || !keep_files(dir, tmp.path, *files))) {
         kept[i] = false;
-        to_draw.push_back(source.entries[i].first);
+        to_draw.push_back((*entries)[i].first);
       }
     }
   const compiler::Compiler* drawing = to_draw.empty() ? nullptr : &source.compiler_for(to_draw);
   progress.set_total(to_draw.size());  // what is drawn; the kept entries cost nothing to count
   std::map<std::string, RecordedEntry> drawn;
   std::vector<IndexRow> rows;
-  for (std::size_t i = 0; i < source.entries.size(); ++i) {
-    const auto& [name, hash] = source.entries[i];
+  for (std::size_t i = 0; i < entries->size(); ++i) {
+    const auto& [name, hash] = (*entries)[i];
     if (kept[i]) {
       if (!report.in_place) rows.push_back(before.at(name).row);  // in place, the data file keeps its row
       ++report.reused;
@@ -321,10 +343,11 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     rows.push_back(std::move(row));
     ++report.rendered;
   }
+  if (partial) report.reused += static_cast<int>(entry_count - entries->size());  // not compared: as recorded
   progress.finish(report.failures.empty() ? "catalog: " + std::to_string(report.rendered) + " of " +
-                                                std::to_string(source.entries.size()) + " entries compiled and drawn"
+                                                std::to_string(entry_count) + " entries compiled and drawn"
                                           : "catalog: " + std::to_string(report.failures.size()) + " of " +
-                                                std::to_string(source.entries.size()) + " entries do not compile");
+                                                std::to_string(entry_count) + " entries do not compile");
   if (!report.failures.empty()) return report;
 
   const std::string marker = "Written by `sandpaper library catalog`; the folder is replaced whole by the next run, or its "
@@ -334,7 +357,10 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     // page and its data; then what is gone is removed; the record is committed last, so a run
     // killed before that draws these entries again (docs/CATALOG.md, "Incremental builds").
     std::optional<RecordWriter> opened;
-    if (!drawn.empty() || !removed.empty()) opened.emplace(dir / kRecordFile, settings);
+    if (!drawn.empty() || !removed.empty() || recorded_fingerprint != source.index_fingerprint) {
+      opened.emplace(dir / kRecordFile, settings);
+      opened->set_index_fingerprint(source.index_fingerprint);
+    }
     std::set<std::string> stale;
     for (const auto& [name, e] : drawn) {
       const auto files = e.files().value();  // written by this run
@@ -365,11 +391,19 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
         patched = patch_index(read_text(dir / kIndexDataFile), source.manifest, rows);
       if (!patched) {
         auto all = read_record(dir, settings).value_or(Record{});
-        std::vector<IndexRow> every;
-        for (const auto& [name, hash] : source.entries)
-          if (const auto d = drawn.find(name); d != drawn.end()) every.push_back(d->second.row);
-          else if (const auto a = all.find(name); a != all.end()) every.push_back(std::move(a->second.row));
-        patched = PatchedIndex{index_data_script(source.manifest, every), index_page_html(source.manifest, every)};
+        // Partial, the record holds every entry (none came or went), in the index's order by name.
+        std::vector<std::string> names;
+        if (partial) {
+          for (const auto& [name, e] : all) names.push_back(name);
+          std::sort(names.begin(), names.end());
+        } else {
+          for (const auto& [name, hash] : *entries) names.push_back(name);
+        }
+        std::vector<IndexRow> all_rows;
+        for (const auto& name : names)
+          if (const auto d = drawn.find(name); d != drawn.end()) all_rows.push_back(d->second.row);
+          else if (const auto a = all.find(name); a != all.end()) all_rows.push_back(std::move(a->second.row));
+        patched = PatchedIndex{index_data_script(source.manifest, all_rows), index_page_html(source.manifest, all_rows)};
       }
       replace_if_changed(dir / kIndexDataFile, patched->script);
       replace_if_changed(dir / "index.html", patched->page);
@@ -379,15 +413,16 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     std::error_code ec;
     for (const auto& f : stale) fs::remove(dir / "entries" / f, ec);
     if (opened) opened->commit();
-    report.entries = static_cast<int>(source.entries.size());
+    report.entries = static_cast<int>(entry_count);
     return report;
   }
   write_text(tmp.path / "index.html", index_page_html(source.manifest, rows));
   write_text(tmp.path / kIndexDataFile, index_data_script(source.manifest, rows));
   {
     RecordWriter record(tmp.path / kRecordFile, settings);
-    for (std::size_t i = 0; i < source.entries.size(); ++i) {
-      const auto& [name, hash] = source.entries[i];
+    record.set_index_fingerprint(source.index_fingerprint);
+    for (std::size_t i = 0; i < entries->size(); ++i) {
+      const auto& [name, hash] = (*entries)[i];
       if (kept[i]) record.put(name, before.at(name));
       else if (const auto it = drawn.find(name); it != drawn.end() && !hash.empty()) record.put(name, it->second);
     }

@@ -25,7 +25,22 @@ std::optional<CatalogReport> write_catalog_from_index(const std::filesystem::pat
   const curation::Index idx(index_path);
   CatalogSource source;
   source.manifest = compiler::Library(library_dir, std::vector<std::string>{}).manifest();
-  source.entries = idx.input_hashes();
+  source.index_fingerprint = idx.meta("fingerprint");
+  if (indexed.rewritten) {
+    // Updated in place: if the record was compared with the index as it was, only these can differ.
+    // A name with no row now is gone: then the whole list (write_catalog removes its files).
+    bool gone = false;
+    for (const auto& name : *indexed.rewritten) {
+      const auto hash = idx.input_hash(name);
+      gone = gone || !hash;
+      if (hash) source.entries.emplace_back(name, *hash);
+    }
+    source.since = gone ? std::string() : indexed.previous_fingerprint;
+    source.entry_count = indexed.entries;
+    source.every_entry = [&idx] { return idx.input_hashes(); };
+  } else {
+    source.entries = idx.input_hashes();
+  }
   std::optional<compiler::Compiler> drawing;
   source.compiler_for = [&](const std::vector<std::string>& names) -> const compiler::Compiler& {
     compiler::CompileOptions o;

@@ -142,12 +142,22 @@ std::optional<Record> read_record(const std::filesystem::path& dir, const std::s
 }
 
 std::optional<std::unordered_map<std::string, std::string>> read_record_hashes(const std::filesystem::path& dir,
-                                                                               const std::string& settings) {
+                                                                               const std::string& settings,
+                                                                               const std::vector<std::string>* only) {
   sqlite3* db = open_record(dir, settings);
   if (!db) return std::nullopt;
   Closer closer{db};
   std::unordered_map<std::string, std::string> out;
   try {
+    if (only) {
+      Stmt s(db, "SELECT hash FROM entries WHERE name = ?");
+      for (const auto& name : *only) {
+        bind_text(s.s, 1, name);
+        if (sqlite3_step(s.s) == SQLITE_ROW) out.emplace(name, text(s.s, 0));
+        sqlite3_reset(s.s);
+      }
+      return out;
+    }
     {
       Stmt n(db, "SELECT count(*) FROM entries");
       if (sqlite3_step(n.s) == SQLITE_ROW) out.reserve(static_cast<std::size_t>(sqlite3_column_int64(n.s, 0)));
@@ -158,6 +168,18 @@ std::optional<std::unordered_map<std::string, std::string>> read_record_hashes(c
     return std::nullopt;
   }
   return out;
+}
+
+std::string recorded_index_fingerprint(const std::filesystem::path& dir, const std::string& settings) {
+  sqlite3* db = open_record(dir, settings);
+  if (!db) return "";
+  Closer closer{db};
+  try {
+    Stmt m(db, "SELECT value FROM meta WHERE key = 'index_fingerprint'");
+    if (sqlite3_step(m.s) == SQLITE_ROW) return text(m.s, 0);
+  } catch (const std::exception&) {
+  }
+  return "";
 }
 
 RecordWriter::RecordWriter(const std::filesystem::path& file, const std::string& settings) {
@@ -202,6 +224,12 @@ void RecordWriter::erase(const std::string& name) {
   Stmt s(db_, "DELETE FROM entries WHERE name = ?");
   bind_text(s.s, 1, name);
   check(db_, sqlite3_step(s.s), "erase");
+}
+
+void RecordWriter::set_index_fingerprint(const std::string& fingerprint) {
+  Stmt s(db_, "INSERT OR REPLACE INTO meta VALUES ('index_fingerprint', ?)");
+  bind_text(s.s, 1, fingerprint);
+  check(db_, sqlite3_step(s.s), "index fingerprint");
 }
 
 void RecordWriter::commit() {

@@ -37,9 +37,13 @@ using Record = std::unordered_map<std::string, RecordedEntry>;
 // `only`: just these entries (those absent are left out); nullptr: every entry.
 std::optional<Record> read_record(const std::filesystem::path& dir, const std::string& settings,
                                   const std::vector<std::string>* only = nullptr);
-// Just each entry's input hash: what a run compares to decide what to draw.
+// Just each entry's input hash: what a run compares to decide what to draw. `only` as for read_record.
 std::optional<std::unordered_map<std::string, std::string>> read_record_hashes(const std::filesystem::path& dir,
-                                                                               const std::string& settings);
+                                                                               const std::string& settings,
+                                                                               const std::vector<std::string>* only = nullptr);
+// The fingerprint of the library index whose input hashes the record's rows were compared with when
+// it was last committed ("" if none: drawn without an index, or by an earlier version).
+std::string recorded_index_fingerprint(const std::filesystem::path& dir, const std::string& settings);
 
 // Writes a record: a new file, or the catalog's own in place. Rows go in one transaction, which
 // commit() ends; destroyed before commit(), nothing it wrote is kept.
@@ -51,6 +55,7 @@ class RecordWriter {
   RecordWriter& operator=(const RecordWriter&) = delete;
   void put(const std::string& name, const RecordedEntry& e);
   void erase(const std::string& name);
+  void set_index_fingerprint(const std::string& fingerprint);  // see recorded_index_fingerprint
   void commit();
 
  private:

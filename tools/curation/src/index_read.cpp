@@ -237,6 +237,13 @@ std::vector<std::pair<std::string, std::string>> Index::input_hashes() const {
   return out;
 }
 
+std::optional<std::string> Index::input_hash(const std::string& name) const {
+  sql::Stmt s(db_, "SELECT hash FROM inputs WHERE name = ?");
+  s.bind(1, name);
+  if (!s.step()) return std::nullopt;
+  return s.text(0);
+}
+
 std::vector<std::string> Index::files_reached(const std::vector<std::string>& names) const {
   std::vector<std::string> roots = names, links;
   if (const auto ref = meta("library_reference"); !ref.empty()) roots.push_back(ref);

@@ -91,6 +91,7 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
   } catch (const sql::Error&) {
     return std::nullopt;  // not an index
   }
+  const auto previous_fingerprint = meta("fingerprint");
 
   // Every file's stamp, hashing only files whose stamp changed; or, told which files changed, their
   // stamps alone (and the calibration's, a few files): then nothing here grows with the library.
@@ -131,6 +132,7 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
   r.path = index_path;
   r.in_place = true;
   r.files_hashed = tree.hashed;
+  r.previous_fingerprint = previous_fingerprint;
   const auto entry_count = [&] {
     sql::Stmt n(db, "SELECT count(*) FROM entries");
     n.step();
@@ -140,6 +142,7 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
     r.ok = true;
     r.in_place = false;
     r.entries = r.reused = entry_count();
+    r.rewritten.emplace();
     return r;
   }
 
@@ -265,6 +268,9 @@ std::optional<IndexBuildResult> update_in_place(const IndexOptions& options, con
   r.compiled = compiled.size();
   r.entries = entry_count();
   r.reused = r.entries - r.compiled;
+  std::set<std::string> rewritten = old_names;
+  rewritten.insert(affected.begin(), affected.end());
+  r.rewritten.emplace(rewritten.begin(), rewritten.end());
   return r;
 }
 

@@ -43,6 +43,9 @@ struct CatalogReport {
   int entries = 0;                        // pages written (0 when anything failed)
   int rendered = 0, reused = 0;           // of them: compiled and drawn now, or kept from the previous catalog
   bool in_place = false;                  // few entries changed: their files replaced in the catalog itself (catalog.cpp)
+  // Entries whose input hashes were compared with the record's: every entry, or after an in-place
+  // index update only those it rewrote (CatalogSource::since).
+  std::size_t compared = 0;
   std::vector<CatalogFailure> failures;   // entries that did not compile; nothing is written then
 };
 
@@ -62,6 +65,16 @@ struct CatalogSource {
   // A compiler whose library holds at least these entries, what they are built on and the entries
   // they link to; called once, with the entries to draw (not called when there are none).
   std::function<const compiler::Compiler&(const std::vector<std::string>& names)> compiler_for;
+  // Drawn from a library index: its fingerprint, kept in the record with the rows compared with it.
+  std::string index_fingerprint;
+  // When set, `entries` lists only the entries whose index rows changed since the index had this
+  // fingerprint, and `entry_count` says how many there are in all. If the record was last compared
+  // with that index, every other entry is as recorded and only these are compared (a one-entry
+  // update then reads nothing that grows with the library but the index page's data file);
+  // otherwise, or when one of them is new or gone, every_entry() gives the whole list.
+  std::optional<std::string> since;
+  std::size_t entry_count = 0;
+  std::function<std::vector<std::pair<std::string, std::string>>()> every_entry;
 };
 CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& options);
 

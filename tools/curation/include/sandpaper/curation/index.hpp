@@ -63,6 +63,11 @@ struct IndexBuildResult {
   std::size_t files_hashed = 0;        // files read to hash them (the others' stamps had not changed)
   bool resumed = false;                // started from the rows of a build that was killed
   bool in_place = false;               // few entries or stamps changed: updated in the index itself, in one transaction
+  // After an update in place, or none needed: the entries whose rows it rewrote or removed, and the
+  // index's fingerprint before it; every other row is as it was then. nullopt after a batched build,
+  // which may have rewritten any row (write_catalog_from_index compares only these when it can).
+  std::optional<std::vector<std::string>> rewritten;
+  std::string previous_fingerprint;
   std::filesystem::path path;
 };
 
@@ -137,6 +142,7 @@ class Index {
   // Every entry's input hash (table `inputs`), by name: what `library catalog` compares with the
   // hashes its pages were drawn from.
   std::vector<std::pair<std::string, std::string>> input_hashes() const;
+  std::optional<std::string> input_hash(const std::string& name) const;  // nullopt: no such entry
   // The entry files (relative to the library) that compiling `names` reads: theirs, those of
   // every entry they are built on (recursively) and of the reference entry, and those of the
   // entries their `deprecated replaced-by` names. A compiler over compiler::Library(dir, these)
