@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <toml++/toml.h>
 
 #include "sandpaper/compiler/lexer.hpp"
@@ -127,6 +128,13 @@ Library::Library(std::vector<std::filesystem::path> roots) {
 Library::Library(std::filesystem::path dir, const std::vector<std::string>& only_files) {
   read_roots({std::move(dir)});
   scan(0, &only_files);
+  index_names();
+}
+
+Library::Library(std::vector<std::filesystem::path> roots, const std::vector<std::vector<std::string>>& only_files) {
+  read_roots(std::move(roots));
+  if (only_files.size() != roots_.size()) throw std::invalid_argument("Library: one list of files per root");
+  for (std::size_t i = 0; i < roots_.size(); ++i) scan(i, &only_files[i]);
   index_names();
 }
 

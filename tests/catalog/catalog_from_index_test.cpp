@@ -19,6 +19,7 @@
 namespace sandpaper {
 namespace {
 namespace fs = std::filesystem;
+using test::replace_in;
 
 // The record's rows and settings, one line each. Not its bytes: drawn from an index, the record also
 // names the index's fingerprint, which a catalog drawn without one has not.
@@ -67,15 +68,6 @@ std::map<std::string, std::string> files_under(const fs::path& dir) {
       out[rel] = std::string(std::istreambuf_iterator<char>(in), {});
     }
   return out;
-}
-
-void replace_in(const fs::path& file, const std::string& from, const std::string& to) {
-  std::ifstream in(file, std::ios::binary);
-  std::string text(std::istreambuf_iterator<char>(in), {});
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from << " not in " << file;
-  text.replace(at, from.size(), to);
-  std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
 }
 
 // A copy of the small test library, its catalog drawn from its index into root/from-index (told

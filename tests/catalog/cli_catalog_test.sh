@@ -40,4 +40,17 @@ mkdir -p "$tmp/mine" && echo keep >"$tmp/mine/notes.txt"
 has "and the user is told why" "$tmp/err" "not a catalog"
 [ "$(cat "$tmp/mine/notes.txt")" = keep ]; check "its files are untouched" 0 $?
 
+# A layered path: drawn from each root's index; an edit in place in the lab's root draws that entry alone.
+mkdir -p "$tmp/lab"
+printf 'id = "lab"\nname = "lab"\nversion = "0.1.0"\n' >"$tmp/lab/library.toml"
+printf 'material "rib" {\n  overrides\n  like lib:rib\n  describes "our rib"\n  roughness 0.5\n}\n' >"$tmp/lab/rib.hmat"
+printf 'material "wide-rib" {\n  like rib\n  grating period 4 mm\n}\n' >"$tmp/lab/wide-rib.hmat"
+"$sp" library catalog -o "$tmp/layered" --library "$tmp/lab:$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "a layered path is drawn" 0 $?
+has "the lab's rib hides the library's" "$tmp/out" "catalog of 3 entries"
+has "the page is the lab's" "$tmp/layered/entries/rib.html" "our rib"
+[ -f "$tmp/lab/.index/library.sqlite" ] && [ -f "$tmp/lib/.index/library.sqlite" ]; check "each root has its index" 0 $?
+echo "# touched" >>"$tmp/lab/wide-rib.hmat"
+"$sp" library catalog -o "$tmp/layered" --library "$tmp/lab:$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "drawn again" 0 $?
+has "an edit in place draws that entry alone" "$tmp/out" "(1 drawn, 2 unchanged, updated in place)"
+
 exit $((fails > 0))

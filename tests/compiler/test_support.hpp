@@ -17,6 +17,9 @@ const schema::Provenance& provenance(const schema::PatchProgram& p, const std::s
 std::string temp_dir(const std::string& tag);
 // Writes `text` to `file`, making its folders first.
 void write_text(const std::filesystem::path& file, const std::string& text);
+// Replaces the first `from` in `file` with `to`, in place (the file's folder keeps its time, as an
+// editor that overwrites a file leaves it); fails the test if `from` is not there.
+void replace_in(const std::filesystem::path& file, const std::string& from, const std::string& to);
 
 // Independent restatement of the ratio scale (Minsky 1995 Fig. 19; issue 2):
 // F = 382 gf * r^(1 / 0.759593), 1 gf = 9.80665 mN.

@@ -52,7 +52,6 @@ int cmd_library_catalog(const CommonOptions& outer) {
   co.arrays = o.arrays;
   if (!o.quiet) co.progress = &std::cerr;
   co.progress_is_tty = isatty(STDERR_FILENO);
-  // One library folder: drawn from its index (docs/CATALOG.md, "Incremental builds").
   const auto roots = o.common.library_dir.empty() ? compiler::default_library_path() : compiler::split_library_path(o.common.library_dir);
   if (!o.changed.empty()) {
     if (roots.size() != 1 || o.common.device != "sim") {
@@ -61,9 +60,12 @@ int cmd_library_catalog(const CommonOptions& outer) {
     }
     co.changed = changed_files(o.changed);
   }
-  auto report_from_index = roots.size() == 1 && std::filesystem::is_directory(roots.front())
-                               ? catalog::write_catalog_from_index(roots.front(), o.common.calibration_dir, o.common.device, co)
-                               : std::nullopt;
+  bool folders = !roots.empty();
+  for (const auto& r : roots) folders = folders && std::filesystem::is_directory(r);
+  // Drawn from the indexes: one root's, or every root's of a layered path (docs/CATALOG.md).
+  auto report_from_index = !folders            ? std::nullopt
+                           : roots.size() == 1 ? catalog::write_catalog_from_index(roots.front(), o.common.calibration_dir, o.common.device, co)
+                                               : catalog::write_catalog_from_layers(roots, o.common.calibration_dir, o.common.device, co);
   const auto report = report_from_index ? std::move(*report_from_index) : catalog::write_catalog(make_compiler(o.common), co);
   if (!report.failures.empty()) {
     for (const auto& f : report.failures) std::cerr << f.diagnostics;

@@ -23,6 +23,7 @@
 #include "entry_inputs.hpp"
 #include "index_update.hpp"
 #include "index_write.hpp"
+#include "root_library.hpp"
 #include "sqlite_util.hpp"
 #include "stamps.hpp"
 
@@ -103,9 +104,10 @@ bool temporaries_beside(const std::filesystem::path& index) {
   return false;
 }
 
-}  // namespace
-
-IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
+// `whole_path`: a layered root compiled over every file of the roots below, not only what its
+// entries reach (library_for_root); what a build that failed with the part does again, so that its
+// diagnostics (a "did you mean" among every name) are those of the whole path.
+IndexBuildResult build(const IndexOptions& options, Progress& progress, bool whole_path) {
   IndexBuildResult r;
   const auto lib_dir = options.library_dir.empty() ? compiler::default_library_dir() : options.library_dir;
   const auto cal_dir = options.calibration_dir.empty() ? calibration::default_calibration_dir() : options.calibration_dir;
@@ -139,9 +141,6 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
   const bool layered = !options.below.empty();
   std::vector<std::filesystem::path> library_path{lib_dir};
   if (layered) library_path.insert(library_path.end(), options.below.begin(), options.below.end());
-  const compiler::Compiler c(compiler::CompileOptions{options.device, lib_dir, cal_dir, library_path});
-  const auto& lib = c.library();
-  const DisplayPaths disp(lib);
   const auto below = below_paths(options.below);
   std::string below_fp;
   if (layered) {
@@ -152,6 +151,12 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
     }
     below_fp = *fp;
   }
+  const compiler::CompileOptions compile_options{options.device, lib_dir, cal_dir, library_path};
+  auto part = layered && !whole_path ? library_for_root(lib_dir, options.below) : std::nullopt;
+  r.part_of_path = part.has_value();
+  const compiler::Compiler c = part ? compiler::Compiler(compile_options, std::move(*part)) : compiler::Compiler(compile_options);
+  const auto& lib = c.library();
+  const DisplayPaths disp(lib);
 
   for (const auto& d : lib.scan_diagnostics().all())
     if (d.severity == compiler::Severity::Error) {
@@ -278,6 +283,14 @@ IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
     return r;
   }
   r.ok = true;
+  return r;
+}
+
+}  // namespace
+
+IndexBuildResult build_index(const IndexOptions& options, Progress& progress) {
+  auto r = build(options, progress, false);
+  if (!r.ok && r.error.empty() && r.part_of_path) r = build(options, progress, true);
   return r;
 }
 

@@ -68,6 +68,10 @@ class Library {
   // ones are left out), with its library.toml. Enough to compile entries whose `like` chains and
   // reference lie within it; what an incremental index build uses instead of reading every file.
   Library(std::filesystem::path dir, const std::vector<std::string>& only_files);
+  // Part of several roots, front first: only `only_files[i]` of root i (relative to it), with every
+  // root's library.toml. Names resolve as over the whole path as long as each root holds the file
+  // of every name its `like` chains reach there (a layered catalog draws a few entries this way).
+  Library(std::vector<std::filesystem::path> roots, const std::vector<std::vector<std::string>>& only_files);
 
   // Entry names (file stems), sorted.
   std::vector<std::string> names() const;

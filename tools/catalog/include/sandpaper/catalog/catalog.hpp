@@ -89,4 +89,15 @@ std::optional<CatalogReport> write_catalog_from_index(const std::filesystem::pat
                                                       const std::filesystem::path& calibration_dir, const std::string& device,
                                                       const CatalogOptions& options);
 
+// The catalog of a layered library path (roots front first, at least two) drawn from each root's
+// index (brought up to date bottom first when stale): the entries the path shows, each compared by
+// curation::layered_inputs, so that an edit in one root draws what it changes over the whole path
+// and nothing else, reading only those entries' files and what they reach in every root
+// (curation::layered_files_reached). nullopt when that cannot be done (a device other than `sim`, or
+// a root's index does not build): then write_catalog(compiler, ...) over the whole path does it and
+// reports every failure. Same pages, pictures and index as that, byte for byte.
+std::optional<CatalogReport> write_catalog_from_layers(const std::vector<std::filesystem::path>& roots,
+                                                       const std::filesystem::path& calibration_dir, const std::string& device,
+                                                       const CatalogOptions& options);
+
 }  // namespace sandpaper::catalog

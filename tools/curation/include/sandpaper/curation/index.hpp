@@ -69,6 +69,7 @@ struct IndexBuildResult {
   std::optional<std::vector<std::string>> rewritten;
   std::string previous_fingerprint;
   std::filesystem::path path;
+  bool part_of_path = false;           // a layered root compiled over only what its entries reach of the roots below
 };
 
 // Compiles on `device` every entry whose inputs (its text, images, `like` chain, the calibration,

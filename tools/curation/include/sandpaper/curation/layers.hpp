@@ -56,4 +56,27 @@ class LayeredIndex {
   std::vector<Layer> layers_;
 };
 
+// What a layered library's catalog compares (docs/CATALOG.md, "A layered library"): every entry
+// the path shows (an entry hidden by a name or alias of a root in front is left out), sorted by
+// name, with a hash of what its compiled form and page depend on over the whole path: its own
+// root's input hash (its file, images, chain in that root, calibration, compiler, device, the roots
+// below), the roots' ids, folders and library.toml files and where the thesis' readings come
+// from; and, for an entry whose `like` chain, reference or replacement reaches a name that a root
+// in front of its own defines (so that the path resolves it otherwise than its root's index did),
+// the hashes over the path of what those names resolve to there, recursively. Reads each root's
+// `inputs`, names and a few `depends` rows: no entry file.
+struct LayeredInputs {
+  std::vector<std::pair<std::string, std::string>> entries;  // (name, hex hash)
+  std::string fingerprint;  // every root's index fingerprint, front first: changes with any file of the path
+  std::size_t affected = 0;  // shown entries that reach a root in front of their own
+};
+// `roots` as the LayeredIndex was opened with, front first; their indexes must be fresh.
+LayeredInputs layered_inputs(const LayeredIndex& idx, const std::vector<std::filesystem::path>& roots);
+
+// For each root (front first), the entry files (relative to it) that compiling `names` over the
+// path reads: theirs, those of every entry they are built on through `like` (each name resolved
+// front first, as the compiler does), the reference entry's, and those of the entries they name
+// as replacements. compiler::Library(roots, these) compiles and links them as the whole path does.
+std::vector<std::vector<std::string>> layered_files_reached(const LayeredIndex& idx, const std::vector<std::string>& names);
+
 }  // namespace sandpaper::curation

@@ -1,0 +1,238 @@
+// layered_inputs and layered_files_reached (layers.hpp): what a layered library's catalog compares
+// and reads, taken off each root's index so that nothing grows with the library but reading the
+// hashes.
+#include <algorithm>
+#include <deque>
+#include <map>
+#include <memory>
+#include <set>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "sandpaper/curation/layers.hpp"
+#include "sqlite_util.hpp"
+#include "stamps.hpp"
+
+namespace sandpaper::curation {
+
+namespace {
+
+std::string file_hash(const Index& idx, const std::string& path) {
+  sql::Stmt s(idx.handle(), "SELECT hash FROM files WHERE path = ?");
+  s.bind(1, path);
+  return s.step() ? s.text(0) : std::string("absent");
+}
+
+// The first root of the path with the thesis' readings, as compiler::Library::thesis_directory()
+// looks for them; roots.size() if none.
+std::size_t thesis_root(const std::vector<std::filesystem::path>& roots) {
+  std::error_code ec;
+  for (std::size_t i = 0; i < roots.size(); ++i)
+    if (std::filesystem::is_regular_file(roots[i] / "thesis" / "version1.toml", ec)) return i;
+  return roots.size();
+}
+
+// The entries of root `layer` whose compiled form or page could differ between the root's own
+// index (the root over those below it) and the whole path: those built, through `like` or the
+// reference, on a name in `seeds` (a name a root in front defines, or an affected entry of a root
+// below), on the thesis' readings when `thesis` (a root in front has them), or that link to such a
+// name as their replacement; and then everything built on those. Over-counts rather than misses.
+std::set<std::string> affected_in(const Index& idx, const std::string& id, std::deque<std::string> seeds, bool thesis) {
+  sqlite3* db = idx.handle();
+  sql::Stmt built_on(db, "SELECT name FROM depends WHERE kind = 'entry' AND target = ?");
+  sql::Stmt reads(db, "SELECT name FROM depends WHERE kind = 'file' AND target = 'library/thesis/version1.toml'");
+  sql::Stmt aliases(db, "SELECT alias FROM aliases WHERE name = ?");
+  std::unordered_map<std::string, std::vector<std::string>> replaced_by;  // deprecated_by -> entries
+  {
+    sql::Stmt d(db, "SELECT name, deprecated_by FROM entries WHERE deprecated_by <> ''");
+    while (d.step()) replaced_by[d.text(1)].push_back(d.text(0));
+  }
+  std::set<std::string> out;
+  std::deque<std::string> found;
+  if (thesis)
+    while (reads.step()) found.push_back(reads.text(0));
+  std::unordered_set<std::string> seen;
+  while (!seeds.empty() || !found.empty()) {
+    while (!found.empty()) {
+      const auto name = std::move(found.front());
+      found.pop_front();
+      if (!out.insert(name).second) continue;
+      // What is built on it names it by its name or an alias, plain or as ID:NAME.
+      seeds.push_back(name);
+      seeds.push_back(id + ":" + name);
+      aliases.bind(1, name);
+      while (aliases.step()) seeds.push_back(aliases.text(0)), seeds.push_back(id + ":" + aliases.text(0));
+      aliases.reset();
+    }
+    while (!seeds.empty()) {
+      const auto target = std::move(seeds.front());
+      seeds.pop_front();
+      if (!seen.insert(target).second) continue;
+      built_on.bind(1, target);
+      while (built_on.step()) found.push_back(built_on.text(0));
+      built_on.reset();
+      if (const auto it = replaced_by.find(target); it != replaced_by.end())
+        found.insert(found.end(), it->second.begin(), it->second.end());
+    }
+  }
+  return out;
+}
+
+// An entry's hash over the path: what its own root's index hashed, and for an entry that reaches
+// the roots in front of its own (`affected`), what each name it builds on resolves to over the path,
+// hashed the same way, recursively; its replacement link; the path's reference and the thesis'
+// readings where a root in front supplies them.
+class PathHasher {
+ public:
+  PathHasher(const LayeredIndex& idx, std::string global, const std::vector<std::set<std::string>>& affected, std::size_t thesis,
+             std::string thesis_hash)
+      : idx_(idx), global_(std::move(global)), affected_(affected), thesis_(thesis), thesis_hash_(std::move(thesis_hash)) {
+    reference_ = idx.size() ? idx.index(0).meta("library_reference") : std::string();
+    for (std::size_t i = 0; i < idx.size(); ++i) {
+      auto& own = own_.emplace_back();
+      for (auto& [name, hash] : idx.index(i).input_hashes()) own.emplace(std::move(name), std::move(hash));
+      builds_on_.push_back(std::make_unique<sql::Stmt>(idx.index(i).handle(), "SELECT target FROM depends WHERE name = ? AND kind = 'entry' ORDER BY target"));
+      replaced_by_.push_back(std::make_unique<sql::Stmt>(idx.index(i).handle(), "SELECT deprecated_by FROM entries WHERE name = ?"));
+    }
+  }
+  const std::unordered_map<std::string, std::string>& own(std::size_t layer) const { return own_[layer]; }
+
+  std::string of(std::size_t layer, const std::string& name) {
+    const auto key = std::make_pair(layer, name);
+    if (const auto it = done_.find(key); it != done_.end()) return it->second;
+    const auto h = own_[layer].find(name);
+    std::string in = global_ + "\nentry " + idx_.id(layer) + ":" + name + " " + (h == own_[layer].end() ? "absent" : h->second);
+    if (affected_[layer].count(name)) {
+      if (!visiting_.insert(key).second) return "cycle";  // the build reports a `like` cycle; any stable text will do
+      std::vector<std::string> targets;
+      auto& b = *builds_on_[layer];
+      b.bind(1, name);
+      while (b.step()) targets.push_back(b.text(0));
+      b.reset();
+      for (const auto& t : targets) in += "\nlike " + t + " " + resolved(t);
+      auto& d = *replaced_by_[layer];
+      d.bind(1, name);
+      if (d.step() && !d.text(0).empty()) {
+        const auto at = idx_.resolve(d.text(0));
+        in += "\nreplaced-by " + (at ? idx_.id(at->first) + ":" + at->second : std::string("none"));
+      }
+      d.reset();
+      if (const auto own_ref = idx_.index(layer).meta("library_reference"); own_ref != reference_)
+        in += "\nreference " + reference_ + " " + resolved(reference_);
+      if (thesis_ < layer) in += "\nthesis " + thesis_hash_;
+      visiting_.erase(key);
+    }
+    return done_[key] = stamps::fnv_hex(in);
+  }
+
+ private:
+  std::string resolved(const std::string& name) {
+    const auto at = idx_.resolve(name);
+    return at ? of(at->first, at->second) : std::string("none");  // a thesis stimulus, or the compiler's error
+  }
+  const LayeredIndex& idx_;
+  std::string global_, reference_;
+  const std::vector<std::set<std::string>>& affected_;
+  std::size_t thesis_;
+  std::string thesis_hash_;
+  std::vector<std::unordered_map<std::string, std::string>> own_;
+  std::vector<std::unique_ptr<sql::Stmt>> builds_on_, replaced_by_;
+  std::map<std::pair<std::size_t, std::string>, std::string> done_;
+  std::set<std::pair<std::size_t, std::string>> visiting_;
+};
+
+}  // namespace
+
+LayeredInputs layered_inputs(const LayeredIndex& idx, const std::vector<std::filesystem::path>& roots) {
+  LayeredInputs r;
+  const std::size_t n = idx.size();
+  const std::size_t thesis = thesis_root(roots);
+  // What every page shares: the roots, in order (entries are shown as ID:NAME, their files as
+  // library/ID/...), every root's library.toml (the front one names the whole, families are the
+  // union, the reference is the first declared) and which root the thesis' readings come from.
+  std::string global = "sandpaper-layered-catalog/1";
+  for (std::size_t i = 0; i < n; ++i) {
+    global += "\nroot " + idx.id(i) + " " + std::filesystem::absolute(roots.at(i)).lexically_normal().string() + " " +
+              file_hash(idx.index(i), "library/library.toml");
+    r.fingerprint += idx.id(i) + " " + idx.index(i).meta("fingerprint") + "\n";
+  }
+  global += "\nthesis " + std::to_string(thesis);
+  const std::string reference = n ? idx.index(0).meta("library_reference") : std::string();
+
+  // Bottom first: an entry built on an affected entry below is affected.
+  std::vector<std::set<std::string>> affected(n);
+  std::vector<std::string> affected_names;  // names and aliases of affected entries, plain and ID:NAME
+  for (std::size_t layer = n; layer-- > 0;) {
+    std::deque<std::string> seeds(affected_names.begin(), affected_names.end());
+    for (std::size_t front = 0; front < layer; ++front)
+      for (auto& name : idx.index(front).names_and_aliases()) seeds.push_back(std::move(name));
+    // The reference this root's own index compiled bare descriptions on, if the path's differs.
+    if (const auto own = idx.index(layer).meta("library_reference"); !own.empty() && own != reference) seeds.push_back(own);
+    affected[layer] = affected_in(idx.index(layer), idx.id(layer), std::move(seeds), thesis < layer);
+    for (const auto& name : affected[layer]) {
+      affected_names.push_back(name);
+      affected_names.push_back(idx.id(layer) + ":" + name);
+      if (const auto e = idx.index(layer).entry(name))
+        for (const auto& a : e->aliases) affected_names.push_back(a), affected_names.push_back(idx.id(layer) + ":" + a);
+    }
+  }
+
+  PathHasher hasher(idx, global, affected, thesis, thesis < n ? file_hash(idx.index(thesis), "library/thesis/version1.toml") : "none");
+  // What the path shows: an entry not hidden by a name or alias of a root in front.
+  std::unordered_set<std::string> in_front;
+  for (std::size_t layer = 0; layer < n; ++layer) {
+    for (const auto& [name, hash] : hasher.own(layer)) {
+      if (in_front.count(name)) continue;
+      r.affected += affected[layer].count(name);
+      r.entries.emplace_back(name, hasher.of(layer, name));
+    }
+    if (layer + 1 < n)
+      for (auto& name : idx.index(layer).names_and_aliases()) in_front.insert(std::move(name));
+  }
+  std::sort(r.entries.begin(), r.entries.end());
+  return r;
+}
+
+std::vector<std::vector<std::string>> layered_files_reached(const LayeredIndex& idx, const std::vector<std::string>& names) {
+  std::vector<std::set<std::string>> files(idx.size());
+  std::vector<std::unique_ptr<sql::Stmt>> builds_on, file_of;
+  for (std::size_t i = 0; i < idx.size(); ++i) {
+    builds_on.push_back(std::make_unique<sql::Stmt>(idx.index(i).handle(), "SELECT target FROM depends WHERE name = ? AND kind = 'entry'"));
+    file_of.push_back(std::make_unique<sql::Stmt>(idx.index(i).handle(), "SELECT file, deprecated_by FROM entries WHERE name = ?"));
+  }
+  // Down the chains, every name resolved as the compiler resolves it over the path; the entries the
+  // drawn ones link to as their replacement are read too, without what they are built on.
+  std::deque<std::string> down(names.begin(), names.end());
+  if (idx.size())
+    if (const auto ref = idx.index(0).meta("library_reference"); !ref.empty()) down.push_back(ref);
+  std::vector<std::string> links;
+  const std::set<std::string> drawn(names.begin(), names.end());
+  std::set<std::pair<std::size_t, std::string>> seen;
+  const auto add = [&](const std::string& name, bool follow) {
+    const auto at = idx.resolve(name);
+    if (!at || (follow && !seen.insert(*at).second)) return;  // a thesis stimulus, or no such entry
+    auto& f = *file_of[at->first];
+    f.bind(1, at->second);
+    if (f.step()) {
+      files[at->first].insert(f.text(0));
+      if (follow && drawn.count(name) && !f.text(1).empty()) links.push_back(f.text(1));
+    }
+    f.reset();
+    if (!follow) return;
+    auto& b = *builds_on[at->first];
+    b.bind(1, at->second);
+    while (b.step()) down.push_back(b.text(0));
+    b.reset();
+  };
+  while (!down.empty()) {
+    const auto name = std::move(down.front());
+    down.pop_front();
+    add(name, true);
+  }
+  for (const auto& l : links) add(l, false);
+  std::vector<std::vector<std::string>> out;
+  for (auto& f : files) out.emplace_back(f.begin(), f.end());
+  return out;
+}
+
+}  // namespace sandpaper::curation
