@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# One-entry updates of a layered library's catalog and index (docs/performance.md, "A layered
-# library"): a small lab root (three entries, one hiding a world entry) in front of a generated
+# One-entry updates of a layered library's catalog and index, walking and told the file (`--changed`)
+# (docs/performance.md, "A layered library"): a small lab root (three entries, one hiding a world entry) in front of a generated
 # world library. The catalog's record is seeded (bench/catalog_seed.py --hashes), since drawing a
 # 100,000-entry catalog takes hours; the first run then draws what the seed could not know.
 # Prints "<world> <what> <wall> s <user> u <system> s <max RSS> KB" per run (/usr/bin/time), three each.
@@ -37,6 +37,10 @@ for world in "$@"; do
     timed "$n layered-catalog-lab-one" "$B" library catalog --library "$lab:$world" -o "$cat" --quiet
   done
   for i in 1 2 3; do
+    echo "# touched d$i" >>"$lab/our-grating.hmat"
+    timed "$n layered-catalog-lab-one-changed" "$B" library catalog --library "$lab:$world" -o "$cat" --quiet --changed "$lab/our-grating.hmat"
+  done
+  for i in 1 2 3; do
     echo "# touched i$i" >>"$lab/our-grating.hmat"
     timed "$n layered-index-lab-one" "$B" library index --library "$lab:$world" --quiet
   done
@@ -44,6 +48,10 @@ for world in "$@"; do
   for i in 1 2 3; do
     echo "# touched w$i" >>"$f"
     timed "$n layered-catalog-world-one" "$B" library catalog --library "$lab:$world" -o "$cat" --quiet
+  done
+  for i in 1 2 3; do
+    echo "# touched v$i" >>"$f"
+    timed "$n layered-catalog-world-one-changed" "$B" library catalog --library "$lab:$world" -o "$cat" --quiet --changed "$f"
   done
   "$B" library catalog --library "$lab:$world" -o "$cat" >"$work/out" 2>/dev/null
   echo "$n last: $(cat "$work/out")"

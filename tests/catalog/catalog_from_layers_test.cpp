@@ -8,6 +8,7 @@
 #include <iterator>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -70,9 +71,10 @@ struct Path {
                      "  like world:corduroy\n  roughness 0.6\n}\n");
     test::write_text(lab / "felt.hmat", "material \"felt\" {\n  like wide-wale\n  describes \"felt\"\n  grating period 5 mm\n}\n");
   }
-  std::optional<catalog::CatalogReport> from_layers() const {
+  std::optional<catalog::CatalogReport> from_layers(std::optional<std::vector<fs::path>> changed = std::nullopt) const {
     catalog::CatalogOptions o;
     o.output = root / "from-layers";
+    o.changed = std::move(changed);
     return catalog::write_catalog_from_layers({lab, world}, {}, "sim", o);
   }
   catalog::CatalogReport whole() const {
@@ -83,8 +85,8 @@ struct Path {
     return catalog::write_catalog(compiler::Compiler(opts), o);
   }
   // Draws both; the layered one must equal the whole path's.
-  catalog::CatalogReport both() const {
-    const auto a = from_layers();
+  catalog::CatalogReport both(std::optional<std::vector<fs::path>> changed = std::nullopt) const {
+    const auto a = from_layers(std::move(changed));
     EXPECT_TRUE(a.has_value());
     if (!a) return {};
     EXPECT_TRUE(a->failures.empty()) << (a->failures.empty() ? "" : a->failures.front().diagnostics);
@@ -115,6 +117,9 @@ TEST(CatalogFromLayers, DrawsWhatAnEditChangesOverThePathAndEqualsTheCatalogOfTh
   a = p.both();
   EXPECT_EQ(a.rendered, 1);
   EXPECT_TRUE(a.in_place);
+  // The record was compared with the path as it was: only the lab's entries, the world's rows its
+  // update rewrote (none) and pinwale, which reaches the lab, are compared.
+  EXPECT_EQ(a.compared, 3u);
 
   // The lab's corduroy: it, and the world's pinwale, which is built on `corduroy` and so, over the
   // path, on the lab's; the world's own index does not know that.
@@ -128,6 +133,7 @@ TEST(CatalogFromLayers, DrawsWhatAnEditChangesOverThePathAndEqualsTheCatalogOfTh
   replace_in(p.world / "cloth/canvas.hmat", "roughness 0.3", "roughness 0.35");
   a = p.both();
   EXPECT_EQ(a.rendered, 5);  // canvas, sturdy, lab:corduroy, felt, and pinwale, which is built on lab:corduroy
+  EXPECT_EQ(a.compared, 5u);  // the same: the world's update rewrote canvas and sturdy
 
   // The world's reference: the bare roughness on it, and the lab's entries.
   replace_in(p.world / "cloth/reference-grating.hmat", "period 2.5 mm", "period 2.4 mm");
@@ -139,8 +145,25 @@ TEST(CatalogFromLayers, DrawsWhatAnEditChangesOverThePathAndEqualsTheCatalogOfTh
                    "material \"canvas\" {\n  overrides\n  describes \"our canvas\"\n  grating period 2 mm\n  roughness 0.45\n}\n");
   a = p.both();
   EXPECT_EQ(a.entries, 7);  // the lab's canvas in, the world's out
+  EXPECT_EQ(a.compared, 7u);  // what the lab hides changed: every entry compared
   EXPECT_EQ(a.rendered, 2);  // canvas, and sturdy, which is `like canvas`: now the lab's
   EXPECT_NE(pages_under(p.root / "from-layers").at("entries/canvas.html").find("our canvas"), std::string::npos);
+}
+
+TEST(CatalogFromLayers, ToldWhichFilesChangedItDrawsWhatAWalkDraws) {
+  const Path p("catalog-from-layers-changed");
+  ASSERT_EQ(p.both().rendered, 7);
+  // A lab file and a world file, both named: drawn as a walk would draw them.
+  replace_in(p.lab / "felt.hmat", "grating period 5 mm", "grating period 6 mm");
+  replace_in(p.world / "cloth/sturdy.hmat", "sturdy canvas", "sturdy cotton canvas");
+  auto a = p.both(std::vector<fs::path>{p.lab / "felt.hmat", p.world / "cloth/sturdy.hmat"});
+  EXPECT_EQ(a.rendered, 4);  // felt, sturdy, and the lab's corduroy and pinwale, as after any world edit
+  // Only a lab file: the world's index is asked about nothing but the calibration and library.toml.
+  replace_in(p.lab / "felt.hmat", "grating period 6 mm", "grating period 7 mm");
+  EXPECT_EQ(p.both(std::vector<fs::path>{p.lab / "felt.hmat"}).rendered, 1);
+  EXPECT_EQ(p.both().rendered, 0);  // a walk finds nothing more
+  // A file of neither root nor the calibration is the caller's mistake.
+  EXPECT_THROW(p.from_layers(std::vector<fs::path>{p.root / "elsewhere.hmat"}), std::invalid_argument);
 }
 
 TEST(CatalogFromLayers, AnEntryThatDoesNotCompileLeavesItToTheWholePath) {

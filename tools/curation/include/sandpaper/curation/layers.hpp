@@ -66,12 +66,22 @@ class LayeredIndex {
 // the hashes over the path of what those names resolve to there, recursively. Reads each root's
 // `inputs`, names and a few `depends` rows: no entry file.
 struct LayeredInputs {
-  std::vector<std::pair<std::string, std::string>> entries;  // (name, hex hash)
-  std::string fingerprint;  // every root's index fingerprint, front first: changes with any file of the path
-  std::size_t affected = 0;  // shown entries that reach a root in front of their own
+  std::vector<std::pair<std::string, std::string>> entries;  // (name, hex hash), sorted by name
+  std::string global;        // hex hash of what every entry shares (roots, their library.toml, the thesis' root)
+  std::string fingerprint;   // layered_fingerprint(global, every root's index fingerprint): changes with any file of the path
+  std::size_t affected = 0;  // listed entries that reach a root in front of their own
+  std::size_t shown = 0;     // entries the path shows in all
+  bool gone = false;         // one of `bottom_names` has no row in the bottom root's index
 };
-// `roots` as the LayeredIndex was opened with, front first; their indexes must be fresh.
-LayeredInputs layered_inputs(const LayeredIndex& idx, const std::vector<std::filesystem::path>& roots);
+// `roots` as the LayeredIndex was opened with, front first; their indexes must be fresh. With
+// `bottom_names`, lists of the bottom root only those entries and the ones that reach a root in
+// front (every entry of the other roots still): what a catalog compares after an in-place update
+// of the bottom root that rewrote those rows (docs/CATALOG.md, "A layered library").
+LayeredInputs layered_inputs(const LayeredIndex& idx, const std::vector<std::filesystem::path>& roots,
+                             const std::vector<std::string>* bottom_names = nullptr);
+// "global GLOBAL\nID FINGERPRINT\n..." over the roots front first: a layered catalog's record keeps
+// it, as a single root's keeps its index's fingerprint.
+std::string layered_fingerprint(const std::string& global, const LayeredIndex& idx, const std::vector<std::string>& fingerprints);
 
 // For each root (front first), the entry files (relative to it) that compiling `names` over the
 // path reads: theirs, those of every entry they are built on through `like` (each name resolved
