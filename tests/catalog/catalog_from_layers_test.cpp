@@ -190,6 +190,8 @@ TEST(CatalogFromLayers, AnEntryThatDoesNotCompileLeavesItToTheWholePath) {
 
 TEST(CatalogFromLayers, ALabIndexReadsOnlyWhatItsEntriesReachBelowAndCompilesAsTheWholePathDoes) {
   const Path p("layered-root-part");
+  // Built on the world's pinwale, which is `like corduroy`: over the path, the lab's corduroy.
+  test::write_text(p.lab / "pinwale-swatch.hmat", "material \"pinwale-swatch\" {\n  like pinwale\n  describes \"our pinwale\"\n}\n");
   std::ostringstream sink;
   curation::Progress quiet("indexing", 0, true, sink, false);
   curation::IndexOptions world{p.world, {}, curation::layer_index_path(p.world), "sim"};
@@ -199,21 +201,30 @@ TEST(CatalogFromLayers, ALabIndexReadsOnlyWhatItsEntriesReachBelowAndCompilesAsT
   const auto part = curation::build_index(lab, quiet);
   ASSERT_TRUE(part.ok) << part.error;
   EXPECT_TRUE(part.part_of_path);
-  EXPECT_EQ(part.entries, 2u);
+  EXPECT_EQ(part.entries, 3u);
   // Each lab row as the compiler over every file of the path compiles the entry.
-  compiler::CompileOptions opts;
-  opts.library_path = {p.lab, p.world};
-  const compiler::Compiler whole(opts);
-  const curation::Index idx(curation::layer_index_path(p.lab));
-  for (const auto* name : {"corduroy", "felt"}) {
-    const auto r = whole.compile_file(p.lab / (std::string(name) + ".hmat"));
-    ASSERT_TRUE(r.ok() && r.program) << name;
-    const auto row = idx.entry(name);
-    ASSERT_TRUE(row) << name;
-    EXPECT_DOUBLE_EQ(row->max_lateral_force_N, r.program->max_lateral_force_N) << name;
-    EXPECT_DOUBLE_EQ(row->roughness, r.program->roughness) << name;
-    EXPECT_EQ(idx.provenance(name).size(), r.program->provenance.size()) << name;
-  }
+  const auto rows_as_compiled = [&](const std::string& when) {
+    compiler::CompileOptions opts;
+    opts.library_path = {p.lab, p.world};
+    const compiler::Compiler whole(opts);
+    const curation::Index idx(curation::layer_index_path(p.lab));
+    for (const auto* name : {"corduroy", "felt", "pinwale-swatch"}) {
+      const auto r = whole.compile_file(p.lab / (std::string(name) + ".hmat"));
+      ASSERT_TRUE(r.ok() && r.program) << name;
+      const auto row = idx.entry(name);
+      ASSERT_TRUE(row) << name;
+      EXPECT_DOUBLE_EQ(row->max_lateral_force_N, r.program->max_lateral_force_N) << name << ", " << when;
+      EXPECT_DOUBLE_EQ(row->roughness, r.program->roughness) << name << ", " << when;
+      EXPECT_EQ(idx.provenance(name).size(), r.program->provenance.size()) << name << ", " << when;
+    }
+  };
+  rows_as_compiled("first build");
+  // The lab's corduroy changes what pinwale-swatch inherits through the world's pinwale: its row is redone.
+  replace_in(p.lab / "corduroy.hmat", "roughness 0.6", "roughness 0.7");
+  const auto again = curation::build_index(lab, quiet);
+  ASSERT_TRUE(again.ok) << again.error;
+  EXPECT_EQ(again.compiled, 2u);  // corduroy and pinwale-swatch
+  rows_as_compiled("after the lab's corduroy changed");
 }
 
 }  // namespace

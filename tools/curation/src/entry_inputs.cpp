@@ -19,9 +19,22 @@ class Hasher {
   const EntryInputs& of(const compiler::LibraryEntry& e) {
     if (auto it = done_.find(&e); it != done_.end()) return it->second;
     EntryInputs out;
-    // An entry of a root below, in a layered path: its inputs are that root's index fingerprint, in `global`.
+    // An entry of a root below, in a layered path: its files are in the lower roots' fingerprints, in
+    // `global`. Its chain may still come back to a name this root defines (a world entry `like
+    // corduroy` under a lab's corduroy), so what its names resolve to is hashed too.
     if (e.root != 0) {
-      out.hash = "below " + lib_.qualified_name(e);
+      if (!visiting_.insert(&e).second) {
+        cycle_.hash = "cycle:" + e.name;
+        return cycle_;
+      }
+      std::string in = "below " + lib_.qualified_name(e);
+      for (const auto& name : e.likes)
+        if (const auto* t = lib_.entry(name)) in += "\nlike " + name + " " + of(*t).hash;
+      const auto& ref = lib_.manifest().reference;
+      if (e.likes.empty() && !textured(e) && !ref.empty())
+        if (const auto* r = lib_.entry(ref); r && r != &e) in += "\nreference " + of(*r).hash;
+      visiting_.erase(&e);
+      out.hash = stamps::fnv_hex(in);
       return done_[&e] = std::move(out);
     }
     // A `like` cycle: the entry does not compile, and the build reports it; any stable text will do.
@@ -30,17 +43,14 @@ class Hasher {
       return cycle_;
     }
     std::string in = global_ + "\nentry " + e.relative_path + " " + file("library/" + e.relative_path, out);
-    bool texture = false;
+    const bool texture = textured(e);
     for (const auto& st : e.syntax.statements) {
       if (const auto* h = std::get_if<compiler::HeightmapStmt>(&st.node)) {
-        texture = true;
         const std::filesystem::path p(h->path);
         const auto rel = p.is_absolute()
                              ? p.string()
                              : (std::filesystem::path(e.relative_path).parent_path() / p).lexically_normal().generic_string();
         in += "\nimage " + h->path + " " + file("library/" + rel, out);
-      } else if (std::holds_alternative<compiler::GratingStmt>(st.node) || std::holds_alternative<compiler::PatternStmt>(st.node)) {
-        texture = true;
       }
     }
     for (const auto& name : e.likes) {
@@ -60,6 +70,14 @@ class Hasher {
   }
 
  private:
+  // Whether the entry states a texture of its own (else a bare perceptual description starts from the reference).
+  static bool textured(const compiler::LibraryEntry& e) {
+    for (const auto& st : e.syntax.statements)
+      if (std::holds_alternative<compiler::HeightmapStmt>(st.node) || std::holds_alternative<compiler::GratingStmt>(st.node) ||
+          std::holds_alternative<compiler::PatternStmt>(st.node))
+        return true;
+    return false;
+  }
   std::string file(const std::string& path, EntryInputs& out) const {
     out.files.push_back(path);
     return file_hash_(path);
