@@ -1,10 +1,15 @@
-// The catalog's data file (catalog-data.js, read back by an in-place update: catalog/index_page.hpp
-// patch_index). Whatever the file holds, patching it never crashes or reads past it, and a patch it
-// accepts is a fixed point: patching the result with the same rows gives the same text again.
-// Rejection is nullopt (the whole file is then written), never an exception.
+// The catalog index's data files (catalog-data.js and its parts catalog-data/part-NNNNN.js, read back
+// by an in-place update: catalog/index_page.hpp patch_index). The input is the head file, then each
+// part in order, separated by lines "//--". Whatever the files hold, patching them never crashes or
+// reads past them, and a patch it accepts is a fixed point: patching its result with the same rows
+// gives the same files again. Rejection is nullopt (the files are then written whole), never an
+// exception.
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fuzz_support.hpp"
@@ -20,11 +25,29 @@ const sandpaper::compiler::LibraryManifest& manifest() {
   return m;
 }
 
+// The input's files by path: the head, then part 0, 1, ... between separator lines.
+std::map<std::string, std::string> files_of(std::string_view input) {
+  constexpr std::string_view kSeparator = "\n//--\n";
+  std::map<std::string, std::string> files;
+  for (std::size_t k = 0;; ++k) {
+    const std::size_t at = input.find(kSeparator);
+    const std::string text(input.substr(0, at));
+    files[k == 0 ? std::string(sandpaper::catalog::kIndexDataFile) : sandpaper::catalog::index_part_file(k - 1)] = text;
+    if (at == std::string_view::npos) break;
+    input.remove_prefix(at + kSeparator.size());
+  }
+  return files;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace sandpaper;
-  const std::string script(reinterpret_cast<const char*>(data), size);
+  auto files = files_of(std::string_view(reinterpret_cast<const char*>(data), size));
+  const auto read = [&](const std::string& path) -> std::optional<std::string> {
+    const auto it = files.find(path);
+    return it == files.end() ? std::nullopt : std::optional<std::string>(it->second);
+  };
   // Two rows as a run that redrew them would give: one that keeps its picture, one that loses it.
   catalog::IndexRow ref;
   ref.name = "ref";
@@ -40,11 +63,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   rib.describes = "ribbed cloth";
   rib.page = "entries/rib.html";
   const std::vector<catalog::IndexRow> changed{ref, rib};
-  const auto once = catalog::patch_index(script, manifest(), changed);
+  const auto once = catalog::patch_index(read, manifest(), changed);
   if (!once) return 0;
-  const auto twice = catalog::patch_index(once->script, manifest(), changed);
-  fuzz::check(twice.has_value(), "a data file this patch wrote is refused by the next patch");
-  fuzz::check(twice->script == once->script, "patching a patched data file with the same rows changed it");
-  fuzz::check(twice->page == once->page, "patching a patched data file with the same rows changed the index page");
+  fuzz::check(once->count(catalog::kIndexDataFile) && once->count("index.html"), "a patch without its head or page");
+  for (const auto& [path, text] : *once) files[path] = text;
+  const auto twice = catalog::patch_index(read, manifest(), changed);
+  fuzz::check(twice.has_value(), "data files this patch wrote are refused by the next patch");
+  fuzz::check(*twice == *once, "patching patched data files with the same rows changed them");
   return 0;
 }

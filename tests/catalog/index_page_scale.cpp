@@ -119,8 +119,8 @@ int main(int argc, char** argv) {
         ++drawn;
       }
     // As tools/catalog/src/catalog.cpp writes the index.
-    write_text(out / "index.html", sandpaper::catalog::index_page_html(manifest, rows));
-    write_text(out / sandpaper::catalog::kIndexDataFile, sandpaper::catalog::index_data_script(manifest, rows));
+    fs::create_directories(out / sandpaper::catalog::kIndexPartsFolder);
+    for (const auto& [relative, text] : sandpaper::catalog::index_files(manifest, rows)) write_text(out / relative, text);
     for (const auto& a : sandpaper::catalog::assets())
       write_text(out / "assets" / std::string(a.name), std::string(a.text));
   } catch (const std::exception& e) {

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The catalog's index page at 100,000 entries (docs/CATALOG.md, "The index"), in headless Chromium.
 
-catalog_index_page_scale (tests/catalog/index_page_scale.cpp) writes index.html, catalog-data.js and
-assets/ for N synthetic entries as `sandpaper library catalog` writes them, without drawing N pictures.
+catalog_index_page_scale (tests/catalog/index_page_scale.cpp) writes index.html, catalog-data.js, its
+parts in catalog-data/ and assets/ for N synthetic entries as `sandpaper library catalog` writes them, without drawing N pictures.
 This opens the page from file:// and checks, by reading the DOM, that it shows one page of 100 rows,
 counts every entry, turns pages (by mouse, by keyboard, and back through the history), filters by words
 and by family and roughness range with exactly the entries expected, and restores all of that from the
@@ -262,7 +262,10 @@ def main():
         b.close()
 
     size = {f: (site / f).stat().st_size for f in ("index.html", "catalog-data.js")}
-    print(f"{n:,} entries: index.html {size['index.html']:,} bytes, catalog-data.js {size['catalog-data.js']:,} bytes")
+    parts = sorted((site / "catalog-data").glob("part-*.js"))
+    print(f"{n:,} entries: index.html {size['index.html']:,} bytes, catalog-data.js {size['catalog-data.js']:,} bytes, "
+          f"{len(parts)} parts in catalog-data/ of {sum(p.stat().st_size for p in parts):,} bytes in all "
+          f"(the largest {max((p.stat().st_size for p in parts), default=0):,})")
     print(f"navigation to the first rows: {timing['rows']:.0f} ms (first contentful paint {timing['paint'] or 0:.0f} ms, "
           f"load event {timing['load'] or 0:.0f} ms; {wall * 1000:.0f} ms from Page.navigate to ready, as the test saw it)")
     print(f"a word filter over every entry, the first: {filter_ms:.0f} ms")

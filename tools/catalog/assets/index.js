@@ -1,6 +1,6 @@
-// The catalog index: a page of rows at a time from the entries in catalog-data.js, filtered by family,
-// roughness range and words. The data comes by <script src> rather than fetch(), which browsers refuse
-// for file://; it is columns of arrays (index_page.hpp, index_data_script), and only the rows of the
+// The catalog index: a page of rows at a time from the entries in catalog-data.js and its parts,
+// filtered by family, roughness range and words. The data comes by <script src> rather than fetch(),
+// which browsers refuse for file://; it is columns of arrays (index_page.hpp, index_files), and only the rows of the
 // page shown are ever made, so that 100,000 entries open as fast as 100. The filters and the page live
 // in the URL hash (#family=textiles&rmin=0.2&rmax=0.5&q=silk&page=3), so a view can be bookmarked or
 // shared and the back button returns to it.
@@ -15,10 +15,13 @@
   var none = document.getElementById('none');
   var tbody = document.querySelector('#entries tbody');
   var pagers = Array.prototype.slice.call(document.querySelectorAll('nav.pager'));
-  var data = window.sandpaperCatalog;
-  if (!data || data.format !== 1) {
-    count.textContent = 'The entries could not be read: catalog-data.js, beside index.html, is missing or ' +
-                        'from another version of Sandpaper. The entries\u2019 own pages are in entries/.';
+  // The head (catalog-data.js) and its parts (catalog-data/part-NNNNN.js), each loaded by its own
+  // <script src> before this one, joined into one set of columns.
+  var data = joinParts(window.sandpaperCatalog, window.sandpaperCatalogParts || []);
+  if (!data) {
+    count.textContent = 'The entries could not be read: catalog-data.js or a file in catalog-data/, beside ' +
+                        'index.html, is missing or from another version of Sandpaper. The entries\u2019 own pages ' +
+                        'are in entries/.';
     document.body.setAttribute('data-ready', 'error');
     return;
   }
@@ -28,6 +31,23 @@
   var noThumbnail = new Uint8Array(total);
   data.no_thumbnail.forEach(function (i) { noThumbnail[i] = 1; });
   var haystacks = null;  // lower-case text each entry's words are matched in; made at the first word search
+
+  // The parts' columns end to end; a part's rows are numbered within it, so its aliases, deprecations
+  // and missing thumbnails are shifted by the rows before it. Null if any part is missing or not its own.
+  function joinParts(head, parts) {
+    if (!head || head.format !== 2 || !Array.isArray(head.parts) || parts.length !== head.parts.length) return null;
+    var d = {families: head.families, name: [], family: [], roughness: [], describes: [], aliases: {},
+             deprecated_by: {}, no_thumbnail: []};
+    for (var k = 0; k < parts.length; k++) {
+      var p = parts[k], base = d.name.length;
+      if (!p || p.format !== 2 || p.part !== k || p.name.length !== head.parts[k].rows) return null;
+      ['name', 'family', 'roughness', 'describes'].forEach(function (c) { Array.prototype.push.apply(d[c], p[c]); });
+      Object.keys(p.aliases).forEach(function (i) { d.aliases[base + Number(i)] = p.aliases[i]; });
+      Object.keys(p.deprecated_by).forEach(function (i) { d.deprecated_by[base + Number(i)] = p.deprecated_by[i]; });
+      p.no_thumbnail.forEach(function (i) { d.no_thumbnail.push(base + i); });
+    }
+    return d.name.length === head.entries ? d : null;
+  }
 
   function grouped(n) { return n.toLocaleString('en-US'); }
 

@@ -129,7 +129,8 @@ std::vector<std::string> recorded_files(const std::string& name, const RecordedE
   return {name + ".html", name + ".png", name + "-thumb.png", name + ".shade"};
 }
 
-// The largest data file an in-place update reads back: 100,000 entries make 4.7 MB.
+// The largest index data file an in-place update reads back: a part of 2,048 rows is about 100 KB, the
+// head file about 50 bytes a part.
 constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t{256} << 20;
 
 // At most this many entries drawn or removed for an in-place update.
@@ -383,13 +384,17 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     // family gained or lost, or a data file that is not one: the whole file, from every row of the
     // record). Written only where they differ: with nothing changed, nothing is written.
     {
-      std::optional<PatchedIndex> patched;
-      // A data file far larger than any this program writes (47 bytes an entry) is not read into memory.
-      std::error_code size_ec;
-      const auto data_size = fs::file_size(dir / kIndexDataFile, size_ec);
-      if (!added && removed.empty() && !size_ec && data_size <= kMaxDataFileBytes)
-        patched = patch_index(read_text(dir / kIndexDataFile), source.manifest, rows);
-      if (!patched) {
+      std::optional<IndexFiles> patched;
+      // A file far larger than any this program writes (a part of 2,048 rows is about 100 KB) is not read into memory.
+      const ReadIndexFile read_index_file = [&](const std::string& relative) -> std::optional<std::string> {
+        std::error_code size_ec;
+        const auto size = fs::file_size(dir / relative, size_ec);
+        if (size_ec || size > kMaxDataFileBytes) return std::nullopt;
+        return read_text(dir / relative);
+      };
+      if (!added && removed.empty()) patched = patch_index(read_index_file, source.manifest, rows);
+      const bool whole = !patched;
+      if (whole) {
         auto all = read_record(dir, settings).value_or(Record{});
         // Partial, the record holds every entry (none came or went), in the index's order by name.
         std::vector<std::string> names;
@@ -403,10 +408,20 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
         for (const auto& name : names)
           if (const auto d = drawn.find(name); d != drawn.end()) all_rows.push_back(d->second.row);
           else if (const auto a = all.find(name); a != all.end()) all_rows.push_back(std::move(a->second.row));
-        patched = PatchedIndex{index_data_script(source.manifest, all_rows), index_page_html(source.manifest, all_rows)};
+        patched = index_files(source.manifest, all_rows);
       }
-      replace_if_changed(dir / kIndexDataFile, patched->script);
-      replace_if_changed(dir / "index.html", patched->page);
+      // The parts first, then the head that names them, then the page that loads them.
+      fs::create_directories(dir / kIndexPartsFolder);
+      for (const auto& [relative, text] : *patched)
+        if (relative != kIndexDataFile && relative != "index.html") replace_if_changed(dir / relative, text);
+      replace_if_changed(dir / kIndexDataFile, patched->at(kIndexDataFile));
+      replace_if_changed(dir / "index.html", patched->at("index.html"));
+      // Written whole with fewer entries: the parts past the last are no one's.
+      if (whole)
+        for (std::size_t k = patched->size() - 2;; ++k) {
+          std::error_code gone;
+          if (!fs::remove(dir / index_part_file(k), gone)) break;
+        }
     }
     for (const auto& a : assets()) replace_if_changed(dir / "assets" / std::string(a.name), std::string(a.text));
     replace_if_changed(dir / kCatalogMarker, marker);
@@ -416,8 +431,8 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
     report.entries = static_cast<int>(entry_count);
     return report;
   }
-  write_text(tmp.path / "index.html", index_page_html(source.manifest, rows));
-  write_text(tmp.path / kIndexDataFile, index_data_script(source.manifest, rows));
+  fs::create_directories(tmp.path / kIndexPartsFolder);
+  for (const auto& [relative, text] : index_files(source.manifest, rows)) write_text(tmp.path / relative, text);
   {
     RecordWriter record(tmp.path / kRecordFile, settings);
     record.set_index_fingerprint(source.index_fingerprint);

@@ -92,7 +92,7 @@ void pager(std::ostringstream& o, const char* id, bool announce) {
 namespace {
 
 std::string page_html(const std::string& library_name, const std::string& version, const std::vector<FamilyCount>& families,
-                      std::size_t entries, bool unfiled) {
+                      std::size_t entries, bool unfiled, std::size_t parts) {
   const std::string name = library_name.empty() ? "Sandpaper library" : library_name;
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -125,17 +125,28 @@ std::string page_html(const std::string& library_name, const std::string& versio
        "<th scope=\"col\" class=\"num\">roughness</th><th scope=\"col\">describes</th></tr></thead>\n<tbody>\n</tbody>\n</table>\n"
        "<p id=\"none\" hidden>No entry matches these filters.</p>\n";
   pager(o, "pager-bottom", false);
-  o << "<script src=\"" << kIndexDataFile << "\"></script>\n<script src=\"assets/index.js\"></script>\n</body>\n</html>\n";
+  // The head first, then the parts in order: classic scripts run in document order.
+  o << "<script src=\"" << kIndexDataFile << "\"></script>\n";
+  for (std::size_t k = 0; k < parts; ++k) o << "<script src=\"" << index_part_file(k) << "\"></script>\n";
+  o << "<script src=\"assets/index.js\"></script>\n</body>\n</html>\n";
   return o.str();
 }
 
-constexpr std::string_view kScriptHead = "window.sandpaperCatalog = JSON.parse('", kScriptTail = "');\n";
 
-// The data file's text for its JSON.
-std::string js_literal(const std::string& json_text) {
-  std::string out(kScriptHead);
-  out.reserve(json_text.size() + json_text.size() / 16 + 64);
-  // Copied in runs between the characters that need escaping (a 4.7 MB file has few of them).
+// A JSON text as the data files carry it: a JavaScript string literal for JSON.parse, between a
+// statement's head and tail. V8 parses JSON faster than an object literal (a third less time to the
+// first rows at 100,000 entries). The JSON is ASCII (\uXXXX escapes), so that a file reads the same
+// whatever encoding the browser assumes for it, and holds no < or >, so that it could be put inside
+// a <script> element unchanged.
+constexpr std::string_view kHeadStart = "window.sandpaperCatalog = JSON.parse('", kHeadEnd = "');\n";
+constexpr std::string_view kPartStart =
+    "(window.sandpaperCatalogParts = window.sandpaperCatalogParts || []).push(JSON.parse('";
+constexpr std::string_view kPartEnd = "'));\n";
+
+std::string js_literal(std::string_view start, const std::string& json_text, std::string_view end) {
+  std::string out(start);
+  out.reserve(json_text.size() + json_text.size() / 16 + 128);
+  // Copied in runs between the characters that need escaping (a data file has few of them).
   for (std::size_t p = 0; p < json_text.size();) {
     const std::size_t q = std::min(json_text.find_first_of("<>\\'", p), json_text.size());
     out.append(json_text, p, q - p);
@@ -146,65 +157,131 @@ std::string js_literal(const std::string& json_text) {
     else out += {'\\', c};
     p = q + 1;
   }
-  out += kScriptTail;
+  out += end;
   return out;
 }
 
-// The data file's text, written straight from the rows: a JSON tree of 100,000 entries took 2 s
-// and 500 MB. The same text as nlohmann's dump(-1, ' ', ensure_ascii) of the object the header
-// describes: keys in sorted order, each string and number as nlohmann writes it.
-std::string data_script(const std::string& library_name, const std::string& version, const std::vector<FamilyCount>& families,
-                        const std::vector<IndexRow>& rows) {
-  std::map<std::string, int> family_index;
-  for (const auto& f : families) family_index.emplace(f.id, static_cast<int>(family_index.size()));
-  std::vector<std::pair<std::string, std::size_t>> aliased, deprecated;  // ("<entry index>", row), sorted as JSON keys are
-  std::string names, family, roughness, describes, no_thumbnail;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto& r = rows[i];
+// The JSON inside a file js_literal wrote (its escapes \\ and \' undone), or nullopt.
+std::optional<std::string> json_inside(const std::string& script, std::string_view start, std::string_view end) {
+  if (script.size() < start.size() + end.size() || script.compare(0, start.size(), start) != 0 ||
+      script.compare(script.size() - end.size(), end.size(), end) != 0)
+    return std::nullopt;
+  std::string t;
+  t.reserve(script.size());
+  const std::size_t stop = script.size() - end.size();
+  for (std::size_t k = start.size(); k < stop;) {
+    const std::size_t q = std::min(script.find('\\', k), stop);
+    t.append(script, k, q - k);
+    if (q == stop) break;
+    if (q + 1 == stop) return std::nullopt;
+    t += script[q + 1];
+    k = q + 2;
+  }
+  return t;
+}
+
+// Six significant digits: the page shows three and filters on bounds typed to two decimals, while a
+// computed roughness written exactly often takes 17, which would double this column's size.
+std::string roughness_text(const std::optional<double>& r) {
+  if (!r) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", *r);
+  return nlohmann::json(std::strtod(buf, nullptr)).dump();
+}
+
+// One part's columns, each value as its JSON text; aliases, deprecated_by and no_thumbnail by row in the part.
+struct PartColumns {
+  std::vector<std::string> name, family, roughness, describes;
+  std::map<std::size_t, std::string> aliases, deprecated_by;
+  std::set<std::size_t> no_thumbnail;
+
+  // Sets row i (which must exist) from r; family_index holds the families' indices by id.
+  void set(std::size_t i, const IndexRow& r, const std::map<std::string, int>& family_index) {
     if (r.page != "entries/" + r.name + ".html")
-      throw std::invalid_argument("index_data_script: " + r.name + "'s page is not entries/" + r.name + ".html");
-    const char* sep = i == 0 ? "" : ",";
-    if (r.thumbnail.empty()) no_thumbnail += (no_thumbnail.empty() ? "" : ",") + std::to_string(i);
-    else if (r.thumbnail != "entries/" + r.name + "-thumb.png")
-      throw std::invalid_argument("index_data_script: " + r.name + "'s thumbnail is not entries/" + r.name + "-thumb.png");
-    names += sep + json_string(r.name);
-    family += sep + std::to_string(r.family.empty() ? -1 : family_index.at(r.family));
-    if (r.roughness) {
-      // Six significant digits: the page shows three and filters on bounds typed to two decimals, while
-      // a computed roughness written exactly often takes 17, which would double this column's size.
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.6g", *r.roughness);
-      roughness += sep + nlohmann::json(std::strtod(buf, nullptr)).dump();
-    } else {
-      roughness += std::string(sep) + "null";
-    }
-    describes += sep + json_string(r.describes);
-    if (!r.aliases.empty()) aliased.emplace_back(std::to_string(i), i);
-    if (!r.deprecated_by.empty()) deprecated.emplace_back(std::to_string(i), i);
+      throw std::invalid_argument("index_files: " + r.name + "'s page is not entries/" + r.name + ".html");
+    if (!r.thumbnail.empty() && r.thumbnail != "entries/" + r.name + "-thumb.png")
+      throw std::invalid_argument("index_files: " + r.name + "'s thumbnail is not entries/" + r.name + "-thumb.png");
+    name[i] = json_string(r.name);
+    family[i] = std::to_string(r.family.empty() ? -1 : family_index.at(r.family));
+    roughness[i] = roughness_text(r.roughness);
+    describes[i] = json_string(r.describes);
+    if (r.aliases.empty()) aliases.erase(i);
+    else aliases[i] = nlohmann::json(r.aliases).dump(-1, ' ', true);
+    if (r.deprecated_by.empty()) deprecated_by.erase(i);
+    else deprecated_by[i] = json_string(r.deprecated_by);
+    if (r.thumbnail.empty()) no_thumbnail.insert(i);
+    else no_thumbnail.erase(i);
   }
-  std::sort(aliased.begin(), aliased.end());
-  std::sort(deprecated.begin(), deprecated.end());
-  std::string j = "{\"aliases\":{";
-  for (std::size_t k = 0; k < aliased.size(); ++k) {
-    j += (k ? ",\"" : "\"") + aliased[k].first + "\":[";
-    const auto& a = rows[aliased[k].second].aliases;
-    for (std::size_t m = 0; m < a.size(); ++m) j += (m ? "," : "") + json_string(a[m]);
-    j += "]";
+  void resize(std::size_t n) {
+    for (auto* c : {&name, &family, &roughness, &describes}) c->resize(n);
   }
-  j += "},\"deprecated_by\":{";
-  for (std::size_t k = 0; k < deprecated.size(); ++k)
-    j += (k ? ",\"" : "\"") + deprecated[k].first + "\":" + json_string(rows[deprecated[k].second].deprecated_by);
-  j += "},\"describes\":[" + describes + "],\"families\":[";
-  for (std::size_t k = 0; k < families.size(); ++k)
-    j += std::string(k ? "," : "") + "{\"id\":" + json_string(families[k].id) + ",\"title\":" + json_string(families[k].title) + "}";
-  j += "],\"family\":[" + family + "],\"format\":1,\"library\":{\"name\":" + json_string(library_name) +
-       ",\"version\":" + json_string(version) + "},\"name\":[" + names + "],\"no_thumbnail\":[" + no_thumbnail +
-       "],\"roughness\":[" + roughness + "]}";
-  // JSON.parse of a string literal rather than an object literal: V8 parses JSON faster than
-  // JavaScript (a third less time to the first rows at 100,000 entries). The JSON is ASCII (\uXXXX
-  // escapes), so that the file reads the same whatever encoding the browser assumes for it, and has no
-  // < or >, so that it could be put inside a <script> element unchanged.
-  return js_literal(j);
+};
+
+std::string joined(const std::vector<std::string>& values) {
+  std::size_t n = 0;
+  for (const auto& v : values) n += v.size() + 1;
+  std::string out = "[";
+  out.reserve(n + 2);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i) out += ',';
+    out += values[i];
+  }
+  return out + "]";
+}
+
+std::string object_text(const std::map<std::size_t, std::string>& m) {
+  std::string o = "{";
+  for (const auto& [k, v] : m) o += (o.size() > 1 ? ",\"" : "\"") + std::to_string(k) + "\":" + v;
+  return o + "}";
+}
+
+std::string part_script(std::size_t k, const PartColumns& c) {
+  std::string thumbs = "[";
+  for (const auto i : c.no_thumbnail) thumbs += (thumbs.size() > 1 ? "," : "") + std::to_string(i);
+  thumbs += "]";
+  const std::string j = "{\"aliases\":" + object_text(c.aliases) + ",\"deprecated_by\":" + object_text(c.deprecated_by) +
+                        ",\"describes\":" + joined(c.describes) + ",\"family\":" + joined(c.family) +
+                        ",\"format\":2,\"name\":" + joined(c.name) + ",\"no_thumbnail\":" + thumbs +
+                        ",\"part\":" + std::to_string(k) + ",\"roughness\":" + joined(c.roughness) + "}";
+  return js_literal(kPartStart, j, kPartEnd);
+}
+
+struct PartSpan {
+  std::string first, last;
+  std::size_t rows = 0;
+};
+
+// What the head file holds: all the page needs, and where each part's names start and end.
+struct Head {
+  std::string library_name, version;
+  std::vector<FamilyCount> families;
+  std::size_t entries = 0, unfiled = 0;
+  bool sorted = true;
+  std::vector<PartSpan> parts;
+};
+
+std::string head_script(const Head& h) {
+  std::string j = "{\"entries\":" + std::to_string(h.entries) + ",\"families\":[";
+  for (std::size_t k = 0; k < h.families.size(); ++k)
+    j += std::string(k ? "," : "") + "{\"count\":" + std::to_string(h.families[k].count) +
+         ",\"id\":" + json_string(h.families[k].id) + ",\"title\":" + json_string(h.families[k].title) + "}";
+  j += "],\"format\":2,\"library\":{\"name\":" + json_string(h.library_name) + ",\"version\":" + json_string(h.version) +
+       "},\"part_rows\":" + std::to_string(kIndexPartRows) + ",\"parts\":[";
+  for (std::size_t k = 0; k < h.parts.size(); ++k)
+    j += std::string(k ? "," : "") + "{\"first\":" + json_string(h.parts[k].first) + ",\"last\":" +
+         json_string(h.parts[k].last) + ",\"rows\":" + std::to_string(h.parts[k].rows) + "}";
+  j += std::string("],\"sorted\":") + (h.sorted ? "true" : "false") + ",\"unfiled\":" + std::to_string(h.unfiled) + "}";
+  return js_literal(kHeadStart, j, kHeadEnd);
+}
+
+std::string page_of(const Head& h) {
+  return page_html(h.library_name, h.version, h.families, h.entries, h.unfiled > 0, h.parts.size());
+}
+
+std::map<std::string, int> index_of(const std::vector<FamilyCount>& families) {
+  std::map<std::string, int> out;
+  for (const auto& f : families) out.emplace(f.id, static_cast<int>(out.size()));
+  return out;
 }
 
 // The rows and families of index_data's JSON.
@@ -232,34 +309,53 @@ std::vector<FamilyCount> families_of(const nlohmann::json& data) {
   return out;
 }
 
-bool any_unfiled(const std::vector<IndexRow>& rows) {
-  return std::any_of(rows.begin(), rows.end(), [](const auto& r) { return r.family.empty(); });
+IndexFiles files_of(const std::string& library_name, const std::string& version, std::vector<FamilyCount> families,
+                    const std::vector<IndexRow>& rows) {
+  Head h;
+  h.library_name = library_name;
+  h.version = version;
+  h.entries = rows.size();
+  const auto family_index = index_of(families);
+  h.families = std::move(families);
+  IndexFiles files;
+  for (std::size_t start = 0; start < rows.size(); start += kIndexPartRows) {
+    const std::size_t n = std::min(kIndexPartRows, rows.size() - start);
+    PartColumns c;
+    c.resize(n);
+    for (std::size_t i = 0; i < n; ++i) c.set(i, rows[start + i], family_index);
+    const std::size_t k = h.parts.size();
+    h.parts.push_back({rows[start].name, rows[start + n - 1].name, n});
+    files[index_part_file(k)] = part_script(k, c);
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].family.empty()) ++h.unfiled;
+    if (i > 0 && !(rows[i - 1].name < rows[i].name)) h.sorted = false;
+  }
+  files[kIndexDataFile] = head_script(h);
+  files["index.html"] = page_of(h);
+  return files;
 }
 
 }  // namespace
 
-std::string index_page_html(const nlohmann::json& data) {
-  const auto rows = rows_of(data);
-  return page_html(data["library"]["name"].get<std::string>(), data["library"]["version"].get<std::string>(), families_of(data),
-                   rows.size(), any_unfiled(rows));
+std::string index_part_file(std::size_t part) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%s/part-%05zu.js", kIndexPartsFolder, part);
+  return buf;
 }
 
-std::string index_page_html(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows) {
-  return page_html(manifest.name, manifest.version, families_of(manifest, rows), rows.size(), any_unfiled(rows));
+IndexFiles index_files(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows) {
+  return files_of(manifest.name, manifest.version, families_of(manifest, rows), rows);
 }
 
-std::string index_data_script(const nlohmann::json& data) {
-  return data_script(data["library"]["name"].get<std::string>(), data["library"]["version"].get<std::string>(), families_of(data),
-                     rows_of(data));
-}
-
-std::string index_data_script(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows) {
-  return data_script(manifest.name, manifest.version, families_of(manifest, rows), rows);
+IndexFiles index_files(const nlohmann::json& data) {
+  return files_of(data["library"]["name"].get<std::string>(), data["library"]["version"].get<std::string>(), families_of(data),
+                  rows_of(data));
 }
 
 namespace {
 
-// Reading the data file's JSON as text: nlohmann's dump(-1) writes no whitespace, so a value's
+// Reading a data file's JSON as text: nlohmann's dump(-1) writes no whitespace, so a value's
 // extent is found by scanning it, without building a tree of 100,000 entries (0.6 s).
 struct BadText : std::runtime_error {
   BadText() : std::runtime_error("not a data file of this format") {}
@@ -348,135 +444,142 @@ std::map<std::string, std::string> members(const std::string& t, std::size_t b, 
   return out;
 }
 
+// The part at index k from its text, or BadText.
+PartColumns parse_part(const std::string& script, std::size_t k, std::size_t rows) {
+  const auto t = json_inside(script, kPartStart, kPartEnd);
+  if (!t) throw BadText();
+  const auto top = top_level(*t);
+  const auto value_of = [&](const char* key) {
+    const auto it = top.find(key);
+    if (it == top.end()) throw BadText();
+    return it->second;
+  };
+  const auto text_at = [&](std::pair<std::size_t, std::size_t> v) { return t->substr(v.first, v.second - v.first); };
+  if (text_at(value_of("format")) != "2" || text_at(value_of("part")) != std::to_string(k)) throw BadText();
+  PartColumns c;
+  const auto column = [&](const char* key, std::vector<std::string>& out) {
+    const auto [b, e] = value_of(key);
+    for (const auto& [vb, ve] : elements(*t, b, e)) out.push_back(t->substr(vb, ve - vb));
+    if (out.size() != rows) throw BadText();
+  };
+  column("name", c.name);
+  column("family", c.family);
+  column("roughness", c.roughness);
+  column("describes", c.describes);
+  const auto by_row = [&](const char* key, std::map<std::size_t, std::string>& out) {
+    const auto [b, e] = value_of(key);
+    for (const auto& [row, text] : members(*t, b, e)) {
+      const auto i = integer_at<std::size_t>(row, 0, row.size());
+      if (i >= rows || std::to_string(i) != row) throw BadText();
+      out[i] = text;
+    }
+  };
+  by_row("aliases", c.aliases);
+  by_row("deprecated_by", c.deprecated_by);
+  const auto [tb, te] = value_of("no_thumbnail");
+  for (const auto& [b, e] : elements(*t, tb, te)) {
+    const auto i = integer_at<std::size_t>(*t, b, e);
+    if (i >= rows) throw BadText();
+    c.no_thumbnail.insert(i);
+  }
+  return c;
+}
+
+// The head file's contents, or BadText. Checked for depth by the scanner before nlohmann builds it.
+Head parse_head(const std::string& script) {
+  const auto t = json_inside(script, kHeadStart, kHeadEnd);
+  if (!t || t->empty() || skip_value(*t, 0) != t->size()) throw BadText();
+  const auto j = nlohmann::json::parse(*t);
+  if (j.at("format") != 2 || j.at("part_rows") != kIndexPartRows) throw BadText();
+  Head h;
+  h.library_name = j.at("library").at("name").get<std::string>();
+  h.version = j.at("library").at("version").get<std::string>();
+  for (const auto& f : j.at("families"))
+    h.families.push_back({f.at("id").get<std::string>(), f.at("title").get<std::string>(), "", f.at("count").get<int>()});
+  h.entries = j.at("entries").get<std::size_t>();
+  h.unfiled = j.at("unfiled").get<std::size_t>();
+  h.sorted = j.at("sorted").get<bool>();
+  std::size_t total = 0;
+  for (const auto& p : j.at("parts")) {
+    h.parts.push_back({p.at("first").get<std::string>(), p.at("last").get<std::string>(), p.at("rows").get<std::size_t>()});
+    // Every part but the last is full, as the whole writer makes them.
+    if (h.parts.back().rows == 0 || h.parts.back().rows > kIndexPartRows ||
+        (h.parts.size() > 1 && h.parts[h.parts.size() - 2].rows != kIndexPartRows))
+      throw BadText();
+    total += h.parts.back().rows;
+  }
+  if (total != h.entries) throw BadText();
+  return h;
+}
+
 }  // namespace
 
-std::optional<PatchedIndex> patch_index(const std::string& script, const compiler::LibraryManifest& manifest,
-                                        const std::vector<IndexRow>& changed) {
-  using nlohmann::json;
-  if (script.size() < kScriptHead.size() + kScriptTail.size() || script.compare(0, kScriptHead.size(), kScriptHead) != 0 ||
-      script.compare(script.size() - kScriptTail.size(), kScriptTail.size(), kScriptTail) != 0)
-    return std::nullopt;
-  // The string literal's escapes undone: \\ and \' (js_literal writes no other).
-  std::string t;
-  t.reserve(script.size());
-  const std::size_t end = script.size() - kScriptTail.size();
-  for (std::size_t k = kScriptHead.size(); k < end;) {
-    const std::size_t q = std::min(script.find('\\', k), end);
-    t.append(script, k, q - k);
-    if (q == end) break;
-    if (q + 1 == end) return std::nullopt;
-    t += script[q + 1];
-    k = q + 2;
-  }
+std::optional<IndexFiles> patch_index(const ReadIndexFile& read, const compiler::LibraryManifest& manifest,
+                                      const std::vector<IndexRow>& changed) {
   try {
-    const auto top = top_level(t);
-    const auto value_of = [&](const char* key) { return top.at(key); };  // std::out_of_range: not this format
-    const auto [fb, fe] = value_of("families");
-    const json families = json::parse(t.substr(fb, fe - fb));
-    if (families.size() < manifest.families.size()) return std::nullopt;
-    std::map<std::string, int> family_index;
-    for (std::size_t f = 0; f < families.size(); ++f) {
-      if (f < manifest.families.size() &&
-          (families[f].at("id") != manifest.families[f].id || families[f].at("title") != manifest.families[f].title))
-        return std::nullopt;
-      family_index.emplace(families[f].at("id").get<std::string>(), static_cast<int>(f));
-    }
-    if (const auto [ob, oe] = value_of("format"); t.compare(ob, oe - ob, "1") != 0) return std::nullopt;
-    const auto [nb, ne] = value_of("name");
-    const auto [cb, ce] = value_of("family");
-    const auto [rb, re] = value_of("roughness");
-    const auto [db, de] = value_of("describes");
-    const auto [ab, ae] = value_of("aliases");
-    const auto [xb, xe] = value_of("deprecated_by");
-    const auto [tb, te] = value_of("no_thumbnail");
-    const auto names = elements(t, nb, ne);
-    auto family = elements(t, cb, ce);
-    const auto roughness = elements(t, rb, re), describes = elements(t, db, de);
-    if (family.size() != names.size() || roughness.size() != names.size() || describes.size() != names.size()) return std::nullopt;
-    // Only the changed rows' names are looked for: a map of all 100,000 cost more than the scan.
-    std::map<std::string, std::size_t, std::less<>> at;
-    for (const auto& r : changed) at.emplace(json_string(r.name), names.size());
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      const std::string_view name(t.data() + names[i].first, names[i].second - names[i].first);
-      if (const auto it = at.find(name); it != at.end() && it->second == names.size()) it->second = i;
-    }
-    auto aliases = members(t, ab, ae), deprecated = members(t, xb, xe);
-    std::set<std::size_t> thumbless;
-    for (const auto& [b, e] : elements(t, tb, te)) thumbless.insert(integer_at<std::size_t>(t, b, e));
+    const auto head_text = read(kIndexDataFile);
+    if (!head_text) return std::nullopt;
+    Head h = parse_head(*head_text);
+    if (h.library_name != manifest.name || h.version != manifest.version || h.families.size() < manifest.families.size())
+      return std::nullopt;
+    for (std::size_t f = 0; f < manifest.families.size(); ++f)
+      if (h.families[f].id != manifest.families[f].id || h.families[f].title != manifest.families[f].title) return std::nullopt;
+    const auto family_index = index_of(h.families);
+    if (family_index.size() != h.families.size()) return std::nullopt;
 
-    std::map<std::size_t, std::pair<std::size_t, std::string>> edits;  // begin -> (end, new text)
-    std::map<std::size_t, int> new_family;
-    for (const auto& r : changed) {
-      const auto it = at.find(json_string(r.name));  // names as the file has them: JSON strings
-      if (it == at.end() || it->second == names.size() || r.page != "entries/" + r.name + ".html") return std::nullopt;
-      if (!r.thumbnail.empty() && r.thumbnail != "entries/" + r.name + "-thumb.png") return std::nullopt;
-      const std::size_t i = it->second;
-      const std::string key = std::to_string(i);
-      int f = -1;
-      if (!r.family.empty()) {
-        const auto fi = family_index.find(r.family);
-        if (fi == family_index.end()) return std::nullopt;  // a family the list lacks: the whole file is written
-        f = fi->second;
+    std::map<std::size_t, PartColumns> parts;  // read as needed
+    const auto part = [&](std::size_t k) -> PartColumns& {
+      auto it = parts.find(k);
+      if (it == parts.end()) {
+        const auto text = read(index_part_file(k));
+        if (!text) throw BadText();
+        it = parts.emplace(k, parse_part(*text, k, h.parts[k].rows)).first;
+        // The span the head names is the part's own.
+        if (it->second.name.front() != json_string(h.parts[k].first) || it->second.name.back() != json_string(h.parts[k].last))
+          throw BadText();
       }
-      new_family[i] = f;
-      edits[family[i].first] = {family[i].second, std::to_string(f)};
-      std::string rough = "null";
-      if (r.roughness) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.6g", *r.roughness);
-        rough = json(std::strtod(buf, nullptr)).dump();
-      }
-      edits[roughness[i].first] = {roughness[i].second, rough};
-      edits[describes[i].first] = {describes[i].second, json_string(r.describes)};
-      if (r.aliases.empty()) aliases.erase(key);
-      else aliases[key] = json(r.aliases).dump(-1, ' ', true);
-      if (r.deprecated_by.empty()) deprecated.erase(key);
-      else deprecated[key] = json_string(r.deprecated_by);
-      if (r.thumbnail.empty()) thumbless.insert(i);
-      else thumbless.erase(i);
-    }
-    auto object = [](const std::map<std::string, std::string>& m) {
-      std::string o = "{";
-      for (const auto& [k, v] : m) o += (o.size() > 1 ? ",\"" : "\"") + k + "\":" + v;
-      return o + "}";
+      return it->second;
     };
-    std::string thumbs = "[";
-    for (const auto i : thumbless) thumbs += (thumbs.size() > 1 ? "," : "") + std::to_string(i);
-    thumbs += "]";
-    edits[ab] = {ae, object(aliases)};
-    edits[xb] = {xe, object(deprecated)};
-    edits[tb] = {te, thumbs};
-    std::string out;
-    out.reserve(t.size() + 4096);
-    std::size_t p = 0;
-    for (const auto& [b, e_text] : edits) {
-      out.append(t, p, b - p);
-      out += e_text.second;
-      p = e_text.first;
+    for (const auto& r : changed) {
+      if (r.family.size() && !family_index.count(r.family)) return std::nullopt;  // a family the list lacks
+      // Sorted names: the one part whose span holds the name. Otherwise each part in turn.
+      std::size_t k = 0, k_end = h.parts.size();
+      if (h.sorted) {
+        const auto it = std::partition_point(h.parts.begin(), h.parts.end(), [&](const PartSpan& p) { return p.last < r.name; });
+        if (it == h.parts.end() || r.name < it->first) return std::nullopt;
+        k = static_cast<std::size_t>(it - h.parts.begin());
+        k_end = k + 1;
+      }
+      const std::string quoted = json_string(r.name);
+      bool found = false;
+      for (; k < k_end && !found; ++k) {
+        auto& c = part(k);
+        const auto at = std::find(c.name.begin(), c.name.end(), quoted);
+        if (at == c.name.end()) continue;
+        const auto i = static_cast<std::size_t>(at - c.name.begin());
+        const int old_family = integer_at<int>(c.family[i], 0, c.family[i].size());
+        if (old_family < -1 || old_family >= static_cast<int>(h.families.size())) return std::nullopt;
+        c.set(i, r, family_index);
+        const int new_family = r.family.empty() ? -1 : family_index.at(r.family);
+        if (old_family < 0) --h.unfiled;
+        else --h.families[static_cast<std::size_t>(old_family)].count;
+        if (new_family < 0) ++h.unfiled;
+        else ++h.families[static_cast<std::size_t>(new_family)].count;
+        found = true;
+      }
+      if (!found) return std::nullopt;
     }
-    out.append(t, p, std::string::npos);
-
-    // The page's family counts; a family only entries named that now has none: the whole file is written.
-    std::vector<FamilyCount> counts;
-    for (const auto& f : families) counts.push_back({f.at("id").get<std::string>(), f.at("title").get<std::string>(), "", 0});
-    bool unfiled = false;
-    for (std::size_t i = 0; i < family.size(); ++i) {
-      const auto nf = new_family.find(i);
-      const int v = nf != new_family.end() ? nf->second : integer_at<int>(t, family[i].first, family[i].second);
-      if (v < 0) unfiled = true;
-      else if (static_cast<std::size_t>(v) < counts.size()) ++counts[static_cast<std::size_t>(v)].count;
-      else return std::nullopt;
-    }
-    for (std::size_t f = manifest.families.size(); f < counts.size(); ++f)
-      if (counts[f].count == 0) return std::nullopt;
-    const auto [lb, le] = value_of("library");
-    const json library = json::parse(t.substr(lb, le - lb));
-    PatchedIndex result;
-    result.script = js_literal(out);
-    result.page = page_html(library.at("name").get<std::string>(), library.at("version").get<std::string>(), counts, names.size(), unfiled);
-    return result;
+    // A family that only entries named and that now has none would leave the list: the whole file is written.
+    for (std::size_t f = 0; f < h.families.size(); ++f)
+      if (h.families[f].count < 0 || (f >= manifest.families.size() && h.families[f].count == 0)) return std::nullopt;
+    if (h.unfiled > h.entries) return std::nullopt;
+    IndexFiles out;
+    for (const auto& [k, c] : parts) out[index_part_file(k)] = part_script(k, c);
+    out[kIndexDataFile] = head_script(h);
+    out["index.html"] = page_of(h);
+    return out;
   } catch (const std::exception&) {
-    return std::nullopt;  // not a data file of this format
+    return std::nullopt;  // not files of this format
   }
 }
 

@@ -1,9 +1,12 @@
 #pragma once
 // The catalog's index page: the entries (name, family, roughness, thumbnail, describes) a page of
 // rows at a time, filtered in the browser by family, roughness range and words (assets/index.js).
-// The page itself holds no entry: the entries are in a separate, compact data file beside it
-// (kIndexDataFile), loaded by a plain <script src>, so that the page works from file:// with no
-// server (browsers refuse fetch() of local files) and still opens fast with 100,000 entries.
+// The page itself holds no entry: the entries are in compact data files beside it (kIndexDataFile
+// and its parts), loaded by plain <script src>, so that the page works from file:// with no server
+// (browsers refuse fetch() of local files) and still opens fast with 100,000 entries.
+#include <cstddef>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,46 +26,54 @@ struct IndexRow {
   std::string thumbnail;            // "entries/corduroy-thumb.png", or empty without a picture
 };
 
-// The index's data file, written beside index.html.
+// The index's data: a small head file beside index.html (the library, the families with their
+// counts, and each part's first and last name), and the rows themselves in parts of kIndexPartRows
+// rows, kIndexPartsFolder/part-NNNNN.js, so that a one-entry update rewrites one part (about 100 KB)
+// and not the whole index (4.7 MB at 100,000 entries).
 inline constexpr const char* kIndexDataFile = "catalog-data.js";
+inline constexpr const char* kIndexPartsFolder = "catalog-data";
+inline constexpr std::size_t kIndexPartRows = 2048;
+// "catalog-data/part-00007.js" for part 7.
+std::string index_part_file(std::size_t part);
 
 // Every row as JSON: {"library": {name, version}, "families": [{id, title, describes, count}],
 // "entries": [{name, family, family_title, aliases, describes, roughness|null, max_lateral_force_N,
 // licence, deprecated_by, page, thumbnail}]}, families in the manifest's order (then any an entry
-// names that the manifest lacks), entries in the order given.
+// names that the manifest lacks), entries in the order given. What the index's files are made from.
 nlohmann::json index_data(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows);
 
-// The page: the filters (the family select lists index_data's families with their counts), the count
-// line, the pagers and an empty table that assets/index.js fills from kIndexDataFile; a <noscript>
-// note for browsers without JavaScript. Links to assets/catalog.css and assets/index.js.
-std::string index_page_html(const nlohmann::json& data);
-// The same page for index_data(manifest, rows), without building that JSON.
-std::string index_page_html(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows);
-
-// The text of kIndexDataFile for index_data's JSON: one statement, in ASCII,
-// `window.sandpaperCatalog = JSON.parse('...');` with the JSON below as the string literal. Only what
-// the index shows or filters by, a column per field rather than an object per entry, so that 100,000
-// entries are a few megabytes:
-//   {"format": 1, "library": {name, version}, "families": [{id, title}],
-//    "name": [...], "family": [index into families, or -1], "roughness": [number|null, 6 significant
-//    digits], "describes": [...], "aliases": {"<entry index>": [...]} (entries with aliases only),
-//    "deprecated_by": {"<entry index>": name}, "no_thumbnail": [entry index, ...]}
-// Paths are not stored: the page is entries/<name>.html and the thumbnail entries/<name>-thumb.png, as
-// the catalog writes them. Throws std::invalid_argument for an entry whose page or thumbnail is
+// The index's files, by path relative to the catalog folder: "index.html", kIndexDataFile and
+// index_part_file(k) for every part. All ASCII, in this format (format 2):
+// - index.html: the filters (the family select lists the families with their counts), the count
+//   line, the pagers and an empty table that assets/index.js fills; a <noscript> note for browsers
+//   without JavaScript. It loads kIndexDataFile, then every part, by plain <script src> (browsers
+//   refuse fetch() of a file:// URL), then assets/index.js.
+// - kIndexDataFile: `window.sandpaperCatalog = JSON.parse('...');` with
+//   {"entries": N, "families": [{"count", "id", "title"}], "format": 2, "library": {name, version},
+//    "part_rows": kIndexPartRows, "parts": [{"first": name, "last": name, "rows": n}],
+//    "sorted": whether the names are in strictly increasing byte order, "unfiled": entries without a family}
+// - each part: `(window.sandpaperCatalogParts = window.sandpaperCatalogParts || []).push(JSON.parse('...'));`
+//   with the rows part_rows * k onwards, a column per field: {"aliases": {"<row in part>": [...]},
+//   "deprecated_by": {"<row in part>": name}, "describes": [...], "family": [index into families, or
+//   -1], "format": 2, "name": [...], "no_thumbnail": [row in part, ...], "part": k, "roughness":
+//   [number|null, 6 significant digits]}.
+// Paths are not stored: an entry's page is entries/<name>.html and its thumbnail
+// entries/<name>-thumb.png. Throws std::invalid_argument for a row whose page or thumbnail is
 // elsewhere, which the page could not find.
-std::string index_data_script(const nlohmann::json& data);
-// The same text for index_data(manifest, rows), written straight from the rows (0.2 s rather than 2 s at 100,000).
-std::string index_data_script(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows);
+using IndexFiles = std::map<std::string, std::string>;
+IndexFiles index_files(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows);
+// The same files for index_data's JSON.
+IndexFiles index_files(const nlohmann::json& data);
 
-// The data file and the index page after `changed` rows replace theirs in an existing data file's
-// text (`script`, index_data_script's), each row at its name's place: the same text as both
-// functions give for the whole list with those rows changed, without the other rows. nullopt when
-// it cannot be done so (not such a file, a name it lacks, a family its list lacks or would lose,
-// or the manifest's families differ): then the whole file is written.
-struct PatchedIndex {
-  std::string script, page;
-};
-std::optional<PatchedIndex> patch_index(const std::string& script, const compiler::LibraryManifest& manifest,
-                                        const std::vector<IndexRow>& changed);
+// The index's files after `changed` rows replace theirs, each at its name's place: the head file,
+// the page, and the parts that hold those rows (the others are as they were), read through `read`
+// (a path relative to the catalog folder -> its text, nullopt if missing or too large). The same
+// text as index_files gives for the whole list with those rows changed, without reading the other
+// parts when the names are sorted. nullopt when it cannot be done so (files not of this format, a
+// name they lack, a family the list lacks or would lose, or the manifest's library or families
+// differ): then every file is written whole.
+using ReadIndexFile = std::function<std::optional<std::string>(const std::string& relative_path)>;
+std::optional<IndexFiles> patch_index(const ReadIndexFile& read, const compiler::LibraryManifest& manifest,
+                                      const std::vector<IndexRow>& changed);
 
 }  // namespace sandpaper::catalog
