@@ -46,6 +46,9 @@ Compiler::Compiler(CompileOptions options)
                                                                 : default_library_path())) {}
 
 Compiler::Compiler(CompileOptions options, Library library)
+    : Compiler(std::move(options), std::make_shared<const Library>(std::move(library))) {}
+
+Compiler::Compiler(CompileOptions options, std::shared_ptr<const Library> library)
     : options_(std::move(options)),
       calibration_(calibration::CalibrationSet::load(
           options_.calibration_dir.empty() ? calibration::default_calibration_dir() : options_.calibration_dir)),
@@ -71,12 +74,12 @@ CompileResult Compiler::compile_file(const std::filesystem::path& path) const {
                         "check the path; material files end in .hmat");
     return r;
   }
-  return compile_source(std::make_shared<const SourceFile>(path.string(), std::move(text)), library_, calibration_,
+  return compile_source(std::make_shared<const SourceFile>(path.string(), std::move(text)), *library_, calibration_,
                         *device_);
 }
 
 CompileResult Compiler::compile_text(const std::string& text, const std::string& display_name) const {
-  return compile_source(std::make_shared<const SourceFile>(display_name, text), library_, calibration_, *device_);
+  return compile_source(std::make_shared<const SourceFile>(display_name, text), *library_, calibration_, *device_);
 }
 
 }  // namespace sandpaper::compiler

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -69,6 +70,31 @@ TEST(DeviceCompile, SameNewtonsDifferentCommandUnitsOnTheThesisAndUsbJoysticks) 
     EXPECT_EQ(pb.command.command_unit, "PID magnitude");
     EXPECT_EQ(pa.command.command_max, 2048);
     EXPECT_EQ(pb.command.command_max, 10000);
+  }
+}
+
+// `library check` compiles every entry once per device with compilers that share one read of the
+// library: each must still compile for its own device, exactly as a compiler with its own copy does.
+TEST(DeviceCompile, CompilersSharingOneLibraryCompileForTheirOwnDevices) {
+  const auto library = std::make_shared<const compiler::Library>(compiler::default_library_dir());
+  compiler::CompileOptions o;
+  o.device = "sandpaper-1995";
+  const compiler::Compiler thesis(o, library);
+  o.device = "openffboard-2axis";
+  const compiler::Compiler usb(o, library);
+  EXPECT_EQ(&thesis.library(), library.get());
+  EXPECT_EQ(&usb.library(), library.get());
+  for (const char* material : {"corduroy", "like corduroy; roughness 0.2", "gravel"}) {
+    const auto a = thesis.compile_text(material), b = usb.compile_text(material);
+    const auto own_a = for_device("sandpaper-1995").compile_text(material);
+    const auto own_b = for_device("openffboard-2axis").compile_text(material);
+    ASSERT_TRUE(a.ok() && b.ok() && own_a.ok() && own_b.ok()) << material;
+    EXPECT_EQ(a.program->command.command_unit, "ju") << material;
+    EXPECT_EQ(b.program->command.command_unit, "PID magnitude") << material;
+    EXPECT_EQ(a.program->command.newtons_per_command_unit[0], own_a.program->command.newtons_per_command_unit[0]) << material;
+    EXPECT_EQ(b.program->command.newtons_per_command_unit[0], own_b.program->command.newtons_per_command_unit[0]) << material;
+    EXPECT_EQ(a.program->max_lateral_force_N, own_a.program->max_lateral_force_N) << material;
+    EXPECT_EQ(b.program->max_lateral_force_N, own_b.program->max_lateral_force_N) << material;
   }
 }
 

@@ -6,6 +6,7 @@
 //   if (!r.ok()) std::cerr << format_diagnostics(r.diagnostics);
 //   else sandpaper::schema::write_patch_file("corduroy.patch", *r.program);
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,6 +44,9 @@ class Compiler {
   // With a library already read (options' library folders are then not read): for instance the
   // part of a library an incremental index build needs (Library's `only_files` constructor).
   Compiler(CompileOptions options, Library library);
+  // Sharing one library read with other compilers (for instance one per device, as `library check`
+  // has: each would otherwise hold its own copy of every entry).
+  Compiler(CompileOptions options, std::shared_ptr<const Library> library);
 
   // `path` is shown in diagnostics as given. A missing file is a diagnostic, not an exception.
   CompileResult compile_file(const std::filesystem::path& path) const;
@@ -51,14 +55,14 @@ class Compiler {
 
   const calibration::CalibrationSet& calibration() const { return calibration_; }
   const calibration::DeviceCalibration& device() const { return *device_; }
-  const Library& library() const { return library_; }
+  const Library& library() const { return *library_; }
   const CompileOptions& options() const { return options_; }  // as given (empty folders: the defaults)
 
  private:
   CompileOptions options_;
   calibration::CalibrationSet calibration_;
   const calibration::DeviceCalibration* device_ = nullptr;
-  Library library_;
+  std::shared_ptr<const Library> library_;
 };
 
 }  // namespace sandpaper::compiler
