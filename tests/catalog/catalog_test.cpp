@@ -464,6 +464,53 @@ TEST(CatalogIndex, PatchingRowsGivesTheSameFilesAsWritingThemWhole) {
   }
 }
 
+// An in-place update renames the changed parts in, then the head, then commits its record; a kill
+// between the parts and the head leaves a head whose family counts are the old ones. The next run
+// draws the same entries again (the record still has their old inputs) and patches the same rows:
+// that must give the files of an uninterrupted update, counts included.
+TEST(CatalogIndex, APatchCutOffBetweenItsPartsAndItsHeadIsPutRightByTheSamePatchAgain) {
+  compiler::LibraryManifest manifest;
+  manifest.name = "m";
+  manifest.version = "1";
+  manifest.families = {{"cloth", "Cloth", "", false}, {"stone", "Stone", "", false}};
+  std::vector<catalog::IndexRow> rows;
+  for (int i = 0; i < 5000; ++i) {
+    catalog::IndexRow r;
+    char name[16];
+    std::snprintf(name, sizeof name, "e%05d", i);
+    r.name = name;
+    r.family = i % 3 == 0 ? "" : i % 3 == 1 ? "cloth" : "stone";
+    r.describes = "row " + std::to_string(i);
+    r.page = "entries/" + r.name + ".html";
+    rows.push_back(r);
+  }
+  auto disk = catalog::index_files(manifest, rows);
+  const auto reader = [&](const std::string& f) -> std::optional<std::string> {
+    const auto it = disk.find(f);
+    return it == disk.end() ? std::nullopt : std::optional<std::string>(it->second);
+  };
+  // Two rows move family (cloth -> none, none -> stone), in two parts.
+  std::vector<catalog::IndexRow> changed{rows[1], rows[3000]};
+  changed[0].family = "";
+  changed[1].family = "stone";
+  rows[1] = changed[0];
+  rows[3000] = changed[1];
+  const auto uninterrupted = catalog::index_files(manifest, rows);
+  const auto first = catalog::patch_index(reader, manifest, changed);
+  ASSERT_TRUE(first.has_value());
+  ASSERT_TRUE(first->count(catalog::index_part_file(0)) && first->count(catalog::index_part_file(1)));
+  // Cut off: the parts are in, the head and the page are not.
+  for (const auto& [f, text] : *first)
+    if (f != catalog::kIndexDataFile && f != "index.html") disk[f] = text;
+  ASSERT_NE(disk.at(catalog::kIndexDataFile), uninterrupted.at(catalog::kIndexDataFile)) << "the counts should differ";
+  const auto again = catalog::patch_index(reader, manifest, changed);
+  ASSERT_TRUE(again.has_value());
+  for (const auto& [f, text] : *again) disk[f] = text;
+  EXPECT_TRUE(disk == uninterrupted) << "the counts were not put right";
+  EXPECT_NE(disk.at("index.html").find("<option value=\"stone\">Stone (1667)</option>"), std::string::npos)
+      << disk.at("index.html");
+}
+
 TEST(Catalog, IndexListsEveryEntryWithItsCompiledRoughness) {
   const auto& c = test::shipped_compiler();
   const fs::path out = fs::path(test::temp_dir("catalog")) / "site";

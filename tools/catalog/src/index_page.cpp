@@ -246,10 +246,31 @@ std::string part_script(std::size_t k, const PartColumns& c) {
   return js_literal(kPartStart, j, kPartEnd);
 }
 
+// A part as the head describes it: its first and last names, its rows, and how many of them are in
+// each family and in none. The head's totals are the sums over its parts, and a patch recounts the
+// parts it rewrites from their rows, so that a run cut off between writing a part and writing the
+// head is put right by the next run, which patches the same rows again.
 struct PartSpan {
   std::string first, last;
   std::size_t rows = 0;
+  std::vector<int> counts;  // by family index
+  std::size_t unfiled = 0;
 };
+
+// Counts c's rows into span's counts (over `families` families); std::invalid_argument for a family
+// index outside them.
+void tally(const PartColumns& c, std::size_t families, PartSpan& span) {
+  span.counts.assign(families, 0);
+  span.unfiled = 0;
+  for (const auto& text : c.family) {
+    int f = -2;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), f);
+    if (ec != std::errc() || end != text.data() + text.size() || f < -1 || f >= static_cast<int>(families))
+      throw std::invalid_argument("a family index outside the list");
+    if (f < 0) ++span.unfiled;
+    else ++span.counts[static_cast<std::size_t>(f)];
+  }
+}
 
 // What the head file holds: all the page needs, and where each part's names start and end.
 struct Head {
@@ -260,6 +281,16 @@ struct Head {
   std::vector<PartSpan> parts;
 };
 
+// The head's family counts and unfiled entries: the sums over its parts.
+void total(Head& h) {
+  for (auto& f : h.families) f.count = 0;
+  h.unfiled = 0;
+  for (const auto& p : h.parts) {
+    for (std::size_t f = 0; f < h.families.size(); ++f) h.families[f].count += p.counts.at(f);
+    h.unfiled += p.unfiled;
+  }
+}
+
 std::string head_script(const Head& h) {
   std::string j = "{\"entries\":" + std::to_string(h.entries) + ",\"families\":[";
   for (std::size_t k = 0; k < h.families.size(); ++k)
@@ -268,8 +299,13 @@ std::string head_script(const Head& h) {
   j += "],\"format\":2,\"library\":{\"name\":" + json_string(h.library_name) + ",\"version\":" + json_string(h.version) +
        "},\"part_rows\":" + std::to_string(kIndexPartRows) + ",\"parts\":[";
   for (std::size_t k = 0; k < h.parts.size(); ++k)
-    j += std::string(k ? "," : "") + "{\"first\":" + json_string(h.parts[k].first) + ",\"last\":" +
-         json_string(h.parts[k].last) + ",\"rows\":" + std::to_string(h.parts[k].rows) + "}";
+  {
+    std::string counts;
+    for (const int c : h.parts[k].counts) counts += (counts.empty() ? "" : ",") + std::to_string(c);
+    j += std::string(k ? "," : "") + "{\"families\":[" + counts + "],\"first\":" + json_string(h.parts[k].first) +
+         ",\"last\":" + json_string(h.parts[k].last) + ",\"rows\":" + std::to_string(h.parts[k].rows) +
+         ",\"unfiled\":" + std::to_string(h.parts[k].unfiled) + "}";
+  }
   j += std::string("],\"sorted\":") + (h.sorted ? "true" : "false") + ",\"unfiled\":" + std::to_string(h.unfiled) + "}";
   return js_literal(kHeadStart, j, kHeadEnd);
 }
@@ -324,13 +360,13 @@ IndexFiles files_of(const std::string& library_name, const std::string& version,
     c.resize(n);
     for (std::size_t i = 0; i < n; ++i) c.set(i, rows[start + i], family_index);
     const std::size_t k = h.parts.size();
-    h.parts.push_back({rows[start].name, rows[start + n - 1].name, n});
+    h.parts.push_back({rows[start].name, rows[start + n - 1].name, n, {}, 0});
+    tally(c, h.families.size(), h.parts.back());
     files[index_part_file(k)] = part_script(k, c);
   }
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    if (rows[i].family.empty()) ++h.unfiled;
-    if (i > 0 && !(rows[i - 1].name < rows[i].name)) h.sorted = false;
-  }
+  total(h);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (!(rows[i - 1].name < rows[i].name)) h.sorted = false;
   files[kIndexDataFile] = head_script(h);
   files["index.html"] = page_of(h);
   return files;
@@ -497,18 +533,27 @@ Head parse_head(const std::string& script) {
   for (const auto& f : j.at("families"))
     h.families.push_back({f.at("id").get<std::string>(), f.at("title").get<std::string>(), "", f.at("count").get<int>()});
   h.entries = j.at("entries").get<std::size_t>();
-  h.unfiled = j.at("unfiled").get<std::size_t>();
+  const auto unfiled = j.at("unfiled").get<std::size_t>();
   h.sorted = j.at("sorted").get<bool>();
-  std::size_t total = 0;
+  std::size_t rows_in_parts = 0;
   for (const auto& p : j.at("parts")) {
-    h.parts.push_back({p.at("first").get<std::string>(), p.at("last").get<std::string>(), p.at("rows").get<std::size_t>()});
+    h.parts.push_back({p.at("first").get<std::string>(), p.at("last").get<std::string>(), p.at("rows").get<std::size_t>(),
+                       p.at("families").get<std::vector<int>>(), p.at("unfiled").get<std::size_t>()});
+    if (h.parts.back().counts.size() != h.families.size()) throw BadText();
     // Every part but the last is full, as the whole writer makes them.
     if (h.parts.back().rows == 0 || h.parts.back().rows > kIndexPartRows ||
         (h.parts.size() > 1 && h.parts[h.parts.size() - 2].rows != kIndexPartRows))
       throw BadText();
-    total += h.parts.back().rows;
+    rows_in_parts += h.parts.back().rows;
   }
-  if (total != h.entries) throw BadText();
+  if (rows_in_parts != h.entries) throw BadText();
+  // The totals are the parts' sums (a head whose totals disagree is not one this program wrote).
+  Head summed = h;
+  total(summed);
+  for (std::size_t f = 0; f < h.families.size(); ++f)
+    if (summed.families[f].count != h.families[f].count) throw BadText();
+  if (summed.unfiled != unfiled) throw BadText();
+  h.unfiled = unfiled;
   return h;
 }
 
@@ -556,23 +601,17 @@ std::optional<IndexFiles> patch_index(const ReadIndexFile& read, const compiler:
         auto& c = part(k);
         const auto at = std::find(c.name.begin(), c.name.end(), quoted);
         if (at == c.name.end()) continue;
-        const auto i = static_cast<std::size_t>(at - c.name.begin());
-        const int old_family = integer_at<int>(c.family[i], 0, c.family[i].size());
-        if (old_family < -1 || old_family >= static_cast<int>(h.families.size())) return std::nullopt;
-        c.set(i, r, family_index);
-        const int new_family = r.family.empty() ? -1 : family_index.at(r.family);
-        if (old_family < 0) --h.unfiled;
-        else --h.families[static_cast<std::size_t>(old_family)].count;
-        if (new_family < 0) ++h.unfiled;
-        else ++h.families[static_cast<std::size_t>(new_family)].count;
+        c.set(static_cast<std::size_t>(at - c.name.begin()), r, family_index);
         found = true;
       }
       if (!found) return std::nullopt;
     }
+    // The rewritten parts recounted from their rows, the totals summed again.
+    for (const auto& [k, c] : parts) tally(c, h.families.size(), h.parts[k]);
+    total(h);
     // A family that only entries named and that now has none would leave the list: the whole file is written.
-    for (std::size_t f = 0; f < h.families.size(); ++f)
-      if (h.families[f].count < 0 || (f >= manifest.families.size() && h.families[f].count == 0)) return std::nullopt;
-    if (h.unfiled > h.entries) return std::nullopt;
+    for (std::size_t f = manifest.families.size(); f < h.families.size(); ++f)
+      if (h.families[f].count == 0) return std::nullopt;
     IndexFiles out;
     for (const auto& [k, c] : parts) out[index_part_file(k)] = part_script(k, c);
     out[kIndexDataFile] = head_script(h);
