@@ -586,7 +586,7 @@ std::optional<IndexFiles> patch_index(const ReadIndexFile& read, const compiler:
       return it->second;
     };
     for (const auto& r : changed) {
-      if (r.family.size() && !family_index.count(r.family)) return std::nullopt;  // a family the list lacks
+      if (!r.family.empty() && !family_index.count(r.family)) return std::nullopt;  // a family the list lacks
       // Sorted names: the one part whose span holds the name. Otherwise each part in turn.
       std::size_t k = 0, k_end = h.parts.size();
       if (h.sorted) {
