@@ -13,6 +13,7 @@
 
 #include "cli.hpp"
 #include "play_patch.hpp"
+#include "sandpaper/compiler/source_watch.hpp"
 #include "sandpaper/runtime/owning_source.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/swappable_source.hpp"
@@ -85,18 +86,16 @@ int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
       std::make_unique<runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>>(
           std::make_shared<const schema::PatchProgram>(prog)),
       0.02);
-  std::error_code mtime_ec;
-  auto last_mtime = std::filesystem::last_write_time(o.file, mtime_ec);
+  // Saves are noticed by their text, not the file's stamp alone (source_watch.hpp: an editor's
+  // truncate-then-write can leave one stamp on both).
+  compiler::SourceWatch saved(o.file);
   auto next_check = std::chrono::steady_clock::now();
   const auto reload = [&] {
     const auto now = std::chrono::steady_clock::now();
     if (now < next_check) return;
     next_check = now + std::chrono::milliseconds(250);
     swappable.collect_retired_nonrt();
-    std::error_code ec;
-    const auto mtime = std::filesystem::last_write_time(o.file, ec);
-    if (ec || mtime == last_mtime) return;
-    last_mtime = mtime;
+    if (!saved.changed_text()) return;
     std::shared_ptr<const schema::PatchProgram> next;
     if (schema::looks_like_patch_file(o.file)) {
       try {
