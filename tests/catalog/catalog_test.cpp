@@ -458,6 +458,16 @@ TEST(CatalogIndex, PatchingRowsGivesTheSameFilesAsWritingThemWhole) {
     // A head file edited into a deep nest is declined, not followed down the stack.
     other[catalog::kIndexDataFile] = "window.sandpaperCatalog = JSON.parse('{\"entries\":" + std::string(1000000, '[') + "');\n";
     EXPECT_FALSE(catalog::patch_index(from(other), manifest, {rows[20]}).has_value());
+    // A count that is not a whole number is not this format (a float the reader took as an int would
+    // be undefined past int's range: fuzz/regressions/catalog_data/).
+    other = now;
+    {
+      std::string& head = other[catalog::kIndexDataFile];
+      const auto at = head.find("\"count\":");
+      ASSERT_NE(at, std::string::npos);
+      head.insert(head.find_first_not_of("0123456789", at + 8), ".5");
+    }
+    EXPECT_FALSE(catalog::patch_index(from(other), manifest, {rows[20]}).has_value()) << "a count of N.5";
     auto renamed = manifest;
     renamed.version = "1.2.4";
     EXPECT_FALSE(catalog::patch_index(from(now), renamed, {rows[20]}).has_value()) << "the library's version is on the page";

@@ -1,6 +1,7 @@
 // The catalog's index page (index_page.hpp).
 #include "sandpaper/catalog/index_page.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <algorithm>
@@ -521,6 +522,14 @@ PartColumns parse_part(const std::string& script, std::size_t k, std::size_t row
   return c;
 }
 
+// A count in the head: a whole number no larger than a library holds. Anything else (a float, a
+// negative, 3e78) is not this format; nlohmann's get<int> of such a number would be undefined.
+int count_at(const nlohmann::json& v) {
+  constexpr std::uint64_t kMaxCount = 1u << 30;
+  if (!v.is_number_unsigned() || v.get<std::uint64_t>() > kMaxCount) throw BadText();
+  return static_cast<int>(v.get<std::uint64_t>());
+}
+
 // The head file's contents, or BadText. Checked for depth by the scanner before nlohmann builds it.
 Head parse_head(const std::string& script) {
   const auto t = json_inside(script, kHeadStart, kHeadEnd);
@@ -531,14 +540,17 @@ Head parse_head(const std::string& script) {
   h.library_name = j.at("library").at("name").get<std::string>();
   h.version = j.at("library").at("version").get<std::string>();
   for (const auto& f : j.at("families"))
-    h.families.push_back({f.at("id").get<std::string>(), f.at("title").get<std::string>(), "", f.at("count").get<int>()});
-  h.entries = j.at("entries").get<std::size_t>();
-  const auto unfiled = j.at("unfiled").get<std::size_t>();
+    h.families.push_back({f.at("id").get<std::string>(), f.at("title").get<std::string>(), "", count_at(f.at("count"))});
+  h.entries = static_cast<std::size_t>(count_at(j.at("entries")));
+  const auto unfiled = static_cast<std::size_t>(count_at(j.at("unfiled")));
   h.sorted = j.at("sorted").get<bool>();
   std::size_t rows_in_parts = 0;
   for (const auto& p : j.at("parts")) {
-    h.parts.push_back({p.at("first").get<std::string>(), p.at("last").get<std::string>(), p.at("rows").get<std::size_t>(),
-                       p.at("families").get<std::vector<int>>(), p.at("unfiled").get<std::size_t>()});
+    std::vector<int> counts;
+    for (const auto& c : p.at("families")) counts.push_back(count_at(c));
+    h.parts.push_back({p.at("first").get<std::string>(), p.at("last").get<std::string>(),
+                       static_cast<std::size_t>(count_at(p.at("rows"))), std::move(counts),
+                       static_cast<std::size_t>(count_at(p.at("unfiled")))});
     if (h.parts.back().counts.size() != h.families.size()) throw BadText();
     // Every part but the last is full, as the whole writer makes them.
     if (h.parts.back().rows == 0 || h.parts.back().rows > kIndexPartRows ||
