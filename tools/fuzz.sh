@@ -59,7 +59,7 @@ corpus=$build/corpus/$target findings=$build/findings/$target logs=$build/logs
 mkdir -p "$corpus" "$findings" "$logs"
 cp -n "$root/fuzz/corpus/$target"/* "$corpus"/ 2>/dev/null || true
 stamp=$(date -u +%Y%m%dT%H%M%SZ)
-log=$logs/$target-$stamp.log
+log=$logs/$target-$stamp-$$.log  # the PID too: two runs started in one second would share a log
 marker=$(mktemp)  # findings newer than this are this run's
 
 args=(-max_total_time="$seconds" -max_len="$max_len" -print_final_stats=1 -timeout=25 -rss_limit_mb=2048
