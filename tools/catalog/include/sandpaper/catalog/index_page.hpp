@@ -50,8 +50,10 @@ nlohmann::json index_data(const compiler::LibraryManifest& manifest, const std::
 //   refuse fetch() of a file:// URL), then assets/index.js.
 // - kIndexDataFile: `window.sandpaperCatalog = JSON.parse('...');` with
 //   {"entries": N, "families": [{"count", "id", "title"}], "format": 2, "library": {name, version},
-//    "part_rows": kIndexPartRows, "parts": [{"first": name, "last": name, "rows": n}],
+//    "part_rows": kIndexPartRows, "parts": [{"families": [rows of the part in each family], "first": name,
+//    "last": name, "rows": n, "unfiled": rows of the part without a family}],
 //    "sorted": whether the names are in strictly increasing byte order, "unfiled": entries without a family}
+//   The family counts and "unfiled" are the sums over the parts (a patch recounts the parts it rewrites).
 // - each part: `(window.sandpaperCatalogParts = window.sandpaperCatalogParts || []).push(JSON.parse('...'));`
 //   with the rows part_rows * k onwards, a column per field: {"aliases": {"<row in part>": [...]},
 //   "deprecated_by": {"<row in part>": name}, "describes": [...], "family": [index into families, or
