@@ -95,7 +95,7 @@ int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
     if (now < next_check) return;
     next_check = now + std::chrono::milliseconds(250);
     swappable.collect_retired_nonrt();
-    if (!saved.changed_text()) return;
+    if (!saved.changed()) return;
     std::shared_ptr<const schema::PatchProgram> next;
     if (schema::looks_like_patch_file(o.file)) {
       try {

@@ -6,10 +6,13 @@
 // that case; a same-size save within the same tick is caught by reading the text again while the
 // stamp is "racy" (younger than kRacyWindow), as git does for its index.
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+
+#include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
 
@@ -18,21 +21,35 @@ class SourceWatch {
   // A stamp younger than this may hide a later write with the same stamp.
   static constexpr std::chrono::seconds kRacyWindow{2};
 
-  // Takes the file's text as it is now as seen (an unreadable file: as empty).
-  explicit SourceWatch(std::filesystem::path file);
+  // Takes the file as it is now as seen. Its text is read and compared only while it is a regular
+  // file of at most `max_text_bytes` (the limit of the reader the caller then uses, so reading here
+  // is bounded as that reader is; docs/RELIABILITY.md): past it, or when it is not a regular file
+  // (a FIFO, a device: opening one could block the watch), its stamp and size stand for its text,
+  // and the caller's reader reports what is wrong.
+  explicit SourceWatch(std::filesystem::path file, std::size_t max_text_bytes = schema::limits::kMaxSourceBytes);
 
-  // The file's text if it differs from the text last seen; nullopt if it is the same, or if the file
-  // cannot be read now (a save in progress that removed it: the next look sees it). Stats the file
-  // each call and reads it only when its stamp or size changed or its stamp is racy.
-  std::optional<std::string> changed_text();
+  // True if the file differs from how it was last seen, once per change; false if it is the same,
+  // or cannot be looked at now (a save in progress that removed it: the next look sees it). Stats
+  // the file each call and reads it only when its stamp, size or kind changed, or its stamp is racy.
+  bool changed();
 
   const std::filesystem::path& file() const { return file_; }
 
  private:
+  struct Seen {
+    bool exists = false;
+    bool regular = false;
+    std::filesystem::file_time_type stamp{};
+    std::uintmax_t size = 0;
+    std::optional<std::string> text;  // nullopt: not compared by text (see the constructor)
+  };
+  // How the file is now; nullopt if it could not be looked at (removed, or grew past the limit,
+  // between the stat and the read).
+  std::optional<Seen> look(bool read_text) const;
+
   std::filesystem::path file_;
-  std::filesystem::file_time_type stamp_{};
-  std::uintmax_t size_ = 0;
-  std::string text_;
+  std::size_t max_text_bytes_;
+  Seen seen_;
 };
 
 }  // namespace sandpaper::compiler
