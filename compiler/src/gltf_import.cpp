@@ -205,6 +205,13 @@ class Reader {
       x.pair("grid_spacing_m", 1e-9, 1, f.spacing_m);
       x.pair("grid_origin_m", -10, 10, f.origin_m);
       f.repeat = x.flag("repeat");
+      // The patch reader's rule (schema/src/patch_io.cpp): one texel across is a field constant along
+      // that axis, which only a repeating field can mean (fuzz finding F15: a 256 x 1 texture that
+      // does not repeat made a program the reader refuses).
+      if (!f.repeat && (png.nx < 2 || png.ny < 2))
+        refuse("E0717", "the height texture of " + where + " is " + std::to_string(png.nx) + " x " + std::to_string(png.ny) +
+                            " px and does not repeat; a height field that ends needs at least 2 texels each way",
+               "export the material again, or give it `repeat` if it is a tile");
       for (int r = 0; r < png.ny; ++r)  // PNG row 0 is the top (+y) edge; the grid's row 0 the bottom
         for (int c = 0; c < png.nx; ++c)
           h[static_cast<std::size_t>(png.ny - 1 - r) * png.nx + c] = png.texels[static_cast<std::size_t>(r) * png.nx + c] / gltf::kTexelMax * range;

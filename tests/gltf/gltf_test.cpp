@@ -16,6 +16,7 @@
 #include "sandpaper/compiler/gltf_import.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/schema/patch_io.hpp"
 #include "test_support.hpp"
 
 namespace sandpaper {
@@ -407,6 +408,63 @@ TEST(GltfHostile, HugeDeclaredImage) {
   json g = good_asset();  // a grating is one row
   g["images"][0]["uri"] = "data:image/png;base64," + base64(png_header(1024, 2));
   EXPECT_FALSE(import(g).ok());
+}
+
+// A whole 16-bit greyscale PNG, nx x ny texels of one value (filter 0 on every row).
+std::vector<unsigned char> png16(std::uint32_t nx, std::uint32_t ny, std::uint16_t value) {
+  std::vector<unsigned char> b = png_header(nx, ny);
+  std::vector<unsigned char> raw;
+  for (std::uint32_t y = 0; y < ny; ++y) {
+    raw.push_back(0);
+    for (std::uint32_t x = 0; x < nx; ++x) raw.insert(raw.end(), {static_cast<unsigned char>(value >> 8), static_cast<unsigned char>(value)});
+  }
+  uLongf packed_size = compressBound(static_cast<uLong>(raw.size()));
+  std::vector<unsigned char> packed(packed_size);
+  EXPECT_EQ(compress(packed.data(), &packed_size, raw.data(), static_cast<uLong>(raw.size())), Z_OK);
+  packed.resize(packed_size);
+  const auto chunk = [&](const char* type, const std::vector<unsigned char>& data) {
+    for (int s = 24; s >= 0; s -= 8) b.push_back(static_cast<unsigned char>(data.size() >> s));
+    std::vector<unsigned char> body(type, type + 4);
+    body.insert(body.end(), data.begin(), data.end());
+    const uLong crc = crc32(0, body.data(), static_cast<uInt>(body.size()));
+    b.insert(b.end(), body.begin(), body.end());
+    for (int s = 24; s >= 0; s -= 8) b.push_back(static_cast<unsigned char>(crc >> s));
+  };
+  chunk("IDAT", packed);
+  chunk("IEND", {});
+  return b;
+}
+
+// Fuzz finding F15 (fuzz/regressions/gltf/): a height texture one texel across, on a field that does
+// not repeat, was imported into a program the patch reader refuses. A field that ends needs two texels
+// each way; one that repeats may be one across (as the version-1 bars are), and must read back.
+TEST(GltfHostile, AHeightTextureOneTexelAcrossIsRefusedUnlessItRepeats) {
+  compiler::Diagnostics d;
+  const json height_asset = export_one(compile("examples/gravel.hmat"), d);
+  for (const auto& [nx, ny] : {std::pair{256u, 1u}, std::pair{1u, 64u}, std::pair{1u, 1u}}) {
+    SCOPED_TRACE(std::to_string(nx) + " x " + std::to_string(ny));
+    json a = height_asset;
+    ASSERT_EQ(extras_of(a)["texture"], "height_field");
+    a["images"][0]["uri"] = "data:image/png;base64," + base64(png16(nx, ny, 30000));
+    extras_of(a)["repeat"] = false;
+    const std::string error = only_error(import(a));
+    EXPECT_EQ(error.substr(0, 5), "E0717") << error;
+    EXPECT_NE(error.find("does not repeat"), std::string::npos) << error;
+
+    extras_of(a)["repeat"] = true;
+    const auto r = import(a);
+    ASSERT_TRUE(r.program) << compiler::format_diagnostics(r.diagnostics);
+    const auto back = schema::deserialize(schema::serialize(*r.program));
+    const auto& field = std::get<schema::HeightFieldTerm>(back.terms.at(0));
+    EXPECT_EQ(field.nx, nx);
+    EXPECT_EQ(field.ny, ny);
+  }
+  json two = height_asset;  // two texels each way, not repeating: a field the reader takes
+  two["images"][0]["uri"] = "data:image/png;base64," + base64(png16(2, 2, 30000));
+  extras_of(two)["repeat"] = false;
+  const auto r = import(two);
+  ASSERT_TRUE(r.program) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NO_THROW((void)schema::deserialize(schema::serialize(*r.program)));
 }
 
 TEST(GltfHostile, ForcesBeyondTheDevice) {
