@@ -11,7 +11,8 @@
 # after a crash, leak, timeout or out-of-memory (each still lands in findings/); otherwise the run
 # stops at the first one.
 #
-# Environment: FUZZ_NO_BUILD=1 skips the build step; TMPDIR (default /dev/shm) holds scratch files; FUZZ_NICE (default 10) is the nice level;
+# Environment: FUZZ_NO_BUILD=1 skips the build step; TMPDIR (default /dev/shm) holds the run's scratch
+# folder; FUZZ_NICE (default 10) is the nice level;
 # SANDPAPER_FUZZ_KNOWN names known defects to step over (fuzz/fuzz_support.hpp); FUZZ_ARGS adds
 # libFuzzer flags. A saved crash replays with build-fuzz/bin/TARGET_fuzz FILE, and in the normal
 # build as a test once copied to fuzz/regressions/TARGET/.
@@ -79,7 +80,13 @@ args+=(${FUZZ_ARGS:-})
 
 # Each input goes through a scratch file (fuzz/fuzz_support.hpp, under TMPDIR): in memory, not on
 # disk, where there is one (1.5x the executions per second of /tmp on disk, measured 2026-11-24).
-if [[ -z ${TMPDIR:-} && -d /dev/shm && -w /dev/shm ]]; then export TMPDIR=/dev/shm; fi
+# A folder of this run's own, removed at the end: a fuzzer stopped by its time limit exits without
+# removing its scratch files, and in /dev/shm they would hold memory until the machine restarts.
+shm_base=${TMPDIR:-}
+if [[ -z $shm_base && -d /dev/shm && -w /dev/shm ]]; then shm_base=/dev/shm; fi
+scratch=$(mktemp -d "${shm_base:-/tmp}/sandpaper-fuzz-run.XXXXXX")
+trap 'rm -rf "$scratch"' EXIT
+export TMPDIR=$scratch
 
 # Relative image paths in material text resolve here (fuzz/CMakeLists.txt, SANDPAPER_FUZZ_WORKDIR).
 cd "$root/tests/golden/diagnostics"
