@@ -761,6 +761,39 @@ TEST(Catalog, ARecordNamingFilesOutsideTheCatalogNeitherDeletesNorLinksThem) {
   EXPECT_TRUE(fs::exists(root / "outside.txt"));
 }
 
+// A record whose hashes read but one of whose rows does not (a damaged file: found by fuzzing, F16)
+// is not half-read: the index would lose the rows past the damage, or every kept row. The run
+// draws every entry again, as with no record, and writes a good record.
+TEST(Catalog, ARecordWithAnUnreadableRowIsDrawnAgainWholeAndTheIndexKeepsEveryEntry) {
+  const SmallCatalog small("catalog-unreadable-record");
+  const fs::path &lib = small.lib, &out = small.out;
+  auto run = [&] { return small.run(); };
+  ASSERT_TRUE(run().failures.empty());
+  {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open((out / "inputs.sqlite").c_str(), &db), SQLITE_OK);
+    EXPECT_EQ(sqlite3_exec(db, "UPDATE entries SET aliases = 'not JSON' WHERE name = 'rib'", nullptr, nullptr, nullptr), SQLITE_OK);
+    EXPECT_EQ(sqlite3_changes(db), 1);
+    sqlite3_close(db);
+  }
+  // fine-rib, which nothing is built on, removed: an in-place update with nothing to draw, which
+  // writes the index whole from the record's rows, rib's among them.
+  fs::remove(lib / "cloth" / "fine-rib.hmat");
+  auto r = run();
+  ASSERT_TRUE(r.failures.empty());
+  EXPECT_TRUE(r.record_unreadable);
+  EXPECT_FALSE(r.in_place);
+  EXPECT_EQ(r.rendered, 3);
+  std::set<std::string> names;
+  for (const auto& e : entries_of_index(index_files_in(out))) names.insert(e["name"].get<std::string>());
+  EXPECT_EQ(names, (std::set<std::string>{"old-rib", "ref", "rib"}));
+  EXPECT_FALSE(fs::exists(out / "entries" / "fine-rib.html"));
+  r = run();  // the record written is whole again
+  EXPECT_FALSE(r.record_unreadable);
+  EXPECT_EQ(r.rendered, 0);
+  EXPECT_EQ(r.reused, 3);
+}
+
 TEST(Catalog, AFailedRunLeavesThePreviousCatalogAndNamesTheEntry) {
   const fs::path root = test::temp_dir("catalog-fail");
   const fs::path lib = root / "lib";

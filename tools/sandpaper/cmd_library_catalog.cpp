@@ -76,7 +76,9 @@ int cmd_library_catalog(const CommonOptions& outer) {
     return kExitBadInput;
   }
   std::cout << "catalog of " << report.entries << " entries -> " << o.output << "/index.html (" << report.rendered << " drawn, "
-            << report.reused << " unchanged" << (report.in_place && report.rendered > 0 ? ", updated in place" : "") << ")\n";
+            << report.reused << " unchanged" << (report.in_place && report.rendered > 0 ? ", updated in place" : "")
+            << (report.record_unreadable ? "; the previous catalog's record (inputs.sqlite) was damaged, so every entry was drawn again" : "")
+            << ")\n";
   return kExitOk;
 }
 

@@ -178,6 +178,14 @@ void replace_if_changed(const fs::path& file, const std::string& text) {
   fs::rename(tmp, file);
 }
 
+// The record's hashes were read, and the rows a run then needs were not (a damaged file): thrown
+// before anything the record decided was used, and answered by drawing every entry again.
+struct UnreadableRecord : std::runtime_error {
+  UnreadableRecord() : std::runtime_error("catalog record: a row cannot be read") {}
+};
+
+CatalogReport write_catalog_pass(const CatalogSource& source, const CatalogOptions& options, bool use_record);
+
 }  // namespace
 
 CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOptions& options) {
@@ -195,6 +203,20 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
 }
 
 CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& options) {
+  try {
+    return write_catalog_pass(source, options, true);
+  } catch (const UnreadableRecord&) {
+    // Files drawn in place so far are as the uninterrupted run would leave them, and the record was
+    // not committed; the pass without it writes a new folder, with a whole record, and swaps it in.
+    auto report = write_catalog_pass(source, options, false);
+    report.record_unreadable = true;
+    return report;
+  }
+}
+
+namespace {
+
+CatalogReport write_catalog_pass(const CatalogSource& source, const CatalogOptions& options, bool use_record) {
   if (options.output.empty()) throw std::invalid_argument("give the catalog's folder with -o DIR");
   fs::path dir = fs::absolute(options.output).lexically_normal();
   if (!dir.has_filename()) dir = dir.parent_path();  // "out/" -> "out"
@@ -210,7 +232,7 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   const std::string settings = settings_of(options);
   const std::vector<std::pair<std::string, std::string>>* entries = &source.entries;
   std::vector<std::pair<std::string, std::string>> every;
-  const std::string recorded_fingerprint = recorded_index_fingerprint(dir, settings);
+  const std::string recorded_fingerprint = use_record ? recorded_index_fingerprint(dir, settings) : std::string();
   // `entries` holds only some entries (source.since): usable if the record was compared with the
   // index as it was, and if no entry among them is new (the record lacks it: a new entry rewrites
   // the whole data file, which needs every row). Otherwise every_entry() gives them all.
@@ -220,14 +242,15 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   if (partial)
     for (const auto& e : source.entries) partial_names.push_back(e.first);
   // What was drawn with which inputs: the hashes of the entries compared; rows and files only where needed.
-  auto recorded = partial ? read_record_hashes(dir, settings, &partial_names) : std::nullopt;
+  std::optional<std::unordered_map<std::string, std::string>> recorded;
+  if (partial) recorded = read_record_hashes(dir, settings, &partial_names);
   if (partial && (!recorded || recorded->size() != partial_names.size())) partial = false;
   if (source.since && !partial) {
     if (!source.every_entry) throw std::logic_error("write_catalog: a partial list of entries without every_entry");
     every = source.every_entry();
     entries = &every;
   }
-  if (!partial) recorded = read_record_hashes(dir, settings);
+  if (!partial && use_record) recorded = read_record_hashes(dir, settings);
   const std::size_t entry_count = partial ? source.entry_count : entries->size();
   report.compared = entries->size();
 
@@ -264,7 +287,10 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   if (recorded) {
     std::vector<std::string> touched = to_draw;
     touched.insert(touched.end(), removed.begin(), removed.end());
-    before = read_record(dir, settings, report.in_place ? &touched : nullptr).value_or(Record{});
+    auto read = read_record(dir, settings, report.in_place ? &touched : nullptr);
+    // Whole, a row that does not read is an entry drawn again; in place, its old files would be left behind.
+    if (!read && report.in_place) throw UnreadableRecord();
+    before = std::move(read).value_or(Record{});
   }
   if (!report.in_place)
     for (std::size_t i = 0; i < entries->size(); ++i) {
@@ -395,7 +421,9 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
       if (!added && removed.empty()) patched = patch_index(read_index_file, source.manifest, rows);
       const bool whole = !patched;
       if (whole) {
-        auto all = read_record(dir, settings).value_or(Record{});
+        auto read = read_record(dir, settings);
+        if (!read) throw UnreadableRecord();  // an index without the rows it could not read
+        auto& all = *read;
         // Partial, the record holds every entry (none came or went), in the index's order by name.
         std::vector<std::string> names;
         if (partial) {
@@ -451,5 +479,7 @@ CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& o
   report.entries = static_cast<int>(rows.size());
   return report;
 }
+
+}  // namespace
 
 }  // namespace sandpaper::catalog

@@ -38,6 +38,16 @@ struct Stmt {
 
 void bind_text(sqlite3_stmt* s, int i, const std::string& v) { sqlite3_bind_text(s, i, v.c_str(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
 
+// The next row (true), or the end (false). Anything else (a damaged file: SQLITE_CORRUPT partway)
+// throws: a reader that stopped there would take the rows before the damage for the whole record,
+// or a row it could not read for an entry the record does not have.
+bool next_row(sqlite3* db, sqlite3_stmt* s) {
+  const int rc = sqlite3_step(s);
+  if (rc == SQLITE_ROW) return true;
+  if (rc == SQLITE_DONE) return false;
+  throw std::runtime_error(std::string("catalog record: ") + sqlite3_errmsg(db));
+}
+
 }  // namespace
 
 bool plain_file_name(std::string_view name) {
@@ -120,7 +130,7 @@ std::optional<Record> read_record(const std::filesystem::path& dir, const std::s
       Stmt s(db, (std::string(kColumns) + " WHERE name = ?").c_str());
       for (const auto& name : *only) {
         bind_text(s.s, 1, name);
-        if (sqlite3_step(s.s) == SQLITE_ROW) out.emplace(name, entry_of(s.s));
+        if (next_row(db, s.s)) out.emplace(name, entry_of(s.s));
         sqlite3_reset(s.s);
       }
       return out;
@@ -130,7 +140,7 @@ std::optional<Record> read_record(const std::filesystem::path& dir, const std::s
       if (sqlite3_step(n.s) == SQLITE_ROW) out.reserve(static_cast<std::size_t>(sqlite3_column_int64(n.s, 0)));
     }
     Stmt s(db, kColumns);
-    while (sqlite3_step(s.s) == SQLITE_ROW) {
+    while (next_row(db, s.s)) {
       auto e = entry_of(s.s);
       auto key = e.row.name;
       out.emplace(std::move(key), std::move(e));
@@ -153,7 +163,7 @@ std::optional<std::unordered_map<std::string, std::string>> read_record_hashes(c
       Stmt s(db, "SELECT hash FROM entries WHERE name = ?");
       for (const auto& name : *only) {
         bind_text(s.s, 1, name);
-        if (sqlite3_step(s.s) == SQLITE_ROW) out.emplace(name, text(s.s, 0));
+        if (next_row(db, s.s)) out.emplace(name, text(s.s, 0));
         sqlite3_reset(s.s);
       }
       return out;
@@ -163,7 +173,7 @@ std::optional<std::unordered_map<std::string, std::string>> read_record_hashes(c
       if (sqlite3_step(n.s) == SQLITE_ROW) out.reserve(static_cast<std::size_t>(sqlite3_column_int64(n.s, 0)));
     }
     Stmt s(db, "SELECT name, hash FROM entries");
-    while (sqlite3_step(s.s) == SQLITE_ROW) out.emplace(text(s.s, 0), text(s.s, 1));
+    while (next_row(db, s.s)) out.emplace(text(s.s, 0), text(s.s, 1));
   } catch (const std::exception&) {
     return std::nullopt;
   }

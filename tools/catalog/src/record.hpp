@@ -33,8 +33,8 @@ struct RecordedEntry {
 };
 using Record = std::unordered_map<std::string, RecordedEntry>;
 
-// The record in `dir`, if there is one drawn with `settings` (else nullopt: draw everything).
-// `only`: just these entries (those absent are left out); nullptr: every entry.
+// The record in `dir`, if there is one drawn with `settings` and every row asked for reads whole
+// (else nullopt: draw everything). `only`: just these entries (those absent are left out); nullptr: every entry.
 std::optional<Record> read_record(const std::filesystem::path& dir, const std::string& settings,
                                   const std::vector<std::string>* only = nullptr);
 // Just each entry's input hash: what a run compares to decide what to draw. `only` as for read_record.

@@ -46,6 +46,9 @@ struct CatalogReport {
   // Entries whose input hashes were compared with the record's: every entry, or after an in-place
   // index update only those it rewrote (CatalogSource::since).
   std::size_t compared = 0;
+  // The previous record's hashes read but not all its rows (a damaged inputs.sqlite): every entry
+  // was drawn again, as with no record, rather than an index missing the rows it could not read.
+  bool record_unreadable = false;
   std::vector<CatalogFailure> failures;   // entries that did not compile; nothing is written then
 };
 
