@@ -37,13 +37,14 @@ bin=$build/bin/${target}_fuzz
 [[ -x $bin ]] || { echo "fuzz.sh: $bin was not built" >&2; exit 2; }
 
 # Largest input per target: text readers 4 KB (a material is a few lines; longer only slows the
-# search), results folders and calibration files 16 KB (a whole small session; the knowledge file),
+# search), results folders, calibration files and images 16 KB (a whole small session; the knowledge
+# file; a small height map, or a header claiming a huge one),
 # binary files 64 KB (small patch programs; a catalog record, 20 KB with two entries). libFuzzer cuts
 # every seed to this length, so it must be at least the largest seed in fuzz/corpus/TARGET (checked
 # below): a cut SQLite file or TOML table only tests the reader's first page.
 case $target in
   patch|workspace_program|array|gltf|catalog_record) max_len=65536 ;;
-  experiment_results|lsp_message|calibration) max_len=16384 ;;
+  experiment_results|lsp_message|calibration|image) max_len=16384 ;;
   *) max_len=4096 ;;
 esac
 for seed in "$root/fuzz/corpus/$target"/*; do
@@ -61,6 +62,7 @@ case $target in
   studio_request) dict=studio_request ;;
   experiment_results) dict=experiment_results ;;
   lsp_message) dict=lsp_message ;;
+  image) dict=image ;;
   *) dict= ;;
 esac
 
@@ -87,6 +89,9 @@ if [[ -z $shm_base && -d /dev/shm && -w /dev/shm ]]; then shm_base=/dev/shm; fi
 scratch=$(mktemp -d "${shm_base:-/tmp}/sandpaper-fuzz-run.XXXXXX")
 trap 'rm -rf "$scratch"' EXIT
 export TMPDIR=$scratch
+
+# Leaks of the libraries read through, each explained in the file (docs/RELIABILITY.md, F17).
+export LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 
 # Relative image paths in material text resolve here (fuzz/CMakeLists.txt, SANDPAPER_FUZZ_WORKDIR).
 cd "$root/tests/golden/diagnostics"
