@@ -23,6 +23,11 @@ std::string first_line(std::string s) {
 }
 
 void* open_picture(const std::string& path, PictureHeader& header, std::string& why) {
+  // OpenEXR's C++ reader allocates each header attribute at the size the file claims before reading
+  // it: a 620-byte file claiming a 1.9 GB string took 1.9 GB (docs/RELIABILITY.md, F18). OpenEXR
+  // Core, which OpenImageIO 2.4 also reads through, checks claimed sizes against the file.
+  static const bool exr_core = OIIO::attribute("openexr:core", 1);
+  (void)exr_core;
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
   auto in = OIIO::ImageInput::open(path, &config);
