@@ -73,6 +73,16 @@ bool check_dimensions(const HeightImageRequest& r, long long nx, long long ny, c
   return true;
 }
 
+// Under 3 samples a side, without `sampling` to enlarge it: E0402.
+bool too_small(const HeightImageRequest& r, const RawImage& raw, HeightImageError& e) {
+  if (raw.nx >= 3 && raw.ny >= 3) return false;
+  fail(e, "E0402",
+       "image '" + r.shown_path + "' is " + std::to_string(raw.nx) + " x " + std::to_string(raw.ny) +
+           " px; a height map needs at least 3 x 3",
+       "use a larger image, or resample it with `sampling`");
+  return true;
+}
+
 bool read_depth_file(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
   std::string text;
   try {
@@ -274,7 +284,10 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
     if (!read_depth_file(r, raw, e) || !choose_weights(r, raw, weight, how, e)) return std::nullopt;
   } else {
     auto in = open_picture(r, raw, e);
-    if (!in || !choose_weights(r, raw, weight, how, e)) return std::nullopt;
+    if (!in) return std::nullopt;
+    // Too small is known from the header: not decoded first (a 528-byte file can claim 1 x 16,776,449 px).
+    if (!r.sampling_m && too_small(r, raw, e)) return std::nullopt;
+    if (!choose_weights(r, raw, weight, how, e)) return std::nullopt;
     // Only the channels the height uses are read: a 40-channel header costs nothing unread.
     int first = raw.nc, last = -1;
     for (int c = 0; c < raw.nc; ++c)
@@ -343,11 +356,7 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
       img.ny = ty;
       d << ", resampled to " << tx << " x " << ty;
     }
-  } else if (raw.nx < 3 || raw.ny < 3) {
-    fail(e, "E0402",
-         "image '" + r.shown_path + "' is " + std::to_string(raw.nx) + " x " + std::to_string(raw.ny) +
-             " px; a height map needs at least 3 x 3",
-         "use a larger image, or resample it with `sampling`");
+  } else if (too_small(r, raw, e)) {
     return std::nullopt;
   }
   img.description = d.str();

@@ -3,6 +3,7 @@
 // are computed here from the images' own formulas (a ramp has one slope), not from the compiler.
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <tuple>
 
@@ -121,6 +122,38 @@ TEST(Heightmap, UnusableImagesAreClearErrors) {
   EXPECT_EQ(code_of("heightmap \"" + dir + "/tiny.png\" size 10 mm amplitude 1 N"), "E0402");
   write_image(dir + "/huge.tif", 4097, 4096, OIIO::TypeDesc::UINT8, [](float x, float, int) { return std::fmod(x, 7.0f) / 7.0f; });
   EXPECT_EQ(code_of("heightmap \"" + dir + "/huge.tif\" size 10 mm amplitude 1 N"), "E0402");
+}
+
+// Under 3 px a side is known from the header: the pixels are not decoded first. Shown with a file
+// cut short after its header (decoded, it is E0401), as the fuzzer's 528-byte OpenEXR file that
+// claimed 1 x 16,776,449 px. With `sampling` the same strip is enlarged, so it is read.
+TEST(Heightmap, APictureUnderThreePixelsASideIsRefusedFromItsHeader) {
+  auto dir = test::temp_dir("strip");
+  auto compile = [](const std::string& text) { return test::shipped_compiler().compile_text(text); };
+  write_image(dir + "/strip.png", 2, 400, OIIO::TypeDesc::UINT16, [](float, float y, int) { return std::fmod(y, 9.0f) / 9.0f; });
+  std::string bytes;
+  {
+    std::ifstream in(dir + "/strip.png", std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto data = bytes.find("IDAT");
+  ASSERT_NE(data, std::string::npos);
+  std::ofstream(dir + "/cut.png", std::ios::binary) << bytes.substr(0, data + 8);  // the header, and 4 bytes of pixels
+  auto cut = compile("heightmap \"" + dir + "/cut.png\" size 2 mm x 400 mm amplitude 1 N");
+  ASSERT_FALSE(cut.ok());
+  EXPECT_EQ(cut.diagnostics.all().at(0).code, "E0402") << compiler::format_diagnostics(cut.diagnostics);
+  EXPECT_NE(cut.diagnostics.all().at(0).message.find("2 x 400 px; a height map needs at least 3 x 3"), std::string::npos)
+      << cut.diagnostics.all().at(0).message;
+  auto whole = compile("heightmap \"" + dir + "/strip.png\" size 2 mm x 400 mm amplitude 1 N");
+  ASSERT_FALSE(whole.ok());
+  EXPECT_EQ(whole.diagnostics.all().at(0).code, "E0402");
+  auto sampled = compile("heightmap \"" + dir + "/strip.png\" size 20 mm x 400 mm sampling 1 mm amplitude 1 N");
+  ASSERT_TRUE(sampled.ok()) << compiler::format_diagnostics(sampled.diagnostics);
+  EXPECT_EQ(field_of(sampled).nx, 20u);
+  EXPECT_EQ(field_of(sampled).ny, 400u);
+  auto sampled_cut = compile("heightmap \"" + dir + "/cut.png\" size 20 mm x 400 mm sampling 1 mm amplitude 1 N");
+  ASSERT_FALSE(sampled_cut.ok());
+  EXPECT_EQ(sampled_cut.diagnostics.all().at(0).code, "E0401");  // read, and found cut short
 }
 
 TEST(Heightmap, RealPhotographCompiles) {
