@@ -66,7 +66,8 @@ struct CatalogSource {
   compiler::LibraryManifest manifest;                          // the index page's title and families
   std::vector<std::pair<std::string, std::string>> entries;    // (name, input hash; "" = always draw), by name
   // A compiler whose library holds at least these entries, what they are built on and the entries
-  // they link to; called once, with the entries to draw (not called when there are none).
+  // they link to; called once, with the entries to draw (not called when there are none), and once
+  // more with every entry if the record turns out damaged (CatalogReport::record_unreadable).
   std::function<const compiler::Compiler&(const std::vector<std::string>& names)> compiler_for;
   // Drawn from a library index: its fingerprint, kept in the record with the rows compared with it.
   std::string index_fingerprint;
