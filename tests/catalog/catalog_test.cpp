@@ -769,13 +769,14 @@ TEST(Catalog, ARecordWithAnUnreadableRowIsDrawnAgainWholeAndTheIndexKeepsEveryEn
   const fs::path &lib = small.lib, &out = small.out;
   auto run = [&] { return small.run(); };
   ASSERT_TRUE(run().failures.empty());
-  {
+  auto damage_rib = [&] {
     sqlite3* db = nullptr;
     ASSERT_EQ(sqlite3_open((out / "inputs.sqlite").c_str(), &db), SQLITE_OK);
     EXPECT_EQ(sqlite3_exec(db, "UPDATE entries SET aliases = 'not JSON' WHERE name = 'rib'", nullptr, nullptr, nullptr), SQLITE_OK);
     EXPECT_EQ(sqlite3_changes(db), 1);
     sqlite3_close(db);
-  }
+  };
+  damage_rib();
   // fine-rib, which nothing is built on, removed: an in-place update with nothing to draw, which
   // writes the index whole from the record's rows, rib's among them.
   fs::remove(lib / "cloth" / "fine-rib.hmat");
@@ -792,6 +793,13 @@ TEST(Catalog, ARecordWithAnUnreadableRowIsDrawnAgainWholeAndTheIndexKeepsEveryEn
   EXPECT_FALSE(r.record_unreadable);
   EXPECT_EQ(r.rendered, 0);
   EXPECT_EQ(r.reused, 3);
+  // Rebuilt whole (no data file), the same damage is reported the same way.
+  damage_rib();
+  fs::remove(out / catalog::kIndexDataFile);
+  r = run();
+  ASSERT_TRUE(r.failures.empty());
+  EXPECT_TRUE(r.record_unreadable);
+  EXPECT_EQ(r.rendered, 3);
 }
 
 TEST(Catalog, AFailedRunLeavesThePreviousCatalogAndNamesTheEntry) {

@@ -288,9 +288,8 @@ CatalogReport write_catalog_pass(const CatalogSource& source, const CatalogOptio
     std::vector<std::string> touched = to_draw;
     touched.insert(touched.end(), removed.begin(), removed.end());
     auto read = read_record(dir, settings, report.in_place ? &touched : nullptr);
-    // Whole, a row that does not read is an entry drawn again; in place, its old files would be left behind.
-    if (!read && report.in_place) throw UnreadableRecord();
-    before = std::move(read).value_or(Record{});
+    if (!read) throw UnreadableRecord();  // its hashes read and its rows do not: a damaged file
+    before = std::move(*read);
   }
   if (!report.in_place)
     for (std::size_t i = 0; i < entries->size(); ++i) {
