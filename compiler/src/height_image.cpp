@@ -16,6 +16,7 @@
 #include "sandpaper/compiler/image_io.hpp"
 #include "sandpaper/schema/array_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
+#include "png_chunks.hpp"
 
 namespace sandpaper::compiler {
 namespace {
@@ -143,6 +144,10 @@ OpenPicture open_picture(const HeightImageRequest& r, RawImage& raw, HeightImage
          "image '" + r.shown_path + "' is larger than the limit of " +
              std::to_string(schema::limits::kMaxImageFileBytes >> 20) + " MiB for a height-map file",
          "scale the image down, or crop it, before using it");
+    return {};
+  }
+  if (const auto overrun = png_chunks_overrun(r.path)) {
+    fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + *overrun, "the file may be truncated or corrupt; save it again");
     return {};
   }
   // Heights are the values as stored: no premultiplying by alpha (PNG, TIFF and others would).

@@ -125,7 +125,7 @@ TEST(Heightmap, UnusableImagesAreClearErrors) {
 }
 
 // Under 3 px a side is known from the header: the pixels are not decoded first. Shown with a file
-// cut short after its header (decoded, it is E0401), as the fuzzer's 528-byte OpenEXR file that
+// whose pixel data is corrupt (decoded, it is E0401), as the fuzzer's 528-byte OpenEXR file that
 // claimed 1 x 16,776,449 px. With `sampling` the same strip is enlarged, so it is read.
 TEST(Heightmap, APictureUnderThreePixelsASideIsRefusedFromItsHeader) {
   auto dir = test::temp_dir("strip");
@@ -138,7 +138,10 @@ TEST(Heightmap, APictureUnderThreePixelsASideIsRefusedFromItsHeader) {
   }
   const auto data = bytes.find("IDAT");
   ASSERT_NE(data, std::string::npos);
-  std::ofstream(dir + "/cut.png", std::ios::binary) << bytes.substr(0, data + 8);  // the header, and 4 bytes of pixels
+  // Every chunk whole, so the header reads; the pixel data overwritten, so decoding fails (E0401).
+  std::string corrupt = bytes;
+  for (std::size_t i = data + 4; i < data + 4 + 16 && i < corrupt.size(); ++i) corrupt[i] = '\xff';
+  std::ofstream(dir + "/cut.png", std::ios::binary) << corrupt;
   auto cut = compile("heightmap \"" + dir + "/cut.png\" size 2 mm x 400 mm amplitude 1 N");
   ASSERT_FALSE(cut.ok());
   EXPECT_EQ(cut.diagnostics.all().at(0).code, "E0402") << compiler::format_diagnostics(cut.diagnostics);
@@ -153,7 +156,38 @@ TEST(Heightmap, APictureUnderThreePixelsASideIsRefusedFromItsHeader) {
   EXPECT_EQ(field_of(sampled).ny, 400u);
   auto sampled_cut = compile("heightmap \"" + dir + "/cut.png\" size 20 mm x 400 mm sampling 1 mm amplitude 1 N");
   ASSERT_FALSE(sampled_cut.ok());
-  EXPECT_EQ(sampled_cut.diagnostics.all().at(0).code, "E0401");  // read, and found cut short
+  EXPECT_EQ(sampled_cut.diagnostics.all().at(0).code, "E0401");  // read, and found corrupt
+}
+
+// A PNG's chunks are walked before libpng allocates them at the lengths they claim (F20): a chunk
+// running past the end of the file, or no IEND, is E0401 at once.
+TEST(Heightmap, APngWhoseChunkClaimsMoreThanTheFileIsRefusedBeforeDecoding) {
+  auto dir = test::temp_dir("png-claim");
+  write_image(dir + "/ramp.png", 16, 16, OIIO::TypeDesc::UINT8, [](float x, float, int) { return x / 15.0f; });
+  std::string png;
+  {
+    std::ifstream in(dir + "/ramp.png", std::ios::binary);
+    png.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::size_t after_header = 8 + 12 + 13;  // the signature, then IHDR's 13 bytes in 12 of framing
+  ASSERT_EQ(png.substr(12, 4), "IHDR");
+  auto compile_png = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(dir + "/" + name, std::ios::binary) << bytes;
+    return test::shipped_compiler().compile_text("heightmap \"" + dir + "/" + name + "\" size 16 mm amplitude 1 N");
+  };
+  ASSERT_TRUE(compile_png("whole.png", png).ok());
+  // A text chunk claiming 1,814,043,494 bytes (0x6c201b66) in a file of a few hundred.
+  const std::string claim = std::string("\x6c\x20\x1b\x66tEXtComment", 15) + std::string(40, 'x');
+  auto r = compile_png("claim.png", png.substr(0, after_header) + claim + png.substr(after_header));
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.diagnostics.all().at(0).code, "E0401");
+  EXPECT_NE(r.diagnostics.all().at(0).message.find("chunk 'tEXt' at byte 33 claims 1814043494 bytes"), std::string::npos)
+      << r.diagnostics.all().at(0).message;
+  const auto iend = png.rfind("IEND");
+  ASSERT_NE(iend, std::string::npos);
+  r = compile_png("no-end.png", png.substr(0, iend - 4));  // every chunk whole, but no IEND
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.diagnostics.all().at(0).message.find("without its IEND chunk"), std::string::npos) << r.diagnostics.all().at(0).message;
 }
 
 TEST(Heightmap, RealPhotographCompiles) {
