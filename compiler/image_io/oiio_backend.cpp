@@ -2,7 +2,10 @@
 // libsandpaper_image_io.so that the command-line programs load on first use (SANDPAPER_IMAGE_IO_MODULE
 // defined: exports sandpaper_image_io_table), and as the static Sandpaper::image_io that applications
 // link (defines api() itself).
+#include <cctype>
 #include <memory>
+#include <string_view>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -22,17 +25,45 @@ std::string first_line(std::string s) {
   return s;
 }
 
+// The formats a height map may be in, by file extension (lower case), and OpenImageIO's reader for
+// each. Only that reader opens the file: OpenImageIO would otherwise try every reader it has on a
+// file its extension's reader refuses (DICOM, FITS, RLA, raw camera files, video through ffmpeg...),
+// and its RLA reader aborts the process on a 1 KB file (docs/RELIABILITY.md, F21).
+constexpr std::pair<std::string_view, std::string_view> kReaders[] = {
+    {"png", "png"},   {"tif", "tiff"}, {"tiff", "tiff"}, {"exr", "openexr"}, {"jpg", "jpeg"},  {"jpeg", "jpeg"},
+    {"bmp", "bmp"},   {"pgm", "pnm"},  {"ppm", "pnm"},   {"pnm", "pnm"},     {"pbm", "pnm"},   {"pfm", "pnm"},
+    {"hdr", "hdr"},   {"tga", "targa"}};
+
+std::string_view reader_for(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  const auto dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+  std::string ext = path.substr(dot + 1);
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const auto& [e, reader] : kReaders)
+    if (ext == e) return reader;
+  return {};
+}
+
 void* open_picture(const std::string& path, PictureHeader& header, std::string& why) {
   // OpenEXR's C++ reader allocates each header attribute at the size the file claims before reading
   // it: a 620-byte file claiming a 1.9 GB string took 1.9 GB (docs/RELIABILITY.md, F18). OpenEXR
   // Core, which OpenImageIO 2.4 also reads through, checks claimed sizes against the file.
   static const bool exr_core = OIIO::attribute("openexr:core", 1);
   (void)exr_core;
+  const auto reader = reader_for(path);
+  if (reader.empty()) {
+    why = "not a height-map image format by its extension (PNG, TIFF, OpenEXR, JPEG, BMP, PNM, Radiance HDR or TGA: "
+          ".png .tif .tiff .exr .jpg .jpeg .bmp .pgm .ppm .pnm .pbm .pfm .hdr .tga)";
+    return nullptr;
+  }
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
-  auto in = OIIO::ImageInput::open(path, &config);
-  if (!in) {
-    why = first_line(OIIO::geterror());
+  auto in = OIIO::ImageInput::create(reader, false, &config);
+  OIIO::ImageSpec opened;
+  if (!in || !in->open(path, opened, config)) {
+    why = first_line(in ? in->geterror() : OIIO::geterror());
+    if (why.empty()) why = "not a " + std::string(reader) + " file";
     return nullptr;
   }
   const OIIO::ImageSpec& spec = in->spec();

@@ -73,6 +73,17 @@ PY
   if [ "${claim_peak:-99999}" -le 512 ]; then ok "within 512 MiB (peak ${claim_peak} MiB)"; else bad "peak ${claim_peak} MiB reading $claim"; fi
 done
 
+# A file is opened only by the reader its extension names: OpenImageIO's fallback through every
+# reader it has reached its RLA reader, which aborted the process on this 1 KB file (F21).
+rla=$src/fuzz/regressions/image/rla-header-named-tga-aborts-openimageio.tga
+"$sp" compile -e "heightmap \"$rla\" size 20 mm amplitude 1 N" -o "$tmp/rla.patch" >"$tmp/out" 2>"$tmp/err"
+check "an RLA header named .tga is exit 1, not an abort" 1 $?
+has "read as TGA, and refused" "$tmp/err" "E0401"
+cp "$rla" "$tmp/heights.rla"
+"$sp" compile -e "heightmap \"$tmp/heights.rla\" size 20 mm amplitude 1 N" -o "$tmp/rla.patch" >"$tmp/out" 2>"$tmp/err"
+check "an .rla file is exit 1" 1 $?
+has "naming the formats read" "$tmp/err" "not a height-map image format by its extension (PNG, TIFF, OpenEXR"
+
 # No absolute machine path enters a patch, even when the user gives absolute paths.
 sed "s|\"../library/images/grass.png\"|\"$src/library/images/grass.png\"|" "$src/examples/grass.hmat" >"$tmp/grass.hmat"
 "$sp" compile "$tmp/grass.hmat" -o "$tmp/grass.patch" >/dev/null 2>&1; check "an absolute image path compiles" 0 $?
