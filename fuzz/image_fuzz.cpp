@@ -1,8 +1,8 @@
 // Height-map images read through OpenImageIO (compiler/src/height_image.cpp, `heightmap "x.png"`):
 // the bytes as the image file of a material, named with the extension its first bytes ask for (as a
 // user names a file; bytes that match no format are read as TGA, which has no magic; only the reader
-// the extension names opens the file, docs/RELIABILITY.md F21). The header checks (size, channels, bytes before any pixel is allocated), the
-// decoder's error state and the height field built from the pixels must give a program that passes
+// the extension names opens the file, docs/RELIABILITY.md F21). The header checks (size, channels,
+// bytes before any pixel is allocated), the decoder's error state and the height field built from the pixels must give a program that passes
 // the checks of every compiled program (fuzz_compile.hpp), or diagnostics; never a crash, hang or
 // an allocation past the stated budget (libFuzzer's -rss_limit_mb; docs/RELIABILITY.md, "Limits").
 // OpenImageIO is not instrumented: coverage guides only through Sandpaper's side.
