@@ -55,7 +55,7 @@ done
 case $target in
   material) dict=material ;;
   workspace) dict=workspace ;;
-  patch|workspace_program) dict=patch ;;
+  patch|workspace_program) dict='patch' ;;
   calibration|experiment_design) dict=toml ;;
   movie|shuffle) dict=movie ;;
   trace_csv) dict=trace_csv ;;
