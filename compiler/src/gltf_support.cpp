@@ -1,10 +1,10 @@
 #include "gltf_support.hpp"
+#include "png_chunks.hpp"
 
 #include "sandpaper/compiler/image_io.hpp"
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <stdexcept>
 
 #include <zlib.h>
@@ -13,7 +13,6 @@ namespace sandpaper::compiler::gltf {
 namespace {
 
 constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 
 }  // namespace
 
@@ -80,12 +79,10 @@ std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long 
     why = std::move(w);
     return std::nullopt;
   };
-  if (bytes.size() < sizeof kPngSignature || std::memcmp(bytes.data(), kPngSignature, sizeof kPngSignature) != 0)
+  if (bytes.size() < kPngSignature.size() || !std::equal(kPngSignature.begin(), kPngSignature.end(), bytes.begin()))
     return fail("not a PNG (its first bytes are not the PNG signature)");
-  auto be32 = [&](std::size_t at) {
-    return (std::uint32_t{bytes[at]} << 24) | (std::uint32_t{bytes[at + 1]} << 16) | (std::uint32_t{bytes[at + 2]} << 8) | bytes[at + 3];
-  };
-  std::size_t at = sizeof kPngSignature;
+  auto be32 = [&](std::size_t at) { return png_be32(bytes.data() + at); };
+  std::size_t at = kPngSignature.size();
   std::uint32_t width = 0, height = 0;
   std::vector<unsigned char> raw;  // the filtered rows, inflated
   z_stream z{};

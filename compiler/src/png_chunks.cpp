@@ -9,12 +9,6 @@ namespace sandpaper::compiler {
 
 namespace {
 
-constexpr std::array<unsigned char, 8> kSignature{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-
-std::uint32_t be32(const unsigned char* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
-}
-
 // A chunk's type for a message: its four bytes if they are letters (as every PNG type is), else hex.
 std::string type_name(const unsigned char* t) {
   std::string s;
@@ -33,16 +27,16 @@ std::string type_name(const unsigned char* t) {
 std::optional<std::string> png_chunks_overrun(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::array<unsigned char, 8> head{};
-  if (!in.read(reinterpret_cast<char*>(head.data()), head.size()) || head != kSignature) return std::nullopt;
+  if (!in.read(reinterpret_cast<char*>(head.data()), head.size()) || head != kPngSignature) return std::nullopt;
   in.seekg(0, std::ios::end);
   const auto size = static_cast<std::uint64_t>(in.tellg());
-  std::uint64_t at = kSignature.size();
+  std::uint64_t at = kPngSignature.size();
   // Each chunk: length (4 bytes, big-endian), type (4), data (length), CRC (4).
   while (true) {
     if (size - at < 12) return "the PNG is cut short: it ends at byte " + std::to_string(size) + " without its IEND chunk";
     in.seekg(static_cast<std::streamoff>(at));
     if (!in.read(reinterpret_cast<char*>(head.data()), head.size())) return std::nullopt;
-    const std::uint64_t length = be32(head.data());
+    const std::uint64_t length = png_be32(head.data());
     if (length > size - at - 12)
       return "the PNG is cut short: its chunk " + type_name(head.data() + 4) + " at byte " + std::to_string(at) + " claims " +
              std::to_string(length) + " bytes, and the file has " + std::to_string(size - at - 12) + " after its header";
