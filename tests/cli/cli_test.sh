@@ -17,6 +17,12 @@ has() {  # has FILE REGEX DESCRIPTION
   if grep -Eq -- "$2" "$1"; then ok; else bad "$3: /$2/ not in $1"; head -20 "$1"; fi
 }
 
+# Real-time runs here check what a run does (its exit, its report, its stop on a signal), not how
+# punctual this machine is: CI machines are loaded, and a 50 ms stall of the servo thread (with or
+# without SCHED_FIFO) stops a run (deadline_missed, exit 1). So they take a guard of 10 minutes;
+# the guard itself is tested on a scripted clock (StopCauses.DeadlineMissedForLongerThanAllowed).
+RT=(--deadline-guard 600000)
+
 # The main job: compile the example, inspect it, play it on the simulated joystick.
 expect_exit 0 "compile example" -- "$sp" compile examples/corduroy.hmat -o "$tmp/c.patch"
 [ -s "$tmp/c.patch" ] && ok || bad "compile wrote no patch"
@@ -35,7 +41,7 @@ has "$tmp/t.csv" '^t_s,x_m,y_m,force_x_N,force_y_N$' "trace header"
 cmp -s "$tmp/c.patch" "$tmp/c2.patch" && ok || bad "compiling twice gave different bytes"
 
 # A library entry by name and the real photograph, each compiled and played in real time.
-expect_exit 0 "run -e corduroy (real time)" -- "$sp" run -e corduroy --device sim --duration 0.3
+expect_exit 0 "run -e corduroy (real time)" -- "$sp" run -e corduroy --device sim "${RT[@]}" --duration 0.3
 has "$tmp/out" 'achieved' "run prints the achieved rate"
 has "$tmp/out" 'max force [0-9.]+ N \(texture compiled [0-9.]+ N\)' "run prints the forces felt"
 
@@ -91,7 +97,7 @@ has "$tmp/out" 'force levels' "explain counts the distinct force levels"
 expect_exit 1 "an unknown force law" -- "$sp" compile -e "force Bumpp stiffness 10 N/m"
 has "$tmp/err" 'E0211.*Bumpp' "unknown law named"
 has "$tmp/err" 'did you mean `Bump`' "law suggestion"
-expect_exit 0 "run gravel example" -- "$sp" run examples/gravel.hmat --device sim --duration 0.3 --hand circle --speed 30 --amplitude 20 --json
+expect_exit 0 "run gravel example" -- "$sp" run examples/gravel.hmat --device sim "${RT[@]}" --duration 0.3 --hand circle --speed 30 --amplitude 20 --json
 has "$tmp/out" '"material": "gravel-path"' "gravel run"
 expect_exit 0 "explain --json" -- "$sp" explain -e "like denim-twill; roughness coarse" --json
 has "$tmp/out" '"texture.period"' "explain provenance"
@@ -178,7 +184,7 @@ has "$tmp/ws.csv" ',7$' "the trace names the front patch"
 expect_exit 0 "run workspace, circle hand" -- "$sp" run examples/workspace/sampler.hws --device sim --virtual-clock --hand circle --amplitude 60 --duration 2
 has "$tmp/out" 'patches +[1-7] of 7 touched' "run reports the patches touched"
 has "$tmp/out" 'max \|F\|' "run reports the force per patch"
-expect_exit 0 "run workspace (real time)" -- "$sp" run examples/workspace/cloths.hws --device sim --duration 0.3
+expect_exit 0 "run workspace (real time)" -- "$sp" run examples/workspace/cloths.hws --device sim "${RT[@]}" --duration 0.3
 has "$tmp/out" 'achieved' "workspace real-time run"
 expect_exit 1 "workspace with a patch outside" -- "$sp" compile tests/golden/workspace/outside.hws -o "$tmp/bad.json"
 has "$tmp/err" 'outside.hws:4:23: error\[E0507\]' "outside diagnostic"
@@ -220,7 +226,7 @@ has "$tmp/out" '"material": "brick-relief"' "brick-relief run"
 has "$tmp/out" '"stop_reason": "completed"' "brick-relief completes"
 expect_exit 0 "explain brick-relief" -- "$sp" explain examples/brick-relief.hmat
 has "$tmp/out" 'texture.max_lateral_force.*press 2 N x steepest slope' "the stylus force is computed and explained"
-expect_exit 0 "run grass" -- "$sp" run examples/grass.hmat --device sim --duration 0.3
+expect_exit 0 "run grass" -- "$sp" run examples/grass.hmat --device sim "${RT[@]}" --duration 0.3
 expect_exit 0 "array with shade" -- "$sp" array library/images/brick.png --size 80mm --sampling 0.4mm --invert -o "$tmp/b.depth" --shade "$tmp/b.shade"
 [ "$(wc -c <"$tmp/b.depth")" -eq $((200 * 200 + 4)) ] && ok || bad ".depth should be 200 x 200 + 4 bytes"
 [ "$(wc -c <"$tmp/b.shade")" -eq $((200 * 200 + 4)) ] && ok || bad ".shade should be 200 x 200 + 4 bytes"
@@ -327,22 +333,25 @@ has "$tmp/err" 'run --device usb: no USB force-feedback device' "run --device us
 wait_for_stop_handlers() {
   local pid=$1 mask
   for _ in $(seq 3000); do
+    # A run that has already ended (a zombie until `wait`) will never catch the signal: say so now.
+    grep -q '^State:.*Z' "/proc/$pid/status" 2>/dev/null && { echo "the run ended before its signal:"; cat "$tmp/sig.out" "$tmp/sig.err"; return 1; }
     mask=$(awk '/^SigCgt:/{print $2}' "/proc/$pid/status" 2>/dev/null) || return 1
     [ -n "$mask" ] && (( (0x$mask & 0x4002) == 0x4002 )) && return 0
     sleep 0.01
   done
   return 1
 }
-"$sp" run -e corduroy --device sim --duration 30 >"$tmp/sig.out" 2>"$tmp/sig.err" &
+"$sp" run -e corduroy --device sim "${RT[@]}" --duration 30 >"$tmp/sig.out" 2>"$tmp/sig.err" &
 run_pid=$!
 wait_for_stop_handlers "$run_pid"
 kill -INT "$run_pid"
-start=$(date +%s)
 wait "$run_pid"; got=$?
 [ "$got" -eq 0 ] && ok || bad "SIGINT: exit $got, wanted 0"
-[ $(( $(date +%s) - start )) -le 3 ] && ok || bad "SIGINT: the run did not stop quickly"
+# It stopped at the signal, not at the end of its 30 s (30,000 ticks at 1 kHz).
+ticks=$(sed -nE 's/^ *loop +([0-9]+) ticks.*/\1/p' "$tmp/sig.out")
+[ -n "$ticks" ] && [ "$ticks" -lt 30000 ] && ok || bad "SIGINT: the run went on to ${ticks:-?} ticks"
 has "$tmp/sig.out" 'stopped: stopped by signal' "SIGINT is reported as the stop cause"
-"$sp" run -e corduroy --device sim --duration 30 --json >"$tmp/sig.out" 2>"$tmp/sig.err" &
+"$sp" run -e corduroy --device sim "${RT[@]}" --duration 30 --json >"$tmp/sig.out" 2>"$tmp/sig.err" &
 run_pid=$!
 wait_for_stop_handlers "$run_pid"
 kill -TERM "$run_pid"
@@ -350,7 +359,7 @@ wait "$run_pid"; got=$?
 [ "$got" -eq 0 ] && ok || bad "SIGTERM: exit $got, wanted 0"
 has "$tmp/sig.out" '"stop_cause": "stop_requested"' "SIGTERM names stop_requested"
 # Real-time priority: granted, or said once on stderr; never on the virtual clock.
-expect_exit 0 "real-time run" -- "$sp" run -e corduroy --device sim --duration 0.2 --json
+expect_exit 0 "real-time run" -- "$sp" run -e corduroy --device sim "${RT[@]}" --duration 0.2 --json
 if grep -q '"realtime_scheduling": false' "$tmp/out"; then
   [ "$(grep -c 'note: running without real-time priority' "$tmp/err")" -eq 1 ] && ok || bad "the no-real-time note must appear exactly once"
 else
@@ -359,12 +368,12 @@ fi
 expect_exit 0 "virtual clock run" -- "$sp" run -e corduroy --device sim --duration 0.2 --virtual-clock
 grep -q 'real-time priority' "$tmp/err" && bad "the virtual clock printed the real-time note" || ok
 # Live figures with --live (stderr), none without it when stderr is not a terminal.
-expect_exit 0 "run --live" -- "$sp" run -e corduroy --device sim --duration 1.5 --live
+expect_exit 0 "run --live" -- "$sp" run -e corduroy --device sim "${RT[@]}" --duration 1.5 --live
 has "$tmp/err" '^live  t [0-9.]+ s  period p50' "--live prints figures"
-expect_exit 0 "run without --live" -- "$sp" run -e corduroy --device sim --duration 0.2
+expect_exit 0 "run without --live" -- "$sp" run -e corduroy --device sim "${RT[@]}" --duration 0.2
 grep -q '^live' "$tmp/err" && bad "live figures without --live on a pipe" || ok
 # The trace comes from the telemetry ring, in the same format: one row per tick.
-expect_exit 0 "trace from the ring" -- "$sp" run -e corduroy --device sim --duration 0.3 --trace "$tmp/rt.csv"
+expect_exit 0 "trace from the ring" -- "$sp" run -e corduroy --device sim "${RT[@]}" --duration 0.3 --trace "$tmp/rt.csv"
 [ "$(head -1 "$tmp/rt.csv")" = "t_s,x_m,y_m,force_x_N,force_y_N" ] && ok || bad "trace header changed"
 [ "$(($(wc -l <"$tmp/rt.csv") - 1))" -eq 300 ] && ok || bad "trace should hold 300 ticks"
 # The dynamic hand and the replay device (docs/RUNTIME.md): a replayed trace reproduces every tick.
