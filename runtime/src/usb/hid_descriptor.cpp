@@ -20,6 +20,7 @@ struct Globals {
 
 struct Collection {
   std::uint32_t usage = 0;
+  std::uint32_t pid_report = 0;  // the outermost PID-page collection at or above this one, or 0
 };
 
 [[noreturn]] void fail(std::size_t at, const std::string& what) {
@@ -47,6 +48,10 @@ std::int32_t signed_data(std::span<const std::uint8_t> data) {
 std::uint32_t full_usage(std::span<const std::uint8_t> data, std::uint16_t page) {
   const std::uint32_t v = unsigned_data(data);
   return data.size() == 4 ? v : usage(page, static_cast<std::uint16_t>(v));
+}
+
+const char* type_name(ReportType t) {
+  return t == ReportType::Input ? "input" : t == ReportType::Output ? "output" : "feature";
 }
 
 }  // namespace
@@ -97,7 +102,12 @@ bool HidReportDescriptor::has_pid_page() const {
 }
 
 HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> bytes) {
+  using namespace hid_limits;
+  if (bytes.size() > kDescriptorBytes)
+    fail(0, std::to_string(bytes.size()) + " bytes, over the " + std::to_string(kDescriptorBytes) +
+                " a descriptor can have (its length is 16 bits)");
   HidReportDescriptor out;
+  std::size_t array_usages_kept = 0;
   Globals g;
   std::vector<Globals> stack;         // Push / Pop
   std::vector<Collection> collections;
@@ -134,13 +144,20 @@ HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> by
         std::uint32_t& bit = next_bit[{static_cast<int>(rt), g.report_id}];
         const bool constant = flags & 1;
         const bool variable = flags & 2;
-        // A usage range's maximum only arrives after its minimum; expand it here.
-        std::uint32_t report_usage = 0;
-        for (const auto& c : collections)
-          if ((c.usage >> 16) == kPidPage) {
-            report_usage = c.usage;
-            break;
-          }
+        // Checked before a field is made: 4 bytes of Report Count claim 4 billion of them.
+        const std::uint64_t report_bits = std::uint64_t{bit} + std::uint64_t{g.report_size} * g.report_count;
+        if (report_bits > std::uint64_t{kReportBytes - 1} * 8)
+          fail(at, std::string(type_name(rt)) + " report " + std::to_string(g.report_id) + " grows to " +
+                       std::to_string((report_bits + 7) / 8) + " bytes, over the " + std::to_string(kReportBytes) +
+                       " a report can have");
+        if (out.fields.size() + g.report_count > kFields)
+          fail(at, "more than " + std::to_string(kFields) + " fields in all");
+        if (!constant && !variable) {
+          array_usages_kept += std::size_t{g.report_count} * usages.size();
+          if (array_usages_kept > kArrayUsages)
+            fail(at, "arrays with more than " + std::to_string(kArrayUsages) + " usages in all (over every slot)");
+        }
+        const std::uint32_t report_usage = collections.empty() ? 0 : collections.back().pid_report;
         const std::uint32_t parent = collections.empty() ? 0 : collections.back().usage;
         for (std::uint32_t k = 0; k < g.report_count; ++k) {
           HidField f;
@@ -165,7 +182,9 @@ HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> by
           bit += g.report_size;
         }
       } else if (tag == 0xA) {  // Collection
-        collections.push_back({usages.empty() ? 0 : usages.front()});
+        const std::uint32_t u = usages.empty() ? 0 : usages.front();
+        const std::uint32_t outer = collections.empty() ? 0 : collections.back().pid_report;
+        collections.push_back({u, outer != 0 ? outer : (u >> 16) == kPidPage ? u : 0});
       } else if (tag == 0xC) {  // End Collection
         if (collections.empty()) fail(at, "End Collection without a Collection");
         collections.pop_back();
@@ -180,12 +199,19 @@ HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> by
         case 0x1: g.logical_min = signed_data(data); break;
         case 0x2: g.logical_max = signed_data(data); break;
         case 0x7: g.report_size = unsigned_data(data); break;
-        case 0x8:
-          g.report_id = static_cast<std::uint8_t>(unsigned_data(data));
-          if (g.report_id == 0) fail(at, "report ID 0 is reserved");
+        case 0x8: {
+          const std::uint32_t id = unsigned_data(data);
+          if (id == 0) fail(at, "report ID 0 is reserved");
+          if (id > 255) fail(at, "report ID " + std::to_string(id) + " is over 255 (a report ID is one byte)");
+          g.report_id = static_cast<std::uint8_t>(id);
           out.uses_report_ids = true;
           break;
-        case 0x9: g.report_count = unsigned_data(data); break;
+        }
+        case 0x9:
+          g.report_count = unsigned_data(data);
+          if (g.report_count > kUsagesPerItem)
+            fail(at, "Report Count " + std::to_string(g.report_count) + " is over " + std::to_string(kUsagesPerItem));
+          break;
         case 0xA: stack.push_back(g); break;
         case 0xB:
           if (stack.empty()) fail(at, "Pop without Push");
@@ -199,8 +225,12 @@ HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> by
       if (tag == 0x2 && g.logical_min >= 0 && g.logical_max < 0)
         g.logical_max = static_cast<std::int32_t>(unsigned_data(data));
     } else if (type == 2) {  // local
+      // A usage range's maximum only arrives after its minimum; it is expanded here, within the limit.
       switch (tag) {
-        case 0x0: usages.push_back(full_usage(data, g.usage_page)); break;
+        case 0x0:
+          if (usages.size() >= kUsagesPerItem) fail(at, "more than " + std::to_string(kUsagesPerItem) + " usages before one main item");
+          usages.push_back(full_usage(data, g.usage_page));
+          break;
         case 0x1:
           usage_min = full_usage(data, g.usage_page);
           have_usage_min = true;
@@ -208,7 +238,11 @@ HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> by
         case 0x2:
           if (have_usage_min) {
             const std::uint32_t last = full_usage(data, g.usage_page);
-            for (std::uint32_t u = usage_min; u <= last && u - usage_min < 0x10000; ++u) usages.push_back(u);
+            for (std::uint32_t u = usage_min; u <= last && u - usage_min < 0x10000; ++u) {
+              if (usages.size() >= kUsagesPerItem)
+                fail(at, "more than " + std::to_string(kUsagesPerItem) + " usages before one main item");
+              usages.push_back(u);
+            }
           }
           break;
         default: break;  // designators, strings, delimiters

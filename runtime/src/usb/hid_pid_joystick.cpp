@@ -212,10 +212,41 @@ void HidPidJoystick::open() {
   need(ReportType::Feature, pid::kCreateNewEffectReport, pid::kEffectType);
   need(ReportType::Feature, pid::kBlockLoadReport, pid::kEffectBlockIndex);
   need(ReportType::Feature, pid::kBlockLoadReport, pid::kBlockLoadStatus);
+  // Every report the driver builds or reads is one 64-byte buffer: a descriptor that makes one
+  // longer is refused here, or the transfer would read past the buffer (docs/RELIABILITY.md, F23).
+  const auto fits = [&](ReportType type, const HidField* f, const char* name) {
+    if (!f) return;
+    const std::size_t length = descriptor_.report_bytes(type, f->report_id);
+    if (length > kMaxReport)
+      fail_open(UsbStatus::Other, std::string("the HID report descriptor's ") + name + " report (ID " +
+                                      std::to_string(f->report_id) + ") is " + std::to_string(length) +
+                                      " bytes; the driver sends and reads reports of at most " +
+                                      std::to_string(kMaxReport) + " (a full-speed interrupt packet)");
+  };
+  fits(ReportType::Input, &x_, "position (X, Y)");
+  fits(ReportType::Output, &magnitude_, "Set Constant Force");
+  fits(ReportType::Output, descriptor_.find(ReportType::Output, pid::kSetEffectReport, pid::kEffectBlockIndex), "Set Effect");
+  fits(ReportType::Output, descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex),
+       "Effect Operation");
+  fits(ReportType::Output, descriptor_.find(ReportType::Output, pid::kBlockFreeReport, pid::kEffectBlockIndex), "Block Free");
+  for (std::uint32_t command : {pid::kDcEnableActuators, pid::kDcDisableActuators, pid::kDcStopAllEffects, pid::kDcDeviceReset})
+    fits(ReportType::Output, device_control_field(command), "Device Control");
+  fits(ReportType::Feature, descriptor_.find(ReportType::Feature, pid::kCreateNewEffectReport, pid::kEffectType),
+       "Create New Effect");
+  fits(ReportType::Feature, descriptor_.find(ReportType::Feature, pid::kBlockLoadReport, pid::kEffectBlockIndex), "Block Load");
+  fits(ReportType::Feature, descriptor_.find(ReportType::Feature, pid::kPoolReport, pid::kSimultaneousEffectsMax), "PID Pool");
   cf_bytes_ = descriptor_.report_bytes(ReportType::Output, magnitude_.report_id);
-  const std::size_t in_bytes = descriptor_.report_bytes(ReportType::Input, x_.report_id);
-  if (cf_bytes_ > kMaxReport || in_bytes > kMaxReport)
-    fail_open(UsbStatus::Other, "a report is longer than the 64 bytes of a full-speed interrupt packet");
+  // Zero force must be sendable, and each sense of it (F24): a Magnitude range that misses zero
+  // would turn a commanded zero into a push, and made the tick's clamp bounds cross.
+  if (!(magnitude_.logical_min < 0 && magnitude_.logical_max > 0))
+    fail_open(UsbStatus::Other, "the HID report descriptor's Magnitude (Set Constant Force) has the logical range " +
+                                    std::to_string(magnitude_.logical_min) + ".." + std::to_string(magnitude_.logical_max) +
+                                    "; the driver needs one with negative and positive values (zero force inside it)");
+  for (const HidField* axis : {&x_, &y_})
+    if (axis->logical_max <= axis->logical_min)
+      fail_open(UsbStatus::Other, "the HID report descriptor's " + usage_name(axis->usage) + " (position) has the logical range " +
+                                      std::to_string(axis->logical_min) + ".." + std::to_string(axis->logical_max) +
+                                      ", which carries no position");
 
   // PID Pool: the device must hold two effects at once.
   if (const HidField* max_effects = descriptor_.find(ReportType::Feature, pid::kPoolReport, pid::kSimultaneousEffectsMax)) {

@@ -20,6 +20,7 @@ void FakeTransport::add_feature_reply(std::uint8_t report_id, std::vector<std::u
 }
 
 void FakeTransport::record(Op op, std::span<const std::uint8_t> bytes) noexcept {
+  longest_ = std::max(longest_, bytes.size());
   if (log_.size() == log_.capacity()) return;  // never reallocate inside an _rt call
   Transfer t{op, {}, std::min(bytes.size(), std::size_t{64})};
   std::copy_n(bytes.begin(), t.size, t.bytes.begin());

@@ -57,6 +57,8 @@ class FakeTransport final : public UsbTransport {
 
   const std::vector<Transfer>& log() const { return log_; }
   void clear_log() { log_.clear(); }
+  // The longest report the driver handed over, in bytes (the log keeps at most 64 of each).
+  std::size_t longest_transfer() const { return longest_; }
   bool kernel_driver_attached() const { return kernel_attached_; }
   bool claimed() const { return claimed_; }
 
@@ -79,6 +81,7 @@ class FakeTransport final : public UsbTransport {
   std::vector<InputEvent> inputs_;
   std::size_t next_input_ = 0;
   std::vector<Transfer> log_;
+  std::size_t longest_ = 0;
   void note_thread() noexcept {
     if (std::this_thread::get_id() == watched_.load()) on_watched_.fetch_add(1);
   }

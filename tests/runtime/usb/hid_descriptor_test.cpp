@@ -2,6 +2,9 @@
 // the driver uses is found with the report ID, bit offset, size and logical range the descriptor gives.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "sandpaper/runtime/usb/hid_descriptor.hpp"
 #include "usb_test_support.hpp"
 
@@ -105,6 +108,62 @@ TEST(HidDescriptor, RefusesTruncatedAndUnbalancedDescriptors) {
   auto cut = testing::test_descriptor();
   cut.resize(cut.size() - 1);  // the last End Collection
   EXPECT_THROW(parse_hid_report_descriptor(cut), HidDescriptorError);
+}
+
+// The error a descriptor gets, or "" if it parses.
+std::string refusal(const std::vector<std::uint8_t>& bytes) {
+  try {
+    parse_hid_report_descriptor(bytes);
+    return "";
+  } catch (const HidDescriptorError& e) {
+    return e.what();
+  }
+}
+
+::testing::AssertionResult says(const std::string& error, const std::string& part) {
+  if (error.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "the error is \"" << error << "\", without \"" << part << "\"";
+}
+
+std::vector<std::uint8_t> operator+(std::vector<std::uint8_t> a, const std::vector<std::uint8_t>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// A descriptor comes from the device: a few bytes of it claimed billions of fields, and the parser
+// made them (docs/RELIABILITY.md, F22). Each claim is now checked against Linux hid-core's limits
+// before anything is made for it; a claim at the limit still parses.
+TEST(HidDescriptor, ClaimsOverLinuxHidLimitsAreRefusedBeforeAnythingIsMadeForThem) {
+  using V = std::vector<std::uint8_t>;
+  const V one_bit = {0x75, 0x01}, input = {0x81, 0x02}, array_input = {0x81, 0x00};
+  // Report Count 0xFFFFFFFF of 1-bit inputs: 4 billion fields from 9 bytes.
+  EXPECT_TRUE(says(refusal(one_bit + V{0x97, 0xFF, 0xFF, 0xFF, 0xFF} + input), "byte 2: Report Count 4294967295 is over 12288"));
+  EXPECT_TRUE(says(refusal(one_bit + V{0x96, 0x01, 0x30} + input), "Report Count 12289 is over 12288"));
+  const auto at_limit = parse_hid_report_descriptor(one_bit + V{0x96, 0x00, 0x30} + input);
+  EXPECT_EQ(at_limit.fields.size(), 12288u);
+  // A usage range of 65,536 usages (Usage Minimum 0, Usage Maximum 0xFFFF), then an array of
+  // 65,535 slots, each of which kept every usage: 17 GB.
+  const V range = {0x05, 0x09, 0x19, 0x00, 0x2A, 0xFF, 0xFF};
+  EXPECT_TRUE(says(refusal(range + one_bit + V{0x96, 0xFF, 0xFF} + array_input), "byte 4: more than 12288 usages before one main item"));
+  // Usages 1..12288 are allowed; 100 array slots keeping them all are over the total.
+  const V full_range = {0x05, 0x09, 0x19, 0x01, 0x2A, 0x00, 0x30, 0x75, 0x10};
+  EXPECT_TRUE(says(refusal(full_range + V{0x95, 0x64} + array_input), "arrays with more than 1048576 usages in all"));
+  EXPECT_EQ(parse_hid_report_descriptor(full_range + V{0x95, 0x50} + array_input).fields.size(), 80u);
+  // A report longer than 16,384 bytes: 600 fields of 256 bits.
+  const V wide = {0x76, 0x00, 0x01};
+  EXPECT_TRUE(says(refusal(wide + V{0x96, 0x58, 0x02} + input), "input report 0 grows to 19200 bytes, over the 16384"));
+  EXPECT_EQ(parse_hid_report_descriptor(wide + V{0x96, 0xFF, 0x01} + input).report_bytes(ReportType::Input, 0), 16352u);
+  // Six reports of 12,288 one-bit fields: each within its size, 73,728 fields in all.
+  V many;
+  for (std::uint8_t id = 1; id <= 6; ++id) many = many + V{0x85, id} + one_bit + V{0x96, 0x00, 0x30, 0x81, 0x03};
+  EXPECT_TRUE(says(refusal(many), "more than 65536 fields in all"));
+  // A report ID is one byte: 0x0101 is not report 1.
+  EXPECT_TRUE(says(refusal(V{0x86, 0x01, 0x01} + one_bit + V{0x95, 0x01} + input), "report ID 257 is over 255"));
+  // A descriptor's length is 16 bits.
+  V huge;
+  for (int k = 0; k < 32768; ++k) huge.insert(huge.end(), {0x05, 0x01});
+  EXPECT_TRUE(says(refusal(huge), "65536 bytes, over the 65535"));
+  EXPECT_EQ(refusal(V(huge.begin(), huge.end() - 2)), "");
 }
 
 TEST(HidDescriptor, FieldValuesRoundTripWithSign) {

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
+#include <string>
 #include <thread>
 
 #include "allocation_counter.hpp"
@@ -152,6 +154,69 @@ TEST(HidPidJoystick, OpenFailsCleanlyWhenTheDeviceHasNoRoomAndGivesItBack) {
   EXPECT_EQ(static_cast<int>(got[got.size() - 2].op), static_cast<int>(Op::Release));
   EXPECT_EQ(static_cast<int>(got.back().op), static_cast<int>(Op::Attach));
   EXPECT_TRUE(t->kernel_driver_attached());
+}
+
+// The hand-written descriptor with `from` (its first occurrence) replaced by `to`.
+Bytes edited_descriptor(const Bytes& from, const Bytes& to) {
+  Bytes d = testing::test_descriptor();
+  const auto at = std::search(d.begin(), d.end(), from.begin(), from.end());
+  EXPECT_NE(at, d.end());
+  const auto i = at - d.begin();
+  d.erase(d.begin() + i, d.begin() + i + static_cast<std::ptrdiff_t>(from.size()));
+  d.insert(d.begin() + i, to.begin(), to.end());
+  return d;
+}
+
+// The error opening a device with this descriptor gives, or "" if it opens.
+std::string open_error(const Bytes& descriptor, FakeTransport** kept = nullptr) {
+  static std::unique_ptr<FakeTransport> t;
+  t = std::make_unique<FakeTransport>(descriptor);
+  t->add_feature_reply(0x13, {0x13, 0x00, 0x10, 0x04, 0x01});
+  t->add_feature_reply(0x12, {0x12, 0x01, 0x01, 0x27, 0x00});
+  t->add_feature_reply(0x12, {0x12, 0x02, 0x01, 0x26, 0x00});
+  t->add_input({UsbStatus::Ok, testing::position_report(0, 0)});
+  if (kept) *kept = t.get();
+  try {
+    HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+    return "";
+  } catch (const HidPidError& e) {
+    return e.what();
+  }
+}
+
+// Every report is built in a 64-byte buffer, and only the position and Set Constant Force reports
+// were checked against it: a descriptor with a longer Set Effect (or Effect Operation, Block Free,
+// Device Control, Create New Effect) report made the driver hand over bytes past the buffer
+// (docs/RELIABILITY.md, F23). Such a device is refused, with the report named, before any is sent.
+TEST(HidPidJoystick, ADescriptorWithAReportLongerThanThePacketIsRefusedBeforeAnyTransferReadsPastIt) {
+  // Eighty bytes of constant padding at the end of Set Effect (output report 1): 98 bytes.
+  const Bytes end_of_set_effect = {0x55, 0x00, 0x66, 0x00, 0x00, 0xC0, 0xC0};
+  const Bytes padded = {0x55, 0x00, 0x66, 0x00, 0x00, 0xC0, 0x75, 0x08, 0x95, 0x50, 0x91, 0x03, 0xC0};
+  FakeTransport* t = nullptr;
+  const std::string error = open_error(edited_descriptor(end_of_set_effect, padded), &t);
+  EXPECT_NE(error.find("Set Effect report (ID 1) is 98 bytes; the driver sends and reads reports of at most 64"),
+            std::string::npos) << error;
+  EXPECT_LE(t->longest_transfer(), 64u);
+  EXPECT_TRUE(t->kernel_driver_attached());
+  // The same padding on the position report is refused as before, now by name.
+  const Bytes position_axes = {0x75, 0x10, 0x95, 0x02, 0x81, 0x02};
+  const std::string input = open_error(edited_descriptor(position_axes, {0x75, 0x10, 0x95, 0x02, 0x81, 0x02, 0x75, 0x08, 0x95, 0x50, 0x81, 0x03}));
+  EXPECT_NE(input.find("position (X, Y) report (ID 1) is 86 bytes"), std::string::npos) << input;
+  EXPECT_EQ(open_error(testing::test_descriptor()), "");
+}
+
+// A Magnitude range without negative values (1..10000) cannot carry zero force: the tick's zero
+// would have been sent as 1, and with a calibrated command limit below the range's minimum the
+// clamp's bounds crossed (std::clamp's precondition; docs/RELIABILITY.md, F24). Refused at open.
+TEST(HidPidJoystick, AMagnitudeRangeWithoutZeroInsideIsRefusedAtOpen) {
+  const Bytes magnitude = {0x09, 0x70, 0x16, 0xF0, 0xD8, 0x26, 0x10, 0x27};  // -10000..10000
+  const std::string error = open_error(edited_descriptor(magnitude, {0x09, 0x70, 0x15, 0x01, 0x26, 0x10, 0x27}));
+  EXPECT_NE(error.find("Magnitude (Set Constant Force) has the logical range 1..10000; the driver needs one with negative"),
+            std::string::npos) << error;
+  // An axis whose range is one value carries no position: refused too, not read as a joystick stuck at 0.
+  const Bytes axes_range = {0x16, 0x01, 0x80, 0x26, 0xFF, 0x7F};  // -32767..32767
+  const std::string flat = open_error(edited_descriptor(axes_range, {0x15, 0x05, 0x25, 0x05}));
+  EXPECT_NE(flat.find("usage 0x0030 (position) has the logical range 5..5, which carries no position"), std::string::npos) << flat;
 }
 
 // A force source that always asks for the same force.

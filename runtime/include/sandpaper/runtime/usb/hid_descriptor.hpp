@@ -3,6 +3,7 @@
 // feature report with their report ID, bit offset, size and logical range, and the usages that name
 // them. Enough for a joystick's X/Y axes (Generic Desktop page) and the force-feedback reports of the
 // Physical Interface Device page (USB HID PID 1.0), which is what hid_pid_joystick.hpp needs.
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -103,11 +104,25 @@ struct HidReportDescriptor {
 };
 
 // Thrown for a descriptor that cannot be parsed: an item that runs past the end, an unbalanced
-// End Collection, a report size over 32 bits, Pop without Push. what() names the byte offset.
+// End Collection, a report size over 256 bits, Pop without Push, or a claim over the limits below.
+// what() names the byte offset.
 struct HidDescriptorError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What a descriptor may claim. A descriptor comes from the device (or a file standing for one): it
+// is outside input, and a few bytes can claim billions of fields (docs/RELIABILITY.md, F22). The
+// per-item and per-report limits are Linux hid-core's (include/linux/hid.h), so every device Linux
+// drives meets them; the totals bound what is kept, far above any force-feedback joystick's.
+namespace hid_limits {
+inline constexpr std::size_t kDescriptorBytes = 65535;     // wDescriptorLength is 16 bits (HID 1.11 section 6.2.1)
+inline constexpr std::uint32_t kUsagesPerItem = 12288;     // Report Count, and usages before a main item (HID_MAX_USAGES)
+inline constexpr std::uint32_t kReportBytes = 16384;       // a report, report ID byte included (HID_MAX_BUFFER_SIZE)
+inline constexpr std::size_t kFields = 65536;              // HidField entries in all (one per Report Count slot)
+inline constexpr std::size_t kArrayUsages = 1u << 20;      // array usages kept in all, over every slot of every array
+}  // namespace hid_limits
+
+// Parses a report descriptor of at most hid_limits::kDescriptorBytes. Throws HidDescriptorError.
 HidReportDescriptor parse_hid_report_descriptor(std::span<const std::uint8_t> bytes);
 
 // Field values in report buffers. `report` starts with the report ID byte when `uses_ids`.

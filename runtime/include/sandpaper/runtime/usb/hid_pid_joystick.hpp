@@ -3,6 +3,7 @@
 // effect per axis, streamed with Set Constant Force every tick; position from the input reports.
 // The reference device is the OpenFFBoard as a 2-axis joystick (calibration/devices/openffboard-2axis.toml).
 // Reports, order, rate and assumptions: docs/USB_PID.md.
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -102,7 +103,8 @@ class HidPidJoystick final : public Device {
   // The field that carries Device Control's `command_usage` (array or bit form), or nullptr.
   const HidField* device_control_field(std::uint32_t command_usage) const;
   void create_effect(int axis);
-  std::span<const std::uint8_t> report(const Buffer& b, std::size_t bytes) const { return {b.data(), bytes}; }
+  // open() refused every report longer than a Buffer; the bound here only keeps that true.
+  std::span<const std::uint8_t> report(const Buffer& b, std::size_t bytes) const { return {b.data(), std::min(bytes, b.size())}; }
   bool send_constant_force(int axis, std::int32_t magnitude) noexcept;
   bool decode_position(std::span<const std::uint8_t> report, glm::dvec2& position_m) const noexcept;
   [[noreturn]] void fail_open(UsbStatus status, const std::string& what);
