@@ -83,6 +83,13 @@ CsvTable parse_csv(std::string_view text, const std::string& path) {
       if (end == text.size()) break;
       continue;
     }
+    // Fields reach JSON output and fitted files, which must be UTF-8 (F25); comments are not read.
+    if (std::size_t bad = 0; !schema::is_valid_utf8(line, bad)) {
+      static const char* hex = "0123456789ABCDEF";
+      const auto b = static_cast<unsigned char>(line[bad]);
+      throw FitError(path, lineno, "byte " + std::to_string(bad + 1) + " of the line (0x" + std::string{hex[b >> 4], hex[b & 15]} +
+                                       ") is not UTF-8; save the file as UTF-8 (a spreadsheet's \"CSV UTF-8\")");
+    }
     auto fields = split_line(line, path, lineno);
     if (t.header_line == 0) {
       t.header_line = lineno;

@@ -8,6 +8,7 @@
 
 #include "sandpaper/calibration/device_fit.hpp"
 #include "sandpaper/calibration/fit_error.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/units.hpp"
 #include "toml_text.hpp"
 
@@ -136,7 +137,9 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   out += "source = " + toml_string("force-gauge readings in " + fit.path) + "\n";
   if (!o.date.empty()) out += "date = " + toml_string(o.date) + "\n";
   out += "residual_max = " + toml_string(fmt::format("{:.3g} N", residual_max)) + "\n";
-  return out;
+  // Names given on the command line (the CSV's path, the output's stem) are bytes on Linux; the file
+  // must stay UTF-8 or the whole calibration folder stops loading (F26).
+  return schema::replace_invalid_utf8(out);
 }
 
 }  // namespace sandpaper::calibration

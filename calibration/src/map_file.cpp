@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "sandpaper/calibration/fit.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 #include "toml_text.hpp"
 
 namespace sandpaper::calibration {
@@ -117,7 +118,9 @@ std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOption
                                                     fit.stimuli.size(), fit.subjects.size(), fit.runs)
                                       : o.provenance) +
          "\n";
-  return out;
+  // Names given on the command line (the CSV's path, the output's stem) are bytes on Linux; the file
+  // must stay UTF-8 or the whole calibration folder stops loading (F26).
+  return schema::replace_invalid_utf8(out);
 }
 
 }  // namespace sandpaper::calibration

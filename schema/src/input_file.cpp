@@ -73,4 +73,16 @@ bool is_valid_utf8(std::string_view s, std::size_t& bad_offset) noexcept {
   return true;
 }
 
+std::string replace_invalid_utf8(std::string_view text) {
+  std::string out;
+  std::size_t bad = 0;
+  while (!is_valid_utf8(text, bad)) {
+    out.append(text.substr(0, bad));
+    out.append("\xEF\xBF\xBD");  // U+FFFD for the byte that does not start a whole character
+    text.remove_prefix(bad + 1);
+  }
+  out.append(text);
+  return out;
+}
+
 }  // namespace sandpaper::schema

@@ -41,6 +41,21 @@ TEST(Csv, ErrorsCarryTheLine) {
   }
 }
 
+// Fields go into JSON output and fitted files, which are UTF-8: a subject named in Latin-1 made
+// `calibrate fit --json` stop with nlohmann's raw type_error 316, exit 2 (docs/RELIABILITY.md, F25).
+// The reader now refuses the line, saying which byte and how to fix it; comments may hold anything.
+TEST(Csv, AFieldThatIsNotUtf8IsRefusedAtItsLine) {
+  try {
+    parse_csv("# M\xfcller's lab\nsubject,response\nS1,3\nM\xfcller,4\n", "t.csv");
+    FAIL() << "a Latin-1 field was read";
+  } catch (const FitError& e) {
+    EXPECT_EQ(e.line, 4);
+    EXPECT_EQ(std::string(e.what()), "t.csv:4: error: byte 2 of the line (0xFC) is not UTF-8; save the file as UTF-8 "
+                                     "(a spreadsheet's \"CSV UTF-8\")");
+  }
+  EXPECT_EQ(parse_csv("subject,response\nM\xc3\xbcller,4\n", "t.csv").rows.at(0).fields.at(0), "M\xc3\xbcller");
+}
+
 // Column order does not matter and extra columns are ignored.
 TEST(Csv, MagnitudeEstimationColumnsInAnyOrder) {
   const auto d = parse_magnitude_estimation_csv(

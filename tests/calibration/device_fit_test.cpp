@@ -109,6 +109,16 @@ TEST(DeviceFit, DeviceFileKeepsTheBaseAndStoresTheGain) {
   EXPECT_TRUE(doc["calibration"]["residual_max"].is_string());
 }
 
+// As MapFile.APathThatIsNotUtf8StillGivesAMapThatLoads, for a device file (F26).
+TEST(DeviceFit, APathThatIsNotUtf8StillGivesADeviceFileThatLoads) {
+  auto readings = synthetic::simulate_gauge({});
+  readings.path = "gauge-\xe9t\xe9.csv";
+  const auto f = fit_device(readings);
+  const auto doc = toml::parse(device_file_text(f, openffboard_base(), {"", "base-\xff.toml", ""}));
+  EXPECT_NE(doc["calibration"]["source"].value_or(std::string()).find("gauge-\xef\xbf\xbdt\xef\xbf\xbd.csv"),
+            std::string::npos);
+}
+
 // One fit without an axis column serves both axes; with an axis column both must be measured.
 TEST(DeviceFit, AxesTheFileNeeds) {
   const auto both = fit_device(parse_device_readings_csv("command,force_N\n0,0\n5000,4.3\n10000,8.4\n", "g.csv"));

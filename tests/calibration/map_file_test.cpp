@@ -63,3 +63,18 @@ TEST(MapFile, HoldsTheFit) {
   EXPECT_NE(doc["source"]["citation"].value_or(std::string()).find(fit.path), std::string::npos);
   EXPECT_TRUE(doc["source"]["where"].is_string());
 }
+
+// The CSV's path and the map's id (the output's stem) are bytes on Linux. A name in Latin-1 went into
+// the map's comments and [source] as it was, and toml++ then refused the file: every compile with
+// that calibration folder failed ("not valid TOML: Encountered invalid utf-8 sequence";
+// docs/RELIABILITY.md, F26). Each bad byte is now written as U+FFFD.
+TEST(MapFile, APathThatIsNotUtf8StillGivesAMapThatLoads) {
+  auto data = synthetic::simulate_experiment({}).data;
+  data.path = "/data/m\xfcller/responses.csv";
+  const auto fit = fit_magnitude_estimation(data);
+  const std::string text = map_file_text(fit, compile_map_options("m\xfcller"));
+  const auto doc = toml::parse(text);
+  EXPECT_EQ(doc["id"].value_or(std::string()), "m\xef\xbf\xbdller");
+  EXPECT_NE(doc["source"]["citation"].value_or(std::string()).find("/data/m\xef\xbf\xbdller/responses.csv"), std::string::npos);
+}
+

@@ -48,6 +48,21 @@ python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["diagnosti
   && ok "--json prints a E0104 diagnostic" || bad "--json output is not JSON with E0104"
 if grep -q "json.exception" "$tmp/err"; then bad "a raw nlohmann exception reached the user"; else ok "no raw library exception"; fi
 
+# A file name that is not UTF-8 (Linux names are bytes): --json still prints JSON, the name with
+# U+FFFD (F26; it stopped with nlohmann's type_error 316, exit 2). A CSV field that is not UTF-8 is
+# refused at its line (F25; the same raw exception before).
+cp "$src/examples/corduroy.hmat" "$tmp/caf"$'\xe9'".hmat"
+"$sp" compile "$tmp/caf"$'\xe9'".hmat" -o "$tmp/cafe.patch" --json >"$tmp/out" 2>"$tmp/err"; check "a Latin-1 file name compiles with --json" 0 $?
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["ok"], d' "$tmp/out" && ok "and prints JSON" || bad "--json output is not JSON"
+if grep -q "json.exception" "$tmp/err"; then bad "a raw nlohmann exception reached the user"; else ok "no raw library exception"; fi
+sed 's/^S01,/M'$'\xfc''ller,/' "$src/examples/calibration/roughness-responses.csv" >"$tmp/latin1.csv"
+grep -q $'\xfc' "$tmp/latin1.csv" || bad "the test CSV has no Latin-1 subject (the example's first subject is not S01?)"
+"$sp" calibrate fit "$tmp/latin1.csv" --json >"$tmp/out" 2>"$tmp/err"; check "calibrate fit: a Latin-1 subject is exit 1" 1 $?
+has "naming the line and the byte" "$tmp/err" "is not UTF-8; save the file as UTF-8"
+cp "$src/examples/calibration/roughness-responses.csv" "$tmp/r"$'\xe9'"sum"$'\xe9'".csv"
+"$sp" calibrate fit "$tmp/r"$'\xe9'"sum"$'\xe9'".csv" -o "$tmp/fitted-x.toml" --json >"$tmp/out" 2>"$tmp/err"; check "calibrate fit from a Latin-1 file name" 0 $?
+python3 -c 'import sys,tomllib; tomllib.load(open(sys.argv[1],"rb"))' "$tmp/fitted-x.toml" 2>"$tmp/err" && ok "writes a map that is TOML (UTF-8)" || { bad "the map is not valid TOML:"; cat "$tmp/err"; }
+
 # A material file that is a device or a FIFO is refused at once (it used to hang).
 mkfifo "$tmp/fifo.hmat"
 timeout 20 "$sp" compile "$tmp/fifo.hmat" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "a FIFO is exit 1, without blocking" 1 $?

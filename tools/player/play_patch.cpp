@@ -18,6 +18,7 @@
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
+#include "sandpaper/schema/json_text.hpp"
 #include "usb_devices.hpp"
 
 namespace sandpaper::cli {
@@ -280,7 +281,7 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
     // The compiler's warnings travel in the program (compile --json and explain --json show them too).
     j["warnings"] = nlohmann::json::array();
     for (const auto& w : prog.warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
   } else {
     std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us; "
                              "jitter {:.2f} us (sd); overruns {}; {}\n",

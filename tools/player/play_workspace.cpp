@@ -13,6 +13,7 @@
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/runtime/workspace_evaluator.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -194,7 +195,7 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
                      {"touched_patches", touched},
                      {"patches", patches},
                      {"trace", ro.trace.empty() ? nlohmann::json(nullptr) : nlohmann::json(ro.trace)}};
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
   } else {
     std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p50 {:.1f} us, p99 {:.1f} us, max {:.1f} us; "
                              "jitter {:.2f} us (sd); overruns {}; stalls {} (longest {:.0f} us)\n",

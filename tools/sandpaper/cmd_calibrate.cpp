@@ -15,6 +15,7 @@
 #include "sandpaper/calibration/fit_error.hpp"
 #include "sandpaper/calibration/fit_json.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -79,7 +80,7 @@ int run_fit(const CalibrateOptions& o) {
     json j = {{"ok", true}, {"source", fit.path}, {"percept", o.percept}};
     j.update(calibration::fit_json(fit));
     if (!o.output.empty()) j["output"] = o.output;
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
     return kExitOk;
   }
   std::cout << fmt::format("{}: {} trials ({} answered), {} subjects, {} stimuli, {} runs\n", fit.path, fit.trials,
@@ -160,7 +161,7 @@ int run_device(const CalibrateOptions& o) {
     }
     json j = {{"ok", true}, {"source", fit.path}, {"axes", axes}};
     if (!o.output.empty()) j["output"] = o.output;
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
     return kExitOk;
   }
   std::cout << fit.path << ": force = gain x command + offset, least squares\n";
@@ -217,7 +218,7 @@ int cmd_calibrate(const CalibrateOptions& o) {
     if (o.json) {
       json d = {{"severity", "error"}, {"file", e.file}, {"message", e.message}};
       if (e.line > 0) d["line"] = e.line;
-      std::cout << json{{"ok", false}, {"diagnostics", json::array({d})}}.dump(2) << "\n";
+      std::cout << schema::json_text(json{{"ok", false}, {"diagnostics", json::array({d})}}, 2) << "\n";
     }
     return kExitBadInput;
   }

@@ -13,6 +13,7 @@
 #include "sandpaper/compiler/force_levels.hpp"
 #include "sandpaper/compiler/sources_report.hpp"
 #include "sandpaper/compiler/knowledge_report.hpp"
+#include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 
@@ -61,7 +62,7 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
       j.erase("output");
       j.update(compiler::explain_json(*in->compile->material, prog, c, o.design_speed_mm_s * 1e-3));
     }
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
   } else if (explain) {
     std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device(), o.design_speed_mm_s * 1e-3)
               << compiler::sources_text(*in->compile->material, c.library());
@@ -141,8 +142,13 @@ int cmd_compile_batch(const CommonOptions& o, const std::vector<std::string>& in
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (o.json)
-    std::cout << nlohmann::json{{"ok", failed == 0}, {"compiled", jobs.size() - failed}, {"failed", failed},
-                                {"seconds", seconds}, {"results", results}}.dump(2) << "\n";
+    std::cout << schema::json_text(nlohmann::json{{"ok", failed == 0},
+                                                  {"compiled", jobs.size() - failed},
+                                                  {"failed", failed},
+                                                  {"seconds", seconds},
+                                                  {"results", results}},
+                                   2)
+              << "\n";
   else
     std::cout << "compiled " << jobs.size() - failed << " of " << jobs.size() << " material(s) into " << out_dir << " in "
               << std::round(seconds * 100) / 100 << " s" << (failed ? ", " + std::to_string(failed) + " with errors (nothing written for them)" : "")
@@ -181,7 +187,7 @@ int cmd_library(const CommonOptions& o) {
                 << (lib.entry(e.name) == &e ? "" : "  [hidden by " + lib.qualified_name(*lib.entry(e.name)) + "]") << "\n";
     }
   }
-  if (o.json) std::cout << arr.dump(2) << "\n";
+  if (o.json) std::cout << schema::json_text(arr, 2) << "\n";
   return bad ? kExitBadInput : kExitOk;
 }
 

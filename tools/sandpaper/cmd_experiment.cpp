@@ -26,6 +26,7 @@
 #include "sandpaper/experiment/stimuli.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -109,10 +110,16 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
 
 int report_outcome(const ex::SessionOutcome& out, const std::filesystem::path& dir, bool json) {
   if (json)
-    std::cout << nlohmann::json{{"ok", out.finished},      {"results", dir.string()},     {"answered", out.answered},
-                                {"next_trial", out.next_trial}, {"trials", out.total},   {"finished", out.finished},
-                                {"stopped", out.stopped},  {"interrupted", out.interrupted}, {"cause", out.cause}}
-                     .dump(2)
+    std::cout << schema::json_text(nlohmann::json{{"ok", out.finished},
+                                                  {"results", dir.string()},
+                                                  {"answered", out.answered},
+                                                  {"next_trial", out.next_trial},
+                                                  {"trials", out.total},
+                                                  {"finished", out.finished},
+                                                  {"stopped", out.stopped},
+                                                  {"interrupted", out.interrupted},
+                                                  {"cause", out.cause}},
+                                   2)
               << "\n";
   else if (out.finished)
     std::cout << fmt::format("all {} trials answered; results in {}\n", out.total, dir.string());
@@ -314,7 +321,8 @@ int analyse(const ExperimentOptions& eo) {
     std::filesystem::rename(check, out);
     a.report["map"] = {{"file", out.string()}, {"id", mo.id}, {"device", mo.device}, {"reference_N", mo.reference_N}};
   }
-  if (eo.common.json) std::cout << a.report.dump(2) << "\n";
+  if (eo.common.json)
+    std::cout << schema::json_text(a.report, 2) << "\n";
   else print_analysis(a);
   return kExitOk;
 }
@@ -361,11 +369,11 @@ int cmd_experiment(const ExperimentOptions& eo) {
     if (eo.resume && eo.resume->parsed()) return run_or_resume(eo, true);
     if (eo.analyse && eo.analyse->parsed()) return analyse(eo);
   } catch (const ex::DesignError& e) {
-    if (eo.common.json) std::cout << nlohmann::json{{"ok", false}, {"errors", e.what()}}.dump(2) << "\n";
+    if (eo.common.json) std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"errors", e.what()}}, 2) << "\n";
     std::cerr << e.what() << (std::string(e.what()).ends_with("\n") ? "" : "\n");
     return kExitBadInput;
   } catch (const calibration::FitError& e) {
-    if (eo.common.json) std::cout << nlohmann::json{{"ok", false}, {"errors", e.what()}}.dump(2) << "\n";
+    if (eo.common.json) std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"errors", e.what()}}, 2) << "\n";
     std::cerr << "sandpaper experiment analyse: " << e.what() << "\n";
     return kExitBadInput;
   }

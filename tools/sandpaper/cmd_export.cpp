@@ -8,6 +8,7 @@
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/compiler/workspace_parser.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -16,7 +17,7 @@ namespace {
 bool report(const CommonOptions& o, const compiler::Diagnostics& d) {
   std::cerr << compiler::format_diagnostics(d);
   if (d.has_errors() && o.json)
-    std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(d)}}.dump(2) << "\n";
+    std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(d)}}, 2) << "\n";
   return !d.has_errors();
 }
 
@@ -82,7 +83,7 @@ int cmd_export(const CommonOptions& o, const std::string& format, const std::str
                      {"haptic_materials", nlohmann::json::array()}};
     for (const auto& m : materials) j["haptic_materials"].push_back(m["extras"]["sandpaper"]);
     for (auto& m : j["haptic_materials"]) m.erase("provenance");
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
     return kExitOk;
   }
   std::cout << "glTF 2.0 (MPEG_haptic_material): " << (*asset)["meshes"].size() << " mesh(es), " << materials.size()

@@ -6,6 +6,7 @@
 #include "cli.hpp"
 #include "sandpaper/compiler/gltf_import.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/workspace_io.hpp"
 #include "sandpaper/schema/workspace_json.hpp"
@@ -17,7 +18,9 @@ int cmd_compile_gltf(const CommonOptions& o, const std::string& output) {
   auto r = compiler::import_gltf_file(c, o.file);
   std::cerr << compiler::format_diagnostics(r.diagnostics);
   if (!r.ok()) {
-    if (o.json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}.dump(2) << "\n";
+    if (o.json)
+      std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}, 2)
+                << "\n";
     return kExitBadInput;
   }
   std::string out = output;
@@ -36,12 +39,12 @@ int cmd_compile_gltf(const CommonOptions& o, const std::string& output) {
     if (std::filesystem::path(out).extension() == ".wsp")
       schema::write_workspace_program_file(out, *r.workspace, {o.compact});
     else
-      schema::write_file_atomically(out, schema::to_json(*r.workspace).dump(2) + "\n");
+      schema::write_file_atomically(out, schema::json_text(schema::to_json(*r.workspace), 2) + "\n");
     j.update({{"name", r.workspace->name}, {"patches", r.workspace->patches.size()}, {"output", out}});
     if (!o.json)
       std::cout << r.workspace->name << ": workspace of " << r.workspace->patches.size() << " patch(es) (from glTF) -> " << out << "\n";
   }
-  if (o.json) std::cout << j.dump(2) << "\n";
+  if (o.json) std::cout << schema::json_text(j, 2) << "\n";
   return kExitOk;
 }
 

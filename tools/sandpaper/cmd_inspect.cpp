@@ -1,6 +1,7 @@
 #include <iostream>
 
 #include "cli.hpp"
+#include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 
@@ -10,7 +11,7 @@ int cmd_inspect(const std::string& file, bool json, bool tables) {
   auto p = schema::read_patch_file(file);
   auto j = schema::to_json(p, tables);
   if (json) {
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
     return kExitOk;
   }
   std::cout << file << ": Sandpaper patch program, format version " << schema::kPatchFormatVersion << "\n";
@@ -26,7 +27,7 @@ int cmd_inspect(const std::string& file, bool json, bool tables) {
   if (p.energy_budget_J > 0 || p.energy_refill_W > 0)
     std::cout << "  energy bound " << p.energy_budget_J * 1e3 << " mJ, refill " << p.energy_refill_W * 1e3 << " mW\n";
   std::cout << "  terms\n";
-  for (const auto& t : j["terms"]) std::cout << "    " << t.dump() << "\n";
+  for (const auto& t : j["terms"]) std::cout << "    " << schema::json_text(t) << "\n";
   std::cout << "  provenance\n";
   for (const auto& pv : p.provenance)
     std::cout << "    " << pv.parameter << " = "

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 #include "sandpaper/curation/check.hpp"
 #include "sandpaper/curation/display.hpp"
@@ -179,13 +180,13 @@ int run_check(const Paths& p, const LibraryCommandOptions& o) {
   const auto r = cur::check_library(co, progress);
   const bool failed = r.errors() > 0 || (o.werror && r.warnings() > 0);
   if (o.json) {
-    std::cout << nlohmann::json{{"ok", !failed},
-                                {"entries", r.entries},
-                                {"devices", r.devices},
-                                {"errors", r.errors()},
-                                {"warnings", r.warnings()},
-                                {"diagnostics", diagnostics_json(r.diagnostics)}}
-                     .dump(2)
+    std::cout << schema::json_text(nlohmann::json{{"ok", !failed},
+                                                  {"entries", r.entries},
+                                                  {"devices", r.devices},
+                                                  {"errors", r.errors()},
+                                                  {"warnings", r.warnings()},
+                                                  {"diagnostics", diagnostics_json(r.diagnostics)}},
+                                   2)
               << "\n";
   } else {
     std::cerr << compiler::format_diagnostics(r.diagnostics);
@@ -222,7 +223,9 @@ int run_index(const Paths& p, const LibraryCommandOptions& o) {
                 << (r.in_place ? ", updated in place" : "") << ")\n";
   }
   // One root: its object, as before layering; several: every root's, front first.
-  if (o.json) std::cout << (p.layered() ? nlohmann::json{{"ok", true}, {"roots", roots}} : roots.front()).dump(2) << "\n";
+  if (o.json)
+    std::cout << schema::json_text(p.layered() ? nlohmann::json{{"ok", true}, {"roots", roots}} : roots.front(), 2)
+              << "\n";
   return kExitOk;
 }
 
@@ -243,7 +246,7 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
       j["matched_alias"] = h.matched_alias.empty() ? nlohmann::json(nullptr) : nlohmann::json(h.matched_alias);
       arr.push_back(j);
     }
-    std::cout << arr.dump(2) << "\n";
+    std::cout << schema::json_text(arr, 2) << "\n";
   } else {
     std::size_t wn = 0, wf = 0;
     for (const auto& h : hits)
@@ -291,7 +294,7 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
                                  {"layer", r.layer}, {"source", r.source}, {"source_notes", notes}});
     }
     j["compiled_on"] = idx.meta("device");
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
     return kExitOk;
   }
   std::cout << shown_name(e, p.layered());
@@ -365,7 +368,10 @@ int run_near(const Paths& p, const LibraryCommandOptions& o) {
       if (p.layered()) j["root"] = n.entry.root;
       arr.push_back(j);
     }
-    std::cout << nlohmann::json{{"from", from}, {"weber_fraction", std::stod(idx.meta("weber_fraction"))}, {"nearest", arr}}.dump(2)
+    std::cout << schema::json_text(
+                     nlohmann::json{
+                         {"from", from}, {"weber_fraction", std::stod(idx.meta("weber_fraction"))}, {"nearest", arr}},
+                     2)
               << "\n";
     return kExitOk;
   }

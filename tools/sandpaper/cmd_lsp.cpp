@@ -5,6 +5,7 @@
 #include "cli.hpp"
 #include "sandpaper/lsp/server.hpp"
 #include "sandpaper/schema/diagnostic_codes.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 namespace sandpaper::cli {
 
@@ -28,7 +29,7 @@ int cmd_diagnostics(bool markdown, bool json) {
                       {"severity", d.severity == DiagnosticSeverity::Error ? "error" : "warning"},
                       {"summary", d.summary},
                       {"doc", schema::diagnostic_doc_link(d)}});
-    std::cout << nlohmann::json{{"diagnostics", list}}.dump(2) << "\n";
+    std::cout << schema::json_text(nlohmann::json{{"diagnostics", list}}, 2) << "\n";
     return kExitOk;
   }
   for (const auto& d : schema::diagnostic_codes())

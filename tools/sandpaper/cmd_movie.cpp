@@ -6,6 +6,7 @@
 #include "cli.hpp"
 #include "sandpaper/compiler/movie.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -41,7 +42,9 @@ int cmd_movie_shuffle(const MovieShuffleOptions& m, bool json) {
   auto movie = compiler::read_movie(m.movie, diags);
   std::cerr << compiler::format_diagnostics(diags);
   if (!movie) {
-    if (json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(diags)}}.dump(2) << "\n";
+    if (json)
+      std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(diags)}}, 2)
+                << "\n";
     return kExitBadInput;
   }
   const fs::path out = m.output.empty() ? compiler::default_shuffle_path(m.movie, date, time) : fs::path(m.output);
@@ -50,9 +53,14 @@ int cmd_movie_shuffle(const MovieShuffleOptions& m, bool json) {
   if (json) {
     nlohmann::json frames = nlohmann::json::array();
     for (const auto& f : shuffle.frames) frames.push_back({{"original_index", f.original_index}, {"name", f.name}});
-    std::cout << nlohmann::json{{"ok", true},       {"movie", shuffle.movie}, {"date", date},     {"time", time},
-                                {"seed", m.seed},   {"frames", frames},       {"output", out.string()}}
-                     .dump(2)
+    std::cout << schema::json_text(nlohmann::json{{"ok", true},
+                                                  {"movie", shuffle.movie},
+                                                  {"date", date},
+                                                  {"time", time},
+                                                  {"seed", m.seed},
+                                                  {"frames", frames},
+                                                  {"output", out.string()}},
+                                   2)
               << "\n";
   } else {
     std::cout << fmt::format("shuffled {} ({} frames) with seed {} -> {}\n", m.movie, shuffle.frames.size(), m.seed, out.string());
@@ -80,16 +88,22 @@ int cmd_movie_show(const std::string& file, bool json) {
     }
     std::cerr << compiler::format_diagnostics(diags);
     if (!shuffle || diags.has_errors()) {
-      if (json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(diags)}}.dump(2) << "\n";
+      if (json)
+        std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(diags)}}, 2)
+                  << "\n";
       return kExitBadInput;
     }
     if (json) {
       nlohmann::json frames = nlohmann::json::array();
       for (const auto& fr : shuffle->frames) frames.push_back({{"original_index", fr.original_index}, {"name", fr.name}});
-      std::cout << nlohmann::json{{"ok", true},         {"kind", "shuffle"},  {"movie", shuffle->movie},
-                                  {"date", shuffle->date}, {"time", shuffle->time}, {"frames", frames},
-                                  {"checked_against_movie", movie.has_value()}}
-                       .dump(2)
+      std::cout << schema::json_text(nlohmann::json{{"ok", true},
+                                                    {"kind", "shuffle"},
+                                                    {"movie", shuffle->movie},
+                                                    {"date", shuffle->date},
+                                                    {"time", shuffle->time},
+                                                    {"frames", frames},
+                                                    {"checked_against_movie", movie.has_value()}},
+                                     2)
                 << "\n";
       return kExitOk;
     }
@@ -103,11 +117,14 @@ int cmd_movie_show(const std::string& file, bool json) {
   auto movie = compiler::read_movie(file, diags);
   std::cerr << compiler::format_diagnostics(diags);
   if (!movie) {
-    if (json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(diags)}}.dump(2) << "\n";
+    if (json)
+      std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(diags)}}, 2)
+                << "\n";
     return kExitBadInput;
   }
   if (json) {
-    std::cout << nlohmann::json{{"ok", true}, {"kind", "movie"}, {"frames", movie->frames}}.dump(2) << "\n";
+    std::cout << schema::json_text(nlohmann::json{{"ok", true}, {"kind", "movie"}, {"frames", movie->frames}}, 2)
+              << "\n";
     return kExitOk;
   }
   std::cout << fmt::format("{}: movie, {} frame{} (at most {})\n", file, movie->frames.size(),

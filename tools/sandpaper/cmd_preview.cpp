@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "sandpaper/catalog/preview.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 namespace sandpaper::cli {
 
@@ -33,7 +34,7 @@ int cmd_preview(const CommonOptions& o, const std::string& out_dir, int side) {
   if (o.json) {
     auto j = files.summary;
     j["folder"] = out_dir;
-    std::cout << j.dump(2) << "\n";
+    std::cout << schema::json_text(j, 2) << "\n";
     return kExitOk;
   }
   const auto& s = files.summary;

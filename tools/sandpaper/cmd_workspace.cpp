@@ -14,6 +14,7 @@
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/runtime/workspace_evaluator.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/workspace_io.hpp"
 #include "sandpaper/schema/workspace_json.hpp"
 
@@ -26,7 +27,9 @@ std::optional<schema::WorkspaceProgram> load_workspace(const CommonOptions& o, c
   std::cerr << compiler::format_diagnostics(r.diagnostics);
   diags = r.diagnostics;
   if (!r.ok()) {
-    if (o.json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}.dump(2) << "\n";
+    if (o.json)
+      std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}, 2)
+                << "\n";
     return std::nullopt;
   }
   return std::move(*r.program);
@@ -49,7 +52,7 @@ int cmd_workspace_compile(const CommonOptions& o, const std::string& output, boo
   if (wsp)
     schema::write_workspace_program_file(out_path, *ws, {o.compact});
   else if (!explain)
-    schema::write_file_atomically(out_path, j.dump(2) + "\n");
+    schema::write_file_atomically(out_path, schema::json_text(j, 2) + "\n");
 
   const auto& jnd = c.calibration().knowledge().force_jnd;
   const auto order = compiler::roughness_order(*ws, jnd);
@@ -70,7 +73,7 @@ int cmd_workspace_compile(const CommonOptions& o, const std::string& output, boo
       out["roughness_order"] = steps;
       out["force_jnd"] = {{"weber_fraction", jnd.weber_fraction}, {"source", compiler::jnd_source(jnd)}, {"file", jnd.file}};
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << schema::json_text(out, 2) << "\n";
     return kExitOk;
   }
   std::cout << fmt::format("workspace \"{}\": {:g} mm x {:g} mm, {} patch{} for device {}", ws->name, ws->size_m[0] * 1e3,

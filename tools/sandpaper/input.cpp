@@ -7,6 +7,7 @@
 #include "play_patch.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/gltf_import.hpp"
+#include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
 namespace sandpaper::cli {
@@ -39,13 +40,17 @@ std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Co
       return in;
     }
     if (g.ok()) std::cerr << "sandpaper: " << o.file << " holds a workspace: `sandpaper compile " << o.file << " -o ws.wsp`, then run ws.wsp\n";
-    if (o.json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(g.diagnostics)}}.dump(2) << "\n";
+    if (o.json)
+      std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(g.diagnostics)}}, 2)
+                << "\n";
     return std::nullopt;
   }
   auto r = o.expression.empty() ? c.compile_file(o.file) : c.compile_text(o.expression);
   std::cerr << compiler::format_diagnostics(r.diagnostics);
   if (!r.ok()) {
-    if (o.json) std::cout << nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}.dump(2) << "\n";
+    if (o.json)
+      std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}, 2)
+                << "\n";
     return std::nullopt;
   }
   in.program = *r.program;

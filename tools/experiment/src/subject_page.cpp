@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/studio/request_guard.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 namespace sandpaper::experiment {
 namespace {
@@ -33,7 +34,7 @@ class PageObserverImpl final : public Observer {
       const std::string why = studio::refusal(req.get_header_value("Host"), req.get_header_value("Origin"), listen_);
       if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
       res.status = 403;
-      res.set_content(json{{"error", why}}.dump(), "application/json");
+      res.set_content(schema::json_text(json{{"error", why}}), "application/json");
       return httplib::Server::HandlerResponse::Handled;
     });
     for (const auto& a : page_assets()) {
@@ -54,7 +55,7 @@ class PageObserverImpl final : public Observer {
       delivered_seq_ = std::max(delivered_seq_, screen_seq_);
       delivered_.notify_all();
       res.set_header("Cache-Control", "no-store");
-      res.set_content(j.dump(), "application/json");
+      res.set_content(schema::json_text(j), "application/json");
     });
     http_.Post("/api/answer", [this](const httplib::Request& req, httplib::Response& res) {
       json body;
@@ -71,7 +72,7 @@ class PageObserverImpl final : public Observer {
       answer_ = body;
       waiting_ = false;
       answered_.notify_all();
-      res.set_content(json{{"ok", true}}.dump(), "application/json");
+      res.set_content(schema::json_text(json{{"ok", true}}), "application/json");
     });
     int port = listen_.port;
     if (port == 0) port = http_.bind_to_any_port(listen_.host);
@@ -128,7 +129,7 @@ class PageObserverImpl final : public Observer {
  private:
   static void refuse(httplib::Response& res, const std::string& why) {
     res.status = 400;
-    res.set_content(json{{"error", why}}.dump(), "application/json");
+    res.set_content(schema::json_text(json{{"error", why}}), "application/json");
   }
 
   // What makes an answer acceptable for the screen it answers; "" when it is. Called with mutex_ held.

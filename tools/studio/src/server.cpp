@@ -1,4 +1,5 @@
 #include "sandpaper/studio/server.hpp"
+#include "sandpaper/schema/json_text.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -20,7 +21,7 @@ constexpr auto kEventPeriod = std::chrono::milliseconds(33);
 
 void send_json(httplib::Response& res, const nlohmann::json& j, int status = 200) {
   res.status = status;
-  res.set_content(j.dump(), "application/json");
+  res.set_content(schema::json_text(j), "application/json");
 }
 
 void send_error(httplib::Response& res, int status, const std::string& message) {
@@ -165,7 +166,8 @@ struct Server::Impl {
       res.set_chunked_content_provider("text/event-stream", [this](std::size_t, httplib::DataSink& sink) {
         std::this_thread::sleep_for(kEventPeriod);
         if (stopping.load()) return false;
-        const std::string event = "data: " + state_json(loop.state_nonrt(), loop.has_dummy_hand()).dump() + "\n\n";
+        const std::string event =
+            "data: " + schema::json_text(state_json(loop.state_nonrt(), loop.has_dummy_hand())) + "\n\n";
         return sink.write(event.data(), event.size());
       });
     });

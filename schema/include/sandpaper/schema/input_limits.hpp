@@ -60,4 +60,9 @@ std::string read_input_file(const std::filesystem::path& path, std::size_t max_b
 // otherwise false and `bad_offset` is the byte offset of the first byte that is not.
 bool is_valid_utf8(std::string_view text, std::size_t& bad_offset) noexcept;
 
+// `text` with each byte that does not begin a whole UTF-8 character replaced by U+FFFD: for text
+// Sandpaper writes into a file a UTF-8 reader must load (a file name in another encoding inside a
+// fitted map's comments, docs/RELIABILITY.md F26).
+std::string replace_invalid_utf8(std::string_view text);
+
 }  // namespace sandpaper::schema
