@@ -66,6 +66,10 @@ AxisFit fit_axis(const std::string& file, char axis, const std::vector<ForceRead
     y.push_back(p.force_N);
   }
   a.regression = least_squares({"command"}, {x}, y, Constant::Fitted);
+  for (const auto& k : a.regression.coefficients)
+    if (!std::isfinite(k.value) || !std::isfinite(k.se))
+      throw FitError(file, 0, fmt::format("{} gives no finite fit ({} is {:g}, s.e. {:g})", axis_label(axis), k.name,
+                                          k.value, k.se));
   const auto& g = a.regression.coefficient("command");
   const auto& c = a.regression.coefficient("constant");
   a.gain_N_per_unit = g.value;

@@ -124,6 +124,22 @@ MagnitudeEstimationFit fit_magnitude_estimation(const MagnitudeEstimationData& d
                                  "remove the subject or fill in their estimates",
                                  f.subjects[j].subject, f.subjects[j].trials));
 
+  // A free modulus is known only from two or more stimuli: a subject who answered one has their one
+  // estimate divided by itself, and with every subject so the means were all equal and the fit
+  // rounding noise (F28).
+  if (normalisation == Normalisation::GeometricMean) {
+    std::vector<std::set<std::string>> answered_stimuli(f.subjects.size());
+    for (const auto& tr : data.trials)
+      if (tr.response) answered_stimuli[subj_index.at(tr.subject)].insert(tr.stimulus);
+    for (std::size_t j = 0; j < f.subjects.size(); ++j)
+      if (answered_stimuli[j].size() < 2)
+        throw FitError(file, subj_first_line[j],
+                       fmt::format("subject `{}` answered one stimulus only (`{}`): their estimates are divided by "
+                                   "their own geometric mean, so one stimulus says nothing; remove the subject or give "
+                                   "them two or more stimuli",
+                                   f.subjects[j].subject, *answered_stimuli[j].begin()));
+  }
+
   // Geometric-mean normalisation: log r' = log r - log GM_subject + log GM_grand, where GM_grand is
   // the geometric mean of the subjects' geometric means (each subject weighs the same).
   std::vector<double> offset(f.subjects.size(), 0.0);

@@ -2,6 +2,7 @@
 // are correlated, and the rank it reports tells collinear predictors apart from a fit.
 #include "sandpaper/calibration/regression.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -77,8 +78,10 @@ RegressionResult least_squares(const std::vector<std::string>& names, const std:
   r.df_residual = static_cast<int>(n - k);
   r.ss_residual = resid.squaredNorm();
   r.ss_total = with_constant ? (Y.array() - Y.mean()).matrix().squaredNorm() : Y.squaredNorm();
-  r.ss_regression = r.ss_total - r.ss_residual;
-  r.r_squared = r.ss_total > 0 ? r.ss_regression / r.ss_total : 0.0;
+  // Summed directly rather than as total - residual: the difference of two nearly equal sums came
+  // out negative when the regression explains nothing, and so did the F ratio (fuzz finding F28).
+  r.ss_regression = with_constant ? (fitted.array() - Y.mean()).matrix().squaredNorm() : fitted.squaredNorm();
+  r.r_squared = r.ss_total > 0 ? std::clamp(r.ss_regression / r.ss_total, 0.0, 1.0) : 0.0;
   const double df_total = static_cast<double>(with_constant ? n - 1 : n);
   r.r_squared_adjusted = r.ss_total > 0 ? 1.0 - (r.ss_residual / r.df_residual) / (r.ss_total / df_total) : 0.0;
   const double s2 = r.ss_residual / r.df_residual;

@@ -168,3 +168,28 @@ TEST(Refusal, DeviceMissingColumn) {
   const auto e = device_refusal("command,newtons\n0,0\n");
   EXPECT_NE(e.message.find("missing column `force_N`"), std::string::npos) << e.what();
 }
+
+// A gauge reading of 7.5e300 N was taken: the fit's sums of squares overflowed and `calibrate device`
+// printed a gain of 1.4e296 N per unit with s.e. inf and R^2 nan, exit 0 (docs/RELIABILITY.md, F27).
+TEST(Refusal, DeviceReadingPast1e12) {
+  const auto e = device_refusal("command,force_N\n0,0.02\n1000,0.86\n2000,7.541e300\n3000,2.59\n");
+  EXPECT_EQ(e.line, 4);
+  EXPECT_NE(e.message.find("`force_N` is `7.541e300`: a number here is at most 1e12 in magnitude"), std::string::npos)
+      << e.what();
+  EXPECT_NE(device_refusal("command,force_N\n0,0\n-2e12,0.9\n2000,1.7\n").message.find("`command` is `-2e12`"),
+            std::string::npos);
+}
+
+// Three subjects, one trial each: each estimate divided by its subject's geometric mean (itself)
+// left every mean estimate equal, and the fit was rounding noise (R^2 -300 %, F -0.75) written into
+// a map the map loader refuses (docs/RELIABILITY.md, F28). A subject who answered fewer than two
+// stimuli is refused when estimates are normalised.
+TEST(Refusal, SubjectWhoAnsweredOneStimulusOnly) {
+  const auto e = refusal(kHeader + "S00,a9p19,0.673984,0.9,3.06\nS0,a4p,1,2.5,0.602\nS01,a10p9,0.327364,0.9,1.80\n");
+  EXPECT_EQ(e.line, 2);
+  EXPECT_NE(e.message.find("subject `S00` answered one stimulus only (`a9p19`)"), std::string::npos) << e.what();
+  // The same trials without normalisation are raw estimates, and fit.
+  EXPECT_NO_THROW((void)fit_magnitude_estimation(
+      parse_magnitude_estimation_csv(kHeader + "S00,a9p19,0.673984,0.9,3.06\nS0,a4p,1,2.5,0.602\nS01,a10p9,0.327364,0.9,1.80\n", "r.csv"),
+      Normalisation::None));
+}

@@ -86,8 +86,9 @@ struct MagnitudeEstimationFit {
 };
 
 // Fits the map. Throws FitError saying what is missing: fewer than 3 distinct stimuli, one force
-// level, a stimulus given two forces or periods, a subject with no answered trial, a stimulus no
-// one answered, mean estimates exactly on a line (no residual to estimate errors from).
+// level, a stimulus given two forces or periods, a subject with no answered trial (or, normalised,
+// answers to fewer than 2 stimuli), a stimulus no one answered, mean estimates exactly on a line
+// (no residual to estimate errors from).
 MagnitudeEstimationFit fit_magnitude_estimation(const MagnitudeEstimationData& data,
                                                 Normalisation normalisation = Normalisation::GeometricMean);
 
