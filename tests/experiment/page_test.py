@@ -194,6 +194,15 @@ def main():
         # Sorting: drag for the first sort, tap patch then pile for the second.
         s, ok = begin(b, sp, tmp, "sort", SORT)
         ok = ok and screen(b, "sort")
+        # The server checks what it is sent: 4294967297 was taken as pile 1 (read as a 32-bit int).
+        seq = b.evaluate("+document.body.dataset.seq")
+        r = urllib.request.Request(s.url + "api/answer", headers={"Content-Type": "application/json"}, method="POST",
+                                   data=json.dumps({"seq": seq, "assignment": [4294967297, 2, 1, 2, 2]}).encode())
+        try:
+            urllib.request.urlopen(r, timeout=10)
+            c.check(False, "an assignment to pile 4294967297 was accepted")
+        except urllib.error.HTTPError as e:
+            c.check(e.code == 400, f"an assignment to pile 4294967297 is refused (HTTP {e.code})")
         plan1 = {1: 1, 2: 2, 3: 1, 4: 2, 5: 2}
         for patch, pile in plan1.items():
             drag(b, f"#patch-{patch}", f"#pile-{pile}")

@@ -147,8 +147,10 @@ class PageObserverImpl final : public Observer {
         return "give every patch a pile";
       std::vector<bool> used(static_cast<std::size_t>(k), false);
       for (const auto& v : a["assignment"]) {
-        if (!v.is_number_integer() || v.get<int>() < 1 || v.get<int>() > k) return "piles are numbered 1 to " + std::to_string(k);
-        used[static_cast<std::size_t>(v.get<int>() - 1)] = true;
+        // Read as 64 bits: as an int, 4294967297 was pile 1 (a value past 2^63 reads negative, refused).
+        if (!v.is_number_integer() || v.get<std::int64_t>() < 1 || v.get<std::int64_t>() > k)
+          return "piles are numbered 1 to " + std::to_string(k);
+        used[static_cast<std::size_t>(v.get<std::int64_t>() - 1)] = true;
       }
       for (bool u : used)
         if (!u) return "use every pile";
