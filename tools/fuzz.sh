@@ -44,7 +44,7 @@ bin=$build/bin/${target}_fuzz
 # below): a cut SQLite file or TOML table only tests the reader's first page.
 case $target in
   patch|workspace_program|array|gltf|catalog_record) max_len=65536 ;;
-  experiment_results|lsp_message|calibration|image) max_len=16384 ;;
+  experiment_results|lsp_message|calibration|calibration_set|image) max_len=16384 ;;
   *) max_len=4096 ;;
 esac
 for seed in "$root/fuzz/corpus/$target"/*; do
@@ -56,13 +56,15 @@ case $target in
   material) dict=material ;;
   workspace) dict=workspace ;;
   patch|workspace_program) dict='patch' ;;
-  calibration|experiment_design) dict=toml ;;
+  calibration|calibration_set|experiment_design) dict=toml ;;
   movie|shuffle) dict=movie ;;
   trace_csv) dict=trace_csv ;;
   studio_request) dict=studio_request ;;
   experiment_results) dict=experiment_results ;;
   lsp_message) dict=lsp_message ;;
   image) dict=image ;;
+  hid_descriptor) dict=hid_descriptor ;;
+  calibration_csv) dict=calibration_csv ;;
   *) dict= ;;
 esac
 

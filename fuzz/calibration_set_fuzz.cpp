@@ -1,0 +1,114 @@
+// A calibration folder as a whole (calibration/: maps, levels, devices, knowledge), as a lab shares
+// one: the input's first byte picks one of the shipped files, the rest replaces it in a scratch copy
+// of the folder, and a compiler is built on that folder (CalibrationSet::load checks every file and
+// how they refer to each other). If it loads, a few descriptions that reach every kind of file
+// (a roughness number and a level through the compile map, a library entry, the other percepts'
+// maps) are compiled for the device the file belongs to, or "sim", and every program is checked as
+// the material target checks one: it reads back and plays within the clamp (fuzz_compile.hpp).
+// Expected rejections: CalibrationError (the folder), std::invalid_argument (a device file whose
+// name no longer matches). Nothing else is caught. The file is put back after each input.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "fuzz_compile.hpp"
+#include "fuzz_support.hpp"
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/compiler/compile_json.hpp"
+#include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/compiler/library.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace sandpaper;
+
+struct ShippedFile {
+  fs::path relative;  // "devices/sim.toml"
+  std::string text;
+};
+
+std::string read_all(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// The scratch copy of the shipped folder, and its files in a fixed order (what the first byte picks).
+const fs::path& folder() {
+  static const fs::path dir = [] {
+    const auto d = fuzz::scratch_dir() / "calibration";
+    fs::create_directories(d);
+    for (const char* sub : {"maps", "levels", "devices", "knowledge"})
+      fs::copy(fuzz::source_dir() / "calibration" / sub, d / sub,
+               fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+    return d;
+  }();
+  return dir;
+}
+
+const std::vector<ShippedFile>& files() {
+  static const std::vector<ShippedFile> all = [] {
+    std::vector<ShippedFile> out;
+    for (const char* sub : {"maps", "levels", "devices", "knowledge"}) {
+      std::vector<fs::path> names;
+      for (const auto& e : fs::directory_iterator(folder() / sub))
+        if (e.path().extension() == ".toml") names.push_back(e.path());
+      std::sort(names.begin(), names.end());
+      for (const auto& p : names) out.push_back({fs::relative(p, folder()), read_all(p)});
+    }
+    return out;
+  }();
+  return all;
+}
+
+std::shared_ptr<const compiler::Library> library() {
+  static const auto lib = std::make_shared<const compiler::Library>(fuzz::source_dir() / "library");
+  return lib;
+}
+
+void compile_with(const std::string& device, std::uint32_t variant) {
+  compiler::CompileOptions o;
+  o.device = device;
+  o.calibration_dir = folder();
+  std::optional<compiler::Compiler> c;
+  try {
+    c.emplace(o, library());
+  } catch (const calibration::CalibrationError&) {
+    return;
+  } catch (const std::invalid_argument&) {
+    return;  // no device of that name (a device file renamed inside)
+  }
+  for (const char* text : {"roughness 0.6; grating period 2.5 mm; softness 0.4", "roughness coarse", "like corduroy",
+                           "softness 0.5; viscosity 0.5; slipperiness 0.5"}) {
+    const auto result = c->compile_text(text, "<fuzz>");
+    (void)compiler::format_diagnostics(result.diagnostics);
+    fuzz::dump_json(compiler::compile_json(result, std::nullopt));
+    fuzz::check(!result.program || !result.diagnostics.has_errors(), "a compile with errors produced a program");
+    if (result.ok()) fuzz::check_compiled_program(*result.program, variant);
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size < 1) return 0;
+  const auto& all = files();
+  const ShippedFile& target = all[data[0] % all.size()];
+  const auto path = folder() / target.relative;
+  fuzz::write_file(path, std::string_view(reinterpret_cast<const char*>(data) + 1, size - 1));
+  // The device whose file this is, by its file name (the name inside must agree, or it is unknown).
+  const std::string device = target.relative.parent_path() == "devices" ? target.relative.stem().string() : "sim";
+  compile_with(device, static_cast<std::uint32_t>(size));
+  fuzz::write_file(path, target.text);
+  return 0;
+}
