@@ -192,6 +192,18 @@ void Library::scan(std::size_t root, const std::vector<std::string>* only_files)
     e.file = p;
     e.root = root;
     e.relative_path = std::filesystem::relative(p, dir).generic_string();
+    // An entry is named by its file's stem and reached by `like NAME` in material text, which is
+    // UTF-8 (E0104): a path that is not UTF-8 names an entry nothing can reach, and every JSON and
+    // page the library is written into stopped at it (F30). It is reported and not read.
+    if (std::size_t bad = 0; !schema::is_valid_utf8(e.relative_path, bad)) {
+      SourceLocation at;
+      at.file = std::make_shared<const SourceFile>(schema::replace_invalid_utf8(source_name(e)), "");
+      scan_diags_.error("E0614", at,
+                        "the file's path is not UTF-8 (byte " + std::to_string(bad + 1) +
+                            "), so no `like` can name the entry; it is not read",
+                        "rename the file (and its folder) in UTF-8, as its `material \"...\"` name is written");
+      continue;
+    }
     auto file = std::make_shared<const SourceFile>(source_name(e), read_text(p));
     Diagnostics d;
     auto toks = lex(file, d);

@@ -63,6 +63,14 @@ cp "$src/examples/calibration/roughness-responses.csv" "$tmp/r"$'\xe9'"sum"$'\xe
 "$sp" calibrate fit "$tmp/r"$'\xe9'"sum"$'\xe9'".csv" -o "$tmp/fitted-x.toml" --json >"$tmp/out" 2>"$tmp/err"; check "calibrate fit from a Latin-1 file name" 0 $?
 python3 -c 'import sys,tomllib; tomllib.load(open(sys.argv[1],"rb"))' "$tmp/fitted-x.toml" 2>"$tmp/err" && ok "writes a map that is TOML (UTF-8)" || { bad "the map is not valid TOML:"; cat "$tmp/err"; }
 
+# A library entry named in Latin-1: `library catalog` stopped with the raw type_error 316, exit 2
+# (F30). The entry is reported (E0614) and the build refused like any broken entry, exit 1.
+cp -r "$src/tests/compiler/data/library-small" "$tmp/latin1-lib"
+cp "$tmp/latin1-lib/cloth/rib.hmat" "$tmp/latin1-lib/cloth/caf"$'\xe9'".hmat"
+"$sp" library catalog --library "$tmp/latin1-lib" -o "$tmp/latin1-catalog" --quiet >"$tmp/out" 2>"$tmp/err"; check "library catalog: a Latin-1 entry file is exit 1" 1 $?
+has "with E0614 naming it" "$tmp/err" "error\[E0614\]: the file's path is not UTF-8"
+if grep -q "json.exception" "$tmp/err"; then bad "a raw nlohmann exception reached the user"; else ok "no raw library exception"; fi
+
 # A material file that is a device or a FIFO is refused at once (it used to hang).
 mkfifo "$tmp/fifo.hmat"
 timeout 20 "$sp" compile "$tmp/fifo.hmat" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "a FIFO is exit 1, without blocking" 1 $?

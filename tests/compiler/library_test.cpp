@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 
 #include "sandpaper/compiler/lexer.hpp"
@@ -155,4 +156,20 @@ TEST(Library, LikeCyclesThroughAliasesAreFound) {
   std::string all = compiler::format_diagnostics(r.diagnostics);
   // Found on entry names, though written with aliases.
   EXPECT_NE(all.find("library entry 'a' (as 'first') is built on itself"), std::string::npos) << all;
+}
+
+// An entry file named in Latin-1 (`caf\xe9.hmat`): its name can never be written in a `like` (material
+// text is UTF-8), and `library catalog` stopped at it with nlohmann's raw type_error 316, exit 2
+// (docs/RELIABILITY.md, F30). It is reported (E0614, the path shown with U+FFFD) and not read.
+TEST(Library, AnEntryWhosePathIsNotUtf8IsReportedAndNotRead) {
+  const std::filesystem::path dir = test::temp_dir("library-latin1");
+  std::filesystem::copy(kSmall, dir, std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(dir / "cloth" / "rib.hmat", dir / "cloth" / "caf\xe9.hmat");
+  const compiler::Library lib(dir);
+  EXPECT_EQ(lib.names(), (std::vector<std::string>{"fine-rib", "old-rib", "ref", "rib"}));
+  ASSERT_EQ(diag_codes(lib.scan_diagnostics()), std::vector<std::string>{"E0614"});
+  const auto& d = lib.scan_diagnostics().all().front();
+  EXPECT_EQ(d.location.file->name, "library/cloth/caf\xef\xbf\xbd.hmat");
+  EXPECT_NE(d.message.find("not UTF-8 (byte 10)"), std::string::npos) << d.message;
+  std::filesystem::remove_all(dir);
 }

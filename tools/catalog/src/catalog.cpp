@@ -189,6 +189,17 @@ CatalogReport write_catalog_pass(const CatalogSource& source, const CatalogOptio
 }  // namespace
 
 CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOptions& options) {
+  // An entry file the library could not read (a path that is not UTF-8, E0614) is not among its
+  // entries: the catalog would leave it out unsaid. It fails the run as an entry that does not
+  // compile does, and nothing is written.
+  CatalogReport unread;
+  for (const auto& d : compiler.library().scan_diagnostics().all())
+    if (d.code == "E0614") {
+      compiler::Diagnostics one;
+      one.error(d.code, d.location, d.message, d.suggestion);
+      unread.failures.push_back({d.location.file ? d.location.file->name : std::string("?"), compiler::format_diagnostics(one)});
+    }
+  if (!unread.failures.empty()) return unread;
   CatalogSource source;
   source.manifest = compiler.library().manifest();
   const auto hashes = curation::entry_input_hashes(compiler, compiler.options().calibration_dir);
