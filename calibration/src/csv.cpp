@@ -143,10 +143,10 @@ double number_field(const CsvTable& t, const CsvRow& row, std::size_t column) {
     throw FitError(t.path, row.line, "`" + t.columns[column] + "` is `" + std::string(s) + "`, not a number");
   if (!std::isfinite(v))
     throw FitError(t.path, row.line, "`" + t.columns[column] + "` is `" + std::string(s) + "`, not a finite number");
-  if (std::abs(v) > schema::limits::kMaxMeasurement)
+  if (std::abs(v) > schema::limits::kMaxMeasurement || (v != 0 && std::abs(v) < schema::limits::kMinMeasurement))
     throw FitError(t.path, row.line, "`" + t.columns[column] + "` is `" + std::string(s) +
-                                         "`: a number here is at most 1e12 in magnitude (a force in N, a command, a period "
-                                         "in mm, an estimate)");
+                                         "`: a number here is 0, or 1e-12 to 1e12 in magnitude (a force in N, a command, "
+                                         "a period in mm, an estimate)");
   return v;
 }
 

@@ -1,6 +1,7 @@
 // Writes a fitted map in the format of docs/CALIBRATION.md (schema/files/map.schema.json).
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include <fmt/format.h>
@@ -21,7 +22,7 @@ std::string bound_text(double value, const char* unit, bool upper) {
   double v = value;
   for (int i = 0; i < 4; ++i) {
     const std::string s = fmt::format("{:.6g}", v);
-    const double back = std::stod(s);
+    const double back = std::strtod(s.c_str(), nullptr);  // stod throws on a subnormal (F31)
     if (upper ? back >= value : back <= value) return s + " " + unit;
     v = upper ? v * (1 + 1e-6) : v * (1 - 1e-6);
   }

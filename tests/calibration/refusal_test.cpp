@@ -174,7 +174,7 @@ TEST(Refusal, DeviceMissingColumn) {
 TEST(Refusal, DeviceReadingPast1e12) {
   const auto e = device_refusal("command,force_N\n0,0.02\n1000,0.86\n2000,7.541e300\n3000,2.59\n");
   EXPECT_EQ(e.line, 4);
-  EXPECT_NE(e.message.find("`force_N` is `7.541e300`: a number here is at most 1e12 in magnitude"), std::string::npos)
+  EXPECT_NE(e.message.find("`force_N` is `7.541e300`: a number here is 0, or 1e-12 to 1e12 in magnitude"), std::string::npos)
       << e.what();
   EXPECT_NE(device_refusal("command,force_N\n0,0\n-2e12,0.9\n2000,1.7\n").message.find("`command` is `-2e12`"),
             std::string::npos);
@@ -193,3 +193,16 @@ TEST(Refusal, SubjectWhoAnsweredOneStimulusOnly) {
       parse_magnitude_estimation_csv(kHeader + "S00,a9p19,0.673984,0.9,3.06\nS0,a4p,1,2.5,0.602\nS01,a10p9,0.327364,0.9,1.80\n", "r.csv"),
       Normalisation::None));
 }
+
+// A force of 1.7e-310 N (subnormal): `calibrate fit -o` wrote the map's domain through std::stod,
+// which throws on a subnormal: exit 3, "internal error: stod" (docs/RELIABILITY.md, F31). A number
+// in these files is 0, or 1e-12 to 1e12 in magnitude, as a quantity in the language.
+TEST(Refusal, ForceBelow1eMinus12) {
+  const auto e = refusal(kHeader + "A,s1,1.73311e-310,1,2\nA,s2,0.8,2,5\nA,s3,3.2,5,9\n");
+  EXPECT_EQ(e.line, 2);
+  EXPECT_NE(e.message.find("`force_N` is `1.73311e-310`: a number here is 0, or 1e-12 to 1e12"), std::string::npos)
+      << e.what();
+  EXPECT_NO_THROW((void)fit_magnitude_estimation(parse_magnitude_estimation_csv(
+      kHeader + "A,s1,1e-12,1,2\nA,s2,0.8,2,5\nA,s3,3.2,5,9\nB,s1,1e-12,1,20\nB,s2,0.8,2,45\nB,s3,3.2,5,110\n", "r.csv")));
+}
+

@@ -37,8 +37,8 @@ CsvTable read_csv(const std::filesystem::path& path);
 // full list required.
 void require_columns(const CsvTable& t, const std::vector<std::string>& required);
 
-// The field as a finite number of at most 1e12 in magnitude (std::from_chars, '.' decimal point,
-// optional leading '+'). Throws FitError at the row's line naming the column and the text.
+// The field as a finite number, 0 or 1e-12 to 1e12 in magnitude (std::from_chars, '.' decimal
+// point, optional leading '+'). Throws FitError at the row's line naming the column and the text.
 double number_field(const CsvTable& t, const CsvRow& row, std::size_t column);
 
 }  // namespace sandpaper::calibration

@@ -32,9 +32,11 @@ inline constexpr std::size_t kMaxWorkspacePatches = 65536;
 // refuses what it could not read back (fuzz finding F9: a patch 42e-30 mm wide).
 inline constexpr double kMinPlausibleLength_m = 1e-12;
 inline constexpr double kMaxPlausibleLength_m = 1e12;
-// A number in a calibration CSV (a force, a command, a period, a magnitude estimate): at most this
-// in magnitude, as a quantity in the language. Past it a gauge fit's sums of squares overflow
-// (fuzz finding F27: a force of 7.5e300 N gave a gain of 1.4e296 N per unit, s.e. inf, exit 0).
+// A number in a calibration CSV (a force, a command, a period, a magnitude estimate): 0, or within
+// these in magnitude, as a quantity in the language. Past the top a gauge fit's sums of squares
+// overflow (fuzz finding F27: a force of 7.5e300 N gave a gain of 1.4e296 N per unit, s.e. inf,
+// exit 0); below the bottom a fitted map's bounds did not read back (F31: 1.7e-310 N, exit 3).
+inline constexpr double kMinMeasurement = 1e-12;
 inline constexpr double kMaxMeasurement = 1e12;
 // A run: at most a day (`--duration`, s). A run that records every tick (the virtual clock, the
 // simulated joystick, `--trace`) at most 2^21 ticks, about 35 min at 1 kHz: each tick's record
