@@ -65,6 +65,11 @@ AxisFit fit_axis(const std::string& file, char axis, const std::vector<ForceRead
     x.push_back(p.command);
     y.push_back(p.force_N);
   }
+  if (varies_too_little(y))
+    throw FitError(file, pts.front().line,
+                   fmt::format("{} reads the same force ({:g} N) at every command: the gain needs a force that changes "
+                               "with the command (is the gauge attached?)",
+                               axis_label(axis), y.front()));
   a.regression = least_squares({"command"}, {x}, y, Constant::Fitted);
   for (const auto& k : a.regression.coefficients)
     if (!std::isfinite(k.value) || !std::isfinite(k.se))

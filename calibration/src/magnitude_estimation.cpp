@@ -198,6 +198,13 @@ MagnitudeEstimationFit fit_magnitude_estimation(const MagnitudeEstimationData& d
     log_period[i] = std::log10(s.period_m * 1e3);
     log_mean_r[i] = lm;
   }
+  // Means that do not vary leave a slope of rounding noise, which a map cannot hold (the loader
+  // refuses a zero slope): every estimate the same, or normalised to the same (F32).
+  if (varies_too_little(log_mean_r))
+    throw FitError(file, 0,
+                   fmt::format("every stimulus has the same mean estimate ({:.6g}): there is nothing for force to "
+                               "explain; check the response column",
+                               std::pow(10.0, log_mean_r.front())));
   f.force = least_squares({"log force"}, {log_force}, log_mean_r, Constant::Fitted);
   if (!(f.force.ss_residual > 1e-20 * f.force.ss_total))
     throw FitError(file, 0,

@@ -104,4 +104,16 @@ RegressionResult least_squares(const std::vector<std::string>& names, const std:
   return r;
 }
 
+bool varies_too_little(const std::vector<double>& y) {
+  if (y.empty()) return true;
+  double mean = 0, squares = 0;
+  for (double v : y) mean += v / static_cast<double>(y.size());
+  double about_mean = 0;
+  for (double v : y) {
+    about_mean += (v - mean) * (v - mean);
+    squares += v * v;
+  }
+  return about_mean <= 1e-20 * squares;
+}
+
 }  // namespace sandpaper::calibration

@@ -206,3 +206,14 @@ TEST(Refusal, ForceBelow1eMinus12) {
       kHeader + "A,s1,1e-12,1,2\nA,s2,0.8,2,5\nA,s3,3.2,5,9\nB,s1,1e-12,1,20\nB,s2,0.8,2,45\nB,s3,3.2,5,110\n", "r.csv")));
 }
 
+// One subject giving 2.5 to every stimulus: the mean estimates were all equal, the fit a slope of
+// exactly 0 with a residual of rounding noise, and `calibrate fit -o` wrote it as a map the loader
+// refuses ("a compile map's slope must not be zero"; docs/RELIABILITY.md, F32). So for a gauge
+// reading one force at every command.
+TEST(Refusal, MeanEstimatesThatDoNotVary) {
+  const auto e = refusal(kHeader + "A,s1,0.2,1,2.5\nA,s2,0.8,2,2.5\nA,s3,3.2,5,2.5\nA,s4,1.6,3,2.5\nA,s2,0.8,2,2.5\n");
+  EXPECT_NE(e.message.find("every stimulus has the same mean estimate (2.5)"), std::string::npos) << e.what();
+  const auto g = device_refusal("command,force_N\n0,5\n1000,5\n2000,5\n3000,5\n");
+  EXPECT_NE(g.message.find("reads the same force (5 N) at every command"), std::string::npos) << g.what();
+}
+

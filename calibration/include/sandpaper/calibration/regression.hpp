@@ -48,6 +48,10 @@ struct RegressionResult {
 RegressionResult least_squares(const std::vector<std::string>& names, const std::vector<std::vector<double>>& predictors,
                                const std::vector<double>& y, Constant constant);
 
+// True when `y` varies by no more than rounding: its sum of squares about its mean is at most
+// 1e-20 of its sum of squares (or both are 0). A regression on it fits noise (fuzz finding F32).
+bool varies_too_little(const std::vector<double>& y);
+
 // Two-sided p of a t-ratio with `df` degrees of freedom; upper-tail p of an F-ratio (Boost.Math).
 double t_two_sided_p(double t, double df);
 double f_upper_p(double f, double df1, double df2);
