@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "sandpaper/calibration/fit.hpp"
+#include "sandpaper/calibration/fit_error.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 #include "toml_text.hpp"
 
@@ -41,6 +42,13 @@ std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOption
   const auto& r = fit.force;
   const auto& slope = r.coefficient("log force");
   const auto& constant = r.coefficient("constant");
+  // The compiler turns a roughness into a force by the inverse power, 1 / slope: a map with slope 0
+  // is refused by its loader, so it is not written (fuzz finding F33: a balanced design whose means
+  // do not move with force).
+  if (slope.value == 0)
+    throw FitError(fit.path, 0,
+                   "the fitted slope is 0: in these data the estimates do not change with force, and a map needs a "
+                   "slope to turn a " + o.percept + " into a force; nothing is written");
   double fmin = fit.stimuli.front().force_N, fmax = fmin, pmin = fit.stimuli.front().period_m, pmax = pmin;
   for (const auto& s : fit.stimuli) {
     fmin = std::min(fmin, s.force_N);

@@ -5,6 +5,7 @@
 #include <toml++/toml.h>
 
 #include "sandpaper/calibration/fit.hpp"
+#include "sandpaper/calibration/fit_error.hpp"
 #include "synthetic.hpp"
 
 using namespace sandpaper::calibration;
@@ -76,5 +77,23 @@ TEST(MapFile, APathThatIsNotUtf8StillGivesAMapThatLoads) {
   const auto doc = toml::parse(text);
   EXPECT_EQ(doc["id"].value_or(std::string()), "m\xef\xbf\xbdller");
   EXPECT_NE(doc["source"]["citation"].value_or(std::string()).find("/data/m\xef\xbf\xbdller/responses.csv"), std::string::npos);
+}
+
+// Two subjects, two stimuli each at two forces, whose normalised means balance exactly: the slope
+// is 0, and `calibrate fit -o` wrote a map its loader refuses ("a compile map's slope must not be
+// zero"; docs/RELIABILITY.md, F33). The fit stands as a report; no map is written from it.
+TEST(MapFile, AFitWithSlopeZeroWritesNoMap) {
+  const auto data = parse_magnitude_estimation_csv(
+      "subject,stimulus,force_N,period_mm,response\nS01,a,1.7331,1.8,2.5\nB,b,0.617562,10,40.6\n"
+      "S01,c,1.7331,2.8,2.5\nB,d,0.617562,10,40.7\n",
+      "z.csv");
+  const auto fit = fit_magnitude_estimation(data);
+  ASSERT_EQ(fit.slope(), 0.0);
+  try {
+    (void)map_file_text(fit, compile_map_options("z"));
+    FAIL() << "a map with slope 0 was written";
+  } catch (const FitError& e) {
+    EXPECT_NE(std::string(e.what()).find("the fitted slope is 0"), std::string::npos) << e.what();
+  }
 }
 

@@ -114,6 +114,7 @@ inline MapFileOptions compile_map_options(std::string id) {
 // The map file (docs/CALIBRATION.md, schema/files/map.schema.json): the Figure 19 form with force in
 // N, status "measured", use "compile", ratio-scale reference at the largest stimulus force, domain
 // from the stimuli, source the CSV. Statistics the schema has no key for are written as comments.
+// Throws FitError for a fit whose slope is 0, which no map can hold (the compiler inverts it).
 std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOptions& options);
 
 // "%.6g" with a unit: "3.74612 N". Quantities in data files are strings with their unit.
