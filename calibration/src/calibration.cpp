@@ -80,8 +80,9 @@ PsychophysicalMap read_map(const Toml& f, Problems& problems) {
   m.where = *c["source"]["where"].value<std::string>();
 
   for (const auto* r : {&m.force, &m.period, &m.feature, &m.damping, &m.stiffness})
-    if (*r && !((*r)->min > 0 && (*r)->min < (*r)->max))
-      problems.add(f, *c["domain"].node(), "a domain range must be positive and ascending, [low, high]", "");
+    // low == high is a domain of one value: a map fitted on stimuli of one period (F34).
+    if (*r && !((*r)->min > 0 && (*r)->min <= (*r)->max))
+      problems.add(f, *c["domain"].node(), "a domain range must be positive, [low, high] with low <= high", "");
 
   if (m.for_device && m.domain_device.empty())
     problems.add(f, *c["use"].node(), "a map with use = \"device\" names its device in [domain] device",

@@ -86,3 +86,23 @@ TEST(RoundTrip, CalibratedDeviceLoads) {
   EXPECT_GT(d.max_force_N, 0.999 * reach);
   std::filesystem::remove_all(dir);
 }
+
+// Stimuli of one period (a Figure 19 experiment, force only): the map's period domain was written
+// ["2.5 mm", "2.5 mm"] and the loader refused it, and with it the calibration folder ("a domain
+// range must be positive and ascending"; docs/RELIABILITY.md, F34). A domain of one value loads.
+TEST(RoundTrip, AMapFittedAtOnePeriodLoads) {
+  auto e = synthetic::simulate_experiment({});
+  for (auto& t : e.data.trials) t.period_m = 2.5e-3;
+  const auto fit = fit_magnitude_estimation(e.data);
+  const auto dir = temp_dir();
+  const auto path = dir / "fitted-one-period.toml";
+  sandpaper::schema::write_file_atomically(path, map_file_text(fit, compile_map_options("fitted-one-period")));
+  const auto m = load_map_file(path);
+  ASSERT_TRUE(m.period.has_value());
+  EXPECT_DOUBLE_EQ(m.period->min, 2.5e-3);
+  EXPECT_DOUBLE_EQ(m.period->max, 2.5e-3);
+  EXPECT_TRUE(m.period->contains(2.5e-3));
+  EXPECT_FALSE(m.period->contains(3e-3));
+  std::filesystem::remove_all(dir);
+}
+
