@@ -2,6 +2,7 @@
 // (docs/USB_PID.md). The devices the runtime knows are the calibrations with a [usb] table.
 #include <filesystem>
 #include <iostream>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -16,6 +17,16 @@ namespace sandpaper::cli {
 
 using runtime::usb::UsbStatus;
 
+namespace {
+// A refused descriptor is named with the parser's reason: such a device cannot be opened, and "not
+// read" would send its owner looking at permissions.
+std::string descriptor_summary(const runtime::usb::UsbHidDeviceInfo& info) {
+  if (info.descriptor_read) return info.has_pid ? "HID PID force feedback" : "no PID usage in its descriptor";
+  if (!info.descriptor_error.empty()) return "report descriptor refused (" + info.descriptor_error + ")";
+  return "descriptor not read";
+}
+}  // namespace
+
 int cmd_devices(const CommonOptions& o) {
   CommonOptions base = o;
   base.device = "sim";
@@ -26,8 +37,7 @@ int cmd_devices(const CommonOptions& o) {
   for (const auto& f : found) {
     std::cout << fmt::format("{} bus {} address {}{}: {}; {}\n", ids(f.info.vendor_id, f.info.product_id), f.info.bus,
                              f.info.address, f.info.product.empty() ? "" : " \"" + f.info.product + "\"",
-                             f.info.descriptor_read ? (f.info.has_pid ? "HID PID force feedback" : "no PID usage in its descriptor")
-                                                    : "descriptor not read",
+                             descriptor_summary(f.info),
                              f.calibration ? "calibration " + f.calibration->name + " (" + f.calibration->file + ")"
                                            : std::string("no device calibration: cannot be played yet"));
     if (f.info.open_status == UsbStatus::AccessDenied) {

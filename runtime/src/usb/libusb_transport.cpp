@@ -108,6 +108,18 @@ UsbStatus usb_status_from_libusb(int code) noexcept {
   }
 }
 
+void summarise_report_descriptor(std::span<const std::uint8_t> descriptor, UsbHidDeviceInfo& info) {
+  info.descriptor_read = false;
+  info.has_pid = false;
+  info.descriptor_error.clear();
+  try {
+    info.has_pid = parse_hid_report_descriptor(descriptor).has_pid_page();
+    info.descriptor_read = true;
+  } catch (const HidDescriptorError& e) {
+    info.descriptor_error = e.what();
+  }
+}
+
 UsbHidEnumeration list_usb_hid_devices() {
   UsbHidEnumeration out;
   libusb_context* context = nullptr;
@@ -145,13 +157,7 @@ UsbHidEnumeration list_usb_hid_devices() {
       libusb_close(handle);
     }
     std::vector<std::uint8_t> descriptor;
-    if (sysfs_report_descriptor(device, hid.number, descriptor)) {
-      try {
-        info.has_pid = parse_hid_report_descriptor(descriptor).has_pid_page();
-        info.descriptor_read = true;
-      } catch (const HidDescriptorError&) {
-      }
-    }
+    if (sysfs_report_descriptor(device, hid.number, descriptor)) summarise_report_descriptor(descriptor, info);
     out.devices.push_back(std::move(info));
   }
   libusb_free_device_list(list, 1);

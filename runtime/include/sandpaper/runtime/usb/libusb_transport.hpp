@@ -5,6 +5,7 @@
 // call, so on real hardware the tick is not allocation-free below this interface (docs/USB_PID.md).
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,13 @@ struct UsbHidDeviceInfo {
   UsbStatus open_status = UsbStatus::Ok;  // AccessDenied: the udev rule is missing
   bool descriptor_read = false; // the report descriptor was read (from sysfs, without detaching the kernel driver)
   bool has_pid = false;         // ... and it has a Physical Interface Device (force-feedback) usage
+  std::string descriptor_error; // not empty: the descriptor was read and refused, in the parser's words
 };
+
+// Fills `descriptor_read`, `has_pid` and `descriptor_error` of `info` from a report descriptor as read
+// from the device. Never throws: a descriptor over the parser's limits (hid_descriptor.hpp) is kept
+// as its reason, so `sandpaper devices` can say why a device will not open.
+void summarise_report_descriptor(std::span<const std::uint8_t> descriptor, UsbHidDeviceInfo& info);
 
 struct UsbHidEnumeration {
   UsbStatus status = UsbStatus::Ok;   // not Ok: USB could not be searched at all
