@@ -65,6 +65,7 @@ case $target in
   image) dict=image ;;
   hid_descriptor) dict=hid_descriptor ;;
   calibration_csv) dict=calibration_csv ;;
+  page_answer) dict=page_answer ;;
   *) dict= ;;
 esac
 

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <condition_variable>
+#include <cstdint>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -13,6 +13,7 @@
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include "sandpaper/experiment/page_answer.hpp"
 #include "sandpaper/studio/request_guard.hpp"
 #include "sandpaper/schema/json_text.hpp"
 
@@ -59,16 +60,10 @@ class PageObserverImpl final : public Observer {
     });
     http_.Post("/api/answer", [this](const httplib::Request& req, httplib::Response& res) {
       json body;
-      try {
-        body = json::parse(req.body);
-      } catch (const json::exception&) {
-        return refuse(res, "the answer is not JSON");
-      }
       std::lock_guard lock(mutex_);
-      if (!body.contains("seq") || !body["seq"].is_number_integer() || body["seq"].get<long>() != screen_seq_)
-        return refuse(res, "this answer is for another screen; reload the page");
+      if (const std::string why = parse_page_answer(req.body, screen_seq_, body); !why.empty()) return refuse(res, why);
       if (!waiting_) return refuse(res, "no question is waiting for an answer");
-      if (const std::string why = check(body); !why.empty()) return refuse(res, why);
+      if (const std::string why = page_answer_refusal(screen_, body); !why.empty()) return refuse(res, why);
       answer_ = body;
       waiting_ = false;
       answered_.notify_all();
@@ -110,19 +105,17 @@ class PageObserverImpl final : public Observer {
   std::optional<double> estimate(const Trial& t, const Presented&, bool confidence) override {
     auto a = ask({{"kind", confidence ? "confidence" : "estimate"}, {"trial", t.index + 1}, {"practice", t.practice}});
     if (!a) return std::nullopt;
-    return (*a)["value"].get<double>();
+    return answer_value(*a);
   }
   std::optional<int> choose_interval(const Trial& t, const Presented&) override {
     auto a = ask({{"kind", "interval"}, {"trial", t.index + 1}, {"practice", t.practice}});
     if (!a) return std::nullopt;
-    return (*a)["interval"].get<int>();
+    return answer_interval(*a);
   }
   std::optional<std::vector<int>> sort(const Trial& t, const Presented& p, int piles) override {
     auto a = ask({{"kind", "sort"}, {"trial", t.index + 1}, {"patches", p.names.size()}, {"piles", piles}});
     if (!a) return std::nullopt;
-    std::vector<int> out;
-    for (const auto& v : (*a)["assignment"]) out.push_back(v.get<int>() - 1);
-    return out;
+    return answer_piles(*a);
   }
   void ended(bool finished) override { show({{"kind", finished ? "done" : "paused"}}); }
 
@@ -130,33 +123,6 @@ class PageObserverImpl final : public Observer {
   static void refuse(httplib::Response& res, const std::string& why) {
     res.status = 400;
     res.set_content(schema::json_text(json{{"error", why}}), "application/json");
-  }
-
-  // What makes an answer acceptable for the screen it answers; "" when it is. Called with mutex_ held.
-  std::string check(const json& a) const {
-    const std::string kind = screen_.value("kind", "");
-    auto number = [&](const char* key) { return a.contains(key) && a[key].is_number() && std::isfinite(a[key].get<double>()); };
-    if (kind == "estimate") return number("value") && a["value"].get<double>() > 0 ? "" : "give a positive number";
-    if (kind == "confidence")
-      return number("value") && a["value"].get<double>() >= 0 && a["value"].get<double>() <= 100 ? "" : "give a number from 0 to 100";
-    if (kind == "interval")
-      return a.contains("interval") && (a["interval"] == 1 || a["interval"] == 2) ? "" : "answer 1 or 2";
-    if (kind == "sort") {
-      const int n = screen_["patches"], k = screen_["piles"];
-      if (!a.contains("assignment") || !a["assignment"].is_array() || static_cast<int>(a["assignment"].size()) != n)
-        return "give every patch a pile";
-      std::vector<bool> used(static_cast<std::size_t>(k), false);
-      for (const auto& v : a["assignment"]) {
-        // Read as 64 bits: as an int, 4294967297 was pile 1 (a value past 2^63 reads negative, refused).
-        if (!v.is_number_integer() || v.get<std::int64_t>() < 1 || v.get<std::int64_t>() > k)
-          return "piles are numbered 1 to " + std::to_string(k);
-        used[static_cast<std::size_t>(v.get<std::int64_t>() - 1)] = true;
-      }
-      for (bool u : used)
-        if (!u) return "use every pile";
-      return "";
-    }
-    return "";  // instructions, rest: any answer continues
   }
 
   void show(json screen) {
@@ -191,7 +157,7 @@ class PageObserverImpl final : public Observer {
   std::mutex mutex_;
   std::condition_variable changed_, answered_;
   json screen_ = json{{"kind", "starting"}};
-  long screen_seq_ = 0, delivered_seq_ = -1;
+  std::int64_t screen_seq_ = 0, delivered_seq_ = -1;
   std::condition_variable delivered_;
   std::atomic<bool> page_seen_{false};  // a page has asked for a screen at least once
   bool waiting_ = false, closing_ = false;
