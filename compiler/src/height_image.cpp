@@ -134,6 +134,11 @@ OpenPicture open_picture(const HeightImageRequest& r, RawImage& raw, HeightImage
   // A device or FIFO (/dev/zero, a pipe) would make a format probe read forever or block.
   std::error_code ec;
   const auto status = std::filesystem::status(r.path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) {
+    fail(e, "E0401", "cannot read image '" + r.shown_path + "': no such file",
+         "check the path (relative to the material file's folder)");
+    return {};
+  }
   if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
     fail(e, "E0401", "cannot read image '" + r.shown_path + "': not a regular file (a device, FIFO or directory)",
          "give an image file on disk");
@@ -156,8 +161,10 @@ OpenPicture open_picture(const HeightImageRequest& r, RawImage& raw, HeightImage
   OpenPicture in(image_io::api().open(r.path, spec, why));
   if (!in) {
     why = first_line(why);
+    // Since F21 the extension alone picks the reader (a missing file was reported above).
     fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + (why.empty() ? "unreadable" : why),
-         "check the path (relative to the material file's folder) and that the file is an image");
+         "save the image as PNG, TIFF, OpenEXR, JPEG, BMP, PNM, Radiance HDR or TGA, under that format's extension: "
+         "the extension picks the reader");
     return {};
   }
   if (!check_dimensions(r, spec.width, spec.height, "px", e)) return {};
