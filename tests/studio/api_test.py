@@ -51,6 +51,8 @@ def main():
     outside = tmp / "outside.hmat"
     outside.write_text("roughness 0.5\n")
     (folder / "escape.hmat").symlink_to(outside)
+    # A file named in Latin-1: JSON cannot name it, so it is listed apart, with what to do.
+    (folder / os.fsdecode(b"caf\xe9.hmat")).write_text("roughness 0.5\n")
     original = (folder / "corduroy.hmat").read_text()
 
     studio = Studio(sandpaper, folder / "corduroy.hmat")
@@ -58,6 +60,12 @@ def main():
         status, health = studio.get("/api/health")
         check(status == 200 and health.get("ok") is True and isinstance(health.get("version"), str),
               f"GET /api/health: {health}")
+
+        status, listing = studio.get("/api/files")
+        files, unlisted = listing.get("files", []), listing.get("not_listed", [])
+        check(status == 200 and "corduroy.hmat" in files and all(isinstance(f, str) and "\ufffd" not in f for f in files)
+              and [u.get("file") for u in unlisted] == ["caf\ufffd.hmat"] and "rename" in unlisted[0].get("why", ""),
+              f"GET /api/files lists the materials, and a name not in UTF-8 apart with what to do: {unlisted}")
 
         # POST /api/compile: the same object as the CLI's, run from the same folder on the same file name.
         text = (folder / "corduroy.hmat").read_text()

@@ -124,7 +124,7 @@ struct Server::Impl {
       send_json(res, {{"ok", true}, {"version", version}});
     });
     http.Get("/api/files", [this](const httplib::Request&, httplib::Response& res) {
-      guarded(res, [&] { send_json(res, {{"files", session.files()}}); });
+      guarded(res, [&] { send_json(res, session.files()); });
     });
     http.Get("/api/current", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.current()); });

@@ -12,6 +12,7 @@
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/workspace_json.hpp"
 #include "sandpaper/studio/request_guard.hpp"
 
@@ -61,11 +62,10 @@ Session::~Session() {
 }
 
 nlohmann::json Session::files() const {
-  auto out = nlohmann::json::array();
-  std::vector<std::string> names;
+  std::vector<std::string> names, not_utf8;
   std::error_code ec;
   fs::recursive_directory_iterator it(root_, fs::directory_options::skip_permission_denied, ec), end;
-  for (; !ec && it != end && names.size() < 2000; it.increment(ec)) {
+  for (; !ec && it != end && names.size() + not_utf8.size() < 2000; it.increment(ec)) {
     if (it.depth() > 8) {
       it.disable_recursion_pending();
       continue;
@@ -76,11 +76,21 @@ nlohmann::json Session::files() const {
       continue;
     }
     const auto ext = it->path().extension();
-    if ((ext == ".hmat" || ext == ".hws") && it->is_regular_file(ec)) names.push_back(fs::relative(it->path(), root_).string());
+    if ((ext == ".hmat" || ext == ".hws") && it->is_regular_file(ec)) {
+      std::string relative = fs::relative(it->path(), root_).string();
+      std::size_t bad = 0;
+      (schema::is_valid_utf8(relative, bad) ? names : not_utf8).push_back(std::move(relative));
+    }
   }
   std::sort(names.begin(), names.end());
-  for (auto& n : names) out.push_back(n);
-  return out;
+  std::sort(not_utf8.begin(), not_utf8.end());
+  // The page names a file in JSON, which holds only UTF-8: such a name could be shown (with U+FFFD)
+  // but never opened, so it is listed apart, with what to do (as the library's E0614 does).
+  auto unlisted = nlohmann::json::array();
+  for (const auto& n : not_utf8)
+    unlisted.push_back({{"file", schema::replace_invalid_utf8(n)},
+                        {"why", "its name is not UTF-8: rename the file in UTF-8 to open it here"}});
+  return {{"files", names}, {"not_listed", std::move(unlisted)}};
 }
 
 nlohmann::json Session::open(const std::string& relative) {

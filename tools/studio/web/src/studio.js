@@ -511,9 +511,16 @@ async function flushCompile() {
 }
 
 async function init() {
-  const { files } = await api("GET", "/api/files");
+  const { files, not_listed: notListed = [] } = await api("GET", "/api/files");
   const sel = $("#file");
   for (const f of files) sel.append(new Option(f, f));
+  // Names that are not UTF-8 cannot be asked for: shown, greyed, with what to do.
+  for (const { file, why } of notListed) {
+    const o = new Option(`${file} (${why})`, "");
+    o.disabled = true;
+    o.title = why;
+    sel.append(o);
+  }
   sel.addEventListener("change", () => open(sel.value).catch((e) => setStatus(e.message, true)));
   $("#save").addEventListener("click", save);
   document.querySelectorAll("input[name=view]").forEach((r) => r.addEventListener("change", () => { state.view = r.value; refreshPreview(); }));

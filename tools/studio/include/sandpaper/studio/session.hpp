@@ -40,7 +40,9 @@ class Session {
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
-  // The .hmat and .hws files in the folder (relative paths, sorted; at most 2000, 8 levels deep).
+  // The .hmat and .hws files in the folder, 8 levels deep, at most 2000: {"files": [relative paths,
+  // sorted], "not_listed": [{"file", "why"}]}, the second for names that are not UTF-8 (shown with
+  // U+FFFD), which a request could not name.
   nlohmann::json files() const;
   // Reads `relative` (confined to the folder), compiles and plays it. RequestError 403 outside the
   // folder, 404 missing, 413 too large, 400 not a .hmat or .hws.
