@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <set>
 #include <string>
 
 #include "fuzz_compile.hpp"
@@ -20,6 +21,8 @@
 #include "sandpaper/schema/workspace_json.hpp"
 
 namespace {
+constexpr std::uint64_t kGridBudget = std::uint64_t{32} << 20;
+
 std::string file_bytes(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -29,12 +32,23 @@ std::string file_bytes(const std::filesystem::path& p) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace sandpaper;
   const std::string text(reinterpret_cast<const char*>(data), size);
+  // A force-table budget of 32 MiB rather than 512: the refusal (E0535) is then within the search's
+  // reach, and a workspace at the budget stays inside libFuzzer's memory limit under ASan.
+  compiler::WorkspaceOptions options;
+  options.max_grid_bytes = kGridBudget;
   const auto result = compiler::compile_workspace_text(fuzz::shipped_compiler(), text, "<fuzz>.hws",
-                                                       fuzz::source_dir() / "examples" / "workspace");
+                                                       fuzz::source_dir() / "examples" / "workspace", options);
   (void)compiler::format_diagnostics(result.diagnostics);
   fuzz::dump_json(compiler::diagnostics_json(result.diagnostics));
   fuzz::check(!result.program || !result.diagnostics.has_errors(), "a workspace with errors produced a program");
   if (!result.ok()) return 0;
+  // The placed programs alone (the compiled materials come on top) must be within the budget.
+  std::set<const schema::PatchProgram*> placed;
+  std::uint64_t placed_bytes = 0;
+  for (const auto& p : result.program->patches)
+    if (placed.insert(p.program.get()).second) placed_bytes += schema::grid_bytes(*p.program);
+  fuzz::check(placed_bytes <= kGridBudget, "a workspace holding " + std::to_string(placed_bytes) +
+                                               " bytes of placed force tables compiled, over its budget");
 
   const auto wsp = fuzz::scratch_dir() / "workspace.wsp";
   schema::write_workspace_program_file(wsp, *result.program);

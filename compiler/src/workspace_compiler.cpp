@@ -121,8 +121,34 @@ void warn_within_one_jnd(const Compiler& compiler, const WorkspaceSyntax& syntax
                   "spread the materials' forces by at least one JND, or use fewer distinct materials");
 }
 
+// The force tables a workspace holds, against limits::kMaxWorkspaceGridBytes: distinct textures are
+// not shared, and six at 4000 x 4000 samples took 1.1 GB (F35).
+struct GridBudget {
+  std::uint64_t limit = schema::limits::kMaxWorkspaceGridBytes;
+  std::uint64_t held = 0;
+  bool over = false;
+  // Counts `program`'s tables for patch `i`; past the budget, E0535 at the patch and false.
+  bool take(const schema::PatchProgram& program, std::size_t i, const PatchPlacementSyntax& p, Diagnostics& diags,
+            const std::string& what) {
+    const std::uint64_t bytes = schema::grid_bytes(program);
+    if (bytes <= limit && held <= limit - bytes) {
+      held += bytes;
+      return true;
+    }
+    over = true;
+    diags.error("E0535", p.material_location,
+                "patch " + std::to_string(i + 1) + " needs " + mib(bytes) + " of force tables for " + what + ", with " +
+                    mib(held) + " already held: over the workspace's limit of " +
+                    mib(limit),
+                "use fewer distinct large textures, a coarser `sampling` or a smaller image, or place the patches of "
+                "one material at one size (they then share one program)");
+    return false;
+  }
+  static std::string mib(std::uint64_t bytes) { return sig(static_cast<double>(bytes) / (1 << 20), 4) + " MiB"; }
+};
+
 WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& syntax, const fs::path& base_dir,
-                               Diagnostics diags) {
+                               Diagnostics diags, const WorkspaceOptions& options) {
   WorkspaceResult r;
   schema::WorkspaceProgram ws;
   ws.name = syntax.name;
@@ -131,7 +157,9 @@ WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& 
     ws.size_m[1] = syntax.height ? syntax.height->si : syntax.width->si;
   }
 
-  // Compile each distinct material once, in order of first use.
+  // Compile each distinct material once, in order of first use. The force tables held (compiled and
+  // placed) are counted as they come, and the first patch past the budget stops the compile (F35).
+  GridBudget grids{options.max_grid_bytes};
   std::map<std::string, std::size_t> index_of;
   std::vector<CompiledMaterial> materials;
   std::vector<std::size_t> material_of(syntax.patches.size());
@@ -144,12 +172,18 @@ WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& 
       CompiledMaterial cm;
       cm.result = file.empty() ? compiler.compile_text(p.material, "<patch " + std::to_string(i + 1) + ">")
                                : compiler.compile_file(file);
+      const bool within = !cm.result.ok() || grids.take(*cm.result.program, i, p, diags, "its material's program");
       materials.push_back(std::move(cm));
+      if (!within) break;
     }
     materials[it->second].patches.push_back(i);
     material_of[i] = it->second;
   }
   for (const auto& cm : materials) report_material(cm, syntax, diags);
+  if (grids.over) {
+    r.diagnostics = std::move(diags);
+    return r;
+  }
 
   // Place the patches: the placed size, or the material's own.
   std::map<std::tuple<std::size_t, double, double>, std::shared_ptr<const schema::PatchProgram>> placed;
@@ -182,7 +216,11 @@ WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& 
     }
     // One program per material and size, shared by every patch that places it so.
     auto& shared = placed[{material_of[i], size[0], size[1]}];
-    if (!shared) shared = schema::place_patch(*cr.program, centre, size, p.material).program;
+    if (!shared) {
+      if (!grids.take(*cr.program, i, p, diags, "a copy of its material's program placed at " + mm(size[0]) + " x " + mm(size[1])))
+        break;
+      shared = schema::place_patch(*cr.program, centre, size, p.material).program;
+    }
     ws.patches.push_back(schema::place_shared_patch(shared, centre, p.material));
   }
   if (diags.has_errors()) {
@@ -235,7 +273,7 @@ std::vector<RoughnessStep> roughness_order(const schema::WorkspaceProgram& ws, c
 bool is_workspace_path(const fs::path& path) { return path.extension() == ".hws"; }
 
 WorkspaceResult compile_workspace_text(const Compiler& compiler, const std::string& text, const std::string& display_name,
-                                       const fs::path& base_dir) {
+                                       const fs::path& base_dir, const WorkspaceOptions& options) {
   auto file = std::make_shared<const SourceFile>(display_name, text);
   Diagnostics diags;
   auto tokens = lex(file, diags, LexOptions{.commas = true});
@@ -246,10 +284,10 @@ WorkspaceResult compile_workspace_text(const Compiler& compiler, const std::stri
     r.diagnostics = std::move(diags);
     return r;
   }
-  return compile_syntax(compiler, syntax, base_dir, std::move(diags));
+  return compile_syntax(compiler, syntax, base_dir, std::move(diags), options);
 }
 
-WorkspaceResult compile_workspace_file(const Compiler& compiler, const fs::path& path) {
+WorkspaceResult compile_workspace_file(const Compiler& compiler, const fs::path& path, const WorkspaceOptions& options) {
   std::string text;
   try {
     text = schema::read_input_file(path, schema::limits::kMaxSourceBytes);
@@ -260,7 +298,7 @@ WorkspaceResult compile_workspace_file(const Compiler& compiler, const fs::path&
                         "check the path; workspace files end in .hws");
     return r;
   }
-  return compile_workspace_text(compiler, text, path.string(), path.parent_path());
+  return compile_workspace_text(compiler, text, path.string(), path.parent_path(), options);
 }
 
 }  // namespace sandpaper::compiler

@@ -88,6 +88,7 @@ constexpr std::array kCodes = {
     DiagnosticCode{"E0532", E, "workspace: a `patch` without `at X, Y`, or without the comma between X and Y", kLang},
     DiagnosticCode{"E0533", E, "workspace: expected a length (a number and a length unit) for a size or a position", kLang},
     DiagnosticCode{"E0534", E, "workspace: more text after a complete statement", kLang},
+    DiagnosticCode{"E0535", E, "workspace: its materials' force tables over 512 MiB in all", kLang},
     DiagnosticCode{"E0601", E, "`library check`: `library.toml` is missing, is not TOML, or lacks a key (docs/LIBRARY.md)", kLang},
     DiagnosticCode{"E0602", E, "`library check`: no `material` block, or its name is not its file stem", kLang},
     DiagnosticCode{"E0603", E, "`library check`: no `describes`", kLang},

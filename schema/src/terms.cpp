@@ -15,6 +15,15 @@ bool has_state(const Term& term) {
   return terms::visit_kind(term, [](const auto& kind, const auto&) { return kind.has_state; });
 }
 
+std::uint64_t grid_bytes(const PatchProgram& program) {
+  std::uint64_t floats = 0;
+  for (const auto& term : program.terms) {
+    if (const auto* h = std::get_if<HeightFieldTerm>(&term)) floats += h->force_x_N.size() + h->force_y_N.size();
+    if (const auto* g = std::get_if<GratingTerm>(&term)) floats += g->force_N.size();
+  }
+  return floats * sizeof(float);
+}
+
 std::uint32_t point_mass_substeps(const PointMassesTerm& t, double dt_s) {
   if (!(dt_s > 0) || t.count < 1 || t.count > 2) return 1;
   // Row sums of M^-1 K and M^-1 C bound their largest eigenvalues (Gershgorin).

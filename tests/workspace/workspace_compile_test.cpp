@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <set>
 
 #include "sandpaper/compiler/workspace.hpp"
@@ -184,6 +185,72 @@ TEST(WorkspaceCompile, MorePatchesThanTheLimitAreRefused) {
   text += "}\n";
   const auto r = compile(text);
   EXPECT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0509"});
+}
+
+// F35: patches share a material's program, but distinct textures did not count against anything:
+// six materials of 4000 x 4000 samples took 1.1 GB. The force tables a workspace holds (each distinct
+// material's program and each placed copy) now have a budget; here a small one, in units of one
+// material's tables, to see each way of crossing it.
+TEST(WorkspaceCompile, ForceTablesPastTheBudgetAreRefusedAtThePatchThatCrossesIt) {
+  // Material text in a workspace names images from the working directory (the source tree's root).
+  const std::string a = "heightmap \\\"library/images/brick.png\\\" size 20 mm amplitude 1 N";
+  const auto alone = test::shipped_compiler().compile_text("heightmap \"library/images/brick.png\" size 20 mm amplitude 1 N");
+  ASSERT_TRUE(alone.ok()) << compiler::format_diagnostics(alone.diagnostics);
+  const std::uint64_t one = schema::grid_bytes(*alone.program);
+  ASSERT_GT(one, 0u);
+  auto ws = [&](const std::vector<std::string>& patches, double budget_in_ones) {
+    std::string text = "workspace \"w\" {\n  size 400 mm\n";
+    for (const auto& p : patches) text += "  " + p + "\n";
+    compiler::WorkspaceOptions o;
+    o.max_grid_bytes = static_cast<std::uint64_t>(budget_in_ones * static_cast<double>(one));
+    return compiler::compile_workspace_text(test::shipped_compiler(), text + "}\n", "<test.hws>", ".", o);
+  };
+  const std::string a_here = "patch \"" + a + "\" at -100 mm, 0 mm size 50 mm";
+  const std::string a_there = "patch \"" + a + "\" at 100 mm, 0 mm size 50 mm";
+  const std::string a_smaller = "patch \"" + a + "\" at 0 mm, 100 mm size 40 mm";
+  const std::string b = "patch \"heightmap \\\"library/images/brick.png\\\" size 20 mm amplitude 0.9 N\" at 0 mm, -100 mm size 50 mm";
+
+  // One material placed twice at one size: its program and one placed copy.
+  auto r = ws({a_here, a_there}, 2.5);
+  EXPECT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  // Materials are compiled before any patch is placed: a second distinct material is 2 tables, over 1.5.
+  r = ws({a_here, b}, 1.5);
+  ASSERT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0535"}) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_FALSE(r.program.has_value());
+  const auto& e = r.diagnostics.all().front();
+  EXPECT_EQ(e.location.line, 4u);  // patch 2's line
+  EXPECT_NE(e.message.find("patch 2 needs"), std::string::npos) << e.message;
+  EXPECT_NE(e.message.find("for its material's program"), std::string::npos) << e.message;
+  // The same material at another size is another copy: its program and two copies are 3 tables.
+  r = ws({a_here, a_smaller}, 2.5);
+  ASSERT_EQ(codes(r.diagnostics), std::vector<std::string>{"E0535"}) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NE(r.diagnostics.all().front().message.find("placed at 40 mm x 40 mm"), std::string::npos)
+      << r.diagnostics.all().front().message;
+  // With room for them, both compile.
+  EXPECT_TRUE(ws({a_here, a_smaller, b}, 5).ok());
+}
+
+// Every shipped workspace is far inside the budget: each distinct material's tables plus each
+// placed copy, as the compiler counts them.
+TEST(WorkspaceCompile, ShippedWorkspacesHoldFarLessThanTheForceTableBudget) {
+  std::uint64_t most = 0;
+  std::string which;
+  for (const auto& entry : fs::recursive_directory_iterator("examples")) {
+    if (entry.path().extension() != ".hws") continue;
+    const auto r = compiler::compile_workspace_file(test::shipped_compiler(), entry.path());
+    ASSERT_TRUE(r.ok()) << entry.path() << "\n" << compiler::format_diagnostics(r.diagnostics);
+    std::set<const schema::PatchProgram*> placed;
+    std::set<std::string> materials;
+    std::uint64_t held = 0;
+    for (const auto& p : r.program->patches) {
+      if (placed.insert(p.program.get()).second) held += schema::grid_bytes(*p.program);
+      if (materials.insert(p.source).second) held += schema::grid_bytes(*p.program);
+    }
+    if (held > most) most = held, which = entry.path().string();
+  }
+  std::cout << "largest shipped workspace: " << which << ", " << most << " bytes of force tables\n";
+  EXPECT_GT(most, 0u);
+  EXPECT_LT(most, schema::limits::kMaxWorkspaceGridBytes / 16);
 }
 
 // 2,000 distinct materials used to give one W0503 per close pair (591 MB of warnings): now the

@@ -5,12 +5,14 @@
 //
 //   auto r = sandpaper::compiler::compile_workspace_file(compiler, "examples/workspace/sampler.hws");
 //   if (!r.ok()) std::cerr << format_diagnostics(r.diagnostics);
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/workspace_program.hpp"
 
 namespace sandpaper::compiler {
@@ -37,11 +39,19 @@ std::vector<RoughnessStep> roughness_order(const schema::WorkspaceProgram& ws, c
 // Whether `path` names a workspace file (extension .hws).
 bool is_workspace_path(const std::filesystem::path& path);
 
+// What a workspace compile may hold. The default is the stated limit; tests set a smaller one.
+struct WorkspaceOptions {
+  // Bytes of force tables (schema::grid_bytes) over the distinct materials' programs and their
+  // placed copies; past it, E0535 at the first patch over (docs/RELIABILITY.md, F35).
+  std::uint64_t max_grid_bytes = schema::limits::kMaxWorkspaceGridBytes;
+};
+
 // `path` is shown in diagnostics as given; .hmat paths in the file are relative to its folder.
 // A missing file is diagnostic E0500, not an exception.
-WorkspaceResult compile_workspace_file(const Compiler& compiler, const std::filesystem::path& path);
+WorkspaceResult compile_workspace_file(const Compiler& compiler, const std::filesystem::path& path,
+                                       const WorkspaceOptions& options = {});
 // `display_name` names the text in diagnostics; .hmat paths are relative to `base_dir`.
 WorkspaceResult compile_workspace_text(const Compiler& compiler, const std::string& text, const std::string& display_name,
-                                       const std::filesystem::path& base_dir);
+                                       const std::filesystem::path& base_dir, const WorkspaceOptions& options = {});
 
 }  // namespace sandpaper::compiler

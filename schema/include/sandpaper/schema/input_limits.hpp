@@ -28,6 +28,11 @@ inline constexpr std::uint64_t kMaxImageChannels = 64;
 inline constexpr std::uint64_t kMaxImageFileBytes = std::uint64_t{512} << 20;
 // A workspace: at most this many patches.
 inline constexpr std::size_t kMaxWorkspacePatches = 65536;
+// The force tables a workspace holds (schema::grid_bytes), each distinct material's program and each
+// placed copy of one (a material placed at another size is another copy): 512 MiB in all. Patches
+// share programs, but distinct textures do not: six at 4000 x 4000 samples took 1.1 GB (fuzz-led
+// finding F35). A texture at the image limit is 128 MiB; the largest shipped workspace, sampler.hws, holds 8 MiB.
+inline constexpr std::uint64_t kMaxWorkspaceGridBytes = std::uint64_t{512} << 20;
 // Sizes and positions a workspace program may hold (m): what its reader takes, so the compiler
 // refuses what it could not read back (fuzz finding F9: a patch 42e-30 mm wide).
 inline constexpr double kMinPlausibleLength_m = 1e-12;

@@ -185,6 +185,11 @@ bool is_passive(const Term& term);
 // Friction).
 bool has_state(const Term& term);
 
+struct PatchProgram;
+// Bytes of the program's sampled force tables (height-field and grating terms), which are nearly all
+// of a textured program's memory: a height field at the image limit, 4096 x 4096, is 128 MiB.
+std::uint64_t grid_bytes(const PatchProgram& program);
+
 // Substeps of the point-mass integrator (semi-implicit Euler) for one tick of `dt_s` seconds: enough
 // that each substep h keeps h * omega <= 0.25 and h * c / m <= 0.5, with omega and c / m bounded by
 // Gershgorin's theorem from the chain's stiffness and damping. The runtime caps it at
