@@ -9,6 +9,8 @@
 #include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/compiler/perlin.hpp"
 
+#include "no_coverage.hpp"
+
 namespace sandpaper::compiler {
 namespace {
 
@@ -25,16 +27,6 @@ struct Heights {
 int blur_radius(double sigma_px) {
   return sigma_px > 0 ? static_cast<int>(std::min(std::ceil(3.0 * sigma_px), 1e6)) : 0;
 }
-
-// The fuzzing build (tools/fuzz.sh) instruments every comparison for coverage feedback; in the
-// blur's inner loops that is the loop bound, checked once per multiply-add, and it made a smoothing
-// within the budget take 30 times its release time (3 s, and over libFuzzer's 25 s on a loaded
-// machine: fuzz finding F11). Those comparisons carry no coverage worth having.
-#if defined(__clang__)
-#define SANDPAPER_NO_COVERAGE __attribute__((no_sanitize("coverage")))
-#else
-#define SANDPAPER_NO_COVERAGE
-#endif
 
 // One pass of a separable blur with normalised weights `w` (2r + 1 of them), along x or y.
 SANDPAPER_NO_COVERAGE void blur_pass(Heights& a, bool along_x, const std::vector<double>& w, int r) {
