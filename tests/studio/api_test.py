@@ -134,6 +134,16 @@ def main():
         check(status == 200 and took is not None, f"POST /api/hand moves the hand: {moved['hand']}")
         status, e = studio.post("/api/hand", {"x_mm": "left"})
         check(status == 400, "a hand without numbers is refused")
+        status, e = studio.post("/api/hand", "{\"x_mm\": 1", content_type="application/json")
+        check(status == 400 and "not JSON" in e.get("error", ""), f"a body that is not JSON is refused, saying so: {e}")
+        # The sim's workspace radius is 114 mm: the edge toward (1, -1) is at (80.6, -80.6) mm.
+        status, h = studio.post("/api/hand", {"x_mm": 1e300, "y_mm": -1e300})
+        s, took = poll(studio, lambda s: s["hand"][0] > 80 and s["hand"][1] < -80, 10)
+        check(status == 200 and took is not None and max(abs(v) for v in s["hand"]) < 81,
+              f"a hand sent past the edge goes to the edge in that direction: {s['hand']}")
+        studio.post("/api/hand", {"x_mm": 4.0, "y_mm": -3.0})
+        back, took = poll(studio, lambda s: abs(s["hand"][0] - 4) < 1e-6 and abs(s["hand"][1] + 3) < 1e-6, 10)
+        check(took is not None, f"and comes back: {back['hand']}")
 
         # The guard: another Host (DNS rebinding) or another Origin (a page elsewhere) is refused.
         status, e = studio.get("/api/health", headers={"Host": "evil.example:80"})

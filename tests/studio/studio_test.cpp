@@ -90,6 +90,12 @@ TEST(DummyJoystick, MovesTowardTheTargetNoFasterThanItsTopSpeed) {
   EXPECT_NEAR(j.target_nonrt().x, runtime::sim_device_limits().workspace_radius_m, 1e-12);
   j.set_target_nonrt({std::nan(""), 0});
   EXPECT_NEAR(j.target_nonrt().x, runtime::sim_device_limits().workspace_radius_m, 1e-12);
+  // A target whose square overflows (POST /api/hand takes any finite number of mm): still clipped to
+  // the edge in its direction, not sent to the centre.
+  j.set_target_nonrt({1e300, -1e300});
+  const double edge = runtime::sim_device_limits().workspace_radius_m / std::sqrt(2.0);
+  EXPECT_NEAR(j.target_nonrt().x, edge, 1e-12);
+  EXPECT_NEAR(j.target_nonrt().y, -edge, 1e-12);
 }
 
 // A session on a running loop with the Dummy-mode joystick.
