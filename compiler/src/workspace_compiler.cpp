@@ -138,8 +138,7 @@ struct GridBudget {
     over = true;
     diags.error("E0535", p.material_location,
                 "patch " + std::to_string(i + 1) + " needs " + mib(bytes) + " of force tables for " + what + ", with " +
-                    mib(held) + " already held: over the workspace's limit of " +
-                    mib(limit),
+                    mib(held) + " already held: over the workspace's limit of " + mib(limit),
                 "use fewer distinct large textures, a coarser `sampling` or a smaller image, or place the patches of "
                 "one material at one size (they then share one program)");
     return false;
