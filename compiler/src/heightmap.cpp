@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <sstream>
+#include <string>
 #include <thread>
 #include <tuple>
 #include <utility>
@@ -106,6 +107,43 @@ SANDPAPER_NO_COVERAGE void force_row(const double* gx, const double* gy, int nx,
   }
 }
 
+// Multiply-adds of blur_x + blur_y on an nx x ny grid with dx x dy m per sample (each skips a sigma
+// under 0.3 px; gaussian_kernel's radius is ceil(3 sigma)). In double: a sigma of millions of px is
+// asked of it.
+double smoothing_ops(double nx, double ny, double dx, double dy, double sigma_m) {
+  const auto taps = [](double sigma_px) { return sigma_px < 0.3 ? 0.0 : 2 * std::ceil(3 * sigma_px) + 1; };
+  return nx * ny * (taps(sigma_m / dx) + taps(sigma_m / dy));
+}
+
+std::string mm_text(double m) {
+  std::ostringstream os;
+  os.precision(3);
+  os << m * 1e3 << " mm";
+  return os.str();
+}
+
+// E0304 for smoothing past kMaxImageSmoothingOps, suggesting the finest `sampling` (over the same
+// width x height, within kMaxImagePixels) or the largest smoothing that fits. Both searches stop:
+// coarser sampling and less smoothing each lower the count, to 0 taps at last.
+void refuse_slow_smoothing(const ResolvedHeightmap& h, int nx, int ny, double ops, Diagnostics& diags) {
+  const double w = h.width.si, hh = h.height.si, sigma = h.smoothing->si;
+  double s = std::min(w / nx, hh / ny);
+  const auto fits_at = [&](double sampling) {
+    const double fx = std::max(1.0, std::round(w / sampling)), fy = std::max(1.0, std::round(hh / sampling));
+    return fx * fy <= static_cast<double>(kMaxImagePixels) && smoothing_ops(fx, fy, w / fx, hh / fy, sigma) <= kMaxImageSmoothingOps;
+  };
+  while (!fits_at(s)) s *= 1.02;
+  double fits = sigma;
+  while (smoothing_ops(nx, ny, w / nx, hh / ny, fits) > kMaxImageSmoothingOps) fits *= 0.98;
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << "smoothing " << mm_text(sigma) << " over the image's " << nx << " x " << ny << " samples (" << mm_text(w / nx) << " x "
+      << mm_text(hh / ny) << " each) would take " << ops << " multiply-adds, more than the limit of " << kMaxImageSmoothingOps;
+  diags.error("E0304", h.location, msg.str(),
+              "resample the image with `sampling " + mm_text(s * 1.005) + "` or more, or use a smoothing of at most " +
+                  mm_text(fits * 0.995));
+}
+
 // Separable Gaussian blur; `wrap` treats the image as a tile, else edges are clamped. Along x each
 // row is blurred in place; along y each output row sums whole input rows (cache-friendly), into
 // a second image.
@@ -157,6 +195,13 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
     return std::nullopt;
   }
   const int nx = img->nx, ny = img->ny;
+  if (h.smoothing) {
+    const double ops = smoothing_ops(nx, ny, h.width.si / nx, h.height.si / ny, h.smoothing->si);
+    if (ops > kMaxImageSmoothingOps) {
+      refuse_slow_smoothing(h, nx, ny, ops, diags);
+      return std::nullopt;
+    }
+  }
   // Image row 0 is the top edge, which is +y in patch coordinates, so rows are flipped. The stylus
   // reading maps the source's height range to 0..depth metres; otherwise heights keep the image's
   // unit, and the gain below absorbs it.

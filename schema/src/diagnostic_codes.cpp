@@ -45,7 +45,7 @@ constexpr std::array kCodes = {
     DiagnosticCode{"E0301", E, "no such library entry or thesis stimulus (with \"did you mean\", or why the thesis name cannot be made)", kLang},
     DiagnosticCode{"E0302", E, "two statements in one file set the same quantity", kLang},
     DiagnosticCode{"E0303", E, "roughness above 1, or another perceptual word above the top of its map's domain, without `extrapolate`", kLang},
-    DiagnosticCode{"E0304", E, "a value out of range (negative period, a grating period finer than two of the device's position steps or 1 um, hill outside 0-100 %, smoothing too sharp or too wide, a pattern length under one pixel, a flat pattern, `quantize` on an image, ...)", kLang},
+    DiagnosticCode{"E0304", E, "a value out of range (negative period, a grating period finer than two of the device's position steps or 1 um, hill outside 0-100 %, smoothing too sharp, too wide or past its budget of multiply-adds, a pattern length under one pixel, a flat pattern, `quantize` on an image, ...)", kLang},
     DiagnosticCode{"E0305", E, "a `like` cycle", kLang},
     DiagnosticCode{"E0306", E, "a library entry with errors", kLang},
     DiagnosticCode{"E0307", E, "unknown level of roughness or another perceptual word (with \"did you mean\")", kLang},

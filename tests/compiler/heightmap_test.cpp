@@ -159,6 +159,39 @@ TEST(Heightmap, APictureUnderThreePixelsASideIsRefusedFromItsHeader) {
   EXPECT_EQ(sampled_cut.diagnostics.all().at(0).code, "E0401");  // read, and found corrupt
 }
 
+// Smoothing's work grows with the samples times the kernel's width: the image fuzzer's F38 was a
+// 16 x 64,524 px TIFF over 20 mm under 0.5 mm, 1e10 multiply-adds (4 s in release, over 25 s under
+// ASan; its input is replayed as fuzz.replay.image). Here 1200 x 1200 px over 1 mm under 0.2 mm is
+// 4.2e9. Refused before the blur, with a sampling and a smoothing that fit, and each of those compiles.
+TEST(Heightmap, AnImageSmoothingPastTheBudgetIsRefusedWithASamplingThatFits) {
+  auto dir = test::temp_dir("slow-blur");
+  auto compile = [](const std::string& text) { return test::shipped_compiler().compile_text(text); };
+  write_image(dir + "/noise.png", 1200, 1200, OIIO::TypeDesc::UINT8,
+              [](float x, float y, int) { return std::fmod(x * 7 + y * 13, 17.0f) / 17.0f; });
+  const std::string head = "heightmap \"" + dir + "/noise.png\" size 1 mm repeat";
+  auto slow = compile(head + " smoothing 0.2 mm amplitude 1 N");
+  ASSERT_FALSE(slow.ok());
+  const auto& d = slow.diagnostics.all().at(0);
+  EXPECT_EQ(d.code, "E0304") << compiler::format_diagnostics(slow.diagnostics);
+  EXPECT_NE(d.message.find("1200 x 1200 samples"), std::string::npos) << d.message;
+  EXPECT_NE(d.message.find("more than the limit of 1e+09"), std::string::npos) << d.message;
+  // The suggestion names both ways out; each must compile.
+  const auto sampling_at = d.suggestion.find("`sampling ");
+  const auto smoothing_at = d.suggestion.find("smoothing of at most ");
+  ASSERT_NE(sampling_at, std::string::npos) << d.suggestion;
+  ASSERT_NE(smoothing_at, std::string::npos) << d.suggestion;
+  const double sampling_mm = std::stod(d.suggestion.substr(sampling_at + 10));
+  const double smoothing_mm = std::stod(d.suggestion.substr(smoothing_at + 21));
+  EXPECT_GT(sampling_mm, 1.0 / 1200);  // coarser than the image's own pixels: fewer samples
+  auto resampled = compile(head + " sampling " + std::to_string(sampling_mm) + " mm smoothing 0.2 mm amplitude 1 N");
+  EXPECT_TRUE(resampled.ok()) << compiler::format_diagnostics(resampled.diagnostics);
+  auto less = compile(head + " smoothing " + std::to_string(smoothing_mm) + " mm amplitude 1 N");
+  EXPECT_TRUE(less.ok()) << compiler::format_diagnostics(less.diagnostics);
+  // About 0.048 mm: 1e9 / (1,440,000 samples x 2 passes) = 347 taps, a sigma of 57 px of 0.83 um.
+  EXPECT_LT(smoothing_mm, 0.05);
+  EXPECT_GT(smoothing_mm, 0.04);
+}
+
 // A PNG's chunks are walked before libpng allocates them at the lengths they claim (F20): a chunk
 // running past the end of the file, or no IEND, is E0401 at once.
 TEST(Heightmap, APngWhoseChunkClaimsMoreThanTheFileIsRefusedBeforeDecoding) {

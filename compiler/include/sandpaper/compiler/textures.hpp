@@ -41,7 +41,8 @@ struct HeightFieldBuild {
 // target force, k makes the largest |F| inside the rim equal it. Without one (the stylus reading,
 // thesis 3.4 EQ 5-11, F = m g tan(theta)): h.depth and h.press must be set; the image's height
 // range maps to 0..depth metres and k = press. Unusable images (E0401-E0406) and smoothing too
-// wide for the rim (E0304) go to `diags` at the heightmap statement; returns nullopt then.
+// wide for the rim or past kMaxImageSmoothingOps (E0304) go to `diags` at the heightmap statement;
+// returns nullopt then.
 // keep_heights: also return the heights (the glTF export's haptic texture, docs/GLTF.md).
 std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, std::optional<double> target_force_N,
                                                   Diagnostics& diags, bool keep_heights = false);
