@@ -192,6 +192,72 @@ TEST(Heightmap, AnImageSmoothingPastTheBudgetIsRefusedWithASamplingThatFits) {
   EXPECT_GT(smoothing_mm, 0.04);
 }
 
+// `sampling` on a picture much longer than the samples along y (F39): OpenImageIO's resize walks a
+// window of source rows for each sample, kept on a thread's stack, and lengthens it when x is
+// enlarged. 2 x 800,000 px to 40 x 3 samples needs 21,333,335 rows: OpenImageIO aborted the
+// compiler (its assertion at 2^20). Refused past 65,537, naming a sampling that fits when one does.
+TEST(Heightmap, AResampleWhoseWindowIsTooLongIsRefusedWithASamplingThatFits) {
+  auto dir = test::temp_dir("long-window");
+  auto compile = [](const std::string& text) { return test::shipped_compiler().compile_text(text); };
+  auto stripes = [](float x, float y, int) { return std::fmod(x + y, 2.0f); };
+  write_image(dir + "/strip.tif", 2, 800000, OIIO::TypeDesc::UINT8, stripes);
+  auto aborted = compile("heightmap \"" + dir + "/strip.tif\" size 40 mm x 3 mm sampling 1 mm amplitude 1 N");
+  ASSERT_FALSE(aborted.ok());
+  const auto& a = aborted.diagnostics.all().at(0);
+  EXPECT_EQ(a.code, "E0402") << compiler::format_diagnostics(aborted.diagnostics);
+  EXPECT_NE(a.message.find("would walk a window of 21333335 pixels along y"), std::string::npos) << a.message;
+  // Finer sampling enlarges x, which lengthens the window as much as it adds rows; 2 px is too narrow
+  // to use as it is: no way out but another picture.
+  EXPECT_NE(a.suggestion.find("closer in number to the samples"), std::string::npos) << a.suggestion;
+
+  // 20 x 200,000 px to 3 x 3 samples (shrinking both ways: Lanczos-3) walks 400,001 rows a sample,
+  // which the resize would do, on a 1.6 MB stack window. At 19 rows or more and at most 20 columns
+  // the window is under the limit: about 1.58 mm.
+  write_image(dir + "/tall.tif", 20, 200000, OIIO::TypeDesc::UINT8, stripes);
+  const std::string head = "heightmap \"" + dir + "/tall.tif\" size 30 mm";
+  auto refused = compile(head + " sampling 10 mm amplitude 1 N");
+  ASSERT_FALSE(refused.ok());
+  const auto& d = refused.diagnostics.all().at(0);
+  EXPECT_EQ(d.code, "E0402");
+  EXPECT_NE(d.message.find("to 3 x 3 samples: OpenImageIO's resize would walk a window of 400001 pixels along y"),
+            std::string::npos)
+      << d.message;
+  EXPECT_NE(d.message.find("more than the limit of 65537"), std::string::npos) << d.message;
+  EXPECT_NE(d.suggestion.find("or leave out `sampling` to use the image's 20 x 200000 px as they are"), std::string::npos)
+      << d.suggestion;
+  const auto at = d.suggestion.find("`sampling ");
+  ASSERT_NE(at, std::string::npos) << d.suggestion;
+  const double sampling_mm = std::stod(d.suggestion.substr(at + 10));
+  EXPECT_LT(sampling_mm, 30.0 / 18.5);
+  EXPECT_GT(sampling_mm, 30.0 / 20.5);
+  auto finer = compile(head + " sampling " + std::to_string(sampling_mm) + " mm amplitude 1 N");
+  EXPECT_TRUE(finer.ok()) << compiler::format_diagnostics(finer.diagnostics);
+}
+
+// A resize whose window fits but whose whole walk does not: a 1 x 200 px profile stretched to
+// 2,000 x 2,000 samples walks 5 x 801 pixels for each (enlarging x by 2,000 lengthens the y window
+// to 801 rows, of which 5 weigh anything): 4e6 x (5 x 5 + 3 x 801) = 9.7e9 visits, about 30 s.
+TEST(Heightmap, AResamplePastItsBudgetOfVisitsIsRefused) {
+  auto dir = test::temp_dir("slow-resize");
+  write_image(dir + "/profile.tif", 1, 200, OIIO::TypeDesc::UINT8, [](float, float y, int) { return std::fmod(y, 2.0f); });
+  auto slow = test::shipped_compiler().compile_text("heightmap \"" + dir +
+                                                    "/profile.tif\" size 20 mm sampling 0.01 mm amplitude 1 N");
+  ASSERT_FALSE(slow.ok());
+  const auto& d = slow.diagnostics.all().at(0);
+  EXPECT_EQ(d.code, "E0402") << compiler::format_diagnostics(slow.diagnostics);
+  EXPECT_NE(d.message.find("to 2000 x 2000 samples: OpenImageIO's resize would walk a window of 5 x 801 pixels for "
+                           "each sample (5 of its rows weighted), about 9.712e+09 pixel visits, more than the limit of 2e+09"),
+            std::string::npos)
+      << d.message;
+  // Fewer samples, the same window: at most 907 a side, so a sampling of 0.02204 mm or more.
+  EXPECT_EQ(d.suggestion.find("leave out"), std::string::npos) << d.suggestion;
+  const auto at = d.suggestion.find("`sampling ");
+  ASSERT_NE(at, std::string::npos) << d.suggestion;
+  const double sampling_mm = std::stod(d.suggestion.substr(at + 10));
+  EXPECT_GE(sampling_mm, 20.0 / 907.5);
+  EXPECT_LT(sampling_mm, 0.0225);
+}
+
 // A PNG's chunks are walked before libpng allocates them at the lengths they claim (F20): a chunk
 // running past the end of the file, or no IEND, is E0401 at once.
 TEST(Heightmap, APngWhoseChunkClaimsMoreThanTheFileIsRefusedBeforeDecoding) {

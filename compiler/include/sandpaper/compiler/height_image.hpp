@@ -16,6 +16,15 @@ inline constexpr long long kMaxImagePixels = 4096LL * 4096LL;
 // times the largest shipped image's (8.9e6, library/outdoors/asphalt.hmat). A 16 x 64,524 px TIFF
 // under 0.5 mm over 20 mm took 1e10: 4 s in release, over 25 s under ASan (fuzz finding F38).
 inline constexpr double kMaxImageSmoothingOps = 1e9;
+// Resampling (`sampling`, OpenImageIO's resize) walks a window of source pixels for each sample
+// (height_image.cpp, resample_plan). Its y window is kept on a thread's stack, and OpenImageIO
+// aborts past 2^20 pixels (F39): at most kMaxResampleTaps. The whole resize makes at most
+// kMaxImageResampleVisits pixel visits (a row of the window stepped over counts three): about 4 to
+// 6 s of CPU in a release build. 4096 x 4096 px to 4095 x 4095, the costliest resize that keeps
+// the picture's shape, is 1.8e9; a 1 x 200 px profile stretched to 2,000 x 2,000 is 9.7e9 (about
+// 30 s). Beyond either limit, E0402 before the resize, naming a sampling that fits.
+inline constexpr long long kMaxResampleTaps = 65537;
+inline constexpr double kMaxImageResampleVisits = 2e9;
 
 struct HeightImageRequest {
   std::string path;        // file to open
