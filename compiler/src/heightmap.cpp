@@ -107,14 +107,6 @@ SANDPAPER_NO_COVERAGE void force_row(const double* gx, const double* gy, int nx,
   }
 }
 
-// Multiply-adds of blur_x + blur_y on an nx x ny grid with dx x dy m per sample (each skips a sigma
-// under 0.3 px; gaussian_kernel's radius is ceil(3 sigma)). In double: a sigma of millions of px is
-// asked of it.
-double smoothing_ops(double nx, double ny, double dx, double dy, double sigma_m) {
-  const auto taps = [](double sigma_px) { return sigma_px < 0.3 ? 0.0 : 2 * std::ceil(3 * sigma_px) + 1; };
-  return nx * ny * (taps(sigma_m / dx) + taps(sigma_m / dy));
-}
-
 std::string mm_text(double m) {
   std::ostringstream os;
   os.precision(3);
@@ -123,25 +115,30 @@ std::string mm_text(double m) {
 }
 
 // E0304 for smoothing past kMaxImageSmoothingOps, suggesting the finest `sampling` (over the same
-// width x height, within kMaxImagePixels) or the largest smoothing that fits. Both searches stop:
-// coarser sampling and less smoothing each lower the count, to 0 taps at last.
-void refuse_slow_smoothing(const ResolvedHeightmap& h, int nx, int ny, double ops, Diagnostics& diags) {
+// width x height, at least 3 x 3 and within kMaxImagePixels, its resize of the source's
+// source_nx x source_ny px within the resize limits) or the largest smoothing that fits. Coarser
+// sampling lowers both counts, and less smoothing lowers the blur's, to 0 taps at last; a sampling
+// is named only if one fits before 3 samples a side.
+void refuse_slow_smoothing(const ResolvedHeightmap& h, int nx, int ny, int source_nx, int source_ny, double ops,
+                           Diagnostics& diags) {
   const double w = h.width.si, hh = h.height.si, sigma = h.smoothing->si;
   double s = std::min(w / nx, hh / ny);
   const auto fits_at = [&](double sampling) {
     const double fx = std::max(1.0, std::round(w / sampling)), fy = std::max(1.0, std::round(hh / sampling));
-    return fx * fy <= static_cast<double>(kMaxImagePixels) && smoothing_ops(fx, fy, w / fx, hh / fy, sigma) <= kMaxImageSmoothingOps;
+    return fx >= 3 && fy >= 3 && fx * fy <= static_cast<double>(kMaxImagePixels) &&
+           smoothing_ops(fx, fy, w / fx, hh / fy, sigma) <= kMaxImageSmoothingOps &&
+           resample_within_limits(source_nx, source_ny, static_cast<int>(fx), static_cast<int>(fy));
   };
-  while (!fits_at(s)) s *= 1.02;
+  while (s < std::min(w, hh) / 3 && !fits_at(s)) s *= 1.02;
   double fits = sigma;
   while (smoothing_ops(nx, ny, w / nx, hh / ny, fits) > kMaxImageSmoothingOps) fits *= 0.98;
   std::ostringstream msg;
   msg.precision(3);
   msg << "smoothing " << mm_text(sigma) << " over the image's " << nx << " x " << ny << " samples (" << mm_text(w / nx) << " x "
       << mm_text(hh / ny) << " each) would take " << ops << " multiply-adds, more than the limit of " << kMaxImageSmoothingOps;
+  const std::string less = "use a smoothing of at most " + mm_text(fits * 0.995);
   diags.error("E0304", h.location, msg.str(),
-              "resample the image with `sampling " + mm_text(s * 1.005) + "` or more, or use a smoothing of at most " +
-                  mm_text(fits * 0.995));
+              fits_at(s * 1.005) ? "resample the image with `sampling " + mm_text(s * 1.005) + "` or more, or " + less : less);
 }
 
 // Separable Gaussian blur; `wrap` treats the image as a tile, else edges are clamped. Along x each
@@ -188,6 +185,7 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
   if (h.sampling) req.sampling_m = h.sampling->si;
   req.width_m = h.width.si;
   req.height_m = h.height.si;
+  if (h.smoothing) req.smoothing_m = h.smoothing->si;
   HeightImageError err;
   auto img = load_height_image(req, err);
   if (!img) {
@@ -198,7 +196,7 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
   if (h.smoothing) {
     const double ops = smoothing_ops(nx, ny, h.width.si / nx, h.height.si / ny, h.smoothing->si);
     if (ops > kMaxImageSmoothingOps) {
-      refuse_slow_smoothing(h, nx, ny, ops, diags);
+      refuse_slow_smoothing(h, nx, ny, img->source_nx, img->source_ny, ops, diags);
       return std::nullopt;
     }
   }

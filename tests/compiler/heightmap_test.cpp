@@ -37,6 +37,15 @@ const schema::HeightFieldTerm& field_of(const compiler::CompileResult& r) {
   return std::get<schema::HeightFieldTerm>(r.program->terms.at(0));
 }
 
+// The first diagnostic of a compile that must be refused with `code` (an empty one if it was not).
+compiler::Diagnostic refusal(const std::string& text, const std::string& code) {
+  const auto r = test::shipped_compiler().compile_text(text);
+  EXPECT_FALSE(r.ok()) << text;
+  if (r.diagnostics.all().empty()) return {};
+  EXPECT_EQ(r.diagnostics.all().front().code, code) << compiler::format_diagnostics(r.diagnostics);
+  return r.diagnostics.all().front();
+}
+
 }  // namespace
 
 TEST(Heightmap, RampInXGivesConstantForceDownhill) {
@@ -192,6 +201,40 @@ TEST(Heightmap, AnImageSmoothingPastTheBudgetIsRefusedWithASamplingThatFits) {
   EXPECT_GT(smoothing_mm, 0.04);
 }
 
+// F38's strip (16 x 64,524 px over 20 mm under 0.5 mm) once had E0304 suggest `sampling 0.0137 mm`,
+// whose resize (1,460 x 1,460 samples from 16 px across: a window of 5 x 16,133 each) F39's limits
+// refuse. The suggested sampling must also fit the resize limits, and compile.
+TEST(Heightmap, ASmoothingSuggestionNamesASamplingWhoseResizeFits) {
+  auto dir = test::temp_dir("strip-smoothing");
+  write_image(dir + "/strip.tif", 16, 64524, OIIO::TypeDesc::UINT8, [](float x, float y, int) {
+    return 0.5f + 0.25f * std::sin(6.2832f * y / 6452.4f) + 0.25f * std::sin(6.2832f * x / 16.0f);
+  });
+  auto compile = [](const std::string& text) { return test::shipped_compiler().compile_text(text); };
+  const std::string head = "heightmap \"" + dir + "/strip.tif\" size 20 mm repeat";
+  auto slow = compile(head + " smoothing 0.5 mm amplitude 1 N");
+  ASSERT_FALSE(slow.ok());
+  const auto& d = slow.diagnostics.all().at(0);
+  EXPECT_EQ(d.code, "E0304") << compiler::format_diagnostics(slow.diagnostics);
+  const auto at = d.suggestion.find("`sampling ");
+  ASSERT_NE(at, std::string::npos) << d.suggestion;
+  const std::string sampling = d.suggestion.substr(at + 1, d.suggestion.find('`', at + 1) - at - 1);
+  auto resampled = compile(head + " " + sampling + " smoothing 0.5 mm amplitude 1 N");
+  EXPECT_TRUE(resampled.ok()) << sampling << "\n" << compiler::format_diagnostics(resampled.diagnostics);
+
+  // The other way round: E0402 for the resize names a sampling under which the smoothing fits too,
+  // and not the picture's own pixels, over which the smoothing is what E0304 refused.
+  auto fine = compile(head + " sampling 0.0137 mm smoothing 0.5 mm amplitude 1 N");
+  ASSERT_FALSE(fine.ok());
+  const auto& f = fine.diagnostics.all().at(0);
+  EXPECT_EQ(f.code, "E0402") << compiler::format_diagnostics(fine.diagnostics);
+  EXPECT_EQ(f.suggestion.find("leave out"), std::string::npos) << f.suggestion;
+  const auto at2 = f.suggestion.find("`sampling ");
+  ASSERT_NE(at2, std::string::npos) << f.suggestion;
+  const std::string sampling2 = f.suggestion.substr(at2 + 1, f.suggestion.find('`', at2 + 1) - at2 - 1);
+  auto resampled2 = compile(head + " " + sampling2 + " smoothing 0.5 mm amplitude 1 N");
+  EXPECT_TRUE(resampled2.ok()) << sampling2 << "\n" << compiler::format_diagnostics(resampled2.diagnostics);
+}
+
 // `sampling` on a picture much longer than the samples along y (F39): OpenImageIO's resize walks a
 // window of source rows for each sample, kept on a thread's stack, and lengthens it when x is
 // enlarged. 2 x 800,000 px to 40 x 3 samples needs 21,333,335 rows: OpenImageIO aborted the
@@ -234,28 +277,37 @@ TEST(Heightmap, AResampleWhoseWindowIsTooLongIsRefusedWithASamplingThatFits) {
   EXPECT_TRUE(finer.ok()) << compiler::format_diagnostics(finer.diagnostics);
 }
 
+// The x window's weights are precomputed for every column of samples, on the heap: a 5,000,000 x
+// 1 px picture over 30 x 30 samples would hold 666,669 x 30 of them (80 MB), past 2^24 (64 MiB).
+// (Before the limit it compiled, in 15 s.)
+TEST(Heightmap, AResampleWhoseXWeightsWouldPassTheirLimitIsRefused) {
+  auto dir = test::temp_dir("wide-window");
+  write_image(dir + "/wide.tif", 5000000, 1, OIIO::TypeDesc::UINT8, [](float x, float, int) { return std::fmod(x, 2.0f); });
+  const auto d = refusal("heightmap \"" + dir + "/wide.tif\" size 30 mm sampling 1 mm amplitude 1 N", "E0402");
+  EXPECT_NE(d.message.find("would hold 666669 weights for each of the 30 columns, 20000070 in all, more than the limit "
+                           "of 16777216"),
+            std::string::npos)
+      << d.message;
+}
+
 // A resize whose window fits but whose whole walk does not: a 1 x 200 px profile stretched to
 // 2,000 x 2,000 samples walks 5 x 801 pixels for each (enlarging x by 2,000 lengthens the y window
-// to 801 rows, of which 5 weigh anything): 4e6 x (5 x 5 + 3 x 801) = 9.7e9 visits, about 30 s.
+// to 801 rows, of which 5 weigh anything): 4e6 x (5 x 5 + 801) = 3.3e9 visits, about 30 s.
 TEST(Heightmap, AResamplePastItsBudgetOfVisitsIsRefused) {
   auto dir = test::temp_dir("slow-resize");
   write_image(dir + "/profile.tif", 1, 200, OIIO::TypeDesc::UINT8, [](float, float y, int) { return std::fmod(y, 2.0f); });
-  auto slow = test::shipped_compiler().compile_text("heightmap \"" + dir +
-                                                    "/profile.tif\" size 20 mm sampling 0.01 mm amplitude 1 N");
-  ASSERT_FALSE(slow.ok());
-  const auto& d = slow.diagnostics.all().at(0);
-  EXPECT_EQ(d.code, "E0402") << compiler::format_diagnostics(slow.diagnostics);
+  const auto d = refusal("heightmap \"" + dir + "/profile.tif\" size 20 mm sampling 0.01 mm amplitude 1 N", "E0402");
   EXPECT_NE(d.message.find("to 2000 x 2000 samples: OpenImageIO's resize would walk a window of 5 x 801 pixels for "
-                           "each sample (5 of its rows weighted), about 9.712e+09 pixel visits, more than the limit of 2e+09"),
+                           "each sample (5 of its rows weighted), about 3.304e+09 pixel visits, more than the limit of 2e+09"),
             std::string::npos)
       << d.message;
-  // Fewer samples, the same window: at most 907 a side, so a sampling of 0.02204 mm or more.
+  // Fewer samples, the same window: at most 1,556 a side, so a sampling of 0.01285 mm or more.
   EXPECT_EQ(d.suggestion.find("leave out"), std::string::npos) << d.suggestion;
   const auto at = d.suggestion.find("`sampling ");
   ASSERT_NE(at, std::string::npos) << d.suggestion;
   const double sampling_mm = std::stod(d.suggestion.substr(at + 10));
-  EXPECT_GE(sampling_mm, 20.0 / 907.5);
-  EXPECT_LT(sampling_mm, 0.0225);
+  EXPECT_GE(sampling_mm, 20.0 / 1556.5);
+  EXPECT_LT(sampling_mm, 0.0132);
 }
 
 // A PNG's chunks are walked before libpng allocates them at the lengths they claim (F20): a chunk

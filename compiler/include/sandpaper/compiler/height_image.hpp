@@ -18,13 +18,25 @@ inline constexpr long long kMaxImagePixels = 4096LL * 4096LL;
 inline constexpr double kMaxImageSmoothingOps = 1e9;
 // Resampling (`sampling`, OpenImageIO's resize) walks a window of source pixels for each sample
 // (height_image.cpp, resample_plan). Its y window is kept on a thread's stack, and OpenImageIO
-// aborts past 2^20 pixels (F39): at most kMaxResampleTaps. The whole resize makes at most
-// kMaxImageResampleVisits pixel visits (a row of the window stepped over counts three): about 4 to
-// 6 s of CPU in a release build. 4096 x 4096 px to 4095 x 4095, the costliest resize that keeps
-// the picture's shape, is 1.8e9; a 1 x 200 px profile stretched to 2,000 x 2,000 is 9.7e9 (about
-// 30 s). Beyond either limit, E0402 before the resize, naming a sampling that fits.
+// aborts past 2^20 pixels (F39): at most kMaxResampleTaps. Its x window's weights, one set for each
+// column of samples, are on the heap: at most kMaxResampleXWeights (64 MiB; a 16,000,000 x 1 px
+// picture over 3 columns took 268 MiB of them, 509 MB at peak). The whole resize makes at most
+// kMaxImageResampleVisits pixel visits, 5 to 20 s of CPU in a release build depending on the shape
+// (resample_plan); 4096 x 4096 px to 4095 x 4095, the costliest resize that keeps the picture's
+// shape, is 1.5e9 (4 s). Beyond any limit, E0402 before the resize, naming a sampling that fits.
 inline constexpr long long kMaxResampleTaps = 65537;
+inline constexpr long long kMaxResampleXWeights = 16777216;
 inline constexpr double kMaxImageResampleVisits = 2e9;
+
+// Multiply-adds of an image's smoothing (heightmap.cpp's blur_x + blur_y) on an nx x ny grid with
+// dx x dy m per sample, under a Gaussian of sigma_m m: each pass sums 2 ceil(3 sigma) + 1 taps per
+// sample, none under 0.3 px. In double: a sigma of millions of px can be asked for.
+double smoothing_ops(double nx, double ny, double dx, double dy, double sigma_m);
+
+// Whether `sampling` may resample a source_nx x source_ny px picture to tx x ty samples: within
+// kMaxResampleTaps and kMaxImageResampleVisits (always, when the sizes match: no resize). For
+// suggestions that name a sampling, so that the sampling they name compiles.
+bool resample_within_limits(int source_nx, int source_ny, int tx, int ty);
 
 struct HeightImageRequest {
   std::string path;        // file to open
@@ -35,6 +47,9 @@ struct HeightImageRequest {
   // without it, one sample per pixel.
   std::optional<double> sampling_m;
   double width_m = 0, height_m = 0;
+  // The smoothing the heights will get (m), or none. Not applied here: a sampling that E0402
+  // suggests must also keep it within kMaxImageSmoothingOps.
+  std::optional<double> smoothing_m;
 };
 
 // Heights in the image's own unit: integer pixels 0..1 (OpenImageIO's normalisation), float pixels
