@@ -68,6 +68,27 @@ double read(const std::vector<float>& t, double x) {
   return lo + frac * (hi - lo);
 }
 
+// The largest sign * read(x) over x = x0, x0 + step, ... up to hi: what a servo reading the table
+// once a tick, `step` samples apart, meets on one ridge. Under one sample a tick, read is linear
+// between samples, so in each interval only the first and the last of the points in it can be the
+// largest: the work is the ridge's width in samples, not width / step. A 500 m grating's step is
+// 4e-5 of a sample at 20 mm/s, and that walk ran past 30 s; past about 2e11 m the step is under half
+// the spacing of doubles near x, and it never ended (F40).
+double best_on_lattice(const std::vector<float>& t, double sign, double x0, double step, double hi) {
+  double best = 0;
+  if (step >= 1) {
+    for (double x = x0; x <= hi; x += step) best = std::max(best, sign * read(t, x));
+    return best;
+  }
+  for (double i = std::floor(x0); i <= hi; ++i) {
+    const double a = std::max(i, x0), b = std::min(i + 1, hi);
+    const double j_first = std::ceil((a - x0) / step), j_last = std::floor((b - x0) / step);
+    if (j_first > j_last) continue;
+    best = std::max({best, sign * read(t, x0 + j_first * step), sign * read(t, x0 + j_last * step)});
+  }
+  return best;
+}
+
 }  // namespace
 
 std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std::vector<double>& speeds_m_s,
@@ -92,11 +113,7 @@ std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std:
       for (const auto& r : ridges) {
         // The ridge's force lives between the zero-or-opposite samples on either side of it.
         const double lo = r.first - 1, hi = r.last + 1;
-        for (int k = 0; k < kPhases; ++k) {
-          double best = 0;
-          for (double x = lo + step * (k + 0.5) / kPhases; x <= hi; x += step) best = std::max(best, r.sign * read(table, x));
-          sum += best;
-        }
+        for (int k = 0; k < kPhases; ++k) sum += best_on_lattice(table, r.sign, lo + step * (k + 0.5) / kPhases, step, hi);
       }
       f.peak_N = ridges.empty() ? 0 : sum / (kPhases * static_cast<double>(ridges.size()));
       f.fraction = continuous > 0 ? f.peak_N / continuous : 0;

@@ -100,6 +100,34 @@ TEST(FeltAtSpeed, FineGratingAtSpeedLosesItsPeakAndAFasterServoRestoresIt) {
   EXPECT_GT(compiler::felt_at_speed(*r.program, {0.001}, {1000})[0].fraction, 0.98);
 }
 
+// A grating far longer than a tick's travel (F40): at 20 mm/s and 1 kHz a 500 m period moves 4e-5 of
+// a table sample a tick, and a 1e12 m one (the largest quantity) 2e-14, under half the spacing of
+// doubles near the ridge. The prediction walked every tick across each ridge, so the compile ran
+// past 30 s, or never ended; it walks the table's samples now. Nothing is lost at such steps:
+// the felt peak is the compiled one.
+TEST(FeltAtSpeed, AGratingFarLongerThanATicksTravelIsPredictedAndCompiles) {
+  for (const char* text : {"grating period 500 m amplitude 1 N", "grating period 1e12 m amplitude 1 N"}) {
+    auto r = test::shipped_compiler().compile_text(text);
+    ASSERT_TRUE(r.ok()) << text << "\n" << compiler::format_diagnostics(r.diagnostics);
+    for (const auto& f : compiler::felt_at_explain_speeds(*r.program, 1000)) {
+      EXPECT_GT(f.fraction, 0.999) << text << " at " << f.speed_m_s << " m/s, " << f.rate_hz << " Hz";
+      EXPECT_LE(f.fraction, 1 + 1e-9) << text;
+    }
+  }
+}
+
+// The two ways the prediction walks a ridge (every tick's point for a tick of a sample or more; the
+// first and last points in each sample's interval under one) agree where they meet.
+TEST(FeltAtSpeed, TheWalkJustUnderASampleATickAgreesWithTheWalkJustOver) {
+  auto r = test::shipped_compiler().compile_text("grating period 0.7 mm; roughness 0.5");
+  ASSERT_TRUE(r.ok());
+  const auto& g = std::get<schema::GratingTerm>(r.program->terms.at(0));
+  const double per_sample_m_s = g.period_m / static_cast<double>(g.force_N.size()) * 1000;  // a sample a tick at 1 kHz
+  const auto under = compiler::felt_at_speed(*r.program, {0.999 * per_sample_m_s}, {1000}).at(0);
+  const auto over = compiler::felt_at_speed(*r.program, {1.001 * per_sample_m_s}, {1000}).at(0);
+  EXPECT_NEAR(under.peak_N, over.peak_N, 1e-3 * over.peak_N);
+}
+
 // W0350 and its remedies, each played: the smoothing it offers keeps the measured felt peak within
 // half a force JND at the speed it names, and so does the faster servo it offers.
 TEST(FeltAtSpeed, WarningsRemediesHoldOnTheSimulatedJoystick) {
