@@ -141,6 +141,37 @@ void refuse_slow_smoothing(const ResolvedHeightmap& h, int nx, int ny, int sourc
               fits_at(s * 1.005) ? "resample the image with `sampling " + mm_text(s * 1.005) + "` or more, or " + less : less);
 }
 
+// Without `repeat` the peak slope is taken inside a rim of 3 sigma plus the outermost two samples
+// (make_height_field). A field under 5 samples a side has nothing inside even unsmoothed: E0402,
+// naming a `sampling` that gives 5 a side where its resize fits. Otherwise the smoothing is too wide:
+// E0304, naming the widest that leaves a sample inside, from ceil(3 sigma / d) <= floor((n - 1) / 2) - 2.
+void refuse_empty_inside_rim(const ResolvedHeightmap& h, int nx, int ny, int source_nx, int source_ny, double sigma,
+                             Diagnostics& diags) {
+  const double w = h.width.si, hh = h.height.si;
+  std::ostringstream shape;
+  shape << nx << " x " << ny << " samples (" << mm_text(w / nx) << " x " << mm_text(hh / ny) << " each)";
+  constexpr int kSmallest = 5;
+  if (nx < kSmallest || ny < kSmallest) {
+    const double s = std::min(w, hh) / kSmallest * 0.999;
+    const double fx = std::round(w / s), fy = std::round(hh / s);
+    const bool sampling_fits = fx * fy <= static_cast<double>(kMaxImagePixels) &&
+                               resample_within_limits(source_nx, source_ny, static_cast<int>(fx), static_cast<int>(fy));
+    const std::string tiles = "or add `repeat` if the picture tiles";
+    diags.error("E0402", h.location,
+                "the height field is " + shape.str() + ": without `repeat` its slope is taken away from the outermost two "
+                "samples on each side, so it needs at least 5 x 5 samples",
+                sampling_fits ? "resample it with `sampling " + mm_text(s) + "` or finer, " + tiles : "use a larger picture, " + tiles);
+    return;
+  }
+  const auto widest = [](int n, double d) { return (std::floor((n - 1) / 2.0) - 2) * d / 3; };
+  const double fits = std::min(widest(nx, w / nx), widest(ny, hh / ny)) * 0.995;
+  diags.error("E0304", h.location,
+              "smoothing " + mm_text(sigma) + " is too wide for the image's " + shape.str() +
+                  ": without `repeat` its slope is taken 3 smoothings plus two samples in from each edge, and nothing is left",
+              fits > 0 ? "use a smoothing of at most " + mm_text(fits) + ", or add `repeat` if the picture tiles"
+                       : "remove the smoothing, or add `repeat` if the picture tiles");
+}
+
 // Separable Gaussian blur; `wrap` treats the image as a tile, else edges are clamped. Along x each
 // row is blurred in place; along y each output row sums whole input rows (cache-friendly), into
 // a second image.
@@ -258,8 +289,7 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
   int rim_x = h.repeat ? 0 : static_cast<int>(std::ceil(3 * sigma / dx)) + 2;
   int rim_y = h.repeat ? 0 : static_cast<int>(std::ceil(3 * sigma / dy)) + 2;
   if (2 * rim_x >= nx || 2 * rim_y >= ny) {
-    diags.error("E0304", h.location, "the smoothing is too wide for the image: nothing is left inside its rim",
-                "use a smoothing below a sixth of the image size");
+    refuse_empty_inside_rim(h, nx, ny, img->source_nx, img->source_ny, sigma, diags);
     return std::nullopt;
   }
   // The peak |grad h|: rows find their largest squared magnitude (cheap), then hypot (as before,

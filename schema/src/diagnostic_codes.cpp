@@ -59,7 +59,7 @@ constexpr std::array kCodes = {
     DiagnosticCode{"E0315", E, "a grating with no period, in a file that inherits no grating to take it from", kLang},
     DiagnosticCode{"E0320", E, "a perceptual word whose percept has no compile map in the calibration", kLang},
     DiagnosticCode{"E0401", E, "image unreadable: missing, junk bytes, truncated, not a regular file, or over 512 MiB", kLang},
-    DiagnosticCode{"E0402", E, "image empty, under 3 x 3 or over 4096 x 4096 samples (also after `sampling`), over 64 channels, over 256 MiB as stored or as read, or a `sampling` whose resize walks over 65,537 rows a sample, holds over 2^24 x-window weights or makes over 2e9 pixel visits", kLang},
+    DiagnosticCode{"E0402", E, "image empty, under 3 x 3 samples (5 x 5 without `repeat`) or over 4096 x 4096 (also after `sampling`), over 64 channels, over 256 MiB as stored or as read, or a `sampling` whose resize walks over 65,537 rows a sample, holds over 2^24 x-window weights or makes over 2e9 pixel visits", kLang},
     DiagnosticCode{"E0403", E, "image all one height (no slope) or non-finite", kLang},
     DiagnosticCode{"E0404", E, "the image has no channel of that name (lists its channels, \"did you mean\")", kLang},
     DiagnosticCode{"E0405", E, "a `.depth` array file whose size is not width x height + 4 bytes", kLang},

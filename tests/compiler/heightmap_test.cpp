@@ -5,6 +5,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <string>
 #include <tuple>
 
 #include <OpenImageIO/imageio.h>
@@ -166,6 +167,56 @@ TEST(Heightmap, APictureUnderThreePixelsASideIsRefusedFromItsHeader) {
   auto sampled_cut = compile("heightmap \"" + dir + "/cut.png\" size 20 mm x 400 mm sampling 1 mm amplitude 1 N");
   ASSERT_FALSE(sampled_cut.ok());
   EXPECT_EQ(sampled_cut.diagnostics.all().at(0).code, "E0401");  // read, and found corrupt
+}
+
+// Without `repeat` the peak slope is taken inside a rim of 3 sigma plus the outermost two samples.
+// A picture 3 samples tall has nothing inside even unsmoothed: that is its size (E0402, with a
+// sampling that gives 5 a side), not a smoothing it never asked for, which E0304 used to blame.
+// A smoothing too wide for a picture large enough is E0304, naming the widest that fits.
+TEST(Heightmap, NothingInsideTheRimNamesItsCauseAndAFixThatCompiles) {
+  auto dir = test::temp_dir("rim");
+  const auto ridges = [](float x, float y, int) { return 0.5f + 0.25f * std::sin(x) + 0.25f * std::sin(0.7f * y); };
+  write_image(dir + "/short.tif", 40, 3, OIIO::TypeDesc::UINT8, ridges);
+  write_image(dir + "/square.tif", 40, 40, OIIO::TypeDesc::UINT8, ridges);
+  write_image(dir + "/six.tif", 6, 40, OIIO::TypeDesc::UINT8, ridges);
+  auto compile = [](const std::string& text) { return test::shipped_compiler().compile_text(text); };
+  const auto quoted = [](const std::string& suggestion, const std::string& word) {
+    const auto at = suggestion.find("`" + word + " ");
+    return at == std::string::npos ? std::string() : suggestion.substr(at + 1, suggestion.find('`', at + 1) - at - 1);
+  };
+  const auto smoothing_of = [](const std::string& suggestion) {
+    const auto at = suggestion.find("at most ");
+    return at == std::string::npos ? std::string() : suggestion.substr(at + 8, suggestion.find(" mm", at) - at - 8);
+  };
+
+  const std::string short_head = "heightmap \"" + dir + "/short.tif\" size 40 mm x 3 mm";
+  const auto tall = refusal(short_head + " amplitude 1 N", "E0402");
+  EXPECT_NE(tall.message.find("40 x 3 samples"), std::string::npos) << tall.message;
+  EXPECT_NE(tall.message.find("at least 5 x 5"), std::string::npos) << tall.message;
+  EXPECT_EQ(tall.message.find("smoothing"), std::string::npos) << tall.message;
+  const std::string sampling = quoted(tall.suggestion, "sampling");
+  ASSERT_FALSE(sampling.empty()) << tall.suggestion;
+  auto resampled = compile(short_head + " " + sampling + " amplitude 1 N");
+  ASSERT_TRUE(resampled.ok()) << sampling << "\n" << compiler::format_diagnostics(resampled.diagnostics);
+  EXPECT_GE(field_of(resampled).ny, 5u);
+  auto tiled = compile(short_head + " repeat amplitude 1 N");
+  EXPECT_TRUE(tiled.ok()) << compiler::format_diagnostics(tiled.diagnostics);
+
+  const std::string square_head = "heightmap \"" + dir + "/square.tif\" size 40 mm";
+  const auto wide = refusal(square_head + " smoothing 8 mm amplitude 1 N", "E0304");
+  EXPECT_NE(wide.message.find("smoothing 8 mm"), std::string::npos) << wide.message;
+  const std::string widest = smoothing_of(wide.suggestion);
+  ASSERT_FALSE(widest.empty()) << wide.suggestion;
+  auto fits = compile(square_head + " smoothing " + widest + " mm amplitude 1 N");
+  EXPECT_TRUE(fits.ok()) << widest << "\n" << compiler::format_diagnostics(fits.diagnostics);
+  // Just past it is refused: the named smoothing is the widest, not merely one that fits.
+  refusal(square_head + " smoothing " + std::to_string(std::stod(widest) * 1.02) + " mm amplitude 1 N", "E0304");
+
+  // Six samples wide leaves one inside an unsmoothed rim, and any smoothing covers it.
+  const std::string six_head = "heightmap \"" + dir + "/six.tif\" size 6 mm x 40 mm";
+  EXPECT_TRUE(compile(six_head + " amplitude 1 N").ok());
+  const auto any = refusal(six_head + " smoothing 0.01 mm amplitude 1 N", "E0304");
+  EXPECT_NE(any.suggestion.find("remove the smoothing"), std::string::npos) << any.suggestion;
 }
 
 // Smoothing's work grows with the samples times the kernel's width: the image fuzzer's F38 was a
