@@ -11,8 +11,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -38,11 +36,6 @@ struct ShippedFile {
   std::string text;
 };
 
-std::string read_all(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
 // The scratch copy of the shipped folder, and its files in a fixed order (what the first byte picks).
 const fs::path& folder() {
   static const fs::path dir = [] {
@@ -64,7 +57,7 @@ const std::vector<ShippedFile>& files() {
       for (const auto& e : fs::directory_iterator(folder() / sub))
         if (e.path().extension() == ".toml") names.push_back(e.path());
       std::sort(names.begin(), names.end());
-      for (const auto& p : names) out.push_back({fs::relative(p, folder()), read_all(p)});
+      for (const auto& p : names) out.push_back({fs::relative(p, folder()), fuzz::read_file(p)});
     }
     return out;
   }();

@@ -37,6 +37,8 @@ bool known_defect_tolerated(std::string_view name);
 const std::filesystem::path& scratch_dir();
 // Replaces `path` with `bytes` (one file reused by every input).
 void write_file(const std::filesystem::path& path, std::string_view bytes);
+// The whole of the file at `path` (empty if it cannot be read), in one read of its size.
+std::string read_file(const std::filesystem::path& path);
 
 // Serialises `j` as the CLI does (nlohmann::json::dump). A type_error 316 (invalid UTF-8) is a
 // finding unless "json-utf8" is tolerated.

@@ -4,9 +4,7 @@
 // written again unchanged, its JSON serialised, and played on the simulated joystick.
 #include <cstddef>
 #include <cstdint>
-#include <fstream>
 #include <functional>
-#include <iterator>
 #include <set>
 #include <string>
 
@@ -22,11 +20,6 @@
 
 namespace {
 constexpr std::uint64_t kGridBudget = std::uint64_t{32} << 20;
-
-std::string file_bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -52,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   const auto wsp = fuzz::scratch_dir() / "workspace.wsp";
   schema::write_workspace_program_file(wsp, *result.program);
-  const std::string written = file_bytes(wsp);
+  const std::string written = fuzz::read_file(wsp);
   schema::WorkspaceProgram back;
   try {
     back = schema::read_workspace_program_file(wsp);
@@ -61,7 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fuzz::fail(std::string("a compiled workspace does not read back: ") + e.what());
   }
   schema::write_workspace_program_file(wsp, back);
-  fuzz::check(file_bytes(wsp) == written, "write -> read -> write changed a compiled workspace's bytes");
+  fuzz::check(fuzz::read_file(wsp) == written, "write -> read -> write changed a compiled workspace's bytes");
   fuzz::dump_json(schema::to_json(back));
 
   const auto variant = static_cast<std::uint32_t>(std::hash<std::string>{}(text));

@@ -6,8 +6,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,11 +17,6 @@
 #include "sandpaper/schema/workspace_json.hpp"
 
 namespace {
-
-std::string file_bytes(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 void try_bytes(const std::vector<unsigned char>& bytes, std::uint32_t variant) {
   using namespace sandpaper;
@@ -37,7 +30,7 @@ void try_bytes(const std::vector<unsigned char>& bytes, std::uint32_t variant) {
   }
   const auto again_path = fuzz::scratch_dir() / "again.wsp";
   schema::write_workspace_program_file(again_path, ws);
-  const std::string written = file_bytes(again_path);
+  const std::string written = fuzz::read_file(again_path);
   schema::WorkspaceProgram again;
   try {
     again = schema::read_workspace_program_file(again_path);
@@ -45,7 +38,7 @@ void try_bytes(const std::vector<unsigned char>& bytes, std::uint32_t variant) {
     fuzz::fail(std::string("a workspace the reader accepted, written again, does not read back: ") + e.what());
   }
   schema::write_workspace_program_file(again_path, again);
-  fuzz::check(file_bytes(again_path) == written, "read -> write -> read -> write changed the bytes");
+  fuzz::check(fuzz::read_file(again_path) == written, "read -> write -> read -> write changed the bytes");
   fuzz::dump_json(schema::to_json(ws));
   try {
     runtime::WorkspaceEvaluator evaluator(ws);

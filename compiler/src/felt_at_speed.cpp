@@ -8,6 +8,8 @@
 #include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/compiler/textures.hpp"
 
+#include "no_coverage.hpp"
+
 namespace sandpaper::compiler {
 namespace {
 
@@ -57,7 +59,8 @@ std::vector<Ridge> ridges_of(const std::vector<float>& t) {
 }
 
 // The runtime's read of the table at fractional sample index x (linear, wrapped): runtime/src/force_tables.cpp.
-double read(const std::vector<float>& t, double x) {
+// Called for every tick of the walk below, so left out of the fuzzing build's coverage (no_coverage.hpp).
+SANDPAPER_NO_COVERAGE double read(const std::vector<float>& t, double x) {
   const auto n = static_cast<double>(t.size());
   const double u = x - std::floor(x / n) * n;
   const double whole = std::floor(u);

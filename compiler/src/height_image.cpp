@@ -16,6 +16,7 @@
 #include "sandpaper/compiler/image_io.hpp"
 #include "sandpaper/schema/array_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
+#include "no_coverage.hpp"
 #include "png_chunks.hpp"
 
 namespace sandpaper::compiler {
@@ -265,8 +266,8 @@ bool choose_weights(const HeightImageRequest& r, const RawImage& raw, std::vecto
   return true;
 }
 
-// The heights: the weighted sum of the channels read.
-void combine(const RawImage& raw, const std::vector<float>& weight, std::vector<float>& out) {
+// The heights: the weighted sum of the channels read (a per-pixel kernel: no_coverage.hpp).
+SANDPAPER_NO_COVERAGE void combine(const RawImage& raw, const std::vector<float>& weight, std::vector<float>& out) {
   const std::size_t n = static_cast<std::size_t>(raw.nx) * raw.ny;
   out.assign(n, 0.0f);
   for (std::size_t i = 0; i < n; ++i) {
@@ -276,6 +277,16 @@ void combine(const RawImage& raw, const std::vector<float>& weight, std::vector<
       if (const float w = weight[static_cast<std::size_t>(raw.first + c)]; w != 0.0f) v += w * p[c];
     out[i] = v;
   }
+}
+
+// Whether every height is finite, and if so their range (a per-pixel kernel: no_coverage.hpp).
+SANDPAPER_NO_COVERAGE bool finite_range(const std::vector<float>& v, float& lo, float& hi) {
+  lo = v.empty() ? 0.0f : v[0], hi = lo;
+  for (const float x : v) {
+    if (!std::isfinite(x)) return false;
+    lo = std::min(lo, x), hi = std::max(hi, x);
+  }
+  return true;
 }
 
 }  // namespace
@@ -402,15 +413,14 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
   }
   combine(raw, weight, img.values);
   raw.pixels = {};
-  for (float v : img.values)
-    if (!std::isfinite(v)) {
-      fail(e, "E0403", "image '" + r.shown_path + "' holds non-finite values (NaN or infinity)",
-           "replace them before using the image as a height map");
-      return std::nullopt;
-    }
-  auto [lo, hi] = std::minmax_element(img.values.begin(), img.values.end());
-  img.lo = *lo;
-  img.hi = *hi;
+  float lo = 0, hi = 0;
+  if (!finite_range(img.values, lo, hi)) {
+    fail(e, "E0403", "image '" + r.shown_path + "' holds non-finite values (NaN or infinity)",
+         "replace them before using the image as a height map");
+    return std::nullopt;
+  }
+  img.lo = lo;
+  img.hi = hi;
   if (!(img.hi > img.lo)) {
     std::ostringstream v;
     v << img.lo;

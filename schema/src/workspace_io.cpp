@@ -9,6 +9,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -61,9 +62,10 @@ class Cursor {
       throw PatchFormatError("workspace program holds a string that is not UTF-8 (byte " + std::to_string(bad) + " of it)");
     return s;
   }
-  std::vector<unsigned char> bytes(std::uint64_t n) {
+  // The next n bytes, in place (valid while the payload is).
+  std::string_view view(std::uint64_t n) {
     need(n);
-    std::vector<unsigned char> v(p_, p_ + n);
+    const std::string_view v(reinterpret_cast<const char*>(p_), n);
     p_ += n;
     return v;
   }
@@ -165,7 +167,8 @@ WorkspaceProgram read_workspace_program_file(const std::filesystem::path& path) 
     ws.size_m[0] = c.pod<double>();
     ws.size_m[1] = c.pod<double>();
     const auto n = c.pod<std::uint32_t>();
-    std::unordered_map<std::string, std::shared_ptr<const PatchProgram>> distinct;
+    // Keyed by views into `payload`, which outlives the map: a program is copied only to be read.
+    std::unordered_map<std::string_view, std::shared_ptr<const PatchProgram>> distinct;
     for (std::uint32_t i = 0; i < n; ++i) {
       PlacedPatch p;
       p.source = c.str();
@@ -175,9 +178,9 @@ WorkspaceProgram read_workspace_program_file(const std::filesystem::path& path) 
       p.size_m[1] = c.pod<double>();
       const auto length = c.pod<std::uint64_t>();
       // Patches with byte-identical programs share one (as the compiler made them).
-      const auto bytes = c.bytes(length);
-      auto& shared = distinct[std::string(bytes.begin(), bytes.end())];
-      if (!shared) shared = std::make_shared<const PatchProgram>(deserialize(bytes));
+      const auto bytes = c.view(length);
+      auto& shared = distinct[bytes];
+      if (!shared) shared = std::make_shared<const PatchProgram>(deserialize(std::vector<unsigned char>(bytes.begin(), bytes.end())));
       p.program = shared;
       if (!plausible_length(p.size_m[0]) || !plausible_length(p.size_m[1]) || !std::isfinite(p.centre_m[0]) ||
           !std::isfinite(p.centre_m[1]))
