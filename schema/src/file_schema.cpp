@@ -5,6 +5,8 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -99,12 +101,12 @@ class Validator {
       report(n, key, "must be " + s["const"].dump() + ", found " + describe(n));
     if (s.contains("enum")) {
       bool ok = false;
-      std::string all;
-      for (const auto& e : s["enum"]) {
-        ok = ok || equals(n, e);
-        all += (all.empty() ? "" : ", ") + e.dump();
+      for (const auto& e : s["enum"]) ok = ok || equals(n, e);
+      if (!ok) {
+        std::string all;
+        for (const auto& e : s["enum"]) all += (all.empty() ? "" : ", ") + e.dump();
+        report(n, key, "must be one of " + all + ", found " + describe(n));
       }
-      if (!ok) report(n, key, "must be one of " + all + ", found " + describe(n));
     }
     if (n.is_number()) numeric(*n.value<double>(), s, n, key);
     if (n.is_string() && s.contains("x-dimension")) quantity(*n.value<std::string>(), s, n, key);
@@ -114,11 +116,15 @@ class Validator {
 
  private:
   const json& resolve(const json& s) const {
-    if (!s.contains("$ref")) return s;
-    std::string ref = s["$ref"];
-    const std::string prefix = "#/definitions/";
-    if (ref.rfind(prefix, 0) != 0) throw std::logic_error("file schema: unsupported $ref " + ref);
-    return resolve(root_.at("definitions").at(ref.substr(prefix.size())));
+    const auto it = s.find("$ref");
+    if (it == s.end()) return s;
+    const std::string_view ref = it->get_ref<const std::string&>();
+    constexpr std::string_view prefix = "#/definitions/";
+    if (!ref.starts_with(prefix)) throw std::logic_error("file schema: unsupported $ref " + std::string(ref));
+    const json& definitions = root_.at("definitions");
+    const auto def = definitions.find(ref.substr(prefix.size()));
+    if (def == definitions.end()) throw std::logic_error("file schema: no definition for $ref " + std::string(ref));
+    return resolve(*def);
   }
 
   static std::string article(const std::string& t) {
@@ -164,7 +170,7 @@ class Validator {
   }
 
   void object(const toml::table& t, const json& s, const std::string& key) {
-    const json empty = json::object();
+    static const json empty = json::object();
     const json& props = s.contains("properties") ? s["properties"] : empty;
     if (s.contains("required"))
       for (const auto& r : s["required"]) {
