@@ -7,8 +7,7 @@
 
 #include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/compiler/textures.hpp"
-
-#include "no_coverage.hpp"
+#include "sandpaper/schema/no_coverage.hpp"
 
 namespace sandpaper::compiler {
 namespace {

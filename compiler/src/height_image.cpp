@@ -16,7 +16,7 @@
 #include "sandpaper/compiler/image_io.hpp"
 #include "sandpaper/schema/array_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
-#include "no_coverage.hpp"
+#include "sandpaper/schema/no_coverage.hpp"
 #include "png_chunks.hpp"
 
 namespace sandpaper::compiler {

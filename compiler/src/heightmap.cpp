@@ -12,8 +12,7 @@
 #include <vector>
 
 #include "sandpaper/compiler/textures.hpp"
-
-#include "no_coverage.hpp"
+#include "sandpaper/schema/no_coverage.hpp"
 
 namespace sandpaper::compiler {
 namespace {

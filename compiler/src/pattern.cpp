@@ -8,8 +8,7 @@
 
 #include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/compiler/perlin.hpp"
-
-#include "no_coverage.hpp"
+#include "sandpaper/schema/no_coverage.hpp"
 
 namespace sandpaper::compiler {
 namespace {
