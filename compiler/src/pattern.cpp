@@ -86,9 +86,45 @@ double smoothing_ops(int nx, int ny, bool wrap, double sigma1, double sigma2) {
   return ops;
 }
 
-void round_heights(Heights& a, bool quantized) {
+SANDPAPER_NO_COVERAGE void round_heights(Heights& a, bool quantized) {
   if (!quantized) return;
   for (auto& v : a.h) v = std::round(v);
+}
+
+// A bars or grid tile: hills `top` high where the position within its period is past the valley;
+// a grid's alternate rows of cells shifted by `offset` px.
+SANDPAPER_NO_COVERAGE void fill_raised(Heights& a, bool bars, int period, int valley, int offset, double top) {
+  for (int y = 0; y < a.ny; ++y) {
+    const int shift = (y / period) % 2 ? offset : 0;
+    const int ty = ((y % period) + period) % period;
+    for (int x = 0; x < a.nx; ++x) {
+      const int tx = (((x - (bars ? 0 : shift)) % period) + period) % period;
+      const bool up = tx >= valley && (bars || ty >= valley);
+      a.at(x, y) = up ? top : 0.0;
+    }
+  }
+}
+
+SANDPAPER_NO_COVERAGE void fill_perlin(Heights& a, const PerlinLattice& noise, double lattice, double top) {
+  for (int y = 0; y < a.ny; ++y)
+    for (int x = 0; x < a.nx; ++x) a.at(x, y) = top * noise.density(x / lattice, y / lattice, 0.5);
+}
+
+// Central differences in height steps over the nx x ny samples from (ox, oy) (EQ 12-13: two
+// pixels apart), wrapping on a tile; returns the largest gradient's length.
+SANDPAPER_NO_COVERAGE double central_gradients(const Heights& a, int ox, int oy, int nx, int ny, std::vector<double>& gx,
+                                               std::vector<double>& gy) {
+  double peak = 0;
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      const int X = x + ox, Y = y + oy;
+      auto h = [&](int i, int j) { return a.wrap ? a.at((i + a.nx) % a.nx, (j + a.ny) % a.ny) : a.at(i, j); };
+      const std::size_t i = static_cast<std::size_t>(y) * nx + x;
+      gx[i] = h(X + 1, Y) - h(X - 1, Y);
+      gy[i] = h(X, Y + 1) - h(X, Y - 1);
+      peak = std::max(peak, std::hypot(gx[i], gy[i]));
+    }
+  return peak;
 }
 
 int pixels_of(const std::optional<Param>& p, double pixel_m) {
@@ -160,13 +196,7 @@ bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double p
       return false;
     }
     a.h.assign(static_cast<std::size_t>(a.nx) * a.ny, 0.0);
-    auto raised = [&](int t) { return ((t % period) + period) % period >= valley; };
-    for (int y = 0; y < a.ny; ++y)
-      for (int x = 0; x < a.nx; ++x) {
-        bool up = p.kind == PatternKind::Bars ? raised(x)
-                                               : raised(x - ((y / period) % 2 ? offset : 0)) && raised(y);
-        a.at(x, y) = up ? top : 0.0;
-      }
+    fill_raised(a, p.kind == PatternKind::Bars, period, valley, offset, top);
     os << ", valley " << valley << " px, hill " << hill << " px";
     if (offset) os << ", alternate rows offset " << offset << " px";
     os << ", tile " << a.nx << " x " << a.ny << " px repeated";
@@ -196,8 +226,7 @@ bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double p
       const int lx = static_cast<int>(std::floor((a.nx - 1) / lattice)) + 2;
       const int ly = static_cast<int>(std::floor((a.ny - 1) / lattice)) + 2;
       PerlinLattice noise(lx, ly, 2, static_cast<std::uint64_t>(p.seed->si));
-      for (int y = 0; y < a.ny; ++y)
-        for (int x = 0; x < a.nx; ++x) a.at(x, y) = top * noise.density(x / lattice, y / lattice, 0.5);
+      fill_perlin(a, noise, lattice, top);
       os << ", lattice " << num(lattice) << " px, seed " << p.seed->si;
     } else if (p.kind == PatternKind::Noise) {
       // One uniform random height per feature cell, drawn row by row (4.3's jitter stimuli).
@@ -243,16 +272,7 @@ bool make_pattern_field(const ResolvedPattern& p, double patch_width_m, double p
   const int ox = tile ? 0 : margin, oy = tile ? 0 : margin;
   const int nx = tile ? a.nx : n_x, ny = tile ? a.ny : n_y;
   std::vector<double> gx(static_cast<std::size_t>(nx) * ny), gy(gx.size());
-  double peak = 0;
-  for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x) {
-      const int X = x + ox, Y = y + oy;
-      auto h = [&](int i, int j) { return a.wrap ? a.at((i + a.nx) % a.nx, (j + a.ny) % a.ny) : a.at(i, j); };
-      const std::size_t i = static_cast<std::size_t>(y) * nx + x;
-      gx[i] = h(X + 1, Y) - h(X - 1, Y);
-      gy[i] = h(X, Y + 1) - h(X, Y - 1);
-      peak = std::max(peak, std::hypot(gx[i], gy[i]));
-    }
+  const double peak = central_gradients(a, ox, oy, nx, ny, gx, gy);
   if (!(peak > 0)) {
     diags.error("E0304", p.location, "the pattern has no slope, so no lateral force (" + os.str() + ")",
                 "use more height bits, less smoothing or a larger feature");
