@@ -75,10 +75,10 @@ class Validator {
 
   void check(const toml::node& n, const json& schema, const std::string& key, const toml::node* parent) {
     const json& s = resolve(schema);
-    if (s.contains("anyOf")) {
+    if (const json* any_of = get(s, "anyOf")) {
       bool any = false;
       std::vector<SchemaViolation> first;
-      for (const auto& branch : s["anyOf"]) {
+      for (const auto& branch : *any_of) {
         std::vector<SchemaViolation> v;
         Validator(root_, v).check(n, branch, key, parent);
         if (v.empty()) any = true;
@@ -90,31 +90,38 @@ class Validator {
         else out_.insert(out_.end(), first.begin(), first.end());
       }
     }
-    if (s.contains("type")) {
-      const std::string want = s["type"];
+    if (const json* type = get(s, "type")) {
+      const std::string& want = type->get_ref<const std::string&>();
       if (!type_matches(n, want)) {
         report(n, key, "expected " + article(want) + ", found " + describe(n));
         return;
       }
     }
-    if (s.contains("const") && !equals(n, s["const"]))
-      report(n, key, "must be " + s["const"].dump() + ", found " + describe(n));
-    if (s.contains("enum")) {
+    if (const json* c = get(s, "const"); c && !equals(n, *c))
+      report(n, key, "must be " + c->dump() + ", found " + describe(n));
+    if (const json* options = get(s, "enum")) {
       bool ok = false;
-      for (const auto& e : s["enum"]) ok = ok || equals(n, e);
+      for (const auto& e : *options) ok = ok || equals(n, e);
       if (!ok) {
         std::string all;
-        for (const auto& e : s["enum"]) all += (all.empty() ? "" : ", ") + e.dump();
+        for (const auto& e : *options) all += (all.empty() ? "" : ", ") + e.dump();
         report(n, key, "must be one of " + all + ", found " + describe(n));
       }
     }
     if (n.is_number()) numeric(*n.value<double>(), s, n, key);
-    if (n.is_string() && s.contains("x-dimension")) quantity(*n.value<std::string>(), s, n, key);
+    if (n.is_string() && get(s, "x-dimension")) quantity(*n.value<std::string>(), s, n, key);
     if (const auto* t = n.as_table()) object(*t, s, key);
     if (const auto* a = n.as_array()) array(*a, s, key);
   }
 
  private:
+  // The schema keyword `k` of `s`, or null: one look-up without a temporary key (the validator runs
+  // for every value of every calibration file loaded, so this is most of a load's time).
+  static const json* get(const json& s, std::string_view k) {
+    const auto it = s.find(k);
+    return it == s.end() ? nullptr : &*it;
+  }
+
   const json& resolve(const json& s) const {
     const auto it = s.find("$ref");
     if (it == s.end()) return s;
@@ -140,16 +147,16 @@ class Validator {
 
   void numeric(double v, const json& s, const toml::node& n, const std::string& key) {
     if (!std::isfinite(v)) report(n, key, "must be a finite number");
-    if (s.contains("minimum") && v < s["minimum"].get<double>())
-      report(n, key, "must be at least " + s["minimum"].dump() + ", found " + describe(n));
-    if (s.contains("exclusiveMinimum") && !(v > s["exclusiveMinimum"].get<double>()))
-      report(n, key, "must be greater than " + s["exclusiveMinimum"].dump() + ", found " + describe(n));
-    if (s.contains("maximum") && v > s["maximum"].get<double>())
-      report(n, key, "must be at most " + s["maximum"].dump() + ", found " + describe(n));
+    if (const json* m = get(s, "minimum"); m && v < m->get<double>())
+      report(n, key, "must be at least " + m->dump() + ", found " + describe(n));
+    if (const json* m = get(s, "exclusiveMinimum"); m && !(v > m->get<double>()))
+      report(n, key, "must be greater than " + m->dump() + ", found " + describe(n));
+    if (const json* m = get(s, "maximum"); m && v > m->get<double>())
+      report(n, key, "must be at most " + m->dump() + ", found " + describe(n));
   }
 
   void quantity(const std::string& text, const json& s, const toml::node& n, const std::string& key) {
-    const std::string dim = s["x-dimension"];
+    const std::string& dim = get(s, "x-dimension")->get_ref<const std::string&>();
     auto want = dimension_named(dim);
     if (!want) throw std::logic_error("file schema: unknown x-dimension " + dim);
     auto q = parse_quantity(text);
@@ -163,40 +170,41 @@ class Validator {
                          " (units: " + units_of(*want) + ")");
       return;
     }
-    if (s.contains("exclusiveMinimum") && !(q->value > s["exclusiveMinimum"].get<double>()))
-      report(n, key, "must be greater than " + s["exclusiveMinimum"].dump() + ", found \"" + text + "\"");
-    if (s.contains("minimum") && q->value < s["minimum"].get<double>())
-      report(n, key, "must be at least " + s["minimum"].dump() + ", found \"" + text + "\"");
+    if (const json* m = get(s, "exclusiveMinimum"); m && !(q->value > m->get<double>()))
+      report(n, key, "must be greater than " + m->dump() + ", found \"" + text + "\"");
+    if (const json* m = get(s, "minimum"); m && q->value < m->get<double>())
+      report(n, key, "must be at least " + m->dump() + ", found \"" + text + "\"");
   }
 
   void object(const toml::table& t, const json& s, const std::string& key) {
     static const json empty = json::object();
-    const json& props = s.contains("properties") ? s["properties"] : empty;
-    if (s.contains("required"))
-      for (const auto& r : s["required"]) {
-        const std::string name = r;
+    const json* given = get(s, "properties");
+    const json& props = given ? *given : empty;
+    if (const json* required = get(s, "required"))
+      for (const auto& r : *required) {
+        const std::string& name = r.get_ref<const std::string&>();
         if (!t.contains(name)) report_missing(t, join(key, name), "missing required key `" + name + "`");
       }
-    const bool closed = s.contains("additionalProperties") && s["additionalProperties"].is_boolean() &&
-                        !s["additionalProperties"].get<bool>();
+    const json* extra = get(s, "additionalProperties");
+    const bool closed = extra && extra->is_boolean() && !extra->get<bool>();
     for (const auto& [k, v] : t) {
-      const std::string name(k.str());
-      if (props.contains(name)) check(v, props[name], join(key, name), &t);
+      const std::string_view name = k.str();
+      if (const json* rule = get(props, name)) check(v, *rule, join(key, std::string(name)), &t);
       else if (closed) {
         std::string known;
         for (const auto& [p, unused] : props.items()) known += (known.empty() ? "" : ", ") + p;
-        report_key(k, join(key, name), "unknown key `" + name + "`; expected one of: " + known);
+        report_key(k, join(key, std::string(name)), "unknown key `" + std::string(name) + "`; expected one of: " + known);
       }
     }
   }
 
   void array(const toml::array& a, const json& s, const std::string& key) {
-    if (s.contains("minItems") && a.size() < s["minItems"].get<std::size_t>())
-      report(a, key, "needs at least " + s["minItems"].dump() + " item(s), found " + std::to_string(a.size()));
-    if (s.contains("maxItems") && a.size() > s["maxItems"].get<std::size_t>())
-      report(a, key, "takes at most " + s["maxItems"].dump() + " item(s), found " + std::to_string(a.size()));
-    if (s.contains("items"))
-      for (std::size_t i = 0; i < a.size(); ++i) check(a[i], s["items"], key + "[" + std::to_string(i) + "]", &a);
+    if (const json* m = get(s, "minItems"); m && a.size() < m->get<std::size_t>())
+      report(a, key, "needs at least " + m->dump() + " item(s), found " + std::to_string(a.size()));
+    if (const json* m = get(s, "maxItems"); m && a.size() > m->get<std::size_t>())
+      report(a, key, "takes at most " + m->dump() + " item(s), found " + std::to_string(a.size()));
+    if (const json* items = get(s, "items"))
+      for (std::size_t i = 0; i < a.size(); ++i) check(a[i], *items, key + "[" + std::to_string(i) + "]", &a);
   }
 
   static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
