@@ -2,7 +2,9 @@
 // libsandpaper_image_io.so that the command-line programs load on first use (SANDPAPER_IMAGE_IO_MODULE
 // defined: exports sandpaper_image_io_table), and as the static Sandpaper::image_io that applications
 // link (defines api() itself).
+#include <algorithm>
 #include <cctype>
+#include <cstddef>
 #include <memory>
 #include <string_view>
 #include <utility>
@@ -76,9 +78,55 @@ void* open_picture(const std::string& path, PictureHeader& header, std::string& 
   return in.release();
 }
 
+// Rows of a scanline picture read at a time: about this many bytes as stored, in whole TIFF strips.
+constexpr std::size_t kStripBytes = std::size_t{1} << 20;
+
+// Channels [first, last] of a scanline picture as floats, read in strips in the file's own format
+// and converted here. Asked for floats directly, OpenImageIO 2.4 converts through a buffer of about
+// 64 MB whatever the picture's size (ImageInput::read_scanlines sizes it for 64 MB of rows); under
+// the fuzzing build's ASan, mapping and poisoning that buffer for every picture was most of the
+// image target's time (docs/RELIABILITY.md, "Executions per second"). The conversion is
+// OpenImageIO's own, so the values are the same: integers normalised to 0..1, floats as stored.
+bool read_strips(OIIO::ImageInput& in, int first, int last, float* pixels) {
+  const OIIO::ImageSpec spec = in.spec();
+  const std::size_t row_bytes = spec.scanline_bytes(true);
+  const std::size_t pixel_bytes = spec.pixel_bytes(true);
+  if (row_bytes == 0 || spec.width < 1 || spec.height < 1) return false;
+  const int rows_per_strip = std::max(1, spec.get_int_attribute("tiff:RowsPerStrip", 64));
+  const int fit = static_cast<int>(std::clamp<std::size_t>(kStripBytes / row_bytes, 1, static_cast<std::size_t>(spec.height)));
+  const int rows = std::min(spec.height, std::max(rows_per_strip, fit / rows_per_strip * rows_per_strip));
+  std::vector<unsigned char> strip(row_bytes * static_cast<std::size_t>(rows));
+  const int read = last - first + 1;
+  const OIIO::stride_t out_pixel = static_cast<OIIO::stride_t>(read * sizeof(float));
+  const OIIO::stride_t out_row = out_pixel * spec.width;
+  for (int y = 0; y < spec.height; y += rows) {
+    const int count = std::min(rows, spec.height - y);
+    if (!in.read_scanlines(0, 0, spec.y + y, spec.y + y + count, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN,
+                           strip.data()))
+      return false;
+    auto* out = reinterpret_cast<unsigned char*>(pixels) + static_cast<std::size_t>(y) * static_cast<std::size_t>(out_row);
+    // Channels of one stored format at a time (OpenEXR may mix half and float).
+    for (int c = first; c <= last;) {
+      const OIIO::TypeDesc format = spec.channelformat(c);
+      int n = 1;
+      while (c + n <= last && spec.channelformat(c + n) == format) ++n;
+      if (!OIIO::convert_image(n, spec.width, count, 1, strip.data() + spec.pixel_bytes(0, c, true), format,
+                               static_cast<OIIO::stride_t>(pixel_bytes), static_cast<OIIO::stride_t>(row_bytes),
+                               OIIO::AutoStride, out + (c - first) * sizeof(float), OIIO::TypeDesc::FLOAT, out_pixel,
+                               out_row, OIIO::AutoStride))
+        return false;
+      c += n;
+    }
+  }
+  return true;
+}
+
 bool read_picture(void* picture, int first, int last, float* pixels, std::string& why) {
   auto& in = *static_cast<OIIO::ImageInput*>(picture);
-  const bool ok = in.read_image(0, 0, first, last + 1, OIIO::TypeDesc::FLOAT, pixels);
+  // Tiled and deep pictures keep OpenImageIO's own whole-picture read (its tile buffer is a tile).
+  const bool scanlines = in.spec().tile_width == 0 && !in.spec().deep;
+  const bool ok = scanlines ? read_strips(in, first, last, pixels)
+                            : in.read_image(0, 0, first, last + 1, OIIO::TypeDesc::FLOAT, pixels);
   // OpenImageIO can report success for a truncated file and only log the error: ask it as well.
   why = first_line(in.geterror());
   if (ok && why.empty()) return true;
