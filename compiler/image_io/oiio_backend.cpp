@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cstddef>
+#include <cstring>
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <utility>
 #include <string>
@@ -17,6 +19,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include "sandpaper/compiler/image_io.hpp"
+
+#include "decoder_buffer.hpp"
 
 namespace sandpaper::compiler::image_io {
 namespace {
@@ -94,8 +98,13 @@ bool read_strips(OIIO::ImageInput& in, int first, int last, float* pixels) {
   if (row_bytes == 0 || spec.width < 1 || spec.height < 1) return false;
   const int rows_per_strip = std::max(1, spec.get_int_attribute("tiff:RowsPerStrip", 64));
   const int fit = static_cast<int>(std::clamp<std::size_t>(kStripBytes / row_bytes, 1, static_cast<std::size_t>(spec.height)));
-  const int rows = std::min(spec.height, std::max(rows_per_strip, fit / rows_per_strip * rows_per_strip));
-  std::vector<unsigned char> strip(row_bytes * static_cast<std::size_t>(rows));
+  // OpenImageIO 2.4 reads whole deflate TIFF strips itself and then inverts a MinIsWhite picture's
+  // values over the strip times its channel count, past the rows it was asked for and past the
+  // buffer (docs/RELIABILITY.md, F41). Asked for one row, it takes its per-row path, which inverts
+  // that row only.
+  const bool one_row = spec.get_int_attribute("tiff:PhotometricInterpretation", -1) == 0 && spec.nchannels > 1;
+  const int rows = one_row ? 1 : std::min(spec.height, std::max(rows_per_strip, fit / rows_per_strip * rows_per_strip));
+  DecoderBuffer strip(row_bytes * static_cast<std::size_t>(rows));
   const int read = last - first + 1;
   const OIIO::stride_t out_pixel = static_cast<OIIO::stride_t>(read * sizeof(float));
   const OIIO::stride_t out_row = out_pixel * spec.width;
@@ -121,12 +130,23 @@ bool read_strips(OIIO::ImageInput& in, int first, int last, float* pixels) {
   return true;
 }
 
+// Where buffers are guarded (decoder_buffer.hpp), the decoders fill one of their own, copied out after.
+std::optional<DecoderBuffer> guard_for(std::size_t floats) {
+  if (DecoderBuffer::guarded()) return std::optional<DecoderBuffer>(std::in_place, floats * sizeof(float));
+  return std::nullopt;
+}
+
 bool read_picture(void* picture, int first, int last, float* pixels, std::string& why) {
   auto& in = *static_cast<OIIO::ImageInput*>(picture);
+  const std::size_t floats = static_cast<std::size_t>(in.spec().width) * static_cast<std::size_t>(in.spec().height) *
+                             static_cast<std::size_t>(last - first + 1);
+  auto guard = guard_for(floats);
+  float* into = guard ? reinterpret_cast<float*>(guard->data()) : pixels;
   // Tiled and deep pictures keep OpenImageIO's own whole-picture read (its tile buffer is a tile).
   const bool scanlines = in.spec().tile_width == 0 && !in.spec().deep;
-  const bool ok = scanlines ? read_strips(in, first, last, pixels)
-                            : in.read_image(0, 0, first, last + 1, OIIO::TypeDesc::FLOAT, pixels);
+  const bool ok = scanlines ? read_strips(in, first, last, into)
+                            : in.read_image(0, 0, first, last + 1, OIIO::TypeDesc::FLOAT, into);
+  if (ok && guard) std::memcpy(pixels, into, guard->size());
   // OpenImageIO can report success for a truncated file and only log the error: ask it as well.
   why = first_line(in.geterror());
   if (ok && why.empty()) return true;
@@ -142,10 +162,13 @@ void close_picture(void* picture) {
 bool resize(const float* src, int nx, int ny, float* dst, int tx, int ty, const char* filter, std::string& why) {
   OIIO::ImageBuf in(OIIO::ImageSpec(nx, ny, 1, OIIO::TypeDesc::FLOAT), const_cast<float*>(src));
   OIIO::ImageBuf out = OIIO::ImageBufAlgo::resize(in, filter, 0.0f, OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1));
-  if (out.has_error() || !out.get_pixels(OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, dst)) {
+  auto guard = guard_for(static_cast<std::size_t>(tx) * static_cast<std::size_t>(ty));
+  float* into = guard ? reinterpret_cast<float*>(guard->data()) : dst;
+  if (out.has_error() || !out.get_pixels(OIIO::ROI(0, tx, 0, ty, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, into)) {
     why = out.geterror();
     return false;
   }
+  if (guard) std::memcpy(dst, into, guard->size());
   return true;
 }
 
