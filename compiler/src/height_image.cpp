@@ -197,7 +197,9 @@ OpenPicture open_picture(const HeightImageRequest& r, RawImage& raw, HeightImage
   raw.nc = spec.channels;
   for (int c = 0; c < raw.nc; ++c) {
     std::string name = c < static_cast<int>(spec.channel_names.size()) ? spec.channel_names[static_cast<std::size_t>(c)] : "";
-    raw.channel_names.push_back(name.empty() ? "channel" + std::to_string(c) : name);
+    // The file's bytes, not text: they go into diagnostics and the patch program's description,
+    // which hold UTF-8 only (docs/RELIABILITY.md, F42).
+    raw.channel_names.push_back(name.empty() ? "channel" + std::to_string(c) : schema::replace_invalid_utf8(name));
   }
   raw.format = spec.format;
   return in;

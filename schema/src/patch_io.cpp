@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <cstring>
+#include <string>
 #include <fstream>
 #include <iterator>
 #include <type_traits>
@@ -69,7 +70,15 @@ class Writer {
     const auto* b = reinterpret_cast<const unsigned char*>(&v);
     own().insert(own().end(), b, b + sizeof(T));
   }
+  // Strings as JSON output writes them (schema/json_text.hpp): each byte that does not begin a whole
+  // UTF-8 character as U+FFFD. They are display text (a Latin-1 file name in a location, a picture's
+  // channel name), and the reader refuses any other: a program written is one it can read
+  // (docs/RELIABILITY.md, F42).
   void str(const std::string& s) {
+    if (std::size_t bad = 0; !is_valid_utf8(s, bad)) return text(replace_invalid_utf8(s));
+    text(s);
+  }
+  void text(const std::string& s) {  // `s` known to be UTF-8
     pod<std::uint32_t>(static_cast<std::uint32_t>(s.size()));
     own().insert(own().end(), s.begin(), s.end());
   }

@@ -55,6 +55,10 @@ cp "$src/examples/corduroy.hmat" "$tmp/caf"$'\xe9'".hmat"
 "$sp" compile "$tmp/caf"$'\xe9'".hmat" -o "$tmp/cafe.patch" --json >"$tmp/out" 2>"$tmp/err"; check "a Latin-1 file name compiles with --json" 0 $?
 python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["ok"], d' "$tmp/out" && ok "and prints JSON" || bad "--json output is not JSON"
 if grep -q "json.exception" "$tmp/err"; then bad "a raw nlohmann exception reached the user"; else ok "no raw library exception"; fi
+# The name is in the program too (its provenance's locations): written with U+FFFD, it reads back
+# (F42; the reader refused the program with "a string that is not UTF-8", exit 1).
+"$sp" inspect "$tmp/cafe.patch" >"$tmp/out" 2>"$tmp/err"; check "the program compiled from a Latin-1 file name reads back" 0 $?
+grep -q "caf"$'\xef\xbf\xbd'".hmat" "$tmp/out" && ok "naming the file with U+FFFD" || bad "inspect does not name the file with U+FFFD"
 sed 's/^S01,/M'$'\xfc''ller,/' "$src/examples/calibration/roughness-responses.csv" >"$tmp/latin1.csv"
 grep -q $'\xfc' "$tmp/latin1.csv" || bad "the test CSV has no Latin-1 subject (the example's first subject is not S01?)"
 "$sp" calibrate fit "$tmp/latin1.csv" --json >"$tmp/out" 2>"$tmp/err"; check "calibrate fit: a Latin-1 subject is exit 1" 1 $?

@@ -7,11 +7,14 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include "sandpaper/schema/array_file.hpp"
+#include "sandpaper/schema/input_limits.hpp"
+#include "sandpaper/schema/patch_io.hpp"
 #include "test_support.hpp"
 
 using namespace sandpaper;
@@ -652,4 +655,37 @@ TEST(Heightmap, RealPhotographsCompileAsExamples) {
   auto brick = test::shipped_compiler().compile_file("examples/brick-relief.hmat");
   // sampling 0.2 mm over 90 mm: the grid is 450 x 450, not the photograph's 512 x 512.
   EXPECT_EQ(field_of(brick).nx, 450u);
+}
+
+// F42: a picture's channel names are the file's bytes. One that is not UTF-8 ("heig" then 0xFF 0xC0,
+// the fuzzer's OpenEXR file) went as it was into the program's description, and the reader refused
+// the program the compile had just written. Shown with U+FFFD for each bad byte, in the program and
+// in diagnostics alike.
+TEST(Heightmap, AChannelNameThatIsNotUtf8IsShownWithReplacementCharactersAndTheProgramReadsBack) {
+  const std::string dir = test::temp_dir("heightmap-channel-bytes");
+  const std::string path = dir + "/channels.exr";
+  {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out) << OIIO::geterror();
+    OIIO::ImageSpec spec(16, 16, 4, OIIO::TypeDesc::HALF);
+    spec.channelnames = {"R", "G", "B", "heig\xff\xc0"};
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    std::vector<float> px(16 * 16 * 4);
+    for (std::size_t i = 0; i < px.size(); ++i) px[i] = static_cast<float>(i % 37) / 37.0f;
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data())) << out->geterror();
+    ASSERT_TRUE(out->close());
+  }
+  const std::string shown = "heig\xef\xbf\xbd\xef\xbf\xbd";
+  auto r = test::shipped_compiler().compile_text("heightmap \"" + path + "\" size 20 mm amplitude 1 N");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  schema::PatchProgram back;
+  ASSERT_NO_THROW(back = schema::deserialize(schema::serialize(*r.program)));
+  bool named = false;
+  for (const auto& p : back.provenance) named = named || p.stated.find(shown) != std::string::npos;
+  EXPECT_TRUE(named) << "no provenance entry names the channel as " << shown;
+  // The channels listed by E0404 for a channel the picture lacks.
+  const auto d = refusal("heightmap \"" + path + "\" size 20 mm amplitude 1 N channel Z", "E0404");
+  EXPECT_NE(d.message.find(shown), std::string::npos) << d.message;
+  std::size_t bad = 0;
+  EXPECT_TRUE(schema::is_valid_utf8(d.message, bad)) << d.message;
 }

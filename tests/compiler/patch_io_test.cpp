@@ -1,6 +1,9 @@
 // The patch-program file: round trip, determinism, integrity checks, atomic writes.
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -84,4 +87,32 @@ TEST(PatchIO, WritesAtomicallyAndLeavesNoTemporaryFiles) {
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 1);
   EXPECT_THROW(schema::write_patch_file(dir + "/no/such/dir/m.patch", sample()), std::runtime_error);
+}
+
+// F42: a compile wrote a picture's channel name, or a Latin-1 file name in a location, as raw bytes
+// into the program, and the reader refused the file the compile had just written. The writer now
+// writes every string as text, each byte that does not begin a whole UTF-8 character as U+FFFD (as
+// JSON output does), so what it writes reads back.
+TEST(PatchIO, TheWriterWritesEveryStringAsTextTheReaderTakes) {
+  const auto p = sample();
+  const std::vector<std::function<std::string&(schema::PatchProgram&)>> fields = {
+      [](schema::PatchProgram& q) -> std::string& { return q.name; },
+      [](schema::PatchProgram& q) -> std::string& { return q.describes; },
+      [](schema::PatchProgram& q) -> std::string& { return q.provenance.at(0).source; },
+      [](schema::PatchProgram& q) -> std::string& { return q.warnings.at(0).message; },
+  };
+  // A stray byte, an overlong '/', a surrogate, a character cut short.
+  const std::vector<std::pair<std::string, std::string>> spoilt = {
+      {"caf\xe9.hmat", "caf\uFFFD.hmat"},
+      {"a\xc0\xaf" "b", "a\uFFFD\uFFFDb"},
+      {"\xed\xa0\x80", "\uFFFD\uFFFD\uFFFD"},
+      {"x\xe2\x82", "x\uFFFD\uFFFD"},
+  };
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    auto q = p;
+    fields[i](q) = spoilt[i].first;
+    schema::PatchProgram back;
+    ASSERT_NO_THROW(back = schema::deserialize(schema::serialize(q))) << i;
+    EXPECT_EQ(fields[i](back), spoilt[i].second) << i;
+  }
 }
