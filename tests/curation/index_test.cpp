@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <streambuf>
 #include <tuple>
@@ -198,6 +199,65 @@ TEST(LibraryIndex, AFailedRebuildLeavesThePreviousIndexByteIdentical) {
   const auto io = build(b.lib, blocked / "library.sqlite");
   EXPECT_FALSE(io.ok);
   EXPECT_FALSE(io.error.empty());
+}
+
+// The JSON columns of an index edited or damaged since it was built: a reader reports the index as
+// damaged, naming the entry and the way to mend it, not the JSON library's exception (F43); a full
+// rebuild mends it. The index is written only by Sandpaper, but it is a file on disk all the same.
+TEST(LibraryIndex, ADamagedJsonColumnIsReportedWithTheEntryAndTheWayToMendIt) {
+  const auto b = built("index-damaged-json");
+  auto damage = [&](const std::string& sql) {
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(b.index.c_str(), &db), SQLITE_OK);
+    char* err = nullptr;
+    EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &err), SQLITE_OK) << (err ? err : "");
+    sqlite3_free(err);
+    sqlite3_close(db);
+  };
+  auto error_of = [](const std::function<void()>& read) -> std::string {
+    try {
+      read();
+    } catch (const IndexError& e) {
+      return e.what();
+    } catch (const std::exception& e) {
+      return std::string("not an IndexError: ") + e.what();
+    }
+    return "no error";
+  };
+  for (const char* bad : {"not json", "", "{}", "[1]", "[[1, 2]]", "[[\"a\"]]", "[[\"a\", \"b\"]]", "[[\"a\", 1, 2]]"}) {
+    damage(std::string("UPDATE entries SET term_params = '") + bad + "' WHERE name = 'ribbed-cloth'");
+    const Index idx(b.index);
+    const std::string what = error_of([&] { (void)idx.entry("ribbed-cloth"); });
+    EXPECT_NE(what.find(b.index.string() + " is damaged: entry 'ribbed-cloth': its term_params is not a JSON list of "
+                                            "[name, number] pairs; rebuild it with `sandpaper library index --full`"),
+              std::string::npos)
+        << bad << ": " << what;
+    EXPECT_EQ(error_of([&] { (void)idx.entries(); }), what) << bad;
+    EXPECT_EQ(error_of([&] { (void)idx.entry("coarse-grit"); }), "no error") << "an undamaged entry still reads";
+  }
+  damage("UPDATE entries SET term_params = '[[\"grating.period_m\", 0.0032]]' WHERE name = 'ribbed-cloth'");
+  EXPECT_EQ(error_of([&] { (void)Index(b.index).entry("ribbed-cloth"); }), "no error");
+
+  for (const char* bad : {"[[\"derived\", 8]]", "[\"derived\"]", "null"}) {
+    damage(std::string("UPDATE provenance SET notes = '") + bad + "' WHERE name = 'ribbed-cloth'");
+    const std::string what = error_of([&] { (void)Index(b.index).provenance("ribbed-cloth"); });
+    EXPECT_NE(what.find(" is damaged: entry 'ribbed-cloth': the notes of its "), std::string::npos) << bad << ": " << what;
+    EXPECT_NE(what.find("is not a JSON list of [name, text] pairs"), std::string::npos) << what;
+  }
+
+  damage("UPDATE entries SET term_params = 'not json' WHERE name = 'ribbed-cloth'");
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  IndexOptions full{b.lib, {}, b.index, "sim"};
+  full.full = true;
+  const auto r = build_index(full, quiet);
+  ASSERT_TRUE(r.ok) << r.error;
+  const Index mended(b.index);
+  EXPECT_EQ(error_of([&] { (void)mended.entries(); }), "no error");
+  bool period_sourced = false;
+  for (const auto& p : mended.provenance("ribbed-cloth"))
+    period_sourced = period_sourced || (p.parameter == "texture.period" && !p.notes.empty() && p.notes[0].first == "derived");
+  EXPECT_TRUE(period_sourced);
 }
 
 TEST(LibraryIndex, KnowsWhenItIsStale) {

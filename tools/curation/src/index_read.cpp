@@ -1,5 +1,10 @@
 #include <nlohmann/json.hpp>
 
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
 #include "sandpaper/curation/index.hpp"
 #include "below.hpp"
 #include "sqlite_util.hpp"
@@ -59,6 +64,36 @@ const char* kEntryColumns =
     "e.roughness, e.max_lateral_force_N, e.texture_kind, e.period_m, e.period_class, e.character, e.terms, e.physical, e.term_params "
     "FROM entries e LEFT JOIN families f ON f.id = e.family";
 
+// A JSON column (written by index_write.cpp) as [name, value] pairs. The file may have been edited or
+// damaged since it was written: anything else there is the index's fault, said so with the way to
+// mend it, never as the JSON library's exception (docs/RELIABILITY.md, F43). `Value` is double or
+// std::string.
+template <class Value>
+std::vector<std::pair<std::string, Value>> pairs_column(sqlite3* db, const std::string& text, const std::string& what) {
+  const auto j = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  std::vector<std::pair<std::string, Value>> out;
+  const auto fits = [](const nlohmann::json& v) {
+    if constexpr (std::is_same_v<Value, double>) return v.is_number();
+    else return v.is_string();
+  };
+  bool ok = j.is_array();
+  if (ok)
+    for (const auto& kv : j) {
+      if (!kv.is_array() || kv.size() != 2 || !kv[0].is_string() || !fits(kv[1])) {
+        ok = false;
+        break;
+      }
+      out.emplace_back(kv[0].get<std::string>(), kv[1].get<Value>());
+    }
+  if (!ok) {
+    const char* file = sqlite3_db_filename(db, "main");
+    throw IndexError(std::string(file != nullptr && *file != '\0' ? file : "the library index") + " is damaged: " + what +
+                     " is not a JSON list of [name, " + (std::is_same_v<Value, double> ? "number" : "text") +
+                     "] pairs; rebuild it with `sandpaper library index --full`");
+  }
+  return out;
+}
+
 // `light`: the entries row only (no aliases, no other percepts), for comparing many entries.
 IndexedEntry read_entry(sqlite3* db, const sql::Stmt& s, bool light = false) {
   IndexedEntry e;
@@ -84,7 +119,7 @@ IndexedEntry read_entry(sqlite3* db, const sql::Stmt& s, bool light = false) {
   e.character = s.text(14);
   e.terms = s.text(15);
   e.physical = s.text(16);
-  for (const auto& kv : nlohmann::json::parse(s.text(17))) e.term_params.emplace_back(kv[0].get<std::string>(), kv[1].get<double>());
+  e.term_params = pairs_column<double>(db, s.text(17), "entry '" + e.name + "': its term_params");
   if (light) return e;
   sql::Stmt a(db, "SELECT alias FROM aliases WHERE name = ? ORDER BY rowid");
   a.bind(1, e.name);
@@ -201,7 +236,7 @@ std::vector<IndexedProvenance> Index::provenance(const std::string& name) const 
   s.bind(1, name);
   while (s.step()) {
     IndexedProvenance p{s.text(0), s.real(1), s.text(2), s.text(3), s.text(4), s.text(5), {}};
-    for (const auto& n : nlohmann::json::parse(s.text(6))) p.notes.emplace_back(n[0].get<std::string>(), n[1].get<std::string>());
+    p.notes = pairs_column<std::string>(db_, s.text(6), "entry '" + name + "': the notes of its " + p.parameter);
     out.push_back(std::move(p));
   }
   return out;
