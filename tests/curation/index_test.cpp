@@ -13,6 +13,7 @@
 #include <streambuf>
 #include <tuple>
 #include <sstream>
+#include <stdexcept>
 
 #include "curation_test_support.hpp"
 #include "sandpaper/curation/index.hpp"
@@ -201,10 +202,11 @@ TEST(LibraryIndex, AFailedRebuildLeavesThePreviousIndexByteIdentical) {
   EXPECT_FALSE(io.error.empty());
 }
 
-// The JSON columns of an index edited or damaged since it was built: a reader reports the index as
-// damaged, naming the entry and the way to mend it, not the JSON library's exception (F43); a full
+// The JSON columns and the Weber fraction of an index edited or damaged since it was built: a reader
+// reports the index as damaged, naming what and the way to mend it, not the JSON library's or
+// std::stod's exception (F43); a full
 // rebuild mends it. The index is written only by Sandpaper, but it is a file on disk all the same.
-TEST(LibraryIndex, ADamagedJsonColumnIsReportedWithTheEntryAndTheWayToMendIt) {
+TEST(LibraryIndex, ADamagedColumnIsReportedWithWhatIsDamagedAndTheWayToMendIt) {
   const auto b = built("index-damaged-json");
   auto damage = [&](const std::string& sql) {
     sqlite3* db = nullptr;
@@ -245,6 +247,24 @@ TEST(LibraryIndex, ADamagedJsonColumnIsReportedWithTheEntryAndTheWayToMendIt) {
     EXPECT_NE(what.find("is not a JSON list of [name, text] pairs"), std::string::npos) << what;
   }
 
+  // The Weber fraction `near` measures distances in, kept as text in `meta`.
+  EXPECT_EQ(error_of([&] { (void)nearest(Index(b.index), "ribbed-cloth", 3); }), "no error");
+  for (const char* bad : {"x", "", "0", "-0.1", "2", "nan", "0.125x"}) {
+    damage(std::string("UPDATE meta SET value = '") + bad + "' WHERE key = 'weber_fraction'");
+    const std::string what = error_of([&] { (void)nearest(Index(b.index), "ribbed-cloth", 3); });
+    EXPECT_NE(what.find(" is damaged: its weber_fraction is '" + std::string(bad) +
+                        "', not a number in (0, 1]; rebuild it with `sandpaper library index --full`"),
+              std::string::npos)
+        << bad << ": " << what;
+  }
+
+  // Before, 0 and nan reached the search for neighbours, whose box never grew: it never ended.
+  const Index undamaged_entries(b.index);
+  const auto from = undamaged_entries.entry("ribbed-cloth");
+  ASSERT_TRUE(from);
+  for (const double w : {0.0, -1.0, std::nan(""), 2.0})
+    EXPECT_THROW((void)nearest_to(undamaged_entries, *from, 3, w), std::invalid_argument) << w;
+
   damage("UPDATE entries SET term_params = 'not json' WHERE name = 'ribbed-cloth'");
   std::ostringstream sink;
   Progress quiet("indexing", 0, true, sink, false);
@@ -254,6 +274,7 @@ TEST(LibraryIndex, ADamagedJsonColumnIsReportedWithTheEntryAndTheWayToMendIt) {
   ASSERT_TRUE(r.ok) << r.error;
   const Index mended(b.index);
   EXPECT_EQ(error_of([&] { (void)mended.entries(); }), "no error");
+  EXPECT_NEAR(mended.weber_fraction(), 0.125, 1e-9);
   bool period_sourced = false;
   for (const auto& p : mended.provenance("ribbed-cloth"))
     period_sourced = period_sourced || (p.parameter == "texture.period" && !p.notes.empty() && p.notes[0].first == "derived");

@@ -370,12 +370,12 @@ int run_near(const Paths& p, const LibraryCommandOptions& o) {
     }
     std::cout << schema::json_text(
                      nlohmann::json{
-                         {"from", from}, {"weber_fraction", std::stod(idx.meta("weber_fraction"))}, {"nearest", arr}},
+                         {"from", from}, {"weber_fraction", idx.weber_fraction()}, {"nearest", arr}},
                      2)
               << "\n";
     return kExitOk;
   }
-  std::cout << "nearest to " << from << " (distance in force JND steps of " << num(std::stod(idx.meta("weber_fraction")) * 100)
+  std::cout << "nearest to " << from << " (distance in force JND steps of " << num(idx.weber_fraction() * 100)
             << " %; a period doubling counts " << num(cur::kJndPerPeriodDoubling) << ", docs/LIBRARY.md)\n";
   std::size_t wn = 0;
   for (const auto& n : ns) wn = std::max(wn, shown_name(n.entry, p.layered()).size());

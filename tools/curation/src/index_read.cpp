@@ -1,5 +1,6 @@
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -55,6 +56,19 @@ std::string Index::meta(const std::string& key) const {
   sql::Stmt s(db_, "SELECT value FROM meta WHERE key = ?");
   s.bind(1, key);
   return s.step() ? s.text(0) : std::string();
+}
+
+double Index::weber_fraction() const {
+  const std::string text = meta("weber_fraction");
+  char* end = nullptr;
+  const double w = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !(w > 0.0 && w <= 1.0)) {
+    const char* file = sqlite3_db_filename(db_, "main");
+    throw IndexError(std::string(file != nullptr && *file != '\0' ? file : "the library index") +
+                     " is damaged: its weber_fraction is '" + text + "', not a number in (0, 1]; rebuild it with "
+                     "`sandpaper library index --full`");
+  }
+  return w;
 }
 
 namespace {

@@ -109,7 +109,7 @@ std::vector<SearchHit> LayeredIndex::search(const SearchQuery& q) const {
 std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::string& name, std::size_t limit) const {
   const auto from = entry(layer, name);
   if (!from) return {};
-  const double weber = std::stod(layers_.at(layer).index->meta("weber_fraction"));
+  const double weber = layers_.at(layer).index->weber_fraction();
   std::vector<Neighbour> found;
   for (std::size_t i = 0; i < layers_.size(); ++i)
     for (std::size_t lim = limit;; lim *= 2) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 namespace sandpaper::curation {
 
@@ -77,10 +78,12 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
 std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit) {
   const auto from = index.entry(name);
   if (!from) return {};
-  return nearest_to(index, *from, limit, std::stod(index.meta("weber_fraction")));
+  return nearest_to(index, *from, limit, index.weber_fraction());
 }
 
 std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_entry, std::size_t limit, double weber) {
+  // A Weber fraction of 0 or NaN makes the box below never grow, and the search never ends.
+  if (!(weber > 0 && weber <= 1)) throw std::invalid_argument("nearest_to: the Weber fraction must be in (0, 1]");
   if (limit == 0) return {};
   const auto* from = &from_entry;
   // Every entry but `from` itself, when it is one of this index's.

@@ -115,6 +115,9 @@ class Index {
   Index& operator=(const Index&) = delete;
 
   std::string meta(const std::string& key) const;  // "" if absent
+  // The force JND's Weber fraction the index was compiled with (dimensionless, e.g. 0.125; Minsky
+  // 1995 5.4.2), from `meta`. Throws IndexError (damaged, F43) unless a number in (0, 1].
+  double weber_fraction() const;
   std::vector<IndexedEntry> entries() const;       // sorted by name
   std::optional<IndexedEntry> entry(const std::string& name) const;
   // Entries by their row ids in `entries` (the ids of `search` and `coordinates` too).

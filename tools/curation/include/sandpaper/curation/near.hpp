@@ -29,6 +29,7 @@ Neighbour distance_between(const IndexedEntry& from, const IndexedEntry& to, dou
 std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit);
 // The same for an entry that may be another index's (a root in front, in a layered path), with
 // that index's Weber fraction; an entry of this index with from's name is not a neighbour.
+// Throws std::invalid_argument unless 0 < weber <= 1 (a caller's error).
 std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from, std::size_t limit, double weber);
 
 }  // namespace sandpaper::curation
