@@ -58,16 +58,20 @@ std::string Index::meta(const std::string& key) const {
   return s.step() ? s.text(0) : std::string();
 }
 
+// The error for an index whose contents were edited or damaged since it was written (F43): names
+// the file and the way to mend it.
+static IndexError damaged_index(sqlite3* db, const std::string& what) {
+  const char* file = sqlite3_db_filename(db, "main");
+  return IndexError(std::string(file != nullptr && *file != '\0' ? file : "the library index") + " is damaged: " + what +
+                    "; rebuild it with `sandpaper library index --full`");
+}
+
 double Index::weber_fraction() const {
   const std::string text = meta("weber_fraction");
   char* end = nullptr;
   const double w = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !(w > 0.0 && w <= 1.0)) {
-    const char* file = sqlite3_db_filename(db_, "main");
-    throw IndexError(std::string(file != nullptr && *file != '\0' ? file : "the library index") +
-                     " is damaged: its weber_fraction is '" + text + "', not a number in (0, 1]; rebuild it with "
-                     "`sandpaper library index --full`");
-  }
+  if (text.empty() || end != text.c_str() + text.size() || !(w > 0.0 && w <= 1.0))
+    throw damaged_index(db_, "its weber_fraction is '" + text + "', not a number in (0, 1]");
   return w;
 }
 
@@ -99,12 +103,9 @@ std::vector<std::pair<std::string, Value>> pairs_column(sqlite3* db, const std::
       }
       out.emplace_back(kv[0].get<std::string>(), kv[1].get<Value>());
     }
-  if (!ok) {
-    const char* file = sqlite3_db_filename(db, "main");
-    throw IndexError(std::string(file != nullptr && *file != '\0' ? file : "the library index") + " is damaged: " + what +
-                     " is not a JSON list of [name, " + (std::is_same_v<Value, double> ? "number" : "text") +
-                     "] pairs; rebuild it with `sandpaper library index --full`");
-  }
+  if (!ok)
+    throw damaged_index(db, what + " is not a JSON list of [name, " + (std::is_same_v<Value, double> ? "number" : "text") +
+                                "] pairs");
   return out;
 }
 
