@@ -32,7 +32,7 @@ printf 'material "broken" {\n  grating period -2 mm\n}\n' >"$tmp/lib/broken.hmat
 has "the message names the entry" "$tmp/err" "do.* not compile: broken"
 cmp -s "$tmp/index.before" "$tmp/site/index.html"; check "the previous catalog is left as it was" 0 $?
 [ ! -e "$tmp/site/entries/broken.html" ]; check "nothing of the failed run is in it" 0 $?
-[ -z "$(ls -A "$tmp" | grep '^\.site\.')" ]; check "no temporary folder is left beside it" 0 $?
+[ -z "$(find "$tmp" -mindepth 1 -maxdepth 1 -name '.site.*')" ]; check "no temporary folder is left beside it" 0 $?
 rm "$tmp/lib/broken.hmat"
 
 mkdir -p "$tmp/mine" && echo keep >"$tmp/mine/notes.txt"

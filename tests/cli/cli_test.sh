@@ -141,7 +141,7 @@ echo keep >"$tmp/out.patch"
 expect_exit 1 "conflicting file" -- "$sp" compile tests/golden/diagnostics/conflict.hmat -o "$tmp/out.patch"
 has "$tmp/err" 'conflict.hmat:4:3: error\[E0302\]' "diagnostic with file:line:col"
 [ "$(cat "$tmp/out.patch")" = keep ] && ok || bad "a failed compile changed its output file"
-[ "$(ls -A "$tmp" | grep -c tmp-)" -eq 0 ] && ok || bad "temporary files left behind"
+[ -z "$(find "$tmp" -mindepth 1 -maxdepth 1 -name '*tmp-*')" ] && ok || bad "temporary files left behind"
 expect_exit 1 "unknown name" -- "$sp" run -e unobtainium --device sim
 has "$tmp/err" 'E0301' "unknown library entry"
 expect_exit 1 "missing file" -- "$sp" compile no/such/file.hmat
@@ -214,7 +214,7 @@ sed -i 's/^1 /9 /' "$tmp/m/session-20240229-090500.shuffle"
 expect_exit 1 "a damaged shuffle" -- "$sp" movie show "$tmp/m/session-20240229-090500.shuffle"
 has "$tmp/err" 'E0523' "damaged shuffle diagnostic"
 expect_exit 2 "bad --date" -- "$sp" movie shuffle examples/workspace/session.movie --seed 1 --date 1995-02-30 -o "$tmp/x.shuffle"
-for i in $(seq 1 101); do echo "sampler.hws"; done >"$tmp/m/long.movie"
+for _ in $(seq 1 101); do echo "sampler.hws"; done >"$tmp/m/long.movie"
 expect_exit 1 "a movie over 100 frames" -- "$sp" movie show "$tmp/m/long.movie"
 has "$tmp/err" 'long.movie:101:1: error\[E0511\]' "frame limit diagnostic"
 echo "nowhere.hws" >"$tmp/m/missing.movie"
@@ -271,7 +271,7 @@ has "$tmp/err" 'did you mean `stickiness`' "perceptual word suggestion"
 expect_exit 1 "softness and spring in one file" -- "$sp" compile -e "softness 0.5; spring 40 N/m"
 has "$tmp/err" 'E0302' "perceptual and physical for one parameter conflict"
 
-[ "$(ls -A "$tmp" | grep -c tmp-)" -eq 0 ] && ok || bad "temporary files left behind"
+[ -z "$(find "$tmp" -mindepth 1 -maxdepth 1 -name '*tmp-*')" ] && ok || bad "temporary files left behind"
 
 # Calibration fits (issue 4): a map from magnitude estimates, a device file from force-gauge readings
 # (the examples are synthetic; examples/calibration/ says how they were made).

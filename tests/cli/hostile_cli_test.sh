@@ -160,7 +160,7 @@ head -c 1000000 /dev/urandom >"$tmp/idx/library.sqlite.tmp-99999999"
 "$sp" library catalog --library "$tmp/lib" -o "$tmp/site" --quiet >/dev/null 2>&1; check "catalog builds" 0 $?
 mkdir -p "$tmp/.site.new-99999999-1/entries" "$tmp/.site.old-99999999-2"
 "$sp" library catalog --library "$tmp/lib" -o "$tmp/site" --quiet >/dev/null 2>&1; check "catalog rebuilds" 0 $?
-[ -z "$(ls -A "$tmp" | grep '^\.site\.')" ]; check "a dead run's catalog temporaries are removed" 0 $?
+[ -z "$(find "$tmp" -mindepth 1 -maxdepth 1 -name '.site.*')" ]; check "a dead run's catalog temporaries are removed" 0 $?
 
 # A real kill -9 in the middle of a catalog of the shipped library: the previous catalog stays whole
 # at its place, and the next run leaves no temporaries. The run's temporary folder appearing is the
@@ -169,14 +169,14 @@ cp "$tmp/site/index.html" "$tmp/index.before"
 "$sp" library catalog -o "$tmp/site" --quiet >/dev/null 2>&1 &
 pid=$!
 for _ in $(seq 1 600); do
-  [ -n "$(ls -A "$tmp" | grep '^\.site\.new-')" ] && [ -n "$(ls -A "$tmp"/.site.new-*/entries 2>/dev/null)" ] && break
+  [ -n "$(find "$tmp" -mindepth 1 -maxdepth 1 -name '.site.new-*')" ] && [ -n "$(ls -A "$tmp"/.site.new-*/entries 2>/dev/null)" ] && break
   kill -0 $pid 2>/dev/null || break
   read -rt 0.1 <> <(:) || true
 done
 kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
 cmp -s "$tmp/index.before" "$tmp/site/index.html"; check "after kill -9 the previous catalog is whole" 0 $?
 "$sp" library catalog --library "$tmp/lib" -o "$tmp/site" --quiet >/dev/null 2>&1; check "the next run succeeds" 0 $?
-[ -z "$(ls -A "$tmp" | grep '^\.site\.')" ]; check "and leaves no temporaries of the killed run" 0 $?
+[ -z "$(find "$tmp" -mindepth 1 -maxdepth 1 -name '.site.*')" ]; check "and leaves no temporaries of the killed run" 0 $?
 
 echo "hostile files: $fails failed"
 exit $((fails > 0))

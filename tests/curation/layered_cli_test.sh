@@ -13,7 +13,7 @@ bad() { echo "FAIL: $*"; fail=$((fail + 1)); }
 json() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if ($2) else 1)" "$1"; }
 
 python3 "$gen" 60 "$tmp/world" --seed 5 >/dev/null || bad "the generator failed"
-n=gen-grating-000001  # a generated grating that "describes" corduroy
+n="gen-grating-000001"  # a generated grating that "describes" corduroy
 [ -f "$tmp/world/gen-gratings/000/$n.hmat" ] || bad "the generated library has no $n"
 mkdir -p "$tmp/lab/cloth"
 printf 'id = "lab"\nname = "a lab"\nversion = "0.1.0"\n[families.cloth]\ntitle = "Cloth"\n' >"$tmp/lab/library.toml"
