@@ -6,7 +6,10 @@
 # nothing is removed), with the target's dictionary from fuzz/dict/. Crashes, leaks, timeouts and
 # out-of-memory inputs go to build-fuzz/findings/TARGET/; libFuzzer's output to build-fuzz/logs/.
 # Prints executions and coverage, and appends one line per run to build-fuzz/fuzz-log.tsv:
-#   date  target  seconds (as run)  execs  cov  ft  crashes
+#   date  target  seconds (as run)  execs  cov  ft  crashes  slow units
+# Crashes are the run's findings (crash, leak, timeout, out-of-memory, broken invariant). A slow unit
+# (over 10 s, libFuzzer's -report_slow_units) is saved beside them as slow-unit-*, but the run goes
+# on and it is not counted as a finding: it is a lead to a timeout, read as such.
 # JOBS > 1, or FUZZ_KEEP_GOING=1, runs libFuzzer's fork mode with JOBS workers, which keeps going
 # after a crash, leak, timeout or out-of-memory (each still lands in findings/); otherwise the run
 # stops at the first one.
@@ -110,14 +113,17 @@ last=$(grep -E '^#[0-9]+:?[[:space:]].*cov: ' "$log" | tail -1 || true)
 [[ -z $execs ]] && execs=$(sed -E 's/^#([0-9]+).*/\1/' <<<"$last")
 cov=$(sed -nE 's/.*cov: ([0-9]+).*/\1/p' <<<"$last")
 ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<<"$last")
-new_findings=$(find "$findings" -type f -newer "$marker")
+new_findings=$(find "$findings" -type f -newer "$marker" ! -name 'slow-unit-*')
 crashes=$(grep -c . <<<"$new_findings" || true)
+new_slow=$(find "$findings" -type f -newer "$marker" -name 'slow-unit-*')
+slow=$(grep -c . <<<"$new_slow" || true)
 rm -f "$marker"
 elapsed=$(( $(date +%s) - started ))  # less than SECONDS when the run stopped at a finding
 
-printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$stamp" "$target" "$elapsed" "${execs:-0}" "${cov:-0}" "${ft:-0}" "$crashes" \
-  >>"$build/fuzz-log.tsv"
-echo "target $target: ${elapsed}s, ${execs:-0} executions, cov ${cov:-0}, ft ${ft:-0}, ${crashes} finding(s) in $findings (libFuzzer exit $status)"
+printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$stamp" "$target" "$elapsed" "${execs:-0}" "${cov:-0}" "${ft:-0}" \
+  "$crashes" "$slow" >>"$build/fuzz-log.tsv"
+echo "target $target: ${elapsed}s, ${execs:-0} executions, cov ${cov:-0}, ft ${ft:-0}, ${crashes} finding(s), ${slow} slow unit(s) in $findings (libFuzzer exit $status)"
+[[ $slow -gt 0 ]] && echo "$new_slow"
 if [[ $crashes -gt 0 ]]; then
   echo "$new_findings"
   grep -E '^(==[0-9]+==ERROR|SUMMARY|fuzz invariant broken|.*runtime error:)' "$log" | head -5 || true
