@@ -204,7 +204,8 @@ TEST(LibraryIndex, AFailedRebuildLeavesThePreviousIndexByteIdentical) {
 
 // The JSON columns and the Weber fraction of an index edited or damaged since it was built: a reader
 // reports the index as damaged, naming what and the way to mend it, not the JSON library's or
-// std::stod's exception (F43); a full rebuild mends it. The index is written only by Sandpaper, but it is a file on disk all the same.
+// std::stod's exception (F43); a full rebuild mends it. The index is written only by Sandpaper, but
+// it is a file on disk all the same.
 TEST(LibraryIndex, ADamagedColumnIsReportedWithWhatIsDamagedAndTheWayToMendIt) {
   const auto b = built("index-damaged-json");
   auto damage = [&](const std::string& sql) {
