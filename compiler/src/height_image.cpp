@@ -17,6 +17,7 @@
 #include "sandpaper/schema/array_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/no_coverage.hpp"
+#include "exr_header.hpp"
 #include "png_chunks.hpp"
 
 namespace sandpaper::compiler {
@@ -152,7 +153,9 @@ OpenPicture open_picture(const HeightImageRequest& r, RawImage& raw, HeightImage
          "scale the image down, or crop it, before using it");
     return {};
   }
-  if (const auto overrun = png_chunks_overrun(r.path)) {
+  auto overrun = png_chunks_overrun(r.path);
+  if (!overrun) overrun = exr_header_overrun(r.path);
+  if (overrun) {
     fail(e, "E0401", "cannot read image '" + r.shown_path + "': " + *overrun, "the file may be truncated or corrupt; save it again");
     return {};
   }

@@ -50,6 +50,19 @@ compiler::Diagnostic refusal(const std::string& text, const std::string& code) {
   return r.diagnostics.all().front();
 }
 
+// A 16 x 16 px ramp written by OpenImageIO as `dir/ramp.EXT`, as bytes: a good file to damage.
+std::string ramp_bytes(const std::string& dir, const std::string& ext, OIIO::TypeDesc type) {
+  write_image(dir + "/ramp" + ext, 16, 16, type, [](float x, float, int) { return x / 15.0f; });
+  std::ifstream in(dir + "/ramp" + ext, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// `bytes` saved as `dir/name` and compiled as a 16 mm height map.
+compiler::CompileResult compile_image_bytes(const std::string& dir, const std::string& name, const std::string& bytes) {
+  std::ofstream(dir + "/" + name, std::ios::binary) << bytes;
+  return test::shipped_compiler().compile_text("heightmap \"" + dir + "/" + name + "\" size 16 mm amplitude 1 N");
+}
+
 }  // namespace
 
 TEST(Heightmap, RampInXGivesConstantForceDownhill) {
@@ -368,18 +381,10 @@ TEST(Heightmap, AResamplePastItsBudgetOfVisitsIsRefused) {
 // running past the end of the file, or no IEND, is E0401 at once.
 TEST(Heightmap, APngWhoseChunkClaimsMoreThanTheFileIsRefusedBeforeDecoding) {
   auto dir = test::temp_dir("png-claim");
-  write_image(dir + "/ramp.png", 16, 16, OIIO::TypeDesc::UINT8, [](float x, float, int) { return x / 15.0f; });
-  std::string png;
-  {
-    std::ifstream in(dir + "/ramp.png", std::ios::binary);
-    png.assign(std::istreambuf_iterator<char>(in), {});
-  }
+  const std::string png = ramp_bytes(dir, ".png", OIIO::TypeDesc::UINT8);
   const std::size_t after_header = 8 + 12 + 13;  // the signature, then IHDR's 13 bytes in 12 of framing
   ASSERT_EQ(png.substr(12, 4), "IHDR");
-  auto compile_png = [&](const std::string& name, const std::string& bytes) {
-    std::ofstream(dir + "/" + name, std::ios::binary) << bytes;
-    return test::shipped_compiler().compile_text("heightmap \"" + dir + "/" + name + "\" size 16 mm amplitude 1 N");
-  };
+  auto compile_png = [&](const std::string& name, const std::string& bytes) { return compile_image_bytes(dir, name, bytes); };
   ASSERT_TRUE(compile_png("whole.png", png).ok());
   // A text chunk claiming 1,814,043,494 bytes (0x6c201b66) in a file of a few hundred.
   const std::string claim = std::string("\x6c\x20\x1b\x66tEXtComment", 15) + std::string(40, 'x');
@@ -393,6 +398,55 @@ TEST(Heightmap, APngWhoseChunkClaimsMoreThanTheFileIsRefusedBeforeDecoding) {
   r = compile_png("no-end.png", png.substr(0, iend - 4));  // every chunk whole, but no IEND
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.diagnostics.all().at(0).message.find("without its IEND chunk"), std::string::npos) << r.diagnostics.all().at(0).message;
+}
+
+// An OpenEXR header's attributes are walked before OpenEXR Core allocates them at the sizes they
+// claim (F44): one running past the end of the file, a negative size, or a file ending inside the
+// header is E0401 at once, in these words, not Core's "unable to read" after it has mapped them.
+TEST(Heightmap, AnExrWhoseAttributeClaimsMoreThanTheFileIsRefusedBeforeDecoding) {
+  auto dir = test::temp_dir("exr-claim");
+  const std::string exr = ramp_bytes(dir, ".exr", OIIO::TypeDesc::HALF);
+  ASSERT_EQ(exr.substr(0, 4), "v/1\x01");
+  auto compile_exr = [&](const std::string& name, const std::string& bytes) { return compile_image_bytes(dir, name, bytes); };
+  auto message = [](const compiler::CompileResult& r) {
+    if (r.diagnostics.all().empty()) return std::string("none");
+    return r.diagnostics.all().at(0).code + " " + r.diagnostics.all().at(0).message;
+  };
+  ASSERT_TRUE(compile_exr("whole.exr", exr).ok());
+  // An attribute of a type Core does not know, claiming 994,377,728 bytes (0x3b450000), in front of
+  // the file's own: as found by the image target.
+  auto with_attribute = [&](const std::string& size_le) {
+    return exr.substr(0, 8) + std::string("junk\0opaque\0", 12) + size_le + "xy" + exr.substr(8);
+  };
+  // The file is 18 bytes longer than ramp.exr, and the size field ends at byte 24.
+  auto r = compile_exr("claim.exr", with_attribute(std::string("\x00\x00\x45\x3b", 4)));
+  EXPECT_NE(message(r).find("E0401 cannot read image"), std::string::npos) << message(r);
+  EXPECT_NE(message(r).find("its attribute 'junk' at byte 8 claims 994377728 bytes, and the file has " +
+                            std::to_string(exr.size() - 6) + " after its size"),
+            std::string::npos)
+      << message(r);
+  r = compile_exr("negative.exr", with_attribute(std::string("\xff\xff\xff\xff", 4)));
+  EXPECT_NE(message(r).find("its attribute 'junk' at byte 8 claims -1 bytes"), std::string::npos) << message(r);
+  // A name of 40 bytes without the long-names flag: Core reads it (F44's file had one of 42), so the
+  // walk does too.
+  const std::string long_name(40, 'n');
+  r = compile_exr("long-name.exr",
+                  exr.substr(0, 8) + long_name + std::string("\0opaque\0\x00\x00\x45\x3b", 12) + exr.substr(8));
+  EXPECT_NE(message(r).find("its attribute '" + long_name + "' at byte 8 claims 994377728 bytes"), std::string::npos)
+      << message(r);
+  // The same attribute at a size that fits is walked over, and Core reads the file.
+  EXPECT_TRUE(compile_exr("fits.exr", with_attribute(std::string("\x02\x00\x00\x00", 4))).ok());
+  r = compile_exr("cut.exr", exr.substr(0, 11));  // inside the first attribute's name
+  EXPECT_NE(message(r).find("the OpenEXR header is cut short: the file ends at byte 11 inside it"), std::string::npos)
+      << message(r);
+  // A multipart file (version flag 0x1000): the walk goes on into the second part's header.
+  const std::string multipart = std::string("v/1\x01\x02\x10\x00\x00", 8) +
+                                std::string("name\0string\0\x01\x00\x00\x00" "a", 17) + std::string("\0", 1) +
+                                std::string("big\0opaque\0\x00\x00\x00\x70", 15) + "zz";
+  r = compile_exr("parts.exr", multipart);
+  EXPECT_NE(message(r).find("its attribute 'big' at byte 26 claims 1879048192 bytes, and the file has 2 after its size"),
+            std::string::npos)
+      << message(r);
 }
 
 TEST(Heightmap, RealPhotographCompiles) {
