@@ -434,6 +434,11 @@ TEST(Heightmap, AnExrWhoseAttributeClaimsMoreThanTheFileIsRefusedBeforeDecoding)
                   exr.substr(0, 8) + long_name + std::string("\0opaque\0\x00\x00\x45\x3b", 12) + exr.substr(8));
   EXPECT_NE(message(r).find("its attribute '" + long_name + "' at byte 8 claims 994377728 bytes"), std::string::npos)
       << message(r);
+  // A name of 256 bytes, one past the longest a name may be.
+  const std::string attribute_tail("\0opaque\0\x02\x00\x00\x00xy", 14);  // its type, a size of 2, its value
+  r = compile_exr("too-long.exr", exr.substr(0, 8) + std::string(256, 'n') + attribute_tail + exr.substr(8));
+  EXPECT_NE(message(r).find("the attribute at byte 8 has a name longer than 255 bytes"), std::string::npos)
+      << message(r);
   // The same attribute at a size that fits is walked over, and Core reads the file.
   EXPECT_TRUE(compile_exr("fits.exr", with_attribute(std::string("\x02\x00\x00\x00", 4))).ok());
   r = compile_exr("cut.exr", exr.substr(0, 11));  // inside the first attribute's name
