@@ -287,7 +287,7 @@ DeviceCalibration load_device_file(const std::filesystem::path& path, const std:
   return d;
 }
 
-CalibrationSet CalibrationSet::load(const std::filesystem::path& dir) {
+CalibrationSet CalibrationSet::load(const std::filesystem::path& dir, ParsedFileCache* cache) {
   CalibrationSet s;
   s.dir_ = dir;
   Problems problems;
@@ -299,7 +299,7 @@ CalibrationSet CalibrationSet::load(const std::filesystem::path& dir) {
   };
   std::map<std::string, std::string> map_ids;  // id -> file
   for (const auto& p : toml_files(dir / "maps")) {
-    auto f = detail::read_validated(p, shown(p), "map", problems);
+    auto f = detail::read_validated(p, shown(p), "map", problems, cache);
     if (!f) continue;
     auto m = read_map(*f, problems);
     if (auto [it, fresh] = map_ids.emplace(m.id, m.file); !fresh)
@@ -316,7 +316,7 @@ CalibrationSet CalibrationSet::load(const std::filesystem::path& dir) {
     problems.add_plain(shown(dir / "maps") + ": no map with percept = \"roughness\" and use = \"compile\"");
 
   for (const auto& p : toml_files(dir / "levels")) {
-    auto f = detail::read_validated(p, shown(p), "levels", problems);
+    auto f = detail::read_validated(p, shown(p), "levels", problems, cache);
     if (!f) continue;
     std::string percept, map;
     auto levels = read_levels(*f, percept, map);
@@ -338,7 +338,7 @@ CalibrationSet CalibrationSet::load(const std::filesystem::path& dir) {
 
   std::set<std::string> device_names;
   for (const auto& p : toml_files(dir / "devices")) {
-    auto f = detail::read_validated(p, shown(p), "device", problems);
+    auto f = detail::read_validated(p, shown(p), "device", problems, cache);
     if (!f) continue;
     auto d = read_device(*f, problems);
     if (!device_names.insert(d.name).second)
@@ -377,7 +377,7 @@ CalibrationSet CalibrationSet::load(const std::filesystem::path& dir) {
     else s.device_maps_.push_back({{d.name, "roughness"}, found});
   }
 
-  detail::load_knowledge(dir / "knowledge", shown, s.knowledge_, problems);
+  detail::load_knowledge(dir / "knowledge", shown, s.knowledge_, problems, cache);
   problems.throw_if_any();
   return s;
 }

@@ -24,32 +24,36 @@ void Problems::throw_if_any() const {
   throw CalibrationError(all);
 }
 
-std::optional<Toml> read_validated(const std::filesystem::path& path, const std::string& shown_as,
-                                   const std::string& schema_name, Problems& problems) {
+std::shared_ptr<const Toml> read_validated(const std::filesystem::path& path, const std::string& shown_as,
+                                           const std::string& schema_name, Problems& problems, ParsedFileCache* cache) {
   if (!std::filesystem::exists(path)) {
     problems.add_plain(shown_as + ": error: calibration file missing");
-    return std::nullopt;
+    return nullptr;
   }
-  Toml f{shown_as, {}};
   std::string text;
   try {
     text = schema::read_input_file(path, schema::limits::kMaxTextFileBytes);
   } catch (const schema::InputFileError& e) {
     problems.add_plain(shown_as + ": error: cannot read: " + e.reason);
-    return std::nullopt;
+    return nullptr;
   }
+  // The path shown is part of what is kept: it is in every message the file's values give later.
+  if (cache)
+    if (auto kept = cache->find(schema_name, path, text); kept && kept->shown_as == shown_as) return kept;
+  auto f = std::make_shared<Toml>(Toml{shown_as, {}});
   try {
-    f.doc = toml::parse(text, path.string());
+    f->doc = toml::parse(text, path.string());
   } catch (const toml::parse_error& e) {
     problems.add_at(shown_as, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column),
                     "not valid TOML: " + std::string(e.description()));
-    return std::nullopt;
+    return nullptr;
   }
-  auto violations = schema::validate_file(f.doc, schema_name);
+  auto violations = schema::validate_file(f->doc, schema_name);
   for (const auto& v : violations)
     problems.add_at(shown_as, v.line, v.column,
                     (v.key.empty() ? "" : "`" + v.key + "`: ") + v.message + " (schema/files/" + schema_name + ".schema.json)");
-  if (!violations.empty()) return std::nullopt;
+  if (!violations.empty()) return nullptr;
+  if (cache && cache->learning()) cache->keep(schema_name, path, std::move(text), f);
   return f;
 }
 

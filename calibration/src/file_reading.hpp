@@ -3,7 +3,7 @@
 // problem as "file:line:col: error: message" so one load reports all of them.
 #include <filesystem>
 #include <functional>
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,16 +31,19 @@ class Problems {
   std::vector<std::string> lines_;
 };
 
-// Parses `path` and validates it against schema `schema_name`; nullopt (with problems added) if the
-// file is missing, not TOML, or violates its schema.
-std::optional<Toml> read_validated(const std::filesystem::path& path, const std::string& shown_as,
-                                   const std::string& schema_name, Problems& problems);
+// Parses `path` and validates it against schema `schema_name`; null (with problems added) if the
+// file is missing, not TOML, or violates its schema. With `cache`, a kept file of the same bytes is
+// returned without parsing, and a valid file is kept while the cache learns.
+std::shared_ptr<const Toml> read_validated(const std::filesystem::path& path, const std::string& shown_as,
+                                           const std::string& schema_name, Problems& problems,
+                                           ParsedFileCache* cache = nullptr);
 
 // A validated quantity string ("382 gf") in SI.
 double quantity_si(const toml::node& n);
 
 using ShownPath = std::function<std::string(const std::filesystem::path&)>;
 // Reads calibration/knowledge/*.toml into `out` (knowledge.cpp).
-void load_knowledge(const std::filesystem::path& dir, const ShownPath& shown, Knowledge& out, Problems& problems);
+void load_knowledge(const std::filesystem::path& dir, const ShownPath& shown, Knowledge& out, Problems& problems,
+                    ParsedFileCache* cache);
 
 }  // namespace sandpaper::calibration::detail

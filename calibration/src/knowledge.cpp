@@ -293,12 +293,14 @@ void read_groups(const Toml& f, GroupsData& out, Problems& problems) {
 
 }  // namespace
 
-void load_knowledge(const std::filesystem::path& dir, const ShownPath& shown, Knowledge& out, Problems& problems) {
-  if (auto f = read_validated(dir / "force-jnd.toml", shown(dir / "force-jnd.toml"), "force-jnd", problems))
-    read_force_jnd(*f, out.force_jnd);
-  if (auto f = read_validated(dir / "believability.toml", shown(dir / "believability.toml"), "believability", problems))
-    read_believability(*f, out.believability, problems);
-  if (auto f = read_validated(dir / "roughness-groups.toml", shown(dir / "roughness-groups.toml"), "groups", problems)) {
+void load_knowledge(const std::filesystem::path& dir, const ShownPath& shown, Knowledge& out, Problems& problems,
+                    ParsedFileCache* cache) {
+  const auto read = [&](const char* name, const std::string& schema) {
+    return read_validated(dir / name, shown(dir / name), schema, problems, cache);
+  };
+  if (auto f = read("force-jnd.toml", "force-jnd")) read_force_jnd(*f, out.force_jnd);
+  if (auto f = read("believability.toml", "believability")) read_believability(*f, out.believability, problems);
+  if (auto f = read("roughness-groups.toml", "groups")) {
     read_groups(*f, out.roughness_groups, problems);
     for (const char* id : {"period-class", "character"})
       if (!out.roughness_groups.find(id))

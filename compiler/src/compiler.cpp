@@ -49,10 +49,12 @@ Compiler::Compiler(CompileOptions options, Library library)
     : Compiler(std::move(options), std::make_shared<const Library>(std::move(library))) {}
 
 Compiler::Compiler(CompileOptions options, std::shared_ptr<const Library> library)
-    : options_(std::move(options)),
-      calibration_(calibration::CalibrationSet::load(
-          options_.calibration_dir.empty() ? calibration::default_calibration_dir() : options_.calibration_dir)),
-      library_(std::move(library)) {
+    : Compiler(options, std::move(library),
+               calibration::CalibrationSet::load(options.calibration_dir.empty() ? calibration::default_calibration_dir()
+                                                                                 : options.calibration_dir)) {}
+
+Compiler::Compiler(CompileOptions options, std::shared_ptr<const Library> library, calibration::CalibrationSet calibration)
+    : options_(std::move(options)), calibration_(std::move(calibration)), library_(std::move(library)) {
   device_ = calibration_.find_device(options_.device);
   if (!device_) {
     std::string names;

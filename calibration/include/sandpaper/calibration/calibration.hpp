@@ -4,6 +4,7 @@
 // load; none of these numbers are constants in code. Formats: docs/CALIBRATION.md.
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -128,12 +129,48 @@ struct DeviceCalibration {
   const AxisScale& axis_scale(int a) const { return axis[static_cast<std::size_t>(a)]; }
 };
 
+namespace detail {
+struct Toml;
+}
+
+// Calibration files already parsed and validated, each kept with its exact bytes, for a caller that
+// loads one folder many times while few of its files change (the calibration_set fuzz target: one
+// file a load). A file is still read on every load; only when its bytes, path and schema equal a
+// kept file's is its parse and validation skipped, so a changed file can never be served stale.
+// Learns the files that validate while learning() is on; once off, a load only looks up. One loader
+// at a time: not for use from two threads at once.
+class ParsedFileCache {
+ public:
+  ParsedFileCache();
+  ~ParsedFileCache();
+  ParsedFileCache(const ParsedFileCache&) = delete;
+  ParsedFileCache& operator=(const ParsedFileCache&) = delete;
+
+  void set_learning(bool on) { learning_ = on; }
+  bool learning() const { return learning_; }
+  std::size_t size() const;
+  std::size_t hits() const { return hits_; }  // loads of a file served from the cache, since made
+
+  // For the loader (file_reading.cpp): the kept file for (schema, path, bytes), or null.
+  std::shared_ptr<const detail::Toml> find(const std::string& schema, const std::filesystem::path& path,
+                                                 const std::string& bytes);
+  void keep(const std::string& schema, const std::filesystem::path& path, std::string bytes,
+                  std::shared_ptr<const detail::Toml> file);
+
+ private:
+  struct Entries;
+  std::unique_ptr<Entries> entries_;
+  bool learning_ = true;
+  std::size_t hits_ = 0;
+};
+
 class CalibrationSet {
  public:
   // Reads <dir>/maps/*.toml, <dir>/levels/*.toml, <dir>/devices/*.toml and <dir>/knowledge/*.toml,
   // each validated against its schema in schema/files/. Throws CalibrationError listing every
-  // problem found (file:line:col), so one run shows them all.
-  static CalibrationSet load(const std::filesystem::path& dir);
+  // problem found (file:line:col), so one run shows them all. With `cache`, a file whose bytes it
+  // holds is not parsed again (ParsedFileCache); the result and every message are the same.
+  static CalibrationSet load(const std::filesystem::path& dir, ParsedFileCache* cache = nullptr);
 
   const std::vector<PsychophysicalMap>& maps() const { return maps_; }
   // The map the compiler resolves `percept` through: the selected device's own map when it has one

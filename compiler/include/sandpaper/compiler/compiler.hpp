@@ -47,6 +47,9 @@ class Compiler {
   // Sharing one library read with other compilers (for instance one per device, as `library check`
   // has: each would otherwise hold its own copy of every entry).
   Compiler(CompileOptions options, std::shared_ptr<const Library> library);
+  // With the calibration already loaded (options' calibration folder is then not read): for instance
+  // through a calibration::ParsedFileCache, by a caller that builds many compilers on one folder.
+  Compiler(CompileOptions options, std::shared_ptr<const Library> library, calibration::CalibrationSet calibration);
 
   // `path` is shown in diagnostics as given. A missing file is a diagnostic, not an exception.
   CompileResult compile_file(const std::filesystem::path& path) const;
