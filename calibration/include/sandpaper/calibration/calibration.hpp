@@ -153,9 +153,9 @@ class ParsedFileCache {
 
   // For the loader (file_reading.cpp): the kept file for (schema, path, bytes), or null.
   std::shared_ptr<const detail::Toml> find(const std::string& schema, const std::filesystem::path& path,
-                                                 const std::string& bytes);
+                                           const std::string& bytes);
   void keep(const std::string& schema, const std::filesystem::path& path, std::string bytes,
-                  std::shared_ptr<const detail::Toml> file);
+            std::shared_ptr<const detail::Toml> file);
 
  private:
   struct Entries;
