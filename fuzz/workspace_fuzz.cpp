@@ -5,8 +5,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <memory>
 #include <set>
 #include <string>
+#include <utility>
 
 #include "fuzz_compile.hpp"
 #include "fuzz_play.hpp"
@@ -20,6 +23,38 @@
 
 namespace {
 constexpr std::uint64_t kGridBudget = std::uint64_t{32} << 20;
+
+// Materials compiled for earlier inputs, by (.hmat or text, name shown). Most inputs keep most of a
+// seed's patches ("gravel", "corduroy", ...), and recompiling them was two thirds of the harness's
+// time (perf, docs/RELIABILITY.md). A compile depends only on these and on files nothing here
+// writes (the library, its images, the .hmat), so a kept result is what a compile would give now,
+// and an input replayed alone compiles it afresh to the same result. Bounded: cleared when full.
+class MaterialMemo {
+ public:
+  std::shared_ptr<const sandpaper::compiler::CompileResult> compile(const sandpaper::compiler::Compiler& compiler,
+                                                                    const sandpaper::compiler::WorkspaceMaterial& m) {
+    auto key = std::make_pair(m.file.empty() ? "text:" + m.text : "file:" + m.file.string(), m.display_name);
+    if (auto it = kept_.find(key); it != kept_.end()) return it->second;
+    auto r = std::make_shared<const sandpaper::compiler::CompileResult>(
+        m.file.empty() ? compiler.compile_text(m.text, m.display_name) : compiler.compile_file(m.file));
+    const std::uint64_t bytes = r->program ? sandpaper::schema::grid_bytes(*r->program) : 0;
+    if (kept_.size() >= kMaxKept || held_ + bytes > kMaxHeldBytes) {
+      kept_.clear();
+      held_ = 0;
+    }
+    if (bytes <= kMaxHeldBytes) {
+      kept_.emplace(std::move(key), r);
+      held_ += bytes;
+    }
+    return r;
+  }
+
+ private:
+  static constexpr std::size_t kMaxKept = 512;
+  static constexpr std::uint64_t kMaxHeldBytes = std::uint64_t{64} << 20;
+  std::map<std::pair<std::string, std::string>, std::shared_ptr<const sandpaper::compiler::CompileResult>> kept_;
+  std::uint64_t held_ = 0;
+};
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -27,8 +62,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   // A force-table budget of 32 MiB rather than 512: the refusal (E0535) is then within the search's
   // reach, and a workspace at the budget stays inside libFuzzer's memory limit under ASan.
+  static MaterialMemo memo;
   compiler::WorkspaceOptions options;
   options.max_grid_bytes = kGridBudget;
+  options.compile_material = [](const compiler::Compiler& c, const compiler::WorkspaceMaterial& m) { return memo.compile(c, m); };
   const auto result = compiler::compile_workspace_text(fuzz::shipped_compiler(), text, "<fuzz>.hws",
                                                        fuzz::source_dir() / "examples" / "workspace", options);
   (void)compiler::format_diagnostics(result.diagnostics);

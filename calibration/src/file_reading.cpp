@@ -39,7 +39,7 @@ std::shared_ptr<const Toml> read_validated(const std::filesystem::path& path, co
   }
   // The path shown is part of what is kept: it is in every message the file's values give later.
   if (cache)
-    if (auto kept = cache->find(schema_name, path, text); kept && kept->shown_as == shown_as) return kept;
+    if (auto kept = cache->find(schema_name, path, shown_as, text)) return kept;
   auto f = std::make_shared<Toml>(Toml{shown_as, {}});
   try {
     f->doc = toml::parse(text, path.string());

@@ -20,9 +20,10 @@ ParsedFileCache::~ParsedFileCache() = default;
 std::size_t ParsedFileCache::size() const { return entries_->by_schema_and_path.size(); }
 
 std::shared_ptr<const detail::Toml> ParsedFileCache::find(const std::string& schema, const std::filesystem::path& path,
-                                                          const std::string& bytes) {
+                                                          const std::string& shown_as, const std::string& bytes) {
   const auto it = entries_->by_schema_and_path.find({schema, path.string()});
-  if (it == entries_->by_schema_and_path.end() || it->second.bytes != bytes) return nullptr;
+  if (it == entries_->by_schema_and_path.end() || it->second.bytes != bytes || it->second.file->shown_as != shown_as)
+    return nullptr;
   ++hits_;
   return it->second.file;
 }

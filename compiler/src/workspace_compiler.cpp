@@ -3,6 +3,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <tuple>
 
 #include "sandpaper/compiler/knowledge_report.hpp"
@@ -29,7 +30,7 @@ std::string mm(double m) {
 // One compiled material, shared by every patch that names it (a 1,000-patch workspace of a few
 // materials compiles each once).
 struct CompiledMaterial {
-  CompileResult result;
+  std::shared_ptr<const CompileResult> result;
   std::vector<std::size_t> patches;  // indices of the patches that use it
 };
 
@@ -46,7 +47,7 @@ std::string material_key(const std::string& material, const fs::path& base_dir, 
 // Appends the material's diagnostics, each with notes pointing at the patches that use it.
 void report_material(const CompiledMaterial& cm, const WorkspaceSyntax& syntax, Diagnostics& out) {
   Diagnostics annotated;
-  for (Diagnostic d : cm.result.diagnostics.all()) {
+  for (Diagnostic d : cm.result->diagnostics.all()) {
     constexpr std::size_t kShown = 3;
     for (std::size_t k = 0; k < cm.patches.size() && k < kShown; ++k) {
       const std::size_t i = cm.patches[k];
@@ -85,8 +86,8 @@ void warn_within_one_jnd(const Compiler& compiler, const WorkspaceSyntax& syntax
   };
   std::vector<Textured> textured;
   for (const auto& cm : materials)
-    if (cm.result.ok() && cm.result.program->max_lateral_force_N > 0 && !cm.patches.empty())
-      textured.push_back({cm.patches.front(), cm.result.program->max_lateral_force_N});
+    if (cm.result->ok() && cm.result->program->max_lateral_force_N > 0 && !cm.patches.empty())
+      textured.push_back({cm.patches.front(), cm.result->program->max_lateral_force_N});
   std::sort(textured.begin(), textured.end(), [](const auto& a, const auto& b) { return a.patch < b.patch; });
   auto label = [&](const Textured& t) {
     return "patch " + std::to_string(t.patch + 1) + " (\"" + syntax.patches[t.patch].material + "\", " + newtons(t.force) + ")";
@@ -146,6 +147,17 @@ struct GridBudget {
   static std::string mib(std::uint64_t bytes) { return sig(static_cast<double>(bytes) / (1 << 20), 4) + " MiB"; }
 };
 
+std::shared_ptr<const CompileResult> compile_material(const Compiler& compiler, const WorkspaceMaterial& m,
+                                                      const WorkspaceOptions& options) {
+  if (options.compile_material) {
+    auto r = options.compile_material(compiler, m);
+    if (!r) throw std::logic_error("WorkspaceOptions::compile_material returned no result for " + m.text);
+    return r;
+  }
+  return std::make_shared<const CompileResult>(m.file.empty() ? compiler.compile_text(m.text, m.display_name)
+                                                              : compiler.compile_file(m.file));
+}
+
 WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& syntax, const fs::path& base_dir,
                                Diagnostics diags, const WorkspaceOptions& options) {
   WorkspaceResult r;
@@ -169,9 +181,8 @@ WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& 
     auto [it, fresh] = index_of.emplace(key, materials.size());
     if (fresh) {
       CompiledMaterial cm;
-      cm.result = file.empty() ? compiler.compile_text(p.material, "<patch " + std::to_string(i + 1) + ">")
-                               : compiler.compile_file(file);
-      const bool within = !cm.result.ok() || grids.take(*cm.result.program, i, p, diags, "its material's program");
+      cm.result = compile_material(compiler, {p.material, file, "<patch " + std::to_string(i + 1) + ">"}, options);
+      const bool within = !cm.result->ok() || grids.take(*cm.result->program, i, p, diags, "its material's program");
       materials.push_back(std::move(cm));
       if (!within) break;
     }
@@ -189,7 +200,7 @@ WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& 
   const double half_w = 0.5 * ws.size_m[0], half_h = 0.5 * ws.size_m[1];
   for (std::size_t i = 0; i < syntax.patches.size(); ++i) {
     const auto& p = syntax.patches[i];
-    const CompileResult& cr = materials[material_of[i]].result;
+    const CompileResult& cr = *materials[material_of[i]].result;
     if (!cr.ok()) continue;
     double size[2];
     if (p.width) {

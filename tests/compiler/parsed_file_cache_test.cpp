@@ -131,6 +131,24 @@ TEST(ParsedFileCache, AFileChangedSinceItWasKeptIsReadAgain) {
   EXPECT_EQ(cache.hits() - before, toml_files_in(dir));
 }
 
+// The path shown is kept with the file: the folder named with a trailing '/' reads the same files
+// but shows them as "maps/x.toml" rather than "calibration/maps/x.toml", so nothing is served, and
+// nothing is counted as served.
+TEST(ParsedFileCache, AFileShownUnderAnotherNameIsReadAgain) {
+  const auto dir = copy_of_shipped("cache-shown");
+  const fs::path slashed = dir.string() + "/";
+  calibration::ParsedFileCache cache;
+  const auto kept = calibration::CalibrationSet::load(dir, &cache);
+  cache.set_learning(false);
+  const auto other = calibration::CalibrationSet::load(slashed, &cache);
+  EXPECT_EQ(cache.hits(), 0u);
+  const auto plain = calibration::CalibrationSet::load(slashed);
+  EXPECT_EQ(summary(other), summary(plain));
+  ASSERT_NE(plain.find_device("sim"), nullptr);
+  ASSERT_NE(kept.find_device("sim"), nullptr);
+  EXPECT_NE(plain.find_device("sim")->file, kept.find_device("sim")->file) << "the fixture should show the two loads apart";
+}
+
 TEST(ParsedFileCache, ACacheNotLearningKeepsNothing) {
   calibration::ParsedFileCache cache;
   cache.set_learning(false);

@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
+#include <memory>
 #include <set>
+#include <stdexcept>
 
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/schema/input_limits.hpp"
@@ -298,6 +301,71 @@ TEST(WorkspaceCompile, PatchesOfOneMaterialAndSizeShareOneProgram) {
   EXPECT_EQ(read_distinct.size(), 2u);
   ASSERT_EQ(back.patches.size(), static_cast<std::size_t>(kPatches));
   EXPECT_EQ(back.patches[1].program->size_m[0], 0.008);
+}
+
+// WorkspaceOptions::compile_material: asked once per distinct material, with the .hmat resolved and
+// material text named as the compiler would name it; a hook that compiles gives the same workspace,
+// byte for byte, as none.
+TEST(WorkspaceCompile, TheMaterialHookIsAskedOncePerDistinctMaterial) {
+  const std::string text =
+      "workspace \"w\" {\n"
+      "  patch \"corduroy\" at -60 mm, 0 mm size 20 mm\n"
+      "  patch \"../corduroy.hmat\" at -30 mm, 0 mm size 20 mm\n"
+      "  patch \"corduroy\" at 0 mm, 0 mm size 30 mm\n"
+      "  patch \"roughness 0.3; grating period 5 mm\" at 30 mm, 0 mm size 20 mm\n"
+      "}\n";
+  const fs::path base = fs::path(SANDPAPER_SOURCE_DIR) / "examples" / "workspace";
+  std::vector<compiler::WorkspaceMaterial> asked;
+  compiler::WorkspaceOptions options;
+  options.compile_material = [&](const compiler::Compiler& c, const compiler::WorkspaceMaterial& m) {
+    asked.push_back(m);
+    return std::make_shared<const compiler::CompileResult>(m.file.empty() ? c.compile_text(m.text, m.display_name)
+                                                                          : c.compile_file(m.file));
+  };
+  const auto hooked = compiler::compile_workspace_text(test::shipped_compiler(), text, "<test.hws>", base, options);
+  const auto plain = compiler::compile_workspace_text(test::shipped_compiler(), text, "<test.hws>", base);
+  ASSERT_TRUE(plain.ok()) << compiler::format_diagnostics(plain.diagnostics);
+  ASSERT_TRUE(hooked.ok()) << compiler::format_diagnostics(hooked.diagnostics);
+  ASSERT_EQ(asked.size(), 3u);
+  EXPECT_EQ(asked[0].text, "corduroy");
+  EXPECT_TRUE(asked[0].file.empty());
+  EXPECT_EQ(asked[0].display_name, "<patch 1>");
+  EXPECT_EQ(asked[1].text, "../corduroy.hmat");
+  EXPECT_EQ(asked[1].file, (base / "../corduroy.hmat").lexically_normal());
+  EXPECT_EQ(asked[2].display_name, "<patch 4>");
+  EXPECT_EQ(compiler::format_diagnostics(hooked.diagnostics), compiler::format_diagnostics(plain.diagnostics));
+  const fs::path dir = test::temp_dir("ws-hook");
+  schema::write_workspace_program_file(dir / "plain.wsp", *plain.program);
+  schema::write_workspace_program_file(dir / "hooked.wsp", *hooked.program);
+  const auto bytes = [](const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes(dir / "hooked.wsp"), bytes(dir / "plain.wsp"));
+}
+
+// What the hook answers is what the workspace places, errors included.
+TEST(WorkspaceCompile, WhatTheMaterialHookAnswersIsPlaced) {
+  const std::string text = "workspace \"w\" {\n  patch \"corduroy\" at 0 mm, 0 mm size 20 mm\n}\n";
+  compiler::WorkspaceOptions options;
+  std::string answer = "silk-satin";
+  options.compile_material = [&](const compiler::Compiler& c, const compiler::WorkspaceMaterial& m) {
+    return std::make_shared<const compiler::CompileResult>(c.compile_text(answer, m.display_name));
+  };
+  const auto swapped = compiler::compile_workspace_text(test::shipped_compiler(), text, "<test.hws>", ".", options);
+  ASSERT_TRUE(swapped.ok()) << compiler::format_diagnostics(swapped.diagnostics);
+  EXPECT_EQ(swapped.program->patches.at(0).program->name, "silk-satin");
+  EXPECT_EQ(swapped.program->patches.at(0).source, "corduroy");
+
+  answer = "unobtainium";
+  const auto failed = compiler::compile_workspace_text(test::shipped_compiler(), text, "<test.hws>", ".", options);
+  EXPECT_FALSE(failed.program.has_value());
+  EXPECT_EQ(codes(failed.diagnostics), std::vector<std::string>{"E0301"});
+
+  options.compile_material = [](const compiler::Compiler&, const compiler::WorkspaceMaterial&) {
+    return std::shared_ptr<const compiler::CompileResult>();
+  };
+  EXPECT_THROW(compiler::compile_workspace_text(test::shipped_compiler(), text, "<test.hws>", ".", options), std::logic_error);
 }
 
 }  // namespace

@@ -151,9 +151,10 @@ class ParsedFileCache {
   std::size_t size() const;
   std::size_t hits() const { return hits_; }  // loads of a file served from the cache, since made
 
-  // For the loader (file_reading.cpp): the kept file for (schema, path, bytes), or null.
+  // For the loader (file_reading.cpp): the kept file for (schema, path, bytes) kept under the path
+  // shown as `shown_as` (it is in every message the file's values give later), or null.
   std::shared_ptr<const detail::Toml> find(const std::string& schema, const std::filesystem::path& path,
-                                           const std::string& bytes);
+                                           const std::string& shown_as, const std::string& bytes);
   void keep(const std::string& schema, const std::filesystem::path& path, std::string bytes,
             std::shared_ptr<const detail::Toml> file);
 

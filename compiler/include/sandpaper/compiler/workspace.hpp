@@ -7,6 +7,8 @@
 //   if (!r.ok()) std::cerr << format_diagnostics(r.diagnostics);
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,11 +41,24 @@ std::vector<RoughnessStep> roughness_order(const schema::WorkspaceProgram& ws, c
 // Whether `path` names a workspace file (extension .hws).
 bool is_workspace_path(const std::filesystem::path& path);
 
-// What a workspace compile may hold. The default is the stated limit; tests set a smaller one.
+// One distinct material of a workspace, as WorkspaceOptions::compile_material is asked for it.
+struct WorkspaceMaterial {
+  std::string text;             // the patch's material as written: "corduroy", "../grass.hmat"
+  std::filesystem::path file;   // the .hmat it names, resolved against the workspace's folder; empty for material text
+  std::string display_name;     // the name material text is shown under in diagnostics: "<patch 3>"
+};
+
+// What a workspace compile may hold, and how it compiles its materials. The default is the stated
+// limit; tests set a smaller one.
 struct WorkspaceOptions {
   // Bytes of force tables (schema::grid_bytes) over the distinct materials' programs and their
   // placed copies; past it, E0535 at the first patch over (docs/RELIABILITY.md, F35).
   std::uint64_t max_grid_bytes = schema::limits::kMaxWorkspaceGridBytes;
+  // Compiles each distinct material, once per workspace. Unset: the compiler's compile_file for a
+  // .hmat, compile_text otherwise. A caller that compiles many workspaces over files it knows are
+  // unchanged (the workspace fuzz target) may answer from materials it compiled before; what it
+  // returns is taken as the compile's, so it must be what the compiler would give. Never null.
+  std::function<std::shared_ptr<const CompileResult>(const Compiler&, const WorkspaceMaterial&)> compile_material;
 };
 
 // `path` is shown in diagnostics as given; .hmat paths in the file are relative to its folder.
