@@ -35,8 +35,7 @@ class MaterialMemo {
                                                                     const sandpaper::compiler::WorkspaceMaterial& m) {
     auto key = std::make_pair(m.file.empty() ? "text:" + m.text : "file:" + m.file.string(), m.display_name);
     if (auto it = kept_.find(key); it != kept_.end()) return it->second;
-    auto r = std::make_shared<const sandpaper::compiler::CompileResult>(
-        m.file.empty() ? compiler.compile_text(m.text, m.display_name) : compiler.compile_file(m.file));
+    auto r = sandpaper::compiler::compile_workspace_material(compiler, m);
     const std::uint64_t bytes = r->program ? sandpaper::schema::grid_bytes(*r->program) : 0;
     if (kept_.size() >= kMaxKept || held_ + bytes > kMaxHeldBytes) {
       kept_.clear();

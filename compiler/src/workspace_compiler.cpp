@@ -154,8 +154,7 @@ std::shared_ptr<const CompileResult> compile_material(const Compiler& compiler, 
     if (!r) throw std::logic_error("WorkspaceOptions::compile_material returned no result for " + m.text);
     return r;
   }
-  return std::make_shared<const CompileResult>(m.file.empty() ? compiler.compile_text(m.text, m.display_name)
-                                                              : compiler.compile_file(m.file));
+  return compile_workspace_material(compiler, m);
 }
 
 WorkspaceResult compile_syntax(const Compiler& compiler, const WorkspaceSyntax& syntax, const fs::path& base_dir,
@@ -281,6 +280,11 @@ std::vector<RoughnessStep> roughness_order(const schema::WorkspaceProgram& ws, c
 }
 
 bool is_workspace_path(const fs::path& path) { return path.extension() == ".hws"; }
+
+std::shared_ptr<const CompileResult> compile_workspace_material(const Compiler& compiler, const WorkspaceMaterial& m) {
+  return std::make_shared<const CompileResult>(m.file.empty() ? compiler.compile_text(m.text, m.display_name)
+                                                              : compiler.compile_file(m.file));
+}
 
 WorkspaceResult compile_workspace_text(const Compiler& compiler, const std::string& text, const std::string& display_name,
                                        const fs::path& base_dir, const WorkspaceOptions& options) {

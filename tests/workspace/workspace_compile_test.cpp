@@ -319,8 +319,7 @@ TEST(WorkspaceCompile, TheMaterialHookIsAskedOncePerDistinctMaterial) {
   compiler::WorkspaceOptions options;
   options.compile_material = [&](const compiler::Compiler& c, const compiler::WorkspaceMaterial& m) {
     asked.push_back(m);
-    return std::make_shared<const compiler::CompileResult>(m.file.empty() ? c.compile_text(m.text, m.display_name)
-                                                                          : c.compile_file(m.file));
+    return compiler::compile_workspace_material(c, m);
   };
   const auto hooked = compiler::compile_workspace_text(test::shipped_compiler(), text, "<test.hws>", base, options);
   const auto plain = compiler::compile_workspace_text(test::shipped_compiler(), text, "<test.hws>", base);

@@ -48,6 +48,10 @@ struct WorkspaceMaterial {
   std::string display_name;     // the name material text is shown under in diagnostics: "<patch 3>"
 };
 
+// How a workspace compiles `m` when no hook is set: compile_file for a .hmat, compile_text otherwise.
+// Never null; errors are in the result's diagnostics. For hooks that keep results (WorkspaceOptions).
+std::shared_ptr<const CompileResult> compile_workspace_material(const Compiler& compiler, const WorkspaceMaterial& m);
+
 // What a workspace compile may hold, and how it compiles its materials. The default is the stated
 // limit; tests set a smaller one.
 struct WorkspaceOptions {
