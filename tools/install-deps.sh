@@ -18,6 +18,9 @@ pkgs=(
   libcpp-httplib-dev                        # the studio's HTTP server (tools/studio/, docs/STUDIO.md)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (bindings/python, docs/PYTHON.md)
   dpkg-dev file                             # the Debian package: cpack -G DEB's dpkg-shlibdeps (cmake/Packaging.cmake)
+  qemu-system-x86                           # the USB lab's guest: docs/USB_PID.md "In the lab" (usb-lab/guest/lab.py)
+  linux-image-amd64 kmod                    # the USB lab's guest kernel and its modules (dummy_hcd, usb_f_fs, usbhid)
+  busybox-static                            # the USB lab's guest userland (its initramfs: usb-lab/guest/initramfs.py)
 )
 missing=()
 for p in "${pkgs[@]}"; do

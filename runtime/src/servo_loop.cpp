@@ -202,6 +202,7 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
   const double max_late_ns = deadline_guard_s(config) * kNsPerS;
 
   const std::int64_t start = clock.now_ns();
+  report.clock_start_ns = start;
   const bool quantized = config.command_step_N[0] > 0 || config.command_step_N[1] > 0;
   for (std::uint64_t k = 0; k < ticks && stop == StopCause::Completed; ++k) {
     // Deadlines count from the start, not from the last tick, so a late tick never shifts the rest.

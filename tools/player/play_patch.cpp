@@ -327,22 +327,63 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
     if (s == UsbStatus::AccessDenied) print_udev_help(std::cerr, chosen.info.vendor_id, chosen.info.product_id);
     return kExitUsage;
   }
+  if (const int rc = check_run_length(r.duration_s, r.rate_hz, !r.trace.empty()); rc != kExitOk) return rc;
+  if (const int rc = check_trace_folder(r.trace); rc != kExitOk) return rc;
   try {
     runtime::usb::HidPidJoystick joystick(*transport, cal);
     runtime::validate_config(cfg, joystick.limits());
     runtime::PatchEvaluator evaluator(program);
-    std::cout << fmt::format("playing {} on {} ({}): {:g} Hz {}\n", program.name, cal.name,
-                             ids(chosen.info.vendor_id, chosen.info.product_id), r.rate_hz,
-                             r.duration_s == 0 ? std::string("until Ctrl-C") : fmt::format("for {:g} s", r.duration_s));
+    const std::string usb_ids = ids(chosen.info.vendor_id, chosen.info.product_id);
+    if (!r.json)
+      std::cout << fmt::format("playing {} on {} ({}): {:g} Hz {}\n", program.name, cal.name, usb_ids, r.rate_hz,
+                               r.duration_s == 0 ? std::string("until Ctrl-C") : fmt::format("for {:g} s", r.duration_s))
+                << std::flush;
+    const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
     // Through play(): Ctrl-C / SIGTERM stop the loop with zero force, and the device is given back below.
-    const auto rep = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, 0).report;
+    const Played played = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, keep);
+    const runtime::ServoReport& rep = played.report;
     joystick.close();
+    if (!r.trace.empty()) {
+      // What the tick published (position read, force commanded); the device's own record of what
+      // reached it is the device's to keep.
+      std::vector<runtime::TickRecord> published;
+      published.reserve(played.records.size());
+      for (const auto& t : played.records) published.push_back({t.t_s, t.position_m, t.force_N});
+      schema::write_file_atomically(r.trace, runtime::format_trace_csv(published));
+    }
     const std::string stop = std::string(rep.stop_reason) + " [" + runtime::stop_cause_name(rep.stop_cause) + "]";
-    std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p99 {:.1f} us; overruns {}; {}\n", rep.ticks,
-                             rep.rate_hz, rep.period_p99_us, rep.overruns, stalls_text(rep))
-              << fmt::format("  felt     max force {:.4f} N, clamped ticks {}\n", rep.max_lateral_force_N, rep.clamped_ticks)
-              << "  servo    " << (rep.realtime_scheduling ? "SCHED_FIFO, memory locked" : "normal priority (SCHED_FIFO not permitted here)")
-              << "; stopped: " << stop << "\n";
+    if (r.json) {
+      nlohmann::json j{{"material", program.name},
+                       {"device", cal.name},
+                       {"usb", {{"id", usb_ids}, {"bus", chosen.info.bus}, {"address", chosen.info.address}}},
+                       {"ticks", rep.ticks},
+                       {"rate_hz", rep.rate_hz},
+                       {"rate_hz_target", r.rate_hz},
+                       {"duration_s", cfg.duration_s},
+                       {"period_us", {{"p50", rep.period_p50_us}, {"p99", rep.period_p99_us}, {"max", rep.period_max_us}, {"min", rep.period_min_us}}},
+                       {"overruns", rep.overruns},
+                       {"stalls", stalls_json(rep)},
+                       {"max_lateral_force_N", rep.max_lateral_force_N},
+                       {"mean_lateral_force_N", played.mean_force_N},
+                       {"compiled_max_lateral_force_N", program.max_lateral_force_N},
+                       {"clamped_ticks", rep.clamped_ticks},
+                       {"stop_reason", rep.stop_reason},
+                       {"stop_cause", runtime::stop_cause_name(rep.stop_cause)},
+                       {"realtime_scheduling", rep.realtime_scheduling},
+                       {"memory_locked", rep.memory_locked},
+                       {"clock", "monotonic"},
+                       {"clock_start_ns", rep.clock_start_ns},
+                       {"player", player_name()},
+                       {"trace", r.trace.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.trace)}};
+      std::cout << schema::json_text(j, 2) << "\n";
+    } else {
+      std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p99 {:.1f} us; overruns {}; {}\n", rep.ticks,
+                               rep.rate_hz, rep.period_p99_us, rep.overruns, stalls_text(rep))
+                << fmt::format("  felt     max force {:.4f} N, clamped ticks {}\n", rep.max_lateral_force_N, rep.clamped_ticks)
+                << "  servo    " << (rep.realtime_scheduling ? "SCHED_FIFO, memory locked" : "normal priority (SCHED_FIFO not permitted here)")
+                << "; stopped: " << stop << "\n";
+      if (!r.trace.empty()) std::cout << "  trace    " << r.trace << " (" << played.records.size() << " ticks)\n";
+    }
     return exit_status_of(rep);
   } catch (const runtime::usb::HidPidError& e) {
     std::cerr << "sandpaper run --device usb: " << e.what() << "\n";

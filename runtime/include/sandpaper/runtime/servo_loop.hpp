@@ -89,6 +89,9 @@ struct ServoReport {
   std::uint64_t telemetry_dropped = 0;  // records the telemetry ring had no room for
   int cpu = -1;                      // the CPU the servo thread was pinned to, or -1
   double spin_margin_us = 0;         // the clock's spin margin (0 on the virtual clock)
+  // The clock's reading at servo time 0, ns: CLOCK_MONOTONIC on the real clock, so tick times
+  // (t_s of the telemetry and a trace) compare with other processes' timestamps on this machine.
+  std::int64_t clock_start_ns = 0;
 };
 
 // A gap between tick starts longer than this many periods is reported as a stall.

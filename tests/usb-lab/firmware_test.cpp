@@ -1,0 +1,474 @@
+// The OpenFFBoard firmware compiled for the host (usb-lab/firmware), driven the way the USB lab's
+// FunctionFS front end drives it and the way Sandpaper's HID PID driver talks to the board
+// (docs/USB_PID.md "What the driver sends"). Every expectation here is the firmware's behaviour;
+// the cited lines are in ../shared/third_party/openffboard/Firmware/FFBoard at commit 160af91.
+// The firmware runs once per process and keeps its state, so every test starts from a Device
+// Control reset with the stick centred.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "openffboard_firmware.hpp"
+
+namespace sandpaper::usb_lab {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+// The process's firmware, configured by the host once.
+OpenFFBoardFirmware& firmware() {
+  static std::unique_ptr<OpenFFBoardFirmware> fw = [] {
+    auto f = OpenFFBoardFirmware::start();
+    f->configured();
+    return f;
+  }();
+  return *fw;
+}
+
+// A .hex test data file: hex bytes, '#' to the end of the line is a comment.
+Bytes read_hex_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  EXPECT_TRUE(in.good()) << path;
+  Bytes out;
+  std::string line;
+  while (std::getline(in, line)) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    std::string word;
+    while (words >> word) out.push_back(static_cast<std::uint8_t>(std::stoul(word, nullptr, 16)));
+  }
+  return out;
+}
+
+void put16(Bytes& b, std::size_t at, int v) {
+  b[at] = static_cast<std::uint8_t>(v & 0xff);
+  b[at + 1] = static_cast<std::uint8_t>((v >> 8) & 0xff);
+}
+
+std::int16_t i16(const Bytes& b, std::size_t at) {
+  return static_cast<std::int16_t>(static_cast<std::uint16_t>(b[at] | (b[at + 1] << 8)));
+}
+
+// HID class requests on the control pipe (HID 1.11 section 7.2), interface 0, report type Feature (3).
+ControlReply set_feature(const Bytes& report) {
+  SetupPacket s{0x21, 0x09, static_cast<std::uint16_t>(0x0300 | report[0]), 0, static_cast<std::uint16_t>(report.size())};
+  return firmware().control(s, report);
+}
+
+ControlReply get_feature(std::uint8_t id, std::uint16_t length) {
+  SetupPacket s{0xA1, 0x01, static_cast<std::uint16_t>(0x0300 | id), 0, length};
+  return firmware().control(s, {});
+}
+
+// Output reports go to the interrupt OUT endpoint (the driver prefers it when the interface has one).
+void output(const Bytes& report) { firmware().interrupt_out(report); }
+
+// Device Control (report 0x0C, a bitmask: HidFFB.cpp:209-232): 0x01 enable, 0x02 disable, 0x08 reset.
+void device_control(std::uint8_t bits) { output({0x0C, bits}); }
+
+// Set Constant Force (0x05, FFB_SetConstantForce_Data_t, ffb_defs.h:341-346).
+void constant_force(std::uint8_t block, int magnitude) {
+  Bytes r(4, 0);
+  r[0] = 0x05;
+  r[1] = block;
+  put16(r, 2, magnitude);
+  output(r);
+}
+
+// The driver's open sequence for one axis's constant force effect (docs/USB_PID.md, step 5):
+// Create New Effect, Block Load, Set Effect, Set Constant Force 0, Effect Operation start.
+// Returns the effect block index the firmware gave.
+std::uint8_t open_constant_force_effect(int axis) {
+  EXPECT_FALSE(set_feature({0x11, 0x01, 0x00, 0x00}).stall);  // type 1 = constant, byte count 0
+  const ControlReply load = get_feature(0x12, 5);
+  EXPECT_FALSE(load.stall);
+  EXPECT_EQ(load.data.size(), 5u);  // report ID (hid_device.c prepends it) + FFB_BlockLoad_Feature_Data_t
+  if (load.data.size() < 3) return 0;
+  EXPECT_EQ(load.data[0], 0x12);
+  EXPECT_EQ(load.data[2], 1) << "Block Load status: 1 = success";
+  const std::uint8_t block = load.data[1];
+
+  // FFB_SetEffect_t (ffb_defs.h:200-220): 18 bytes.
+  Bytes e(18, 0);
+  e[0] = 0x01;
+  e[1] = block;
+  e[2] = 0x01;            // constant force
+  put16(e, 3, 0xFFFF);    // duration: infinite
+  e[11] = 255;            // gain
+  e[13] = axis == 0 ? 0x01 : 0x02;  // Axes Enable: this axis only, Direction Enable clear
+  put16(e, 14, axis == 0 ? 36000 : 0);  // direction X at its logical maximum on the X effect
+  put16(e, 16, 0);
+  output(e);
+  constant_force(block, 0);
+  output({0x0A, block, 0x01, 0x01});  // Effect Operation: start, loop count 1
+  return block;
+}
+
+template <class Done>
+bool eventually(Done done, milliseconds limit);
+
+struct OpenDevice {
+  std::uint8_t x_block = 0;
+  std::uint8_t y_block = 0;
+};
+
+// docs/USB_PID.md "Open": PID Pool, Device Control reset then enable, X then Y effects.
+OpenDevice open_like_the_driver() {
+  firmware().set_position(0, 0.0);
+  firmware().set_position(1, 0.0);
+  const ControlReply pool = get_feature(0x13, 5);
+  EXPECT_FALSE(pool.stall);
+  EXPECT_GE(pool.data.size(), 4u);
+  if (pool.data.size() >= 4) {
+    EXPECT_GE(pool.data[3], 2) << "simultaneous effects";
+  }
+  device_control(0x08);
+  device_control(0x01);
+  OpenDevice d;
+  d.x_block = open_constant_force_effect(0);
+  d.y_block = open_constant_force_effect(1);
+  // A stick that moved before (an earlier test) keeps the axis damper working for a few
+  // milliseconds (Axis.cpp calculateAxisEffects); start from rest.
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] == 0 && s.torque[1] == 0; }, milliseconds(500)));
+  return d;
+}
+
+// Polls the firmware's state until `done` holds or `limit` passes.
+template <class Done>
+bool eventually(Done done, milliseconds limit) {
+  const auto until = Clock::now() + limit;
+  while (Clock::now() < until) {
+    if (done(firmware().state())) return true;
+    std::this_thread::sleep_for(milliseconds(1));
+  }
+  return done(firmware().state());
+}
+
+// Checks `hold` on every state seen for `span`.
+template <class Hold>
+bool always(Hold hold, milliseconds span) {
+  const auto until = Clock::now() + span;
+  while (Clock::now() < until) {
+    if (!hold(firmware().state())) return false;
+    std::this_thread::sleep_for(milliseconds(1));
+  }
+  return true;
+}
+
+// The next input report (ID 1) from the interrupt IN endpoint, skipping PID State reports (ID 2).
+bool next_position_report(Bytes& report, milliseconds limit) {
+  const auto until = Clock::now() + limit;
+  while (Clock::now() < until) {
+    if (!firmware().next_interrupt_in(report, std::chrono::duration_cast<std::chrono::microseconds>(milliseconds(50)))) {
+      continue;
+    }
+    firmware().interrupt_in_done(true);
+    if (!report.empty() && report[0] == 0x01) return true;
+  }
+  return false;
+}
+
+TEST(OpenFFBoardFirmwareLab, FunctionDescriptorsAreTheHidPartOfTheFirmwaresConfiguration) {
+  // usb_descriptors.cpp: usb_cdc_hid_conf_2axis = USB_CONF_DESC_HID_CDC(USB_HID_2FFB_REPORT_DESC_SIZE, 64),
+  // whose HID part is TUD_HID_INOUT_DESCRIPTOR(2, 5, HID_ITF_PROTOCOL_NONE, 1215, 0x83, 0x02, 64,
+  // HID_BINTERVAL = 1) (usb_descriptors.h:17, 30-36; usb_descriptors.cpp:71; usbd.h). Renumbered to
+  // interface 0; the string index stays the firmware's.
+  const Bytes expected = {
+      9, 0x04, 0, 0, 2, 0x03, 0, 0, 5,                // interface 0, 2 endpoints, HID, no boot protocol
+      9, 0x21, 0x11, 0x01, 0, 1, 0x22, 0xBF, 0x04,  // HID 1.11, one report descriptor of 1215 bytes
+      7, 0x05, 0x83, 0x03, 64, 0, 1,                  // interrupt IN 0x83, 64 bytes, every 1 ms
+      7, 0x05, 0x02, 0x03, 64, 0, 1,                  // interrupt OUT 0x02, 64 bytes, every 1 ms
+  };
+  EXPECT_EQ(firmware().function_descriptors(), expected);
+
+  const DeviceIdentity id = firmware().identity();
+  EXPECT_EQ(id.vendor_id, 0x1209);
+  EXPECT_EQ(id.product_id, 0xFFB0);
+  EXPECT_EQ(id.bcd_device, 0x0100);
+  EXPECT_EQ(id.bcd_usb, 0x0200);
+  EXPECT_EQ(id.manufacturer, "Open FFBoard");   // usb_descriptors.cpp usb_ffboard_strings_default
+  EXPECT_EQ(id.product, "FFBoard F407VG");      // "FFBoard " HW_TYPE
+  EXPECT_EQ(id.serial_number.size(), 24u);      // USBdevice::getUsbSerial: the chip UID as 24 hex digits
+  EXPECT_EQ(id.max_speed, "full-speed");
+  // Interface strings from index 4, with the first 4 digits of the chip UID word 0 appended
+  // (USBdevice.cpp:77-83).
+  EXPECT_EQ(firmware().string_descriptor(5).rfind("FFBoard HID(", 0), 0u) << firmware().string_descriptor(5);
+  EXPECT_EQ(firmware().string_descriptor(2), "FFBoard F407VG");
+  EXPECT_EQ(firmware().string_descriptor(9), "");  // no such string
+}
+
+// tests/runtime/usb/data/openffboard_2axis.hex was expanded from the firmware at commit d19d616;
+// the firmware built here (160af91) differs from it in exactly these bytes (offset, file, firmware):
+//  - the vendor HID command reports (ID 0xA1) declare their 12 fields with HID_OUTPUT(1) /
+//    HID_INPUT(1) (UserExtensions/Inc/usb_hid_ffb_desc.h:115-146, HIDDESC_CTRL_REP): Constant,
+//    Array (0x01) where the older file has Data,Var,Abs (0x02), although the comments still say
+//    Data,Var,Abs;
+//  - Set Constant Force's Magnitude has logical and physical minimum -32767 (0x8001) instead of
+//    -32768 (usb_hid_ffb_desc.h:435-437).
+struct DescriptorChange {
+  std::size_t offset;
+  std::uint8_t in_file;
+  std::uint8_t in_firmware;
+};
+constexpr DescriptorChange newer_firmware_changes[] = {
+    {78, 0x02, 0x01},  {86, 0x02, 0x01},  {94, 0x02, 0x01},  {102, 0x02, 0x01}, {110, 0x02, 0x01},
+    {118, 0x02, 0x01}, {133, 0x02, 0x01}, {141, 0x02, 0x01}, {149, 0x02, 0x01}, {157, 0x02, 0x01},
+    {165, 0x02, 0x01}, {173, 0x02, 0x01}, {798, 0x00, 0x01}, {804, 0x00, 0x01},
+};
+
+TEST(OpenFFBoardFirmwareLab, ReportDescriptorIsTheRealOne) {
+  const auto file = std::filesystem::path(SANDPAPER_SOURCE_DIR) / "tests/runtime/usb/data/openffboard_2axis.hex";
+  Bytes expected = read_hex_file(file);
+  ASSERT_EQ(expected.size(), 1215u);
+  // Once the data file is regenerated from the firmware's commit these checks fail: then drop the list.
+  for (const DescriptorChange& c : newer_firmware_changes) {
+    ASSERT_EQ(expected[c.offset], c.in_file) << "offset " << c.offset;
+    expected[c.offset] = c.in_firmware;
+  }
+  // GET_DESCRIPTOR (Report) to the interface, as the host and the driver ask for it.
+  const ControlReply r = firmware().control(SetupPacket{0x81, 0x06, 0x2200, 0, 4096}, {});
+  ASSERT_FALSE(r.stall);
+  EXPECT_EQ(r.data, expected);
+  // The HID descriptor itself, and a short read cut to wLength by usbd_control.c.
+  const ControlReply hid = firmware().control(SetupPacket{0x81, 0x06, 0x2100, 0, 64}, {});
+  ASSERT_FALSE(hid.stall);
+  EXPECT_EQ(hid.data, (Bytes{9, 0x21, 0x11, 0x01, 0, 1, 0x22, 0xBF, 0x04}));
+  const ControlReply first = firmware().control(SetupPacket{0x81, 0x06, 0x2200, 0, 9}, {});
+  EXPECT_EQ(first.data, Bytes(expected.begin(), expected.begin() + 9));
+}
+
+TEST(OpenFFBoardFirmwareLab, HidClassRequestsAsTinyUsbAnswersThem) {
+  // SET_IDLE then GET_IDLE: hid_device.c keeps the rate and accepts (tud_hid_set_idle_cb default).
+  EXPECT_FALSE(firmware().control(SetupPacket{0x21, 0x0A, 0x0400, 0, 0}, {}).stall);
+  const ControlReply idle = firmware().control(SetupPacket{0xA1, 0x02, 0, 0, 1}, {});
+  EXPECT_FALSE(idle.stall);
+  EXPECT_EQ(idle.data, Bytes{4});
+  EXPECT_FALSE(firmware().control(SetupPacket{0x21, 0x0B, 1, 0, 0}, {}).stall);  // SET_PROTOCOL report
+  // GET_REPORT of a report the firmware has no answer for: not a stall but the report ID alone
+  // (hid_device.c puts the ID in front of the callback's 0 bytes, so its xferlen > 0 check passes).
+  const ControlReply unknown = get_feature(0x7E, 8);
+  EXPECT_FALSE(unknown.stall);
+  EXPECT_EQ(unknown.data, Bytes{0x7E});
+  // Requests to an interface the function does not have stall.
+  EXPECT_TRUE(firmware().control(SetupPacket{0x81, 0x06, 0x2200, 1, 64}, {}).stall);
+}
+
+TEST(OpenFFBoardFirmwareLab, TheDriversOpenSequenceAllocatesTwoConstantForceEffects) {
+  const OpenDevice d = open_like_the_driver();
+  // Reset frees every block; the first free one is 1 (HidFFB.cpp:244-270, EffectsCalculator.cpp:994-1003).
+  EXPECT_EQ(d.x_block, 1);
+  EXPECT_EQ(d.y_block, 2);
+  const FirmwareState s = firmware().state();
+  EXPECT_TRUE(s.ffb_active);
+  EXPECT_TRUE(s.actuators_enabled);
+  EXPECT_EQ(s.effects_in_use, 2);
+}
+
+TEST(OpenFFBoardFirmwareLab, ConstantForceOnXTurnsOnlyTheXDriver) {
+  const OpenDevice d = open_like_the_driver();
+  ASSERT_TRUE(always([](const FirmwareState& s) { return s.torque[0] == 0 && s.torque[1] == 0; }, milliseconds(20)));
+  constant_force(d.x_block, 10000);
+  // Positive: EffectsCalculator.cpp:319 negates the effect force, Axis.cpp:781 negates it again
+  // (invertAxis, on by default: Axis.h:248).
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] > 0; }, milliseconds(20)));
+  EXPECT_TRUE(always([](const FirmwareState& s) { return s.torque[1] == 0; }, milliseconds(50)));
+  constant_force(d.x_block, 0);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] == 0; }, milliseconds(20)));
+}
+
+TEST(OpenFFBoardFirmwareLab, ConstantForceOnYTurnsOnlyTheYDriver) {
+  const OpenDevice d = open_like_the_driver();
+  constant_force(d.y_block, 10000);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[1] > 0; }, milliseconds(20)));
+  EXPECT_TRUE(always([](const FirmwareState& s) { return s.torque[0] == 0; }, milliseconds(50)));
+  constant_force(d.y_block, 0);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[1] == 0; }, milliseconds(20)));
+}
+
+TEST(OpenFFBoardFirmwareLab, DeviceControlDisableBringsTorqueToZero) {
+  const OpenDevice d = open_like_the_driver();
+  constant_force(d.x_block, -10000);
+  constant_force(d.y_block, 10000);
+  ASSERT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] < 0 && s.torque[1] > 0; }, milliseconds(50)));
+  device_control(0x02);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] == 0 && s.torque[1] == 0 && !s.ffb_active; },
+                         milliseconds(20)));
+}
+
+TEST(OpenFFBoardFirmwareLab, TorqueScaleAtTheFirmwaresDefaults) {
+  const OpenDevice d = open_like_the_driver();
+  // Past the fade-in the Axis starts on mount and at the first update (Axis.cpp:348, 543, 775-778):
+  // up to 2 s at 1 kHz.
+  std::this_thread::sleep_for(milliseconds(2500));
+  std::atomic<int> first_x{0};
+  firmware().on_torque([&](const TorqueUpdate& u) {
+    int none = 0;
+    if (u.axis == 0 && u.torque != 0) first_x.compare_exchange_strong(none, u.torque);
+  });
+  // Axis.cpp:735-783: effect torque * fx_ratio 204/255 * power 5000/32767 (Axis.h:244-245), inverted,
+  // clipped to +-power.
+  constant_force(d.x_block, 10000);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] == 1220; }, milliseconds(50)))
+      << firmware().state().torque[0];
+  firmware().on_torque(nullptr);
+  // The first update already carries all of it: the constant force biquad (500 Hz at 1 kHz, Fc 0.5,
+  // EffectsCalculator.h:46) is skipped unless Fc < 0.5 (EffectsCalculator.cpp:305).
+  EXPECT_EQ(first_x.load(), 1220);
+  constant_force(d.x_block, 32767);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] == 3999; }, milliseconds(50)))
+      << firmware().state().torque[0];
+  constant_force(d.x_block, -32767);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] == -3999; }, milliseconds(50)))
+      << firmware().state().torque[0];
+  constant_force(d.x_block, 0);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] == 0; }, milliseconds(50)));
+}
+
+TEST(OpenFFBoardFirmwareLab, TorqueObserverSeesEveryDriverUpdate) {
+  const OpenDevice d = open_like_the_driver();
+  std::atomic<int> x_updates{0};
+  std::atomic<int> last_x{0};
+  firmware().on_torque([&](const TorqueUpdate& u) {
+    if (u.axis == 0) {
+      ++x_updates;
+      last_x = u.torque;
+    }
+  });
+  constant_force(d.x_block, 20000);
+  const bool seen = eventually([&](const FirmwareState& s) { return last_x.load() != 0 && last_x.load() == s.torque[0]; },
+                               milliseconds(50));
+  firmware().on_torque(nullptr);
+  EXPECT_TRUE(seen);
+  EXPECT_GT(x_updates.load(), 0);
+  constant_force(d.x_block, 0);
+}
+
+TEST(OpenFFBoardFirmwareLab, UpdateRateIsTheFfbTimers) {
+  // TIM13 at 1 MHz (prescaler 84-1 on 84 MHz), ARR = 1000000 * 1 / 1000 (FFBHIDMain.cpp:256):
+  // an update every ARR + 1 = 1001 us.
+  EXPECT_NEAR(firmware().update_rate_hz(), 1e6 / 1001.0, 1e-6);
+  // A ramp in progress changes the torque on every update: count the driver updates for 0.5 s.
+  const OpenDevice d = open_like_the_driver();
+  Bytes e(18, 0);  // re-set the X effect as a 100 ms sine (Set Effect type 4, Set Periodic 0x04)
+  e[0] = 0x01;
+  e[1] = d.x_block;
+  e[2] = 0x04;
+  put16(e, 3, 0xFFFF);
+  e[11] = 255;
+  e[13] = 0x01;
+  put16(e, 14, 36000);
+  output(e);
+  Bytes periodic(12, 0);  // FFB_SetPeriodic_Data_t (ffb_defs.h:261-269)
+  periodic[0] = 0x04;
+  periodic[1] = d.x_block;
+  put16(periodic, 2, 20000);
+  periodic[8] = 100;  // period 100 ms
+  output(periodic);
+  std::this_thread::sleep_for(milliseconds(100));
+  const auto before = firmware().state().torque_updates[0];
+  const auto t0 = Clock::now();
+  std::this_thread::sleep_for(milliseconds(500));
+  const auto updates = firmware().state().torque_updates[0] - before;
+  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  const double rate = static_cast<double>(updates) / seconds;
+  RecordProperty("measured_update_rate_hz", std::to_string(rate));
+  EXPECT_GT(rate, 800.0);
+  EXPECT_LT(rate, 1010.0);
+  device_control(0x08);
+}
+
+TEST(OpenFFBoardFirmwareLab, PositionReachesTheInputReport) {
+  open_like_the_driver();
+  Bytes report;
+  firmware().set_position(0, 0.5);
+  firmware().set_position(1, -0.25);
+  // The report changes when the position does (FFBHIDMain.cpp:225); X at bytes 9-10, Y at
+  // 11-12 (ffb_defs.h:100-124), -32767..32767 over the axis's range.
+  const auto until = Clock::now() + milliseconds(1000);
+  bool matched = false;
+  while (!matched && Clock::now() < until && next_position_report(report, milliseconds(200))) {
+    ASSERT_EQ(report.size(), 25u);
+    matched = std::abs(i16(report, 9) - 16384) <= 2 && std::abs(i16(report, 11) + 8192) <= 2;
+  }
+  EXPECT_TRUE(matched) << "X " << i16(report, 9) << " Y " << i16(report, 11);
+  firmware().set_position(0, -0.75);
+  firmware().set_position(1, 0.0);
+  matched = false;
+  while (!matched && Clock::now() < until + milliseconds(1000) && next_position_report(report, milliseconds(200))) {
+    matched = std::abs(i16(report, 9) + 24576) <= 2 && i16(report, 11) == 0;
+  }
+  EXPECT_TRUE(matched) << "X " << i16(report, 9) << " Y " << i16(report, 11);
+  firmware().set_position(0, 0.0);
+}
+
+TEST(OpenFFBoardFirmwareLab, OutputReportsOverTheControlPipeAreReadOneByteOff) {
+  const OpenDevice d = open_like_the_driver();
+  // SET_REPORT (Output) on the control pipe: hid_device.c strips the report ID (it equals the first
+  // data byte) before tud_hid_set_report_cb, but HidFFB::hidOut reads the output structs with the
+  // ID at byte 0 (ffb_defs.h:341-346), so block index and magnitude come from the wrong bytes.
+  Bytes force = {0x05, d.x_block, 0x10, 0x27};  // Set Constant Force X = 10000
+  const ControlReply r = firmware().control(SetupPacket{0x21, 0x09, 0x0205, 0, 4}, force);
+  EXPECT_FALSE(r.stall);
+  EXPECT_TRUE(always([](const FirmwareState& s) { return s.torque[0] == 0; }, milliseconds(30)));
+  // The same report on the interrupt OUT endpoint is read as meant.
+  output(force);
+  EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] > 0; }, milliseconds(30)));
+  constant_force(d.x_block, 0);
+}
+
+TEST(OpenFFBoardFirmwareLab, AStillStickIsReportedEveryHundredUpdates) {
+  open_like_the_driver();
+  // FFBHIDMain.cpp:176-231: a report goes out when it changed or when reportSendCounter passes
+  // 100 / usb_report_rate; counting one per update while the endpoint is free, that is every 101
+  // updates (about 101 ms) for a stick that does not move.
+  Bytes report;
+  ASSERT_TRUE(next_position_report(report, milliseconds(300)));
+  ASSERT_TRUE(next_position_report(report, milliseconds(300)));
+  const auto t0 = Clock::now();
+  ASSERT_TRUE(next_position_report(report, milliseconds(300)));
+  ASSERT_TRUE(next_position_report(report, milliseconds(300)));
+  const double interval_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / 2.0;
+  EXPECT_GT(interval_ms, 85.0);
+  EXPECT_LT(interval_ms, 120.0);
+}
+
+TEST(OpenFFBoardFirmwareLab, DeconfiguringStopsTheDriversAndFreesTheEffects) {
+  const OpenDevice d = open_like_the_driver();
+  constant_force(d.x_block, 10000);
+  ASSERT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] > 0; }, milliseconds(50)));
+  // SET_CONFIGURATION 0: tud_umount_cb -> FFBHIDMain::usbSuspend (FFBHIDMain.cpp:307-315): FFB off,
+  // every effect freed, each Axis turns its driver to 0 and stops it (Axis.cpp:532-537).
+  firmware().deconfigured();
+  FirmwareState s = firmware().state();
+  EXPECT_EQ(s.torque[0], 0);
+  EXPECT_FALSE(s.actuators_enabled);
+  EXPECT_FALSE(s.ffb_active);
+  EXPECT_EQ(s.effects_in_use, 0);
+  firmware().configured();  // tud_mount_cb -> usbResume: drivers started again (Axis.cpp:542-548)
+  EXPECT_TRUE(firmware().state().actuators_enabled);
+}
+
+TEST(OpenFFBoardFirmwareLab, BusSuspendDoesNotReachTheFirmware) {
+  const OpenDevice d = open_like_the_driver();
+  constant_force(d.x_block, 10000);
+  ASSERT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] > 0; }, milliseconds(50)));
+  // global_callbacks.cpp:365 defines tud_suspend_cb() without TinyUSB's bool parameter, a C++
+  // overload TinyUSB never calls; so a suspend leaves FFB and the drivers running, as on the board.
+  firmware().suspended(true);
+  EXPECT_TRUE(always([](const FirmwareState& st) { return st.torque[0] > 0 && st.ffb_active; }, milliseconds(30)));
+  firmware().suspended(false);
+  constant_force(d.x_block, 0);
+}
+
+}  // namespace
+}  // namespace sandpaper::usb_lab

@@ -1,0 +1,145 @@
+// sandpaper-lab-device: the OpenFFBoard firmware, compiled for the host, as a USB device on a
+// FunctionFS mount, with the lab's simulated stick behind it. Runs in the USB lab's guest
+// (docs/USB_PID.md "In the lab"); the lab's scripts make the gadget and bind it once this prints
+// its ready line.
+#include <signal.h>
+#include <time.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <thread>
+
+#include "bus_log.hpp"
+#include "functionfs_device.hpp"
+#include "logged_function.hpp"
+#include "openffboard_firmware.hpp"
+#include "scripted_hand.hpp"
+
+using namespace sandpaper::usb_lab;
+
+namespace {
+
+// Moves the handle along the hand's path at 1 kHz, on absolute deadlines, until `stop`.
+void drive_stick(OpenFFBoardFirmware& firmware, const HandPath& path, double half_range_m, const std::atomic<bool>& stop) {
+  const std::int64_t start = monotonic_ns();
+  timespec next{};
+  clock_gettime(CLOCK_MONOTONIC, &next);
+  while (!stop.load()) {
+    const HandPosition p = hand_position(path, static_cast<double>(monotonic_ns() - start) * 1e-9);
+    firmware.set_position(0, p.x_m / half_range_m);
+    firmware.set_position(1, p.y_m / half_range_m);
+    next.tv_nsec += 1'000'000;
+    if (next.tv_nsec >= 1'000'000'000) {
+      next.tv_nsec -= 1'000'000'000;
+      ++next.tv_sec;
+    }
+    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+  }
+}
+
+void write_state(const std::string& path, const FirmwareState& s, std::size_t dropped) {
+  std::ofstream out(path + ".tmp");
+  out << "{\"ffb_active\": " << (s.ffb_active ? "true" : "false")
+      << ", \"actuators_enabled\": " << (s.actuators_enabled ? "true" : "false")
+      << ", \"effects_in_use\": " << s.effects_in_use << ", \"torque\": [" << s.torque[0] << ", " << s.torque[1]
+      << "], \"torque_updates\": [" << s.torque_updates[0] << ", " << s.torque_updates[1]
+      << "], \"log_records_dropped\": " << dropped << "}\n";
+  out.close();
+  std::filesystem::rename(path + ".tmp", path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"The OpenFFBoard firmware as a USB device on a FunctionFS mount (the USB lab's joystick)"};
+  std::string ffs, log_dir;
+  HandPath path;
+  double speed_mm_s = 100, extent_mm = 40, half_range_mm = 50;
+  bool identity = false;
+  app.add_flag("--identity", identity, "print the device's identity (key=value lines) for the gadget's configfs and exit");
+  app.add_option("--ffs", ffs, "the FunctionFS mount (holds ep0)");
+  app.add_option("--hand", path.kind, "the hand's path: still, scan (along x), circle")->capture_default_str();
+  app.add_option("--speed", speed_mm_s, "the hand's speed along its path, mm/s")->capture_default_str();
+  app.add_option("--extent", extent_mm, "scan stroke length or circle diameter, mm")->capture_default_str();
+  app.add_option("--half-range", half_range_mm,
+                 "the handle travel from centre to the end the firmware reports as full scale, mm "
+                 "(the device calibration's workspace half-width)")->capture_default_str();
+  app.add_option("--log", log_dir, "write reports.csv, torque.csv and state.json here at exit");
+  CLI11_PARSE(app, argc, argv);
+  if (!identity && ffs.empty()) {
+    std::cerr << "sandpaper-lab-device: --ffs is required (or --identity)\n";
+    return 2;
+  }
+  path.speed_m_s = speed_mm_s * 1e-3;
+  path.extent_m = extent_mm * 1e-3;
+  try {
+    (void)hand_position(path, 0);
+  } catch (const std::exception& e) {
+    std::cerr << "sandpaper-lab-device: " << e.what() << "\n";
+    return 2;
+  }
+
+  // SIGINT and SIGTERM end the program through sigwait below; blocked before any thread starts so
+  // that every thread (the firmware's too) inherits the mask.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+
+  AppendLog<ReportRecord> reports(1 << 18);
+  AppendLog<TorqueRecord> torques(1 << 19);
+  try {
+    auto firmware = OpenFFBoardFirmware::start();
+    if (identity) {
+      const DeviceIdentity id = firmware->identity();
+      std::printf("vendor_id=0x%04x\nproduct_id=0x%04x\nbcd_device=0x%04x\nbcd_usb=0x%04x\ndevice_class=0x%02x\n"
+                  "device_subclass=0x%02x\ndevice_protocol=0x%02x\nmanufacturer=%s\nproduct=%s\nserial_number=%s\n"
+                  "max_speed=%s\n",
+                  id.vendor_id, id.product_id, id.bcd_device, id.bcd_usb, id.device_class, id.device_subclass,
+                  id.device_protocol, id.manufacturer.c_str(), id.product.c_str(), id.serial_number.c_str(),
+                  id.max_speed.c_str());
+      std::fflush(stdout);
+      std::_Exit(0);
+    }
+    firmware->on_torque([&](const TorqueUpdate& u) {
+      const auto t = std::chrono::duration_cast<std::chrono::nanoseconds>(u.time.time_since_epoch()).count();
+      torques.append(TorqueRecord{t, u.axis, u.torque});
+    });
+    LoggedFunction logged(*firmware, reports);
+    FunctionFsDevice device(ffs, logged);
+    device.start();
+    std::atomic<bool> stop{false};
+    std::thread stick([&] { drive_stick(*firmware, path, half_range_mm * 1e-3, stop); });
+    std::printf("sandpaper-lab-device: ready on %s (firmware update rate %.0f Hz)\n", ffs.c_str(),
+                firmware->update_rate_hz());
+    std::fflush(stdout);
+
+    int signal = 0;
+    sigwait(&stop_signals, &signal);
+    stop.store(true);
+    stick.join();
+    device.stop();
+    const FirmwareState s = firmware->state();
+    std::printf("sandpaper-lab-device: stopped (%s); firmware: ffb_active %d, actuators_enabled %d, effects %d, torque %d %d, "
+                "interrupt OUT %llu, IN %llu\n",
+                signal == SIGINT ? "SIGINT" : "SIGTERM", s.ffb_active, s.actuators_enabled, s.effects_in_use, s.torque[0],
+                s.torque[1], static_cast<unsigned long long>(device.interrupt_out_transfers()),
+                static_cast<unsigned long long>(device.interrupt_in_transfers()));
+    if (!log_dir.empty()) {
+      write_report_log(log_dir + "/reports.csv", reports.records());
+      write_torque_log(log_dir + "/torque.csv", torques.records());
+      write_state(log_dir + "/state.json", s, reports.dropped() + torques.dropped());
+    }
+    std::fflush(stdout);
+    // The firmware's threads run forever, as on the board: leave without destroying it.
+    std::_Exit(0);
+  } catch (const std::exception& e) {
+    std::cerr << "sandpaper-lab-device: " << e.what() << "\n";
+    return 1;
+  }
+}

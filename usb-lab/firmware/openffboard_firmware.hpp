@@ -1,0 +1,55 @@
+#pragma once
+// The OpenFFBoard firmware's 2-axis force-feedback joystick (its FFBJoystick main class with
+// FFBHIDMain, HidFFB, EffectsCalculator and AxesManager/Axis), compiled for the host from
+// ../shared/third_party/openffboard with shims for its RTOS, HAL, flash and USB device stack, as
+// a UsbFunction. Its motor drivers and encoders are the simulated stick's: the firmware's torque
+// per axis comes out here, the stick's position goes in.
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+
+#include "usb_function.hpp"
+
+namespace sandpaper::usb_lab {
+
+// One update of the firmware's motor drivers: the torque each axis's driver was commanded, in the
+// firmware's torque units (int16, full scale +-32767 as MotorDriver::turn takes it), on the
+// process's steady clock.
+struct TorqueUpdate {
+  int axis = 0;
+  std::int16_t torque = 0;
+  std::chrono::steady_clock::time_point time;
+};
+
+// What the firmware reports of its own state (for stop and fault checks).
+struct FirmwareState {
+  bool ffb_active = false;          // HidFFB: effects enabled (Device Control enable/disable)
+  bool actuators_enabled = false;   // the axes' drivers are enabled
+  int effects_in_use = 0;           // effect blocks allocated
+  std::int16_t torque[2] = {0, 0};  // the last torque each axis's driver was commanded
+  std::uint64_t torque_updates[2] = {0, 0};  // how many times each driver's torque was set
+};
+
+class OpenFFBoardFirmware : public UsbFunction {
+ public:
+  // Constructs the firmware's main class as its startup code would and starts its threads. The
+  // firmware keeps global state: one per process. Throws std::logic_error on a second call.
+  static std::unique_ptr<OpenFFBoardFirmware> start();
+
+  // The handle's position on `axis` (0 = X, 1 = Y) as the firmware's encoder for that axis reads
+  // it, as a fraction of the axis's range: -1 and +1 are the ends the firmware reports as its
+  // input report's logical minimum and maximum.
+  virtual void set_position(int axis, double fraction_of_range) = 0;
+
+  // Called from the firmware's thread on every driver torque update; set before configured().
+  virtual void on_torque(std::function<void(const TorqueUpdate&)> observer) = 0;
+
+  virtual FirmwareState state() const = 0;
+
+  // The firmware's FFB update rate in Hz (its effects calculation and driver updates), as
+  // compiled and configured.
+  virtual double update_rate_hz() const = 0;
+};
+
+}  // namespace sandpaper::usb_lab

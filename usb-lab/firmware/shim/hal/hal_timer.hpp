@@ -1,0 +1,13 @@
+#pragma once
+// The simulated timers' update interrupts (hal_timer.cpp): what HAL_TIM_Base_Start_IT starts.
+#include "stm32f4xx_hal.h"
+
+namespace sandpaper::usb_lab::hal {
+
+// Update rate of a timer in Hz as its registers set it: clock / ((PSC+1) * (ARR+1)).
+double timer_update_rate_hz(const TIM_HandleTypeDef& htim);
+
+// Stops every running update interrupt and waits for their threads. Call without the core.
+void stop_timer_interrupts();
+
+}  // namespace sandpaper::usb_lab::hal

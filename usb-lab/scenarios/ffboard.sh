@@ -1,0 +1,67 @@
+# shellcheck shell=dash
+# Sourced by the lab's scenarios in the guest: the emulated OpenFFBoard (sandpaper-lab-device on a
+# FunctionFS gadget on dummy_udc.0), plugged in, stopped and unplugged as a scenario needs it.
+# /lab/params.sh (written by usb-lab/scenario.py) sets SANDPAPER, SANDPAPER_PLAY, LAB_DEVICE, REPO
+# and the scenario's own parameters.
+. /lab/params.sh
+. "$LAB_GADGET"
+
+FFB_UDC=dummy_udc.0
+FFB_DEVICE_LOG=/tmp/ffboard-device.log
+
+# The gadget as the firmware describes itself (sandpaper-lab-device --identity: key=value lines).
+ffboard_create() {
+  local k v vid pid bcd class subclass protocol manufacturer product serial
+  while IFS='=' read -r k v; do
+    case $k in
+      vendor_id) vid=$v ;; product_id) pid=$v ;; bcd_device) bcd=$v ;;
+      device_class) class=$v ;; device_subclass) subclass=$v ;; device_protocol) protocol=$v ;;
+      manufacturer) manufacturer=$v ;; product) product=$v ;; serial_number) serial=$v ;;
+    esac
+  done <<IDENTITY
+$("$LAB_DEVICE" --identity)
+IDENTITY
+  FFB_VID=$vid FFB_PID=$pid
+  gadget_create ffboard "$vid" "$pid" bcd="$bcd" class="$class" subclass="$subclass" protocol="$protocol" \
+    manufacturer="$manufacturer" product="$product" serial="$serial" speed=full-speed &&
+  gadget_add_ffs ffboard ffb
+}
+
+# Starts the device program with the given options; returns once it wrote its descriptors.
+ffboard_start() {
+  "$LAB_DEVICE" --ffs /dev/ffs-ffb --log "$LAB_OUT" "$@" > "$FFB_DEVICE_LOG" 2>&1 &
+  FFB_DEVICE_PID=$!
+  lab_wait_line "$FFB_DEVICE_LOG" "ready on" 60 || { cat "$FFB_DEVICE_LOG"; return 1; }
+}
+
+# Plugs it in and waits until the host side enumerated it and usbhid bound it (hidraw).
+ffboard_bind() {
+  gadget_bind ffboard "$FFB_UDC" &&
+  lab_wait_usb_device "$FFB_VID" "$FFB_PID" 60 &&
+  FFB_USB_DEV=$LAB_USB_DEV &&
+  lab_wait_hidraw "$FFB_USB_DEV" 60
+}
+
+# All three: the device as a user finds it, plugged in and bound by the kernel's HID driver.
+ffboard_plug() {
+  ffboard_create && ffboard_start "$@" && ffboard_bind
+}
+
+# Ends the device program (SIGTERM: it writes its logs and the firmware's state) and prints its log.
+ffboard_stop() {
+  [ -n "$FFB_DEVICE_PID" ] || return 0
+  kill -TERM "$FFB_DEVICE_PID" 2>/dev/null
+  wait "$FFB_DEVICE_PID"
+  FFB_DEVICE_PID=
+  sed 's/^/device: /' "$FFB_DEVICE_LOG"
+}
+
+# The driver bound to the OpenFFBoard's HID interface: usbhid, or empty when a program detached it.
+ffboard_interface_driver() {
+  local intf link
+  for intf in "$FFB_USB_DEV"/*:1.*; do
+    [ "$(cat "$intf/bInterfaceClass" 2>/dev/null)" = 03 ] || continue
+    link=$(readlink "$intf/driver" 2>/dev/null) && basename "$link"
+    return 0
+  done
+}
