@@ -20,7 +20,7 @@ struct ReportRecord {
   std::uint8_t pipe = 0;     // 'i': interrupt OUT, 'c': SET_REPORT on the control pipe
   std::uint8_t type = 0;     // HID report type of a SET_REPORT (2 output, 3 feature); 2 on interrupt OUT
   std::uint8_t length = 0;
-  std::uint8_t bytes[13] = {};  // the report's first bytes, report ID first (enough for every PID output report the driver sends in play)
+  std::uint8_t bytes[24] = {};  // the report's first bytes, report ID first (a Set Effect report is 18 bytes)
 };
 
 struct TorqueRecord {

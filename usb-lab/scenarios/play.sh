@@ -1,0 +1,29 @@
+# Plays MATERIAL on the emulated OpenFFBoard for SECONDS with `sandpaper run --device usb`, the
+# stick moved by the lab's scripted hand (HAND, SPEED_MM_S, EXTENT_MM). Writes /out/run.json (the
+# run's summary), /out/trace.csv (every tick), the device's logs (reports.csv, torque.csv,
+# state.json) and /out/play.json (the kernel driver before, during and after).
+. /lab/ffboard.sh
+ffboard_plug --hand "$HAND" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" || exit 1
+driver_before=$(ffboard_interface_driver)
+
+"$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" --json --trace /out/trace.csv \
+  > /out/run.json 2> /out/run.err &
+run_pid=$!
+# Claimed through usbfs, the interface shows the driver "usbfs" while the run holds it.
+_detached() { driver_during=$(ffboard_interface_driver); [ "$driver_during" != usbhid ]; }
+driver_during=
+lab_poll 30 "the run to detach usbhid" _detached
+wait "$run_pid"
+run_status=$?
+_usbhid_back() { [ "$(ffboard_interface_driver)" = usbhid ]; }
+lab_poll 10 "usbhid to be bound again" _usbhid_back
+driver_after=$(ffboard_interface_driver)
+input_after=
+lab_wait_input "$FFB_USB_DEV" 10 && input_after=$LAB_INPUT
+ffboard_stop
+sed 's/^/run: /' /out/run.err
+cat > /out/play.json <<JSON
+{"run_status": $run_status, "driver_before": "$driver_before", "driver_during": "$driver_during",
+ "driver_after": "$driver_after", "input_after": "$input_after"}
+JSON
+cat /out/play.json
