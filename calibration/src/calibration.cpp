@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <set>
@@ -133,6 +134,7 @@ std::vector<Level> read_levels(const Toml& f, std::string& percept, std::string&
 AxisScale read_axis(const toml::node_view<const toml::node>& v) {
   AxisScale a;
   a.newtons_per_command_unit = v["newtons_per_command_unit"].value_or(0.0);
+  a.command_sense = static_cast<int>(v["command_sense"].value_or(std::int64_t{1}));
   if (const auto* t = v["table"].as_array())
     for (const auto& row : *t) {
       const toml::table& r = *row.as_table();
@@ -180,6 +182,7 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
     } else problems.add(f, *c["workspace"].node(), "a rectangular workspace needs `width` and `height`", "");
   }
   d.usb_vendor_id = static_cast<int>(c["usb"]["vendor_id"].value_or(std::int64_t{-1}));
+  if (const auto* idle = c["usb"]["idle_report_period"].node()) d.usb_idle_report_period_s = detail::quantity_si(*idle);
   d.usb_product_id = static_cast<int>(c["usb"]["product_id"].value_or(std::int64_t{-1}));
   d.roughness_map = c["maps"]["roughness"].value_or(std::string());
   if (c["emulation"].is_table()) {

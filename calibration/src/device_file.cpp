@@ -121,8 +121,11 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   out += "max_continuous = " + toml_string(max_text + " N") + max_note + "\n";
   if (command_max) out += fmt::format("command_max = {}\n", *command_max);
   if (auto bits = base["force"]["resolution_bits"].value<std::int64_t>()) out += fmt::format("resolution_bits = {}\n", *bits);
-  out += "[force.x]\nnewtons_per_command_unit = " + toml_float(ax->gain_N_per_unit, 9) + "\n";
-  out += "[force.y]\nnewtons_per_command_unit = " + toml_float(ay->gain_N_per_unit, 9) + "\n";
+  // The readings measure how hard a command pushes, not which way: the sense is the base's.
+  for (auto [a, axis] : {std::pair{ax, "x"}, std::pair{ay, "y"}}) {
+    out += fmt::format("[force.{}]\nnewtons_per_command_unit = {}\n", axis, toml_float(a->gain_N_per_unit, 9));
+    if (auto sense = base["force"][axis]["command_sense"].value<std::int64_t>()) out += fmt::format("command_sense = {}\n", *sense);
+  }
   copy_table(out, base, "position");
   copy_table(out, base, "workspace");
   copy_table(out, base, "usb");

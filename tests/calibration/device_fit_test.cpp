@@ -25,14 +25,20 @@ max_continuous = "10 N"
 command_max = 10000
 [force.x]
 newtons_per_command_unit = 0.001
+command_sense = -1
 [force.y]
 newtons_per_command_unit = 0.001
+command_sense = -1
 [position]
 resolution = "0.01 mm"
 [workspace]
 shape = "rectangle"
 width = "100 mm"
 height = "100 mm"
+[usb]
+vendor_id = 0x1209
+product_id = 0xFFB0
+idle_report_period = "101 ms"
 [servo_rate_hz]
 min = 900
 max = 1000
@@ -95,6 +101,10 @@ TEST(DeviceFit, DeviceFileKeepsTheBaseAndStoresTheGain) {
   EXPECT_NEAR(doc["force"]["x"]["newtons_per_command_unit"].value_or(0.0), f.axes[0].gain_N_per_unit, 1e-8 * f.axes[0].gain_N_per_unit);
   EXPECT_NEAR(doc["force"]["y"]["newtons_per_command_unit"].value_or(0.0), f.axes[1].gain_N_per_unit, 1e-8 * f.axes[1].gain_N_per_unit);
   EXPECT_EQ(doc["force"]["command_max"].value_or(0), 10000);
+  // Gauge readings measure how hard, not which way: the base's sense stays.
+  EXPECT_EQ(doc["force"]["x"]["command_sense"].value_or(0), -1);
+  EXPECT_EQ(doc["force"]["y"]["command_sense"].value_or(0), -1);
+  EXPECT_EQ(doc["usb"]["idle_report_period"].value_or(std::string()), "101 ms");
   // 10000 x 0.00085 N is about 8.4 N < the base's assumed 10 N: max_continuous comes down to it.
   const auto max = doc["force"]["max_continuous"].value_or(std::string());
   EXPECT_NEAR(std::stod(max), f.axes[0].gain_N_per_unit * 10000, 0.01) << max;

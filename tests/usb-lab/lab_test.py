@@ -62,7 +62,53 @@ def test_enumerate(build: Path, out: Path) -> None:
           "listing devices leaves usbhid bound to the OpenFFBoard")
 
 
-TESTS = {"enumerate": test_enumerate}
+# What the firmware does to a magnitude M with its defaults (usb-lab/firmware/README.md): driver
+# torque = M x 204/255 x 5000/32767; a positive torque pushes the handle toward decreasing position.
+TORQUE_PER_COMMAND = 204 / 255 * 5000 / 32767
+NEWTONS_PER_COMMAND = 0.001  # calibration/devices/openffboard-2axis.toml (assumed scale)
+
+
+def handle_force_N(torque: int) -> float:
+    return -torque / TORQUE_PER_COMMAND * NEWTONS_PER_COMMAND
+
+
+def test_direction(build: Path, out: Path) -> None:
+    sys.path.insert(0, str(REPO / "usb-lab"))
+    import measure
+    seconds = 4.0
+    r = scenario.run("direction", build, out, params={
+        "AT_X_MM": "10", "AT_Y_MM": "-5", "CIRCLE_MM": "0.2", "SPEED_MM_S": "2",
+        "STIFFNESS": "200 N/m", "SECONDS": str(seconds)})
+    check(r.status == 0, f"the scenario ran to its end (status {r.status})")
+    if r.status != 0:
+        return
+    run = json.loads((out / "run.json").read_text())
+    check(run["stop_cause"] == "completed", f"the run played to its end (stop cause {run['stop_cause']})")
+    trace = measure.read_trace(out / "trace.csv")
+    torques = measure.read_torques(out / "torque.csv")
+    start = int(run["clock_start_ns"])
+    # The last 1.5 s: the firmware fades torque in over 2 s after the host mounts it.
+    t_from = start + int((seconds - 1.5) * 1e9)
+    t_to = start + int(seconds * 1e9)
+    late = [f for t, _, _, *f in trace if start + t * 1e9 >= t_from]
+    commanded = [sum(f[a] for f in late) / len(late) for a in (0, 1)] if late else [0.0, 0.0]
+    print(f"commanded force over the last 1.5 s: ({commanded[0]:.3f}, {commanded[1]:.3f}) N", flush=True)
+    check(commanded[0] < -1.5 and commanded[1] > 0.7,
+          "the spring pulls back toward the centre: -x on x, +y on y (about -2 N, +1 N)")
+    for axis, name in ((0, "x"), (1, "y")):
+        values = [handle_force_N(q) for t, a, q in torques if a == axis and t_from <= t <= t_to]
+        if not values:
+            check(False, f"the firmware updated its {name} driver in the last 1.5 s")
+            continue
+        felt = sum(values) / len(values)
+        print(f"{name}: firmware pushes the handle with {felt:.3f} N (driver torque converted), "
+              f"commanded {commanded[axis]:.3f} N", flush=True)
+        check(felt * commanded[axis] > 0, f"{name}: the firmware pushes the handle the way the compiled force points")
+        check(abs(felt - commanded[axis]) <= 0.05 * abs(commanded[axis]),
+              f"{name}: within 5 % of the commanded force")
+
+
+TESTS = {"enumerate": test_enumerate, "direction": test_direction}
 
 
 def main() -> int:

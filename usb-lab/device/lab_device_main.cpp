@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <thread>
+#include <vector>
 
 #include "bus_log.hpp"
 #include "functionfs_device.hpp"
@@ -65,6 +66,9 @@ int main(int argc, char** argv) {
   app.add_option("--hand", path.kind, "the hand's path: still, scan (along x), circle")->capture_default_str();
   app.add_option("--speed", speed_mm_s, "the hand's speed along its path, mm/s")->capture_default_str();
   app.add_option("--extent", extent_mm, "scan stroke length or circle diameter, mm")->capture_default_str();
+  std::vector<double> centre_mm{0, 0};
+  app.add_option("--at", centre_mm, "where a still hand holds the handle, or the centre of a scan or circle: X Y in mm")
+      ->expected(2)->capture_default_str();
   app.add_option("--half-range", half_range_mm,
                  "the handle travel from centre to the end the firmware reports as full scale, mm "
                  "(the device calibration's workspace half-width)")->capture_default_str();
@@ -76,6 +80,8 @@ int main(int argc, char** argv) {
   }
   path.speed_m_s = speed_mm_s * 1e-3;
   path.extent_m = extent_mm * 1e-3;
+  path.centre_x_m = centre_mm[0] * 1e-3;
+  path.centre_y_m = centre_mm[1] * 1e-3;
   try {
     (void)hand_position(path, 0);
   } catch (const std::exception& e) {

@@ -6,7 +6,9 @@
 
 namespace sandpaper::usb_lab {
 
-HandPosition hand_position(const HandPath& path, double t_s) {
+namespace {
+
+HandPosition relative_position(const HandPath& path, double t_s) {
   if (path.kind == "still") return {};
   if (!(path.speed_m_s > 0) || !(path.extent_m > 0))
     throw std::invalid_argument("the hand's speed and extent must be positive");
@@ -23,6 +25,13 @@ HandPosition hand_position(const HandPath& path, double t_s) {
     return {r * std::cos(angle), r * std::sin(angle)};
   }
   throw std::invalid_argument("unknown hand path '" + path.kind + "' (still, scan, circle)");
+}
+
+}  // namespace
+
+HandPosition hand_position(const HandPath& path, double t_s) {
+  const HandPosition p = relative_position(path, t_s);
+  return {p.x_m + path.centre_x_m, p.y_m + path.centre_y_m};
 }
 
 }  // namespace sandpaper::usb_lab

@@ -10,7 +10,11 @@ driver_before=$(ffboard_interface_driver)
   > /out/run.json 2> /out/run.err &
 run_pid=$!
 # Claimed through usbfs, the interface shows the driver "usbfs" while the run holds it.
-_detached() { driver_during=$(ffboard_interface_driver); [ "$driver_during" != usbhid ]; }
+_detached() {
+  local d
+  d=$(ffboard_interface_driver)
+  [ -n "$d" ] && [ "$d" != usbhid ] && driver_during=$d
+}
 driver_during=
 lab_poll 30 "the run to detach usbhid" _detached
 wait "$run_pid"

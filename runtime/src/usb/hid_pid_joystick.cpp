@@ -58,6 +58,10 @@ const char* to_string(DeviceFault fault) noexcept {
   return "none";
 }
 
+// A device that reports every poll (1 ms at full speed) and has said nothing for 50 ms is gone
+// quiet; that is the watchdog's limit unless the device resends unchanged reports less often.
+constexpr double kDefaultStaleLimitS = 0.05;
+
 HidPidJoystick::HidPidJoystick(UsbTransport& transport, const calibration::DeviceCalibration& calibration,
                                HidPidOptions options)
     : transport_(transport), calibration_(calibration), options_(options) {
@@ -66,6 +70,8 @@ HidPidJoystick::HidPidJoystick(UsbTransport& transport, const calibration::Devic
   limits_.min_rate_hz = calibration.min_rate_hz;
   limits_.max_rate_hz = calibration.max_rate_hz;
   limits_.workspace_radius_m = calibration.workspace_radius_m;
+  if (options_.stale_limit_s <= 0)
+    options_.stale_limit_s = std::max(kDefaultStaleLimitS, 2 * calibration.usb_idle_report_period_s);
   open();
   position_raw_.store(pack_position(position_m_), std::memory_order_release);
   if (options_.io == HidPidIo::IoThread) start_io_thread();
@@ -102,12 +108,14 @@ void HidPidJoystick::stop_io_thread() noexcept {
 }
 
 // The I/O thread: one input read (a 1 kHz interrupt endpoint paces it), then the latest force if
-// the tick published a new one, at most once per device period. It may block in a transfer for as
+// the tick published a new one, at most once per device period. A force transfer that times out is
+// sent again (with the latest force) next cycle; only stale_limit_s without one is a fault. It may block in a transfer for as
 // long as libusb's timeout; the tick then sees no new position and the watchdog (stale_limit_s)
 // stops the servo loop, which publishes zero force; the shutdown sequence sends it.
 void HidPidJoystick::io_thread_body() noexcept {
   const auto period_ns = static_cast<std::int64_t>(1e9 / std::max(1.0, limits_.max_rate_hz));
   std::int64_t next = monotonic_ns();
+  std::int64_t last_write_ns = next;  // the last time both axes' forces went out
   while (io_running_.load(std::memory_order_acquire)) {
     for (int attempt = 0; attempt < kReadsPerTick; ++attempt) {
       std::size_t length = 0;
@@ -127,10 +135,27 @@ void HidPidJoystick::io_thread_body() noexcept {
     const std::uint64_t published = command_published_.load(std::memory_order_acquire);
     if (published != command_sent_.load(std::memory_order_relaxed)) {
       const std::uint64_t command = command_raw_.load(std::memory_order_relaxed);
-      bool ok = send_constant_force(0, static_cast<std::int32_t>(low(command)));
-      ok = send_constant_force(1, static_cast<std::int32_t>(high(command))) && ok;
-      if (!ok) return;  // send_constant_force set the fault
-      command_sent_.store(published, std::memory_order_release);
+      const UsbStatus sx = write_constant_force(0, static_cast<std::int32_t>(low(command)));
+      const UsbStatus sy = sx == UsbStatus::Ok || sx == UsbStatus::Timeout
+                               ? write_constant_force(1, static_cast<std::int32_t>(high(command)))
+                               : sx;
+      const std::int64_t now = monotonic_ns();
+      if (sx == UsbStatus::Ok && sy == UsbStatus::Ok) {
+        command_sent_.store(published, std::memory_order_release);
+        last_write_ns = now;
+      } else if (sx != UsbStatus::Timeout && sx != UsbStatus::Ok) {
+        set_fault(sx == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed, sx);
+        return;
+      } else if (sy != UsbStatus::Timeout && sy != UsbStatus::Ok) {
+        set_fault(sy == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed, sy);
+        return;
+      } else if (static_cast<double>(now - last_write_ns) * 1e-9 > options_.stale_limit_s) {
+        // A device that takes no force for as long as the position watchdog allows is gone quiet.
+        set_fault(DeviceFault::WriteFailed, UsbStatus::Timeout);
+        return;
+      }
+      // A transfer that timed out (the device NAKed it past the timeout) is not yet a fault: the
+      // latest command goes out on the next cycle.
     }
     io_cycles_.fetch_add(1, std::memory_order_release);
     next += period_ns;
@@ -386,20 +411,24 @@ void HidPidJoystick::create_effect(int axis) {
   }
 }
 
-bool HidPidJoystick::send_constant_force(int axis, std::int32_t magnitude) noexcept {
+UsbStatus HidPidJoystick::write_constant_force(int axis, std::int32_t magnitude) noexcept {
   const auto a = static_cast<std::size_t>(axis);
   write_field(cf_report_[a], ids_, magnitude_, magnitude);
   const UsbStatus s = transport_.write_output({cf_report_[a].data(), cf_bytes_});
-  if (s == UsbStatus::Ok) {
-    last_command_[a].store(magnitude, std::memory_order_relaxed);
-    return true;
-  }
+  if (s == UsbStatus::Ok) last_command_[a].store(magnitude, std::memory_order_relaxed);
+  return s;
+}
+
+bool HidPidJoystick::send_constant_force(int axis, std::int32_t magnitude) noexcept {
+  const UsbStatus s = write_constant_force(axis, magnitude);
+  if (s == UsbStatus::Ok) return true;
   set_fault(s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed, s);
   return false;
 }
 
 std::int32_t HidPidJoystick::command_of(int axis, double force_N) const noexcept {
-  double units = calibration_.axis_scale(axis).command(force_N);
+  const auto& scale = calibration_.axis_scale(axis);
+  double units = scale.command_sense * scale.command(force_N);
   if (!std::isfinite(units)) units = 0;
   double lowest = magnitude_.logical_min, highest = magnitude_.logical_max;
   if (calibration_.command_max > 0) {

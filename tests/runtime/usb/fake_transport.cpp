@@ -82,6 +82,10 @@ UsbStatus FakeTransport::write_output(std::span<const std::uint8_t> report) noex
   }
   if (outputs_ >= unplug_at_output_) unplugged_ = true;
   if (unplugged_) return UsbStatus::NoDevice;
+  if (std::size_t left = timeouts_left_.load(); left > 0) {
+    if (left != std::numeric_limits<std::size_t>::max()) timeouts_left_.store(left - 1);
+    return UsbStatus::Timeout;
+  }
   ++outputs_;
   record(Op::Output, report);
   return UsbStatus::Ok;

@@ -54,6 +54,9 @@ class FakeTransport final : public UsbTransport {
   void unplug_after_outputs(std::size_t n) { unplug_at_output_ = outputs_ + n; }
   // Every call from now returns NoDevice.
   void unplug() { unplugged_ = true; }
+  // The next `n` output transfers time out without reaching the device (it NAKed them past the
+  // timeout); n = SIZE_MAX: every one from now.
+  void time_out_outputs(std::size_t n) { timeouts_left_.store(n); }
 
   const std::vector<Transfer>& log() const { return log_; }
   void clear_log() { log_.clear(); }
@@ -88,6 +91,7 @@ class FakeTransport final : public UsbTransport {
   std::size_t outputs_ = 0, unplug_at_output_ = std::numeric_limits<std::size_t>::max();
   // Set by the test thread while the driver's I/O thread transfers.
   std::atomic<bool> unplugged_{false}, hang_{false};
+  std::atomic<std::size_t> timeouts_left_{0};
   std::atomic<std::size_t> hung_{0}, on_watched_{0};
   std::atomic<std::thread::id> watched_{};
   bool kernel_attached_ = true, claimed_ = false;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <limits>
 #include <memory>
 #include <string>
 #include <thread>
@@ -96,17 +97,30 @@ TEST(HidPidJoystick, EachTickSendsSetConstantForcePerAxisScaledSignedAndClamped)
   auto t = testing::primed_transport();
   HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
   const std::size_t start = t->log().size();
-  // 1 mN per command unit (openffboard-2axis.toml): 1.5 N -> 1500 = 0x05DC; -2.25 N -> -2250 = 0xF736.
+  // 1 mN per command unit and command_sense -1 on both axes (openffboard-2axis.toml: a positive
+  // magnitude pushes the OpenFFBoard's handle toward -x): 1.5 N -> -1500 = 0xFA24;
+  // -2.25 N -> 2250 = 0x08CA.
   ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
   // Beyond the Magnitude field's logical range -10000..10000: clamped, sign kept.
   ASSERT_TRUE(joystick.write_force_rt({12.0, -20.0}));
-  ASSERT_TRUE(joystick.write_force_rt({0.0004, -0.0006}));  // rounds to 0 and -1
-  expect_steps(steps(*t, start), {{Op::Output, {0x05, 0x01, 0xDC, 0x05}},
-                                  {Op::Output, {0x05, 0x02, 0x36, 0xF7}},
-                                  {Op::Output, {0x05, 0x01, 0x10, 0x27}},
-                                  {Op::Output, {0x05, 0x02, 0xF0, 0xD8}},
+  ASSERT_TRUE(joystick.write_force_rt({0.0004, -0.0006}));  // rounds to 0 and 1
+  expect_steps(steps(*t, start), {{Op::Output, {0x05, 0x01, 0x24, 0xFA}},
+                                  {Op::Output, {0x05, 0x02, 0xCA, 0x08}},
+                                  {Op::Output, {0x05, 0x01, 0xF0, 0xD8}},
+                                  {Op::Output, {0x05, 0x02, 0x10, 0x27}},
                                   {Op::Output, {0x05, 0x01, 0x00, 0x00}},
-                                  {Op::Output, {0x05, 0x02, 0xFF, 0xFF}}});
+                                  {Op::Output, {0x05, 0x02, 0x01, 0x00}}});
+}
+
+TEST(HidPidJoystick, ADeviceWhosePositiveCommandPushesTowardPlusGetsTheForceUnsigned) {
+  calibration::DeviceCalibration plus = testing::openffboard();
+  plus.axis[0].command_sense = 1;
+  plus.axis[1].command_sense = 1;
+  auto t = testing::primed_transport();
+  HidPidJoystick joystick(*t, plus, testing::synchronous());
+  const std::size_t start = t->log().size();
+  ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));  // 1500 = 0x05DC; -2250 = 0xF736
+  expect_steps(steps(*t, start), {{Op::Output, {0x05, 0x01, 0xDC, 0x05}}, {Op::Output, {0x05, 0x02, 0x36, 0xF7}}});
 }
 
 TEST(HidPidJoystick, CloseSendsTheShutdownSequenceAndGivesTheDeviceBack) {
@@ -252,9 +266,10 @@ TEST(HidPidJoystick, UnplugMidRunStopsTheLoopAndNamesTheCause) {
   EXPECT_EQ(joystick.fault(), DeviceFault::Unplugged);
   EXPECT_EQ(joystick.fault_status(), UsbStatus::NoDevice);
   EXPECT_STREQ(to_string(joystick.fault()), "device unplugged");
-  // Nothing after the unplug reached the device; the last thing it got was the 10th tick's force.
+  // Nothing after the unplug reached the device; the last thing it got was the 10th tick's force
+  // (y 0.5 N: -500 = 0xFE0C with command_sense -1).
   const auto got = steps(*t);
-  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0xF4, 0x01}));
+  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0x0C, 0xFE}));
 }
 
 TEST(HidPidJoystick, ReadTimeoutStopsTheLoopWithZeroForceSent) {
@@ -276,6 +291,20 @@ TEST(HidPidJoystick, ReadTimeoutStopsTheLoopWithZeroForceSent) {
   // The last two transfers are the zero force on both axes, sent when the read failed.
   EXPECT_EQ(got[got.size() - 2].bytes, (Bytes{0x05, 0x01, 0x00, 0x00}));
   EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0x00, 0x00}));
+}
+
+// The OpenFFBoard resends an unchanged position only every 101 ms (openffboard-2axis.toml [usb]
+// idle_report_period): a handle held still must not trip the watchdog, which then waits twice that.
+TEST(HidPidJoystick, AHandleHeldStillIsNotADeviceGoneQuiet) {
+  auto t = testing::primed_transport();
+  for (int k = 0; k < 5; ++k) t->add_input({UsbStatus::Ok, testing::position_report(100, 100)});
+  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+  ConstantForce source({1.0, 0.5});
+  VirtualClock clock;
+  const ServoReport report = run_servo_loop(joystick, source, clock, config(0.5));
+  EXPECT_EQ(report.stop_cause, StopCause::DeviceReadTimeout);
+  // 5 fresh ticks, then stale after 202 ms (2 x 101 ms) of 1 ms ticks; 50 ms would stop at 5 + 51.
+  EXPECT_NEAR(static_cast<double>(report.ticks), 5.0 + 203.0, 1.0);
 }
 
 TEST(HidPidJoystick, ReadErrorOtherThanTimeoutStopsAtOnce) {
@@ -311,7 +340,7 @@ TEST(HidPidJoystick, TicksDoNotAllocate) {
   }
   EXPECT_TRUE(ok);
   EXPECT_EQ(count, 0u);
-  EXPECT_EQ(joystick.last_command()[0], 999);
+  EXPECT_EQ(joystick.last_command()[0], -999);  // 0.999 N with command_sense -1
 }
 
 // The default: transfers on the driver's own I/O thread, the tick only exchanging atomics with it.
@@ -337,12 +366,48 @@ TEST(HidPidJoystickIoThread, TheTickPublishesAndTheIoThreadSends) {
   ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
   ASSERT_TRUE(joystick.flush_nonrt(30.0));
   EXPECT_EQ(t->transfers_on_watched_thread(), 0u);  // the tick made no transfer itself
-  // The same bytes as the synchronous driver sends for the same force.
+  // The same bytes as the synchronous driver sends for the same force (command_sense -1).
   const auto got = steps(*t, start);
   ASSERT_GE(got.size(), 2u);
-  EXPECT_EQ(got[got.size() - 2].bytes, (Bytes{0x05, 0x01, 0xDC, 0x05}));
-  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0x36, 0xF7}));
-  EXPECT_EQ(joystick.last_command()[0], 1500);
+  EXPECT_EQ(got[got.size() - 2].bytes, (Bytes{0x05, 0x01, 0x24, 0xFA}));
+  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0xCA, 0x08}));
+  EXPECT_EQ(joystick.last_command()[0], -1500);
+}
+
+// A Set Constant Force the device NAKs past the transfer's timeout (seen in the USB lab, where the
+// firmware re-arms its OUT endpoint only after taking the last report) is sent again, not a fault.
+TEST(HidPidJoystickIoThread, AForceTransferThatTimesOutIsSentAgain) {
+  auto t = streaming_transport();
+  HidPidJoystick joystick(*t, testing::openffboard());
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
+  t->time_out_outputs(3);
+  const std::size_t start = t->log().size();
+  ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));  // sent in the end
+  EXPECT_EQ(joystick.fault(), DeviceFault::None);
+  const auto got = steps(*t, start);
+  ASSERT_GE(got.size(), 2u);
+  EXPECT_EQ(got[got.size() - 2].bytes, (Bytes{0x05, 0x01, 0x24, 0xFA}));
+  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0xCA, 0x08}));
+}
+
+// ... but a device that takes no force at all for the watchdog's time has gone quiet.
+TEST(HidPidJoystickIoThread, ForceTransfersTimingOutPastTheWatchdogStopTheLoop) {
+  auto t = streaming_transport();
+  HidPidOptions options;
+  options.stale_limit_s = 0.05;
+  HidPidJoystick joystick(*t, testing::openffboard(), options);
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
+  t->time_out_outputs(std::numeric_limits<std::size_t>::max());
+  ConstantForce source({1.0, 0.5});
+  ServoConfig c = config(10.0);
+  c.deadline_guard_periods = 1e6;  // a loaded test machine must not stop it first
+  ServoThread servo;
+  servo.start_nonrt(joystick, source, c);
+  const ServoReport report = servo.join_nonrt();
+  EXPECT_EQ(report.stop_cause, StopCause::DeviceWriteFailed);
+  EXPECT_EQ(joystick.fault(), DeviceFault::WriteFailed);
+  EXPECT_LT(report.ticks, 10'000u);
 }
 
 TEST(HidPidJoystickIoThread, ATransferThatNeverCompletesDoesNotHoldTheTick) {
@@ -425,7 +490,7 @@ TEST(HidPidJoystickIoThread, TicksNeitherAllocateNorLock) {
   EXPECT_EQ(seen.allocations, 0u);
   EXPECT_EQ(seen.locks, 0u);
   ASSERT_TRUE(joystick.flush_nonrt(30.0));
-  EXPECT_EQ(joystick.last_command()[0], 999);  // the I/O thread sent the latest force
+  EXPECT_EQ(joystick.last_command()[0], -999);  // the I/O thread sent the latest force (command_sense -1)
 }
 
 }  // namespace

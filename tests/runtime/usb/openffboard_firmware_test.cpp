@@ -133,13 +133,14 @@ TEST(OpenFFBoardFirmware, SetConstantForceCarriesTheSignedMagnitude) {
   t->clear_log();
   ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
   // FFB_SetConstantForce_Data_t (ffb_defs.h:302-304), HID_ID_CONSTREP 0x05: block index, int16
-  // magnitude taken raw (HidFFB.cpp:228-234). 1 mN per unit (openffboard-2axis.toml, uncalibrated).
+  // magnitude taken raw (HidFFB.cpp:228-234). 1 mN per unit (openffboard-2axis.toml, uncalibrated),
+  // command_sense -1: the firmware pushes the handle toward -x for a positive magnitude.
   const auto forces = outputs_with_id(*t, 0x05);
   ASSERT_EQ(forces.size(), 2u);
   EXPECT_EQ(forces[0][1], 1);
-  EXPECT_EQ(i16(forces[0], 2), 1500);
+  EXPECT_EQ(i16(forces[0], 2), -1500);
   EXPECT_EQ(forces[1][1], 2);
-  EXPECT_EQ(i16(forces[1], 2), -2250);
+  EXPECT_EQ(i16(forces[1], 2), 2250);
 }
 
 TEST(OpenFFBoardFirmware, TheOneAxisWheelIsRefusedAsAJoystick) {

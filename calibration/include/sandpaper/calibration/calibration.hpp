@@ -85,6 +85,10 @@ struct Level {
 struct AxisScale {
   double newtons_per_command_unit = 0;               // when `table` is empty
   std::vector<std::pair<double, double>> table;      // (command >= 0, force N >= 0), ascending
+  // +1: a positive command pushes the handle toward the axis's positive end; -1: toward its
+  // negative end ([force.x] command_sense). newtons() and command() are magnitudes along the
+  // command; a driver multiplies what goes on the wire by the sense.
+  int command_sense = 1;
   double newtons(double command) const;
   double command(double newtons) const;
   // Newtons of one command unit near `newtons` (the local slope of the table).
@@ -109,6 +113,9 @@ struct DeviceCalibration {
   double workspace_size_m[2] = {0, 0};  // rectangle width, height (circle: the diameter twice)
   double min_rate_hz = 0, max_rate_hz = 0;
   int usb_vendor_id = -1, usb_product_id = -1;  // [usb] table of a USB HID PID device; -1: not a USB device
+  // [usb] idle_report_period: how often the device resends an unchanged input report, s (0: it
+  // reports every poll); the driver's stale-position watchdog waits at least twice this long.
+  double usb_idle_report_period_s = 0;
   // [emulation]: a historical device `run` plays on the simulated joystick with its own quantisation
   // (sandpaper-1995: Minsky 1995 Table 2, Appendix B 2.1). `hold_tables`: force tables read by
   // sample-and-hold (nearest sample) instead of interpolation.

@@ -37,7 +37,10 @@ enum class HidPidIo {
 
 struct HidPidOptions {
   unsigned read_timeout_ms = 1;     // longest wait for an input report per read (a 1 kHz endpoint reports every 1 ms)
-  double stale_limit_s = 0.05;      // longest time without a position report before the read fails (the watchdog)
+  // Longest time without a position report before the read fails (the watchdog), s. 0: 50 ms, or
+  // twice the device calibration's [usb] idle_report_period when that is longer (a handle held
+  // still is not a device gone quiet).
+  double stale_limit_s = 0;
   unsigned open_read_timeout_ms = 500;  // wait for the first position report while opening
   HidPidIo io = HidPidIo::IoThread;
 };
@@ -68,7 +71,8 @@ class HidPidJoystick final : public Device {
   // False, with fault() set, when unplugged, on a failed transfer, or when no position report has
   // come for stale_limit_s of servo time (also when the I/O thread is stuck in a transfer).
   bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override;
-  // Set Constant Force for X then Y: magnitude = calibration command units for the force (N),
+  // Set Constant Force for X then Y: magnitude = calibration command units for the force (N), times
+  // the axis's command_sense (which way a positive magnitude pushes the handle on this device),
   // rounded and clamped to the Magnitude field's logical range and to +-command_max. IoThread:
   // publishes the pair for the I/O thread to send (false once it has failed); CallingThread: sends.
   bool write_force_rt(glm::dvec2 force_N) noexcept override;
@@ -105,6 +109,8 @@ class HidPidJoystick final : public Device {
   void create_effect(int axis);
   // open() refused every report longer than a Buffer; the bound here only keeps that true.
   std::span<const std::uint8_t> report(const Buffer& b, std::size_t bytes) const { return {b.data(), std::min(bytes, b.size())}; }
+  // Set Constant Force on `axis` with the transport's status; no fault set.
+  UsbStatus write_constant_force(int axis, std::int32_t magnitude) noexcept;
   bool send_constant_force(int axis, std::int32_t magnitude) noexcept;
   bool decode_position(std::span<const std::uint8_t> report, glm::dvec2& position_m) const noexcept;
   [[noreturn]] void fail_open(UsbStatus status, const std::string& what);
