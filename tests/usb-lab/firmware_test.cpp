@@ -353,40 +353,6 @@ TEST(OpenFFBoardFirmwareLab, TorqueObserverSeesEveryDriverUpdate) {
   constant_force(d.x_block, 0);
 }
 
-TEST(OpenFFBoardFirmwareLab, UpdateRateIsTheFfbTimers) {
-  // TIM13 at 1 MHz (prescaler 84-1 on 84 MHz), ARR = 1000000 * 1 / 1000 (FFBHIDMain.cpp:256):
-  // an update every ARR + 1 = 1001 us.
-  EXPECT_NEAR(firmware().update_rate_hz(), 1e6 / 1001.0, 1e-6);
-  // A ramp in progress changes the torque on every update: count the driver updates for 0.5 s.
-  const OpenDevice d = open_like_the_driver();
-  Bytes e(18, 0);  // re-set the X effect as a 100 ms sine (Set Effect type 4, Set Periodic 0x04)
-  e[0] = 0x01;
-  e[1] = d.x_block;
-  e[2] = 0x04;
-  put16(e, 3, 0xFFFF);
-  e[11] = 255;
-  e[13] = 0x01;
-  put16(e, 14, 36000);
-  output(e);
-  Bytes periodic(12, 0);  // FFB_SetPeriodic_Data_t (ffb_defs.h:261-269)
-  periodic[0] = 0x04;
-  periodic[1] = d.x_block;
-  put16(periodic, 2, 20000);
-  periodic[8] = 100;  // period 100 ms
-  output(periodic);
-  std::this_thread::sleep_for(milliseconds(100));
-  const auto before = firmware().state().torque_updates[0];
-  const auto t0 = Clock::now();
-  std::this_thread::sleep_for(milliseconds(500));
-  const auto updates = firmware().state().torque_updates[0] - before;
-  const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-  const double rate = static_cast<double>(updates) / seconds;
-  RecordProperty("measured_update_rate_hz", std::to_string(rate));
-  EXPECT_GT(rate, 800.0);
-  EXPECT_LT(rate, 1010.0);
-  device_control(0x08);
-}
-
 TEST(OpenFFBoardFirmwareLab, PositionReachesTheInputReport) {
   open_like_the_driver();
   Bytes report;
@@ -424,22 +390,6 @@ TEST(OpenFFBoardFirmwareLab, OutputReportsOverTheControlPipeAreReadOneByteOff) {
   output(force);
   EXPECT_TRUE(eventually([](const FirmwareState& s) { return s.torque[0] > 0; }, milliseconds(30)));
   constant_force(d.x_block, 0);
-}
-
-TEST(OpenFFBoardFirmwareLab, AStillStickIsReportedEveryHundredUpdates) {
-  open_like_the_driver();
-  // FFBHIDMain.cpp:176-231: a report goes out when it changed or when reportSendCounter passes
-  // 100 / usb_report_rate; counting one per update while the endpoint is free, that is every 101
-  // updates (about 101 ms) for a stick that does not move.
-  Bytes report;
-  ASSERT_TRUE(next_position_report(report, milliseconds(300)));
-  ASSERT_TRUE(next_position_report(report, milliseconds(300)));
-  const auto t0 = Clock::now();
-  ASSERT_TRUE(next_position_report(report, milliseconds(300)));
-  ASSERT_TRUE(next_position_report(report, milliseconds(300)));
-  const double interval_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / 2.0;
-  EXPECT_GT(interval_ms, 85.0);
-  EXPECT_LT(interval_ms, 120.0);
 }
 
 TEST(OpenFFBoardFirmwareLab, DeconfiguringStopsTheDriversAndFreesTheEffects) {
