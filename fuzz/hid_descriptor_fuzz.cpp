@@ -48,7 +48,7 @@ class ScriptedTransport final : public UsbTransport {
   UsbStatus write_output(std::span<const std::uint8_t> report) noexcept override { return take(report); }
   UsbStatus set_feature(std::span<const std::uint8_t> report) override { return take(report); }
   UsbStatus get_feature(std::uint8_t, std::span<std::uint8_t> buffer, std::size_t& length) override {
-    return next(buffer, length) ? UsbStatus::Ok : UsbStatus::Other;  // out of replies: a stall
+    return next(buffer, length) ? UsbStatus::Ok : UsbStatus::Stalled;  // out of replies
   }
 
  private:

@@ -351,7 +351,11 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
       for (const auto& t : played.records) published.push_back({t.t_s, t.position_m, t.force_N});
       schema::write_file_atomically(r.trace, runtime::format_trace_csv(published));
     }
-    const std::string stop = std::string(rep.stop_reason) + " [" + runtime::stop_cause_name(rep.stop_cause) + "]";
+    // The transport's cause of a device fault (timed out, no device, stalled, ...), empty if none.
+    const std::string usb_error = joystick.fault() == runtime::DeviceFault::None ? std::string()
+                                                                                  : runtime::usb::to_string(joystick.fault_status());
+    const std::string stop = std::string(rep.stop_reason) + " [" + runtime::stop_cause_name(rep.stop_cause) + "]" +
+                             (usb_error.empty() ? std::string() : " (USB: " + usb_error + ")");
     if (r.json) {
       nlohmann::json j{{"material", program.name},
                        {"device", cal.name},
@@ -369,6 +373,7 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
                        {"clamped_ticks", rep.clamped_ticks},
                        {"stop_reason", rep.stop_reason},
                        {"stop_cause", runtime::stop_cause_name(rep.stop_cause)},
+                       {"usb_error", usb_error.empty() ? nlohmann::json(nullptr) : nlohmann::json(usb_error)},
                        {"realtime_scheduling", rep.realtime_scheduling},
                        {"memory_locked", rep.memory_locked},
                        {"clock", "monotonic"},

@@ -209,6 +209,7 @@ void FunctionFsDevice::handle_setup(const SetupPacket& setup) {
     }
     if (on_event_) on_event_(BusEvent{BusEvent::Kind::Stalled, setup});
   };
+  if (!function_.accepts(setup)) return stall();
   if (setup.device_to_host()) {
     ControlReply reply = function_.control(setup, {});
     if (reply.stall) return stall();

@@ -9,12 +9,14 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <thread>
 #include <vector>
 
 #include "bus_log.hpp"
+#include "faulty_function.hpp"
 #include "functionfs_device.hpp"
 #include "logged_function.hpp"
 #include "openffboard_firmware.hpp"
@@ -24,12 +26,15 @@ using namespace sandpaper::usb_lab;
 
 namespace {
 
-// Moves the handle along the hand's path at 1 kHz, on absolute deadlines, until `stop`.
-void drive_stick(OpenFFBoardFirmware& firmware, const HandPath& path, double half_range_m, const std::atomic<bool>& stop) {
+// Moves the handle along the hand's path at 1 kHz, on absolute deadlines, until `stop`; calls
+// `every_10ms` every ten steps.
+void drive_stick(OpenFFBoardFirmware& firmware, const HandPath& path, double half_range_m, const std::atomic<bool>& stop,
+                 const std::function<void()>& every_10ms) {
   const std::int64_t start = monotonic_ns();
   timespec next{};
   clock_gettime(CLOCK_MONOTONIC, &next);
-  while (!stop.load()) {
+  for (unsigned tick = 0; !stop.load(); ++tick) {
+    if (tick % 10 == 0) every_10ms();
     const HandPosition p = hand_position(path, static_cast<double>(monotonic_ns() - start) * 1e-9);
     firmware.set_position(0, p.x_m / half_range_m);
     firmware.set_position(1, p.y_m / half_range_m);
@@ -73,6 +78,10 @@ int main(int argc, char** argv) {
                  "the handle travel from centre to the end the firmware reports as full scale, mm "
                  "(the device calibration's workspace half-width)")->capture_default_str();
   app.add_option("--log", log_dir, "write reports.csv, torque.csv and state.json here at exit");
+  int stall_feature = -1;
+  app.add_option("--stall-feature", stall_feature,
+                 "refuse (STALL) every GET_REPORT and SET_REPORT of this Feature report ID, as a broken device does")
+      ->check(CLI::Range(1, 255));
   CLI11_PARSE(app, argc, argv);
   if (!identity && ffs.empty()) {
     std::cerr << "sandpaper-lab-device: --ffs is required (or --identity)\n";
@@ -89,12 +98,14 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  // SIGINT and SIGTERM end the program through sigwait below; blocked before any thread starts so
-  // that every thread (the firmware's too) inherits the mask.
+  // SIGINT and SIGTERM end the program and SIGUSR2 silences the input reports (the lab's
+  // stale-position fault), all through sigwait below; blocked before any thread starts so that
+  // every thread (the firmware's too) inherits the mask.
   sigset_t stop_signals;
   sigemptyset(&stop_signals);
   sigaddset(&stop_signals, SIGINT);
   sigaddset(&stop_signals, SIGTERM);
+  sigaddset(&stop_signals, SIGUSR2);
   pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
 
   AppendLog<ReportRecord> reports(1 << 18);
@@ -116,17 +127,43 @@ int main(int argc, char** argv) {
       const auto t = std::chrono::duration_cast<std::chrono::nanoseconds>(u.time.time_since_epoch()).count();
       torques.append(TorqueRecord{t, u.axis, u.torque});
     });
-    LoggedFunction logged(*firmware, reports);
+    FaultyFunction faulty(*firmware);
+    if (stall_feature > 0) faulty.stall(StalledReport{3, static_cast<std::uint8_t>(stall_feature)});
+    LoggedFunction logged(faulty, reports);
     FunctionFsDevice device(ffs, logged);
     device.start();
     std::atomic<bool> stop{false};
-    std::thread stick([&] { drive_stick(*firmware, path, half_range_mm * 1e-3, stop); });
+    // "playing" once the host has started two effects with force feedback on, then "streaming" once
+    // it has sent 200 more output reports (a hundred servo ticks of Set Constant Force on two
+    // axes): the lab's scripts wait for that line before they inject a fault into a running play.
+    bool playing = false, streaming = false;
+    std::uint64_t outputs_at_play = 0;
+    const auto announce = [&] {
+      if (streaming) return;
+      if (!playing) {
+        const FirmwareState s = firmware->state();
+        if (!(s.ffb_active && s.effects_in_use >= 2)) return;
+        std::printf("sandpaper-lab-device: playing (%d effects, force feedback on)\n", s.effects_in_use);
+        playing = true;
+        outputs_at_play = device.interrupt_out_transfers();
+      } else if (device.interrupt_out_transfers() >= outputs_at_play + 200) {
+        std::printf("sandpaper-lab-device: streaming (%llu output reports since playing)\n",
+                    static_cast<unsigned long long>(device.interrupt_out_transfers() - outputs_at_play));
+        streaming = true;
+      }
+      std::fflush(stdout);
+    };
+    std::thread stick([&] { drive_stick(*firmware, path, half_range_mm * 1e-3, stop, announce); });
     std::printf("sandpaper-lab-device: ready on %s (firmware update rate %.0f Hz)\n", ffs.c_str(),
                 firmware->update_rate_hz());
     std::fflush(stdout);
 
     int signal = 0;
-    sigwait(&stop_signals, &signal);
+    while (sigwait(&stop_signals, &signal) == 0 && signal == SIGUSR2) {
+      faulty.silence_input();
+      std::printf("sandpaper-lab-device: input reports silenced\n");
+      std::fflush(stdout);
+    }
     stop.store(true);
     stick.join();
     device.stop();

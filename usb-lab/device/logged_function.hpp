@@ -17,6 +17,7 @@ class LoggedFunction final : public UsbFunction {
   void configured() override { inner_.configured(); }
   void deconfigured() override { inner_.deconfigured(); }
   void suspended(bool s) override { inner_.suspended(s); }
+  bool accepts(const SetupPacket& setup) const override { return inner_.accepts(setup); }
   ControlReply control(const SetupPacket& setup, std::span<const std::uint8_t> out_data) override;
   void interrupt_out(std::span<const std::uint8_t> data) override;
   bool next_interrupt_in(std::vector<std::uint8_t>& report, std::chrono::microseconds wait) override {

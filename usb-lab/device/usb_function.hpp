@@ -56,6 +56,12 @@ class UsbFunction {
   virtual void deconfigured() = 0;
   virtual void suspended(bool suspended) = 0;
 
+  // Whether the function takes this request at all, asked before an OUT request's data stage (after
+  // it, FunctionFS can no longer stall); false: the front end stalls it.
+  virtual bool accepts(const SetupPacket& setup) const {
+    (void)setup;
+    return true;
+  }
   // A control request addressed to the function (recipient interface or endpoint, any type), with
   // the data stage of an OUT request in `out_data` (wLength bytes).
   virtual ControlReply control(const SetupPacket& setup, std::span<const std::uint8_t> out_data) = 0;

@@ -12,8 +12,9 @@
 namespace sandpaper::runtime::usb {
 namespace {
 
-// Reports read per tick at most: the device may interleave PID State reports with position reports.
-constexpr int kReadsPerTick = 4;
+// Reports read per tick at most: the device may interleave PID State reports with position
+// reports, and a transport may have queued several (libusb_transport.hpp keeps 8).
+constexpr int kReadsPerTick = 8;
 // Reads while opening, each up to open_read_timeout_ms, before giving up on a position report.
 constexpr int kOpenReads = 16;
 
@@ -24,7 +25,16 @@ std::string hex(std::uint32_t u) {
   return s;
 }
 
+std::string hex_byte(std::uint8_t b) { return "0x" + hex(b).substr(4); }
+
 std::string usage_name(std::uint32_t u) { return "page " + hex(u >> 16) + " usage " + hex(u & 0xFFFF); }
+
+// The Device Control commands the open sequence sends, by name (for its errors).
+std::string device_control_name(std::uint32_t command_usage) {
+  if (command_usage == pid::kDcDeviceReset) return "Device Reset";
+  if (command_usage == pid::kDcEnableActuators) return "Enable Actuators";
+  return usage_name(command_usage);
+}
 
 // Two 32-bit values in one lock-free atomic word: the single-slot exchange of the tick and the I/O thread.
 std::uint64_t pack(std::uint32_t x, std::uint32_t y) noexcept { return (std::uint64_t{y} << 32) | x; }
@@ -117,21 +127,24 @@ void HidPidJoystick::io_thread_body() noexcept {
   std::int64_t next = monotonic_ns();
   std::int64_t last_write_ns = next;  // the last time both axes' forces went out
   while (io_running_.load(std::memory_order_acquire)) {
+    // Every report that has arrived, the first waited for: the tick wants the latest position, not
+    // the oldest one queued (PID State reports may come between).
+    bool fresh = false;
     for (int attempt = 0; attempt < kReadsPerTick; ++attempt) {
       std::size_t length = 0;
-      const UsbStatus s = transport_.read_input(input_, length, options_.read_timeout_ms);
+      const UsbStatus s = transport_.read_input(input_, length, attempt == 0 ? options_.read_timeout_ms : 0);
       if (s == UsbStatus::Timeout) break;
       if (s != UsbStatus::Ok) {
         set_fault(s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::ReadFailed, s);
         return;
       }
       glm::dvec2 p{0, 0};
-      if (decode_position({input_.data(), length}, p)) {  // else another report (PID State): read on
+      if (decode_position({input_.data(), length}, p)) {
         position_raw_.store(pack_position(p), std::memory_order_relaxed);
-        position_reports_.fetch_add(1, std::memory_order_release);
-        break;
+        fresh = true;
       }
     }
+    if (fresh) position_reports_.fetch_add(1, std::memory_order_release);
     const std::uint64_t published = command_published_.load(std::memory_order_acquire);
     if (published != command_sent_.load(std::memory_order_relaxed)) {
       const std::uint64_t command = command_raw_.load(std::memory_order_relaxed);
@@ -185,6 +198,25 @@ bool HidPidJoystick::flush_nonrt(double timeout_s) {
 void HidPidJoystick::fail_open(UsbStatus status, const std::string& what) {
   close();
   throw HidPidError(status, what);
+}
+
+UsbStatus HidPidJoystick::write_open(std::span<const std::uint8_t> r) noexcept {
+  const std::int64_t until = monotonic_ns() + std::int64_t{options_.open_write_timeout_ms} * 1'000'000;
+  for (;;) {
+    const UsbStatus s = transport_.write_output(r);
+    if (s != UsbStatus::Timeout || closed_ || monotonic_ns() >= until) return s;
+  }
+}
+
+void HidPidJoystick::fail_step(UsbStatus status, const std::string& step, ReportType type, std::uint8_t report_id,
+                               std::uint32_t report_usage) {
+  const char* kind = type == ReportType::Feature ? "Feature" : type == ReportType::Output ? "Output" : "Input";
+  std::string what = step + " failed: " + to_string(status) + " (" + kind + " report";
+  if (ids_) what += " " + hex_byte(report_id);
+  what += ", HID " + usage_name(report_usage) + ")";
+  if (status == UsbStatus::Timeout && type != ReportType::Feature)
+    what += " after " + std::to_string(options_.open_write_timeout_ms) + " ms of retries";
+  fail_open(status, what);
 }
 
 void HidPidJoystick::open() {
@@ -278,7 +310,7 @@ void HidPidJoystick::open() {
     Buffer pool{};
     std::size_t length = 0;
     s = transport_.get_feature(max_effects->report_id, pool, length);
-    if (s != UsbStatus::Ok) fail_open(s, std::string("cannot read the PID Pool report: ") + to_string(s));
+    if (s != UsbStatus::Ok) fail_step(s, "PID Pool", ReportType::Feature, max_effects->report_id, pid::kPoolReport);
     const auto simultaneous = read_field({pool.data(), length}, ids_, *max_effects);
     if (simultaneous < 2)
       fail_open(UsbStatus::Other, "the device plays " + std::to_string(simultaneous) +
@@ -291,10 +323,21 @@ void HidPidJoystick::open() {
   create_effect(0);
   create_effect(1);
 
+  // The first position report may have waited in the device since before the claim (a kernel
+  // driver that nobody had opened does not poll): the second one is where the handle is now.
+  int positions = 0;
   for (int attempt = 0; attempt < kOpenReads; ++attempt) {
     std::size_t length = 0;
     s = transport_.read_input(input_, length, options_.open_read_timeout_ms);
-    if (s == UsbStatus::Ok && decode_position({input_.data(), length}, position_m_)) return;
+    if (s == UsbStatus::Ok && decode_position({input_.data(), length}, position_m_) && ++positions == 2) {
+      for (int more = 0; more < kReadsPerTick; ++more) {  // and any queued behind it
+        if (transport_.read_input(input_, length, 0) != UsbStatus::Ok) break;
+        decode_position({input_.data(), length}, position_m_);
+      }
+      return;
+    }
+    // A device that reports only on change, and has not moved since: the one report is current.
+    if (s == UsbStatus::Timeout && positions == 1) return;
     if (s != UsbStatus::Ok && s != UsbStatus::Timeout)
       fail_open(s, std::string("cannot read the position: ") + to_string(s));
   }
@@ -320,8 +363,14 @@ void HidPidJoystick::device_control(std::uint32_t command_usage) {
   // Array: the command's value. Bits: this command's bit set, every other clear (the OpenFFBoard
   // acts on each set bit in turn, HidFFB.cpp:205-224).
   write_field(b, ids_, f, f.variable ? 1 : *f.array_value(command_usage));
-  const UsbStatus s = transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, f.report_id)));
-  if (s != UsbStatus::Ok && !closed_) fail_open(s, std::string("Device Control failed: ") + to_string(s));
+  const auto bytes = report(b, descriptor_.report_bytes(ReportType::Output, f.report_id));
+  if (closed_) {
+    transport_.write_output(bytes);  // the shutdown sequence: best effort, once
+    return;
+  }
+  const UsbStatus s = write_open(bytes);
+  if (s != UsbStatus::Ok)
+    fail_step(s, "Device Control (" + device_control_name(command_usage) + ")", ReportType::Output, f.report_id, f.report_usage);
 }
 
 void HidPidJoystick::create_effect(int axis) {
@@ -335,7 +384,7 @@ void HidPidJoystick::create_effect(int axis) {
     b[0] = type.report_id;
     write_field(b, ids_, type, *constant);
     const UsbStatus s = transport_.set_feature(report(b, descriptor_.report_bytes(ReportType::Feature, type.report_id)));
-    if (s != UsbStatus::Ok) fail_open(s, std::string("Create New Effect failed: ") + to_string(s));
+    if (s != UsbStatus::Ok) fail_step(s, "Create New Effect", ReportType::Feature, type.report_id, pid::kCreateNewEffectReport);
   }
   // Block Load (feature, read back): the effect block index the device gave the new effect.
   {
@@ -344,7 +393,7 @@ void HidPidJoystick::create_effect(int axis) {
     Buffer b{};
     std::size_t length = 0;
     const UsbStatus s = transport_.get_feature(index.report_id, b, length);
-    if (s != UsbStatus::Ok) fail_open(s, std::string("Block Load failed: ") + to_string(s));
+    if (s != UsbStatus::Ok) fail_step(s, "Block Load", ReportType::Feature, index.report_id, pid::kBlockLoadReport);
     const std::span<const std::uint8_t> got{b.data(), length};
     const std::uint32_t load = status.array_usage(static_cast<std::int32_t>(read_field(got, ids_, status)));
     if (load != pid::kBlockLoadSuccess)
@@ -385,14 +434,17 @@ void HidPidJoystick::create_effect(int axis) {
     // The ordinals also name Type Specific Block Offset fields: only those under Direction count.
     for (const HidField* f : descriptor_.find_all(ReportType::Output, pid::kSetEffectReport, usage(kOrdinalPage, 1)))
       if (f->parent_usage == pid::kDirection) write_field(b, ids_, *f, axis == 0 ? f->logical_max : 0);
-    const UsbStatus s = transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
-    if (s != UsbStatus::Ok) fail_open(s, std::string("Set Effect failed: ") + to_string(s));
+    const UsbStatus s = write_open(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
+    if (s != UsbStatus::Ok) fail_step(s, "Set Effect", ReportType::Output, index.report_id, pid::kSetEffectReport);
   }
   // Set Constant Force 0, preformatted once: the tick only rewrites the magnitude.
   cf_report_[a].fill(0);
   cf_report_[a][0] = magnitude_.report_id;
   write_field(cf_report_[a], ids_, cf_block_, block_index_[a]);
-  if (!send_constant_force(axis, 0)) fail_open(fault_status(), std::string("Set Constant Force failed: ") + to_string(fault_status()));
+  write_field(cf_report_[a], ids_, magnitude_, 0);
+  if (const UsbStatus s = write_open({cf_report_[a].data(), cf_bytes_}); s != UsbStatus::Ok)
+    fail_step(s, "Set Constant Force", ReportType::Output, magnitude_.report_id, pid::kSetConstantForceReport);
+  last_command_[a].store(0, std::memory_order_relaxed);
   // Effect Operation: start, loop count 1.
   {
     const HidField& index = *descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
@@ -405,8 +457,8 @@ void HidPidJoystick::create_effect(int axis) {
     write_field(b, ids_, op, *start);
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kLoopCount))
       write_field(b, ids_, *f, 1);
-    const UsbStatus s = transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
-    if (s != UsbStatus::Ok) fail_open(s, std::string("Effect Operation (start) failed: ") + to_string(s));
+    const UsbStatus s = write_open(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
+    if (s != UsbStatus::Ok) fail_step(s, "Effect Operation (start)", ReportType::Output, index.report_id, pid::kEffectOperationReport);
     started_[a] = true;
   }
 }

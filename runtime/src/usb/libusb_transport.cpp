@@ -5,6 +5,10 @@
 
 #include <libusb-1.0/libusb.h>
 
+#include <sys/time.h>
+
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -90,6 +94,7 @@ const char* to_string(UsbStatus status) noexcept {
     case UsbStatus::AccessDenied: return "access denied (permissions)";
     case UsbStatus::Busy: return "busy (held by another program or driver)";
     case UsbStatus::NotSupported: return "not supported on this platform";
+    case UsbStatus::Stalled: return "stalled (the device refused the request)";
     case UsbStatus::Other: return "USB error";
   }
   return "USB error";
@@ -104,6 +109,7 @@ UsbStatus usb_status_from_libusb(int code) noexcept {
     case LIBUSB_ERROR_ACCESS: return UsbStatus::AccessDenied;
     case LIBUSB_ERROR_BUSY: return UsbStatus::Busy;
     case LIBUSB_ERROR_NOT_SUPPORTED: return UsbStatus::NotSupported;
+    case LIBUSB_ERROR_PIPE: return UsbStatus::Stalled;
     default: return UsbStatus::Other;
   }
 }
@@ -213,6 +219,8 @@ UsbStatus LibusbTransport::open(std::uint16_t vendor_id, std::uint16_t product_i
 }
 
 LibusbTransport::~LibusbTransport() {
+  if (handle_) cancel_input();
+  if (input_transfer_ && !input_in_flight_) libusb_free_transfer(input_transfer_);
   if (handle_) libusb_close(handle_);
   if (context_) libusb_exit(context_);
 }
@@ -248,15 +256,98 @@ UsbStatus LibusbTransport::attach_kernel_driver() {
 }
 
 UsbStatus LibusbTransport::claim_interface() { return usb_status_from_libusb(libusb_claim_interface(handle_, interface_)); }
-UsbStatus LibusbTransport::release_interface() { return usb_status_from_libusb(libusb_release_interface(handle_, interface_)); }
+UsbStatus LibusbTransport::release_interface() {
+  cancel_input();
+  return usb_status_from_libusb(libusb_release_interface(handle_, interface_));
+}
+
+UsbStatus LibusbTransport::named(int rc) noexcept {
+  const UsbStatus s = usb_status_from_libusb(rc);
+  if (s != UsbStatus::Other) return s;
+  // A device that leaves the bus fails the transfers in flight with an I/O error (EPROTO,
+  // ESHUTDOWN) before the kernel reports it gone: ask it something; no answer means unplugged.
+  std::uint8_t status[2];
+  if (libusb_control_transfer(handle_, 0x80, LIBUSB_REQUEST_GET_STATUS, 0, 0, status, 2, 100) == LIBUSB_ERROR_NO_DEVICE)
+    return UsbStatus::NoDevice;
+  return s;
+}
+
+UsbStatus LibusbTransport::submit_input() noexcept {
+  if (!input_transfer_) {
+    input_transfer_ = libusb_alloc_transfer(0);
+    if (!input_transfer_) return UsbStatus::Other;
+  }
+  // No timeout: the transfer waits in the host controller's schedule until the device sends.
+  libusb_fill_interrupt_transfer(input_transfer_, handle_, endpoint_in_, input_buffer_.data(),
+                                 static_cast<int>(input_buffer_.size()), &LibusbTransport::on_input, this, 0);
+  const int rc = libusb_submit_transfer(input_transfer_);
+  input_in_flight_ = rc == 0;
+  return usb_status_from_libusb(rc);
+}
+
+void LibusbTransport::on_input(libusb_transfer* transfer) {
+  auto* self = static_cast<LibusbTransport*>(transfer->user_data);
+  self->input_in_flight_ = false;
+  switch (transfer->status) {
+    case LIBUSB_TRANSFER_COMPLETED: {
+      if (transfer->actual_length > 0) {
+        if (self->received_count_ == kQueued) {  // drop the oldest
+          self->received_head_ = (self->received_head_ + 1) % kQueued;
+          --self->received_count_;
+        }
+        Received& r = self->received_[(self->received_head_ + self->received_count_) % kQueued];
+        r.length = std::min(static_cast<std::size_t>(transfer->actual_length), r.bytes.size());
+        std::copy_n(self->input_buffer_.begin(), r.length, r.bytes.begin());
+        ++self->received_count_;
+      }
+      if (const UsbStatus s = self->submit_input(); s != UsbStatus::Ok) self->input_error_ = s;
+      return;
+    }
+    case LIBUSB_TRANSFER_CANCELLED: return;
+    case LIBUSB_TRANSFER_NO_DEVICE: self->input_error_ = UsbStatus::NoDevice; return;
+    case LIBUSB_TRANSFER_STALL: self->input_error_ = UsbStatus::Stalled; return;
+    default: self->input_error_ = UsbStatus::Other; return;  // named by the read that reports it
+  }
+}
+
+void LibusbTransport::cancel_input() noexcept {
+  if (!input_in_flight_) return;
+  libusb_cancel_transfer(input_transfer_);
+  // The cancellation completes through the event loop; a device that is gone completes it at once.
+  for (int i = 0; i < 100 && input_in_flight_; ++i) {
+    timeval wait{0, 10'000};
+    libusb_handle_events_timeout_completed(context_, &wait, nullptr);
+  }
+}
 
 UsbStatus LibusbTransport::read_input(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept {
-  int got = 0;
-  // libusb takes 0 as "wait forever": never pass it.
-  const int rc = libusb_interrupt_transfer(handle_, endpoint_in_, buffer.data(), static_cast<int>(buffer.size()), &got,
-                                           timeout_ms ? timeout_ms : 1);
-  length = got > 0 ? static_cast<std::size_t>(got) : 0;
-  return usb_status_from_libusb(rc);
+  length = 0;
+  if (!input_in_flight_ && input_error_ == UsbStatus::Ok && received_count_ == 0)
+    if (const UsbStatus s = submit_input(); s != UsbStatus::Ok) return s;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  if (timeout_ms == 0 && received_count_ == 0) {  // only what has already arrived: run the completions due
+    timeval now{0, 0};
+    libusb_handle_events_timeout_completed(context_, &now, nullptr);
+  }
+  while (received_count_ == 0 && input_error_ == UsbStatus::Ok) {
+    const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return UsbStatus::Timeout;
+    timeval wait{static_cast<time_t>(left.count() / 1'000'000), static_cast<suseconds_t>(left.count() % 1'000'000)};
+    libusb_handle_events_timeout_completed(context_, &wait, nullptr);
+  }
+  if (received_count_ > 0) {
+    const Received& r = received_[received_head_];
+    length = std::min(r.length, buffer.size());
+    std::copy_n(r.bytes.begin(), length, buffer.begin());
+    received_head_ = (received_head_ + 1) % kQueued;
+    --received_count_;
+    return UsbStatus::Ok;
+  }
+  const UsbStatus error = input_error_ == UsbStatus::Other ? named(LIBUSB_ERROR_IO) : input_error_;
+  input_error_ = error;
+  // A stall or I/O error is reported once; the next read tries again. An unplugged device stays gone.
+  if (error != UsbStatus::NoDevice) input_error_ = UsbStatus::Ok;
+  return error;
 }
 
 UsbStatus LibusbTransport::set_report(int type, std::span<const std::uint8_t> report, unsigned timeout_ms) noexcept {
@@ -273,7 +364,7 @@ UsbStatus LibusbTransport::write_output(std::span<const std::uint8_t> report) no
   int sent = 0;
   const int rc = libusb_interrupt_transfer(handle_, endpoint_out_, const_cast<std::uint8_t*>(report.data()),
                                            static_cast<int>(report.size()), &sent, kTickWriteTimeoutMs);
-  return usb_status_from_libusb(rc);
+  return named(rc);
 }
 
 UsbStatus LibusbTransport::set_feature(std::span<const std::uint8_t> report) {

@@ -62,10 +62,12 @@ UsbStatus FakeTransport::release_interface() {
   return UsbStatus::Ok;
 }
 
-UsbStatus FakeTransport::read_input(std::span<std::uint8_t> buffer, std::size_t& length, unsigned) noexcept {
+UsbStatus FakeTransport::read_input(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept {
   length = 0;
   note_thread();
   if (unplugged_) return UsbStatus::NoDevice;
+  // The fake's events arrive when read: none has arrived before a read that waits for it.
+  if (timeout_ms == 0) return UsbStatus::Timeout;
   if (next_input_ >= inputs_.size() && !(repeat_last_input && !inputs_.empty())) return after_end;
   const InputEvent& e = inputs_[std::min(next_input_++, inputs_.size() - 1)];
   if (e.status != UsbStatus::Ok) return e.status;
@@ -103,7 +105,7 @@ UsbStatus FakeTransport::get_feature(std::uint8_t report_id, std::span<std::uint
   const std::uint8_t id[1] = {report_id};
   record(Op::GetFeature, id);
   const auto it = feature_replies_.find(report_id);
-  if (it == feature_replies_.end() || it->second.empty()) return UsbStatus::Other;  // a stall
+  if (it == feature_replies_.end() || it->second.empty()) return UsbStatus::Stalled;
   std::size_t& next = feature_next_[report_id];
   const auto& reply = it->second[std::min(next, it->second.size() - 1)];
   ++next;

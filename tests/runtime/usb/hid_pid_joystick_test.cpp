@@ -170,6 +170,50 @@ TEST(HidPidJoystick, OpenFailsCleanlyWhenTheDeviceHasNoRoomAndGivesItBack) {
   EXPECT_TRUE(t->kernel_driver_attached());
 }
 
+// A busy firmware NAKs an output report past the transport's short timeout (seen in the USB lab
+// under load, on Device Control): the open sequence sends it again, and the device sees each once.
+TEST(HidPidJoystick, AnOpenReportTheDeviceNaksPastTheTimeoutIsSentAgain) {
+  auto t = testing::primed_transport();
+  t->time_out_outputs(5);
+  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+  expect_steps(steps(*t), kOpen);
+}
+
+// ... until open_write_timeout_ms: then the open fails, naming the step and the report's HID usage,
+// and gives the device back.
+TEST(HidPidJoystick, AnOpenReportThatKeepsTimingOutFailsNamingTheStep) {
+  auto t = testing::primed_transport();
+  t->time_out_outputs(std::numeric_limits<std::size_t>::max());
+  HidPidOptions options = testing::synchronous();
+  options.open_write_timeout_ms = 20;
+  try {
+    HidPidJoystick joystick(*t, testing::openffboard(), options);
+    FAIL() << "opened a device that takes no output report";
+  } catch (const HidPidError& e) {
+    EXPECT_EQ(e.status, UsbStatus::Timeout);
+    EXPECT_EQ(std::string(e.what()),
+              "Device Control (Device Reset) failed: timed out (Output report 0x0C, HID page 0x000F usage 0x0096) "
+              "after 20 ms of retries");
+  }
+  EXPECT_TRUE(t->kernel_driver_attached());
+  EXPECT_FALSE(t->claimed());
+}
+
+// A Feature report the device stalls (no Block Load reply): the error names the step and the usage.
+TEST(HidPidJoystick, AFeatureReportStalledInTheOpenNamesTheStepAndItsUsage) {
+  auto t = std::make_unique<FakeTransport>(testing::test_descriptor());
+  t->add_feature_reply(0x13, {0x13, 0x00, 0x10, 0x04, 0x01});
+  try {
+    HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+    FAIL() << "opened a device that stalls Block Load";
+  } catch (const HidPidError& e) {
+    EXPECT_EQ(e.status, UsbStatus::Stalled);
+    EXPECT_EQ(std::string(e.what()),
+              "Block Load failed: stalled (the device refused the request) (Feature report 0x12, HID page 0x000F usage 0x0089)");
+  }
+  EXPECT_TRUE(t->kernel_driver_attached());
+}
+
 // The hand-written descriptor with `from` (its first occurrence) replaced by `to`.
 Bytes edited_descriptor(const Bytes& from, const Bytes& to) {
   Bytes d = testing::test_descriptor();

@@ -40,6 +40,8 @@ inline std::unique_ptr<FakeTransport> primed_transport() {
   t->add_feature_reply(0x13, {0x13, 0x00, 0x10, 0x04, 0x01});
   t->add_feature_reply(0x12, {0x12, 0x01, 0x01, 0x27, 0x00});
   t->add_feature_reply(0x12, {0x12, 0x02, 0x01, 0x26, 0x00});
+  // Two: the driver takes the second as where the handle is now (the first may be stale).
+  t->add_input({UsbStatus::Ok, position_report(0, 0)});
   t->add_input({UsbStatus::Ok, position_report(0, 0)});
   return t;
 }

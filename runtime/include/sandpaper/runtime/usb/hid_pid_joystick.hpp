@@ -42,6 +42,9 @@ struct HidPidOptions {
   // still is not a device gone quiet).
   double stale_limit_s = 0;
   unsigned open_read_timeout_ms = 500;  // wait for the first position report while opening
+  // How long an output report of the open sequence may keep timing out (the device NAKing it, as a
+  // busy firmware does) before the open fails; each try waits the transport's own timeout.
+  unsigned open_write_timeout_ms = 2000;
   HidPidIo io = HidPidIo::IoThread;
 };
 
@@ -104,6 +107,11 @@ class HidPidJoystick final : public Device {
   std::int32_t command_of(int axis, double force_N) const noexcept;
   void set_fault(DeviceFault fault, UsbStatus status) noexcept;
   void device_control(std::uint32_t command_usage);
+  // An output report of the open sequence, sent again while it times out (open_write_timeout_ms).
+  UsbStatus write_open(std::span<const std::uint8_t> report) noexcept;
+  // Fails the open naming the step, the report (type, ID) and its HID usage, and the transport's cause.
+  [[noreturn]] void fail_step(UsbStatus status, const std::string& step, ReportType type, std::uint8_t report_id,
+                              std::uint32_t report_usage);
   // The field that carries Device Control's `command_usage` (array or bit form), or nullptr.
   const HidField* device_control_field(std::uint32_t command_usage) const;
   void create_effect(int axis);

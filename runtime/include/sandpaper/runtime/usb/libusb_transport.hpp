@@ -1,8 +1,11 @@
 #pragma once
 // The UsbTransport on libusb-1.0: a device's first HID interface, its interrupt endpoints and the
 // HID class requests on its control pipe (HID 1.11 section 7.2). Also lists the HID devices present
-// for `sandpaper devices`. libusb's synchronous transfers allocate a transfer inside libusb on every
-// call, so on real hardware the tick is not allocation-free below this interface (docs/USB_PID.md).
+// for `sandpaper devices`. The interrupt IN endpoint always has a transfer in flight (allocated once,
+// resubmitted from its completion), so no report the device sends waits for the next read call: a
+// host controller only polls an endpoint that has a transfer queued. Output and control transfers
+// are synchronous and allocate a transfer inside libusb on every call (docs/USB_PID.md).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -13,6 +16,7 @@
 
 struct libusb_context;
 struct libusb_device_handle;
+struct libusb_transfer;
 
 namespace sandpaper::runtime::usb {
 
@@ -62,6 +66,28 @@ class LibusbTransport final : public UsbTransport {
  private:
   LibusbTransport() = default;
   UsbStatus set_report(int type, std::span<const std::uint8_t> report, unsigned timeout_ms) noexcept;
+  // The interrupt IN transfer kept in flight: submitted at the first read, resubmitted by its own
+  // completion, cancelled (and waited for) before the interface is released.
+  UsbStatus submit_input() noexcept;
+  // The status of a failed transfer's libusb code; an I/O error from a device that no longer
+  // answers is NoDevice.
+  UsbStatus named(int rc) noexcept;
+  void cancel_input() noexcept;
+  static void on_input(libusb_transfer* transfer);
+
+  // Reports received and not yet read, oldest first; when full the oldest is dropped (a reader
+  // that far behind wants the latest position).
+  struct Received {
+    std::array<std::uint8_t, 64> bytes{};
+    std::size_t length = 0;
+  };
+  static constexpr std::size_t kQueued = 8;
+  std::array<Received, kQueued> received_{};
+  std::size_t received_head_ = 0, received_count_ = 0;
+  libusb_transfer* input_transfer_ = nullptr;
+  std::array<std::uint8_t, 64> input_buffer_{};
+  bool input_in_flight_ = false;
+  UsbStatus input_error_ = UsbStatus::Ok;  // the IN endpoint's failure, reported by the next read
 
   libusb_context* context_ = nullptr;
   libusb_device_handle* handle_ = nullptr;

@@ -19,7 +19,8 @@ enum class UsbStatus {
   AccessDenied,   // permissions: the udev rule in docs/USB_PID.md fixes it
   Busy,           // another program or kernel driver holds the interface
   NotSupported,   // the platform cannot do it (e.g. detaching kernel drivers)
-  Other,          // pipe stall, overflow, I/O error, ...
+  Stalled,        // the device refused the request with a STALL handshake (USB 2.0 section 8.4.5)
+  Other,          // overflow, I/O error, ...
 };
 
 const char* to_string(UsbStatus status) noexcept;
@@ -38,7 +39,8 @@ class UsbTransport {
   virtual UsbStatus release_interface() = 0;
 
   // Reads one input report from the interrupt IN endpoint into `buffer`, waiting at most
-  // `timeout_ms` (> 0); `length` gets the number of bytes received.
+  // `timeout_ms`; 0: only a report that has already arrived, else Timeout at once. `length` gets
+  // the number of bytes received.
   virtual UsbStatus read_input(std::span<std::uint8_t> buffer, std::size_t& length,
                                   unsigned timeout_ms) noexcept = 0;
   // Sends an output report: interrupt OUT when the interface has that endpoint, else SET_REPORT

@@ -1,0 +1,60 @@
+#pragma once
+// A UsbFunction that passes everything to the function behind it except the faults the lab injects:
+// a control request it refuses (STALL), as a device with a broken Feature report does, and input
+// reports it stops sending, as a device whose sensor or firmware hangs does. The stall is set before
+// the device starts; the silence can be switched on from another thread while it runs.
+#include <atomic>
+#include <optional>
+#include <thread>
+
+#include "usb_function.hpp"
+
+namespace sandpaper::usb_lab {
+
+// HID 1.11 section 7.2: class requests GET_REPORT (0x01) and SET_REPORT (0x09), wValue = report
+// type (3: Feature) << 8 | report ID.
+struct StalledReport {
+  std::uint8_t report_type = 3;
+  std::uint8_t report_id = 0;
+  bool matches(const SetupPacket& s) const {
+    return (s.bmRequestType & 0x60) == 0x20 && (s.bRequest == 0x01 || s.bRequest == 0x09) &&
+           (s.wValue >> 8) == report_type && (s.wValue & 0xFF) == report_id;
+  }
+};
+
+class FaultyFunction final : public UsbFunction {
+ public:
+  explicit FaultyFunction(UsbFunction& inner) : inner_(inner) {}
+
+  // Every GET_REPORT and SET_REPORT of this report is refused from now on.
+  void stall(StalledReport r) { stalled_ = r; }
+  // From now on no input report reaches the host (the firmware's are dropped unsent).
+  void silence_input() noexcept { silent_.store(true, std::memory_order_relaxed); }
+  bool input_silenced() const noexcept { return silent_.load(std::memory_order_relaxed); }
+
+  DeviceIdentity identity() const override { return inner_.identity(); }
+  std::vector<std::uint8_t> function_descriptors() const override { return inner_.function_descriptors(); }
+  std::string string_descriptor(std::uint8_t index) const override { return inner_.string_descriptor(index); }
+  void configured() override { inner_.configured(); }
+  void deconfigured() override { inner_.deconfigured(); }
+  void suspended(bool s) override { inner_.suspended(s); }
+  bool accepts(const SetupPacket& setup) const override { return !(stalled_ && stalled_->matches(setup)) && inner_.accepts(setup); }
+  ControlReply control(const SetupPacket& setup, std::span<const std::uint8_t> out_data) override {
+    if (stalled_ && stalled_->matches(setup)) return ControlReply{true, {}};
+    return inner_.control(setup, out_data);
+  }
+  void interrupt_out(std::span<const std::uint8_t> data) override { inner_.interrupt_out(data); }
+  bool next_interrupt_in(std::vector<std::uint8_t>& report, std::chrono::microseconds wait) override {
+    if (!input_silenced()) return inner_.next_interrupt_in(report, wait);
+    std::this_thread::sleep_for(wait);
+    return false;
+  }
+  void interrupt_in_done(bool delivered) override { inner_.interrupt_in_done(delivered); }
+
+ private:
+  UsbFunction& inner_;
+  std::optional<StalledReport> stalled_;
+  std::atomic<bool> silent_{false};
+};
+
+}  // namespace sandpaper::usb_lab

@@ -1,0 +1,79 @@
+# Plays MATERIAL on the emulated OpenFFBoard with `sandpaper run --device usb` (scripted hand: HAND
+# at AT_X_MM AT_Y_MM, SPEED_MM_S, EXTENT_MM) and injects FAULT once the run streams its forces (the
+# device's "streaming" line):
+#   unplug  the gadget leaves the bus (UDC unbound), then is plugged in again: `devices` must find
+#           it and a second run (REPLAY_SECONDS) must play
+#   reset   the device drops off the bus and comes straight back, as a firmware that reboots does
+#   stale   the device stops sending input reports (the lab device's SIGUSR2)
+#   sigint  Ctrl-C to the run
+#   stall   no play: the device refuses (STALLs) Feature report STALL_REPORT_ID from the start, so
+#           the run's open sequence fails
+# Writes /out/run.json, /out/run.err, the device's logs and /out/fault.json: the run's exit status,
+# the guest-clock time from the fault to the run's exit (centiseconds), and the kernel driver on
+# the joystick's interface before, during and after.
+. /lab/ffboard.sh
+stall=
+[ "$FAULT" = stall ] && stall="--stall-feature $STALL_REPORT_ID"
+# shellcheck disable=SC2086
+ffboard_plug --hand "$HAND" --at "$AT_X_MM" "$AT_Y_MM" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" $stall || exit 1
+driver_before=$(ffboard_interface_driver)
+
+# A TCG guest on a loaded machine can miss the servo's 50 ms deadline guard; the fault, not the
+# guest's punctuality, must be what stops the run.
+"$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" --deadline-guard 600000 --json \
+  > /out/run.json 2> /out/run.err &
+run_pid=$!
+driver_during=
+fault_at=
+if [ "$FAULT" != stall ]; then
+  if lab_wait_line "$FFB_DEVICE_LOG" "streaming" 60; then
+    driver_during=$(ffboard_interface_driver)
+    lab_now
+    fault_at=$LAB_NOW
+    case $FAULT in
+      unplug) gadget_unbind ffboard ;;
+      reset) gadget_unbind ffboard && gadget_bind ffboard "$FFB_UDC" ;;
+      stale) kill -USR2 "$FFB_DEVICE_PID" ;;
+      sigint) kill -INT "$run_pid" ;;
+    esac
+  else
+    echo "lab: the firmware never started playing" >&2
+  fi
+fi
+wait "$run_pid"
+run_status=$?
+lab_now
+exit_after_cs=
+[ -n "$fault_at" ] && exit_after_cs=$((LAB_NOW - fault_at))
+
+# Plugged in again after an unplug; after a reset the device is already back.
+replug_devices_status=
+replay_status=
+if [ "$FAULT" = unplug ]; then
+  lab_wait_usb_gone "$FFB_VID" "$FFB_PID" 10
+  gadget_bind ffboard "$FFB_UDC" && lab_wait_usb_device "$FFB_VID" "$FFB_PID" 60 && FFB_USB_DEV=$LAB_USB_DEV &&
+    lab_wait_hidraw "$FFB_USB_DEV" 60
+  "$SANDPAPER" devices > /out/devices.txt 2>&1
+  replug_devices_status=$?
+  sed 's/^/devices: /' /out/devices.txt
+  "$SANDPAPER" run "$MATERIAL" --device usb --duration "$REPLAY_SECONDS" --deadline-guard 600000 --json \
+    > /out/replay.json 2> /out/replay.err
+  replay_status=$?
+  sed 's/^/replay: /' /out/replay.err
+elif [ "$FAULT" = reset ]; then
+  lab_wait_usb_device "$FFB_VID" "$FFB_PID" 60 && FFB_USB_DEV=$LAB_USB_DEV && lab_wait_hidraw "$FFB_USB_DEV" 60
+fi
+_usbhid_back() { [ "$(ffboard_interface_driver)" = usbhid ]; }
+lab_poll 10 "usbhid to be bound again" _usbhid_back
+driver_after=$(ffboard_interface_driver)
+input_after=
+lab_wait_input "$FFB_USB_DEV" 10 && input_after=$LAB_INPUT
+ffboard_stop
+sed 's/^/run: /' /out/run.err
+cat > /out/fault.json <<JSON
+{"fault": "$FAULT", "run_status": $run_status, "exit_after_cs": ${exit_after_cs:-null},
+ "driver_before": "$driver_before", "driver_during": "$driver_during", "driver_after": "$driver_after",
+ "input_after": "$input_after", "replug_devices_status": ${replug_devices_status:-null},
+ "replay_status": ${replay_status:-null}}
+JSON
+cat /out/fault.json
