@@ -14,13 +14,48 @@ Definitions (docs/USB_PID.md "In the lab"):
 - firmware_peak_N: the firmware's torque on the scan axis in newtons, split into ridges (runs of
   one sign; zeros do not end a run) and averaged over ridges of each ridge's largest |F|, as
   explain's felt-at-speed peak is defined (compiler/include/sandpaper/compiler/felt_at_speed.hpp).
+- unmatched_reports[axis]: Set Constant Force reports during play whose magnitude no tick of the
+  200 before its arrival computed (through the device file's scale): a mis-scaled, corrupted or
+  stale report. 0 when the firmware receives what the ticks computed.
 - rms_error_N: the firmware's torque in newtons against the force the host commanded at the same
   instant (the last tick at or before each driver update), RMS over the play.
 """
 import csv
 import math
+import tomllib
+from pathlib import Path
 
 SET_EFFECT, SET_CONSTANT_FORCE = 0x01, 0x05  # OpenFFBoard report IDs (ffb_defs.h; docs/USB_PID.md)
+
+
+# What the firmware (OpenFFBoard 160af91) does to a Set Constant Force magnitude M on its way to
+# the driver, with its defaults: torque = M x 204/255 (the axis's effect ratio, Axis.h:244-248)
+# x 5000/32767 (the axis power, Axis.cpp:735-783), clipped to +-5000; a positive torque pushes the
+# handle toward decreasing reported position (the firmware's own spring answers +x with positive
+# torque; Axis.cpp:781 inverts the axis). usb-lab/firmware/README.md has the chain.
+TORQUE_PER_COMMAND = 204 / 255 * 5000 / 32767
+
+
+def round_half_away(x: float) -> int:
+    return int(math.copysign(math.floor(abs(x) + 0.5), x))
+
+
+def device_chain(device_file: Path):
+    """(command, torque_N) for measure(): the command units the driver sends for a force, from the
+    device file's scale, sense and limit as the driver uses them; and the newtons at the handle
+    for a driver torque, through TORQUE_PER_COMMAND and the same scale."""
+    device = tomllib.loads(Path(device_file).read_text())
+    newtons = [device["force"][a]["newtons_per_command_unit"] for a in ("x", "y")]
+    sense = [device["force"][a].get("command_sense", 1) for a in ("x", "y")]
+    limit = device["force"]["command_max"]
+
+    def command(axis, f):
+        return max(-limit, min(limit, round_half_away(sense[axis] * f / newtons[axis])))
+
+    def torque_N(axis, t):
+        return -t / TORQUE_PER_COMMAND * newtons[axis]  # a positive torque pushes toward -axis
+
+    return command, torque_N
 
 
 def read_csv(path):
@@ -119,26 +154,30 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0):
         if axis in (0, 1) and play_start <= t <= play_end + 50_000_000:
             per_axis_torque[axis].append((t, torque))
 
-    received, applied, latencies = [0, 0], [0, 0], []
+    received, applied, latencies, unmatched = [0, 0], [0, 0], [], [0, 0]
     for axis in (0, 1):
-        rs = [r for r in per_axis_reports[axis] if play_start <= r[0] <= play_end + 50_000_000]
+        # Reports from play start to the end: the shutdown's zero force comes after the last tick.
+        rs = [r for r in per_axis_reports[axis] if play_start <= r[0] <= play_end]
         received[axis] = len(rs)
         updates = [t for t, _ in per_axis_torque[axis]]
         u = 0
         k = 0  # ticks[k] is the first tick after the report, searched forward as reports are
         for i, (t_r, magnitude) in enumerate(rs):
+            while k < len(ticks) and ticks[k][0] <= t_r:
+                k += 1
+            # The tick that computed this magnitude: the latest of the 200 before its arrival.
+            source = next((j for j in range(k - 1, max(-1, k - 200), -1)
+                           if command(axis, ticks[j][1][axis]) == magnitude), None)
+            if source is None:
+                unmatched[axis] += 1
             while u < len(updates) and updates[u] < t_r:
                 u += 1
             next_report = rs[i + 1][0] if i + 1 < len(rs) else None
             if u >= len(updates) or (next_report is not None and updates[u] >= next_report):
                 continue  # overwritten before the firmware's next update used it
             applied[axis] += 1
-            while k < len(ticks) and ticks[k][0] <= t_r:
-                k += 1
-            for j in range(k - 1, max(-1, k - 200), -1):
-                if command(axis, ticks[j][1][axis]) == magnitude:
-                    latencies.append((updates[u] - ticks[j][0]) * 1e-6)
-                    break
+            if source is not None:
+                latencies.append((updates[u] - ticks[source][0]) * 1e-6)
 
     # The firmware's force at the handle against the host's command at each driver update.
     errors = []
@@ -159,4 +198,5 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0):
         "commanded_peak_N": mean_ridge_peak([f[scan_axis] for _, f in ticks]),
         "firmware_max_N": max((abs(f) for f in firmware_forces), default=0.0),
         "rms_error_N": math.sqrt(sum(e * e for e in errors) / len(errors)) if errors else None,
+        "unmatched_reports": unmatched,
     }

@@ -16,6 +16,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "usb-lab"))
+import measure  # noqa: E402
 import scenario  # noqa: E402
 
 failures: list[str] = []
@@ -62,20 +63,12 @@ def test_enumerate(build: Path, out: Path) -> None:
           "listing devices leaves usbhid bound to the OpenFFBoard")
 
 
-# What the firmware does to a magnitude M with its defaults (usb-lab/firmware/README.md): driver
-# torque = M x 204/255 x 5000/32767; a positive torque pushes the handle toward decreasing position.
-TORQUE_PER_COMMAND = 204 / 255 * 5000 / 32767
-NEWTONS_PER_COMMAND = 0.001  # calibration/devices/openffboard-2axis.toml (assumed scale)
-
-
-def handle_force_N(torque: int) -> float:
-    return -torque / TORQUE_PER_COMMAND * NEWTONS_PER_COMMAND
+# The driver's command for a force and the handle force for a firmware torque, through the device file.
+COMMAND, HANDLE_FORCE_N = measure.device_chain(REPO / "calibration/devices/openffboard-2axis.toml")
 
 
 def test_direction(build: Path, out: Path) -> None:
-    sys.path.insert(0, str(REPO / "usb-lab"))
-    import measure
-    seconds = 4.0
+    seconds = 6.0
     r = scenario.run("direction", build, out, params={
         "AT_X_MM": "10", "AT_Y_MM": "-5", "CIRCLE_MM": "0.2", "SPEED_MM_S": "2",
         "STIFFNESS": "200 N/m", "SECONDS": str(seconds)})
@@ -87,7 +80,8 @@ def test_direction(build: Path, out: Path) -> None:
     trace = measure.read_trace(out / "trace.csv")
     torques = measure.read_torques(out / "torque.csv")
     start = int(run["clock_start_ns"])
-    # The last 1.5 s: the firmware fades torque in over 2 s after the host mounts it.
+    # The last 1.5 s: the firmware fades torque in over 2 s after the host mounts it (counted in its
+    # own updates, which a loaded guest runs late).
     t_from = start + int((seconds - 1.5) * 1e9)
     t_to = start + int(seconds * 1e9)
     late = [f for t, _, _, *f in trace if start + t * 1e9 >= t_from]
@@ -96,7 +90,7 @@ def test_direction(build: Path, out: Path) -> None:
     check(commanded[0] < -1.5 and commanded[1] > 0.7,
           "the spring pulls back toward the centre: -x on x, +y on y (about -2 N, +1 N)")
     for axis, name in ((0, "x"), (1, "y")):
-        values = [handle_force_N(q) for t, a, q in torques if a == axis and t_from <= t <= t_to]
+        values = [HANDLE_FORCE_N(axis, q) for t, a, q in torques if a == axis and t_from <= t <= t_to]
         if not values:
             check(False, f"the firmware updated its {name} driver in the last 1.5 s")
             continue
@@ -150,6 +144,7 @@ def test_fault(fault: str, build: Path, out: Path) -> None:
     check(facts["driver_during"] == "usbfs", f"the run had detached usbhid (during: {facts['driver_during']!r})")
     check(run["stop_cause"] == FAULT_CAUSE[fault],
           f"stop cause {run['stop_cause']} (USB: {run.get('usb_error')}), expected {FAULT_CAUSE[fault]}")
+    # The stale fault waits out the scenario's 1 s watchdog (ffboard.sh's LAB_RUN_GUARDS).
     # No hang: the exit includes the kernel re-probing usbhid and hid-pidff, whose transfers run on
     # dummy_hcd's 4 ms frames in a TCG guest; 15-93 cs were measured on a quiet machine
     # (docs/USB_PID.md), and a loaded CI machine slows the guest's clock-driven work further.
@@ -166,7 +161,41 @@ def test_fault(fault: str, build: Path, out: Path) -> None:
               f"and a new run plays to its end (stop cause {replay['stop_cause']})")
 
 
-TESTS = {"enumerate": test_enumerate, "direction": test_direction}
+def test_play(build: Path, out: Path) -> None:
+    """Lab test 3 (and 2): corduroy played for 5 s at 20, 50, 100 and 200 mm/s with a scanning
+    hand. Checks what can be wrong, prints what is measured (docs/USB_PID.md "In the lab")."""
+    for speed in (20, 50, 100, 200):
+        where = out / f"{speed}mm_s"
+        r = scenario.run("play", build, where, params={
+            "MATERIAL": str(REPO / "examples/corduroy.hmat"), "SECONDS": "5", "HAND": "scan",
+            "SPEED_MM_S": str(speed), "EXTENT_MM": "40"})
+        check(r.status == 0, f"{speed} mm/s: the scenario ran to its end (status {r.status})")
+        if r.status != 0:
+            continue
+        run = json.loads((where / "run.json").read_text())
+        play = json.loads((where / "play.json").read_text())
+        check(run["stop_cause"] == "completed", f"{speed} mm/s: played to its end (stop cause {run['stop_cause']})")
+        check((play["driver_before"], play["driver_during"], play["driver_after"]) == ("usbhid", "usbfs", "usbhid")
+              and play["input_after"] != "",
+              f"{speed} mm/s: usbhid detached for the run and attached again, input device back "
+              f"({play['driver_before']} -> {play['driver_during']} -> {play['driver_after']}, {play['input_after']!r})")
+        m = measure.measure(run, measure.read_trace(where / "trace.csv"), measure.read_reports(where / "reports.csv"),
+                            measure.read_torques(where / "torque.csv"), command=COMMAND, torque_N=HANDLE_FORCE_N)
+        print(f"{speed} mm/s: " + json.dumps({k: m[k] for k in (
+            "received_hz", "updates_hz", "latency_ms", "firmware_peak_N", "commanded_peak_N", "rms_error_N",
+            "unmatched_reports")}), flush=True)
+        check(m["received_hz"][0] > 0 and m["updates_hz"][0] > 0,
+              f"{speed} mm/s: the firmware received the x forces and applied them")
+        # A grating along x has no y force: an axis whose command never changes takes no frames.
+        y_constant = len({COMMAND(1, f[4]) for f in measure.read_trace(where / "trace.csv")}) == 1
+        if y_constant:
+            check(m["received_hz"][1] == 0, f"{speed} mm/s: y, whose command never changed, was not sent again")
+        check(m["unmatched_reports"] == [0, 0],
+              f"{speed} mm/s: every magnitude the firmware received is one a tick computed through the device "
+              f"file's scale (unmatched: {m['unmatched_reports']})")
+
+
+TESTS = {"enumerate": test_enumerate, "direction": test_direction, "play": test_play}
 for _fault in ("unplug", "reset", "stale", "sigint", "stall"):
     TESTS[f"fault-{_fault}"] = (lambda f: lambda build, out: test_fault(f, build, out))(_fault)
 

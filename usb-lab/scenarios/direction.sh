@@ -5,9 +5,7 @@
 # Writes /out/run.json, /out/trace.csv and the device's logs.
 . /lab/ffboard.sh
 ffboard_plug --hand circle --extent "$CIRCLE_MM" --speed "$SPEED_MM_S" --at "$AT_X_MM" "$AT_Y_MM" || exit 1
-# The sign is under test, not the guest's punctuality: a TCG guest on a loaded machine can miss the
-# servo's default 50 ms deadline guard.
-"$SANDPAPER" run -e "spring $STIFFNESS" --device usb --duration "$SECONDS" --deadline-guard 600000 --json --trace /out/trace.csv \
+"$SANDPAPER" run -e "spring $STIFFNESS" --device usb --duration "$SECONDS" $LAB_RUN_GUARDS --json --trace /out/trace.csv \
   > /out/run.json 2> /out/run.err
 run_status=$?
 ffboard_stop

@@ -18,9 +18,7 @@ stall=
 ffboard_plug --hand "$HAND" --at "$AT_X_MM" "$AT_Y_MM" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" $stall || exit 1
 driver_before=$(ffboard_interface_driver)
 
-# A TCG guest on a loaded machine can miss the servo's 50 ms deadline guard; the fault, not the
-# guest's punctuality, must be what stops the run.
-"$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" --deadline-guard 600000 --json \
+"$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" $LAB_RUN_GUARDS --json \
   > /out/run.json 2> /out/run.err &
 run_pid=$!
 driver_during=
@@ -56,7 +54,7 @@ if [ "$FAULT" = unplug ]; then
   "$SANDPAPER" devices > /out/devices.txt 2>&1
   replug_devices_status=$?
   sed 's/^/devices: /' /out/devices.txt
-  "$SANDPAPER" run "$MATERIAL" --device usb --duration "$REPLAY_SECONDS" --deadline-guard 600000 --json \
+  "$SANDPAPER" run "$MATERIAL" --device usb --duration "$REPLAY_SECONDS" $LAB_RUN_GUARDS --json \
     > /out/replay.json 2> /out/replay.err
   replay_status=$?
   sed 's/^/replay: /' /out/replay.err

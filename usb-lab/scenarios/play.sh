@@ -6,7 +6,7 @@
 ffboard_plug --hand "$HAND" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" || exit 1
 driver_before=$(ffboard_interface_driver)
 
-"$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" --json --trace /out/trace.csv \
+"$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" $LAB_RUN_GUARDS --json --trace /out/trace.csv \
   > /out/run.json 2> /out/run.err &
 run_pid=$!
 # Claimed through usbfs, the interface shows the driver "usbfs" while the run holds it.

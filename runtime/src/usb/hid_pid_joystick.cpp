@@ -117,22 +117,25 @@ void HidPidJoystick::stop_io_thread() noexcept {
   if (io_thread_.joinable()) io_thread_.join();
 }
 
-// The I/O thread: one input read (a 1 kHz interrupt endpoint paces it), then the latest force if
-// the tick published a new one, at most once per device period. A force transfer that times out is
+// The I/O thread: the input reports that arrived (a 1 kHz interrupt endpoint paces them), then the
+// latest force if the tick published a new one, at most once per device period. A force transfer that times out is
 // sent again (with the latest force) next cycle; only stale_limit_s without one is a fault. It may block in a transfer for as
 // long as libusb's timeout; the tick then sees no new position and the watchdog (stale_limit_s)
 // stops the servo loop, which publishes zero force; the shutdown sequence sends it.
 void HidPidJoystick::io_thread_body() noexcept {
   const auto period_ns = static_cast<std::int64_t>(1e9 / std::max(1.0, limits_.max_rate_hz));
   std::int64_t next = monotonic_ns();
-  std::int64_t last_write_ns = next;  // the last time both axes' forces went out
+  std::int64_t last_write_ns = next;  // the last time every changed axis's force went out
+  std::int32_t sent[2] = {last_command_[0].load(std::memory_order_relaxed),  // what the device has (open sent 0)
+                          last_command_[1].load(std::memory_order_relaxed)};
   while (io_running_.load(std::memory_order_acquire)) {
-    // Every report that has arrived, the first waited for: the tick wants the latest position, not
-    // the oldest one queued (PID State reports may come between).
+    // Every report that has arrived, without waiting: the transport keeps an IN transfer in flight,
+    // so waiting here would only hold back the force. The tick wants the latest position, not the
+    // oldest one queued (PID State reports may come between).
     bool fresh = false;
     for (int attempt = 0; attempt < kReadsPerTick; ++attempt) {
       std::size_t length = 0;
-      const UsbStatus s = transport_.read_input(input_, length, attempt == 0 ? options_.read_timeout_ms : 0);
+      const UsbStatus s = transport_.read_input(input_, length, 0);
       if (s == UsbStatus::Timeout) break;
       if (s != UsbStatus::Ok) {
         set_fault(s == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::ReadFailed, s);
@@ -148,27 +151,33 @@ void HidPidJoystick::io_thread_body() noexcept {
     const std::uint64_t published = command_published_.load(std::memory_order_acquire);
     if (published != command_sent_.load(std::memory_order_relaxed)) {
       const std::uint64_t command = command_raw_.load(std::memory_order_relaxed);
-      const UsbStatus sx = write_constant_force(0, static_cast<std::int32_t>(low(command)));
-      const UsbStatus sy = sx == UsbStatus::Ok || sx == UsbStatus::Timeout
-                               ? write_constant_force(1, static_cast<std::int32_t>(high(command)))
-                               : sx;
+      const std::int32_t want[2] = {static_cast<std::int32_t>(low(command)), static_cast<std::int32_t>(high(command))};
+      // Only an axis whose magnitude changed: a full-speed interrupt OUT endpoint moves one report
+      // per frame, so an axis held constant (Y while a texture is scanned along X) leaves every
+      // frame to the other.
+      bool all_sent = true;
+      for (int axis = 0; axis < 2; ++axis) {
+        const auto a = static_cast<std::size_t>(axis);
+        if (want[a] == sent[a]) continue;
+        const UsbStatus st = write_constant_force(axis, want[a]);
+        if (st == UsbStatus::Ok) {
+          sent[a] = want[a];
+        } else if (st == UsbStatus::Timeout) {
+          all_sent = false;  // the device NAKed it past the timeout: the latest goes out next cycle
+        } else {
+          set_fault(st == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed, st);
+          return;
+        }
+      }
       const std::int64_t now = monotonic_ns();
-      if (sx == UsbStatus::Ok && sy == UsbStatus::Ok) {
+      if (all_sent) {
         command_sent_.store(published, std::memory_order_release);
         last_write_ns = now;
-      } else if (sx != UsbStatus::Timeout && sx != UsbStatus::Ok) {
-        set_fault(sx == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed, sx);
-        return;
-      } else if (sy != UsbStatus::Timeout && sy != UsbStatus::Ok) {
-        set_fault(sy == UsbStatus::NoDevice ? DeviceFault::Unplugged : DeviceFault::WriteFailed, sy);
-        return;
       } else if (static_cast<double>(now - last_write_ns) * 1e-9 > options_.stale_limit_s) {
         // A device that takes no force for as long as the position watchdog allows is gone quiet.
         set_fault(DeviceFault::WriteFailed, UsbStatus::Timeout);
         return;
       }
-      // A transfer that timed out (the device NAKed it past the timeout) is not yet a fault: the
-      // latest command goes out on the next cycle.
     }
     io_cycles_.fetch_add(1, std::memory_order_release);
     next += period_ns;
@@ -201,10 +210,11 @@ void HidPidJoystick::fail_open(UsbStatus status, const std::string& what) {
 }
 
 UsbStatus HidPidJoystick::write_open(std::span<const std::uint8_t> r) noexcept {
-  const std::int64_t until = monotonic_ns() + std::int64_t{options_.open_write_timeout_ms} * 1'000'000;
+  const std::int64_t until = closed_ ? close_deadline_ns_
+                                     : monotonic_ns() + std::int64_t{options_.open_write_timeout_ms} * 1'000'000;
   for (;;) {
     const UsbStatus s = transport_.write_output(r);
-    if (s != UsbStatus::Timeout || closed_ || monotonic_ns() >= until) return s;
+    if (s != UsbStatus::Timeout || monotonic_ns() >= until) return s;
   }
 }
 
@@ -363,12 +373,8 @@ void HidPidJoystick::device_control(std::uint32_t command_usage) {
   // Array: the command's value. Bits: this command's bit set, every other clear (the OpenFFBoard
   // acts on each set bit in turn, HidFFB.cpp:205-224).
   write_field(b, ids_, f, f.variable ? 1 : *f.array_value(command_usage));
-  const auto bytes = report(b, descriptor_.report_bytes(ReportType::Output, f.report_id));
-  if (closed_) {
-    transport_.write_output(bytes);  // the shutdown sequence: best effort, once
-    return;
-  }
-  const UsbStatus s = write_open(bytes);
+  const UsbStatus s = write_open(report(b, descriptor_.report_bytes(ReportType::Output, f.report_id)));
+  if (closed_) return;  // the shutdown sequence: best effort
   if (s != UsbStatus::Ok)
     fail_step(s, "Device Control (" + device_control_name(command_usage) + ")", ReportType::Output, f.report_id, f.report_usage);
 }
@@ -556,9 +562,15 @@ void HidPidJoystick::close() noexcept {
   closed_ = true;
   // From here the transport is used by this thread alone.
   stop_io_thread();
+  // Each report of the sequence is sent again while the device NAKs it past the transfer's
+  // timeout, all of them within close_timeout_ms; a device that is gone fails them at once.
+  close_deadline_ns_ = monotonic_ns() + std::int64_t{options_.close_timeout_ms} * 1'000'000;
   try {
-    for (int axis = 0; axis < 2; ++axis)
-      if (block_index_[static_cast<std::size_t>(axis)]) send_constant_force(axis, 0);
+    for (std::size_t a = 0; a < 2; ++a)
+      if (block_index_[a]) {
+        write_field(cf_report_[a], ids_, magnitude_, 0);
+        if (write_open({cf_report_[a].data(), cf_bytes_}) == UsbStatus::Ok) last_command_[a].store(0, std::memory_order_relaxed);
+      }
     const HidField* op_index = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
     const HidField* op = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectOperation);
     for (std::size_t a = 0; a < 2; ++a)
@@ -569,7 +581,7 @@ void HidPidJoystick::close() noexcept {
         write_field(b, ids_, *op, *op->array_value(pid::kOpEffectStop));
         if (const HidField* f = descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kLoopCount))
           write_field(b, ids_, *f, 0);
-        transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, op->report_id)));
+        write_open(report(b, descriptor_.report_bytes(ReportType::Output, op->report_id)));
         started_[a] = false;
       }
     if (const HidField* free_index = descriptor_.find(ReportType::Output, pid::kBlockFreeReport, pid::kEffectBlockIndex))
@@ -578,7 +590,7 @@ void HidPidJoystick::close() noexcept {
           Buffer b{};
           b[0] = free_index->report_id;
           write_field(b, ids_, *free_index, block_index_[a]);
-          transport_.write_output(report(b, descriptor_.report_bytes(ReportType::Output, free_index->report_id)));
+          write_open(report(b, descriptor_.report_bytes(ReportType::Output, free_index->report_id)));
         }
     block_index_ = {0, 0};
     if (actuators_enabled_) {

@@ -20,7 +20,12 @@ namespace sandpaper::runtime::usb {
 namespace {
 
 constexpr unsigned kControlTimeoutMs = 1000;
-constexpr unsigned kTickWriteTimeoutMs = 10;
+// An output report waits this long for the device to take it. A timed-out interrupt OUT transfer is
+// cancelled and its report lost; with a short timeout, a device that re-arms its OUT endpoint more
+// slowly than that after each report (the lab's firmware under load: 10-40 ms) NAKs the X report
+// every cycle while the Y report, sent after the wait, gets through: X starves. The driver's
+// watchdog, not this timeout, bounds how long a device may take no force.
+constexpr unsigned kOutputTimeoutMs = 100;
 constexpr std::uint8_t kHidClass = 3;
 constexpr std::uint8_t kHidDescriptorType = 0x21, kReportDescriptorType = 0x22;
 constexpr std::uint8_t kGetReport = 0x01, kSetReport = 0x09;
@@ -265,11 +270,11 @@ UsbStatus LibusbTransport::named(int rc) noexcept {
   const UsbStatus s = usb_status_from_libusb(rc);
   if (s != UsbStatus::Other) return s;
   // A device that leaves the bus fails the transfers in flight with an I/O error (EPROTO,
-  // ESHUTDOWN) before the kernel reports it gone: ask it something; no answer means unplugged.
+  // ESHUTDOWN) before the kernel reports it gone: ask it for its status (USB 2.0 section 9.4.5).
+  // A device that answers had a transfer fail; one that does not is gone from the host's view.
   std::uint8_t status[2];
-  if (libusb_control_transfer(handle_, 0x80, LIBUSB_REQUEST_GET_STATUS, 0, 0, status, 2, 100) == LIBUSB_ERROR_NO_DEVICE)
-    return UsbStatus::NoDevice;
-  return s;
+  return libusb_control_transfer(handle_, 0x80, LIBUSB_REQUEST_GET_STATUS, 0, 0, status, 2, 100) == 2 ? s
+                                                                                                      : UsbStatus::NoDevice;
 }
 
 UsbStatus LibusbTransport::submit_input() noexcept {
@@ -360,10 +365,10 @@ UsbStatus LibusbTransport::set_report(int type, std::span<const std::uint8_t> re
 }
 
 UsbStatus LibusbTransport::write_output(std::span<const std::uint8_t> report) noexcept {
-  if (!endpoint_out_) return set_report(kOutputReport, report, kTickWriteTimeoutMs);
+  if (!endpoint_out_) return set_report(kOutputReport, report, kOutputTimeoutMs);
   int sent = 0;
   const int rc = libusb_interrupt_transfer(handle_, endpoint_out_, const_cast<std::uint8_t*>(report.data()),
-                                           static_cast<int>(report.size()), &sent, kTickWriteTimeoutMs);
+                                           static_cast<int>(report.size()), &sent, kOutputTimeoutMs);
   return named(rc);
 }
 

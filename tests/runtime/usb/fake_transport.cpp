@@ -66,8 +66,7 @@ UsbStatus FakeTransport::read_input(std::span<std::uint8_t> buffer, std::size_t&
   length = 0;
   note_thread();
   if (unplugged_) return UsbStatus::NoDevice;
-  // The fake's events arrive when read: none has arrived before a read that waits for it.
-  if (timeout_ms == 0) return UsbStatus::Timeout;
+  if (timeout_ms == 0 && !inputs_arrived) return UsbStatus::Timeout;
   if (next_input_ >= inputs_.size() && !(repeat_last_input && !inputs_.empty())) return after_end;
   const InputEvent& e = inputs_[std::min(next_input_++, inputs_.size() - 1)];
   if (e.status != UsbStatus::Ok) return e.status;

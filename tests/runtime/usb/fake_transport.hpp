@@ -42,6 +42,10 @@ class FakeTransport final : public UsbTransport {
   UsbStatus after_end = UsbStatus::Timeout;
   // After the last input event, keep answering with the last report (a device streaming positions).
   bool repeat_last_input = false;
+  // Whether a read that does not wait (timeout 0) gets the next input event: false, the events
+  // arrive only when waited for (so the open sequence leaves a test's queued positions alone);
+  // true, every event has already arrived (the driver's I/O thread, which never waits).
+  bool inputs_arrived = false;
   // From now every output transfer blocks until release_outputs(): a transfer that never completes.
   void hang_outputs() { hang_.store(true); }
   void release_outputs() { hang_.store(false); }

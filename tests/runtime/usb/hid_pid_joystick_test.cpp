@@ -136,6 +136,35 @@ TEST(HidPidJoystick, CloseSendsTheShutdownSequenceAndGivesTheDeviceBack) {
   EXPECT_FALSE(t->claimed());
 }
 
+// A busy firmware NAKs reports of the shutdown too (seen in the USB lab after Ctrl-C): each is
+// sent again, so the device still ends with zero force, its effects freed and its actuators off.
+TEST(HidPidJoystick, AShutdownReportTheDeviceNaksIsSentAgain) {
+  auto t = testing::primed_transport();
+  std::size_t start = 0;
+  {
+    HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+    ASSERT_TRUE(joystick.write_force_rt({1.0, 1.0}));
+    start = t->log().size();
+    t->time_out_outputs(4);
+  }
+  expect_steps(steps(*t, start), kShutdown);
+}
+
+// ... within close_timeout_ms: a device that takes nothing does not hold the program.
+TEST(HidPidJoystick, AShutdownThatKeepsTimingOutEndsWithinItsLimit) {
+  auto t = testing::primed_transport();
+  HidPidOptions options = testing::synchronous();
+  options.close_timeout_ms = 30;
+  HidPidJoystick joystick(*t, testing::openffboard(), options);
+  const std::size_t start = t->log().size();
+  t->time_out_outputs(std::numeric_limits<std::size_t>::max());
+  joystick.close();
+  const auto got = steps(*t, start);
+  ASSERT_EQ(got.size(), 2u);  // nothing reached the device but the interface was given back
+  EXPECT_EQ(static_cast<int>(got[0].op), static_cast<int>(Op::Release));
+  EXPECT_EQ(static_cast<int>(got[1].op), static_cast<int>(Op::Attach));
+}
+
 TEST(HidPidJoystick, InputReportsDecodeToMetresOverTheCalibratedWorkspace) {
   auto t = testing::primed_transport();
   // A PID State report (ID 2) first: skipped. Then X = 16384, Y = -32767 of -32767..32767 over the
@@ -288,6 +317,19 @@ class ConstantForce final : public ForceSource {
   glm::dvec2 f_;
 };
 
+// A force that rises by 1 N/s on both axes: a new command unit (1 mN) every 1 ms tick.
+class RisingForce final : public ForceSource {
+ public:
+  glm::dvec2 force_rt(const HandState&, double dt_s) noexcept override {
+    t_s_ += dt_s;
+    return {0.5 + t_s_, 0.5 + t_s_};
+  }
+  void reset_rt(const HandState&) noexcept override { t_s_ = 0; }
+
+ private:
+  double t_s_ = 0;
+};
+
 ServoConfig config(double duration_s) {
   ServoConfig c;
   c.rate_hz = 1000;
@@ -394,6 +436,7 @@ std::unique_ptr<testing::FakeTransport> streaming_transport() {
   auto t = testing::primed_transport();
   t->add_input({UsbStatus::Ok, testing::position_report(16384, -32767)});
   t->repeat_last_input = true;
+  t->inputs_arrived = true;
   return t;
 }
 
@@ -418,6 +461,20 @@ TEST(HidPidJoystickIoThread, TheTickPublishesAndTheIoThreadSends) {
   EXPECT_EQ(joystick.last_command()[0], -1500);
 }
 
+// A full-speed interrupt OUT endpoint moves one report per 1 ms frame: an axis whose magnitude has
+// not changed is not sent again, so a texture scanned along X gets every frame.
+TEST(HidPidJoystickIoThread, OnlyAnAxisWhoseForceChangedIsSent) {
+  auto t = streaming_transport();
+  HidPidJoystick joystick(*t, testing::openffboard());
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
+  const std::size_t start = t->log().size();
+  ASSERT_TRUE(joystick.write_force_rt({1.5, 0.0}));  // Y stays at the zero the open sent
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
+  ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));  // now only Y changes
+  ASSERT_TRUE(joystick.flush_nonrt(30.0));
+  expect_steps(steps(*t, start), {{Op::Output, {0x05, 0x01, 0x24, 0xFA}}, {Op::Output, {0x05, 0x02, 0xCA, 0x08}}});
+}
+
 // A Set Constant Force the device NAKs past the transfer's timeout (seen in the USB lab, where the
 // firmware re-arms its OUT endpoint only after taking the last report) is sent again, not a fault.
 TEST(HidPidJoystickIoThread, AForceTransferThatTimesOutIsSentAgain) {
@@ -429,10 +486,8 @@ TEST(HidPidJoystickIoThread, AForceTransferThatTimesOutIsSentAgain) {
   ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
   ASSERT_TRUE(joystick.flush_nonrt(30.0));  // sent in the end
   EXPECT_EQ(joystick.fault(), DeviceFault::None);
-  const auto got = steps(*t, start);
-  ASSERT_GE(got.size(), 2u);
-  EXPECT_EQ(got[got.size() - 2].bytes, (Bytes{0x05, 0x01, 0x24, 0xFA}));
-  EXPECT_EQ(got.back().bytes, (Bytes{0x05, 0x02, 0xCA, 0x08}));
+  // Each axis's report reached the device once (the one that got through first is not sent again).
+  expect_steps(steps(*t, start), {{Op::Output, {0x05, 0x02, 0xCA, 0x08}}, {Op::Output, {0x05, 0x01, 0x24, 0xFA}}});
 }
 
 // ... but a device that takes no force at all for the watchdog's time has gone quiet.
@@ -506,7 +561,7 @@ TEST(HidPidJoystickIoThread, UnplugMidRunStopsTheLoopWithTheCauseNamed) {
   HidPidJoystick joystick(*t, testing::openffboard(), options);
   ASSERT_TRUE(joystick.flush_nonrt(30.0));
   t->unplug_after_outputs(20);  // ten forces sent, then the device is gone
-  ConstantForce source({0.5, 0.5});  // published every tick, so sent every I/O cycle
+  RisingForce source;  // a new magnitude every tick, so sent every I/O cycle
   ServoConfig c = config(10.0);
   c.deadline_guard_periods = 1e6;
   const ServoReport report = run_servo_thread_nonrt(joystick, source, c);

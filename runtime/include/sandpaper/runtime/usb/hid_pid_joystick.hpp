@@ -36,7 +36,9 @@ enum class HidPidIo {
 };
 
 struct HidPidOptions {
-  unsigned read_timeout_ms = 1;     // longest wait for an input report per read (a 1 kHz endpoint reports every 1 ms)
+  // CallingThread: longest wait for an input report per read (a 1 kHz endpoint reports every 1 ms).
+  // The I/O thread takes what has arrived without waiting.
+  unsigned read_timeout_ms = 1;
   // Longest time without a position report before the read fails (the watchdog), s. 0: 50 ms, or
   // twice the device calibration's [usb] idle_report_period when that is longer (a handle held
   // still is not a device gone quiet).
@@ -45,6 +47,8 @@ struct HidPidOptions {
   // How long an output report of the open sequence may keep timing out (the device NAKing it, as a
   // busy firmware does) before the open fails; each try waits the transport's own timeout.
   unsigned open_write_timeout_ms = 2000;
+  // How long the whole shutdown sequence may spend resending reports that time out.
+  unsigned close_timeout_ms = 500;
   HidPidIo io = HidPidIo::IoThread;
 };
 
@@ -107,7 +111,8 @@ class HidPidJoystick final : public Device {
   std::int32_t command_of(int axis, double force_N) const noexcept;
   void set_fault(DeviceFault fault, UsbStatus status) noexcept;
   void device_control(std::uint32_t command_usage);
-  // An output report of the open sequence, sent again while it times out (open_write_timeout_ms).
+  // An output report of the open or shutdown sequence, sent again while it times out (for up to
+  // open_write_timeout_ms, or until close_deadline_ns_ once closing).
   UsbStatus write_open(std::span<const std::uint8_t> report) noexcept;
   // Fails the open naming the step, the report (type, ID) and its HID usage, and the transport's cause.
   [[noreturn]] void fail_step(UsbStatus status, const std::string& step, ReportType type, std::uint8_t report_id,
@@ -138,6 +143,7 @@ class HidPidJoystick final : public Device {
   Buffer input_{};
 
   bool detached_ = false, claimed_ = false, closed_ = false, actuators_enabled_ = false;
+  std::int64_t close_deadline_ns_ = 0;  // CLOCK_MONOTONIC
   std::array<std::uint8_t, 2> block_index_{0, 0};  // 0: no effect created
   std::array<bool, 2> started_{false, false};
   std::array<std::atomic<std::int32_t>, 2> last_command_{};
