@@ -12,7 +12,7 @@ FFB_DEVICE_LOG=/tmp/ffboard-device.log
 # guest's punctuality, ends a run: a loaded machine stalls the guest for hundreds of milliseconds,
 # past the servo's 50 ms deadline guard and the driver's 202 ms watchdog for this device, and the
 # positions that arrive in a burst after a stall read as a hand far faster than the scripted one
-# (the velocity filter takes every tick as one period apart; docs/USB_PID.md item 11).
+# (the velocity filter takes every tick as one period apart; docs/USB_PID.md item 13).
 LAB_RUN_GUARDS="--deadline-guard 600000 --watchdog 1000 --velocity-limit 20"
 
 # The gadget as the firmware describes itself (sandpaper-lab-device --identity: key=value lines).
