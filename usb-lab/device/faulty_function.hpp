@@ -7,7 +7,7 @@
 #include <optional>
 #include <thread>
 
-#include "usb_function.hpp"
+#include "forwarding_function.hpp"
 
 namespace sandpaper::usb_lab {
 
@@ -22,9 +22,9 @@ struct StalledReport {
   }
 };
 
-class FaultyFunction final : public UsbFunction {
+class FaultyFunction final : public ForwardingFunction {
  public:
-  explicit FaultyFunction(UsbFunction& inner) : inner_(inner) {}
+  explicit FaultyFunction(UsbFunction& inner) : ForwardingFunction(inner) {}
 
   // Every GET_REPORT and SET_REPORT of this report is refused from now on.
   void stall(StalledReport r) { stalled_ = r; }
@@ -32,27 +32,18 @@ class FaultyFunction final : public UsbFunction {
   void silence_input() noexcept { silent_.store(true, std::memory_order_relaxed); }
   bool input_silenced() const noexcept { return silent_.load(std::memory_order_relaxed); }
 
-  DeviceIdentity identity() const override { return inner_.identity(); }
-  std::vector<std::uint8_t> function_descriptors() const override { return inner_.function_descriptors(); }
-  std::string string_descriptor(std::uint8_t index) const override { return inner_.string_descriptor(index); }
-  void configured() override { inner_.configured(); }
-  void deconfigured() override { inner_.deconfigured(); }
-  void suspended(bool s) override { inner_.suspended(s); }
   bool accepts(const SetupPacket& setup) const override { return !(stalled_ && stalled_->matches(setup)) && inner_.accepts(setup); }
   ControlReply control(const SetupPacket& setup, std::span<const std::uint8_t> out_data) override {
     if (stalled_ && stalled_->matches(setup)) return ControlReply{true, {}};
     return inner_.control(setup, out_data);
   }
-  void interrupt_out(std::span<const std::uint8_t> data) override { inner_.interrupt_out(data); }
   bool next_interrupt_in(std::vector<std::uint8_t>& report, std::chrono::microseconds wait) override {
     if (!input_silenced()) return inner_.next_interrupt_in(report, wait);
     std::this_thread::sleep_for(wait);
     return false;
   }
-  void interrupt_in_done(bool delivered) override { inner_.interrupt_in_done(delivered); }
 
  private:
-  UsbFunction& inner_;
   std::optional<StalledReport> stalled_;
   std::atomic<bool> silent_{false};
 };

@@ -61,17 +61,13 @@ if [ "$FAULT" = unplug ]; then
 elif [ "$FAULT" = reset ]; then
   lab_wait_usb_device "$FFB_VID" "$FFB_PID" 60 && FFB_USB_DEV=$LAB_USB_DEV && lab_wait_hidraw "$FFB_USB_DEV" 60
 fi
-_usbhid_back() { [ "$(ffboard_interface_driver)" = usbhid ]; }
-lab_poll 10 "usbhid to be bound again" _usbhid_back
-driver_after=$(ffboard_interface_driver)
-input_after=
-lab_wait_input "$FFB_USB_DEV" 10 && input_after=$LAB_INPUT
+ffboard_given_back
 ffboard_stop
 sed 's/^/run: /' /out/run.err
 cat > /out/fault.json <<JSON
 {"fault": "$FAULT", "run_status": $run_status, "exit_after_cs": ${exit_after_cs:-null},
- "driver_before": "$driver_before", "driver_during": "$driver_during", "driver_after": "$driver_after",
- "input_after": "$input_after", "replug_devices_status": ${replug_devices_status:-null},
+ "driver_before": "$driver_before", "driver_during": "$driver_during", "driver_after": "$DRIVER_AFTER",
+ "input_after": "$INPUT_AFTER", "replug_devices_status": ${replug_devices_status:-null},
  "replay_status": ${replay_status:-null}}
 JSON
 cat /out/fault.json

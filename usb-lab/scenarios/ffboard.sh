@@ -71,3 +71,13 @@ ffboard_interface_driver() {
     return 0
   done
 }
+
+# After a run: waits until usbhid has the joystick's interface again, then sets DRIVER_AFTER (the
+# interface's driver) and INPUT_AFTER (the kernel's input device for it, empty if none).
+_ffboard_usbhid_back() { [ "$(ffboard_interface_driver)" = usbhid ]; }
+ffboard_given_back() {
+  lab_poll 10 "usbhid to be bound again" _ffboard_usbhid_back
+  DRIVER_AFTER=$(ffboard_interface_driver)
+  INPUT_AFTER=
+  lab_wait_input "$FFB_USB_DEV" 10 && INPUT_AFTER=$LAB_INPUT
+}

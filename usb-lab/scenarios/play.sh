@@ -19,15 +19,11 @@ driver_during=
 lab_poll 30 "the run to detach usbhid" _detached
 wait "$run_pid"
 run_status=$?
-_usbhid_back() { [ "$(ffboard_interface_driver)" = usbhid ]; }
-lab_poll 10 "usbhid to be bound again" _usbhid_back
-driver_after=$(ffboard_interface_driver)
-input_after=
-lab_wait_input "$FFB_USB_DEV" 10 && input_after=$LAB_INPUT
+ffboard_given_back
 ffboard_stop
 sed 's/^/run: /' /out/run.err
 cat > /out/play.json <<JSON
 {"run_status": $run_status, "driver_before": "$driver_before", "driver_during": "$driver_during",
- "driver_after": "$driver_after", "input_after": "$input_after"}
+ "driver_after": "$DRIVER_AFTER", "input_after": "$INPUT_AFTER"}
 JSON
 cat /out/play.json
