@@ -88,8 +88,8 @@ void add_play_options(CLI::App* run, PlayRequest& r) {
                   "stop (deadline_missed) when a tick starts this many servo periods late (0: 50 ms)")
       ->capture_default_str();
   run->add_option("--velocity-limit", r.velocity_limit_m_s,
-                  "stop (velocity_limit) when the filtered hand speed exceeds this, m/s")
-      ->check(CLI::PositiveNumber)
+                  "stop (velocity_limit) when the filtered hand speed exceeds this, m/s (0.01 to 100)")
+      ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
   run->add_option("--watchdog", r.watchdog_ms,
                   "--device usb: stop (device_read_timeout, device_write_failed) when the joystick sends no position or "
