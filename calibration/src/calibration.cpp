@@ -184,6 +184,11 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
   d.usb_vendor_id = static_cast<int>(c["usb"]["vendor_id"].value_or(std::int64_t{-1}));
   if (const auto* idle = c["usb"]["idle_report_period"].node()) d.usb_idle_report_period_s = detail::quantity_si(*idle);
   d.usb_product_id = static_cast<int>(c["usb"]["product_id"].value_or(std::int64_t{-1}));
+  if (c["firmware"].is_table()) {
+    d.firmware.update_rate_hz = c["firmware"]["update_rate_hz"].value_or(0.0);
+    if (const auto* fade = c["firmware"]["fade_in"].node()) d.firmware.fade_in_s = detail::quantity_si(*fade);
+    d.firmware.damping_command_s_per_m = c["firmware"]["damping_command_s_per_m"].value_or(0.0);
+  }
   d.roughness_map = c["maps"]["roughness"].value_or(std::string());
   if (c["emulation"].is_table()) {
     d.emulated = true;
@@ -265,6 +270,10 @@ double DeviceCalibration::quantize_N(int a, double newtons) const {
   if (!quantized()) return newtons;
   const auto& s = axis_scale(a);
   return s.newtons(std::round(s.command(newtons)));
+}
+
+double DeviceCalibration::firmware_damping_N(int a, double speed_m_s) const {
+  return axis_scale(a).newtons(firmware.damping_command_s_per_m * std::abs(speed_m_s));
 }
 
 double ForceJndData::steps_between(double f1_N, double f2_N) const {

@@ -27,7 +27,7 @@ std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s 
 
 std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& p,
                          const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device,
-                         double design_speed_m_s) {
+                         double design_speed_m_s, double position_rate_hz) {
   const auto& map = cal.roughness_map();
   std::ostringstream os;
   os << std::setprecision(4);
@@ -121,6 +121,15 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
         os << "    smoothing " << r.smoothing_m * 1e3 << " mm on the grating: " << r.smoothed.peak_N << " N, roughness "
            << map.percept_of(r.smoothed.peak_N) << "\n";
     }
+  }
+  if (const auto out = device_output_at_speed(p, device, {0.02, 0.05, 0.1, 0.2},
+                                                   position_rate_hz > 0 ? std::min(rate, position_rate_hz) : rate);
+      !out.empty()) {
+    os << "\nout of " << device.name << " (through its firmware: forces read at " << std::lround(out.front().rate_hz)
+       << " Hz, its damper against the motion; mean peak per ridge, both ways; docs/USB_PID.md)\n";
+    for (const auto& o : out)
+      os << "  " << o.speed_m_s * 1e3 << " mm/s  " << o.peak_N << " N  (" << o.commanded_peak_N << " N commanded, "
+         << o.damping_N << " N damper)\n";
   }
   if (device.emulated && device.position_resolution_m > 0) {
     const double step_N = device.quantized() ? device.force_step_N(0) : 0.0;

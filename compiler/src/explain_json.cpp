@@ -11,7 +11,7 @@
 namespace sandpaper::compiler {
 
 nlohmann::json explain_json(const ResolvedMaterial& material, const schema::PatchProgram& prog, const Compiler& c,
-                            double design_speed_m_s) {
+                            double design_speed_m_s, double position_rate_hz) {
   nlohmann::json j = nlohmann::json::object();
   j["knowledge"] = compiler::knowledge_json(compiler::assess_knowledge(material, prog, c.calibration()),
                                             c.calibration());
@@ -21,6 +21,13 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
   for (const auto& f : compiler::felt_at_explain_speeds(prog, rate))
     felt.push_back({{"speed_mm_s", f.speed_m_s * 1e3}, {"rate_hz", f.rate_hz}, {"peak_N", f.peak_N}, {"fraction", f.fraction}});
   j["felt_at_speed"] = felt;
+  // Through the device's own firmware ([firmware] in its calibration file): empty without one.
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& o : compiler::device_output_at_speed(prog, c.device(), {0.02, 0.05, 0.1, 0.2},
+                                                             position_rate_hz > 0 ? std::min(rate, position_rate_hz) : rate))
+    out.push_back({{"speed_mm_s", o.speed_m_s * 1e3}, {"rate_hz", o.rate_hz}, {"commanded_peak_N", o.commanded_peak_N},
+                   {"damping_N", o.damping_N}, {"device_peak_N", o.peak_N}});
+  j["device_output_at_speed"] = out;
   // The remedies at each common hand speed (W0350), measured: a faster servo, or wider walls.
   nlohmann::json remedies = nlohmann::json::array();
   const double weber = c.calibration().knowledge().force_jnd.weber_fraction;

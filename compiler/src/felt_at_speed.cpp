@@ -91,16 +91,31 @@ double best_on_lattice(const std::vector<float>& t, double sign, double x0, doub
   return best;
 }
 
-}  // namespace
+// What a hand meets on a ridge the ticks read `best` on, with a steady force `damping_N` against
+// its motion added. Scanning one way, the ridges whose force points against the motion rise to
+// best + damping; the others fall to best - damping, and where they fall below it, the ridge's
+// edges, where the grating's force is near zero, leave the damper's |F|. The two directions
+// alternate, so each ridge counts once each way.
+double with_damper(double best, double damping_N) {
+  if (damping_N <= 0) return best;
+  return 0.5 * ((best + damping_N) + std::max(damping_N, std::abs(best - damping_N)));
+}
 
-std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std::vector<double>& speeds_m_s,
-                                       const std::vector<double>& rates_hz) {
-  std::vector<FeltAtSpeed> out;
+const schema::GratingTerm* first_grating(const schema::PatchProgram& p) {
   const schema::GratingTerm* g = nullptr;
   for (const auto& t : p.terms)
     if ((g = std::get_if<schema::GratingTerm>(&t))) break;
-  if (!g || g->force_N.empty() || !(g->period_m > 0)) return out;
-  const auto& table = g->force_N;
+  if (!g || g->force_N.empty() || !(g->period_m > 0)) return nullptr;
+  return g;
+}
+
+// Mean over ridges and first-tick phases of what a hand meets at speed v, rate `rate`, with a
+// damper of `damping_N(v)` against the motion (0: the ticks' reads alone).
+template <class Damping>
+std::vector<FeltAtSpeed> felt_with(const schema::GratingTerm& g, const std::vector<double>& speeds_m_s,
+                                   const std::vector<double>& rates_hz, Damping damping_N) {
+  std::vector<FeltAtSpeed> out;
+  const auto& table = g.force_N;
   const auto n = static_cast<double>(table.size());
   const auto ridges = ridges_of(table);
   double continuous = 0;
@@ -110,17 +125,49 @@ std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std:
   for (double rate : rates_hz)
     for (double v : speeds_m_s) {
       FeltAtSpeed f{v, rate, 0, 0};
-      const double step = v / rate / g->period_m * n;  // one tick's travel, in samples
+      const double step = v / rate / g.period_m * n;  // one tick's travel, in samples
+      const double d = damping_N(v);
       double sum = 0;
       for (const auto& r : ridges) {
         // The ridge's force lives between the zero-or-opposite samples on either side of it.
         const double lo = r.first - 1, hi = r.last + 1;
-        for (int k = 0; k < kPhases; ++k) sum += best_on_lattice(table, r.sign, lo + step * (k + 0.5) / kPhases, step, hi);
+        for (int k = 0; k < kPhases; ++k)
+          sum += with_damper(best_on_lattice(table, r.sign, lo + step * (k + 0.5) / kPhases, step, hi), d);
       }
       f.peak_N = ridges.empty() ? 0 : sum / (kPhases * static_cast<double>(ridges.size()));
       f.fraction = continuous > 0 ? f.peak_N / continuous : 0;
       out.push_back(f);
     }
+  return out;
+}
+
+}  // namespace
+
+std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std::vector<double>& speeds_m_s,
+                                       const std::vector<double>& rates_hz) {
+  const auto* g = first_grating(p);
+  if (!g) return {};
+  return felt_with(*g, speeds_m_s, rates_hz, [](double) { return 0.0; });
+}
+
+std::vector<DeviceOutputAtSpeed> device_output_at_speed(const schema::PatchProgram& p,
+                                                        const calibration::DeviceCalibration& device,
+                                                        const std::vector<double>& speeds_m_s, double servo_rate_hz) {
+  std::vector<DeviceOutputAtSpeed> out;
+  const auto* g = first_grating(p);
+  if (!g || !device.has_firmware()) return out;
+  // The firmware applies the latest command at each of its updates: the force reaches the motor
+  // at the slower of the two rates.
+  const double rate = std::min(servo_rate_hz, device.firmware.update_rate_hz);
+  // The hand moves along the grating's normal; each axis's damper acts on its part of the speed.
+  const double nx = std::cos(g->orientation_rad), ny = std::sin(g->orientation_rad);
+  const auto damping = [&](double v) {
+    return device.firmware_damping_N(0, v * nx) * std::abs(nx) + device.firmware_damping_N(1, v * ny) * std::abs(ny);
+  };
+  const auto commanded = felt_with(*g, speeds_m_s, {rate}, [](double) { return 0.0; });
+  const auto output = felt_with(*g, speeds_m_s, {rate}, damping);
+  for (std::size_t i = 0; i < speeds_m_s.size(); ++i)
+    out.push_back({speeds_m_s[i], rate, commanded[i].peak_N, damping(speeds_m_s[i]), output[i].peak_N});
   return out;
 }
 

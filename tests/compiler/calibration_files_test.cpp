@@ -146,6 +146,14 @@ TEST(CalibrationFiles, DeviceFilesInSIUnits) {
   EXPECT_FALSE(usb->calibrated());
   EXPECT_FALSE(usb->workspace_circle);
   EXPECT_EQ(usb->file, "calibration/devices/openffboard-2axis.toml");
+  // [firmware]: the OpenFFBoard's chain (usb-lab/firmware/README.md): 1001 us updates, a 2 s fade,
+  // its damper 9000 deg/m x 30 x 28 / 204 command units per m/s, at 1 mN per unit.
+  ASSERT_TRUE(usb->has_firmware());
+  EXPECT_NEAR(usb->firmware.update_rate_hz, 1e6 / 1001, 0.1);
+  EXPECT_DOUBLE_EQ(usb->firmware.fade_in_s, 2.0);
+  EXPECT_NEAR(usb->firmware_damping_N(0, 0.1), 9000.0 * 30 * 28 / 204 * 0.1 * 0.001, 1e-3);
+  EXPECT_NEAR(usb->firmware_damping_N(1, -0.1), usb->firmware_damping_N(1, 0.1), 1e-12);
+  EXPECT_FALSE(cal.find_device("sandpaper-1995")->has_firmware());
   const auto* sim = cal.find_device("sim");
   ASSERT_NE(sim, nullptr);
   EXPECT_FALSE(sim->quantized());
@@ -245,6 +253,16 @@ TEST(CalibrationFiles, ConsistencyRulesBeyondTheSchema) {
     text.erase(from, to - from);
     write(f, text);
     EXPECT_NE(load_error(dir).find("needs a [ratio_scale]"), std::string::npos);
+  }
+  {
+    // A misspelt firmware key, and a filter the model does not know.
+    auto dir = copy_of_shipped("cal-firmware");
+    auto f = dir / "devices/openffboard-2axis.toml";
+    write(f, replace(replace(read(f), "fade_in = ", "fadein = "), "constant_force_filter = \"none\"",
+                     "constant_force_filter = \"biquad\""));
+    const auto err = load_error(dir);
+    EXPECT_NE(err.find("`firmware.fadein`: unknown key"), std::string::npos) << err;
+    EXPECT_NE(err.find("constant_force_filter"), std::string::npos) << err;
   }
   {
     // A force table that falls.

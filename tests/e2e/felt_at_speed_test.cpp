@@ -157,3 +157,77 @@ TEST(FeltAtSpeed, WarningsRemediesHoldOnTheSimulatedJoystick) {
   // A wide grating loses nothing worth a JND: no warning.
   EXPECT_TRUE(test::codes(c.compile_text("grating period 10 mm; roughness 0.5"), compiler::Severity::Warning).empty());
 }
+
+namespace {
+
+// A grating of amplitude 1 N whose force is zero where |sin| < `flat` (the flat tops and floors of a
+// hill below 100 %), else the sine.
+double grating_N(double x, double period_m, double flat) {
+  const double v = std::sin(2 * M_PI * x / period_m);
+  return std::abs(v) < flat ? 0.0 : v;
+}
+
+// A hand scanning that grating both ways at `speed_m_s`, read at `rate_hz`, with `damping_N`
+// against its motion; each ridge is the half period where the sine has one sign, and its peak the
+// largest |F| a tick meets there. Mean over ridges, both directions and 64 first-tick phases:
+// explain's device-output measure, counted directly.
+double scanned_with_damper(double period_m, double flat, double speed_m_s, double rate_hz, double damping_N) {
+  const double step = speed_m_s / rate_hz, half = period_m / 2;
+  const int ridges = 40;
+  double sum = 0;
+  int count = 0;
+  for (int phase = 0; phase < 64; ++phase)
+    for (int direction : {+1, -1}) {
+      std::vector<double> peak(ridges, 0.0);
+      for (double x = step * (phase + 0.5) / 64; x < ridges * half; x += step) {
+        const double f = grating_N(x, period_m, flat) - direction * damping_N;
+        auto& p = peak[static_cast<std::size_t>(x / half)];
+        p = std::max(p, std::abs(f));
+      }
+      for (double p : peak) sum += p, ++count;
+    }
+  return sum / count;
+}
+
+}  // namespace
+
+// docs/USB_PID.md "The device's chain": the force a device outputs through its firmware, checked
+// against the scan counted tick by tick, for a damper below half the grating's amplitude (it
+// cancels between the ridges), between half and all of it, and above it. Exact where the grating
+// has flats between its ridges (ticks there meet the damper alone); on a pure sine the ticks
+// nearest a zero crossing meet a little less than the damper, so the prediction is a bound.
+TEST(DeviceOutputAtSpeed, MatchesAScanWithTheFirmwaresDamperCountedTickByTick) {
+  for (double flat : {0.3, 0.0}) {
+    schema::PatchProgram p;
+    schema::GratingTerm g;
+    g.period_m = 2e-3;
+    for (int i = 0; i < 1024; ++i) g.force_N.push_back(static_cast<float>(grating_N(g.period_m * i / 1024, g.period_m, flat)));
+    p.terms.emplace_back(g);
+    calibration::DeviceCalibration d;
+    d.axis[0].newtons_per_command_unit = d.axis[1].newtons_per_command_unit = 0.001;
+    d.firmware.update_rate_hz = 999;
+    const double v = 0.05;
+    for (double damping_N : {0.3, 0.8, 2.0}) {
+      d.firmware.damping_command_s_per_m = damping_N / 0.001 / v;
+      const auto out = compiler::device_output_at_speed(p, d, {v}, 1000);
+      ASSERT_EQ(out.size(), 1u);
+      EXPECT_DOUBLE_EQ(out[0].rate_hz, 999);  // the slower of servo and firmware
+      EXPECT_NEAR(out[0].damping_N, damping_N, 1e-9);
+      const double counted = scanned_with_damper(g.period_m, flat, v, 999, damping_N);
+      if (flat > 0) {
+        EXPECT_NEAR(out[0].peak_N, counted, 0.01 * counted) << "damper " << damping_N << " N";
+      } else {
+        EXPECT_GE(out[0].peak_N, counted - 0.002) << "damper " << damping_N << " N";
+        EXPECT_NEAR(out[0].peak_N, counted, 0.025 * counted) << "damper " << damping_N << " N";
+      }
+    }
+    // Below half the amplitude the damper adds nothing to the mean; above it, it adds.
+    d.firmware.damping_command_s_per_m = 0.3 / 0.001 / v;
+    EXPECT_NEAR(compiler::device_output_at_speed(p, d, {v}, 1000)[0].peak_N, 1.0, 0.01);
+    d.firmware.damping_command_s_per_m = 2.0 / 0.001 / v;
+    EXPECT_NEAR(compiler::device_output_at_speed(p, d, {v}, 1000)[0].peak_N, 2.5, 0.02);
+    // Without [firmware] there is no device output to predict.
+    d.firmware = {};
+    EXPECT_TRUE(compiler::device_output_at_speed(p, d, {v}, 1000).empty());
+  }
+}

@@ -6,11 +6,13 @@
 // Control reset with the stick centred.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -374,6 +376,39 @@ TEST(OpenFFBoardFirmwareLab, PositionReachesTheInputReport) {
     matched = std::abs(i16(report, 9) + 24576) <= 2 && i16(report, 11) == 0;
   }
   EXPECT_TRUE(matched) << "X " << i16(report, 9) << " Y " << i16(report, 11);
+  firmware().set_position(0, 0.0);
+}
+
+TEST(OpenFFBoardFirmwareLab, AStickMovedOnTheFirmwaresClockMeetsASteadyAxisDamper) {
+  open_like_the_driver();
+  // 0.2 of the range per second on X: 90 deg/s of the axis's 900 (its default range, Axis.h). The
+  // always-on damper (Axis.cpp:599-603) gives speed * intensity 30 (Axis.h:267) * 40 * 0.7 / 255
+  // (AXIS_DAMPER_RATIO, Axis.h:27 and 184; EffectsCalculator.h:21) = 296 effect units against the
+  // motion, * power 5000/32767 (Axis.cpp:687, not * the 204/255 effect ratio: it is added after it,
+  // Axis.cpp:740-744) = -45, inverted (Axis.cpp:781): +45 driver units, past the fade-in.
+  constexpr double fraction_per_s = 0.2;
+  std::mutex m;
+  std::vector<std::pair<Clock::time_point, int>> x;
+  firmware().on_torque([&](const TorqueUpdate& u) {
+    if (u.axis != 0) return;
+    std::lock_guard lock(m);
+    x.emplace_back(u.time, u.torque);
+  });
+  firmware().move_stick([](double t_s) { return std::array<double, 2>{fraction_per_s * t_s, 0.0}; });
+  const auto start = Clock::now();
+  std::this_thread::sleep_for(milliseconds(3000));
+  firmware().move_stick(nullptr);
+  firmware().on_torque(nullptr);
+  // The torque changes only when it changes (Axis.cpp:364-372): the last 500 ms hold few updates.
+  std::lock_guard lock(m);
+  ASSERT_FALSE(x.empty());
+  int last = x.back().second;
+  for (const auto& [t, torque] : x) {
+    if (t > start + milliseconds(2500)) {
+      EXPECT_NEAR(torque, 45, 1) << "at " << std::chrono::duration<double, std::milli>(t - start).count() << " ms";
+    }
+  }
+  EXPECT_NEAR(last, 45, 1);
   firmware().set_position(0, 0.0);
 }
 

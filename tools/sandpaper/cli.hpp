@@ -28,6 +28,7 @@ struct CommonOptions {
   std::string calibration_dir;
   bool json = false;
   bool compact = false;    // compile: height-field grids as binary16 where forces stay within 0.1 %
+  double position_rate_hz = 0;   // explain: how often new positions reach the servo, Hz (0: the servo rate)
   double design_speed_mm_s = 0;  // explain: the hand speed the material is designed for, mm/s (0: none)
 };
 

@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
                       "hand speed the material is designed for, mm/s: a grating's remedies (faster servo, smoothing) "
                       "are measured at it (docs/TEXTURES.md, \"The force a hand really feels\")")
       ->check(CLI::PositiveNumber);
+  explain->add_option("--position-rate", o.position_rate_hz,
+                      "how often new handle positions reach the servo, Hz, when slower than the servo (a loaded bus): "
+                      "the device's output at speed is read at it")
+      ->check(CLI::Range(1.0, 100000.0));
   auto* run = app.add_subcommand("run", "play a material or patch program on a device");
   add_common(run, o, true);
   PlayRequest play_request;

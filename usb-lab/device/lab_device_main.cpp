@@ -6,6 +6,7 @@
 #include <time.h>
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
@@ -26,25 +27,26 @@ using namespace sandpaper::usb_lab;
 
 namespace {
 
-// Moves the handle along the hand's path at 1 kHz, on absolute deadlines, until `stop`; calls
-// `every_10ms` every ten steps.
+// Moves the handle along the hand's path on the firmware's own update clock (move_stick says why),
+// and calls `every_10ms` every 10 ms of the host's clock until `stop`.
 void drive_stick(OpenFFBoardFirmware& firmware, const HandPath& path, double half_range_m, const std::atomic<bool>& stop,
                  const std::function<void()>& every_10ms) {
-  const std::int64_t start = monotonic_ns();
+  firmware.move_stick([path, half_range_m](double t_s) {
+    const HandPosition p = hand_position(path, t_s);
+    return std::array<double, 2>{p.x_m / half_range_m, p.y_m / half_range_m};
+  });
   timespec next{};
   clock_gettime(CLOCK_MONOTONIC, &next);
-  for (unsigned tick = 0; !stop.load(); ++tick) {
-    if (tick % 10 == 0) every_10ms();
-    const HandPosition p = hand_position(path, static_cast<double>(monotonic_ns() - start) * 1e-9);
-    firmware.set_position(0, p.x_m / half_range_m);
-    firmware.set_position(1, p.y_m / half_range_m);
-    next.tv_nsec += 1'000'000;
+  while (!stop.load()) {
+    every_10ms();
+    next.tv_nsec += 10'000'000;
     if (next.tv_nsec >= 1'000'000'000) {
       next.tv_nsec -= 1'000'000'000;
       ++next.tv_sec;
     }
     clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
   }
+  firmware.move_stick(nullptr);
 }
 
 void write_state(const std::string& path, const FirmwareState& s, std::size_t dropped) {

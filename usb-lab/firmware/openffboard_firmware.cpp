@@ -4,6 +4,7 @@
 // class driver. This file only translates, and runs each call on the emulated core.
 #include "openffboard_firmware.hpp"
 
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
@@ -151,12 +152,11 @@ class Firmware final : public OpenFFBoardFirmware {
     usbd::complete_in_transfer(ep_in_, delivered);
   }
 
-  // The encoder count that makes the Axis report `fraction` of its range. Axis.cpp: angle =
-  // 360 deg * counts / cpr * gear ratio, negated when inverted; reported fraction =
-  // angle / (degrees / 2). The axis's range, inversion and gear ratio are read from the firmware.
-  void set_position(int axis, double fraction_of_range) override {
-    if (axis < 0 || axis > 1) throw std::out_of_range("OpenFFBoardFirmware::set_position: axis must be 0 or 1");
-    core::Hold hold;
+  // Encoder counts per fraction of the axis's reported range. Axis.cpp: angle = 360 deg * counts /
+  // cpr * gear ratio, negated when inverted; reported fraction = angle / (degrees / 2). The axis's
+  // range, inversion and gear ratio are read from the firmware. Call holding the core.
+  static double counts_per_fraction(int axis) {
+    if (axis < 0 || axis > 1) throw std::out_of_range("OpenFFBoardFirmware: axis must be 0 or 1");
     CommandHandler* handler = CommandHandler::getHandlerFromClassName("axis", static_cast<std::uint8_t>(axis));
     if (handler == nullptr) throw std::runtime_error("OpenFFBoard firmware: no axis " + std::to_string(axis));
     const double degrees = static_cast<double>(axis_setting(handler, Axis_commands::degrees));
@@ -168,9 +168,35 @@ class Firmware final : public OpenFFBoardFirmware {
     handler->command(gear_cmd, gear);
     const double gear_ratio =
         gear.empty() ? 1.0 : static_cast<double>(gear.front().val) / static_cast<double>(gear.front().adr);
-    const double rotations = fraction_of_range * (degrees / 2.0) / 360.0 / gear_ratio * (inverted ? -1.0 : 1.0);
-    const double counts = std::round(rotations * static_cast<double>(RmdMotorCAN::counts_per_rotation));
+    return (degrees / 2.0) / 360.0 / gear_ratio * (inverted ? -1.0 : 1.0) *
+           static_cast<double>(RmdMotorCAN::counts_per_rotation);
+  }
+
+  void set_position(int axis, double fraction_of_range) override {
+    core::Hold hold;
+    const double counts = std::round(fraction_of_range * counts_per_fraction(axis));
     stick_link::axis(axis).encoder_counts = static_cast<std::int32_t>(counts);
+  }
+
+  void move_stick(StickPath path) override {
+    core::Hold hold;
+    if (!path) {
+      hal::set_before_update(nullptr);
+      return;
+    }
+    const std::array<double, 2> scale{counts_per_fraction(0), counts_per_fraction(1)};
+    double t_s = 0;
+    hal::set_before_update([path = std::move(path), scale, t_s](TIM_HandleTypeDef* htim) mutable {
+      if (htim != &TIM_FFB) return;
+      // The control update this timer update wakes may not run before the next one, and then
+      // takes both as one (FFBHIDMain::Run, WaitForNotification clears the count): the hand
+      // waits for the firmware, so that every control update sees one period of motion.
+      if (!stick_link::axis(0).position_read.exchange(false)) return;
+      const std::array<double, 2> f = path(t_s);
+      for (int a = 0; a < 2; ++a)
+        stick_link::axis(a).encoder_counts = static_cast<std::int32_t>(std::round(f[a] * scale[a]));
+      t_s += 1.0 / hal::timer_update_rate_hz(*htim);
+    });
   }
 
   void on_torque(std::function<void(const TorqueUpdate&)> observer) override {

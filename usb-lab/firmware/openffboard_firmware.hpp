@@ -4,6 +4,7 @@
 // ../shared/third_party/openffboard with shims for its RTOS, HAL, flash and USB device stack, as
 // a UsbFunction. Its motor drivers and encoders are the simulated stick's: the firmware's torque
 // per axis comes out here, the stick's position goes in.
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -41,6 +42,17 @@ class OpenFFBoardFirmware : public UsbFunction {
   // it, as a fraction of the axis's range: -1 and +1 are the ends the firmware reports as its
   // input report's logical minimum and maximum.
   virtual void set_position(int axis, double fraction_of_range) = 0;
+
+  // The handle's path on the firmware's own clock: before each FFB timer update, the encoders read
+  // path(t) (X and Y as fractions of range, as set_position takes them), t the time of that update
+  // in s since this call counted in the timer's periods (999 Hz: t advances 1001 us per update).
+  // An update whose control step the lab's scheduler merged into the next is not counted, so each
+  // control step sees one period of motion, as on the chip.
+  // A hardware timer never runs late; the host's threads do, and a hand moved on the host's clock
+  // then shows the firmware speed spikes no real stick makes. Runs on the firmware's timer thread
+  // holding the core: it must not call this object. An empty path stops it.
+  using StickPath = std::function<std::array<double, 2>(double t_s)>;
+  virtual void move_stick(StickPath path) = 0;
 
   // Called from the firmware's thread on every driver torque update; set before configured().
   virtual void on_torque(std::function<void(const TorqueUpdate&)> observer) = 0;

@@ -116,6 +116,16 @@ struct DeviceCalibration {
   // [usb] idle_report_period: how often the device resends an unchanged input report, s (0: it
   // reports every poll); the driver's stale-position watchdog waits at least twice this long.
   double usb_idle_report_period_s = 0;
+  // [firmware]: what the device's own firmware does to a command on its way to the motor
+  // (docs/USB_PID.md "The device's chain"); update_rate_hz 0 when the file has no [firmware].
+  struct Firmware {
+    double update_rate_hz = 0;          // a new command reaches the motor drivers this often, Hz
+    double fade_in_s = 0;               // the torque ramps up from zero over this long when play starts, s
+    double damping_command_s_per_m = 0; // always-on damper: command units against the motion per m/s
+  } firmware;
+  bool has_firmware() const { return firmware.update_rate_hz > 0; }
+  // The firmware's damper on axis `a` at handle speed `speed_m_s`, N, against the motion (0 without one).
+  double firmware_damping_N(int a, double speed_m_s) const;
   // [emulation]: a historical device `run` plays on the simulated joystick with its own quantisation
   // (sandpaper-1995: Minsky 1995 Table 2, Appendix B 2.1). `hold_tables`: force tables read by
   // sample-and-hold (nearest sample) instead of interpolation.

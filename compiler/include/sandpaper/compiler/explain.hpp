@@ -13,8 +13,10 @@ namespace sandpaper::compiler {
 
 // `design_speed_m_s` > 0: the hand speed (m/s) the designer states the material is for (`explain
 // --design-speed`); a grating's remedies (felt_at_speed.hpp) are then measured at it, whatever it loses.
+// `position_rate_hz` > 0: how often new handle positions reach the servo when that is slower than
+// the servo (`explain --position-rate`); the device's output at speed is read at it.
 std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& p,
                          const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device,
-                         double design_speed_m_s = 0);
+                         double design_speed_m_s = 0, double position_rate_hz = 0);
 
 }  // namespace sandpaper::compiler

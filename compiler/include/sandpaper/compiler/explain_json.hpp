@@ -11,7 +11,8 @@
 namespace sandpaper::compiler {
 
 // `design_speed_m_s` > 0: the hand speed (m/s) the material is designed for, added to the remedies.
+// `position_rate_hz` > 0: how often new handle positions reach the servo (explain.hpp).
 nlohmann::json explain_json(const ResolvedMaterial& material, const schema::PatchProgram& program, const Compiler& compiler,
-                            double design_speed_m_s);
+                            double design_speed_m_s, double position_rate_hz = 0);
 
 }  // namespace sandpaper::compiler

@@ -26,6 +26,22 @@ struct FeltAtSpeed {
 std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std::vector<double>& speeds_m_s,
                                        const std::vector<double>& rates_hz);
 
+// The force a device with its own firmware chain ([firmware] in its calibration file) outputs as a
+// hand scans the first grating of `p` at each speed: the ticks' reads at the slower of the servo
+// rate and the firmware's update rate, plus the firmware's always-on damper against the motion,
+// in the same measure as FeltAtSpeed (mean over ridges of each ridge's largest |F|, both scan
+// directions, docs/USB_PID.md "The device's chain"). Empty without a grating or without [firmware].
+struct DeviceOutputAtSpeed {
+  double speed_m_s = 0;
+  double rate_hz = 0;           // the rate the force reaches the motor at, Hz
+  double commanded_peak_N = 0;  // felt_at_speed at that rate: what the ticks command, N
+  double damping_N = 0;         // the firmware's damper at this speed, N, against the motion
+  double peak_N = 0;            // what the device outputs, N
+};
+std::vector<DeviceOutputAtSpeed> device_output_at_speed(const schema::PatchProgram& p,
+                                                        const calibration::DeviceCalibration& device,
+                                                        const std::vector<double>& speeds_m_s, double servo_rate_hz);
+
 // What explain reports: hand speeds 20, 50, 100 and 200 mm/s at `device_rate_hz` and at 10 kHz.
 std::vector<FeltAtSpeed> felt_at_explain_speeds(const schema::PatchProgram& p, double device_rate_hz);
 

@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -36,6 +37,12 @@ std::vector<std::unique_ptr<RunningTimer>>& timers() {
   return *t;
 }
 
+// Read and written holding the core.
+std::function<void(TIM_HandleTypeDef*)>& before_update() {
+  static auto* f = new std::function<void(TIM_HandleTypeDef*)>();
+  return *f;
+}
+
 std::chrono::nanoseconds period_of(const TIM_HandleTypeDef& htim) {
   return std::chrono::nanoseconds(static_cast<long long>(1e9 / timer_update_rate_hz(htim)));
 }
@@ -53,6 +60,7 @@ void run_timer(RunningTimer* timer) {
     if (timer->stop.load()) break;
     {
       core::Hold hold;
+      if (const auto& observer = before_update()) observer(timer->htim);
       core::InterruptScope in_interrupt;
       HAL_TIM_PeriodElapsedCallback(timer->htim);
       period = period_of(*timer->htim);
@@ -64,6 +72,8 @@ void run_timer(RunningTimer* timer) {
 }
 
 }  // namespace
+
+void set_before_update(std::function<void(TIM_HandleTypeDef*)> observer) { before_update() = std::move(observer); }
 
 double timer_update_rate_hz(const TIM_HandleTypeDef& htim) {
   const double counts = (static_cast<double>(htim.Instance->PSC) + 1.0) * (static_cast<double>(htim.Instance->ARR) + 1.0);
