@@ -11,9 +11,18 @@ Definitions (docs/USB_PID.md "In the lab"):
 - latency_ms: for each applied value, from the start of the host tick that computed it (the
   latest tick at or before the report's arrival whose command equals the report's magnitude) to
   the firmware's first driver update after the report.
-- firmware_peak_N: the firmware's torque on the scan axis in newtons, split into ridges (runs of
-  one sign; zeros do not end a run) and averaged over ridges of each ridge's largest |F|, as
-  explain's felt-at-speed peak is defined (compiler/include/sandpaper/compiler/felt_at_speed.hpp).
+- steady: the figures below that compare forces are taken once the firmware's fade-in (the device
+  file's [firmware] fade_in, counted from the first tick) is over: before it, the firmware scales
+  its torque down.
+- firmware_peak_N: the firmware's torque on the scan axis in newtons, per ridge of the grating the
+  hand crosses, averaged over ridges of each ridge's largest |F|, as explain's device output at
+  speed is defined (compiler/include/sandpaper/compiler/felt_at_speed.hpp, device_output_at_speed).
+  A ridge is a run of one sign of the host's commanded force (zeros do not end a run), from its
+  first tick to the next ridge's, moved later by the median latency: what the firmware drove while
+  it applied that ridge's forces, its own damper included.
+- commanded_peak_N: the same mean over the host's commanded forces alone.
+- position_rate_hz: how often the host's position changed during the steady play: the rate its
+  ticks read the grating at (the lab's bus is slower than a real one; docs/USB_PID.md).
 - unmatched_reports[axis]: Set Constant Force reports during play whose magnitude no tick of the
   200 before its arrival computed (through the device file's scale): a mis-scaled, corrupted or
   stale report. 0 when the firmware receives what the ticks computed.
@@ -21,7 +30,9 @@ Definitions (docs/USB_PID.md "In the lab"):
   instant (the last tick at or before each driver update), RMS over the play.
 """
 import csv
+import json
 import math
+import subprocess
 import tomllib
 from pathlib import Path
 
@@ -34,6 +45,19 @@ SET_EFFECT, SET_CONSTANT_FORCE = 0x01, 0x05  # OpenFFBoard report IDs (ffb_defs.
 # handle toward decreasing reported position (the firmware's own spring answers +x with positive
 # torque; Axis.cpp:781 inverts the axis). usb-lab/firmware/README.md has the chain.
 TORQUE_PER_COMMAND = 204 / 255 * 5000 / 32767
+
+
+def seconds_of(text: str) -> float:
+    """A time as the device files write it: "2 s", "101 ms"."""
+    value, unit = text.split()
+    return float(value) * {"s": 1.0, "ms": 1e-3, "us": 1e-6}[unit]
+
+
+def firmware_fade_in_s(device_file: Path) -> float:
+    """The device file's [firmware] fade_in, s (0 without one)."""
+    device = tomllib.loads(Path(device_file).read_text())
+    fade = device.get("firmware", {}).get("fade_in")
+    return seconds_of(fade) if fade else 0.0
 
 
 def round_half_away(x: float) -> int:
@@ -138,10 +162,40 @@ def mean_ridge_peak(samples):
     return sum(inner) / len(inner) if inner else 0.0
 
 
-def measure(run, trace, reports, torques, command, torque_N, scan_axis=0):
+def run_starts(ticks, axis):
+    """Times at which the commanded force on `axis` starts a run of a new sign (zeros continue a run)."""
+    starts, sign = [], 0
+    for t, f in ticks:
+        s = 1 if f[axis] > 0 else -1 if f[axis] < 0 else 0
+        if s != 0 and s != sign:
+            starts.append(t)
+            sign = s
+    return starts
+
+
+def device_ridge_peaks(starts, updates, shift_ns):
+    """Per ridge (from one start to the next, moved by shift_ns), the largest |F| of the piecewise
+    constant force `updates` [(t_ns, F_N)]: the value held at the window's start and every update in it."""
+    peaks, u, held = [], 0, 0.0
+    for a, b in zip(starts, starts[1:]):
+        a, b = a + shift_ns, b + shift_ns
+        while u < len(updates) and updates[u][0] < a:
+            held = updates[u][1]
+            u += 1
+        peak = abs(held)
+        while u < len(updates) and updates[u][0] < b:
+            held = updates[u][1]
+            peak = max(peak, abs(held))
+            u += 1
+        peaks.append(peak)
+    return peaks
+
+
+def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_in_s=0.0):
     """`run`: the host's run JSON; `command(axis, F_N)`: the command units the driver sends for a
     force (the device calibration's scale, rounded and clamped as the driver does);
-    `torque_N(axis, torque)`: newtons at the handle for a driver torque (the device file's chain)."""
+    `torque_N(axis, torque)`: newtons at the handle for a driver torque (the device file's chain);
+    `fade_in_s`: the firmware's fade-in, s, left out of the force figures."""
     start_ns = int(run["clock_start_ns"])
     ticks = [(start_ns + round(t * 1e9), (fx, fy)) for t, _, _, fx, fy in trace]
     if not ticks:
@@ -189,14 +243,46 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0):
             continue
         errors.append(torque_N(scan_axis, torque) - ticks[k][1][scan_axis])
     firmware_forces = [torque_N(scan_axis, torque) for _, torque in per_axis_torque[scan_axis]]
+
+    # Past the fade-in: ridges of the commanded force, the firmware's torque over each.
+    steady_start = play_start + round(fade_in_s * 1e9)
+    steady_ticks = [(t, f) for t, f in ticks if t >= steady_start]
+    steady_updates = [(t, torque_N(scan_axis, torque)) for t, torque in per_axis_torque[scan_axis]
+                      if t >= steady_start - 100_000_000]
+    shift_ns = round((percentile(latencies, 0.5) or 0.0) * 1e6)
+    starts = run_starts(steady_ticks, scan_axis)
+    # The first ridge may be cut by the start of the steady play; the last has no end.
+    ridges = device_ridge_peaks(starts[1:], steady_updates, shift_ns)
+    positions = [(x, y) for _, x, y, _, _ in trace]
+    steady_positions = [p for (t, _), p in zip(ticks, positions) if t >= steady_start]
+    changes = sum(1 for p, q in zip(steady_positions, steady_positions[1:]) if p != q)
+    steady_s = (play_end - steady_start) * 1e-9
     return {
         "seconds": seconds,
         "received_hz": [received[a] / seconds for a in (0, 1)],
         "updates_hz": [applied[a] / seconds for a in (0, 1)],
         "latency_ms": {"p50": percentile(latencies, 0.5), "p99": percentile(latencies, 0.99), "n": len(latencies)},
-        "firmware_peak_N": mean_ridge_peak(firmware_forces),
-        "commanded_peak_N": mean_ridge_peak([f[scan_axis] for _, f in ticks]),
+        "steady_s": steady_s,
+        "firmware_peak_N": sum(ridges) / len(ridges) if ridges else None,
+        "ridges": len(ridges),
+        "commanded_peak_N": mean_ridge_peak([f[scan_axis] for _, f in steady_ticks]),
+        "position_rate_hz": changes / steady_s if steady_s > 0 else None,
         "firmware_max_N": max((abs(f) for f in firmware_forces), default=0.0),
         "rms_error_N": math.sqrt(sum(e * e for e in errors) / len(errors)) if errors else None,
         "unmatched_reports": unmatched,
     }
+
+
+def predicted_device_peak(sandpaper: Path, material: Path, device: str, speed_mm_s: float,
+                          position_rate_hz: float | None) -> dict:
+    """explain's prediction of what `device` outputs as a hand scans `material` at `speed_mm_s`,
+    the ticks reading the grating at `position_rate_hz` (None: the servo rate): the entry of
+    `sandpaper explain --json`'s device_output_at_speed for that speed (docs/USB_PID.md)."""
+    cmd = [str(sandpaper), "explain", str(material), "--device", device, "--json", "--design-speed", str(speed_mm_s)]
+    if position_rate_hz:
+        cmd += ["--position-rate", str(position_rate_hz)]
+    out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
+    for entry in json.loads(out).get("device_output_at_speed", []):
+        if abs(entry["speed_mm_s"] - speed_mm_s) < 1e-9:
+            return entry
+    raise ValueError(f"explain gave no device output at {speed_mm_s} mm/s for {material} on {device}")

@@ -122,7 +122,10 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
            << map.percept_of(r.smoothed.peak_N) << "\n";
     }
   }
-  if (const auto out = device_output_at_speed(p, device, {0.02, 0.05, 0.1, 0.2},
+  std::vector<double> out_speeds{0.02, 0.05, 0.1, 0.2};
+  if (design_speed_m_s > 0 && std::find(out_speeds.begin(), out_speeds.end(), design_speed_m_s) == out_speeds.end())
+    out_speeds.push_back(design_speed_m_s);
+  if (const auto out = device_output_at_speed(p, device, out_speeds,
                                                    position_rate_hz > 0 ? std::min(rate, position_rate_hz) : rate);
       !out.empty()) {
     os << "\nout of " << device.name << " (through its firmware: forces read at " << std::lround(out.front().rate_hz)

@@ -23,7 +23,10 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
   j["felt_at_speed"] = felt;
   // Through the device's own firmware ([firmware] in its calibration file): empty without one.
   nlohmann::json out = nlohmann::json::array();
-  for (const auto& o : compiler::device_output_at_speed(prog, c.device(), {0.02, 0.05, 0.1, 0.2},
+  std::vector<double> out_speeds{0.02, 0.05, 0.1, 0.2};
+  if (design_speed_m_s > 0 && std::find(out_speeds.begin(), out_speeds.end(), design_speed_m_s) == out_speeds.end())
+    out_speeds.push_back(design_speed_m_s);
+  for (const auto& o : compiler::device_output_at_speed(prog, c.device(), out_speeds,
                                                              position_rate_hz > 0 ? std::min(rate, position_rate_hz) : rate))
     out.push_back({{"speed_mm_s", o.speed_m_s * 1e3}, {"rate_hz", o.rate_hz}, {"commanded_peak_N", o.commanded_peak_N},
                    {"damping_N", o.damping_N}, {"device_peak_N", o.peak_N}});

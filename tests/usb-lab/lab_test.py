@@ -65,6 +65,7 @@ def test_enumerate(build: Path, out: Path) -> None:
 
 # The driver's command for a force and the handle force for a firmware torque, through the device file.
 COMMAND, HANDLE_FORCE_N = measure.device_chain(REPO / "calibration/devices/openffboard-2axis.toml")
+FADE_IN_S = measure.firmware_fade_in_s(REPO / "calibration/devices/openffboard-2axis.toml")
 
 
 def test_direction(build: Path, out: Path) -> None:
@@ -180,10 +181,19 @@ def test_play(build: Path, out: Path) -> None:
               f"{speed} mm/s: usbhid detached for the run and attached again, input device back "
               f"({play['driver_before']} -> {play['driver_during']} -> {play['driver_after']}, {play['input_after']!r})")
         m = measure.measure(run, measure.read_trace(where / "trace.csv"), measure.read_reports(where / "reports.csv"),
-                            measure.read_torques(where / "torque.csv"), command=COMMAND, torque_N=HANDLE_FORCE_N)
-        print(f"{speed} mm/s: " + json.dumps({k: m[k] for k in (
-            "received_hz", "updates_hz", "latency_ms", "firmware_peak_N", "commanded_peak_N", "rms_error_N",
-            "unmatched_reports")}), flush=True)
+                            measure.read_torques(where / "torque.csv"), command=COMMAND, torque_N=HANDLE_FORCE_N,
+                            fade_in_s=FADE_IN_S)
+        predicted = measure.predicted_device_peak(build / "bin/sandpaper", REPO / "examples/corduroy.hmat",
+                                                  "openffboard-2axis", speed, m["position_rate_hz"])
+        print(f"{speed} mm/s: " + json.dumps({**{k: m[k] for k in (
+            "received_hz", "updates_hz", "latency_ms", "firmware_peak_N", "ridges", "commanded_peak_N",
+            "position_rate_hz", "rms_error_N", "unmatched_reports")}, "predicted": predicted}), flush=True)
+        # The "make it good" figure: explain's prediction through the firmware's chain (its damper,
+        # its update rate; the device file's [firmware]) at the rate positions reached the ticks.
+        check(m["firmware_peak_N"] is not None and m["ridges"] >= 4
+              and abs(m["firmware_peak_N"] - predicted["device_peak_N"]) <= 0.10 * predicted["device_peak_N"],
+              f"{speed} mm/s: the firmware's force, {m['firmware_peak_N']} N over {m['ridges']} ridges, is within 10 % "
+              f"of explain's prediction for the device, {predicted['device_peak_N']:.4g} N")
         check(m["received_hz"][0] > 0 and m["updates_hz"][0] > 0,
               f"{speed} mm/s: the firmware received the x forces and applied them")
         # A grating along x has no y force: an axis whose command never changes takes no frames.
