@@ -1,5 +1,5 @@
 """Runs one of the lab's scenarios (usb-lab/scenarios/NAME.sh) in the guest, with the build's
-programs (sandpaper, sandpaper-play, sandpaper-lab-device) and the source tree's data (the build
+programs (sandpaper, sandpaper-play, sandpaper-lab-device, sandpaper-lab-post) and the source tree's data (the build
 tree's programs read calibration/ and library/ from the source tree, so they sit at the same paths
 in the guest). Used by tools/usb-lab/run and tests/usb-lab/lab_test.py."""
 from __future__ import annotations
@@ -14,7 +14,7 @@ sys.path.insert(0, str(HERE / "guest"))
 import lab  # noqa: E402
 from initramfs import LabError, Unavailable  # noqa: E402,F401  (re-exported for callers)
 
-PROGRAMS = ("sandpaper", "sandpaper-play", "sandpaper-lab-device")
+PROGRAMS = ("sandpaper", "sandpaper-play", "sandpaper-lab-device", "sandpaper-lab-post")
 DATA_DIRS = ("calibration", "library", "examples")
 
 
@@ -41,7 +41,8 @@ def run(name: str, build: Path, out_dir: Path, params: dict[str, str] | None = N
     """Boots the guest on scenario `name` with `params` exported to it; its /out is `out_dir`."""
     progs = programs(build)
     env = {"SANDPAPER": str(progs["sandpaper"]), "SANDPAPER_PLAY": str(progs["sandpaper-play"]),
-           "LAB_DEVICE": str(progs["sandpaper-lab-device"]), "REPO": str(REPO)}
+           "LAB_DEVICE": str(progs["sandpaper-lab-device"]), "LAB_POST": str(progs["sandpaper-lab-post"]),
+           "REPO": str(REPO)}
     env.update(params or {})
     all_files: dict[str, Path | bytes] = data_files()
     all_files["/lab/ffboard.sh"] = HERE / "scenarios" / "ffboard.sh"

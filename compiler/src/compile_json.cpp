@@ -22,9 +22,14 @@ nlohmann::json diagnostics_json(const Diagnostics& ds) {
 
 nlohmann::json compile_json(const CompileResult& result, const std::optional<std::string>& output) {
   if (!result.ok()) return nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(result.diagnostics)}};
-  auto j = schema::to_json(*result.program);
+  return compile_json(*result.program, result.diagnostics, output);
+}
+
+nlohmann::json compile_json(const schema::PatchProgram& program, const Diagnostics& diagnostics,
+                            const std::optional<std::string>& output) {
+  auto j = schema::to_json(program);
   j["ok"] = true;
-  j["diagnostics"] = diagnostics_json(result.diagnostics);
+  j["diagnostics"] = diagnostics_json(diagnostics);
   j["output"] = output ? nlohmann::json(*output) : nlohmann::json(nullptr);
   return j;
 }

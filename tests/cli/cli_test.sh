@@ -448,5 +448,14 @@ has "$tmp/err" 'no library folder at /no/such/lab' "the missing root is named"
 expect_exit 0 "library with no subcommand still lists" -- "$sp" library
 has "$tmp/out" 'roughness' "library lists entries"
 
+# The safety stops are the same options on every command that plays (tools/player/safety_guards.hpp).
+expect_exit 2 "studio: --watchdog is a USB option" -- "$sp" studio examples/corduroy.hmat --watchdog 500 --listen 127.0.0.1:0
+has "$tmp/err" '--watchdog applies to --device usb' "studio says why --watchdog is refused"
+expect_exit 2 "experiment run: --watchdog is a USB option" -- "$sp" experiment run examples/experiments/force-jnd.toml \
+  --subject S --observer simulated:exponent=0.76 --watchdog 500 -o "$tmp/exp-watchdog"
+has "$tmp/err" '--watchdog applies to --device usb' "experiment says why --watchdog is refused"
+[ -e "$tmp/exp-watchdog" ] && bad "a refused experiment made its results folder" || ok
+expect_exit 2 "studio: a velocity limit out of range" -- "$sp" studio examples/corduroy.hmat --velocity-limit 0
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import re
 import sys
 import tempfile
@@ -205,7 +206,96 @@ def test_play(build: Path, out: Path) -> None:
               f"file's scale (unmatched: {m['unmatched_reports']})")
 
 
-TESTS = {"enumerate": test_enumerate, "direction": test_direction, "play": test_play}
+def test_studio(build: Path, out: Path) -> None:
+    """Lab test 6, the studio: a slider move (POST /api/parameter, as the page sends it) reaches the
+    firmware's torque within 50 ms. A spring held at (+10, -5) mm commands -2 N on x at 200 N/m and
+    -4 N at 400 N/m; five moves between the two, and the median of their latencies is judged (a
+    loaded machine still slows the guest now and then; every figure is printed)."""
+    first_stiffness, moves = 200.0, [400.0, 200.0, 400.0, 200.0, 400.0]
+    at_x_m = 0.010
+    r = scenario.run("studio", build, out, params={
+        "AT_X_MM": "10", "AT_Y_MM": "-5", "CIRCLE_MM": "0.2", "SPEED_MM_S": "2",
+        "STIFFNESS": f"{first_stiffness:g} N/m", "STIFFNESS_MOVES": " ".join(f"{m:g}" for m in moves),
+        "PLAY_AFTER_S": "0.4"})
+    check(r.status == 0, f"the scenario ran to its end (status {r.status})")
+    if r.status != 0:
+        return
+    facts = json.loads((out / "studio.json").read_text())
+    state = json.loads((out / "studio-state.json").read_text() or "{}") if (out / "studio-state.json").is_file() else {}
+    print(json.dumps(facts), flush=True)
+    check(state.get("running") is True,
+          f"the studio's loop was still playing before Ctrl-C (stop cause {state.get('stop_cause')!r})")
+    check(facts["studio_status"] == 0, f"the studio stopped cleanly on Ctrl-C (status {facts['studio_status']})")
+    check((facts["driver_before"], facts["driver_during"], facts["driver_after"]) == ("usbhid", "usbfs", "usbhid")
+          and facts["input_after"] != "",
+          f"usbhid detached while the studio played and attached again, input device back "
+          f"({facts['driver_before']} -> {facts['driver_during']} -> {facts['driver_after']}, {facts['input_after']!r})")
+    sent = [line.split() for line in (out / "moves.txt").read_text().splitlines() if line.strip()]
+    check(len(sent) == len(moves), f"the studio took all {len(moves)} slider moves ({len(sent)})")
+    reports = measure.read_reports(out / "reports.csv")
+    x_reports = measure.force_reports(reports, measure.effect_axes(reports))[0]
+    torques = [(t, q) for t, a, q in measure.read_torques(out / "torque.csv") if a == 0]
+    # The hand circles 0.1 mm around its point: the spring's force moves by 0.04 N at most. The
+    # studio crossfades a swap over 20 ms (LoopOptions::crossfade_s): a move has reached the
+    # firmware once a report has gone a tenth of the way to the new force (five times the hand's
+    # wobble) and the firmware applied it; it is complete once a report is within 5 % of it.
+    latencies, before = [], first_stiffness
+    for value, moved, answered in ((float(v), int(m), int(a)) for v, m, a in sent):
+        old_command, new_command = COMMAND(0, -before * at_x_m), COMMAND(0, -value * at_x_m)
+        before = value
+        step = new_command - old_command
+        first = next((t for t, m in x_reports if t >= moved and (m - old_command) / step >= 0.1), None)
+        full = next((t for t, m in x_reports if t >= moved and abs(m - new_command) <= 0.05 * abs(new_command)), None)
+        applied = next((t for t, _ in torques if first is not None and t >= first), None)
+        applied_full = next(((t, q) for t, q in torques if full is not None and t >= full), None)
+        latency = (applied - moved) * 1e-6 if applied else None
+        print(f"{value:g} N/m: answered after {(answered - moved) * 1e-6:.1f} ms; the firmware's torque first "
+              f"moved toward it after {latency} ms, was there after "
+              f"{(applied_full[0] - moved) * 1e-6 if applied_full else None} ms "
+              f"(magnitude {old_command} -> {new_command}; torque {applied_full[1] if applied_full else None})", flush=True)
+        latencies.append(latency if latency is not None else math.inf)
+        if applied_full is not None:
+            check(abs(abs(HANDLE_FORCE_N(0, applied_full[1])) / (value * at_x_m) - 1) <= 0.5,
+                  f"{value:g} N/m: the torque went to that spring's force (within the firmware's fade-in)")
+    median = sorted(latencies)[len(latencies) // 2] if latencies else math.inf
+    check(median <= 50, f"a slider move reached the firmware's torque within 50 ms (median of "
+                        f"{[round(x, 1) for x in latencies]}: {median:.1f} ms)")
+
+
+def test_experiment(build: Path, out: Path) -> None:
+    """Lab test 6, an experiment: three magnitude-estimation trials with the simulated observer on
+    `--device usb` (tests/usb-lab/data/lab-roughness-magnitude.toml)."""
+    design = REPO / "tests/usb-lab/data/lab-roughness-magnitude.toml"
+    r = scenario.run("experiment", build, out, params={
+        "DESIGN": str(design), "OBSERVER": "simulated:exponent=0.76,noise=0.15,seed=3",
+        "SPEED_MM_S": "30", "EXTENT_MM": "40"}, files={str(design): design})
+    check(r.status == 0, f"the scenario ran to its end (status {r.status})")
+    if r.status != 0:
+        return
+    facts = json.loads((out / "experiment.json").read_text())
+    print(json.dumps(facts), flush=True)
+    err = (out / "experiment.err").read_text()
+    check(facts["experiment_status"] == 0, f"the experiment ran to its end (status {facts['experiment_status']})")
+    check("3 trials on openffboard-2axis (USB)" in err, "it played its trials on the USB joystick")
+    check((facts["driver_before"], facts["driver_during"], facts["driver_after"]) == ("usbhid", "usbfs", "usbhid")
+          and facts["input_after"] != "",
+          f"usbhid detached for the experiment and attached again, input device back "
+          f"({facts['driver_before']} -> {facts['driver_during']} -> {facts['driver_after']}, {facts['input_after']!r})")
+    results = out / "results/results.jsonl"
+    answers = [json.loads(line) for line in results.read_text().splitlines()] if results.is_file() else []
+    answers = [a for a in answers if a.get("record") == "answer"]
+    check(len(answers) == 3 and all(a["response"] > 0 for a in answers),
+          f"three trials answered ({[(a['stimuli'], a['response']) for a in answers]})")
+    # Each stimulus reached the firmware: x forces of the stimulus's size were applied while it played.
+    torques = [abs(HANDLE_FORCE_N(0, q)) for _, a, q in measure.read_torques(out / "torque.csv") if a == 0]
+    strongest = max((a["compiled_force_N"][0] for a in answers), default=0.0)
+    check(torques and max(torques) >= 0.5 * strongest,
+          f"the firmware drove forces of the stimuli's size (largest {max(torques, default=0):.2f} N, "
+          f"strongest stimulus {strongest:.2f} N)")
+
+
+TESTS = {"enumerate": test_enumerate, "direction": test_direction, "play": test_play, "studio": test_studio,
+         "experiment": test_experiment}
 for _fault in ("unplug", "reset", "stale", "sigint", "stall"):
     TESTS[f"fault-{_fault}"] = (lambda f: lambda build, out: test_fault(f, build, out))(_fault)
 

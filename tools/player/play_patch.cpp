@@ -84,18 +84,7 @@ void add_play_options(CLI::App* run, PlayRequest& r) {
   run->add_option("--spin-margin", r.spin_margin_us,
                   "wake this long before each tick's deadline and spin to it, us (0: sleep only; docs/performance.md)")
       ->capture_default_str();
-  run->add_option("--deadline-guard", r.deadline_guard_periods,
-                  "stop (deadline_missed) when a tick starts this many servo periods late (0: 50 ms)")
-      ->capture_default_str();
-  run->add_option("--velocity-limit", r.velocity_limit_m_s,
-                  "stop (velocity_limit) when the filtered hand speed exceeds this, m/s (0.01 to 100)")
-      ->check(CLI::Range(0.01, 100.0))
-      ->capture_default_str();
-  run->add_option("--watchdog", r.watchdog_ms,
-                  "--device usb: stop (device_read_timeout, device_write_failed) when the joystick sends no position or "
-                  "takes no force for this long, ms (0: 50 ms, or twice the device file's [usb] idle_report_period)")
-      ->check(CLI::Range(0.0, 60000.0))
-      ->capture_default_str();
+  add_guard_options(run, r.guards);
   run->add_option("--cpu", r.cpu, "pin the servo thread to this CPU (docs/RUNTIME.md: an isolated core)");
   add_run_device_options(run, r.device);
 }
@@ -121,8 +110,7 @@ runtime::ServoConfig servo_config_of(const PlayRequest& r) {
   cfg.rate_hz = r.rate_hz;
   cfg.duration_s = r.duration_s;
   cfg.spin_margin_s = r.spin_margin_us * 1e-6;
-  cfg.deadline_guard_periods = r.deadline_guard_periods;
-  cfg.velocity_limit_m_s = r.velocity_limit_m_s;
+  r.guards.apply(cfg);
   cfg.cpu = r.cpu;
   return cfg;
 }
@@ -199,7 +187,7 @@ int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits
 int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& limits,
                 const calibration::PsychophysicalMap& map, const PlayRequest& r, runtime::ForceSource* playing,
                 const std::function<void()>& poll) {
-  if (r.watchdog_ms != 0) {
+  if (r.guards.watchdog_ms != 0) {
     std::cerr << "sandpaper: error: --watchdog applies to --device usb (a simulated joystick cannot go quiet)\n";
     return kExitUsage;
   }
@@ -345,7 +333,7 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
   if (const int rc = check_trace_folder(r.trace); rc != kExitOk) return rc;
   try {
     runtime::usb::HidPidOptions usb_options;
-    usb_options.stale_limit_s = r.watchdog_ms * 1e-3;
+    usb_options.stale_limit_s = r.guards.watchdog_ms * 1e-3;
     runtime::usb::HidPidJoystick joystick(*transport, cal, usb_options);
     runtime::validate_config(cfg, joystick.limits());
     runtime::PatchEvaluator evaluator(program);

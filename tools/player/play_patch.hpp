@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "run_device.hpp"
+#include "safety_guards.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/runtime/force_source.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
@@ -26,9 +27,7 @@ struct PlayRequest {
   bool virtual_clock = false, live = false, json = false;
   RunDeviceOptions device;
   double spin_margin_us = runtime::ServoConfig{}.spin_margin_s * 1e6;
-  double deadline_guard_periods = runtime::ServoConfig{}.deadline_guard_periods;
-  double velocity_limit_m_s = runtime::ServoConfig{}.velocity_limit_m_s;
-  double watchdog_ms = 0;   // --device usb: no position, or no force taken, for this long stops the run (0: the device file's)
+  SafetyGuards guards;
   int cpu = -1;
   bool rate_given = false;  // --rate was on the command line
   // A device emulated on the simulator ([emulation] in its device file; apply_emulation sets these).

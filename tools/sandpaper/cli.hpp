@@ -11,6 +11,7 @@
 
 #include "exit_codes.hpp"
 #include "play_workspace.hpp"
+#include "safety_guards.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/runtime/device.hpp"
@@ -63,13 +64,16 @@ int cmd_run_usb(const CommonOptions& o, const PlayRequest& r);
 int cmd_library(const CommonOptions& o);
 // The first HID PID joystick that has a device calibration, opened and owning its transport; nullptr
 // with `error` set (and udev help printed when access was denied) when there is none.
-std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error);
+// `watchdog_ms` > 0: the joystick's stale-position and write watchdog (run's --watchdog).
+std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error,
+                                                   double watchdog_ms = 0);
 // `sandpaper studio` (cmd_studio.cpp, docs/STUDIO.md): `path` a material, a workspace or a folder.
 struct StudioOptions {
   std::string path = ".";
   std::string listen = "127.0.0.1:4780";
   bool listen_given = false;
   double rate_hz = 1000;
+  SafetyGuards guards;
 };
 int cmd_studio(const CommonOptions& o, const StudioOptions& so);
 
@@ -153,6 +157,7 @@ struct ExperimentOptions {
   bool virtual_clock = false;
   std::string map_out, map_id, pictures;  // analyse
   bool allow_mixed_designs = false;
+  SafetyGuards guards;             // run: the live loop's safety stops
   CLI::App* run = nullptr;
   CLI::App* resume = nullptr;
   CLI::App* analyse = nullptr;

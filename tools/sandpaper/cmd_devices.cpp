@@ -48,7 +48,8 @@ int cmd_devices(const CommonOptions& o) {
   return denied ? kExitUsage : kExitOk;
 }
 
-std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error) {
+std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error,
+                                                   double watchdog_ms) {
   CommonOptions base = o;
   base.device = "sim";
   const auto probe = make_compiler(base);
@@ -72,7 +73,9 @@ std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::
       device_name = f.calibration->name;
       // The calibration lives in `probe`, which goes out of scope: the joystick keeps what it needs
       // of it (limits, command scale) at construction.
-      return std::make_unique<runtime::usb::OwnedHidPidJoystick>(std::move(transport), *f.calibration);
+      runtime::usb::HidPidOptions options;
+      options.stale_limit_s = watchdog_ms * 1e-3;
+      return std::make_unique<runtime::usb::OwnedHidPidJoystick>(std::move(transport), *f.calibration, options);
     } catch (const runtime::usb::HidPidError& e) {
       error = e.what();
       return nullptr;

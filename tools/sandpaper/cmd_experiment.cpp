@@ -68,6 +68,8 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   po.ramp_s = d.ramp_s;
   po.hold_s = d.duration_s;
   po.stop = &g_stop;
+  po.deadline_guard_periods = eo.guards.deadline_guard_periods;
+  po.velocity_limit_m_s = eo.guards.velocity_limit_m_s;
   runtime::HandScript hand;
   hand.path = runtime::HandPath::Scan;
   hand.speed_m_s = d.hand_speed_m_s;
@@ -81,7 +83,7 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
     o.calibration_dir = eo.common.calibration_dir;
     o.library_dir = eo.common.library_dir;
     std::string name, error;
-    auto dev = open_usb_joystick(o, name, error);
+    auto dev = open_usb_joystick(o, name, error, eo.guards.watchdog_ms);
     if (!dev) {
       std::cerr << "sandpaper experiment: " << error << "\n";
       return nullptr;
@@ -96,6 +98,10 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   }
   if (eo.device != "sim") {
     std::cerr << "sandpaper experiment: --device is sim or usb (the design's `device` names the calibration)\n";
+    return nullptr;
+  }
+  if (eo.guards.watchdog_ms != 0) {
+    std::cerr << "sandpaper experiment: --watchdog applies to --device usb (a simulated joystick cannot go quiet)\n";
     return nullptr;
   }
   const auto limits = limits_of(c);
@@ -346,6 +352,7 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
   eo.run = ex->add_subcommand("run", "run a design for one subject, appending every answer to the results folder");
   eo.run->add_option("design", eo.target, "experiment design (.toml)")->required();
   eo.run->add_option("--subject", eo.subject, "subject id (with the design's seed it fixes the trial order)")->required();
+  add_guard_options(eo.run, eo.guards);
   eo.run->add_option("-o,--output", eo.output, "results folder to create")->required();
   playing(eo.run);
   common(eo.run);

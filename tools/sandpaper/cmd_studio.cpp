@@ -58,7 +58,7 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
   runtime::DummyJoystick* dummy = nullptr;
   if (o.device == "usb") {
     std::string name, error;
-    device = open_usb_joystick(o, name, error);
+    device = open_usb_joystick(o, name, error, so.guards.watchdog_ms);
     if (!device) {
       std::cerr << "sandpaper studio --device usb: " << error << "\n";
       return kExitUsage;
@@ -66,6 +66,9 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
     o.device = name;
   } else if (o.device != "sim") {
     std::cerr << "sandpaper studio: --device takes sim (the default: Dummy mode, the mouse moves the hand) or usb\n";
+    return kExitUsage;
+  } else if (so.guards.watchdog_ms != 0) {
+    std::cerr << "sandpaper studio: --watchdog applies to --device usb (the Dummy-mode hand cannot go quiet)\n";
     return kExitUsage;
   }
   const compiler::Compiler compiler = make_compiler(o);
@@ -82,6 +85,8 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
 
   studio::LoopOptions loop_options;
   loop_options.rate_hz = so.rate_hz;
+  loop_options.deadline_guard_periods = so.guards.deadline_guard_periods;
+  loop_options.velocity_limit_m_s = so.guards.velocity_limit_m_s;
   loop_options.restart_after_fault = dummy != nullptr;
   std::unique_ptr<studio::LiveLoop> loop;
   try {

@@ -126,6 +126,7 @@ int main(int argc, char** argv) {
   studio->add_option("--device", o.device, "sim (Dummy mode: the mouse moves the hand) or usb (the first HID PID joystick)")->capture_default_str();
   studio->add_option("--listen", studio_opts.listen, "ADDR:PORT to serve on (port 0: any free port); a non-loopback address is warned about")->capture_default_str();
   studio->add_option("--rate", studio_opts.rate_hz, "servo rate, Hz")->capture_default_str();
+  add_guard_options(studio, studio_opts.guards);
   studio->add_option("--library", o.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   studio->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
 

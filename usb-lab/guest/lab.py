@@ -45,6 +45,7 @@ HERE = Path(__file__).resolve().parent
 REPO = HERE.parent.parent
 DEFAULT_CACHE = REPO / "build-usb-lab"
 UNAVAILABLE = 77
+QEMU_NICE = -19  # the guest's priority over the machine's other work, where allowed (run() says why)
 FAILED = 3
 TIMED_OUT = 124
 NO_STATUS = 125
@@ -139,9 +140,21 @@ def boot(machine: Machine, initrd: Path, *, out_dir: Path | None = None, in_dir:
     args += ["-append", " ".join(cmdline)]
     echo = echo or (lambda line: print(line, flush=True))
 
+    # The guest stands for a PC of its own: its clock should measure the software under test, not
+    # whatever else this machine runs. Under TCG every guest thread is QEMU's, and `stress-ng --cpu 4`
+    # beside it on two cores made the guest's studio latency three times its quiet figure. Where
+    # this process may (root), QEMU runs at a higher priority (nice -19) than the machine's other work.
+    def _higher_priority():
+        try:
+            os.nice(QEMU_NICE)
+        except PermissionError:
+            pass
+
+    if os.geteuid() != 0:
+        echo(f"lab: QEMU runs at normal priority (not root: nice {QEMU_NICE} refused); a loaded machine slows the guest")
     t0 = time.monotonic()
     proc = subprocess.Popen(args, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT)
+                            stderr=subprocess.STDOUT, preexec_fn=_higher_priority)
     result = Result(status=NO_STATUS, wall=0.0)
     sel = selectors.DefaultSelector()
     sel.register(proc.stdout, selectors.EVENT_READ)

@@ -3,8 +3,9 @@
 namespace sandpaper::runtime::usb {
 
 OwnedHidPidJoystick::OwnedHidPidJoystick(std::unique_ptr<LibusbTransport> transport,
-                                         const calibration::DeviceCalibration& calibration)
-    : transport_(std::move(transport)), joystick_(*transport_, calibration) {}
+                                         const calibration::DeviceCalibration& calibration,
+                                         const HidPidOptions& options)
+    : transport_(std::move(transport)), joystick_(*transport_, calibration, options) {}
 
 OwnedHidPidJoystick::~OwnedHidPidJoystick() { joystick_.close(); }
 

@@ -53,6 +53,8 @@ LivePresenter::LivePresenter(std::unique_ptr<runtime::Device> device, std::strin
     : device_(std::move(device)), description_(std::move(description)), options_(options), source_(nullptr),
       ring_(1 << 16) {
   config_.rate_hz = options_.rate_hz;
+  config_.deadline_guard_periods = options_.deadline_guard_periods;
+  config_.velocity_limit_m_s = options_.velocity_limit_m_s;
   config_.duration_s = 0;  // until the session stops it
   config_.stop_request = &stop_;
   config_.telemetry = &ring_;

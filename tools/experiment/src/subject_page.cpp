@@ -30,6 +30,7 @@ class PageObserverImpl final : public Observer {
   PageObserverImpl(const std::string& listen, const std::atomic<bool>* stop, std::string& url) : stop_(stop) {
     listen_ = studio::parse_listen(listen);
     http_.set_payload_max_length(kMaxRequestBytes);
+    http_.set_tcp_nodelay(true);  // as the studio's server (tools/studio/src/server.cpp): no 40 ms waits on answers
     http_.new_task_queue = [] { return new httplib::ThreadPool(8); };
     http_.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
       const std::string why = studio::refusal(req.get_header_value("Host"), req.get_header_value("Origin"), listen_);

@@ -119,6 +119,8 @@ void LiveLoop::supervise() {
   while (!quitting_.load()) {
     runtime::ServoConfig cfg;
     cfg.rate_hz = options_.rate_hz;
+    cfg.deadline_guard_periods = options_.deadline_guard_periods;
+    cfg.velocity_limit_m_s = options_.velocity_limit_m_s;
     cfg.duration_s = 0;  // until stopped (the loop's memory does not grow with its length)
     cfg.stop_request = &stop_request_;
     cfg.telemetry = &ring_;

@@ -168,12 +168,15 @@ nlohmann::json Session::update_locked(const std::string& text) {
     }
   } else {
     auto r = compiler_.compile_text(text, file_);
-    j = compiler::compile_json(r, std::nullopt);
     if (r.ok()) {
+      // Into the loop first: the hand feels the edit before the page's answer is built.
       auto prog = std::make_shared<const schema::PatchProgram>(std::move(*r.program));
       version_ = loop_.load_nonrt(prog, prog->roughness);
+      j = compiler::compile_json(*prog, r.diagnostics, std::nullopt);
       program_ = std::move(prog);
       workspace_.reset();
+    } else {
+      j = compiler::compile_json(r, std::nullopt);
     }
   }
   text_compiles_ = j["ok"].get<bool>();

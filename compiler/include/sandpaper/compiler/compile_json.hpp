@@ -14,5 +14,8 @@ namespace sandpaper::compiler {
 nlohmann::json diagnostics_json(const Diagnostics& diagnostics);
 // `output`: the patch file written, or nullopt for none (JSON null).
 nlohmann::json compile_json(const CompileResult& result, const std::optional<std::string>& output);
+// The same for a compile that succeeded, its program already taken out of the result.
+nlohmann::json compile_json(const schema::PatchProgram& program, const Diagnostics& diagnostics,
+                            const std::optional<std::string>& output);
 
 }  // namespace sandpaper::compiler

@@ -12,7 +12,8 @@ namespace sandpaper::runtime::usb {
 class OwnedHidPidJoystick final : public Device {
  public:
   // Opens the joystick on `transport` (HidPidJoystick's constructor: throws HidPidError).
-  OwnedHidPidJoystick(std::unique_ptr<LibusbTransport> transport, const calibration::DeviceCalibration& calibration);
+  OwnedHidPidJoystick(std::unique_ptr<LibusbTransport> transport, const calibration::DeviceCalibration& calibration,
+                      const HidPidOptions& options = {});
   ~OwnedHidPidJoystick() override;
 
   const DeviceLimits& limits() const noexcept override { return joystick_.limits(); }

@@ -25,6 +25,8 @@ struct PresentOptions {
   // Set (by a signal handler) to stop the live loop at its next tick; the presentation is then
   // interrupted with cause stop_requested. nullptr: none.
   const std::atomic<bool>* stop = nullptr;
+  double deadline_guard_periods = runtime::ServoConfig{}.deadline_guard_periods;  // the live loop's (ServoConfig)
+  double velocity_limit_m_s = runtime::ServoConfig{}.velocity_limit_m_s;          // the live loop's, m/s
 };
 
 // What the loop did while the stimulus played.

@@ -45,6 +45,8 @@ struct LoopOptions {
   double rate_hz = 1000;
   double crossfade_s = 0.02;        // the hot swap's crossfade (runtime::SwappableSource)
   bool restart_after_fault = true;  // a simulated hand cannot be hurt: start again after a stop cause
+  double deadline_guard_periods = runtime::ServoConfig{}.deadline_guard_periods;  // ServoConfig's
+  double velocity_limit_m_s = runtime::ServoConfig{}.velocity_limit_m_s;          // ServoConfig's, m/s
 };
 
 class LiveLoop {
