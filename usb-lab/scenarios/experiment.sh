@@ -11,20 +11,14 @@ rm -rf /out/results  # a kept --out folder from an earlier run: the experiment r
 "$SANDPAPER" experiment run "$DESIGN" --subject LAB --observer "$OBSERVER" --device usb $LAB_RUN_GUARDS -o /out/results \
   > /out/experiment.out 2> /out/experiment.err &
 experiment_pid=$!
-_detached() {
-  local d
-  d=$(ffboard_interface_driver)
-  [ -n "$d" ] && [ "$d" != usbhid ] && driver_during=$d
-}
-driver_during=
-lab_poll 30 "the experiment to detach usbhid" _detached
+ffboard_wait_claimed "the experiment"
 wait "$experiment_pid"
 experiment_status=$?
 ffboard_given_back
 ffboard_stop
 sed 's/^/experiment: /' /out/experiment.err
 cat > /out/experiment.json <<JSON
-{"experiment_status": $experiment_status, "driver_before": "$driver_before", "driver_during": "$driver_during",
+{"experiment_status": $experiment_status, "driver_before": "$driver_before", "driver_during": "$DRIVER_DURING",
  "driver_after": "$DRIVER_AFTER", "input_after": "$INPUT_AFTER"}
 JSON
 cat /out/experiment.json

@@ -73,6 +73,18 @@ ffboard_interface_driver() {
   done
 }
 
+# While a program that claims the joystick (`run`, `experiment run`) starts: waits until usbhid let
+# go of it, and sets DRIVER_DURING to the interface's driver then (usbfs: claimed through libusb).
+_ffboard_detached() {
+  local d
+  d=$(ffboard_interface_driver)
+  [ -n "$d" ] && [ "$d" != usbhid ] && DRIVER_DURING=$d
+}
+ffboard_wait_claimed() {
+  DRIVER_DURING=
+  lab_poll 30 "$1 to detach usbhid" _ffboard_detached
+}
+
 # After a run: waits until usbhid has the joystick's interface again, then sets DRIVER_AFTER (the
 # interface's driver) and INPUT_AFTER (the kernel's input device for it, empty if none).
 _ffboard_usbhid_back() { [ "$(ffboard_interface_driver)" = usbhid ]; }

@@ -9,21 +9,14 @@ driver_before=$(ffboard_interface_driver)
 "$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" $LAB_RUN_GUARDS --json --trace /out/trace.csv \
   > /out/run.json 2> /out/run.err &
 run_pid=$!
-# Claimed through usbfs, the interface shows the driver "usbfs" while the run holds it.
-_detached() {
-  local d
-  d=$(ffboard_interface_driver)
-  [ -n "$d" ] && [ "$d" != usbhid ] && driver_during=$d
-}
-driver_during=
-lab_poll 30 "the run to detach usbhid" _detached
+ffboard_wait_claimed "the run"
 wait "$run_pid"
 run_status=$?
 ffboard_given_back
 ffboard_stop
 sed 's/^/run: /' /out/run.err
 cat > /out/play.json <<JSON
-{"run_status": $run_status, "driver_before": "$driver_before", "driver_during": "$driver_during",
+{"run_status": $run_status, "driver_before": "$driver_before", "driver_during": "$DRIVER_DURING",
  "driver_after": "$DRIVER_AFTER", "input_after": "$INPUT_AFTER"}
 JSON
 cat /out/play.json
