@@ -4,6 +4,7 @@
 // scratch file, reused). A loaded device and map are then used the way the compiler uses them.
 // Expected rejections: toml::parse_error, calibration::CalibrationError. Nothing else is caught.
 #include <cstddef>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -35,6 +36,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         (void)device.command_units(a, f);
         (void)device.force_step_N(a, f);
       }
+    // [firmware]: the schema keeps its numbers non-negative, so the damper is a force against the
+    // motion at any speed, as explain's device output takes it.
+    if (device.has_firmware())
+      for (int a = 0; a < 2; ++a)
+        for (double v : {0.0, 0.02, 0.2, -0.2}) {
+          const double d = device.firmware_damping_N(a, v);
+          fuzz::check(std::isfinite(d) && d >= 0, "a firmware damper that is negative or not finite");
+        }
   } catch (const calibration::CalibrationError&) {
   }
   try {
