@@ -122,9 +122,7 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
            << map.percept_of(r.smoothed.peak_N) << "\n";
     }
   }
-  std::vector<double> out_speeds{0.02, 0.05, 0.1, 0.2};
-  if (design_speed_m_s > 0 && std::find(out_speeds.begin(), out_speeds.end(), design_speed_m_s) == out_speeds.end())
-    out_speeds.push_back(design_speed_m_s);
+  const std::vector<double> out_speeds = device_output_speeds(design_speed_m_s);
   if (const auto out = device_output_at_speed(p, device, out_speeds,
                                                    position_rate_hz > 0 ? std::min(rate, position_rate_hz) : rate);
       !out.empty()) {

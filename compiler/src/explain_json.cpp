@@ -23,9 +23,7 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
   j["felt_at_speed"] = felt;
   // Through the device's own firmware ([firmware] in its calibration file): empty without one.
   nlohmann::json out = nlohmann::json::array();
-  std::vector<double> out_speeds{0.02, 0.05, 0.1, 0.2};
-  if (design_speed_m_s > 0 && std::find(out_speeds.begin(), out_speeds.end(), design_speed_m_s) == out_speeds.end())
-    out_speeds.push_back(design_speed_m_s);
+  const std::vector<double> out_speeds = compiler::device_output_speeds(design_speed_m_s);
   for (const auto& o : compiler::device_output_at_speed(prog, c.device(), out_speeds,
                                                              position_rate_hz > 0 ? std::min(rate, position_rate_hz) : rate))
     out.push_back({{"speed_mm_s", o.speed_m_s * 1e3}, {"rate_hz", o.rate_hz}, {"commanded_peak_N", o.commanded_peak_N},

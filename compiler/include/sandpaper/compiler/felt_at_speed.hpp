@@ -3,6 +3,7 @@
 // (issue 15; thesis 3.3.3: "update rates below approximately 1 kHz lead to degradation"). The ticks
 // fall every v / f along the hand's path and the runtime interpolates the table between them, so a
 // force pulse narrower than one tick's travel is stepped over.
+#include <algorithm>
 #include <vector>
 
 #include "sandpaper/calibration/calibration.hpp"
@@ -41,6 +42,14 @@ struct DeviceOutputAtSpeed {
 std::vector<DeviceOutputAtSpeed> device_output_at_speed(const schema::PatchProgram& p,
                                                         const calibration::DeviceCalibration& device,
                                                         const std::vector<double>& speeds_m_s, double servo_rate_hz);
+
+// The speeds explain reports the device output at: 20, 50, 100 and 200 mm/s, and `design_speed_m_s`
+// when positive and not one of them, m/s.
+inline std::vector<double> device_output_speeds(double design_speed_m_s) {
+  std::vector<double> v{0.02, 0.05, 0.1, 0.2};
+  if (design_speed_m_s > 0 && std::find(v.begin(), v.end(), design_speed_m_s) == v.end()) v.push_back(design_speed_m_s);
+  return v;
+}
 
 // What explain reports: hand speeds 20, 50, 100 and 200 mm/s at `device_rate_hz` and at 10 kHz.
 std::vector<FeltAtSpeed> felt_at_explain_speeds(const schema::PatchProgram& p, double device_rate_hz);
