@@ -412,6 +412,29 @@ TEST(OpenFFBoardFirmwareLab, AStickMovedOnTheFirmwaresClockMeetsASteadyAxisDampe
   firmware().set_position(0, 0.0);
 }
 
+// The lab judges its timing figures only when the guest was not starved, and tells so from these
+// counts: every timer period of the firmware's update rate is either run or counted dropped.
+TEST(OpenFFBoardFirmwareLab, TimerUpdatesAreRunOrCountedDropped) {
+  open_like_the_driver();
+  const double rate_hz = firmware().update_rate_hz();
+  const FirmwareState before = firmware().state();
+  const auto start = Clock::now();
+  const auto periods_since_start = [&] { return std::chrono::duration<double>(Clock::now() - start).count() * rate_hz; };
+  const auto counted = [&] {
+    const FirmwareState s = firmware().state();
+    return static_cast<double>((s.ffb_timer_updates - before.ffb_timer_updates) +
+                               (s.ffb_timer_updates_dropped - before.ffb_timer_updates_dropped));
+  };
+  std::this_thread::sleep_for(milliseconds(500));
+  // A starved timer thread counts the periods it missed when it wakes: wait for it (5 s at most).
+  const double due = periods_since_start();
+  while (counted() < due - 2 && Clock::now() < start + milliseconds(5500)) std::this_thread::sleep_for(milliseconds(5));
+  const double n = counted();
+  EXPECT_GE(n, due - 2) << "periods lost: neither run nor counted dropped";
+  EXPECT_LE(n, periods_since_start() + 2) << "more updates counted than periods passed";
+  EXPECT_GT(firmware().state().ffb_timer_updates, before.ffb_timer_updates);
+}
+
 TEST(OpenFFBoardFirmwareLab, OutputReportsOverTheControlPipeAreReadOneByteOff) {
   const OpenDevice d = open_like_the_driver();
   // SET_REPORT (Output) on the control pipe: hid_device.c strips the report ID (it equals the first

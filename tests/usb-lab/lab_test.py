@@ -29,6 +29,25 @@ def check(ok: bool, what: str) -> None:
         failures.append(what)
 
 
+# The lab's timing figures (explain's prediction at the rates the lab reached, a slider move within
+# 50 ms) are figures of a guest that had the CPU time it asked for. A loaded host starves a TCG
+# guest: its threads wake late, the ticks read positions in bursts, and what is measured is the
+# host's load. The firmware's timer tells that apart from the figure under test: it wants to run
+# every 1.001 ms and counts the updates it dropped for waking a period late (FirmwareState). Past
+# this fraction the figure is printed and said to be of a starved guest, not judged. Measured in
+# `usb-lab.play`: 2.4-9.7 % dropped on a quiet machine, 15-17 % beside `stress-ng --cpu 4` (and the
+# prediction still held within 5 %), 53 % with a second guest running too (positions at 124 Hz, not
+# ~750, as in the CI run that was 11 % off). The lab's tests therefore take the guest one at a time.
+STARVED_TIMER_DROPPED = 0.30
+
+
+def timer_dropped(out: Path) -> float:
+    """The fraction of the firmware timer's updates dropped in a scenario (its state.json)."""
+    s = json.loads((out / "state.json").read_text())
+    due = s["ffb_timer_updates"] + s["ffb_timer_updates_dropped"]
+    return s["ffb_timer_updates_dropped"] / due if due else 1.0
+
+
 def hex_bytes(path: Path) -> str:
     """The bytes of one of tests/runtime/usb/data/*.hex (# comments, hex pairs) as plain hex."""
     text = "".join(line.split("#", 1)[0] for line in path.read_text().splitlines())
@@ -186,16 +205,19 @@ def test_play(build: Path, out: Path) -> None:
                             fade_in_s=FADE_IN_S)
         predicted = measure.predicted_device_peak(build / "bin/sandpaper", REPO / "examples/corduroy.hmat",
                                                   "openffboard-2axis", speed, m["position_rate_hz"])
+        dropped = timer_dropped(where)
         print(f"{speed} mm/s: " + json.dumps({**{k: m[k] for k in (
             "received_hz", "updates_hz", "latency_ms", "firmware_peak_N", "ridges", "commanded_peak_N",
-            "position_rate_hz", "rms_error_N", "unmatched_reports")}, "predicted": predicted}), flush=True)
+            "position_rate_hz", "rms_error_N", "unmatched_reports")}, "timer_dropped": dropped,
+            "predicted": predicted}), flush=True)
         # The "make it good" figure: explain's prediction through the firmware's chain (its damper,
         # its update rate; the device file's [firmware]) at the rate positions reached the ticks.
-        # A mean over fewer than 20 ridges is not a measurement: a guest starved by a heavily loaded
-        # host (8 ridges in 3 s at 20 mm/s, positions at 125 Hz, in one CI run) is said so, not judged.
-        if m["ridges"] < 20:
-            print(f"{speed} mm/s: NOT COMPARED: only {m['ridges']} ridges in the steady play (the guest was starved; "
-                  f"positions at {m['position_rate_hz']:.0f} Hz)", flush=True)
+        # A mean over fewer than 20 ridges is not a measurement, and a starved guest's is of the host's
+        # load (in one CI run: positions at 115-121 Hz, not ~750, and 11 % off at 50 mm/s).
+        if dropped > STARVED_TIMER_DROPPED or m["ridges"] < 20:
+            print(f"{speed} mm/s: NOT COMPARED: the guest was starved (the firmware's timer dropped "
+                  f"{100 * dropped:.1f} % of its updates; positions at {m['position_rate_hz']:.0f} Hz; "
+                  f"{m['ridges']} ridges in the steady play)", flush=True)
         else:
             check(m["firmware_peak_N"] is not None
                   and abs(m["firmware_peak_N"] - predicted["device_peak_N"]) <= 0.10 * predicted["device_peak_N"],
@@ -264,8 +286,16 @@ def test_studio(build: Path, out: Path) -> None:
             check(abs(abs(HANDLE_FORCE_N(0, applied_full[1])) / (value * at_x_m) - 1) <= 0.5,
                   f"{value:g} N/m: the torque went to that spring's force (within the firmware's fade-in)")
     median = sorted(latencies)[len(latencies) // 2] if latencies else math.inf
-    check(median <= 50, f"a slider move reached the firmware's torque within 50 ms (median of "
-                        f"{[round(x, 1) for x in latencies]}: {median:.1f} ms)")
+    dropped = timer_dropped(out)
+    figure = f"median of {[round(x, 1) for x in latencies]}: {median:.1f} ms"
+    # Every move must reach the firmware, starved or not; 50 ms is judged on a guest that kept time.
+    check(math.isfinite(median), f"the slider moves reached the firmware's torque ({figure})")
+    if dropped > STARVED_TIMER_DROPPED:
+        print(f"NOT JUDGED against 50 ms: the guest was starved (the firmware's timer dropped {100 * dropped:.1f} % "
+              f"of its updates); {figure}", flush=True)
+    else:
+        check(median <= 50, f"a slider move reached the firmware's torque within 50 ms ({figure}; the firmware's "
+                            f"timer dropped {100 * dropped:.1f} % of its updates)")
 
 
 def test_experiment(build: Path, out: Path) -> None:

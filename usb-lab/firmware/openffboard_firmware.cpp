@@ -216,6 +216,9 @@ class Firmware final : public OpenFFBoardFirmware {
       s.torque_updates[a] = stick_link::axis(a).torque_updates.load();
     }
     s.actuators_enabled = stick_link::axis(0).driver_enabled.load() && stick_link::axis(1).driver_enabled.load();
+    const hal::TimerUpdateCounts ffb_timer = hal::timer_update_counts(TIM_FFB);
+    s.ffb_timer_updates = ffb_timer.run;
+    s.ffb_timer_updates_dropped = ffb_timer.dropped;
     core::Hold hold;
     if (auto* main = dynamic_cast<FFBHIDMain*>(mainclass)) s.ffb_active = main->getFfbActive();
     if (auto* fx = dynamic_cast<EffectsCalculator*>(CommandHandler::getHandlerFromClassName("fx"))) {

@@ -30,6 +30,10 @@ struct FirmwareState {
   int effects_in_use = 0;           // effect blocks allocated
   std::int16_t torque[2] = {0, 0};  // the last torque each axis's driver was commanded
   std::uint64_t torque_updates[2] = {0, 0};  // how many times each driver's torque was set
+  // TIM_FFB's update interrupts: run, and dropped because the host ran the lab's timer thread more
+  // than a period late. Their ratio says how starved the guest was, apart from what a test measures.
+  std::uint64_t ffb_timer_updates = 0;
+  std::uint64_t ffb_timer_updates_dropped = 0;
 };
 
 class OpenFFBoardFirmware : public UsbFunction {

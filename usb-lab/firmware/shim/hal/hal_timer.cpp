@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -24,6 +25,8 @@ constexpr double apb1_timer_clock_hz = 84e6;  // SYSCLK 168 MHz, APB1 /4, timer 
 struct RunningTimer {
   TIM_HandleTypeDef* htim = nullptr;
   std::atomic<bool> stop{false};
+  std::atomic<std::uint64_t> updates{0};
+  std::atomic<std::uint64_t> dropped{0};
   std::thread thread;
 };
 
@@ -65,9 +68,14 @@ void run_timer(RunningTimer* timer) {
       HAL_TIM_PeriodElapsedCallback(timer->htim);
       period = period_of(*timer->htim);
     }
+    timer->updates.fetch_add(1, std::memory_order_relaxed);
     next += period;
     const auto now = core::Clock::now();
-    if (now > next + period) next += (now - next) / period * period;  // missed updates collapse
+    if (now > next + period) {  // missed updates collapse
+      const auto missed = (now - next) / period;
+      timer->dropped.fetch_add(static_cast<std::uint64_t>(missed), std::memory_order_relaxed);
+      next += missed * period;
+    }
   }
 }
 
@@ -78,6 +86,17 @@ void set_before_update(std::function<void(TIM_HandleTypeDef*)> observer) { befor
 double timer_update_rate_hz(const TIM_HandleTypeDef& htim) {
   const double counts = (static_cast<double>(htim.Instance->PSC) + 1.0) * (static_cast<double>(htim.Instance->ARR) + 1.0);
   return apb1_timer_clock_hz / counts;
+}
+
+TimerUpdateCounts timer_update_counts(const TIM_HandleTypeDef& htim) {
+  TimerUpdateCounts counts;
+  std::lock_guard lock(timers_mutex());
+  for (const auto& t : timers()) {
+    if (t->htim != &htim) continue;
+    counts.run += t->updates.load(std::memory_order_relaxed);
+    counts.dropped += t->dropped.load(std::memory_order_relaxed);
+  }
+  return counts;
 }
 
 void stop_timer_interrupts() {

@@ -1,5 +1,6 @@
 #pragma once
 // The simulated timers' update interrupts (hal_timer.cpp): what HAL_TIM_Base_Start_IT starts.
+#include <cstdint>
 #include <functional>
 
 #include "stm32f4xx_hal.h"
@@ -14,6 +15,14 @@ double timer_update_rate_hz(const TIM_HandleTypeDef& htim);
 // the encoders change on the firmware's own update clock as a real stick sampled by a hardware timer
 // does, whatever the host's scheduler does to the threads.
 void set_before_update(std::function<void(TIM_HandleTypeDef*)> observer);
+
+// A running timer's update interrupts so far: those run, and those dropped because the thread that
+// raises them woke more than a period late (the host starved it; the chip's timer never is).
+struct TimerUpdateCounts {
+  std::uint64_t run = 0;
+  std::uint64_t dropped = 0;
+};
+TimerUpdateCounts timer_update_counts(const TIM_HandleTypeDef& htim);
 
 // Stops every running update interrupt and waits for their threads. Call without the core.
 void stop_timer_interrupts();
