@@ -154,6 +154,8 @@ void validate_config(const ServoConfig& config, const DeviceLimits& limits) {
     throw std::invalid_argument("velocity filter cutoff must be a positive, finite frequency in Hz");
   if (!std::isfinite(config.ramp_s) || config.ramp_s < 0)
     throw std::invalid_argument("force ramp must be a finite, non-negative time in seconds");
+  if (!(config.velocity_hold_s >= 0) || !std::isfinite(config.velocity_hold_s))
+    throw std::invalid_argument("velocity hold must be a finite time of 0 s or more");
   if (!(config.velocity_limit_m_s > 0))
     throw std::invalid_argument("velocity limit must be a positive speed in m/s");
   if (!(config.deadline_guard_periods >= 0) || !std::isfinite(config.deadline_guard_periods))
@@ -198,6 +200,10 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
   HandState hand;
   std::uint64_t played = 0;
   std::int64_t first_start = 0, previous_start = 0;
+  // The last position differentiated, and the tick that read it.
+  glm::dvec2 sampled_position{0, 0};
+  std::int64_t sampled_start = 0;
+  const auto hold_ns = static_cast<std::int64_t>(config.velocity_hold_s * kNsPerS);
   const double velocity_limit_sq = config.velocity_limit_m_s * config.velocity_limit_m_s;
   const double max_late_ns = deadline_guard_s(config) * kNsPerS;
 
@@ -238,10 +244,18 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
     } else if (!finite(position)) {
       stop = StopCause::PositionNotFinite;
     } else {
-      if (k > 0) {
+      // A held position is not a still hand until velocity_hold_s has passed without a fresh one:
+      // until then the estimate is held, and the next fresh position spans the whole gap.
+      if (k == 0) {
+        sampled_position = position;
+        sampled_start = tick_start;
+      } else if (device.position_fresh_rt() || tick_start - sampled_start > hold_ns) {
+        const double sample_dt_s = static_cast<double>(tick_start - sampled_start) / kNsPerS;
         const glm::dvec2 previous_velocity = velocity.value();
-        hand.velocity_m_s = velocity.update(hand.position_m, position, dt_s);
-        hand.acceleration_m_s2 = acceleration.update(previous_velocity, hand.velocity_m_s, dt_s);
+        hand.velocity_m_s = velocity.update(sampled_position, position, sample_dt_s);
+        hand.acceleration_m_s2 = acceleration.update(previous_velocity, hand.velocity_m_s, sample_dt_s);
+        sampled_position = position;
+        sampled_start = tick_start;
       }
       hand.position_m = position;
       if (k == 0) source.reset_rt(hand);  // state starts under the hand's first reported position

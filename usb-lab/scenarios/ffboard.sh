@@ -10,11 +10,9 @@ FFB_UDC=dummy_udc.0
 FFB_DEVICE_LOG=/tmp/ffboard-device.log
 # What the scenarios give `run --device usb` so that the fault or figure under test, not the TCG
 # guest's punctuality, ends a run: a loaded machine stalls the guest for hundreds of milliseconds,
-# past the servo's 50 ms deadline guard and the driver's 202 ms watchdog for this device, and the
-# positions that arrive in a burst after a stall read as a hand far faster than the scripted one
-# (the velocity filter takes every tick as one period apart; docs/USB_PID.md item 13).
+# past the servo's 50 ms deadline guard and the driver's 202 ms watchdog for this device.
 # `run`, `studio` and `experiment run` take them alike (tools/player/safety_guards.hpp).
-LAB_RUN_GUARDS="--deadline-guard 600000 --watchdog 1000 --velocity-limit 20"
+LAB_RUN_GUARDS="--deadline-guard 600000 --watchdog 1000"
 
 # The gadget as the firmware describes itself (sandpaper-lab-device --identity: key=value lines).
 ffboard_create() {

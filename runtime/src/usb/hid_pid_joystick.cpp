@@ -553,6 +553,7 @@ bool HidPidJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexce
     set_fault(DeviceFault::ReadTimedOut, UsbStatus::Timeout);
     return false;
   }
+  fresh_ = fresh;
   position_m = position_m_;
   return true;
 }

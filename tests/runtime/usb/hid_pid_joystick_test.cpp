@@ -177,6 +177,16 @@ TEST(HidPidJoystick, InputReportsDecodeToMetresOverTheCalibratedWorkspace) {
   EXPECT_NEAR(p.x, 16384.0 / 32767.0 * 0.05, 1e-12);
   EXPECT_NEAR(p.y, -0.05, 1e-12);
   EXPECT_EQ(joystick.fault(), DeviceFault::None);
+  EXPECT_TRUE(joystick.position_fresh_rt());
+  // No report at the next tick: the same position, held, and said not to be fresh (the servo loop
+  // differentiates only between fresh ones); then a new report is.
+  ASSERT_TRUE(joystick.read_position_rt(0.001, p));
+  EXPECT_FALSE(joystick.position_fresh_rt());
+  EXPECT_NEAR(p.x, 16384.0 / 32767.0 * 0.05, 1e-12);
+  t->add_input({UsbStatus::Ok, testing::position_report(0, 0)});
+  ASSERT_TRUE(joystick.read_position_rt(0.002, p));
+  EXPECT_TRUE(joystick.position_fresh_rt());
+  EXPECT_NEAR(p.x, 0.0, 1e-12);
 }
 
 TEST(HidPidJoystick, OpenFailsCleanlyWhenTheDeviceHasNoRoomAndGivesItBack) {

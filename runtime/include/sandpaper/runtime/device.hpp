@@ -33,6 +33,10 @@ class Device {
   // Position of the handle (m, patch coordinates) at servo time t_s (s since the loop started).
   // Returns false if the device could not be read.
   virtual bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept = 0;
+  // Whether the position the last successful read_position_rt returned is one the device reported
+  // since the read before (a USB joystick's input report), not the previous one held. The loop
+  // differentiates velocity between fresh positions, over the time between them. Default: every read is.
+  virtual bool position_fresh_rt() const noexcept { return true; }
   // Commands the lateral force (N) for this tick. Returns false on a device fault.
   virtual bool write_force_rt(glm::dvec2 force_N) noexcept = 0;
   // Why the last read_position_rt or write_force_rt that returned false failed. Called by the loop

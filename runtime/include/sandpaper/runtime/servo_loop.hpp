@@ -19,6 +19,11 @@ struct ServoConfig {
   double duration_s = 2.0;     // how long to play; ticks = round(duration * rate); 0: until stop_request
                                // (which must then be set); memory does not grow with the run's length
   double velocity_cutoff_hz = 50.0;  // first-order low-pass on finite-difference velocity and acceleration
+  // Velocity is differentiated between positions the device reported afresh (Device::position_fresh_rt),
+  // over the time between them, so positions that arrive in a burst after a late report read as the
+  // hand's speed, not as a jump. A device that reports only on change is silent while the hand
+  // stands still: after this long without a fresh position the held one counts as a still hand (s).
+  double velocity_hold_s = 0.05;
   // Safety (docs/RUNTIME.md, "Stop causes").
   double ramp_s = 0.05;             // the force is scaled by t / ramp_s over the first ramp_s (0: no ramp)
   double velocity_limit_m_s = 2.0;  // filtered hand speed above this stops the loop (VelocityLimit)

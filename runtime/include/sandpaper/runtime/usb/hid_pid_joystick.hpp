@@ -78,6 +78,9 @@ class HidPidJoystick final : public Device {
   // False, with fault() set, when unplugged, on a failed transfer, or when no position report has
   // come for stale_limit_s of servo time (also when the I/O thread is stuck in a transfer).
   bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override;
+  // True when that read found a position report the last one had not (IoThread: the I/O thread
+  // received one since; CallingThread: one was read at this call).
+  bool position_fresh_rt() const noexcept override { return fresh_; }
   // Set Constant Force for X then Y: magnitude = calibration command units for the force (N), times
   // the axis's command_sense (which way a positive magnitude pushes the handle on this device),
   // rounded and clamped to the Magnitude field's logical range and to +-command_max. IoThread:
@@ -150,6 +153,7 @@ class HidPidJoystick final : public Device {
   glm::dvec2 position_m_{0, 0};
   double last_report_t_s_ = 0;
   bool have_time_ = false;
+  bool fresh_ = false;  // the servo thread's: what position_fresh_rt() returns
   // The first fault wins; written by whichever thread saw it, read by the tick.
   std::atomic<DeviceFault> fault_{DeviceFault::None};
   std::atomic<UsbStatus> fault_status_{UsbStatus::Ok};

@@ -20,6 +20,7 @@ class OwnedHidPidJoystick final : public Device {
   bool read_position_rt(double t_s, glm::dvec2& position_m) noexcept override {
     return joystick_.read_position_rt(t_s, position_m);
   }
+  bool position_fresh_rt() const noexcept override { return joystick_.position_fresh_rt(); }
   bool write_force_rt(glm::dvec2 force_N) noexcept override { return joystick_.write_force_rt(force_N); }
   DeviceFault last_fault_rt() const noexcept override { return joystick_.last_fault_rt(); }
 
