@@ -35,7 +35,7 @@ def check(ok: bool, what: str) -> None:
 # host's load. The firmware's timer tells that apart from the figure under test: it wants to run
 # every 1.001 ms and counts the updates it dropped for waking a period late (FirmwareState). Past
 # this fraction the figure is printed and said to be of a starved guest, not judged. Measured in
-# `usb-lab.play`: 2.4-9.7 % dropped on a quiet machine, 15-17 % beside `stress-ng --cpu 4` (and the
+# `usb-lab.play`: 2.4-9.7 % dropped on a quiet machine, 11-19 % beside `stress-ng --cpu 4` (and the
 # prediction still held within 5 %), 53 % with a second guest running too (positions at 124 Hz, not
 # ~750, as in the CI run that was 11 % off). The lab's tests therefore take the guest one at a time.
 STARVED_TIMER_DROPPED = 0.30
