@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "sandpaper/runtime/servo_loop.hpp"
@@ -99,6 +101,19 @@ TEST(ServoVelocity, AHandThatStopsReadsAsStillOnceTheHoldHasPassed) {
   EXPECT_NEAR(out.velocity_x[240], 0.1, 1e-3);
   EXPECT_LT(std::abs(out.velocity_x[260]), 0.01);
   for (std::size_t k = 320; k < out.velocity_x.size(); ++k) EXPECT_LT(std::abs(out.velocity_x[k]), 1e-3) << "tick " << k;
+}
+
+TEST(ServoVelocity, AHoldThatIsNotATimeIsRefusedBeforeTheRun) {
+  for (double hold : {-0.01, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    BurstDevice device(0.1, 1, 1.0, true);
+    VelocityProbe probe(10);
+    VirtualClock clock;
+    ServoConfig c;
+    c.duration_s = 0.005;
+    c.velocity_hold_s = hold;
+    EXPECT_THROW(run_servo_loop(device, probe, clock, c), std::invalid_argument) << hold;
+    EXPECT_TRUE(probe.velocity_x.empty()) << "a refused run played " << probe.velocity_x.size() << " ticks";
+  }
 }
 
 }  // namespace
