@@ -19,6 +19,7 @@
 #include "lab_core.hpp"
 #include "lab_usbd.hpp"
 #include "stick_link.hpp"
+#include "task_hooks.hpp"
 #include "startup.hpp"
 #include "tusb.h"
 
@@ -28,6 +29,9 @@ namespace sandpaper::usb_lab {
 namespace {
 
 namespace core = usb_lab::core;
+
+// The task that runs the firmware's control steps, woken by TIM_FFB's update (FFBHIDMain.cpp:32, 120).
+constexpr std::string_view kControlTask = "FFBMAIN";
 
 // A USB string descriptor (UTF-16LE code units after the 2-byte header) as ASCII.
 std::string decode_string_descriptor(const std::uint16_t* desc) {
@@ -181,21 +185,17 @@ class Firmware final : public OpenFFBoardFirmware {
   void move_stick(StickPath path) override {
     core::Hold hold;
     if (!path) {
-      hal::set_before_update(nullptr);
+      rtos::set_after_notification_take(nullptr);
       return;
     }
     const std::array<double, 2> scale{counts_per_fraction(0), counts_per_fraction(1)};
     double t_s = 0;
-    hal::set_before_update([path = std::move(path), scale, t_s](TIM_HandleTypeDef* htim) mutable {
-      if (htim != &TIM_FFB) return;
-      // The control update this timer update wakes may not run before the next one, and then
-      // takes both as one (FFBHIDMain::Run, WaitForNotification clears the count): the hand
-      // waits for the firmware, so that every control update sees one period of motion.
-      if (!stick_link::axis(0).position_read.exchange(false)) return;
+    rtos::set_after_notification_take([path = std::move(path), scale, t_s](std::string_view task) mutable {
+      if (task != kControlTask) return;
       const std::array<double, 2> f = path(t_s);
       for (int a = 0; a < 2; ++a)
         stick_link::axis(a).encoder_counts = static_cast<std::int32_t>(std::round(f[a] * scale[a]));
-      t_s += 1.0 / hal::timer_update_rate_hz(*htim);
+      t_s += 1.0 / hal::timer_update_rate_hz(TIM_FFB);
     });
   }
 

@@ -47,14 +47,14 @@ class OpenFFBoardFirmware : public UsbFunction {
   // input report's logical minimum and maximum.
   virtual void set_position(int axis, double fraction_of_range) = 0;
 
-  // The handle's path on the firmware's own clock: before each FFB timer update, the encoders read
-  // path(t) (X and Y as fractions of range, as set_position takes them), t the time of that update
-  // in s since this call counted in the timer's periods (999 Hz: t advances 1001 us per update).
-  // An update whose control step the lab's scheduler merged into the next is not counted, so each
-  // control step sees one period of motion, as on the chip.
-  // A hardware timer never runs late; the host's threads do, and a hand moved on the host's clock
-  // then shows the firmware speed spikes no real stick makes. Runs on the firmware's timer thread
-  // holding the core: it must not call this object. An empty path stops it.
+  // The handle's path on the firmware's own clock: as each control step wakes (FFBHIDMain::Run's
+  // WaitForNotification), the encoders read path(t) (X and Y as fractions of range, as
+  // set_position takes them), t in s since this call counted in the FFB timer's periods (999 Hz:
+  // t advances 1001 us per step). On the chip every timer update runs one step; on the host a step
+  // that overran takes up the updates that came meanwhile in one, and the hand waits for it, so
+  // each step sees one period of motion, as on the chip. A hand moved on the host's clock instead
+  // shows the firmware speed spikes and gaps no real stick makes. Runs on the firmware's control
+  // task holding the core: it must not call this object. An empty path stops it.
   using StickPath = std::function<std::array<double, 2>(double t_s)>;
   virtual void move_stick(StickPath path) = 0;
 

@@ -51,7 +51,6 @@ bool RmdMotorCAN::hasIntegratedEncoder() { return true; }
 EncoderType RmdMotorCAN::getEncoderType() { return EncoderType::absolute; }
 uint32_t RmdMotorCAN::getCpr() { return counts_per_rotation; }
 int32_t RmdMotorCAN::getPos() {
-  stick::axis(axis_index).position_read = true;
   return stick::axis(axis_index).encoder_counts.load() - posOffset;
 }
 void RmdMotorCAN::setPos(int32_t pos) { posOffset = stick::axis(axis_index).encoder_counts.load() - pos; }

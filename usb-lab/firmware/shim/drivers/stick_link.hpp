@@ -15,7 +15,6 @@ using TorqueObserver = std::function<void(int axis, std::int16_t torque, std::ch
 
 struct Axis {
   std::atomic<std::int32_t> encoder_counts{0};  // the stick's position, counts_per_rotation per turn
-  std::atomic<bool> position_read{true};        // the driver's getPos() read the position since it was set
   std::atomic<std::int16_t> torque{0};          // last torque the driver was commanded
   std::atomic<std::uint64_t> torque_updates{0};
   std::atomic<bool> driver_enabled{false};      // between startMotor() and stopMotor()

@@ -9,7 +9,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -40,12 +39,6 @@ std::vector<std::unique_ptr<RunningTimer>>& timers() {
   return *t;
 }
 
-// Read and written holding the core.
-std::function<void(TIM_HandleTypeDef*)>& before_update() {
-  static auto* f = new std::function<void(TIM_HandleTypeDef*)>();
-  return *f;
-}
-
 std::chrono::nanoseconds period_of(const TIM_HandleTypeDef& htim) {
   return std::chrono::nanoseconds(static_cast<long long>(1e9 / timer_update_rate_hz(htim)));
 }
@@ -63,7 +56,6 @@ void run_timer(RunningTimer* timer) {
     if (timer->stop.load()) break;
     {
       core::Hold hold;
-      if (const auto& observer = before_update()) observer(timer->htim);
       core::InterruptScope in_interrupt;
       HAL_TIM_PeriodElapsedCallback(timer->htim);
       period = period_of(*timer->htim);
@@ -80,8 +72,6 @@ void run_timer(RunningTimer* timer) {
 }
 
 }  // namespace
-
-void set_before_update(std::function<void(TIM_HandleTypeDef*)> observer) { before_update() = std::move(observer); }
 
 double timer_update_rate_hz(const TIM_HandleTypeDef& htim) {
   const double counts = (static_cast<double>(htim.Instance->PSC) + 1.0) * (static_cast<double>(htim.Instance->ARR) + 1.0);

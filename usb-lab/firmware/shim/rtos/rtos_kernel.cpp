@@ -11,6 +11,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "lab_core.hpp"
 #include "semphr.h"
 #include "task.h"
+#include "task_hooks.hpp"
 
 namespace core = sandpaper::usb_lab::core;
 
@@ -55,6 +57,12 @@ std::vector<LabTask*>& task_list() {
 std::mutex& task_list_mutex() {
   static auto* m = new std::mutex();
   return *m;
+}
+
+// Read and written holding the core.
+std::function<void(std::string_view)>& after_notification_take() {
+  static auto* f = new std::function<void(std::string_view)>();  // never destroyed (threads outlive statics)
+  return *f;
 }
 
 // The deadline of a wait of `ticks` RTOS ticks starting now, or none for portMAX_DELAY.
@@ -182,6 +190,8 @@ uint32_t ulTaskNotifyTake(BaseType_t clear_on_exit, TickType_t ticks_to_wait) {
   if (!wait_for(lock, task->wake, ticks_to_wait, [&] { return task->notification > 0; })) return 0;
   const std::uint32_t value = task->notification;
   task->notification = clear_on_exit ? 0 : value - 1;
+  lock.unlock();
+  if (const auto& hook = after_notification_take()) hook(task->name);
   return value;
 }
 
@@ -333,3 +343,7 @@ void* pvPortMalloc(size_t size) { return std::malloc(size); }
 void vPortFree(void* p) { std::free(p); }
 
 }  // extern "C"
+
+namespace sandpaper::usb_lab::rtos {
+void set_after_notification_take(std::function<void(std::string_view)> hook) { after_notification_take() = std::move(hook); }
+}  // namespace sandpaper::usb_lab::rtos
