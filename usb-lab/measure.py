@@ -209,6 +209,13 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
             per_axis_torque[axis].append((t, torque))
 
     received, applied, latencies, unmatched = [0, 0], [0, 0], [], [0, 0]
+    # How often new magnitudes reached the firmware while they changed: the driver sends an axis
+    # only when its magnitude changed, so between ridges nothing is sent, and the mean rate over the
+    # play is not the rate within a ridge. The median gap between arrivals is.
+    steady_from = play_start + round(fade_in_s * 1e9)
+    arrivals = [t for t, _ in per_axis_reports[scan_axis] if steady_from <= t <= play_end]
+    gaps = [b - a for a, b in zip(arrivals, arrivals[1:])]
+    command_gap_ns = percentile(gaps, 0.5)
     for axis in (0, 1):
         # Reports from play start to the end: the shutdown's zero force comes after the last tick.
         rs = [r for r in per_axis_reports[axis] if play_start <= r[0] <= play_end]
@@ -257,6 +264,15 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
     steady_positions = [p for (t, _), p in zip(ticks, positions) if t >= steady_start]
     changes = sum(1 for p, q in zip(steady_positions, steady_positions[1:]) if p != q)
     steady_s = (play_end - steady_start) * 1e-9
+    # The hand's speed as the ticks saw it on the guest's clock: the median over 50 ms windows of
+    # the steady play (a scan's turns are a few of them).
+    steady_trace = [(t, p[scan_axis]) for (t, _), p in zip(ticks, positions) if t >= steady_start]
+    speeds, j = [], 0
+    for t, x in steady_trace:
+        while j < len(steady_trace) and steady_trace[j][0] < t + 50_000_000:
+            j += 1
+        if j < len(steady_trace):
+            speeds.append(abs(steady_trace[j][1] - x) / ((steady_trace[j][0] - t) * 1e-9))
     return {
         "seconds": seconds,
         "received_hz": [received[a] / seconds for a in (0, 1)],
@@ -267,6 +283,8 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
         "ridges": len(ridges),
         "commanded_peak_N": mean_ridge_peak([f[scan_axis] for _, f in steady_ticks]),
         "position_rate_hz": changes / steady_s if steady_s > 0 else None,
+        "command_rate_hz": 1e9 / command_gap_ns if command_gap_ns else None,
+        "hand_speed_m_s": percentile(speeds, 0.5),
         "firmware_max_N": max((abs(f) for f in firmware_forces), default=0.0),
         "rms_error_N": math.sqrt(sum(e * e for e in errors) / len(errors)) if errors else None,
         "unmatched_reports": unmatched,

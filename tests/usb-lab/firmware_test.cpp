@@ -412,6 +412,42 @@ TEST(OpenFFBoardFirmwareLab, AStickMovedOnTheFirmwaresClockMeetsASteadyAxisDampe
   firmware().set_position(0, 0.0);
 }
 
+// The hand waits for the firmware: it moves one timer period along its path per control step, so
+// the firmware's speed (position change x update rate, Axis.cpp:651-660) is the path's, however
+// many timer updates a step took up on the host; and no step is left without its move.
+TEST(OpenFFBoardFirmwareLab, TheHandMovesOnePeriodPerControlStep) {
+  open_like_the_driver();
+  constexpr double fraction_per_s = 0.2;
+  const double period_s = 1.0 / firmware().update_rate_hz();
+  int moves = 0;  // written on the control task holding the core; read after move_stick(nullptr)
+  const FirmwareState before = firmware().state();
+  firmware().move_stick([&moves](double t_s) {
+    ++moves;
+    return std::array<double, 2>{fraction_per_s * t_s, 0.0};
+  });
+  std::this_thread::sleep_for(milliseconds(1000));
+  firmware().move_stick(nullptr);
+  const FirmwareState after = firmware().state();
+  const std::uint64_t steps = after.ffb_control_steps - before.ffb_control_steps;
+  const std::uint64_t periods = (after.ffb_timer_updates + after.ffb_timer_updates_dropped) -
+                                (before.ffb_timer_updates + before.ffb_timer_updates_dropped);
+  ASSERT_GT(moves, 100);
+  // Every step in between moved the hand (a few may fall before and after the path was set).
+  EXPECT_GE(steps, static_cast<std::uint64_t>(moves));
+  EXPECT_LE(steps, static_cast<std::uint64_t>(moves) + 50);
+  EXPECT_LE(steps, periods + 1);  // never more steps than timer periods
+  // The last move put the hand at the path's time (moves - 1) periods; X in the input report is
+  // -32767..32767 over the range (ffb_defs.h:100-124).
+  const double expected_x = fraction_per_s * (moves - 1) * period_s * 32767.0;
+  Bytes report;
+  bool matched = false;
+  const auto until = Clock::now() + milliseconds(1000);
+  while (!matched && Clock::now() < until && next_position_report(report, milliseconds(200)))
+    matched = std::abs(i16(report, 9) - expected_x) <= 3;
+  EXPECT_TRUE(matched) << "X " << i16(report, 9) << ", expected " << expected_x << " after " << moves << " moves";
+  firmware().set_position(0, 0.0);
+}
+
 // The lab judges its timing figures only when the guest was not starved, and tells so from these
 // counts: every timer period of the firmware's update rate is either run or counted dropped.
 TEST(OpenFFBoardFirmwareLab, TimerUpdatesAreRunOrCountedDropped) {

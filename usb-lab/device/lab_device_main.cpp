@@ -56,7 +56,8 @@ void write_state(const std::string& path, const FirmwareState& s, std::size_t dr
       << ", \"effects_in_use\": " << s.effects_in_use << ", \"torque\": [" << s.torque[0] << ", " << s.torque[1]
       << "], \"torque_updates\": [" << s.torque_updates[0] << ", " << s.torque_updates[1]
       << "], \"ffb_timer_updates\": " << s.ffb_timer_updates
-      << ", \"ffb_timer_updates_dropped\": " << s.ffb_timer_updates_dropped << ", \"log_records_dropped\": " << dropped
+      << ", \"ffb_timer_updates_dropped\": " << s.ffb_timer_updates_dropped
+      << ", \"ffb_control_steps\": " << s.ffb_control_steps << ", \"log_records_dropped\": " << dropped
       << "}\n";
   out.close();
   std::filesystem::rename(path + ".tmp", path);
@@ -173,12 +174,13 @@ int main(int argc, char** argv) {
     device.stop();
     const FirmwareState s = firmware->state();
     std::printf("sandpaper-lab-device: stopped (%s); firmware: ffb_active %d, actuators_enabled %d, effects %d, torque %d %d, "
-                "interrupt OUT %llu, IN %llu; timer updates %llu run, %llu dropped late\n",
+                "interrupt OUT %llu, IN %llu; timer updates %llu run, %llu dropped late; control steps %llu\n",
                 signal == SIGINT ? "SIGINT" : "SIGTERM", s.ffb_active, s.actuators_enabled, s.effects_in_use, s.torque[0],
                 s.torque[1], static_cast<unsigned long long>(device.interrupt_out_transfers()),
                 static_cast<unsigned long long>(device.interrupt_in_transfers()),
                 static_cast<unsigned long long>(s.ffb_timer_updates),
-                static_cast<unsigned long long>(s.ffb_timer_updates_dropped));
+                static_cast<unsigned long long>(s.ffb_timer_updates_dropped),
+                static_cast<unsigned long long>(s.ffb_control_steps));
     if (!log_dir.empty()) {
       write_report_log(log_dir + "/reports.csv", reports.records());
       write_torque_log(log_dir + "/torque.csv", torques.records());

@@ -85,6 +85,9 @@ class Firmware final : public OpenFFBoardFirmware {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     core::Hold hold;
+    rtos::set_after_notification_take([this](std::string_view task) {
+      if (task == kControlTask) control_step_woke();
+    });
     const auto* device = reinterpret_cast<const tusb_desc_device_t*>(tud_descriptor_device_cb());
     identity_.vendor_id = device->idVendor;
     identity_.product_id = device->idProduct;
@@ -107,6 +110,10 @@ class Firmware final : public OpenFFBoardFirmware {
 
   // The firmware cannot be unloaded: its interrupts stop and its tasks park for good.
   ~Firmware() override {
+    {
+      core::Hold hold;
+      rtos::set_after_notification_take(nullptr);
+    }
     hal::stop_timer_interrupts();
     core::halt();
   }
@@ -184,19 +191,9 @@ class Firmware final : public OpenFFBoardFirmware {
 
   void move_stick(StickPath path) override {
     core::Hold hold;
-    if (!path) {
-      rtos::set_after_notification_take(nullptr);
-      return;
-    }
-    const std::array<double, 2> scale{counts_per_fraction(0), counts_per_fraction(1)};
-    double t_s = 0;
-    rtos::set_after_notification_take([path = std::move(path), scale, t_s](std::string_view task) mutable {
-      if (task != kControlTask) return;
-      const std::array<double, 2> f = path(t_s);
-      for (int a = 0; a < 2; ++a)
-        stick_link::axis(a).encoder_counts = static_cast<std::int32_t>(std::round(f[a] * scale[a]));
-      t_s += 1.0 / hal::timer_update_rate_hz(TIM_FFB);
-    });
+    stick_path_ = std::move(path);
+    stick_scale_ = stick_path_ ? std::array<double, 2>{counts_per_fraction(0), counts_per_fraction(1)} : std::array<double, 2>{};
+    stick_t_s_ = 0;
   }
 
   void on_torque(std::function<void(const TorqueUpdate&)> observer) override {
@@ -219,6 +216,7 @@ class Firmware final : public OpenFFBoardFirmware {
     const hal::TimerUpdateCounts ffb_timer = hal::timer_update_counts(TIM_FFB);
     s.ffb_timer_updates = ffb_timer.run;
     s.ffb_timer_updates_dropped = ffb_timer.dropped;
+    s.ffb_control_steps = control_steps_.load(std::memory_order_relaxed);
     core::Hold hold;
     if (auto* main = dynamic_cast<FFBHIDMain*>(mainclass)) s.ffb_active = main->getFfbActive();
     if (auto* fx = dynamic_cast<EffectsCalculator*>(CommandHandler::getHandlerFromClassName("fx"))) {
@@ -234,6 +232,20 @@ class Firmware final : public OpenFFBoardFirmware {
   }
 
  private:
+  // On the control task, holding the core, as each control step wakes (move_stick says why).
+  void control_step_woke() {
+    control_steps_.fetch_add(1, std::memory_order_relaxed);
+    if (!stick_path_) return;
+    const std::array<double, 2> f = stick_path_(stick_t_s_);
+    for (int a = 0; a < 2; ++a)
+      stick_link::axis(a).encoder_counts = static_cast<std::int32_t>(std::round(f[a] * stick_scale_[a]));
+    stick_t_s_ += 1.0 / hal::timer_update_rate_hz(TIM_FFB);
+  }
+
+  std::atomic<std::uint64_t> control_steps_{0};
+  StickPath stick_path_;  // the three stick_ members: read and written holding the core
+  std::array<double, 2> stick_scale_{};
+  double stick_t_s_ = 0;
   DeviceIdentity identity_;
   std::vector<std::uint8_t> descriptors_;
   std::uint8_t ep_in_ = 0x81;
