@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The studio's real page in headless Chromium against a running `sandpaper studio` on the simulated
 joystick (docs/STUDIO.md): types a typo into the editor and finds the compiler's diagnostic at its line;
-fixes it; drags the roughness slider and sees /api/state report the new compiled force with ticks still
+fixes it; types a word, undoes and redoes it; drags the roughness slider and sees /api/state report the new compiled force with ticks still
 rising; drags the mouse over the preview and sees the hand and the force vector move (Dummy mode);
 saves and finds the file rewritten with its comments; shows a workspace in Normal, Depth and Blind.
 Screenshots: <out>/studio.png, <out>/studio-workspace.png.
@@ -34,6 +34,14 @@ check = checks.check
 def key(b, name, code):
     for kind in ("rawKeyDown", "keyUp"):
         b.send("Input.dispatchKeyEvent", {"type": kind, "key": name, "code": name, "windowsVirtualKeyCode": code})
+
+
+def ctrl(b, letter, shift=False):
+    """Ctrl (and Shift) + a letter, as the keyboard sends it (CDP modifiers: 2 Ctrl, 8 Shift)."""
+    for kind in ("rawKeyDown", "keyUp"):
+        b.send("Input.dispatchKeyEvent", {"type": kind, "key": letter.upper() if shift else letter,
+                                          "code": "Key" + letter.upper(), "modifiers": 2 | (8 if shift else 0),
+                                          "windowsVirtualKeyCode": ord(letter.upper())})
 
 
 def mouse(b, kind, x, y, buttons=1):
@@ -110,6 +118,28 @@ def main():
         check(wait(b, "document.body.dataset.compiles === 'yes' && document.querySelectorAll('#diagnostics li.error').length === 0",
                    "the fix to compile") is not None, "fixed: no errors, it compiles")
         check(b.evaluate("window.studio.text()") == original, "the text is the file's again")
+
+        # Undo and redo, the editor's own keys (@codemirror/commands): a page that bundles two copies
+        # of @codemirror/state throws on each (tests/studio/bundle_test.py).
+        # CodeMirror catches an exception in a command and logs it (console.error): both are collected.
+        b.evaluate("window.pageErrors = []; window.addEventListener('error', e => window.pageErrors.push(String(e.message)));"
+                   " const logged = console.error; console.error = (...a) => { window.pageErrors.push(a.map(String).join(' '));"
+                   " logged(...a); }")
+        click_at_text(b, "describes", after=False)
+        b.send("Input.insertText", {"text": "typed "})
+        typed = b.evaluate("window.studio.text()")
+        check(typed == original.replace("describes", "typed describes", 1), "a word typed into the editor")
+        ctrl(b, "z")
+        check(wait(b, "window.studio.text() === %s" % json.dumps(original), "the undo") is not None,
+              "Ctrl-Z takes the word back out")
+        ctrl(b, "z", shift=True)
+        check(wait(b, "window.studio.text() === %s" % json.dumps(typed), "the redo") is not None,
+              "Ctrl-Shift-Z puts it back")
+        ctrl(b, "z")
+        check(wait(b, "window.studio.text() === %s" % json.dumps(original), "the second undo") is not None,
+              "and Ctrl-Z again leaves the file's text")
+        errors = b.evaluate("window.pageErrors")
+        check(errors == [], f"no error on the page while undoing and redoing: {errors}")
 
         # Drag the roughness slider to the right.
         before = studio.state()
