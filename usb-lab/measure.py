@@ -208,12 +208,14 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
         if axis in (0, 1) and play_start <= t <= play_end + 50_000_000:
             per_axis_torque[axis].append((t, torque))
 
+    # Past the fade-in: the steady play, which the force and rate figures below are of.
+    steady_start = play_start + round(fade_in_s * 1e9)
+
     received, applied, latencies, unmatched = [0, 0], [0, 0], [], [0, 0]
     # How often new magnitudes reached the firmware while they changed: the driver sends an axis
     # only when its magnitude changed, so between ridges nothing is sent, and the mean rate over the
     # play is not the rate within a ridge. The median gap between arrivals is.
-    steady_from = play_start + round(fade_in_s * 1e9)
-    arrivals = [t for t, _ in per_axis_reports[scan_axis] if steady_from <= t <= play_end]
+    arrivals = [t for t, _ in per_axis_reports[scan_axis] if steady_start <= t <= play_end]
     gaps = [b - a for a, b in zip(arrivals, arrivals[1:])]
     command_gap_ns = percentile(gaps, 0.5)
     for axis in (0, 1):
@@ -251,8 +253,7 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
         errors.append(torque_N(scan_axis, torque) - ticks[k][1][scan_axis])
     firmware_forces = [torque_N(scan_axis, torque) for _, torque in per_axis_torque[scan_axis]]
 
-    # Past the fade-in: ridges of the commanded force, the firmware's torque over each.
-    steady_start = play_start + round(fade_in_s * 1e9)
+    # Ridges of the commanded force in the steady play, the firmware's torque over each.
     steady_ticks = [(t, f) for t, f in ticks if t >= steady_start]
     steady_updates = [(t, torque_N(scan_axis, torque)) for t, torque in per_axis_torque[scan_axis]
                       if t >= steady_start - 100_000_000]

@@ -41,10 +41,16 @@ def check(ok: bool, what: str) -> None:
 STARVED_TIMER_DROPPED = 0.30
 
 
-def timer_dropped(out: Path) -> float:
-    """The fraction of the firmware timer's updates dropped in a scenario (its state.json)."""
+def timer_periods(out: Path) -> tuple[dict, int]:
+    """The firmware's state at the end of a scenario (its state.json), and its timer's periods:
+    updates run and dropped."""
     s = json.loads((out / "state.json").read_text())
-    due = s["ffb_timer_updates"] + s["ffb_timer_updates_dropped"]
+    return s, s["ffb_timer_updates"] + s["ffb_timer_updates_dropped"]
+
+
+def timer_dropped(out: Path) -> float:
+    """The fraction of the firmware timer's updates dropped in a scenario."""
+    s, due = timer_periods(out)
     return s["ffb_timer_updates_dropped"] / due if due else 1.0
 
 
@@ -60,9 +66,8 @@ STARVED_STEPS_MISSED = 0.30
 
 
 def steps_missed(out: Path) -> float:
-    """The fraction of the firmware timer's periods that ran no control step of their own (state.json)."""
-    s = json.loads((out / "state.json").read_text())
-    due = s["ffb_timer_updates"] + s["ffb_timer_updates_dropped"]
+    """The fraction of the firmware timer's periods that ran no control step of their own."""
+    s, due = timer_periods(out)
     return 1.0 - s["ffb_control_steps"] / due if due else 1.0
 
 
