@@ -36,14 +36,15 @@ bool DummyJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
   return true;
 }
 
-void DummyJoystick::set_target_nonrt(glm::dvec2 target_m) noexcept {
-  if (!std::isfinite(target_m.x) || !std::isfinite(target_m.y)) return;
+glm::dvec2 DummyJoystick::set_target_nonrt(glm::dvec2 target_m) noexcept {
+  if (!std::isfinite(target_m.x) || !std::isfinite(target_m.y)) return target_nonrt();
   // hypot, not glm::length: squaring a target past 1e154 m overflowed to infinity, and the clip then
   // sent the hand to the centre instead of the edge in the target's direction.
   const double r = std::hypot(target_m.x, target_m.y);
   if (r > limits_.workspace_radius_m) target_m *= limits_.workspace_radius_m / r;
   target_x_.store(target_m.x, std::memory_order_relaxed);
   target_y_.store(target_m.y, std::memory_order_relaxed);
+  return target_m;
 }
 
 glm::dvec2 DummyJoystick::target_nonrt() const noexcept {

@@ -132,6 +132,8 @@ def main():
         status, h = studio.post("/api/hand", {"x_mm": 4.0, "y_mm": -3.0})
         moved, took = poll(studio, lambda s: abs(s["hand"][0] - 4) < 1e-6 and abs(s["hand"][1] + 3) < 1e-6, 5)
         check(status == 200 and took is not None, f"POST /api/hand moves the hand: {moved['hand']}")
+        check(h.get("clipped") is False and h.get("target_mm") == [4.0, -3.0] and "why" not in h,
+              f"a hand inside the workspace goes where it was sent, unclipped: {h}")
         status, e = studio.post("/api/hand", {"x_mm": "left"})
         check(status == 400, "a hand without numbers is refused")
         status, e = studio.post("/api/hand", "{\"x_mm\": 1", content_type="application/json")
@@ -141,6 +143,12 @@ def main():
         s, took = poll(studio, lambda s: s["hand"][0] > 80 and s["hand"][1] < -80, 10)
         check(status == 200 and took is not None and max(abs(v) for v in s["hand"]) < 81,
               f"a hand sent past the edge goes to the edge in that direction: {s['hand']}")
+        # 500 mm is past the sim's 114.3 mm radius: the answer says where the hand went and why.
+        status, h = studio.post("/api/hand", {"x_mm": 500.0, "y_mm": 0.0})
+        check(status == 200 and h.get("clipped") is True and h.get("requested_mm") == [500.0, 0.0]
+              and abs(h["target_mm"][0] - 114.3) < 1e-9 and h["target_mm"][1] == 0
+              and "114.3 mm" in h.get("why", "") and "workspace" in h.get("why", ""),
+              f"a hand sent to 500 mm is answered with where it went (the 114.3 mm edge) and why: {h}")
         studio.post("/api/hand", {"x_mm": 4.0, "y_mm": -3.0})
         back, took = poll(studio, lambda s: abs(s["hand"][0] - 4) < 1e-6 and abs(s["hand"][1] + 3) < 1e-6, 10)
         check(took is not None, f"and comes back: {back['hand']}")

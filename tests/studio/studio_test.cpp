@@ -86,8 +86,9 @@ TEST(DummyJoystick, MovesTowardTheTargetNoFasterThanItsTopSpeed) {
   ASSERT_TRUE(j.write_force_rt({0.5, -0.25}));
   EXPECT_EQ(j.force_nonrt(), glm::dvec2(0.5, -0.25));
   EXPECT_EQ(j.position_nonrt(), p);
-  j.set_target_nonrt({1.0, 0});  // beyond the 114 mm workspace radius: clipped to it
+  const glm::dvec2 clipped = j.set_target_nonrt({1.0, 0});  // beyond the 114 mm workspace radius: clipped to it
   EXPECT_NEAR(j.target_nonrt().x, runtime::sim_device_limits().workspace_radius_m, 1e-12);
+  EXPECT_EQ(clipped, j.target_nonrt());  // and says so
   j.set_target_nonrt({std::nan(""), 0});
   EXPECT_NEAR(j.target_nonrt().x, runtime::sim_device_limits().workspace_radius_m, 1e-12);
   // A target whose square overflows (POST /api/hand takes any finite number of mm): still clipped to

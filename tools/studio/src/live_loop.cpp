@@ -82,10 +82,9 @@ std::uint64_t LiveLoop::load_workspace_nonrt(std::shared_ptr<const schema::Works
   return version;
 }
 
-bool LiveLoop::set_hand_nonrt(double x_mm, double y_mm) {
-  if (!dummy_) return false;
-  dummy_->set_target_nonrt({x_mm * 1e-3, y_mm * 1e-3});
-  return true;
+std::optional<glm::dvec2> LiveLoop::set_hand_nonrt(double x_mm, double y_mm) {
+  if (!dummy_) return std::nullopt;
+  return dummy_->set_target_nonrt({x_mm * 1e-3, y_mm * 1e-3}) * 1e3;
 }
 
 void LiveLoop::promote_locked() {

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -51,6 +52,13 @@ std::string string_field(const nlohmann::json& j, const char* key, bool required
   }
   if (!j[key].is_string()) throw RequestError(400, std::string("\"") + key + "\" must be a string");
   return j[key].get<std::string>();
+}
+
+// A length for a message: 4 significant figures, so 1e300 reads 1e+300 and 114.3 reads 114.3.
+std::string fmt_mm(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
 }
 
 std::string content_type_of(const std::string& name) {
@@ -155,9 +163,19 @@ struct Server::Impl {
       guarded(res, [&] {
         const auto j = body_json(req);
         const double x = number_field(j, "x_mm"), y = number_field(j, "y_mm");
-        if (!loop.set_hand_nonrt(x, y))
-          throw RequestError(409, "the hand is a real joystick's; Dummy mode needs --device sim");
-        send_json(res, {{"ok", true}, {"target_mm", {x, y}}});
+        const auto target = loop.set_hand_nonrt(x, y);
+        if (!target) throw RequestError(409, "the hand is a real joystick's; Dummy mode needs --device sim");
+        nlohmann::json answer = {{"ok", true}, {"requested_mm", {x, y}}, {"target_mm", {target->x, target->y}},
+                                 {"clipped", *target != glm::dvec2(x, y)}};
+        // The answer says where the hand goes and why, so a script asking for 500 mm is not left to
+        // find out from /api/state that the hand stopped at the edge.
+        if (answer["clipped"].get<bool>()) {
+          const double radius_mm = loop.limits().workspace_radius_m * 1e3;
+          answer["why"] = "(" + fmt_mm(x) + ", " + fmt_mm(y) + ") mm is outside the " + loop.limits().name +
+                          " joystick's workspace, a circle of radius " + fmt_mm(radius_mm) +
+                          " mm: the hand goes to its edge in that direction";
+        }
+        send_json(res, answer);
       });
     });
     http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {

@@ -20,8 +20,8 @@ class DummyJoystick final : public Device {
   bool write_force_rt(glm::dvec2 force_N) noexcept override;
 
   // Any thread. The point (m, patch or workspace coordinates) the hand moves toward; clipped to the
-  // workspace radius. Non-finite coordinates are ignored.
-  void set_target_nonrt(glm::dvec2 target_m) noexcept;
+  // workspace radius. Non-finite coordinates are ignored. Returns the target the hand now moves to.
+  glm::dvec2 set_target_nonrt(glm::dvec2 target_m) noexcept;
   glm::dvec2 target_nonrt() const noexcept;
   // Any thread: the handle's position (m) at the last tick and the last force written (N).
   glm::dvec2 position_nonrt() const noexcept;

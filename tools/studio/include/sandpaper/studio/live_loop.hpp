@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -70,9 +71,10 @@ class LiveLoop {
   std::uint64_t load_nonrt(std::shared_ptr<const schema::PatchProgram> program, double roughness);
   std::uint64_t load_workspace_nonrt(std::shared_ptr<const schema::WorkspaceProgram> workspace);
 
-  // Dummy mode: where the simulated hand should move (mm, patch/workspace coordinates). False when
-  // the device is not the simulated one.
-  bool set_hand_nonrt(double x_mm, double y_mm);
+  // Dummy mode: where the simulated hand should move (mm, patch/workspace coordinates). Returns the
+  // target it moves to (mm; clipped to the device's workspace radius), nullopt when the device is
+  // not the simulated one.
+  std::optional<glm::dvec2> set_hand_nonrt(double x_mm, double y_mm);
   bool has_dummy_hand() const noexcept { return dummy_ != nullptr; }
   const runtime::DeviceLimits& limits() const noexcept { return device_->limits(); }
 
