@@ -237,6 +237,46 @@ def main():
         b.click("input[name=mode][value=depth]")
         check(wait(b, "document.querySelector('#patches .patch').style.backgroundImage.includes('-field.png')", "Depth mode") is not None,
               "Depth mode draws each patch's field")
+
+        # Switching files keeps each file's unsaved text, and its own undo history.
+        def switch_to(name):
+            b.evaluate("(() => { const s = document.querySelector('#file'); s.value = %s;"
+                       " s.dispatchEvent(new Event('change')); })()" % json.dumps(name))
+            return wait(b, "window.studio.state.file === %s && document.body.dataset.compiles === 'yes'" % json.dumps(name),
+                        "opening " + name)
+        check(switch_to("corduroy.hmat") is not None, "back to corduroy.hmat")
+        on_disk = (folder / "corduroy.hmat").read_text()
+        click_at_text(b, "#")  # in a comment: the edit compiles, and plays
+        b.send("Input.insertText", {"text": "unsaved "})
+        edited = on_disk.replace("#", "#unsaved ", 1)
+        check(wait(b, "document.querySelector('#saved').textContent === 'unsaved'", "the edit to reach the studio") is not None
+              and b.evaluate("window.studio.text()") == edited, "an edit, not saved")
+        gravel = (folder / "gravel.hmat").read_text()
+        switch_to("gravel.hmat")  # at once: the edit's compile may still be on its way
+        check(b.evaluate("window.studio.text()") == gravel, "another file opens with its own text")
+        marked = b.evaluate("document.querySelector('#file option[value=\"corduroy.hmat\"]').textContent")
+        check(marked.endswith("\u25CF"), f"the file list marks the file left with unsaved edits: {marked!r}")
+        ctrl(b, "z")  # (CDP returns once the page has handled the key: an undo would have happened)
+        check(b.evaluate("window.studio.text()") == gravel, "Ctrl-Z in the other file does not reach the first file's edit")
+        status, listing = studio.get("/api/files")
+        check(listing.get("unsaved") == ["corduroy.hmat"], f"GET /api/files names it unsaved: {listing.get('unsaved')}")
+        prevented = b.evaluate("(() => { const e = new Event('beforeunload', {cancelable: true}); window.dispatchEvent(e);"
+                               " return e.defaultPrevented; })()")
+        check(prevented is True, "closing the page now asks first (beforeunload)")
+        check(switch_to("corduroy.hmat") is not None and b.evaluate("window.studio.text()") == edited,
+              "coming back, the unsaved edit is there")
+        check(b.evaluate("document.querySelector('#saved').textContent") == "unsaved"
+              and "unsaved edits" in b.evaluate("document.querySelector('#status').textContent"),
+              "still marked unsaved, and the page says the edits were kept")
+        check(studio.state()["material"] == "corduroy/wide-wale" and (folder / "corduroy.hmat").read_text() == on_disk,
+              "the edited text plays; the file on disk is untouched")
+        ctrl(b, "z")
+        check(wait(b, "window.studio.text() === %s" % json.dumps(on_disk), "the undo of the kept edit") is not None,
+              "its undo history came back with it: Ctrl-Z takes the word out")
+        check(wait(b, "document.querySelector('#saved').textContent === 'saved'", "saved state") is not None
+              and b.evaluate("(() => { const e = new Event('beforeunload', {cancelable: true}); window.dispatchEvent(e);"
+                             " return e.defaultPrevented; })()") is False,
+              "back to the file's text: nothing unsaved, and the page closes without asking")
     finally:
         b.close()
         code, printed, err = studio.stop()

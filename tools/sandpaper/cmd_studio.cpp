@@ -147,6 +147,9 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
   const auto st = loop->state_nonrt();
   std::cout << "studio: stopped (" << (sig == SIGINT ? "Ctrl-C" : "SIGTERM") << ") after " << st.ticks
             << " ticks; force at zero" << std::endl;
+  // The page asks before it closes with edits unsaved; the studio itself can only say what it drops.
+  for (const auto& file : session.files()["unsaved"])
+    std::cerr << "studio: " << file.get<std::string>() << " had unsaved edits; they were not saved\n";
   return kExitOk;
 }
 

@@ -90,7 +90,13 @@ nlohmann::json Session::files() const {
   for (const auto& n : not_utf8)
     unlisted.push_back({{"file", schema::replace_invalid_utf8(n)},
                         {"why", "its name is not UTF-8: rename the file in UTF-8 to open it here"}});
-  return {{"files", names}, {"not_listed", std::move(unlisted)}};
+  auto unsaved = nlohmann::json::array();
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [file, draft] : drafts_) unsaved.push_back(file);
+    if (!file_.empty() && text_ != saved_text_ && !drafts_.contains(file_)) unsaved.push_back(file_);
+  }
+  return {{"files", names}, {"not_listed", std::move(unlisted)}, {"unsaved", std::move(unsaved)}};
 }
 
 nlohmann::json Session::open(const std::string& relative) {
@@ -103,16 +109,30 @@ nlohmann::json Session::open(const std::string& relative) {
   const auto ext = full.extension();
   if (ext != ".hmat" && ext != ".hws")
     throw RequestError(400, "'" + relative + "' is not a material (.hmat) or workspace (.hws) file");
-  std::string text = read_text(full);
-  nlohmann::json j;
-  {
-    std::lock_guard lock(mutex_);
-    file_ = fs::relative(full, root_).string();
-    is_workspace_ = ext == ".hws";
-    saved_text_ = text;
-    j = update_locked(text);
-    j["file"] = file_;
+  const std::string name = fs::relative(full, root_).string();
+  std::lock_guard lock(mutex_);
+  std::string text, saved;
+  const auto draft = drafts_.find(name);
+  const bool reopened = name == file_ && text_ != saved_text_;
+  const bool restored = reopened || draft != drafts_.end();
+  if (reopened) {
+    text = text_;
+    saved = saved_text_;
+  } else if (restored) {
+    text = draft->second.text;
+    saved = draft->second.saved_text;
+  } else {
+    // Read before the open file is left, so that a refusal (404, 413) changes nothing.
+    text = saved = read_text(full);
   }
+  if (!file_.empty() && file_ != name && text_ != saved_text_) drafts_[file_] = {text_, saved_text_};
+  if (draft != drafts_.end()) drafts_.erase(draft);
+  file_ = name;
+  is_workspace_ = ext == ".hws";
+  saved_text_ = std::move(saved);
+  nlohmann::json j = update_locked(text);
+  j["file"] = file_;
+  j["restored_unsaved"] = restored;
   return j;
 }
 

@@ -32,28 +32,26 @@ function setStatus(text, bad = false) {
 }
 
 // ---- editor ------------------------------------------------------------------------------------
-const editor = new EditorView({
-  parent: $("#editor"),
-  state: EditorState.create({
-    doc: "",
-    extensions: [
-      basicSetup, hmatLanguage, lintGutter(),
-      EditorView.updateListener.of((u) => {
-        if (!u.docChanged || state.remote) return;
-        clearTimeout(state.compileTimer);
-        // Short enough that diagnostics follow typing within 150 ms, long enough to skip keystrokes
-        // typed in one burst.
-        state.compileTimer = setTimeout(compileNow, 30);
-      }),
-      EditorView.domEventHandlers({
-        keydown: (e) => {
-          if ((e.ctrlKey || e.metaKey) && e.key === "s") { e.preventDefault(); save(); return true; }
-          return false;
-        },
-      }),
-    ],
+const editorExtensions = [
+  basicSetup, hmatLanguage, lintGutter(),
+  EditorView.updateListener.of((u) => {
+    if (!u.docChanged || state.remote) return;
+    clearTimeout(state.compileTimer);
+    // Short enough that diagnostics follow typing within 150 ms, long enough to skip keystrokes
+    // typed in one burst.
+    state.compileTimer = setTimeout(compileNow, 30);
   }),
-});
+  EditorView.domEventHandlers({
+    keydown: (e) => {
+      if ((e.ctrlKey || e.metaKey) && e.key === "s") { e.preventDefault(); save(); return true; }
+      return false;
+    },
+  }),
+];
+const editor = new EditorView({ parent: $("#editor"), state: EditorState.create({ doc: "", extensions: editorExtensions }) });
+// Each file's editor state (its text, selection and undo history) while another file is open, so
+// that undo never reaches across files and a file comes back as it was left.
+const fileStates = new Map();
 
 function setText(text) {
   const old = editor.state.doc.toString();
@@ -112,17 +110,24 @@ function showDiagnostics(list) {
   $("#diagnostics-title").textContent = list.length ? `Diagnostics (${list.length})` : "No diagnostics";
 }
 
-async function compileNow() {
+function compileNow() {
+  state.compileTimer = 0;
   const text = editor.state.doc.toString();
   const t0 = performance.now();
-  try {
-    const r = await api("POST", "/api/material", text, false);
-    if (editor.state.doc.toString() !== text) return;  // typed on meanwhile: the next compile answers
-    state.lastCompileMs = performance.now() - t0;
-    applyCompile(r);
-  } catch (e) {
-    setStatus(e.message, true);
-  }
+  // Remembered, so that opening another file waits for it: posted after the open, it would become
+  // the other file's text.
+  const sent = (async () => {
+    try {
+      const r = await api("POST", "/api/material", text, false);
+      if (editor.state.doc.toString() !== text) return;  // typed on meanwhile: the next compile answers
+      state.lastCompileMs = performance.now() - t0;
+      applyCompile(r);
+    } catch (e) {
+      setStatus(e.message, true);
+    }
+  })();
+  state.compiling = sent;
+  return sent;
 }
 
 function applyCompile(r) {
@@ -133,6 +138,7 @@ function applyCompile(r) {
       (r.max_lateral_force_N !== undefined ? ` · ${r.max_lateral_force_N.toFixed(3)} N, roughness ${r.roughness.toFixed(2)}` : "")
     : "does not compile: the last good program keeps playing";
   $("#saved").textContent = r.saved ? "saved" : "unsaved";
+  markUnsaved(state.file, !r.saved);
   state.version = r.version;
   renderSliders(r.parameters || []);
   if (r.ok) refreshPreview();
@@ -479,14 +485,40 @@ function connectEvents() {
 }
 
 // ---- files, saving -------------------------------------------------------------------------------
+// The file list marks files whose edits are not saved (the studio keeps them while another file is
+// open: GET /api/files "unsaved").
+function markUnsaved(file, unsaved) {
+  for (const o of $("#file").options) {
+    if (o.value !== file || !file) continue;
+    o.textContent = unsaved ? `${file} \u25CF` : file;
+    o.dataset.unsaved = unsaved ? "yes" : "no";
+  }
+}
+
+function anyUnsaved() {
+  return [...$("#file").options].some((o) => o.dataset.unsaved === "yes");
+}
+
 async function open(file) {
+  // Whatever was typed reaches the studio as the file it was typed in, before the file changes.
+  await flushCompile();
+  await state.compiling;
   const r = await api("POST", "/api/open", { file });
   await loadCurrent();
+  if (r.restored_unsaved) setStatus(`${file}: your unsaved edits, as you left them`);
   return r;
 }
 
 async function loadCurrent() {
   const cur = await api("GET", "/api/current");
+  if (state.file && state.file !== cur.file) fileStates.set(state.file, editor.state);
+  const kept = fileStates.get(cur.file);
+  fileStates.delete(cur.file);
+  if (state.file !== cur.file) {
+    state.remote = true;
+    editor.setState(kept && kept.doc.toString() === cur.text ? kept : EditorState.create({ doc: cur.text, extensions: editorExtensions }));
+    state.remote = false;
+  }
   state.file = cur.file;
   state.kind = cur.kind;
   document.body.dataset.kind = cur.kind;
@@ -500,6 +532,7 @@ async function save() {
     await flushCompile();
     const r = await api("POST", "/api/save");
     $("#saved").textContent = "saved";
+    markUnsaved(r.file, false);
     setStatus(`saved ${r.file} (${r.bytes} bytes)`);
   } catch (e) {
     setStatus(e.message, true);
@@ -507,11 +540,11 @@ async function save() {
 }
 
 async function flushCompile() {
-  if (state.compileTimer) { clearTimeout(state.compileTimer); state.compileTimer = 0; await compileNow(); }
+  if (state.compileTimer) { clearTimeout(state.compileTimer); await compileNow(); }
 }
 
 async function init() {
-  const { files, not_listed: notListed = [] } = await api("GET", "/api/files");
+  const { files, not_listed: notListed = [], unsaved = [] } = await api("GET", "/api/files");
   const sel = $("#file");
   for (const f of files) sel.append(new Option(f, f));
   // Names that are not UTF-8 cannot be asked for: shown, greyed, with what to do.
@@ -521,7 +554,14 @@ async function init() {
     o.title = why;
     sel.append(o);
   }
+  for (const f of unsaved) markUnsaved(f, true);
   sel.addEventListener("change", () => open(sel.value).catch((e) => setStatus(e.message, true)));
+  // Closing or reloading the page with edits unsaved asks first (the browser's own question).
+  window.addEventListener("beforeunload", (e) => {
+    if (!anyUnsaved()) return;
+    e.preventDefault();
+    e.returnValue = "";
+  });
   $("#save").addEventListener("click", save);
   document.querySelectorAll("input[name=view]").forEach((r) => r.addEventListener("change", () => { state.view = r.value; refreshPreview(); }));
   document.querySelectorAll("input[name=mode]").forEach((r) => r.addEventListener("change", () => { state.mode = r.value; drawWorkspace(); }));

@@ -3,8 +3,9 @@
 // (saved or not), and the last program that compiled, which is what plays. Every method is called
 // from the HTTP threads and serialised by the session's own mutex; none touches the servo thread
 // except through LiveLoop's non-blocking hand-over (docs/STUDIO.md).
-#include <filesystem>
 #include <condition_variable>
+#include <filesystem>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -41,10 +42,12 @@ class Session {
   Session& operator=(const Session&) = delete;
 
   // The .hmat and .hws files in the folder, 8 levels deep, at most 2000: {"files": [relative paths,
-  // sorted], "not_listed": [{"file", "why"}]}, the second for names that are not UTF-8 (shown with
-  // U+FFFD), which a request could not name.
+  // sorted], "not_listed": [{"file", "why"}], "unsaved": [files with edits not yet saved]}, the
+  // second for names that are not UTF-8 (shown with U+FFFD), which a request could not name.
   nlohmann::json files() const;
-  // Reads `relative` (confined to the folder), compiles and plays it. RequestError 403 outside the
+  // Opens `relative` (confined to the folder), compiles and plays it. The file left keeps its unsaved
+  // edits here, and opening it again brings them back ("restored_unsaved": true) rather than the
+  // disk's text: switching files never drops a designer's text. RequestError 403 outside the
   // folder, 404 missing, 413 too large, 400 not a .hmat or .hws.
   nlohmann::json open(const std::string& relative);
   // The open file: {"file", "kind": "material"|"workspace", "text", "saved": bool, "version", ...}.
@@ -95,6 +98,11 @@ class Session {
   bool is_workspace_ = false;
   std::string text_;           // as edited
   std::string saved_text_;     // as on disk
+  // Files opened, edited and left unsaved: their edited and on-disk texts, by relative path.
+  struct Draft {
+    std::string text, saved_text;
+  };
+  std::map<std::string, Draft> drafts_;
   bool text_compiles_ = false;
   std::uint64_t version_ = 0;  // of the playing program (LiveLoop's load version)
   std::shared_ptr<const schema::PatchProgram> program_;
