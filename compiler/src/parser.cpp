@@ -1,6 +1,7 @@
 #include "sandpaper/compiler/parser.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -194,8 +195,9 @@ class Parser {
       st.node = LikeStmt{k, kw.location};
     } else {
       std::string guess = closest_match(k, statement_keywords());
-      diags_.error("E0202", kw.location, "unknown statement '" + k + "'",
-                   guess.empty() ? "statements are: " + join(statement_keywords()) : "did you mean `" + guess + "`?");
+      std::string help = guess.empty() ? "statements are: " + join(statement_keywords()) : "did you mean `" + guess + "`?";
+      if (const schema::LawDef* law = law_named_by(k)) help = law_statement_help(*law);
+      diags_.error("E0202", kw.location, "unknown statement '" + k + "'", help);
       throw StatementError{};
     }
     st.text = span_text(start, pos_);
@@ -571,6 +573,32 @@ class Parser {
       else unknown_option("energy", o, opts);
     }
     return e;
+  }
+
+  // A word that names a force law (`friction`, `nap-friction`): people write the physics they mean
+  // as a statement, and the law is how the language says it.
+  static const schema::LawDef* law_named_by(const std::string& word) {
+    std::string w;
+    for (char c : word)
+      if (c != '-' && c != '_') w += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const auto& law : schema::all_laws()) {
+      std::string n;
+      for (char c : law.name) n += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (n == w) return &law;
+    }
+    return nullptr;
+  }
+
+  static std::string law_statement_help(const schema::LawDef& law) {
+    const std::string keyword = law.family == schema::LawFamily::Physics ? "physics" : "force";
+    std::string required;
+    for (const auto& p : law.params)
+      if (p.required) required += (required.empty() ? "" : ", ") + std::string(p.name);
+    std::string help = "'" + std::string(law.name) + "' is a force law: write `" + keyword + " " + std::string(law.name) +
+                       "` with " + required;
+    // Coulomb friction is the one people reach for by name; show it whole.
+    if (law.name == "Friction") help += ", e.g. `physics Friction static 0.6 kinetic 0.4 press 1 N`";
+    return help + " (schema/LANGUAGE.md, \"Force laws\")";
   }
 
   static std::string join(const std::vector<std::string>& xs) {

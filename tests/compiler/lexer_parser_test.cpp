@@ -69,6 +69,23 @@ TEST(Parser, BareNameAmongOtherStatementsIsUnknown) {
   EXPECT_EQ(d.all()[0].code, "E0202");
 }
 
+TEST(Parser, AStatementNamedForAForceLawPointsToTheLaw) {
+  for (const char* text : {"friction 0.5", "roughness 0.5; Friction static 0.6"}) {
+    Diagnostics d;
+    parse_text(text, d);
+    ASSERT_EQ(d.all().size(), 1u) << text;
+    EXPECT_EQ(d.all()[0].code, "E0202");
+    EXPECT_NE(d.all()[0].suggestion.find("`physics Friction static 0.6 kinetic 0.4 press 1 N`"), std::string::npos)
+        << d.all()[0].suggestion;
+  }
+  Diagnostics d;
+  parse_text("nap-friction 0.5", d);
+  ASSERT_EQ(d.all().size(), 1u);
+  EXPECT_NE(d.all()[0].suggestion.find("`physics NapFriction` with static, kinetic, against_static, against_kinetic, press"),
+            std::string::npos)
+      << d.all()[0].suggestion;
+}
+
 TEST(Parser, ReportsEveryErrorNotJustTheFirst) {
   Diagnostics d;
   auto m = parse_text(R"(material "x" {
