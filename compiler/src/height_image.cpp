@@ -488,4 +488,19 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
   return img;
 }
 
+std::optional<std::pair<int, int>> height_image_size(const std::string& path) {
+  HeightImageRequest r;
+  r.path = r.shown_path = path;
+  HeightImageError e;
+  RawImage raw;
+  const auto kind = schema::array_kind_of(path);
+  if (kind == schema::ArrayKind::Shade) return std::nullopt;
+  if (kind == schema::ArrayKind::Depth) {
+    if (!read_depth_file(r, raw, e)) return std::nullopt;
+  } else if (!open_picture(r, raw, e)) {
+    return std::nullopt;
+  }
+  return std::pair{raw.nx, raw.ny};
+}
+
 }  // namespace sandpaper::compiler

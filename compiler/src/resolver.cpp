@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "sandpaper/compiler/height_image.hpp"
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/schema/force_laws.hpp"
@@ -362,6 +363,10 @@ class Resolver {
     m.licence.clear();
     m.deprecated_by.clear();
     if (m.name.empty() || reference) m.name = reference ? std::string() : lib_entry ? lib_entry->name : like.name;
+    // A bare perceptual description is not the reference texture: it is felt on it.
+    if (reference)
+      m.describes = "felt on the library's reference texture, " + entry_name +
+                    (m.describes.empty() ? std::string() : " (" + m.describes + ")");
     return m;
   }
 
@@ -787,6 +792,7 @@ class Resolver {
     r.stated_path = h.path;
     r.width = stated_param(h.width, Layer::Physical);
     r.height = h.height ? stated_param(*h.height, Layer::Physical) : r.width;
+    image_shape(h, r);
     if (h.smoothing) r.smoothing = stated_param(*h.smoothing, Layer::Physical);
     if (h.sampling) r.sampling = stated_param(*h.sampling, Layer::Physical);
     if (h.depth) r.depth = stated_param(*h.depth, Layer::Physical);
@@ -803,6 +809,28 @@ class Resolver {
       m.max_lateral_force.reset();
       m.roughness.reset();
     }
+  }
+
+  // A picture keeps its shape: `size W` alone sets the width and the height follows the picture's
+  // px; both sides stated on a picture of another shape stretch it, which is said (W0307). An image
+  // that cannot be opened is left to codegen, which says why.
+  void image_shape(const HeightmapStmt& h, ResolvedHeightmap& r) {
+    const auto px = height_image_size(r.path);
+    if (!px || px->first < 1 || px->second < 1) return;
+    const auto [nx, ny] = *px;
+    const std::string shape = std::to_string(nx) + " x " + std::to_string(ny) + " px";
+    if (!h.height) {
+      r.height.si = r.width.si * ny / nx;
+      r.height.stated = fmt_num(r.height.si * 1e3) + " mm (" + h.width.text() + " across the picture's " + shape + ")";
+      return;
+    }
+    const double dx = r.width.si / nx, dy = r.height.si / ny;
+    if (std::abs(dx / dy - 1) <= 0.01) return;
+    diags_.warning("W0307", h.height->location,
+                   "the picture is stretched: " + shape + " over " + h.width.text() + " x " + h.height->text() + " is " +
+                       fmt_num(dx * 1e3) + " mm per px across and " + fmt_num(dy * 1e3) + " mm per px down",
+                   "write `size " + h.width.text() + "` alone to keep the picture's shape (" + h.width.text() + " x " +
+                       fmt_num(r.width.si * ny / nx * 1e3) + " mm), or crop the picture to the patch's shape");
   }
 
   void finish(ResolvedMaterial& m) {
@@ -838,8 +866,15 @@ class Resolver {
     bool has_force_law = false;
     for (const auto& l : m.laws)
       if (l.name != "Nothing" && l.name != "Null") has_force_law = true;
-    if (!has_texture && !m.spring && !m.damper && !m.antiviscous && !has_force_law && !diags_.has_errors())
-      diags_.warning("W0305", syn_.name_location.file ? syn_.name_location : SourceLocation{syn_.file, 1, 1, 1},
+    const SourceLocation start = syn_.name_location.file ? syn_.name_location : SourceLocation{syn_.file, 1, 1, 1};
+    // No statement at all is a slip (an empty file, a blank -e, Python's compile("")), not a
+    // material that feels like nothing: that is `force Nothing`.
+    if (syn_.statements.empty() && !diags_.has_errors())
+      diags_.error("E0316", start, "the material is empty: it has no statement",
+                   "describe it, e.g. `like corduroy`, `roughness medium` or `grating period 2.5 mm`; a material "
+                   "meant to feel like nothing says `force Nothing`");
+    else if (!has_texture && !m.spring && !m.damper && !m.antiviscous && !has_force_law && !diags_.has_errors())
+      diags_.warning("W0305", start,
                      "the material has no force terms; it will feel like nothing",
                      "add a texture, a spring or a damper");
   }

@@ -41,13 +41,20 @@ const schema::HeightFieldTerm& field_of(const compiler::CompileResult& r) {
   return std::get<schema::HeightFieldTerm>(r.program->terms.at(0));
 }
 
-// The first diagnostic of a compile that must be refused with `code` (an empty one if it was not).
+// The first error of a compile: a warning such as a stretched picture's W0307 may come before it.
+compiler::Diagnostic error_of(const compiler::CompileResult& r) {
+  for (const auto& d : r.diagnostics.all())
+    if (d.severity == compiler::Severity::Error) return d;
+  return {};
+}
+
+// The first error of a compile that must be refused with `code` (an empty one if it was not).
 compiler::Diagnostic refusal(const std::string& text, const std::string& code) {
   const auto r = test::shipped_compiler().compile_text(text);
   EXPECT_FALSE(r.ok()) << text;
-  if (r.diagnostics.all().empty()) return {};
-  EXPECT_EQ(r.diagnostics.all().front().code, code) << compiler::format_diagnostics(r.diagnostics);
-  return r.diagnostics.all().front();
+  const auto d = error_of(r);
+  EXPECT_EQ(d.code, code) << compiler::format_diagnostics(r.diagnostics);
+  return d;
 }
 
 // A 16 x 16 px ramp written by OpenImageIO as `dir/ramp.EXT`, as bytes: a good file to damage.
@@ -116,6 +123,33 @@ TEST(Heightmap, MaximumExcludesTheRim) {
   EXPECT_GT(std::abs(f.force_x_N[25 * 50 + 0]), 100.0f);  // ...and the rim's cliff is left outside it
 }
 
+TEST(Heightmap, APictureKeepsItsShapeAndAStretchedOneIsSaid) {
+  auto dir = test::temp_dir("aspect");
+  // 720 x 477 px, the photograph the issue found stretched over a 60 mm square.
+  write_image(dir + "/board.png", 720, 477, OIIO::TypeDesc::UINT8,
+              [](float x, float y, int) { return 0.5f + 0.25f * std::sin(x / 7) + 0.25f * std::sin(y / 5); });
+  const std::string head = "heightmap \"" + dir + "/board.png\" size 60 mm";
+  auto one = test::shipped_compiler().compile_text(head + " amplitude 1 N");
+  ASSERT_TRUE(one.ok()) << compiler::format_diagnostics(one.diagnostics);
+  EXPECT_DOUBLE_EQ(one.program->size_m[0], 0.060);
+  EXPECT_NEAR(one.program->size_m[1], 0.060 * 477 / 720, 1e-12);  // 39.75 mm
+  EXPECT_NEAR(field_of(one).spacing_m[0], field_of(one).spacing_m[1], 1e-12);
+  EXPECT_TRUE(test::codes(one, compiler::Severity::Warning).empty());
+  // Both sides given: as written, with a warning that names both spacings and the size that fits.
+  auto square = test::shipped_compiler().compile_text(head + " x 60 mm amplitude 1 N");
+  ASSERT_TRUE(square.ok()) << compiler::format_diagnostics(square.diagnostics);
+  EXPECT_DOUBLE_EQ(square.program->size_m[1], 0.060);
+  EXPECT_EQ(test::codes(square, compiler::Severity::Warning), std::vector<std::string>{"W0307"});
+  for (const auto& d : square.diagnostics.all())
+    if (d.code == "W0307") {
+      EXPECT_NE(d.message.find("0.08333 mm per px across and 0.1258 mm per px down"), std::string::npos) << d.message;
+      EXPECT_NE(d.suggestion.find("(60 mm x 39.75 mm)"), std::string::npos) << d.suggestion;
+    }
+  // Within 1 %: said to keep the shape, no warning (60 x 39.9 mm is 0.4 % off).
+  auto close = test::shipped_compiler().compile_text(head + " x 39.9 mm amplitude 1 N");
+  EXPECT_TRUE(test::codes(close, compiler::Severity::Warning).empty()) << compiler::format_diagnostics(close.diagnostics);
+}
+
 TEST(Heightmap, SmoothingSoftensAStep) {
   auto dir = test::temp_dir("step");
   write_image(dir + "/step.tif", 64, 40, OIIO::TypeDesc::FLOAT, [](float x, float, int) { return x < 32 ? 0.0f : 1.0f; });
@@ -170,19 +204,19 @@ TEST(Heightmap, APictureUnderThreePixelsASideIsRefusedFromItsHeader) {
   std::ofstream(dir + "/cut.png", std::ios::binary) << corrupt;
   auto cut = compile("heightmap \"" + dir + "/cut.png\" size 2 mm x 400 mm amplitude 1 N");
   ASSERT_FALSE(cut.ok());
-  EXPECT_EQ(cut.diagnostics.all().at(0).code, "E0402") << compiler::format_diagnostics(cut.diagnostics);
-  EXPECT_NE(cut.diagnostics.all().at(0).message.find("2 x 400 px; a height map needs at least 3 x 3"), std::string::npos)
-      << cut.diagnostics.all().at(0).message;
+  EXPECT_EQ(error_of(cut).code, "E0402") << compiler::format_diagnostics(cut.diagnostics);
+  EXPECT_NE(error_of(cut).message.find("2 x 400 px; a height map needs at least 3 x 3"), std::string::npos)
+      << error_of(cut).message;
   auto whole = compile("heightmap \"" + dir + "/strip.png\" size 2 mm x 400 mm amplitude 1 N");
   ASSERT_FALSE(whole.ok());
-  EXPECT_EQ(whole.diagnostics.all().at(0).code, "E0402");
+  EXPECT_EQ(error_of(whole).code, "E0402");
   auto sampled = compile("heightmap \"" + dir + "/strip.png\" size 20 mm x 400 mm sampling 1 mm amplitude 1 N");
   ASSERT_TRUE(sampled.ok()) << compiler::format_diagnostics(sampled.diagnostics);
   EXPECT_EQ(field_of(sampled).nx, 20u);
   EXPECT_EQ(field_of(sampled).ny, 400u);
   auto sampled_cut = compile("heightmap \"" + dir + "/cut.png\" size 20 mm x 400 mm sampling 1 mm amplitude 1 N");
   ASSERT_FALSE(sampled_cut.ok());
-  EXPECT_EQ(sampled_cut.diagnostics.all().at(0).code, "E0401");  // read, and found corrupt
+  EXPECT_EQ(error_of(sampled_cut).code, "E0401");  // read, and found corrupt
 }
 
 // Without `repeat` the peak slope is taken inside a rim of 3 sigma plus the outermost two samples.
@@ -247,7 +281,7 @@ TEST(Heightmap, AnImageSmoothingPastTheBudgetIsRefusedWithASamplingThatFits) {
   const std::string head = "heightmap \"" + dir + "/noise.png\" size 1 mm repeat";
   auto slow = compile(head + " smoothing 0.2 mm amplitude 1 N");
   ASSERT_FALSE(slow.ok());
-  const auto& d = slow.diagnostics.all().at(0);
+  const auto d = error_of(slow);
   EXPECT_EQ(d.code, "E0304") << compiler::format_diagnostics(slow.diagnostics);
   EXPECT_NE(d.message.find("1200 x 1200 samples"), std::string::npos) << d.message;
   EXPECT_NE(d.message.find("more than the limit of 1e+09"), std::string::npos) << d.message;
@@ -277,10 +311,10 @@ TEST(Heightmap, ASmoothingSuggestionNamesASamplingWhoseResizeFits) {
     return 0.5f + 0.25f * std::sin(6.2832f * y / 6452.4f) + 0.25f * std::sin(6.2832f * x / 16.0f);
   });
   auto compile = [](const std::string& text) { return test::shipped_compiler().compile_text(text); };
-  const std::string head = "heightmap \"" + dir + "/strip.tif\" size 20 mm repeat";
+  const std::string head = "heightmap \"" + dir + "/strip.tif\" size 20 mm x 20 mm repeat";
   auto slow = compile(head + " smoothing 0.5 mm amplitude 1 N");
   ASSERT_FALSE(slow.ok());
-  const auto& d = slow.diagnostics.all().at(0);
+  const auto d = error_of(slow);
   EXPECT_EQ(d.code, "E0304") << compiler::format_diagnostics(slow.diagnostics);
   const auto at = d.suggestion.find("`sampling ");
   ASSERT_NE(at, std::string::npos) << d.suggestion;
@@ -292,7 +326,7 @@ TEST(Heightmap, ASmoothingSuggestionNamesASamplingWhoseResizeFits) {
   // and not the picture's own pixels, over which the smoothing is what E0304 refused.
   auto fine = compile(head + " sampling 0.0137 mm smoothing 0.5 mm amplitude 1 N");
   ASSERT_FALSE(fine.ok());
-  const auto& f = fine.diagnostics.all().at(0);
+  const auto f = error_of(fine);
   EXPECT_EQ(f.code, "E0402") << compiler::format_diagnostics(fine.diagnostics);
   EXPECT_EQ(f.suggestion.find("leave out"), std::string::npos) << f.suggestion;
   const auto at2 = f.suggestion.find("`sampling ");
@@ -313,7 +347,7 @@ TEST(Heightmap, AResampleWhoseWindowIsTooLongIsRefusedWithASamplingThatFits) {
   write_image(dir + "/strip.tif", 2, 800000, OIIO::TypeDesc::UINT8, stripes);
   auto aborted = compile("heightmap \"" + dir + "/strip.tif\" size 40 mm x 3 mm sampling 1 mm amplitude 1 N");
   ASSERT_FALSE(aborted.ok());
-  const auto& a = aborted.diagnostics.all().at(0);
+  const auto a = error_of(aborted);
   EXPECT_EQ(a.code, "E0402") << compiler::format_diagnostics(aborted.diagnostics);
   EXPECT_NE(a.message.find("would walk a window of 21333335 pixels along y"), std::string::npos) << a.message;
   // Finer sampling enlarges x, which lengthens the window as much as it adds rows; 2 px is too narrow
@@ -324,10 +358,10 @@ TEST(Heightmap, AResampleWhoseWindowIsTooLongIsRefusedWithASamplingThatFits) {
   // which the resize would do, on a 1.6 MB stack window. At 19 rows or more and at most 20 columns
   // the window is under the limit: about 1.58 mm.
   write_image(dir + "/tall.tif", 20, 200000, OIIO::TypeDesc::UINT8, stripes);
-  const std::string head = "heightmap \"" + dir + "/tall.tif\" size 30 mm";
+  const std::string head = "heightmap \"" + dir + "/tall.tif\" size 30 mm x 30 mm";
   auto refused = compile(head + " sampling 10 mm amplitude 1 N");
   ASSERT_FALSE(refused.ok());
-  const auto& d = refused.diagnostics.all().at(0);
+  const auto d = error_of(refused);
   EXPECT_EQ(d.code, "E0402");
   EXPECT_NE(d.message.find("to 3 x 3 samples: OpenImageIO's resize would walk a window of 400001 pixels along y"),
             std::string::npos)
@@ -350,7 +384,7 @@ TEST(Heightmap, AResampleWhoseWindowIsTooLongIsRefusedWithASamplingThatFits) {
 TEST(Heightmap, AResampleWhoseXWeightsWouldPassTheirLimitIsRefused) {
   auto dir = test::temp_dir("wide-window");
   write_image(dir + "/wide.tif", 5000000, 1, OIIO::TypeDesc::UINT8, [](float x, float, int) { return std::fmod(x, 2.0f); });
-  const auto d = refusal("heightmap \"" + dir + "/wide.tif\" size 30 mm sampling 1 mm amplitude 1 N", "E0402");
+  const auto d = refusal("heightmap \"" + dir + "/wide.tif\" size 30 mm x 30 mm sampling 1 mm amplitude 1 N", "E0402");
   EXPECT_NE(d.message.find("would hold 666669 weights for each of the 30 columns, 20000070 in all, more than the limit "
                            "of 16777216"),
             std::string::npos)
@@ -363,7 +397,7 @@ TEST(Heightmap, AResampleWhoseXWeightsWouldPassTheirLimitIsRefused) {
 TEST(Heightmap, AResamplePastItsBudgetOfVisitsIsRefused) {
   auto dir = test::temp_dir("slow-resize");
   write_image(dir + "/profile.tif", 1, 200, OIIO::TypeDesc::UINT8, [](float, float y, int) { return std::fmod(y, 2.0f); });
-  const auto d = refusal("heightmap \"" + dir + "/profile.tif\" size 20 mm sampling 0.01 mm amplitude 1 N", "E0402");
+  const auto d = refusal("heightmap \"" + dir + "/profile.tif\" size 20 mm x 20 mm sampling 0.01 mm amplitude 1 N", "E0402");
   EXPECT_NE(d.message.find("to 2000 x 2000 samples: OpenImageIO's resize would walk a window of 5 x 801 pixels for "
                            "each sample (5 of its rows weighted), about 3.304e+09 pixel visits, more than the limit of 2e+09"),
             std::string::npos)
@@ -390,14 +424,14 @@ TEST(Heightmap, APngWhoseChunkClaimsMoreThanTheFileIsRefusedBeforeDecoding) {
   const std::string claim = std::string("\x6c\x20\x1b\x66tEXtComment", 15) + std::string(40, 'x');
   auto r = compile_png("claim.png", png.substr(0, after_header) + claim + png.substr(after_header));
   ASSERT_FALSE(r.ok());
-  EXPECT_EQ(r.diagnostics.all().at(0).code, "E0401");
-  EXPECT_NE(r.diagnostics.all().at(0).message.find("chunk 'tEXt' at byte 33 claims 1814043494 bytes"), std::string::npos)
-      << r.diagnostics.all().at(0).message;
+  EXPECT_EQ(error_of(r).code, "E0401");
+  EXPECT_NE(error_of(r).message.find("chunk 'tEXt' at byte 33 claims 1814043494 bytes"), std::string::npos)
+      << error_of(r).message;
   const auto iend = png.rfind("IEND");
   ASSERT_NE(iend, std::string::npos);
   r = compile_png("no-end.png", png.substr(0, iend - 4));  // every chunk whole, but no IEND
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.diagnostics.all().at(0).message.find("without its IEND chunk"), std::string::npos) << r.diagnostics.all().at(0).message;
+  EXPECT_NE(error_of(r).message.find("without its IEND chunk"), std::string::npos) << error_of(r).message;
 }
 
 // An OpenEXR header's attributes are walked before OpenEXR Core allocates them at the sizes they
@@ -410,7 +444,7 @@ TEST(Heightmap, AnExrWhoseAttributeClaimsMoreThanTheFileIsRefusedBeforeDecoding)
   auto compile_exr = [&](const std::string& name, const std::string& bytes) { return compile_image_bytes(dir, name, bytes); };
   auto message = [](const compiler::CompileResult& r) {
     if (r.diagnostics.all().empty()) return std::string("none");
-    return r.diagnostics.all().at(0).code + " " + r.diagnostics.all().at(0).message;
+    return error_of(r).code + " " + error_of(r).message;
   };
   ASSERT_TRUE(compile_exr("whole.exr", exr).ok());
   // An attribute of a type Core does not know, claiming 994,377,728 bytes (0x3b450000), in front of

@@ -131,6 +131,9 @@ TEST(Library, BarePerceptualDescriptionStartsFromTheReferenceTexture) {
   const auto& period = std::get<compiler::ResolvedGrating>(r.material->texture).period;
   EXPECT_NEAR(period.si, 0.0025, 1e-12);
   EXPECT_NE(period.source.find("reference texture"), std::string::npos) << period.source;
+  // It says it is felt on the reference texture, not that it is the reference texture.
+  EXPECT_EQ(r.material->describes.rfind("felt on the library's reference texture, ref", 0), 0u) << r.material->describes;
+  EXPECT_EQ(r.program->describes, r.material->describes);
   // A texture of its own, or a `like`, is not replaced.
   auto own = c.compile_text("grating period 4 mm; roughness 0.6");
   ASSERT_TRUE(own.ok());

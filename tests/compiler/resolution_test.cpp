@@ -53,6 +53,20 @@ TEST(Resolution, GratingWithoutPeriodOverridesOnlyWhatItSays) {
   EXPECT_EQ(test::codes(test::shipped_compiler().compile_text("grating; roughness 0.5")), std::vector<std::string>{"E0216"});
 }
 
+TEST(Resolution, AnEmptyMaterialIsAnErrorAndNothingIsSaidWithForceNothing) {
+  for (const char* text : {"", "  \n", "# only a comment\n", "material \"blank\" {\n}\n"}) {
+    auto r = test::shipped_compiler().compile_text(text);
+    EXPECT_FALSE(r.ok()) << text;
+    EXPECT_EQ(test::codes(r), std::vector<std::string>{"E0316"}) << text;
+    EXPECT_FALSE(r.program) << "a failed compile's output is never used";
+  }
+  // Meaning nothing on purpose compiles, with the warning that it feels like nothing.
+  auto nothing = test::shipped_compiler().compile_text("force Nothing");
+  ASSERT_TRUE(nothing.ok()) << compiler::format_diagnostics(nothing.diagnostics);
+  auto spring = test::shipped_compiler().compile_text("spring 200 N/m");
+  EXPECT_TRUE(spring.ok());
+}
+
 // A missing image is reported alone: not after a warning about how its roughness would extrapolate.
 TEST(Resolution, MissingImageReportsOnlyItsError) {
   auto r = test::shipped_compiler().compile_text("heightmap \"no-such-image.png\" size 50 mm; roughness 0.5");

@@ -5,6 +5,7 @@
 // resampled. Shared by the heightmap statement and `sandpaper array`.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sandpaper::compiler {
@@ -71,5 +72,9 @@ struct HeightImageError {
 // samples (E0402), flat or non-finite (E0403), without the named channel (E0404), a .depth of the
 // wrong size (E0405) or a .shade picture (E0406).
 std::optional<HeightImage> load_height_image(const HeightImageRequest& request, HeightImageError& error);
+
+// The picture's size, {width, height} in px (items for a .depth), from its header alone; nullopt
+// when it cannot be opened (load_height_image then says why, with the same checks).
+std::optional<std::pair<int, int>> height_image_size(const std::string& path);
 
 }  // namespace sandpaper::compiler
