@@ -8,9 +8,14 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "sandpaper/compiler/compile_json.hpp"
@@ -84,29 +89,99 @@ std::vector<std::string> roughness_levels(const PyLibrary& lib) {
   return out;
 }
 
-// The lateral force a still hand feels at each point of an n x n grid over the patch (row 0 at
-// -y): what the height field's gradient and the other position-dependent terms give (F = -k grad h,
-// thesis 3.4). The program keeps the gradient, not the heights, so this is the field itself.
-py::dict lateral_force_field(const PyMaterial& m, int n) {
-  if (n < 2 || n > 4096) throw py::value_error("n must be 2 to 4096 points a side");
+constexpr int kMaxFieldPoints = 4096;
+// A grid point lands within this fraction of each ridge's peak force, wherever the grid falls.
+constexpr double kPeakLevel = 0.95;
+
+// The width (m) of the narrowest ridge of a grating's force table (one period of `period_m`, evenly
+// sampled, repeating): the run of samples around each local peak of |F| at or above kPeakLevel of
+// it. A grid that fine meets every peak within 5 %; the thesis' smoothing (sigma = 6/256 of the
+// period) gives about 1/67 of the period.
+double narrowest_ridge_m(const std::vector<float>& force_N, double period_m) {
+  const std::size_t n = force_N.size();
+  float top = 0;
+  for (float f : force_N) top = std::max(top, std::abs(f));
+  double width = period_m;
+  if (n < 2 || top <= 0) return width;
+  auto at = [&](std::size_t i) { return std::abs(force_N[i % n]); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const float a = at(i);
+    if (a < 0.05f * top || a < at(i + n - 1) || a < at(i + 1)) continue;  // not a peak, or a negligible one
+    std::size_t left = 0, right = 0;
+    while (left + right + 1 < n && at(i + n - left - 1) >= kPeakLevel * a) ++left;
+    while (left + right + 1 < n && at(i + right + 1) >= kPeakLevel * a) ++right;
+    width = std::min(width, static_cast<double>(left + right + 1) * period_m / static_cast<double>(n));
+  }
+  return width;
+}
+
+// The widest grid spacing (m) that shows `program`'s texture without aliasing its ridges: each
+// grating's narrowest ridge, each height field's sample spacing; infinity when no term has one.
+double finest_spacing_m(const sp::schema::PatchProgram& program) {
+  double s = std::numeric_limits<double>::infinity();
+  for (const auto& term : program.terms) {
+    if (const auto* g = std::get_if<sp::schema::GratingTerm>(&term)) s = std::min(s, narrowest_ridge_m(g->force_N, g->period_m));
+    if (const auto* h = std::get_if<sp::schema::HeightFieldTerm>(&term))
+      s = std::min({s, h->spacing_m[0], h->spacing_m[1]});
+  }
+  return s;
+}
+
+// The lateral force a still hand feels at each point of an n x n grid over a window centred on the
+// patch (the whole patch by default; row 0 at -y): what the height field's gradient and the other
+// position-dependent terms give (F = -k grad h, thesis 3.4). n by default: the fewest points that
+// resolve the texture (finest_spacing_m). A grid too coarse for the texture would alias its ridges
+// and show a weaker field than the hand feels, so it is refused (ValueError naming the n needed).
+py::dict lateral_force_field(const PyMaterial& m, std::optional<int> n_given, std::optional<std::vector<double>> window_m) {
   const auto& program = m.material.program();
+  double width = program.size_m[0], height = program.size_m[1];
+  if (window_m) {
+    if (window_m->size() != 2 || !((*window_m)[0] > 0) || !((*window_m)[1] > 0) || !std::isfinite((*window_m)[0]) ||
+        !std::isfinite((*window_m)[1]))
+      throw py::value_error("window_m takes a width and a height in metres, both > 0");
+    width = (*window_m)[0];
+    height = (*window_m)[1];
+  }
+  const double finest = finest_spacing_m(program);
+  const double span = std::max(width, height);
+  const double needed_exact = std::isfinite(finest) ? std::ceil(span / finest) : 2;
+  const int needed = static_cast<int>(std::min<double>(std::max(needed_exact, 2.0), kMaxFieldPoints + 1.0));
+  auto too_coarse = [&](int n) {
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "an n = %d grid over %.4g x %.4g mm samples every %.3g mm, coarser than the texture's finest "
+                  "scale (%.3g mm: a grating's narrowest ridge at 95 %% of its peak, or a height field's sample spacing), so it would "
+                  "alias the ridges and show a weaker field than the hand feels; %s",
+                  n, width * 1e3, height * 1e3, span / n * 1e3, finest * 1e3,
+                  needed_exact <= kMaxFieldPoints
+                      ? ("use n >= " + std::to_string(needed)).c_str()
+                      : "no grid of up to 4096 points covers this window: ask for a smaller window_m=(width, height)");
+    return py::value_error(buf);
+  };
+  int n = n_given ? *n_given : needed;
+  if (n_given && (n < 2 || n > kMaxFieldPoints)) throw py::value_error("n must be 2 to 4096 points a side");
+  if (!n_given && needed_exact > kMaxFieldPoints) throw too_coarse(kMaxFieldPoints);
+  if (span / n > finest * (1 + 1e-9)) throw too_coarse(n);
   py::array_t<double> x({n}), y({n}), fx({n, n}), fy({n, n});
   auto xs = x.mutable_unchecked<1>(), ys = y.mutable_unchecked<1>();
   auto fxs = fx.mutable_unchecked<2>(), fys = fy.mutable_unchecked<2>();
   for (int i = 0; i < n; ++i) {
-    xs(i) = program.size_m[0] * ((i + 0.5) / n - 0.5);
-    ys(i) = program.size_m[1] * ((i + 0.5) / n - 0.5);
+    xs(i) = width * ((i + 0.5) / n - 0.5);
+    ys(i) = height * ((i + 0.5) / n - 0.5);
   }
-  sp::runtime::PatchEvaluator evaluator(program);
-  sp::runtime::HandState hand;
-  for (int r = 0; r < n; ++r)
-    for (int c = 0; c < n; ++c) {
-      hand.position_m = {xs(c), ys(r)};
-      evaluator.reset_rt(hand);  // state (adhesion, masses) at rest under the hand
-      const auto f = evaluator.force_rt(hand, 0.0);
-      fxs(r, c) = f.x;
-      fys(r, c) = f.y;
-    }
+  {
+    py::gil_scoped_release release;
+    sp::runtime::PatchEvaluator evaluator(program);
+    sp::runtime::HandState hand;
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < n; ++c) {
+        hand.position_m = {xs(c), ys(r)};
+        evaluator.reset_rt(hand);  // state (adhesion, masses) at rest under the hand
+        const auto f = evaluator.force_rt(hand, 0.0);
+        fxs(r, c) = f.x;
+        fys(r, c) = f.y;
+      }
+  }
   py::dict out;
   out["x_m"] = x;
   out["y_m"] = y;
@@ -169,6 +244,8 @@ py::dict report_dict(const sp::runtime::ServoReport& r) {
 struct PyPlayer {
   sp::Player player;
   sp::runtime::RecordingDevice* recorder = nullptr;
+  // The library Player.load("name") compiles through: the default folders, for the player's device.
+  std::optional<PyLibrary> library;
 };
 
 sp::runtime::HandScript hand_script(const std::string& path, double speed_m_s, double amplitude_m) {
@@ -247,8 +324,11 @@ PYBIND11_MODULE(sandpaper, m) {
            "repeat[, period_m, orientation_rad]}; a grating is one period along its force direction (ny = 1); "
            "nominal: no depth was stated, so the heights are scaled to a steepest slope of 1. Raises Error for a "
            "material with no grating or height map")
-      .def("lateral_force_field", &lateral_force_field, py::arg("n") = 128,
-           "the lateral force a still hand feels on an n x n grid: {x_m, y_m, fx_N, fy_N} as numpy arrays")
+      .def("lateral_force_field", &lateral_force_field, py::arg("n") = py::none(), py::arg("window_m") = py::none(),
+           "the lateral force a still hand feels on an n x n grid over the patch, or over a window (width, height "
+           "in m) centred on it: {x_m, y_m, fx_N, fy_N} as numpy arrays. n defaults to the fewest points that "
+           "resolve the texture (every grating ridge met within 5 % of its peak, one point per height-field sample); a "
+           "coarser n raises ValueError")
       .def("__repr__", [](const PyMaterial& x) {
         return "<sandpaper.Material " + x.material.name() + ": " + std::to_string(x.material.max_lateral_force_N()) + " N>";
       });
@@ -306,19 +386,34 @@ PYBIND11_MODULE(sandpaper, m) {
         auto device = std::make_unique<sp::runtime::SimJoystick>(sp::runtime::sim_device_limits(),
                                                                  hand_script(hand, speed_m_s, amplitude_m), record_ticks);
         auto* recorder = device.get();
-        return std::make_unique<PyPlayer>(PyPlayer{sp::Player(std::move(device)), recorder});
+        return std::make_unique<PyPlayer>(PyPlayer{sp::Player(std::move(device)), recorder, std::nullopt});
       }, py::arg("record_ticks") = 0, py::arg("hand") = "scan", py::arg("speed_m_s") = 0.05, py::arg("amplitude_m") = 0.03,
          "the simulated joystick (10 N, calibration/devices/sim.toml) with a scripted hand; keeps the first "
          "record_ticks ticks for trace()")
       .def_static("usb", [](const PyLibrary& lib) {
-        return std::make_unique<PyPlayer>(PyPlayer{sp::Player::usb(lib.compiler->calibration()), nullptr});
+        return std::make_unique<PyPlayer>(PyPlayer{sp::Player::usb(lib.compiler->calibration()), nullptr, std::nullopt});
       }, py::arg("library"),
          "the first USB HID PID force-feedback joystick plugged in that the library's calibration knows "
          "(docs/USB_PID.md); compile its materials with Library(device=player.device_calibration). "
          "Raises DeviceError when there is none or it cannot be opened")
       .def_property_readonly("device_calibration", [](const PyPlayer& p) { return p.player.device_calibration(); },
          "the device calibration materials must be compiled for (usb); empty for the simulated joystick")
-      .def("load", [](PyPlayer& p, const PyMaterial& x) { p.player.load(x.material); }, py::arg("material"))
+      .def("load", [](PyPlayer& p, const PyMaterial& x) { p.player.load(x.material); }, py::arg("material"),
+           "plays a compiled Material (crossfading from what plays now)")
+      .def("load", [](PyPlayer& p, const std::string& text) {
+        if (!p.library) {
+          const std::string device = p.player.device_calibration();
+          p.library = open_library(std::nullopt, std::nullopt, device.empty() ? "sim" : device);
+        }
+        PyMaterial material = [&] {
+          py::gil_scoped_release release;
+          return compile(*p.library, text);
+        }();
+        p.player.load(material.material);
+        return material;
+      }, py::arg("material"),
+         "compiles a library name (\"corduroy\") or material statements through the default library for the "
+         "player's device, plays it, and returns the Material; raises CompileError")
       .def("start", [](PyPlayer& p, double rate_hz, double duration_s) {
         try {
           p.player.start({.rate_hz = rate_hz, .duration_s = duration_s});

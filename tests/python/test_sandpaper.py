@@ -2,6 +2,7 @@
 and by text, errors carrying diagnostics, explain as a dict, the force field and a run's trace as
 numpy arrays, and playing while Python goes on. Run by ctest (python.module) with PYTHONPATH set to
 the build's python/ folder."""
+import re
 import threading
 import time
 
@@ -66,14 +67,61 @@ def test_explain_is_a_dict_of_what_the_compiler_decided(lib):
 
 def test_the_lateral_force_field_is_a_numpy_array_within_the_compiled_maximum(lib):
     m = lib.compile("grating period 2.5 mm hill 50% amplitude 0.8 N")
-    field = m.lateral_force_field(n=512)  # 0.19 mm apart: fine enough to find the 2.5 mm grating's peaks
+    field = m.lateral_force_field(window_m=(0.02, 0.02))  # as fine as the ridges need, over 20 mm
     fx, fy = field["fx_N"], field["fy_N"]
-    assert fx.shape == (512, 512) and fy.shape == (512, 512) and field["x_m"].shape == (512,)
+    n = fx.shape[0]
+    assert fx.shape == (n, n) and fy.shape == (n, n) and field["x_m"].shape == (n,) and n > 200
     magnitude = np.hypot(fx, fy)
-    assert magnitude.max() == pytest.approx(0.8, rel=0.02)
+    assert magnitude.max() == pytest.approx(0.8, rel=0.05)
     assert magnitude.max() <= m.max_lateral_force_N * (1 + 1e-6)
     # A grating across x: the force varies along x and not along y.
-    assert np.ptp(fx[256, :]) > 1.0 and np.ptp(fx[:, 256]) < 1e-9
+    assert np.ptp(fx[n // 2, :]) > 1.0 and np.ptp(fx[:, n // 2]) < 1e-9
+
+
+def test_a_force_field_too_coarse_for_the_grating_is_refused_not_aliased(lib):
+    # n = 32 over the default 95 mm patch puts a point every 2.97 mm: the grid would miss the ridges.
+    m = lib.compile("grating period 2.5 mm hill 50% amplitude 0.8 N")
+    with pytest.raises(ValueError, match=r"use n >= (\d+)") as info:
+        m.lateral_force_field(n=32)
+    needed = int(re.search(r"use n >= (\d+)", str(info.value)).group(1))
+    with pytest.raises(ValueError):
+        m.lateral_force_field(n=needed - 1)
+    # The n it names is the default, and finds the ridges' peak (within 5 %, the grid's promise).
+    field = m.lateral_force_field()
+    assert field["fx_N"].shape == (needed, needed)
+    assert np.hypot(field["fx_N"], field["fy_N"]).max() == pytest.approx(0.8, rel=0.05)
+    # 1.5 mm ridges over 95 mm need more than 4096 points a side: a window of the patch instead.
+    fine = lib.compile("grating period 1.5 mm hill 50% amplitude 1.75 N")
+    for kwargs in [{"n": 32}, {}]:
+        with pytest.raises(ValueError, match="window_m"):
+            fine.lateral_force_field(**kwargs)
+    window = fine.lateral_force_field(window_m=(0.010, 0.006))
+    n = window["fx_N"].shape[0]
+    assert window["x_m"][0] == pytest.approx(-0.005 + 0.005 / n) and window["y_m"][-1] == pytest.approx(0.003 - 0.003 / n)
+    assert np.hypot(window["fx_N"], window["fy_N"]).max() == pytest.approx(1.75, rel=0.05)
+    with pytest.raises(ValueError, match="window_m"):
+        fine.lateral_force_field(window_m=(0.0, 0.01))
+    # A spring has no ridges: any grid shows it.
+    assert lib.compile("spring 200 N/m").lateral_force_field(n=4)["fx_N"].shape == (4, 4)
+
+
+def test_an_empty_material_is_a_compile_error(lib):
+    for text in ["", "   ", "# a comment only"]:
+        with pytest.raises(sandpaper.CompileError) as info:
+            lib.compile(text)
+        assert [d["code"] for d in info.value.diagnostics] == ["E0316"]
+
+
+def test_a_player_loads_a_name_and_says_what_else_it_takes(lib):
+    p = sandpaper.Player.simulated()
+    m = p.load("corduroy")
+    assert m.name == "corduroy" and m.max_lateral_force_N == pytest.approx(lib.compile("corduroy").max_lateral_force_N)
+    p.start(rate_hz=1000, duration_s=0.05)
+    assert p.wait()["ticks"] == 50
+    with pytest.raises(sandpaper.CompileError):
+        p.load("corduroyy")
+    with pytest.raises(TypeError, match=r"material: sandpaper.Material|material: str"):
+        p.load(3)
 
 
 def test_plays_for_the_duration_and_records_the_trace(lib):
