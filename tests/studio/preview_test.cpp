@@ -110,6 +110,38 @@ TEST(Preview, EveryExampleGetsItsPicturesAtTheStatedSize) {
   EXPECT_GE(gratings, 1) << "no example is a plain grating whose period the picture could show";
 }
 
+// The force-field picture shows what a still hand feels at each place: friction's adhesion point
+// sits wherever the contact last stuck, so it is left out and said to be, not drawn as a spring to
+// the picture's centre (which drew 22-29 N on a 10 N device).
+TEST(Preview, TheForceFieldLeavesOutFrictionAndSaysSo) {
+  const auto plain = test::shipped_compiler().compile_text("roughness 0.8");
+  const auto rubbed = test::shipped_compiler().compile_text("roughness 0.8; physics Friction static 0.6 kinetic 0.4 press 1 N");
+  ASSERT_TRUE(plain.ok() && rubbed.ok()) << compiler::format_diagnostics(rubbed.diagnostics);
+  const auto a = catalog::write_preview(*plain.program, fs::path(test::temp_dir("field-plain")), 256, 8).summary;
+  const auto b = catalog::write_preview(*rubbed.program, fs::path(test::temp_dir("field-friction")), 256, 8).summary;
+  EXPECT_DOUBLE_EQ(b["field_max_N"].get<double>(), a["field_max_N"].get<double>());
+  // The grating's own force, as far as the picture's pixels find its ridges' peaks (not 22-29 N).
+  EXPECT_LE(b["field_max_N"].get<double>(), plain.program->max_lateral_force_N * (1 + 1e-6));
+  EXPECT_GT(b["field_max_N"].get<double>(), 0.9 * plain.program->max_lateral_force_N);
+  ASSERT_EQ(b["field_left_out"].size(), 1u);
+  EXPECT_NE(b["field_left_out"][0].get<std::string>().find("friction"), std::string::npos) << b["field_left_out"];
+  EXPECT_TRUE(a["field_left_out"].empty());
+}
+
+// A field stronger than the device gives is drawn at the device's limit, as the servo loop plays it:
+// 200 N/m at the 95 mm patch's corner (67 mm out) is 13.4 N, and the sim gives 10 N.
+TEST(Preview, TheForceFieldNeverShowsMoreThanTheDeviceGives) {
+  const auto r = test::shipped_compiler().compile_text("spring 200 N/m");
+  ASSERT_TRUE(r.ok());
+  ASSERT_DOUBLE_EQ(r.program->command.max_force_N, 10.0);
+  const auto s = catalog::write_preview(*r.program, fs::path(test::temp_dir("field-spring")), 256, 8).summary;
+  EXPECT_DOUBLE_EQ(s["field_max_N"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(s["field_limit_N"].get<double>(), 10.0);
+  const auto window = s["window_mm"];
+  ASSERT_GT(std::hypot(window[0].get<double>(), window[1].get<double>()) / 2 * 1e-3 * 200, 10.0)
+      << "the window must reach past the 10 N circle (50 mm) for the limit to show";
+}
+
 TEST(Preview, TheScaleBarIsDrawnAtItsLength) {
   catalog::Image im;
   im.nx = 400;

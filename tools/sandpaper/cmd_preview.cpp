@@ -50,6 +50,8 @@ int cmd_preview(const CommonOptions& o, const std::string& out_dir, int side) {
   std::cout << "  scan.svg    lateral force " << s["scan"]["description"].get<std::string>() << ", axes in mm and N\n"
             << "  preview.json\n";
   for (const auto& why : s["left_out"]) std::cout << "  not drawn: " << why.get<std::string>() << "\n";
+  if (s.contains("field_left_out"))
+    for (const auto& why : s["field_left_out"]) std::cout << "  not in field.png: " << why.get<std::string>() << "\n";
   return kExitOk;
 }
 

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 #include <unistd.h>
 
 #include "png_file.hpp"
@@ -74,15 +76,25 @@ void hsv(double h, double v, std::uint8_t out[3]) {
   }
 }
 
-// The force of `program` at rest at `p` (m).
+// The force a still hand feels at `p` (m) from the program's position-only terms, limited to the
+// device's maximum force as the servo loop limits it (|F| scaled down, direction kept). Non-finite
+// forces read as zero.
 struct FieldSampler {
-  explicit FieldSampler(const schema::PatchProgram& program) : eval(program) {}
+  explicit FieldSampler(const schema::PatchProgram& program)
+      : drawn(position_only(program, left_out)), eval(drawn), limit_N(program.command.max_force_N) {}
   glm::dvec2 at(glm::dvec2 p) {
     runtime::HandState hand;
     hand.position_m = p;
-    return eval.force_rt(hand, 0.0);
+    glm::dvec2 f = eval.force_rt(hand, 0.0);
+    if (!std::isfinite(f.x) || !std::isfinite(f.y)) return {0, 0};
+    const double mag = std::hypot(f.x, f.y);
+    if (limit_N > 0 && mag > limit_N) f *= limit_N / mag;
+    return f;
   }
+  std::vector<std::string> left_out;
+  schema::PatchProgram drawn;  // the evaluator reads it: declared before it
   runtime::PatchEvaluator eval;
+  double limit_N;
 };
 
 // The catalog's plot styles (assets/catalog.css), inside the file so that scan.svg stands alone.
@@ -92,6 +104,25 @@ constexpr const char* kStandalonePlotStyle =
     ".force-along{stroke:#8a4b08;stroke-width:1.3}.force-across{stroke:#2f6fb3;stroke-width:1;stroke-dasharray:4 3}</style>\n";
 
 }  // namespace
+
+schema::PatchProgram position_only(const schema::PatchProgram& program, std::vector<std::string>& left_out) {
+  schema::PatchProgram out = program;
+  out.terms.clear();
+  for (const auto& t : program.terms) {
+    const bool of_position = std::visit(
+        [](const auto& term) {
+          using T = std::decay_t<decltype(term)>;
+          return !(std::is_same_v<T, schema::DamperTerm> || std::is_same_v<T, schema::NapTerm> ||
+                   std::is_same_v<T, schema::MinusTerm> || std::is_same_v<T, schema::FollowerSpringTerm> ||
+                   std::is_same_v<T, schema::PointMassesTerm> || std::is_same_v<T, schema::AttractorTerm> ||
+                   std::is_same_v<T, schema::FrictionTerm> || std::is_same_v<T, schema::NapFrictionTerm>);
+        },
+        t);
+    if (of_position) out.terms.push_back(t);
+    else left_out.push_back(why_not_pictured(t));
+  }
+  return out;
+}
 
 std::string standalone_plot_svg(const ForceScan& scan, const std::string& title) {
   std::string svg = force_plot_svg(scan, title);
@@ -130,7 +161,7 @@ Image render_force_field(const schema::PatchProgram& program, const Picture& lik
     for (int col = 0; col < im.nx; ++col) {
       const glm::dvec2 p{-0.5 * im.window_m[0] + (col + 0.5) * im.pixel_m, 0.5 * im.window_m[1] - (row + 0.5) * im.pixel_m};
       const glm::dvec2 v = field.at(p);
-      f[static_cast<std::size_t>(row) * im.nx + col] = std::isfinite(v.x) && std::isfinite(v.y) ? v : glm::dvec2{0, 0};
+      f[static_cast<std::size_t>(row) * im.nx + col] = v;
       max_force_N = std::max(max_force_N, std::hypot(v.x, v.y));
     }
   im.pixels.assign(n * 3, 0);
@@ -201,8 +232,7 @@ nlohmann::json force_field_json(const schema::PatchProgram& program, const Pictu
   for (int row = 0; row < n; ++row)
     for (int col = 0; col < n; ++col) {
       const glm::dvec2 p{(-0.5 + (col + 0.5) / n) * like.window_m[0], (0.5 - (row + 0.5) / n) * like.window_m[1]};
-      glm::dvec2 v = field.at(p);
-      if (!std::isfinite(v.x) || !std::isfinite(v.y)) v = {0, 0};
+      const glm::dvec2 v = field.at(p);
       fx.push_back(v.x);
       fy.push_back(v.y);
       max_n = std::max(max_n, std::hypot(v.x, v.y));
@@ -236,6 +266,11 @@ PreviewFiles write_preview(const schema::PatchProgram& program, const std::files
     s["window_mm"] = {picture.window_m[0] * 1e3, picture.window_m[1] * 1e3};
     s["scale_bar_mm"] = bar;
     s["field_max_N"] = max_f;
+    // What the force-field picture leaves out, and the limit it draws forces to (the device's).
+    std::vector<std::string> field_left_out;
+    position_only(program, field_left_out);
+    s["field_left_out"] = field_left_out;
+    s["field_limit_N"] = program.command.max_force_N;
     s["caption"] = picture.caption;
   } else {
     s["pictures"] = nlohmann::json::object();

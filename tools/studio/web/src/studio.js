@@ -241,8 +241,12 @@ async function refreshPreviewNow() {
     await img.decode().catch(() => {});
     $("#picture-caption").textContent = `${preview.window_mm[0].toFixed(1)} × ${preview.window_mm[1].toFixed(1)} mm` +
       ` · scale bar ${preview.scale_bar_mm} mm · ` + (state.view === "field"
-        ? `force field at rest: hue = direction, brightness = |F| up to ${preview.field_max_N.toFixed(3)} N`
-        : "height field, lit from the upper left");
+        ? `force field at rest: hue = direction, brightness = |F| up to ${preview.field_max_N.toFixed(3)} N` +
+          (preview.field_limit_N > 0 && preview.field_max_N >= preview.field_limit_N * (1 - 1e-9)
+            ? ` (the device's limit)` : "") +
+          (preview.field_left_out?.length ? ` · not drawn: ${preview.field_left_out.join("; ")}` : "")
+        : "height field, lit from the upper left" +
+          (preview.left_out?.length ? ` · not drawn: ${preview.left_out.join("; ")}` : ""));
   } else {
     img.hidden = true;
     $("#picture-caption").textContent = "No picture: no force depends on position alone." +

@@ -25,10 +25,14 @@ struct Image {
 
 // The shaded picture as a grey image (255 = white).
 Image grey_image(const Picture& picture);
-// The lateral force at rest (F(p), no velocity, no state advanced: the field a slow hand feels) over
-// the same window and pixels as `like`: hue gives the force's direction (red along +x, then
-// anticlockwise), brightness its magnitude from black (0 N) to full (`max_force_N`, the largest |F|
-// in the window, returned). Forces of velocity or state are not drawn.
+// The program with only the terms whose force is a function of the hand's position alone: what a
+// slow hand feels at each place. Terms of velocity, state or time (dampers, nap, friction, masses,
+// followers, attractors, minus) are left out, each with its reason appended to `left_out`.
+schema::PatchProgram position_only(const schema::PatchProgram& program, std::vector<std::string>& left_out);
+// The lateral force at rest of position_only(program) over the same window and pixels as `like`,
+// each |F| limited to the device's maximum force (program.command.max_force_N) as the servo loop
+// limits it: hue gives the force's direction (red along +x, then anticlockwise), brightness its
+// magnitude from black (0 N) to full (`max_force_N`, the largest |F| drawn, returned).
 Image render_force_field(const schema::PatchProgram& program, const Picture& like, double& max_force_N);
 // Draws a scale bar of a round length (1, 2 or 5 x 10^k mm, about a quarter of the width) with its
 // label in the lower left corner; returns its length, mm. Images narrower than 24 px get none (returns 0).
@@ -37,8 +41,9 @@ double draw_scale_bar(Image& image);
 // Throws std::runtime_error when it cannot be written.
 void write_image_png(const std::filesystem::path& file, const Image& image);
 
-// The force field sampled on a grid of `n` x `n` points over `like`'s window, for arrows drawn by a
-// page: {"window_mm": [w, h], "n": n, "max_N": m, "fx_N": [...], "fy_N": [...]} (row 0 at the top).
+// The force field of render_force_field sampled on a grid of `n` x `n` points over `like`'s window, for
+// arrows drawn by a page: {"window_mm": [w, h], "n": n, "max_N": m, "fx_N": [...], "fy_N": [...]}
+// (row 0 at the top).
 nlohmann::json force_field_json(const schema::PatchProgram& program, const Picture& like, int n);
 
 // force_plot_svg with the catalog's styles inside it, for an .svg file or page of its own.
