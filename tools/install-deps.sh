@@ -15,6 +15,7 @@ pkgs=(
   libsqlite3-dev                            # the library index (`sandpaper library index`; FTS5 full text)
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium python3                          # the library catalog's and the studio's browser tests (tests/*/browser_test.py)
+  neovim                                    # the language server's test with a real editor (tests/lsp/neovim_test.py)
   libcpp-httplib-dev                        # the studio's HTTP server (tools/studio/, docs/STUDIO.md)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (bindings/python, docs/PYTHON.md)
   dpkg-dev file                             # the Debian package: cpack -G DEB's dpkg-shlibdeps (cmake/Packaging.cmake)
