@@ -78,6 +78,8 @@ has '/usr/include/sandpaper/sandpaper\.hpp'
 has '/usr/include/sandpaper/sandpaper\.h'
 has '/usr/include/sandpaper/package_location\.h'
 has '/usr/lib(/[^/]+)?/libsandpaper_api\.a'
+# Debian ships debug information in a -dbgsym package of its own: none in this one.
+! grep -q -E '/lib/debug/' "$work/paths.txt" || fail "the package holds debug files: $(grep -E '/lib/debug/' "$work/paths.txt" | head -3)"
 has '/usr/lib(/[^/]+)?/cmake/Sandpaper/SandpaperConfig\.cmake'
 has '/usr/lib(/[^/]+)?/cmake/Sandpaper/SandpaperTargets\.cmake'
 has '/usr/lib(/[^/]+)?/pkgconfig/sandpaper\.pc'
