@@ -116,6 +116,30 @@ def main():
         status, e = studio.post("/api/parameter", {"name": "nope", "value": 2})
         check(status == 400 and "grating.period" in e.get("error", ""), "an unknown parameter is refused, naming the known ones")
 
+        # The language server's features on the studio's text (POST /api/language), as `sandpaper lsp` gives them.
+        status, cur = studio.get("/api/current")
+        lines = cur["text"].split("\n")
+        like_line = next(i for i, l in enumerate(lines) if l.strip().startswith("like corduroy"))
+        period_line = next(i for i, l in enumerate(lines) if "period 3.2 mm" in l)
+        status, hover = studio.post("/api/language", {"feature": "hover", "line": period_line,
+                                                      "character": lines[period_line].index("3.2")})
+        value = (hover or {}).get("contents", {}).get("value", "")
+        check(status == 200 and "texture.period" in value and "3.2 mm" in value and "corduroy.hmat" in value,
+              f"hover on 3.2 gives explain's line for the period: {value!r}")
+        status, definition = studio.post("/api/language", {"feature": "definition", "line": like_line,
+                                                           "character": lines[like_line].index("corduroy") + 2})
+        check(status == 200 and definition.get("uri", "").endswith("/library/textiles/corduroy.hmat"),
+              f"definition on `corduroy` is the library entry: {definition}")
+        status, items = studio.post("/api/language", {"feature": "completion", "line": like_line,
+                                                      "character": lines[like_line].index("corduroy") + 3})
+        labels = [i["label"] for i in items] if isinstance(items, list) else []
+        check(status == 200 and "corduroy" in labels and "pinwale-corduroy" in labels
+              and any(i.get("detail") for i in items), f"completion after `like` offers library names with what they describe")
+        status, e = studio.post("/api/language", {"feature": "rename", "line": 0, "character": 0})
+        check(status == 400 and "completion" in e.get("error", ""), f"an unknown feature is refused, naming the known: {e}")
+        status, e = studio.post("/api/language", {"feature": "hover", "line": len(lines) + 5, "character": 0})
+        check(status == 400, f"a position outside the text is refused: {e}")
+
         # A broken material never stops the loop: the last good program keeps playing.
         playing = studio.state()
         status, broken = studio.post("/api/material", r["text"].replace("grating period", "grating perod"),

@@ -14,6 +14,7 @@ import os
 import pathlib
 import re
 import shutil
+import subprocess
 import sys
 import tempfile
 import threading
@@ -86,6 +87,13 @@ def main():
     shutil.copytree(examples, folder)
     (tmp / "library").symlink_to(examples.parent / "library")
     original = (folder / "corduroy.hmat").read_text()
+    # A friction material, and a photograph that is not square (the library's gravel cut to 512 x 340 px).
+    (folder / "rubbed.hmat").write_text('material "rubbed" {\n  roughness 0.8\n'
+                                        '  physics Friction static 0.6 kinetic 0.4 press 1 N\n}\n')
+    subprocess.run(["oiiotool", str(examples.parent / "library" / "images" / "gravel.png"), "--cut", "512x340+0+80",
+                    "-o", str(folder / "board.png")], check=True)
+    (folder / "board.hmat").write_text('material "board" {\n  heightmap "board.png" size 60 mm smoothing 0.2 mm\n'
+                                       '  roughness 0.5\n}\n')
 
     studio = Studio(os.path.abspath(args.sandpaper), folder / "corduroy.hmat")
     b = Browser(chromium, width=1400, height=1150)
@@ -245,6 +253,8 @@ def main():
             return wait(b, "window.studio.state.file === %s && document.body.dataset.compiles === 'yes'" % json.dumps(name),
                         "opening " + name)
         check(switch_to("corduroy.hmat") is not None, "back to corduroy.hmat")
+        check(b.evaluate("[...document.querySelectorAll('#patches .patch')].every(p => p.getClientRects().length === 0)"),
+              "the workspace's patches are not drawn over the material's preview")
         on_disk = (folder / "corduroy.hmat").read_text()
         click_at_text(b, "#")  # in a comment: the edit compiles, and plays
         b.send("Input.insertText", {"text": "unsaved "})
@@ -277,6 +287,71 @@ def main():
               and b.evaluate("(() => { const e = new Event('beforeunload', {cancelable: true}); window.dispatchEvent(e);"
                              " return e.defaultPrevented; })()") is False,
               "back to the file's text: nothing unsaved, and the page closes without asking")
+
+        # What `sandpaper lsp` gives an editor, in the studio's editor: completion, hover, definition.
+        check(wait(b, "document.querySelector('#saved').textContent === 'saved'", "saved") is not None, "(saved)")
+        plain = b.evaluate("window.studio.text()")
+        click_at_text(b, "like corduroy")
+        key(b, "End", 35)
+        b.send("Input.insertText", {"text": "\n  like cor"})
+        shown = wait(b, "[...document.querySelectorAll('.cm-tooltip-autocomplete li')].some(li => li.textContent.includes('corduroy'))",
+                     "the completion list")
+        offered = b.evaluate("[...document.querySelectorAll('.cm-tooltip-autocomplete li')].map(li => li.textContent)") or []
+        # Best matches first (CodeMirror also lists fuzzy ones, c-o-r anywhere, further down).
+        check(shown is not None and len(offered) >= 3 and all(o.startswith("cor") for o in offered[:3])
+              and offered[0].startswith("corduroy") and "ribs across the stroke" in offered[0],
+              f"typing `like cor` opens the library's names, filtered, with what each describes: {offered[:4]}")
+        b.screenshot(str(out / "studio-completion.png"), full_page=False)
+        key(b, "Escape", 27)
+        ctrl(b, "z")
+        check(wait(b, "window.studio.text() === %s" % json.dumps(plain), "the completion's line undone") is not None,
+              "and Ctrl-Z takes the typed line out")
+        key(b, "Home", 36)  # back from the long line's end, which scrolled the editor sideways
+        xy = b.evaluate("""(() => { const v = window.studio.editor; const i = v.state.doc.toString().indexOf('3.2 mm');
+            const c = v.coordsAtPos(i + 1); return [c.left, (c.top + c.bottom) / 2]; })()""")
+        mouse(b, "mouseMoved", xy[0] - 2, xy[1], 0)
+        mouse(b, "mouseMoved", xy[0], xy[1], 0)
+        hovered = wait(b, "document.querySelector('.cm-tooltip pre.hover')?.textContent.includes('texture.period')", "the hover")
+        tip = b.evaluate("document.querySelector('.cm-tooltip pre.hover')?.textContent || ''")
+        check(hovered is not None and "3.2 mm" in tip and "physical" in tip, f"hovering 3.2 shows explain's line: {tip!r}")
+        click_at_text(b, "like cor")
+        key(b, "F12", 123)
+        defined = wait(b, "(document.body.dataset.definition || '').endsWith('/library/textiles/corduroy.hmat')", "go to definition")
+        status_line = b.evaluate("document.querySelector('#status').textContent")
+        check(defined is not None, f"F12 on `corduroy` names the library entry's file: {status_line}")
+
+        # Truthful pictures: friction's force field is left out and said to be; a photograph keeps its shape.
+        key(b, "Escape", 27)
+        check(switch_to("rubbed.hmat") is not None, "a friction material opens")
+        b.click("input[name=view][value=field]")
+        caption = "document.querySelector('#picture-caption').textContent"
+        shown = wait(b, caption + ".includes('force field at rest') && " + caption + ".includes('not drawn: friction')",
+                     "the force field's caption")
+        preview = b.evaluate("window.studio.state.preview")
+        check(shown is not None and 0 < preview["field_max_N"] < 4 and preview["field_limit_N"] == 10,
+              f"the friction material's force field is the grating's ({preview['field_max_N']:.3f} N), friction named "
+              f"as not drawn: {b.evaluate(caption)!r}")
+        check(wait(b, "(document.querySelector('#scan svg title')?.textContent || '').includes('of rubbed')",
+                   "the friction material's scan plot") is not None, "its scan plot is drawn")
+        b.screenshot(str(out / "studio-friction-field.png"), full_page=False)
+        b.click("input[name=view][value=height]")
+        check(switch_to("board.hmat") is not None, "a photograph opens")
+        check(wait(b, "document.querySelector('#picture').naturalWidth > 0 && window.studio.state.preview?.window_mm[1] > 30",
+                   "the photograph's picture") is not None, "(its picture)")
+        box = b.evaluate("(() => { const r = document.querySelector('#stage').getBoundingClientRect(); "
+                         "const i = document.querySelector('#picture'); return [r.width, r.height, i.naturalWidth, i.naturalHeight]; })()")
+        window_mm = b.evaluate("window.studio.state.preview.window_mm")
+        # 60 mm across the picture's shape is 39.84 mm tall; the preview's window (the whole height, and
+        # as much of the width as its 384 px resolve) is drawn at its own shape, pixels square.
+        shape = window_mm[0] / window_mm[1]
+        check(abs(window_mm[1] - 60 * 340 / 512) < 0.05 and abs(box[0] / box[1] - shape) < 0.01 * shape
+              and abs(box[2] / box[3] - shape) < 0.01 * shape,
+              f"the 512 x 340 px photograph at `size 60 mm` is {60 * 340 / 512:.2f} mm tall, and its "
+              f"{window_mm[0]:.1f} x {window_mm[1]:.2f} mm window is drawn unstretched: stage {box[0]:.0f} x {box[1]:.0f} px, "
+              f"picture {box[2]} x {box[3]} px")
+        check(wait(b, "(document.querySelector('#scan svg title')?.textContent || '').includes('of board')",
+                   "the photograph's scan plot") is not None, "its scan plot is drawn")
+        b.screenshot(str(out / "studio-photo.png"), full_page=False)
     finally:
         b.close()
         code, printed, err = studio.stop()

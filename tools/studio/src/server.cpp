@@ -156,6 +156,15 @@ struct Server::Impl {
                                              string_field(j, "unit", false)));
       });
     });
+    http.Post("/api/language", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        const auto j = body_json(req);
+        const double line = number_field(j, "line"), character = number_field(j, "character");
+        if (line != std::floor(line) || character != std::floor(character) || line > 1e7 || character > 1e7)
+          throw RequestError(400, "\"line\" and \"character\" are whole numbers (0-based)");
+        send_json(res, session.language(string_field(j, "feature"), static_cast<int>(line), static_cast<int>(character)));
+      });
+    });
     http.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.save()); });
     });

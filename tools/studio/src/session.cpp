@@ -11,6 +11,8 @@
 #include "sandpaper/catalog/preview.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/workspace.hpp"
+#include "sandpaper/lsp/features.hpp"
+#include "sandpaper/lsp/text_positions.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/workspace_json.hpp"
@@ -243,6 +245,26 @@ nlohmann::json Session::save() {
   }
   saved_text_ = text_;
   return {{"saved", true}, {"file", file_}, {"bytes", text_.size()}};
+}
+
+nlohmann::json Session::language(const std::string& feature, int line, int character) const {
+  if (feature != "completion" && feature != "hover" && feature != "definition")
+    throw RequestError(400, "\"feature\" is one of completion, hover, definition");
+  std::lock_guard lock(mutex_);
+  const long lines = std::count(text_.begin(), text_.end(), '\n') + 1;
+  if (line < 0 || line >= lines || character < 0) throw RequestError(400, "the position is outside the text");
+  // The document as the language server holds one: named by its absolute path, so that relative
+  // image paths resolve against its folder, as they do when it plays.
+  lsp::Document d;
+  d.name = (root_ / (file_.empty() ? "untitled.hmat" : file_)).string();
+  d.uri = lsp::uri_of_path(d.name);
+  d.workspace = is_workspace_;
+  if (!is_workspace_) d.compiled = compiler_.compile_text(text_, d.name);
+  d.source = std::make_shared<const compiler::SourceFile>(d.name, text_);
+  const nlohmann::json position = {{"line", line}, {"character", character}};
+  if (feature == "completion") return lsp::completion(d, position, compiler_);
+  if (feature == "hover") return lsp::hover(d, position, compiler_);
+  return lsp::definition(d, position, compiler_);
 }
 
 nlohmann::json Session::workspace() const {

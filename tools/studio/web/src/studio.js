@@ -2,6 +2,7 @@
 // what plays, sliders for its numbers, Dummy mode (the mouse moves the simulated hand), the live servo
 // figures, and the workspace canvas. Everything it knows comes from the studio's JSON API.
 import { EditorView, basicSetup } from "codemirror";
+import { hoverTooltip } from "@codemirror/view";
 import { EditorState } from "@codemirror/state";
 import { setDiagnostics, lintGutter } from "@codemirror/lint";
 import { hmatLanguage } from "./hmat.js";
@@ -32,6 +33,69 @@ function setStatus(text, bad = false) {
 }
 
 // ---- editor ------------------------------------------------------------------------------------
+// What `sandpaper lsp` gives an editor, asked of the studio (POST /api/language), which answers with
+// the language server's own code for the text it holds: so first the typed text reaches it.
+async function language(feature, doc, pos) {
+  await flushCompile();
+  await state.compiling;
+  const line = doc.lineAt(pos);
+  return api("POST", "/api/language", { feature, line: line.number - 1, character: pos - line.from });
+}
+
+const completionTypes = { 14: "keyword", 12: "constant", 11: "unit", 9: "namespace" };
+// Completion: statement keywords, library names after `like` (with what each describes), levels
+// after `roughness`, units after a number. The server gives every candidate for the place; the
+// editor filters them by what is typed.
+async function lspCompletion(context) {
+  const word = context.matchBefore(/[A-Za-z0-9_\-\/%*.]*/);
+  if (!context.explicit && word.from === word.to && !/[ \t]$/.test(context.state.sliceDoc(Math.max(0, context.pos - 1), context.pos)))
+    return null;
+  let items;
+  try {
+    items = await language("completion", context.state.doc, context.pos);
+  } catch {
+    return null;
+  }
+  if (context.aborted || !Array.isArray(items) || !items.length) return null;
+  return {
+    from: word.from,
+    options: items.map((i) => ({ label: i.label, detail: i.detail, type: completionTypes[i.kind] || "variable",
+                                 info: i.documentation?.value || i.documentation })),
+    validFor: /^[A-Za-z0-9_\-\/%*.]*$/,
+  };
+}
+
+// Hover: explain's line for a number (parameter, value, layer, source), or a `like` name's entry.
+const lspHover = hoverTooltip(async (view, pos) => {
+  let r;
+  try {
+    r = await language("hover", view.state.doc, pos);
+  } catch {
+    return null;
+  }
+  const value = r?.contents?.value ?? (typeof r?.contents === "string" ? r.contents : "");
+  if (!value) return null;
+  return {
+    pos,
+    above: true,
+    create() {
+      const dom = document.createElement("pre");
+      dom.className = "hover";
+      dom.textContent = value.replace(/^```text\n/, "").replace(/\n?```\s*$/, "");
+      return { dom };
+    },
+  };
+});
+
+// Go to definition (F12): the library entry a `like` names, said in the status line.
+async function goToDefinition(view) {
+  const r = await language("definition", view.state.doc, view.state.selection.main.head).catch(() => null);
+  if (!r || !r.uri) { setStatus("no definition here: F12 on a library name after `like`"); return; }
+  const file = decodeURIComponent(r.uri.replace(/^file:\/\//, ""));
+  setStatus(`defined in ${file}, line ${r.range.start.line + 1}`);
+  document.body.dataset.definition = file;
+}
+
 const editorExtensions = [
   basicSetup, hmatLanguage, lintGutter(),
   EditorView.updateListener.of((u) => {
@@ -42,11 +106,14 @@ const editorExtensions = [
     state.compileTimer = setTimeout(compileNow, 30);
   }),
   EditorView.domEventHandlers({
-    keydown: (e) => {
+    keydown: (e, view) => {
       if ((e.ctrlKey || e.metaKey) && e.key === "s") { e.preventDefault(); save(); return true; }
+      if (e.key === "F12") { e.preventDefault(); goToDefinition(view); return true; }
       return false;
     },
   }),
+  EditorState.languageData.of(() => [{ autocomplete: lspCompletion }]),
+  lspHover,
 ];
 const editor = new EditorView({ parent: $("#editor"), state: EditorState.create({ doc: "", extensions: editorExtensions }) });
 // Each file's editor state (its text, selection and undo history) while another file is open, so
@@ -234,6 +301,7 @@ async function refreshPreviewNow() {
   ]);
   state.preview = preview;
   state.field = field;
+  fitStage();
   const img = $("#picture");
   if (preview && preview.pixels) {
     img.src = `/api/preview/${state.view === "field" ? "field" : "height"}.png?v=${v}`;
@@ -263,6 +331,12 @@ async function refreshPreviewNow() {
 function windowMm() {
   if (state.kind === "workspace") return state.workspace?.size_mm || [228.6, 228.6];
   return state.preview?.window_mm || [80, 80];
+}
+// The stage takes the shape of what it shows, so that a picture is never stretched (a 60 x 39.8 mm
+// photograph is drawn 3:2, not square) and pixels map to millimetres alike across and down.
+function fitStage() {
+  const [w, h] = windowMm();
+  if (w > 0 && h > 0) $("#stage").style.aspectRatio = `${w} / ${h}`;
 }
 function toMm(ev) {
   const r = $("#stage").getBoundingClientRect();
@@ -376,6 +450,7 @@ function drawWorkspace() {
   $("#picture").hidden = true;
   $("#scan").innerHTML = "";
   if (!ws || !ws.patches) return;
+  fitStage();
   $("#picture-caption").textContent = `${ws.name || ""}: ${ws.patches.length} patches on ${ws.size_mm[0].toFixed(1)} × ` +
     `${ws.size_mm[1].toFixed(1)} mm, back to front; drag a patch to move it, its corner to resize it`;
   const r = $("#stage").getBoundingClientRect();

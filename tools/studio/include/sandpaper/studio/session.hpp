@@ -64,6 +64,11 @@ class Session {
   nlohmann::json set_parameter(const std::string& name, double value, const std::string& unit);
   // Writes the text to the open file atomically (temporary file + rename). Returns {"saved", "bytes"}.
   nlohmann::json save();
+  // POST /api/language: what `sandpaper lsp` answers an editor for the open text at (line, character)
+  // (0-based; character in UTF-16 units, as the page's editor counts): `feature` "completion",
+  // "hover" or "definition", by the language server's own functions (tools/lsp/features.hpp), as
+  // LSP JSON. RequestError 400 for another feature or a position outside the text.
+  nlohmann::json language(const std::string& feature, int line, int character) const;
 
   // Workspaces: the canvas' view ({"name", "size_mm", "patches": [{index, source, name, centre_mm,
   // size_mm, max_lateral_force_N, roughness}]}), and moving or resizing patch `index` (mm), which
