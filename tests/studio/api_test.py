@@ -116,6 +116,15 @@ def main():
         status, e = studio.post("/api/parameter", {"name": "nope", "value": 2})
         check(status == 400 and "grating.period" in e.get("error", ""), "an unknown parameter is refused, naming the known ones")
 
+        # Every page learns of a change made anywhere: the state carries the document's text version.
+        status, st = studio.get("/api/state")
+        before_version = st["document"]["text_version"]
+        status, r2 = studio.post("/api/parameter", {"name": "roughness", "value": 0.8})
+        status, st = studio.get("/api/state")
+        check(st["document"]["text_version"] > before_version and st["document"]["text_version"] == r2["text_version"]
+              and st["document"]["file"] == "corduroy.hmat" and st["document"]["version"] == r2["version"],
+              f"/api/state's document follows the API's change: {st['document']} after text_version {before_version}")
+
         # The language server's features on the studio's text (POST /api/language), as `sandpaper lsp` gives them.
         status, cur = studio.get("/api/current")
         lines = cur["text"].split("\n")

@@ -352,6 +352,21 @@ def main():
         check(wait(b, "(document.querySelector('#scan svg title')?.textContent || '').includes('of board')",
                    "the photograph's scan plot") is not None, "its scan plot is drawn")
         b.screenshot(str(out / "studio-photo.png"), full_page=False)
+
+        # One source of truth: a change through the HTTP API reaches the page, text and figures, and
+        # the page says which version plays.
+        status, changed = studio.post("/api/parameter", {"name": "roughness", "value": 0.7})
+        check(status == 200 and changed.get("ok"), f"POST /api/parameter roughness 0.7: {status}")
+        want = "compiled: board \u00b7 %.3f N, roughness 0.70" % changed["max_lateral_force_N"]
+        followed = wait(b, "window.studio.text() === %s && document.querySelector('#compile-state').textContent === %s"
+                        " && document.querySelector('#playing-what').textContent === %s"
+                        % (json.dumps(changed["text"]), json.dumps(want), json.dumps(f"playing this text (v{changed['version']})")),
+                        "the page to follow the API's change")
+        check(followed is not None,
+              f"the page shows the API's text, its figures ({want}) and that v{changed['version']} plays: "
+              f"{b.evaluate('document.querySelector(`#compile-state`).textContent')!r}, "
+              f"{b.evaluate('document.querySelector(`#playing-what`).textContent')!r}")
+        check(studio.state()["material_version"] == changed["version"], "and the loop plays that version")
     finally:
         b.close()
         code, printed, err = studio.stop()

@@ -97,6 +97,14 @@ struct Server::Impl {
 
   Impl(Session& s, LiveLoop& l, std::string v) : session(s), loop(l), version(std::move(v)) {}
 
+  // The loop's state and the open document's: one event tells every page what plays and which text
+  // the studio holds, whoever changed it.
+  nlohmann::json event_json() const {
+    nlohmann::json j = state_json(loop.state_nonrt(), loop.has_dummy_hand());
+    j["document"] = session.document_state();
+    return j;
+  }
+
   // Runs `f`, answering a RequestError with its status and message and anything else as a 500 that
   // says it is the studio's fault, not the request's.
   template <class F>
@@ -188,7 +196,7 @@ struct Server::Impl {
       });
     });
     http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
-      send_json(res, state_json(loop.state_nonrt(), loop.has_dummy_hand()));
+      guarded(res, [&] { send_json(res, event_json()); });
     });
     // Server-Sent Events: the state 30 times a second while the page is open.
     http.Get("/api/events", [this](const httplib::Request&, httplib::Response& res) {
@@ -196,8 +204,7 @@ struct Server::Impl {
       res.set_chunked_content_provider("text/event-stream", [this](std::size_t, httplib::DataSink& sink) {
         std::this_thread::sleep_for(kEventPeriod);
         if (stopping.load()) return false;
-        const std::string event =
-            "data: " + schema::json_text(state_json(loop.state_nonrt(), loop.has_dummy_hand())) + "\n\n";
+        const std::string event = "data: " + schema::json_text(event_json()) + "\n\n";
         return sink.write(event.data(), event.size());
       });
     });

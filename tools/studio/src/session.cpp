@@ -143,11 +143,21 @@ nlohmann::json Session::current() const {
   return {{"file", file_},
           {"kind", is_workspace_ ? "workspace" : "material"},
           {"text", text_},
+          {"text_version", text_version_},
           {"saved", text_ == saved_text_},
           {"version", version_},
           {"compiles", text_compiles_},
           {"compile", last_compile_},
           {"parameters", parameters_locked()}};
+}
+
+nlohmann::json Session::document_state() const {
+  std::lock_guard lock(mutex_);
+  return {{"file", file_},
+          {"text_version", text_version_},
+          {"saved", text_ == saved_text_},
+          {"compiles", text_compiles_},
+          {"version", version_}};
 }
 
 nlohmann::json Session::compile_only(const std::string& text) const {
@@ -176,6 +186,7 @@ nlohmann::json Session::update(const std::string& text) {
 
 nlohmann::json Session::update_locked(const std::string& text) {
   text_ = text;
+  ++text_version_;
   nlohmann::json j;
   if (is_workspace_) {
     const auto base = (root_ / file_).parent_path();
@@ -208,6 +219,7 @@ nlohmann::json Session::update_locked(const std::string& text) {
   j["version"] = version_;
   j["playing_is_current"] = text_compiles_;
   j["saved"] = text_ == saved_text_;
+  j["text_version"] = text_version_;
   return j;
 }
 

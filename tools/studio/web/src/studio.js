@@ -120,7 +120,9 @@ const editor = new EditorView({ parent: $("#editor"), state: EditorState.create(
 // that undo never reaches across files and a file comes back as it was left.
 const fileStates = new Map();
 
+// The studio's text into the editor (it is the studio's, so it is not sent back).
 function setText(text) {
+  state.sentText = text;
   const old = editor.state.doc.toString();
   if (old === text) return;
   // One change over the differing middle, so the cursor and the undo history keep their places.
@@ -183,6 +185,7 @@ function compileNow() {
   const t0 = performance.now();
   // Remembered, so that opening another file waits for it: posted after the open, it would become
   // the other file's text.
+  state.sentText = text;
   const sent = (async () => {
     try {
       const r = await api("POST", "/api/material", text, false);
@@ -207,6 +210,7 @@ function applyCompile(r) {
   $("#saved").textContent = r.saved ? "saved" : "unsaved";
   markUnsaved(state.file, !r.saved);
   state.version = r.version;
+  if (r.text_version !== undefined) state.textVersion = Math.max(state.textVersion || 0, r.text_version);
   renderSliders(r.parameters || []);
   if (r.ok) refreshPreview();
 }
@@ -520,8 +524,43 @@ async function workspacePointerUp() {
 }
 
 // ---- live figures ------------------------------------------------------------------------------
+// The studio owns the text: a change made elsewhere (the HTTP API, another tab) arrives with the
+// state events as a higher text_version, and the page takes the studio's text and figures, unless
+// its own edit is on its way (then that edit's answer brings them).
+let following = false;
+async function followDocument(d) {
+  if (!d || following || !state.file) return;
+  const behind = d.file !== state.file || d.text_version > (state.textVersion || 0);
+  if (!behind || state.compileTimer || state.opening || document.body.dataset.sliderBusy === "yes") return;
+  following = true;
+  try {
+    await state.compiling;
+    const cur = await api("GET", "/api/current");
+    if (state.compileTimer || editor.state.doc.toString() !== state.sentText && cur.file === state.file) return;
+    if (cur.file !== state.file) {
+      await loadCurrent();
+    } else {
+      setText(cur.text);
+      applyCompile({ ...cur.compile, parameters: cur.parameters, version: cur.version, saved: cur.saved,
+                     text_version: cur.text_version });
+    }
+  } catch (e) {
+    setStatus(e.message, true);
+  } finally {
+    following = false;
+  }
+}
+
 function onState(s) {
   state.live = s;
+  followDocument(s.document);
+  // Which program plays, beside the text: a text that does not compile leaves an older one playing.
+  const d = s.document;
+  document.body.dataset.playingVersion = s.material_version;
+  $("#playing-what").textContent = d && s.material_version
+    ? (d.compiles && d.version === s.material_version ? `playing this text (v${s.material_version})`
+                                                      : `playing v${s.material_version}, an earlier text`)
+    : "";
   $("#rate").textContent = s.rate_hz.toFixed(1);
   $("#ticks").textContent = s.ticks;
   $("#overruns").textContent = s.overruns;
@@ -582,8 +621,13 @@ async function open(file) {
   // Whatever was typed reaches the studio as the file it was typed in, before the file changes.
   await flushCompile();
   await state.compiling;
-  const r = await api("POST", "/api/open", { file });
-  await loadCurrent();
+  state.opening = true;
+  try {
+    var r = await api("POST", "/api/open", { file });
+    await loadCurrent();
+  } finally {
+    state.opening = false;
+  }
   if (r.restored_unsaved) setStatus(`${file}: your unsaved edits, as you left them`);
   return r;
 }
@@ -603,6 +647,7 @@ async function loadCurrent() {
   document.body.dataset.kind = cur.kind;
   $("#file").value = cur.file;
   setText(cur.text);
+  state.textVersion = cur.text_version;
   applyCompile({ ...cur.compile, parameters: cur.parameters, version: cur.version, saved: cur.saved });
 }
 

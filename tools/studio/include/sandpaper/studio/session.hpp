@@ -50,8 +50,13 @@ class Session {
   // disk's text: switching files never drops a designer's text. RequestError 403 outside the
   // folder, 404 missing, 413 too large, 400 not a .hmat or .hws.
   nlohmann::json open(const std::string& relative);
-  // The open file: {"file", "kind": "material"|"workspace", "text", "saved": bool, "version", ...}.
+  // The open file: {"file", "kind": "material"|"workspace", "text", "text_version", "saved": bool,
+  // "version", ...}.
   nlohmann::json current() const;
+  // What every page is told with each state event, so that a change made anywhere (this page, another
+  // tab, the HTTP API) reaches them all: {"file", "text_version" (rises with every change of the
+  // text), "saved", "compiles", "version" (of the program that text compiled to, when it did)}.
+  nlohmann::json document_state() const;
 
   // POST /api/compile: compiles `text` as a material, as `sandpaper compile --json` would; plays nothing.
   nlohmann::json compile_only(const std::string& text) const;
@@ -110,6 +115,7 @@ class Session {
   std::map<std::string, Draft> drafts_;
   bool text_compiles_ = false;
   std::uint64_t version_ = 0;  // of the playing program (LiveLoop's load version)
+  std::uint64_t text_version_ = 0;  // every change of text_ (or of the open file) raises it
   std::shared_ptr<const schema::PatchProgram> program_;
   std::shared_ptr<const schema::WorkspaceProgram> workspace_;
   nlohmann::json last_compile_;
