@@ -119,6 +119,10 @@ def main():
         squiggle = b.evaluate("document.querySelector('.cm-lintRange-error').textContent")
         check("mn" in squiggle, f"under the bad unit: {squiggle!r}")
         check(b.evaluate("document.body.dataset.compiles") == "no", "the page says it does not compile")
+        stale = b.evaluate("(() => { const s = document.querySelector('#stale'); const i = document.querySelector('#picture');"
+                           " return [getComputedStyle(s).display, s.textContent, i.hidden, i.naturalWidth]; })()")
+        check(stale[0] == "block" and stale[1].startswith("the last good picture (v") and not stale[2] and stale[3] > 0,
+              f"the picture stays, marked as the last good one: {stale[1]!r}")
         check(studio.state()["material"] == "corduroy/wide-wale", "the last good program keeps playing")
 
         key(b, "Backspace", 8)
@@ -126,6 +130,7 @@ def main():
         check(wait(b, "document.body.dataset.compiles === 'yes' && document.querySelectorAll('#diagnostics li.error').length === 0",
                    "the fix to compile") is not None, "fixed: no errors, it compiles")
         check(b.evaluate("window.studio.text()") == original, "the text is the file's again")
+        check(b.evaluate("getComputedStyle(document.querySelector('#stale')).display") == "none", "and the mark is gone")
 
         # Undo and redo, the editor's own keys (@codemirror/commands): a page that bundles two copies
         # of @codemirror/state throws on each (tests/studio/bundle_test.py).

@@ -203,6 +203,9 @@ function compileNow() {
 function applyCompile(r) {
   showDiagnostics(r.diagnostics || []);
   document.body.dataset.compiles = r.ok ? "yes" : "no";
+  $("#stale").textContent = r.version
+    ? `the last good picture (v${r.version}, still playing): this text does not compile`
+    : "nothing has compiled yet: this text does not compile";
   $("#compile-state").textContent = r.ok
     ? `compiled: ${r.material || r.workspace?.name || ""}` +
       (r.max_lateral_force_N !== undefined ? ` · ${r.max_lateral_force_N.toFixed(3)} N, roughness ${r.roughness.toFixed(2)}` : "")
