@@ -125,6 +125,23 @@ def main():
               and st["document"]["file"] == "corduroy.hmat" and st["document"]["version"] == r2["version"],
               f"/api/state's document follows the API's change: {st['document']} after text_version {before_version}")
 
+        # The library browser: search through the index, an entry's numbers and text, its picture.
+        status, found = studio.get("/api/library/search?q=wale%20corduroy")
+        names = [e["name"] for e in found.get("entries", [])]
+        check(status == 200 and names[:1] in (["corduroy"], ["pinwale-corduroy"]) and "pinwale-corduroy" in names
+              and found.get("index") in ("fresh", "built"), f"searching `wale corduroy` finds the corduroys: {names}")
+        corduroy = next((e for e in found["entries"] if e["name"] == "corduroy"), {})
+        check(corduroy.get("period_mm") == 3.2 and corduroy.get("compiled_max_lateral_force_N", 0) > 0,
+              f"with their compiled numbers: {corduroy}")
+        status, entry = studio.get("/api/library/entry?name=wide-wale-corduroy")
+        check(status == 200 and entry.get("name") == "corduroy" and 'material "corduroy"' in entry.get("text", "")
+              and entry.get("picture") is True, "an entry by its alias: its numbers and its file's text")
+        status, png = studio.get("/api/library/picture?name=corduroy")
+        check(status == 200 and png[:8] == b"\x89PNG\r\n\x1a\n", "and its picture")
+        for bad in ["../../etc/passwd", "nope", ""]:
+            status, e = studio.get("/api/library/entry?name=" + bad)
+            check(status == 404, f"no entry {bad!r}: 404")
+
         # The language server's features on the studio's text (POST /api/language), as `sandpaper lsp` gives them.
         status, cur = studio.get("/api/current")
         lines = cur["text"].split("\n")

@@ -358,6 +358,33 @@ def main():
                    "the photograph's scan plot") is not None, "its scan plot is drawn")
         b.screenshot(str(out / "studio-photo.png"), full_page=False)
 
+        # The library browser: search, an entry's numbers and picture, its file to read, `like NAME` inserted.
+        b.evaluate("(() => { const i = document.querySelector('#library-search'); i.scrollIntoView({block: 'center'}); i.focus(); })()")
+        b.send("Input.insertText", {"text": "pinwale"})
+        check(wait(b, "document.querySelector('#library-results li[data-name=\"pinwale-corduroy\"]') !== null",
+                   "the library's answer") is not None, "typing `pinwale` in the library search lists pinwale-corduroy")
+        b.click('#library-results li[data-name="pinwale-corduroy"]')
+        check(wait(b, "document.querySelector('#library-numbers').textContent.includes('period 1.60 mm')"
+                      " && document.querySelector('#library-picture').naturalWidth > 0", "the entry") is not None,
+              f"its numbers and picture: {b.evaluate('document.querySelector(`#library-numbers`).textContent')!r}")
+        b.click("#library-read")
+        text_shown = b.evaluate("(() => { const p = document.querySelector('#library-text'); return [p.hidden, p.textContent]; })()")
+        check(text_shown[0] is False and 'material "pinwale-corduroy"' in text_shown[1]
+              and b.evaluate("document.querySelector('#library-text').isContentEditable") is False,
+              "its file can be read, not edited")
+        b.screenshot(str(out / "studio-library.png"), full_page=True)
+        before_insert = b.evaluate("window.studio.text()")
+        b.click("#library-insert")
+        check(wait(b, "window.studio.text().includes('\\n  like pinwale-corduroy')", "the inserted like") is not None
+              and b.evaluate("window.studio.text()").replace("\n  like pinwale-corduroy", "", 1) == before_insert,
+              "`insert like pinwale-corduroy` adds that line to the text, and nothing else")
+        ctrl(b, "z")
+        check(wait(b, "window.studio.text() === %s" % json.dumps(before_insert), "the insert undone") is not None,
+              "and Ctrl-Z takes it out")
+        # The undo reaches the studio before the API's change below (else, sent later, it would win).
+        b.evaluate("window.studio.settled()")
+        check(studio.get("/api/current")[1].get("text") == before_insert, "(the studio holds the undone text)")
+
         # One source of truth: a change through the HTTP API reaches the page, text and figures, and
         # the page says which version plays.
         status, changed = studio.post("/api/parameter", {"name": "roughness", "value": 0.7})

@@ -108,7 +108,8 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
     }
   }
 
-  studio::Server server(session, *loop, SANDPAPER_VERSION);
+  studio::LibraryBrowser library(compiler, previews / "library");
+  studio::Server server(session, *loop, library, SANDPAPER_VERSION);
   int port = -1;
   try {
     port = server.bind(listen);

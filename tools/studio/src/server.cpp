@@ -90,12 +90,13 @@ nlohmann::json state_json(const LoopState& s, bool dummy_hand) {
 struct Server::Impl {
   Session& session;
   LiveLoop& loop;
+  LibraryBrowser& library;
   std::string version;
   Listen listen;
   httplib::Server http;
   std::atomic<bool> stopping{false};
 
-  Impl(Session& s, LiveLoop& l, std::string v) : session(s), loop(l), version(std::move(v)) {}
+  Impl(Session& s, LiveLoop& l, LibraryBrowser& b, std::string v) : session(s), loop(l), library(b), version(std::move(v)) {}
 
   // The loop's state and the open document's: one event tells every page what plays and which text
   // the studio holds, whoever changed it.
@@ -173,6 +174,26 @@ struct Server::Impl {
         send_json(res, session.language(string_field(j, "feature"), static_cast<int>(line), static_cast<int>(character)));
       });
     });
+    // The library browser: search (the SQLite index), an entry's numbers and text, its picture.
+    http.Get("/api/library/search", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, library.search(req.has_param("q") ? req.get_param_value("q") : "")); });
+    });
+    http.Get("/api/library/entry", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        if (!req.has_param("name")) throw RequestError(400, "?name= names the library entry");
+        send_json(res, library.entry(req.get_param_value("name")));
+      });
+    });
+    http.Get("/api/library/picture", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        const auto file = req.has_param("name") ? library.picture(req.get_param_value("name")) : std::nullopt;
+        if (!file) throw RequestError(404, "no picture for that library entry");
+        std::ifstream in(*file, std::ios::binary);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        res.set_content(ss.str(), "image/png");
+      });
+    });
     http.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.save()); });
     });
@@ -243,8 +264,8 @@ struct Server::Impl {
   }
 };
 
-Server::Server(Session& session, LiveLoop& loop, std::string version)
-    : impl_(std::make_unique<Impl>(session, loop, std::move(version))) {
+Server::Server(Session& session, LiveLoop& loop, LibraryBrowser& library, std::string version)
+    : impl_(std::make_unique<Impl>(session, loop, library, std::move(version))) {
   impl_->routes();
 }
 

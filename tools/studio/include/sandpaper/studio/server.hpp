@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "sandpaper/studio/library_browser.hpp"
 #include "sandpaper/studio/live_loop.hpp"
 #include "sandpaper/studio/request_guard.hpp"
 #include "sandpaper/studio/session.hpp"
@@ -24,7 +25,8 @@ const std::vector<WebAsset>& web_assets();
 
 class Server {
  public:
-  Server(Session& session, LiveLoop& loop, std::string version);
+  // `library` answers the library browser's requests (/api/library/...).
+  Server(Session& session, LiveLoop& loop, LibraryBrowser& library, std::string version);
   ~Server();
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;
