@@ -231,6 +231,28 @@ def main():
               "save rewrote exactly the two numbers, comments and layout intact")
         check(sorted(p.name for p in folder.iterdir() if p.name.startswith(".")) == [], "no temporary file left beside it")
 
+        # New file and Save as, inside the folder only.
+        status, made = studio.post("/api/new", {"file": "silk.hmat"})
+        check(status == 200 and made.get("created") and made["ok"] and made["file"] == "silk.hmat"
+              and (folder / "silk.hmat").read_text().startswith('material "silk" {'),
+              f"POST /api/new creates silk.hmat with a text that compiles, and opens it: {made.get('diagnostics')}")
+        for name, code in [("silk.hmat", 409), ("../outside2.hmat", 403), ("notes.txt", 400), ("missing/x.hmat", 404)]:
+            status, e = studio.post("/api/new", {"file": name})
+            check(status == code, f"new {name!r}: {code} ({e.get('error')})")
+        check(not (tmp / "outside2.hmat").exists(), "nothing was written outside the folder")
+        status, tuned = studio.post("/api/parameter", {"name": "roughness", "value": 0.3})
+        check(status == 200 and "roughness 0.3" in tuned.get("text", ""), f"(tuned: {tuned.get('text') or tuned})")
+        status, saved_as = studio.post("/api/save-as", {"file": "silk-fine.hmat"})
+        status, cur = studio.get("/api/current")
+        check(saved_as.get("saved") and cur["file"] == "silk-fine.hmat" and cur["saved"]
+              and "roughness 0.3" in (folder / "silk-fine.hmat").read_text()
+              and "roughness 0.5" in (folder / "silk.hmat").read_text(),
+              "save-as writes the text under the new name and goes on with it; the old file is as it was")
+        status, e = studio.post("/api/save-as", {"file": "corduroy.hmat"})
+        check(status == 409, "save-as will not overwrite another file")
+        status, e = studio.post("/api/save-as", {"file": "silk.hws"})
+        check(status == 400, "nor save a material as a workspace")
+
         # Workspaces: the canvas' view and moving a patch.
         status, opened = studio.post("/api/open", {"file": "workspace/sampler.hws"})
         check(status == 200 and opened["ok"], "a workspace opens and plays")

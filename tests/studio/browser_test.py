@@ -61,6 +61,20 @@ def click_at_text(b, needle, after=True):
     mouse(b, "mouseReleased", xy[0] + 0.5, xy[1], 0)
 
 
+def window_text(b):
+    return b.evaluate("window.studio.text()")
+
+
+def state_when(studio, ok, seconds=10):
+    """The studio's state once `ok` holds (polling /api/state, which answers at once), or (None, None)."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        s = studio.state()
+        if ok(s):
+            return s, True
+    return None, None
+
+
 def wait(b, expression, what, seconds=10):
     t0 = time.monotonic()
     try:
@@ -318,7 +332,9 @@ def main():
         mouse(b, "mouseMoved", xy[0], xy[1], 0)
         hovered = wait(b, "document.querySelector('.cm-tooltip pre.hover')?.textContent.includes('texture.period')", "the hover")
         tip = b.evaluate("document.querySelector('.cm-tooltip pre.hover')?.textContent || ''")
-        check(hovered is not None and "3.2 mm" in tip and "physical" in tip, f"hovering 3.2 shows explain's line: {tip!r}")
+        under = b.evaluate("(() => { const e = document.elementFromPoint(%f, %f); return e ? e.className + ':' + e.textContent.slice(0, 40) : null; })()" % (xy[0], xy[1]))
+        check(hovered is not None and "3.2 mm" in tip and "physical" in tip,
+              f"hovering 3.2 shows explain's line: {tip!r} (mouse at {xy} over {under!r})")
         click_at_text(b, "like cor")
         key(b, "F12", 123)
         defined = wait(b, "(document.body.dataset.definition || '').endsWith('/library/textiles/corduroy.hmat')", "go to definition")
@@ -399,6 +415,37 @@ def main():
               f"{b.evaluate('document.querySelector(`#compile-state`).textContent')!r}, "
               f"{b.evaluate('document.querySelector(`#playing-what`).textContent')!r}")
         check(studio.state()["material_version"] == changed["version"], "and the loop plays that version")
+
+        # New file from the page: named beside the buttons, created in the folder, opened, listed.
+        b.evaluate("(() => { const i = document.querySelector('#file-name'); i.scrollIntoView(); i.focus(); })()")
+        b.send("Input.insertText", {"text": "velvet-note.hmat"})
+        b.click("#new")
+        check(wait(b, "window.studio.state.file === 'velvet-note.hmat' && document.body.dataset.compiles === 'yes'"
+                      " && document.querySelector('#file option[value=\"velvet-note.hmat\"]') !== null", "the new file") is not None
+              and (folder / "velvet-note.hmat").exists(),
+              "New creates velvet-note.hmat in the folder, opens it (it compiles) and lists it")
+
+        # Started on a folder, the studio plays nothing until a file is chosen. First board.hmat, left
+        # with the API's change unsaved, is saved: leaving the page would ask first (as it should).
+        check(switch_to("board.hmat") is not None, "(back to board.hmat)")
+        b.click("#save")
+        check(wait(b, "!document.querySelector('#file option[data-unsaved=\"yes\"]')", "everything saved") is not None,
+              "(saved)")
+        second = Studio(os.path.abspath(args.sandpaper), folder)
+        try:
+            b.navigate(second.url)
+            check(wait(b, "document.body.dataset.ready === 'yes'", "the folder's page", 30) is not None, "(the folder's page)")
+            first = b.evaluate("(() => { const s = document.querySelector('#file'); return [s.value, s.options[0].textContent]; })()")
+            check(first == ["", "choose a file to play"] and second.state()["material"] == "" and window_text(b) == "",
+                  f"a studio opened on a folder plays nothing, and asks for a file: {first}, "
+                  f"playing {second.state()['material']!r}")
+            b.evaluate("(() => { const s = document.querySelector('#file'); s.value = 'corduroy.hmat';"
+                       " s.dispatchEvent(new Event('change')); })()")
+            chosen = wait(b, "window.studio.state.file === 'corduroy.hmat' && document.body.dataset.compiles === 'yes'", "the chosen file")
+            playing, _ = state_when(second, lambda st: st["material"] == "corduroy/wide-wale")
+            check(chosen is not None and playing is not None, "choosing corduroy.hmat plays it")
+        finally:
+            second.stop()
     finally:
         b.close()
         code, printed, err = studio.stop()

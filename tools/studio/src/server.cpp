@@ -194,6 +194,12 @@ struct Server::Impl {
         res.set_content(ss.str(), "image/png");
       });
     });
+    http.Post("/api/new", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.create(string_field(body_json(req), "file"))); });
+    });
+    http.Post("/api/save-as", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.save_as(string_field(body_json(req), "file"))); });
+    });
     http.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.save()); });
     });

@@ -259,6 +259,63 @@ nlohmann::json Session::save() {
   return {{"saved", true}, {"file", file_}, {"bytes", text_.size()}};
 }
 
+fs::path Session::new_file_path(const std::string& relative) const {
+  fs::path full;
+  try {
+    full = confined_path(root_, relative);
+  } catch (const OutsideFolder& e) {
+    throw RequestError(403, e.what());
+  }
+  if (full.extension() != ".hmat" && full.extension() != ".hws")
+    throw RequestError(400, "'" + relative + "': a material is a .hmat file, a workspace a .hws file");
+  std::error_code ec;
+  if (!fs::is_directory(full.parent_path(), ec))
+    throw RequestError(404, "no folder " + fs::relative(full.parent_path(), root_).string() + " in the studio's folder");
+  if (fs::exists(full, ec)) throw RequestError(409, "'" + relative + "' exists: open it, or choose another name");
+  return full;
+}
+
+nlohmann::json Session::create(const std::string& relative) {
+  fs::path full;
+  {
+    std::lock_guard lock(mutex_);
+    full = new_file_path(relative);
+  }
+  const std::string stem = full.stem().string();
+  // A start that compiles and plays: the text names its material after the file, as the library does.
+  const std::string text =
+      full.extension() == ".hws"
+          ? "workspace \"" + stem + "\" {\n  size 228.6 mm x 228.6 mm\n}\n"
+          : "material \"" + stem + "\" {\n  # felt on the library's reference texture until a texture is given\n"
+                                   "  roughness 0.5\n}\n";
+  try {
+    schema::write_file_atomically(full, text);
+  } catch (const std::exception& e) {
+    throw RequestError(500, std::string("could not create the file: ") + e.what());
+  }
+  nlohmann::json j = open(fs::relative(full, root_).string());
+  j["created"] = true;
+  return j;
+}
+
+nlohmann::json Session::save_as(const std::string& relative) {
+  std::lock_guard lock(mutex_);
+  if (file_.empty()) throw RequestError(409, "no file is open");
+  const fs::path full = new_file_path(relative);
+  if ((full.extension() == ".hws") != is_workspace_)
+    throw RequestError(400, std::string("the open file is a ") + (is_workspace_ ? "workspace: save it as a .hws file"
+                                                                                  : "material: save it as a .hmat file"));
+  try {
+    schema::write_file_atomically(full, text_);
+  } catch (const std::exception& e) {
+    throw RequestError(500, std::string("could not save: ") + e.what());
+  }
+  file_ = fs::relative(full, root_).string();
+  saved_text_ = text_;
+  ++text_version_;  // the same text, under another name: every page follows
+  return {{"saved", true}, {"file", file_}, {"bytes", text_.size()}, {"text_version", text_version_}};
+}
+
 nlohmann::json Session::language(const std::string& feature, int line, int character) const {
   if (feature != "completion" && feature != "hover" && feature != "definition")
     throw RequestError(400, "\"feature\" is one of completion, hover, definition");

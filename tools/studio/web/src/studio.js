@@ -29,6 +29,7 @@ async function api(method, path, body, json = true) {
 function setStatus(text, bad = false) {
   const s = $("#status");
   s.textContent = text;
+  s.title = text;  // the whole of it, when the header's one line cuts it short
   s.classList.toggle("bad", bad);
 }
 
@@ -206,7 +207,7 @@ function applyCompile(r) {
   $("#stale").textContent = r.version
     ? `the last good picture (v${r.version}, still playing): this text does not compile`
     : "nothing has compiled yet: this text does not compile";
-  $("#compile-state").textContent = r.ok
+  $("#compile-state").title = $("#compile-state").textContent = r.ok
     ? `compiled: ${r.material || r.workspace?.name || ""}` +
       (r.max_lateral_force_N !== undefined ? ` · ${r.max_lateral_force_N.toFixed(3)} N, roughness ${r.roughness.toFixed(2)}` : "")
     : "does not compile: the last good program keeps playing";
@@ -532,8 +533,13 @@ async function workspacePointerUp() {
 // its own edit is on its way (then that edit's answer brings them).
 let following = false;
 async function followDocument(d) {
-  if (!d || following || !state.file) return;
+  if (!d || following || !d.file) return;
   const behind = d.file !== state.file || d.text_version > (state.textVersion || 0);
+  if (!state.file && behind) {  // a file opened elsewhere (another tab, the API) while none was open here
+    following = true;
+    try { await loadCurrent(); await refreshFileList(); } finally { following = false; }
+    return;
+  }
   if (!behind || state.compileTimer || state.opening || document.body.dataset.sliderBusy === "yes") return;
   following = true;
   try {
@@ -684,6 +690,7 @@ async function open(file) {
   try {
     var r = await api("POST", "/api/open", { file });
     await loadCurrent();
+    if ($("#file").options[0]?.value === "") await refreshFileList();  // the "choose a file" entry goes
   } finally {
     state.opening = false;
   }
@@ -726,9 +733,16 @@ async function flushCompile() {
   if (state.compileTimer) { clearTimeout(state.compileTimer); await compileNow(); }
 }
 
-async function init() {
+// The folder's files into the list, the open one selected; none open: a first entry asks for one.
+async function refreshFileList() {
   const { files, not_listed: notListed = [], unsaved = [] } = await api("GET", "/api/files");
   const sel = $("#file");
+  sel.replaceChildren();
+  if (!state.file) {
+    const o = new Option("choose a file to play", "");
+    o.disabled = true;
+    sel.append(o);
+  }
   for (const f of files) sel.append(new Option(f, f));
   // Names that are not UTF-8 cannot be asked for: shown, greyed, with what to do.
   for (const { file, why } of notListed) {
@@ -738,6 +752,33 @@ async function init() {
     sel.append(o);
   }
   for (const f of unsaved) markUnsaved(f, true);
+  sel.value = state.file || "";
+  return files;
+}
+
+// New file and Save as: the name typed beside the buttons, inside the studio's folder.
+async function newOrSaveAs(path, verb) {
+  const file = $("#file-name").value.trim();
+  if (!file) { setStatus("type the file's name first, e.g. silk.hmat or workspace/desk.hws", true); return; }
+  await flushCompile();
+  await state.compiling;
+  state.opening = true;
+  try {
+    await api("POST", path, { file });
+    await loadCurrent();
+    await refreshFileList();
+    $("#file-name").value = "";
+    setStatus(`${verb} ${state.file}`);
+  } catch (e) {
+    setStatus(e.message, true);
+  } finally {
+    state.opening = false;
+  }
+}
+
+async function init() {
+  const sel = $("#file");
+  await refreshFileList();
   sel.addEventListener("change", () => open(sel.value).catch((e) => setStatus(e.message, true)));
   // Closing or reloading the page with edits unsaved asks first (the browser's own question).
   window.addEventListener("beforeunload", (e) => {
@@ -746,6 +787,8 @@ async function init() {
     e.returnValue = "";
   });
   $("#save").addEventListener("click", save);
+  $("#new").addEventListener("click", () => newOrSaveAs("/api/new", "created"));
+  $("#save-as").addEventListener("click", () => newOrSaveAs("/api/save-as", "saved as"));
   $("#library-search").addEventListener("input", () => { clearTimeout(librarySearchTimer); librarySearchTimer = setTimeout(searchLibrary, 150); });
   $("#library-insert").addEventListener("click", insertLike);
   $("#library-read").addEventListener("click", () => { $("#library-text").hidden = !$("#library-text").hidden; });
@@ -753,9 +796,14 @@ async function init() {
   document.querySelectorAll("input[name=mode]").forEach((r) => r.addEventListener("change", () => { state.mode = r.value; drawWorkspace(); }));
   $("#arrows").addEventListener("change", drawOverlay);
   setupStage();
+  // Started on a folder, nothing plays until a file is chosen.
   const cur = await api("GET", "/api/current");
-  if (cur.file) await loadCurrent();
-  else if (files.length) await open(files[0]);
+  if (cur.file) {
+    await loadCurrent();
+    await refreshFileList();
+  } else {
+    setStatus("choose a file to play from the list");
+  }
   connectEvents();
   window.addEventListener("resize", () => (state.kind === "workspace" ? drawWorkspace() : drawOverlay()));
   document.body.dataset.ready = "yes";

@@ -69,6 +69,14 @@ class Session {
   nlohmann::json set_parameter(const std::string& name, double value, const std::string& unit);
   // Writes the text to the open file atomically (temporary file + rename). Returns {"saved", "bytes"}.
   nlohmann::json save();
+  // POST /api/new: creates `relative` (a .hmat or .hws name inside the folder, in a folder that
+  // exists, not yet a file) with a starting text that compiles (a material felt on the library's
+  // reference texture; an empty workspace), then opens it; the file left keeps its unsaved edits.
+  // RequestError 403 outside the folder, 400 another extension, 404 no such folder, 409 it exists.
+  nlohmann::json create(const std::string& relative);
+  // POST /api/save-as: writes the text to `relative` (as create() checks it) and makes that the open
+  // file; the file it came from stays as it is on disk.
+  nlohmann::json save_as(const std::string& relative);
   // POST /api/language: what `sandpaper lsp` answers an editor for the open text at (line, character)
   // (0-based; character in UTF-16 units, as the page's editor counts): `feature` "completion",
   // "hover" or "definition", by the language server's own functions (tools/lsp/features.hpp), as
@@ -88,6 +96,7 @@ class Session {
 
  private:
   nlohmann::json update_locked(const std::string& text);
+  std::filesystem::path new_file_path(const std::string& relative) const;
   nlohmann::json parameters_locked() const;
   // The preview renderer's thread: draws the newest program that compiled, off the request path, so an
   // edit is answered (and swapped in) as soon as it compiles.
