@@ -216,6 +216,7 @@ class Firmware final : public OpenFFBoardFirmware {
     const hal::TimerUpdateCounts ffb_timer = hal::timer_update_counts(TIM_FFB);
     s.ffb_timer_updates = ffb_timer.run;
     s.ffb_timer_updates_dropped = ffb_timer.dropped;
+    s.ffb_timer_periods_due = ffb_timer.due;
     s.ffb_control_steps = control_steps_.load(std::memory_order_relaxed);
     core::Hold hold;
     if (auto* main = dynamic_cast<FFBHIDMain*>(mainclass)) s.ffb_active = main->getFfbActive();

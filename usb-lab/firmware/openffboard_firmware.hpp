@@ -34,6 +34,7 @@ struct FirmwareState {
   // than a period late. Their ratio says how starved the guest was, apart from what a test measures.
   std::uint64_t ffb_timer_updates = 0;
   std::uint64_t ffb_timer_updates_dropped = 0;
+  std::uint64_t ffb_timer_periods_due = 0;  // periods whose update time has come (hal::TimerUpdateCounts::due)
   // Control steps the firmware ran (FFBHIDMain::Run woke). On the chip one per timer update; a step
   // that overran on the host takes up the updates that came meanwhile in one. The hand moves one
   // period per step (move_stick), so steps / (updates run + dropped) is how fast the hand really

@@ -26,6 +26,9 @@ struct RunningTimer {
   std::atomic<bool> stop{false};
   std::atomic<std::uint64_t> updates{0};
   std::atomic<std::uint64_t> dropped{0};
+  // Update k is due at started + k periods (the period as last read from the registers).
+  core::Clock::time_point started;
+  std::atomic<std::int64_t> period_ns{0};
   std::thread thread;
 };
 
@@ -50,7 +53,8 @@ void run_timer(RunningTimer* timer) {
     core::Hold hold;
     period = period_of(*timer->htim);
   }
-  auto next = core::Clock::now() + period;
+  timer->period_ns.store(period.count());
+  auto next = timer->started + period;
   while (!timer->stop.load()) {
     std::this_thread::sleep_until(next);
     if (timer->stop.load()) break;
@@ -61,6 +65,7 @@ void run_timer(RunningTimer* timer) {
       period = period_of(*timer->htim);
     }
     timer->updates.fetch_add(1, std::memory_order_relaxed);
+    timer->period_ns.store(period.count());
     next += period;
     const auto now = core::Clock::now();
     if (now > next + period) {  // missed updates collapse
@@ -85,6 +90,10 @@ TimerUpdateCounts timer_update_counts(const TIM_HandleTypeDef& htim) {
     if (t->htim != &htim) continue;
     counts.run += t->updates.load(std::memory_order_relaxed);
     counts.dropped += t->dropped.load(std::memory_order_relaxed);
+    const std::int64_t period_ns = t->period_ns.load();
+    if (period_ns > 0)
+      counts.due += static_cast<std::uint64_t>(
+          std::chrono::duration_cast<std::chrono::nanoseconds>(core::Clock::now() - t->started).count() / period_ns);
   }
   return counts;
 }
@@ -120,6 +129,7 @@ HAL_StatusTypeDef HAL_TIM_Base_Start_IT(TIM_HandleTypeDef* htim) {
   }
   auto timer = std::make_unique<hal::RunningTimer>();
   timer->htim = htim;
+  timer->started = sandpaper::usb_lab::core::Clock::now();
   timer->thread = std::thread(hal::run_timer, timer.get());
   hal::timers().push_back(std::move(timer));
   return HAL_OK;

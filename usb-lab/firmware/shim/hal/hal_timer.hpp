@@ -14,6 +14,9 @@ double timer_update_rate_hz(const TIM_HandleTypeDef& htim);
 struct TimerUpdateCounts {
   std::uint64_t run = 0;
   std::uint64_t dropped = 0;
+  // Periods whose update time has come since the timer started, read after the two counts: run +
+  // dropped never exceeds it, and falls behind it only while the thread is late.
+  std::uint64_t due = 0;
 };
 TimerUpdateCounts timer_update_counts(const TIM_HandleTypeDef& htim);
 
