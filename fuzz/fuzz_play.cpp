@@ -40,8 +40,8 @@ runtime::ServoReport play_and_check(runtime::ForceSource& source, std::uint32_t 
     check(magnitude <= limit, "commanded |F| = " + digits17(magnitude) + " N exceeds the device maximum " +
                                   digits17(limit) + " N");
   }
-  check(report.max_lateral_force_N <= limit,
-        "report's max_lateral_force_N " + digits17(report.max_lateral_force_N) + " N exceeds the device maximum");
+  check(report.felt_max_lateral_force_N <= limit,
+        "report's max_lateral_force_N " + digits17(report.felt_max_lateral_force_N) + " N exceeds the device maximum");
   return report;
 }
 

@@ -69,7 +69,7 @@ void fill(sp_report* out, const sandpaper::runtime::ServoReport& r) {
   if (!out) return;
   out->ticks = r.ticks;
   out->rate_hz = r.rate_hz;
-  out->max_lateral_force_N = r.max_lateral_force_N;
+  out->felt_max_lateral_force_N = r.felt_max_lateral_force_N;
   out->clamped_ticks = r.clamped_ticks;
   out->overruns = r.overruns;
   out->stop_cause = static_cast<int>(r.stop_cause);
@@ -128,10 +128,10 @@ void sp_material_free(sp_material* material) { delete material; }
 const char* sp_material_name(const sp_material* material) {
   return material ? material->material.name().c_str() : "";
 }
-double sp_material_max_lateral_force_N(const sp_material* material) {
-  return material ? material->material.max_lateral_force_N() : 0.0;
+double sp_material_compiled_max_lateral_force_N(const sp_material* material) {
+  return material ? material->material.compiled_max_lateral_force_N() : 0.0;
 }
-double sp_material_roughness(const sp_material* material) { return material ? material->material.roughness() : 0.0; }
+double sp_material_compiled_roughness(const sp_material* material) { return material ? material->material.compiled_roughness() : 0.0; }
 const char* sp_material_warnings(const sp_material* material) { return material ? material->warnings.c_str() : ""; }
 
 sp_status sp_player_open_simulated(sp_player** out) {

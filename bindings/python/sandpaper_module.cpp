@@ -229,7 +229,7 @@ py::dict report_dict(const sp::runtime::ServoReport& r) {
   py::dict d;
   d["ticks"] = r.ticks;
   d["rate_hz"] = r.rate_hz;
-  d["max_lateral_force_N"] = r.max_lateral_force_N;
+  d["felt_max_lateral_force_N"] = r.felt_max_lateral_force_N;
   d["stop_cause"] = sp::runtime::stop_cause_name(r.stop_cause);
   d["period_p50_us"] = r.period_p50_us;
   d["period_p99_us"] = r.period_p99_us;
@@ -304,9 +304,9 @@ PYBIND11_MODULE(sandpaper, m) {
 
   py::class_<PyMaterial>(m, "Material", "A compiled material: a patch program ready to play (SI units).")
       .def_property_readonly("name", [](const PyMaterial& x) { return x.material.name(); })
-      .def_property_readonly("max_lateral_force_N", [](const PyMaterial& x) { return x.material.max_lateral_force_N(); },
+      .def_property_readonly("compiled_max_lateral_force_N", [](const PyMaterial& x) { return x.material.compiled_max_lateral_force_N(); },
                              "the texture's maximum lateral force as compiled for the device, N")
-      .def_property_readonly("roughness", [](const PyMaterial& x) { return x.material.roughness(); },
+      .def_property_readonly("compiled_roughness", [](const PyMaterial& x) { return x.material.compiled_roughness(); },
                              "ratio-scale roughness the roughness map predicts (Minsky 1995, Fig. 19)")
       .def_property_readonly("size_m", [](const PyMaterial& x) {
         return std::vector<double>{x.material.program().size_m[0], x.material.program().size_m[1]};
@@ -330,7 +330,7 @@ PYBIND11_MODULE(sandpaper, m) {
            "resolve the texture (every grating ridge met within 5 % of its peak, one point per height-field sample); a "
            "coarser n raises ValueError")
       .def("__repr__", [](const PyMaterial& x) {
-        return "<sandpaper.Material " + x.material.name() + ": " + std::to_string(x.material.max_lateral_force_N()) + " N>";
+        return "<sandpaper.Material " + x.material.name() + ": " + std::to_string(x.material.compiled_max_lateral_force_N()) + " N>";
       });
 
   py::class_<PyLibrary>(m, "Library", "The world haptics library with its calibration, compiling for one device.")

@@ -16,10 +16,13 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
   j["knowledge"] = compiler::knowledge_json(compiler::assess_knowledge(material, prog, c.calibration()),
                                             c.calibration());
   j["maps"] = compiler::maps_json(c.calibration());
+  // The same names as a run's report: `run --json` measures felt_peak_N where this predicts it.
+  const auto& map = c.calibration().roughness_map();
   nlohmann::json felt = nlohmann::json::array();
   const double rate = compiler::default_servo_rate_hz(c.device());
   for (const auto& f : compiler::felt_at_explain_speeds(prog, rate))
-    felt.push_back({{"speed_mm_s", f.speed_m_s * 1e3}, {"rate_hz", f.rate_hz}, {"peak_N", f.peak_N}, {"fraction", f.fraction}});
+    felt.push_back({{"speed_mm_s", f.speed_m_s * 1e3}, {"rate_hz", f.rate_hz}, {"felt_peak_N", f.peak_N},
+                    {"felt_roughness", map.percept_of(f.peak_N)}, {"fraction", f.fraction}});
   j["felt_at_speed"] = felt;
   // Through the device's own firmware ([firmware] in its calibration file): empty without one.
   nlohmann::json out = nlohmann::json::array();
@@ -38,10 +41,10 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
     const auto r = compiler::felt_remedies(material, prog, v, rate, std::max(rate, c.device().max_rate_hz), weber);
     if (r.speed_m_s == 0) continue;
     remedies.push_back({{"speed_mm_s", v * 1e3}, {"design_speed", design_speed_m_s > 0 && v == speeds.back()},
-                        {"rate_hz", rate}, {"peak_N", r.now.peak_N}, {"fraction", r.now.fraction},
-                        {"faster_servo", r.fast_rate_hz > 0 ? nlohmann::json{{"rate_hz", r.fast_rate_hz}, {"peak_N", r.fast.peak_N}}
+                        {"rate_hz", rate}, {"felt_peak_N", r.now.peak_N}, {"fraction", r.now.fraction},
+                        {"faster_servo", r.fast_rate_hz > 0 ? nlohmann::json{{"rate_hz", r.fast_rate_hz}, {"felt_peak_N", r.fast.peak_N}}
                                                             : nlohmann::json(nullptr)},
-                        {"smoothing", r.smoothing_m > 0 ? nlohmann::json{{"smoothing_mm", r.smoothing_m * 1e3}, {"peak_N", r.smoothed.peak_N}}
+                        {"smoothing", r.smoothing_m > 0 ? nlohmann::json{{"smoothing_mm", r.smoothing_m * 1e3}, {"felt_peak_N", r.smoothed.peak_N}}
                                                         : nlohmann::json(nullptr)}});
   }
   j["felt_remedies"] = remedies;

@@ -159,8 +159,12 @@ class Reader {
       refuse("E0714", where + " has no extras.sandpaper object: the asset was not written by Sandpaper",
              "Sandpaper reads back the assets `sandpaper export --format gltf` writes (docs/GLTF.md)");
     const Extras x{*ours, where + ".extras.sandpaper"};
-    if (x.number("version", 0, 1e9) != gltf::kExtrasVersion)
-      refuse("E0714", x.where + ".version is not " + std::to_string(gltf::kExtrasVersion), "export it again with this Sandpaper");
+    const double version = x.number("version", 0, 1e9);
+    if (version != gltf::kExtrasVersion && version != gltf::kExtrasVersionOldNames)
+      refuse("E0714", x.where + ".version is not " + std::to_string(gltf::kExtrasVersionOldNames) + " or " +
+                          std::to_string(gltf::kExtrasVersion),
+             "export it again with this Sandpaper");
+    const char* force_key = version == gltf::kExtrasVersionOldNames ? "max_lateral_force_N" : "compiled_max_lateral_force_N";
     const auto& device = c_.device();
     schema::PatchProgram p;
     p.name = x.text("name");
@@ -181,7 +185,7 @@ class Reader {
     if (kind == "none") return finish(p, 0);
     if (kind != "grating" && kind != "height_field")
       refuse("E0714", x.where + ".texture is \"" + kind.substr(0, 40) + "\", not \"grating\", \"height_field\" or \"none\"");
-    const double force = x.number("max_lateral_force_N", 0, 1e4);
+    const double force = x.number(force_key, 0, 1e4);
     const double k = x.number("lateral_gain_N", 1e-12, 1e4);
     const double range = x.number("height_range_m", 1e-15, 1);
     const gltf::Png16 png = texture(m, where, kind);
@@ -232,7 +236,7 @@ class Reader {
              "the texture of " + where + " asks for " + num(std::max(peak, force)) + " N of lateral force; device '" +
                  device.name + "' reaches " + num(device.max_force_N) + " N at most (" + device.file + ")",
              "compile for a stronger device (--device), or export the material again with less force");
-    p.provenance.push_back({"texture.max_lateral_force", force, "N", num(force) + " N (max_lateral_force_N)", "physical",
+    p.provenance.push_back({"texture.max_lateral_force", force, "N", num(force) + " N (" + force_key + ")", "physical",
                             shown_ + " (glTF extras; " + source.substr(0, 200) + ")"});
     return finish(p, force);
   }

@@ -13,7 +13,10 @@ namespace sandpaper::compiler::gltf {
 inline constexpr const char* kExtension = "MPEG_haptic_material";
 // Sandpaper's own block in the haptic material's `extras`, and its layout version.
 inline constexpr const char* kExtrasKey = "sandpaper";
-inline constexpr int kExtrasVersion = 1;
+inline constexpr int kExtrasVersion = 2;
+// Version 1 named the compiled force and roughness `max_lateral_force_N` and `roughness`; version 2
+// says `compiled_...`, as every report does. Import reads both.
+inline constexpr int kExtrasVersionOldNames = 1;
 inline constexpr const char* kPngDataUriPrefix = "data:image/png;base64,";
 // Largest 16-bit value: heights are texel / kTexelMax of the height range.
 inline constexpr double kTexelMax = 65535.0;

@@ -292,7 +292,7 @@ nlohmann::json knowledge_json(const KnowledgeReport& k, const CalibrationSet& ca
   nlohmann::json j;
   j["texture"] = k.texture.kind.empty() ? nlohmann::json(nullptr) : nlohmann::json(k.texture.kind);
   j["period_m"] = k.texture.has_period() ? nlohmann::json(k.texture.period_m) : nlohmann::json(nullptr);
-  j["max_lateral_force_N"] = k.force_N;
+  j["compiled_max_lateral_force_N"] = k.force_N;
   if (k.region)
     j["believability"] = {{"believable", k.believable},
                           {"region", k.region->id},

@@ -12,7 +12,7 @@ int main(int argc, char** argv) try {
   player.start({.rate_hz = 1000, .duration_s = 0.5});
   auto report = player.wait();
   std::cout << material.name() << ": " << report.ticks << " ticks at " << report.rate_hz << " Hz, max lateral force "
-            << report.max_lateral_force_N << " N (compiled " << material.max_lateral_force_N() << " N)\n";
+            << report.felt_max_lateral_force_N << " N (compiled " << material.compiled_max_lateral_force_N() << " N)\n";
   return report.stop_cause == sandpaper::runtime::StopCause::Completed ? 0 : 1;
 } catch (const sandpaper::Error& e) {  // a compile error prints as `sandpaper compile` prints it
   std::cerr << e.what() << '\n';

@@ -13,8 +13,8 @@ int main(int argc, char** argv) try {
   player.start({.rate_hz = 1000, .duration_s = 0.5});
   auto report = player.wait();
   std::cout << "roughness level " << level << " (" << library.roughness_level_value(level) << "): " << report.ticks
-            << " ticks at " << report.rate_hz << " Hz, max lateral force " << report.max_lateral_force_N
-            << " N (compiled " << material.max_lateral_force_N() << " N, roughness " << material.roughness() << ")\n";
+            << " ticks at " << report.rate_hz << " Hz, max lateral force " << report.felt_max_lateral_force_N
+            << " N (compiled " << material.compiled_max_lateral_force_N() << " N, roughness " << material.compiled_roughness() << ")\n";
   return report.stop_cause == sandpaper::runtime::StopCause::Completed ? 0 : 1;
 } catch (const sandpaper::Error& e) {
   std::cerr << e.what() << '\n';

@@ -35,8 +35,8 @@ def run_session(lib, observer, seed):
     for trial, i in enumerate(order):
         player.load(materials[i])
         player.start(rate_hz=1000, duration_s=0.5)
-        felt = player.wait()["max_lateral_force_N"]  # what the running loop sent, N
-        rows.append({"trial": trial, "stimulus": stimuli[i], "compiled_N": materials[i].max_lateral_force_N,
+        felt = player.wait()["felt_max_lateral_force_N"]  # what the running loop sent, N
+        rows.append({"trial": trial, "stimulus": stimuli[i], "compiled_N": materials[i].compiled_max_lateral_force_N,
                      "felt_N": felt, "estimate": observer.estimate(felt)})
     return rows
 

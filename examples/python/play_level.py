@@ -21,8 +21,8 @@ def main():
     player.start(rate_hz=args.rate, duration_s=args.seconds)
     report = player.wait()  # the GIL is released while the servo thread plays
     print(f"played {args.level}: {report['ticks']} ticks at {report['rate_hz']:.1f} Hz, "
-          f"max lateral force {report['max_lateral_force_N']:.3f} N of {material.max_lateral_force_N:.3f} N compiled "
-          f"(roughness {material.roughness:.3f}), stop {report['stop_cause']}")
+          f"max lateral force {report['felt_max_lateral_force_N']:.3f} N of {material.compiled_max_lateral_force_N:.3f} N compiled "
+          f"(roughness {material.compiled_roughness:.3f}), stop {report['stop_cause']}")
     return 0 if report["stop_cause"] == "completed" else 1
 
 

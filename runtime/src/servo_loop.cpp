@@ -284,7 +284,7 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
     }
     if (stop == StopCause::Completed) {
       if (device.write_force_rt(sent)) {
-        report.max_lateral_force_N = std::max(report.max_lateral_force_N, std::hypot(sent.x, sent.y));
+        report.felt_max_lateral_force_N = std::max(report.felt_max_lateral_force_N, std::hypot(sent.x, sent.y));
       } else {
         stop = write_fault_cause(device.last_fault_rt());
         sent = {0, 0};  // the closing write below commands zero

@@ -27,7 +27,7 @@ glm::dvec2 SimJoystick::hand_position(double t_s) const noexcept { return script
 glm::dvec2 scripted_hand_position(const HandScript& script, double t_s) noexcept {
   const double amplitude = script.amplitude_m;
   if (!(amplitude > 0)) return {0, 0};  // a zero-size path is a hand held still on the centre
-  const double distance = script.speed_m_s * t_s;
+  const double distance = script.start_m + script.speed_m_s * t_s;
   switch (script.path) {
     case HandPath::Scan: {
       const double offset = triangle_offset(distance, amplitude);

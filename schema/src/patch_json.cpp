@@ -122,8 +122,9 @@ nlohmann::json to_json(const PatchProgram& p, bool with_tables) {
   j["describes"] = p.describes;
   j["device"] = p.device;
   j["size_m"] = {p.size_m[0], p.size_m[1]};
-  j["max_lateral_force_N"] = p.max_lateral_force_N;
-  j["roughness"] = p.roughness;
+  // Compiled values: what a run feels is reported apart, as felt_... (docs/PATCH_FORMAT.md).
+  j["compiled_max_lateral_force_N"] = p.max_lateral_force_N;
+  j["compiled_roughness"] = p.roughness;
   j["roughness_map"] = p.roughness_map;
   j["roughness_map_file"] = p.roughness_map_file;
   j["device_file"] = p.command.device_file;
@@ -138,7 +139,7 @@ nlohmann::json to_json(const PatchProgram& p, bool with_tables) {
     double u = p.max_lateral_force_N / c.newtons_per_command_unit[a];
     return c.command_max > 0 ? std::round(u) : u;
   };
-  j["max_lateral_force_command_units"] = {commands(0), commands(1)};
+  j["compiled_max_lateral_force_command_units"] = {commands(0), commands(1)};
   j["energy_budget_J"] = p.energy_budget_J;
   j["energy_refill_W"] = p.energy_refill_W;
   j["warnings"] = json::array();

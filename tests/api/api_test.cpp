@@ -31,25 +31,25 @@ TEST(Api, CompilesALibraryEntryByNameAsTheStatementsDo) {
   auto by_name = shipped().compile("corduroy");
   auto spelled = shipped().compile("like corduroy");
   EXPECT_EQ(by_name.name(), "corduroy");
-  EXPECT_GT(by_name.max_lateral_force_N(), 0.0);
-  EXPECT_DOUBLE_EQ(by_name.max_lateral_force_N(), spelled.max_lateral_force_N());
+  EXPECT_GT(by_name.compiled_max_lateral_force_N(), 0.0);
+  EXPECT_DOUBLE_EQ(by_name.compiled_max_lateral_force_N(), spelled.compiled_max_lateral_force_N());
   // A roughness asked for changes the force through the map: 0.6 is rougher than corduroy's 0.45.
   auto rougher = shipped().compile("like corduroy; roughness 0.6");
-  EXPECT_NEAR(rougher.roughness(), 0.6, 1e-6);
-  EXPECT_GT(rougher.max_lateral_force_N(), by_name.max_lateral_force_N());
+  EXPECT_NEAR(rougher.compiled_roughness(), 0.6, 1e-6);
+  EXPECT_GT(rougher.compiled_max_lateral_force_N(), by_name.compiled_max_lateral_force_N());
 }
 
 TEST(Api, BarePerceptualDescriptionStartsFromTheReferenceTexture) {
   auto m = shipped().compile("roughness 0.6");
-  EXPECT_NEAR(m.roughness(), 0.6, 1e-6);
-  EXPECT_GT(m.max_lateral_force_N(), 0.0);
+  EXPECT_NEAR(m.compiled_roughness(), 0.6, 1e-6);
+  EXPECT_GT(m.compiled_max_lateral_force_N(), 0.0);
 }
 
 TEST(Api, RoughnessLevelIsTheCalibratedLevel) {
   auto coarse = shipped().roughness_level("coarse");
   EXPECT_DOUBLE_EQ(shipped().roughness_level_value("coarse"), 0.5598);
-  EXPECT_NEAR(coarse.roughness(), 0.5598, 1e-6);
-  EXPECT_LT(shipped().roughness_level("fine").max_lateral_force_N(), coarse.max_lateral_force_N());
+  EXPECT_NEAR(coarse.compiled_roughness(), 0.5598, 1e-6);
+  EXPECT_LT(shipped().roughness_level("fine").compiled_max_lateral_force_N(), coarse.compiled_max_lateral_force_N());
   auto levels = shipped().roughness_levels();
   EXPECT_EQ(levels.front(), "very-fine");
   EXPECT_EQ(levels.back(), "very-coarse");
@@ -155,8 +155,8 @@ TEST(Api, PlaysForTheDurationWithTheCompiledForce) {
   auto report = player.wait();
   EXPECT_EQ(report.stop_cause, StopCause::Completed);
   EXPECT_EQ(report.ticks, 300u);
-  EXPECT_GT(report.max_lateral_force_N, 0.5 * m.max_lateral_force_N());
-  EXPECT_LE(report.max_lateral_force_N, m.max_lateral_force_N() * (1 + 1e-9));
+  EXPECT_GT(report.felt_max_lateral_force_N, 0.5 * m.compiled_max_lateral_force_N());
+  EXPECT_LE(report.felt_max_lateral_force_N, m.compiled_max_lateral_force_N() * (1 + 1e-9));
   EXPECT_FALSE(player.playing());
 }
 
@@ -173,7 +173,7 @@ TEST(Api, PlaysUntilStoppedAndSwapsWhilePlaying) {
   EXPECT_EQ(report.stop_cause, StopCause::StopRequested);
   EXPECT_GT(report.ticks, 0u);
   // Only the very-coarse material reaches above the very-fine one's maximum.
-  EXPECT_GT(report.max_lateral_force_N, shipped().roughness_level("very-fine").max_lateral_force_N() * 1.5);
+  EXPECT_GT(report.felt_max_lateral_force_N, shipped().roughness_level("very-fine").compiled_max_lateral_force_N() * 1.5);
   EXPECT_FALSE(player.playing());
 }
 

@@ -38,12 +38,12 @@ int main(void) {
 
   CHECK(sp_library_compile(lib, "corduroy", &corduroy) == SP_OK, "%s", sp_last_error());
   CHECK(strcmp(sp_material_name(corduroy), "corduroy") == 0, "name %s", sp_material_name(corduroy));
-  CHECK(sp_material_max_lateral_force_N(corduroy) > 0.0, "force %g", sp_material_max_lateral_force_N(corduroy));
-  CHECK(sp_material_roughness(corduroy) > 0.0, "roughness %g", sp_material_roughness(corduroy));
+  CHECK(sp_material_compiled_max_lateral_force_N(corduroy) > 0.0, "force %g", sp_material_compiled_max_lateral_force_N(corduroy));
+  CHECK(sp_material_compiled_roughness(corduroy) > 0.0, "roughness %g", sp_material_compiled_roughness(corduroy));
 
   CHECK(sp_library_compile(lib, "grating period 2.5 mm hill 50% amplitude 0.8 N", &grating) == SP_OK, "%s", sp_last_error());
   CHECK(sp_library_roughness_level(lib, "coarse", &coarse) == SP_OK, "%s", sp_last_error());
-  CHECK(sp_material_roughness(coarse) > 0.0, "coarse roughness %g", sp_material_roughness(coarse));
+  CHECK(sp_material_compiled_roughness(coarse) > 0.0, "coarse roughness %g", sp_material_compiled_roughness(coarse));
 
   /* Errors: a status, a message that says how to fix it, and out-parameters untouched. */
   CHECK(sp_library_compile(lib, "grating period 2.5 parsecs", &untouched) == SP_ERROR_COMPILE, "%s", sp_last_error());
@@ -91,9 +91,9 @@ int main(void) {
   CHECK(sp_player_wait(player, &report) == SP_OK, "%s", sp_last_error());
   CHECK(report.ticks == 300, "ticks %llu", (unsigned long long)report.ticks);
   CHECK(report.stop_cause == 0 && strcmp(report.stop_cause_name, "completed") == 0, "stop %s", report.stop_cause_name);
-  CHECK(report.max_lateral_force_N > 0.0, "no force played");
-  CHECK(report.max_lateral_force_N <= sp_material_max_lateral_force_N(corduroy) * (1 + 1e-9),
-        "played %g N above the compiled %g N", report.max_lateral_force_N, sp_material_max_lateral_force_N(corduroy));
+  CHECK(report.felt_max_lateral_force_N > 0.0, "no force played");
+  CHECK(report.felt_max_lateral_force_N <= sp_material_compiled_max_lateral_force_N(corduroy) * (1 + 1e-9),
+        "played %g N above the compiled %g N", report.felt_max_lateral_force_N, sp_material_compiled_max_lateral_force_N(corduroy));
   CHECK(!sp_player_playing(player), "still playing after wait");
 
   /* Until stopped: the material freed while playing stays alive inside the player. */
@@ -114,7 +114,7 @@ int main(void) {
   sp_player_close(NULL);
   sp_material_free(NULL);
   sp_library_close(NULL);
-  CHECK(strcmp(sp_material_name(NULL), "") == 0 && sp_material_max_lateral_force_N(NULL) == 0.0, "NULL material");
+  CHECK(strcmp(sp_material_name(NULL), "") == 0 && sp_material_compiled_max_lateral_force_N(NULL) == 0.0, "NULL material");
 
   printf("c api: %d checks, %d failed\n", checks, failures);
   return failures ? 1 : 0;

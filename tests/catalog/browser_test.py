@@ -38,8 +38,8 @@ def expected_entries(sandpaper, library):
                          capture_output=True, text=True).stdout
     entries = {}
     for e in json.loads(out):
-        textured = e.get("max_lateral_force_N", 0) > 0
-        entries[e["name"]] = {"roughness": e["roughness"] if textured else None, "family": e.get("family")}
+        textured = e.get("compiled_max_lateral_force_N", 0) > 0
+        entries[e["name"]] = {"roughness": e["compiled_roughness"] if textured else None, "family": e.get("family")}
     # `family WORD` as written in each entry's own file (the statement is not inherited through `like`).
     for f in library.rglob("*.hmat"):
         if f.stem in entries and entries[f.stem]["family"] is None:

@@ -27,10 +27,10 @@ RT=(--deadline-guard 600000)
 expect_exit 0 "compile example" -- "$sp" compile examples/corduroy.hmat -o "$tmp/c.patch"
 [ -s "$tmp/c.patch" ] && ok || bad "compile wrote no patch"
 expect_exit 0 "inspect --json" -- "$sp" inspect "$tmp/c.patch" --json
-has "$tmp/out" '"max_lateral_force_N": 1\.705' "inspect shows the compiled force"
+has "$tmp/out" '"compiled_max_lateral_force_N": 1\.705' "inspect shows the compiled force"
 has "$tmp/out" '"kind": "grating"' "inspect lists the grating term"
 expect_exit 0 "run patch on sim (virtual clock)" -- "$sp" run "$tmp/c.patch" --device sim --virtual-clock --json --trace "$tmp/t.csv"
-for key in '"ticks": 2000' '"rate_hz": 1000' '"p50"' '"p99"' '"overruns": 0' '"max_lateral_force_N": 1\.70' '"roughness": 0\.5[45]' '"stop_reason": "completed"'; do
+for key in '"ticks": 2000' '"rate_hz": 1000' '"p50"' '"p99"' '"overruns": 0' '"felt_max_lateral_force_N": 1\.70' '"felt_peak_N": 1\.70' '"felt_roughness": 0\.5[45]' '"compiled_roughness": 0\.55' '"stop_reason": "completed"'; do
   has "$tmp/out" "$key" "run --json"
 done
 [ "$(wc -l <"$tmp/t.csv")" -eq 2001 ] && ok || bad "trace should hold a header and 2000 ticks"
@@ -157,7 +157,8 @@ expect_exit 2 "a command without its subcommand is a usage error" -- "$sp" calib
 expect_exit 2 "an unknown option is a usage error" -- "$sp" compile -e corduroy --bogus
 expect_exit 0 "--help" -- "$sp" --help
 expect_exit 0 "spring only" -- "$sp" run -e "spring 200 N/m" --device sim --virtual-clock --json
-has "$tmp/out" '"roughness": null' "no roughness without a texture"
+has "$tmp/out" '"felt_roughness": null' "no roughness without a texture"
+has "$tmp/out" '"felt_peak_N": null' "no felt peak without a grating"
 printf 'SNDPATCHgarbage' >"$tmp/broken.patch"
 expect_exit 1 "corrupt patch" -- "$sp" inspect "$tmp/broken.patch"
 

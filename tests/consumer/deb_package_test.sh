@@ -159,7 +159,7 @@ import sandpaper
 print("module", sandpaper.__file__)
 lib = sandpaper.Library()
 print("library", lib.library_dir)
-print("corduroy", lib.compile("corduroy").max_lateral_force_N)' 2>&1) || fail "import the packaged module: $out"
+print("corduroy", lib.compile("corduroy").compiled_max_lateral_force_N)' 2>&1) || fail "import the packaged module: $out"
   echo "$out"
   grep -q -F "module $root/usr/lib/python3/dist-packages/" <<<"$out" || fail "imported another sandpaper module: $out"
   reported=$(sed -n 's/^library //p' <<<"$out")

@@ -11,8 +11,8 @@ int main(int argc, char** argv) try {
   player.load(material);
   player.start({.rate_hz = 1000, .duration_s = 0.5});
   sandpaper::runtime::ServoReport report = player.wait();
-  std::cout << "material " << material.name() << " compiled_max_lateral_force_N " << material.max_lateral_force_N()
-            << "\nplayed " << report.ticks << " ticks, max_lateral_force_N " << report.max_lateral_force_N
+  std::cout << "material " << material.name() << " compiled_max_lateral_force_N " << material.compiled_max_lateral_force_N()
+            << "\nplayed " << report.ticks << " ticks, felt_max_lateral_force_N " << report.felt_max_lateral_force_N
             << ", stop " << sandpaper::runtime::stop_cause_name(report.stop_cause) << "\n";
   return report.stop_cause == sandpaper::runtime::StopCause::Completed ? 0 : 1;
 } catch (const sandpaper::Error& e) {

@@ -78,7 +78,7 @@ check_run() {  # $1: executable, $2: how it was built
   grep -q "^played 500 ticks, .*stop completed$" <<<"$out" || fail "$how: did not play 500 ticks to completion"
   local compiled played
   compiled=$(sed -n 's/.*compiled_max_lateral_force_N \([0-9.e+-]*\).*/\1/p' <<<"$out")
-  played=$(sed -n 's/.*max_lateral_force_N \([0-9.e+-]*\),.*/\1/p' <<<"$out")
+  played=$(sed -n 's/.*felt_max_lateral_force_N \([0-9.e+-]*\),.*/\1/p' <<<"$out")
   awk -v c="$compiled" -v e="$expected_force" -v p="$played" 'BEGIN {
     if (c + 0 <= 0) { print "compiled force not positive: " c; exit 1 }
     if ((c - e) > 1e-4 * e || (e - c) > 1e-4 * e) { print "compiled " c " N differs from the build tree'"'"'s " e " N"; exit 1 }
@@ -142,7 +142,7 @@ if [[ -n ${SANDPAPER_TEST_PYTHON:-} ]]; then
 import sandpaper
 lib = sandpaper.Library()
 print("library", lib.library_dir)
-print("corduroy", lib.compile("corduroy").max_lateral_force_N)' 2>&1) || fail "import the installed module: $out"
+print("corduroy", lib.compile("corduroy").compiled_max_lateral_force_N)' 2>&1) || fail "import the installed module: $out"
   echo "python: $out"
   reported=$(sed -n 's/^library //p' <<<"$out")
   [[ $(realpath -m "$reported") == $(realpath -m "$data/library") ]] || fail "the installed module does not use $data/library: $out"

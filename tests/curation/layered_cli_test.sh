@@ -47,7 +47,7 @@ json "$tmp/near.json" 'j["from"] == "lab:'$n'" and len(j["nearest"]) == 5 and al
 sed -i 's/roughness 0.7/roughness 0.8/' "$tmp/lab/cloth/$n.hmat"
 touch -d '+2 seconds' "$tmp/lab/cloth"
 "$sp" library show "$n" --library "$path" --json >"$tmp/show2.json" 2>"$tmp/show2.err" || bad "show after an edit failed"
-json "$tmp/show2.json" 'abs(j["roughness"] - 0.8) < 1e-9' && ok || bad "the edit was not seen: $(cat "$tmp/show2.err")"
+json "$tmp/show2.json" 'abs(j["compiled_roughness"] - 0.8) < 1e-9' && ok || bad "the edit was not seen: $(cat "$tmp/show2.err")"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -60,7 +60,7 @@ TEST_P(ClosedLoop, ScanMeasuresTheTargetForceAndRoughness) {
   ASSERT_EQ(played.report.ticks, 6000u);
 
   double target = target_force(roughness);
-  double measured = played.report.max_lateral_force_N;
+  double measured = played.report.felt_max_lateral_force_N;
   EXPECT_NEAR(measured, target, 0.02 * target) << src.str();
   EXPECT_NEAR(roughness_from(measured), roughness, 0.02) << src.str();
   // The measured force is the largest force actually sent, tick by tick.
@@ -82,7 +82,7 @@ TEST(ClosedLoopLibrary, LibraryCorduroyOnACircle) {
   circle.amplitude_m = 0.02;
   auto played = play(*r.program, circle, 8.0);
   // A circle crosses the ribs at every angle; where it runs across them the peak is reached.
-  EXPECT_NEAR(played.report.max_lateral_force_N, target_force(0.45), 0.02 * target_force(0.45));
+  EXPECT_NEAR(played.report.felt_max_lateral_force_N, target_force(0.45), 0.02 * target_force(0.45));
   EXPECT_EQ(played.report.clamped_ticks, 0u);
 }
 
@@ -95,8 +95,8 @@ TEST(ClosedLoopLibrary, RealPhotographStaysUnderItsCompiledMaximumInside) {
   auto played = play(*r.program, scan, 5.0);
   EXPECT_EQ(played.report.stop_reason, "completed");
   // Bilinear interpolation never exceeds the field's samples, whose maximum inside the rim is the target.
-  EXPECT_LE(played.report.max_lateral_force_N, r.program->max_lateral_force_N * (1 + 1e-6));
-  EXPECT_GT(played.report.max_lateral_force_N, 0.3 * r.program->max_lateral_force_N);
+  EXPECT_LE(played.report.felt_max_lateral_force_N, r.program->max_lateral_force_N * (1 + 1e-6));
+  EXPECT_GT(played.report.felt_max_lateral_force_N, 0.3 * r.program->max_lateral_force_N);
 }
 
 TEST(ClosedLoopLibrary, ForceIsSpatialNotTemporal) {
@@ -109,8 +109,8 @@ TEST(ClosedLoopLibrary, ForceIsSpatialNotTemporal) {
   auto a = play(*r.program, scan, 4.0, 1000);
   auto b = play(*r.program, scan, 4.0, 4000);
   EXPECT_EQ(b.report.ticks, 4 * a.report.ticks);
-  EXPECT_NEAR(a.report.max_lateral_force_N, b.report.max_lateral_force_N, 0.01 * b.report.max_lateral_force_N);
-  EXPECT_NEAR(b.report.max_lateral_force_N, 400 * 0.490909 * 0.00980665, 0.005);  // a10p25: 400 ju (Table 8)
+  EXPECT_NEAR(a.report.felt_max_lateral_force_N, b.report.felt_max_lateral_force_N, 0.01 * b.report.felt_max_lateral_force_N);
+  EXPECT_NEAR(b.report.felt_max_lateral_force_N, 400 * 0.490909 * 0.00980665, 0.005);  // a10p25: 400 ju (Table 8)
 }
 
 // `bumpiness 0.6` is a grating whose period the bumpiness-provisional map gives: 10 mm x 0.6^2 =
@@ -125,7 +125,7 @@ TEST(ClosedLoopPercepts, BumpinessPlaysItsSpatialPeriod) {
   scan.amplitude_m = 0.009;
   auto played = play(*r.program, scan, 8.0);
   ASSERT_EQ(played.report.stop_reason, "completed");
-  const double peak = played.report.max_lateral_force_N;
+  const double peak = played.report.felt_max_lateral_force_N;
   ASSERT_GT(peak, 0);
   // Centres of the runs of ticks with F_x > peak / 2 while the hand moves toward +x.
   std::vector<double> centres;

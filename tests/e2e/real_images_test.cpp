@@ -31,8 +31,8 @@ TEST_P(RealImages, PlayOnTheSimulatedJoystick) {
   EXPECT_EQ(report.ticks, 5000u);
   EXPECT_EQ(report.clamped_ticks, 0u);
   // Bilinear sampling never exceeds the field's samples, whose largest inside the rim is the maximum.
-  EXPECT_LE(report.max_lateral_force_N, r.program->max_lateral_force_N * (1 + 1e-6));
-  EXPECT_GT(report.max_lateral_force_N, 0.3 * r.program->max_lateral_force_N);
+  EXPECT_LE(report.felt_max_lateral_force_N, r.program->max_lateral_force_N * (1 + 1e-6));
+  EXPECT_GT(report.felt_max_lateral_force_N, 0.3 * r.program->max_lateral_force_N);
   // A textured surface: the force changes direction along the path, not a constant push.
   double sum_x = 0, sum_abs = 0;
   for (const auto& t : sim.records()) {

@@ -129,7 +129,7 @@ def main():
         c.check("comparison  minsky1995-fig19" in r.stdout, "and lists the 1995 map beside it as a comparison")
         r = run(sp, "compile", "-e", "grating period 2.5 mm; roughness 0.6", "--calibration", cal, "--json", "-o",
                 os.path.join(tmp, "x.patch"))
-        got = json.loads(r.stdout).get("max_lateral_force_N") if r.returncode == 0 else None
+        got = json.loads(r.stdout).get("compiled_max_lateral_force_N") if r.returncode == 0 else None
         want = 3.74614 * 0.6 ** (1 / me.get("slope", 1))
         c.check(got is not None and abs(got - want) < 1e-3 * want,
                 f"compile --device sim asks for F = 3.746 N x 0.6^(1/slope) = {want:.4f} N (got {got})")

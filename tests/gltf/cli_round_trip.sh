@@ -11,8 +11,8 @@ cd "$src"
 for m in examples/corduroy.hmat examples/gravel.hmat; do
   name=$(basename "$m" .hmat)
   "$sp" export "$m" --format gltf -o "$out/$name.gltf" 2>/dev/null
-  a=$("$sp" compile "$m" -o "$out/$name.patch" --json 2>/dev/null | python3 -c 'import json,sys; print(json.load(sys.stdin)["max_lateral_force_N"])')
-  b=$("$sp" compile "$out/$name.gltf" -o "$out/$name-back.patch" --json 2>/dev/null | python3 -c 'import json,sys; print(json.load(sys.stdin)["max_lateral_force_N"])')
+  a=$("$sp" compile "$m" -o "$out/$name.patch" --json 2>/dev/null | python3 -c 'import json,sys; print(json.load(sys.stdin)["compiled_max_lateral_force_N"])')
+  b=$("$sp" compile "$out/$name.gltf" -o "$out/$name-back.patch" --json 2>/dev/null | python3 -c 'import json,sys; print(json.load(sys.stdin)["compiled_max_lateral_force_N"])')
   python3 -c "import sys; a, b = $a, $b; print('$name: %.6g N -> %.6g N' % (a, b)); sys.exit(0 if a > 0 and abs(a - b) <= 0.005 * a else 1)"
   test -s "$out/$name-back.patch"
 done

@@ -371,7 +371,7 @@ TEST(GltfHostile, MissingExtension) {
 }
 
 TEST(GltfHostile, WrongExtrasTypes) {
-  for (const char* key : {"max_lateral_force_N", "period_m", "lateral_gain_N", "height_range_m", "patch_size_m", "name"}) {
+  for (const char* key : {"compiled_max_lateral_force_N", "period_m", "lateral_gain_N", "height_range_m", "patch_size_m", "name"}) {
     SCOPED_TRACE(key);
     json a = good_asset();
     extras_of(a)[key] = json::object({{"not", "this"}});

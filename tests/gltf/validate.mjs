@@ -75,7 +75,7 @@ if (files.length === 0) {
 const broken = JSON.parse(readFileSync(files[0], 'utf8'));
 delete broken.accessors[0].min;                                       // core: POSITION needs min and max
 delete broken.meshes[0].extensions.MPEG_haptic_material.hapticMaterialIndex;  // extension: required
-broken.extensions.MPEG_haptic_material.materials[0].extras.sandpaper.max_lateral_force_N = '1.7 N';  // extras: a number
+broken.extensions.MPEG_haptic_material.materials[0].extras.sandpaper.compiled_max_lateral_force_N = '1.7 N';  // extras: a number
 const control = await check('control.gltf', Buffer.from(JSON.stringify(broken)));
 if (control.core.lines.length === 0 || control.extension.length < 2) {
   console.error('FAIL: the checks did not catch errors planted in a copy of ' + files[0] + ':', JSON.stringify(control));

@@ -20,8 +20,8 @@ def lib():
 def test_compiles_a_library_entry_with_its_calibrated_numbers(lib):
     m = lib.compile("corduroy")
     assert m.name == "corduroy"
-    assert 0.1 < m.max_lateral_force_N < 10.0
-    assert m.roughness > 0
+    assert 0.1 < m.compiled_max_lateral_force_N < 10.0
+    assert m.compiled_roughness > 0
     assert m.size_m[0] > 0 and m.size_m[1] > 0
     assert "corduroy" in lib.names()
 
@@ -29,7 +29,7 @@ def test_compiles_a_library_entry_with_its_calibrated_numbers(lib):
 def test_a_roughness_level_is_stronger_the_coarser_it_is(lib):
     levels = lib.roughness_levels()
     assert "coarse" in levels and "fine" in levels
-    assert lib.roughness_level("coarse").max_lateral_force_N > lib.roughness_level("fine").max_lateral_force_N
+    assert lib.roughness_level("coarse").compiled_max_lateral_force_N > lib.roughness_level("fine").compiled_max_lateral_force_N
 
 
 def test_a_failed_compile_raises_with_the_diagnostics_as_data(lib):
@@ -59,7 +59,7 @@ def test_missing_data_directories_are_all_named():
 def test_explain_is_a_dict_of_what_the_compiler_decided(lib):
     e = lib.compile("corduroy").explain()
     assert e["ok"] is True
-    assert e["max_lateral_force_N"] == pytest.approx(lib.compile("corduroy").max_lateral_force_N)
+    assert e["compiled_max_lateral_force_N"] == pytest.approx(lib.compile("corduroy").compiled_max_lateral_force_N)
     assert e["material"] == "corduroy" and e["provenance"]
     assert {"knowledge", "maps", "felt_at_speed", "terms", "diagnostics"} <= set(e)
     assert all(f["speed_mm_s"] > 0 for f in e["felt_at_speed"])
@@ -73,7 +73,7 @@ def test_the_lateral_force_field_is_a_numpy_array_within_the_compiled_maximum(li
     assert fx.shape == (n, n) and fy.shape == (n, n) and field["x_m"].shape == (n,) and n > 200
     magnitude = np.hypot(fx, fy)
     assert magnitude.max() == pytest.approx(0.8, rel=0.05)
-    assert magnitude.max() <= m.max_lateral_force_N * (1 + 1e-6)
+    assert magnitude.max() <= m.compiled_max_lateral_force_N * (1 + 1e-6)
     # A grating across x: the force varies along x and not along y.
     assert np.ptp(fx[n // 2, :]) > 1.0 and np.ptp(fx[:, n // 2]) < 1e-9
 
@@ -115,7 +115,7 @@ def test_an_empty_material_is_a_compile_error(lib):
 def test_a_player_loads_a_name_and_says_what_else_it_takes(lib):
     p = sandpaper.Player.simulated()
     m = p.load("corduroy")
-    assert m.name == "corduroy" and m.max_lateral_force_N == pytest.approx(lib.compile("corduroy").max_lateral_force_N)
+    assert m.name == "corduroy" and m.compiled_max_lateral_force_N == pytest.approx(lib.compile("corduroy").compiled_max_lateral_force_N)
     p.start(rate_hz=1000, duration_s=0.05)
     assert p.wait()["ticks"] == 50
     with pytest.raises(sandpaper.CompileError):
@@ -136,8 +136,8 @@ def test_plays_for_the_duration_and_records_the_trace(lib):
     assert trace.shape == (300, 5)
     assert np.all(np.diff(trace[:, 0]) > 0)  # time runs forward
     forces = np.hypot(trace[:, 3], trace[:, 4])
-    assert forces.max() == pytest.approx(report["max_lateral_force_N"])
-    assert forces.max() <= m.max_lateral_force_N * (1 + 1e-9)
+    assert forces.max() == pytest.approx(report["felt_max_lateral_force_N"])
+    assert forces.max() <= m.compiled_max_lateral_force_N * (1 + 1e-9)
 
 
 def test_the_gil_is_released_while_playing(lib):
@@ -200,7 +200,7 @@ def test_the_height_field_is_what_the_forces_are_the_gradient_of(lib):
     assert h["h_m"].std() > 0
     dy, dx = np.gradient(h["h_m"], h["y_m"], h["x_m"])
     inner = (slice(8, -8), slice(8, -8))
-    assert h["k_N"] * np.hypot(dx, dy)[inner].max() == pytest.approx(m.max_lateral_force_N, rel=0.05)
+    assert h["k_N"] * np.hypot(dx, dy)[inner].max() == pytest.approx(m.compiled_max_lateral_force_N, rel=0.05)
     with pytest.raises(sandpaper.Error):
         lib.compile("spring 200 N/m").height_field()
 

@@ -122,7 +122,7 @@ TEST(ServoFaults, NonFiniteForceStopsAfterOneTickAndLeavesZeroForce) {
   EXPECT_EQ(joystick.ticks_played(), 1u);
   ASSERT_EQ(joystick.records().size(), 1u);
   EXPECT_EQ(joystick.records()[0].force_N, glm::dvec2(0, 0));
-  EXPECT_EQ(report.max_lateral_force_N, 0.0);
+  EXPECT_EQ(report.felt_max_lateral_force_N, 0.0);
 }
 
 TEST(ServoFaults, NonFiniteForceCommandsOnlyZero) {

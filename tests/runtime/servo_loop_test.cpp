@@ -133,7 +133,7 @@ TEST(ServoLoop, ForceMagnitudeIsClampedWithoutTurningIt) {
   }
   EXPECT_GT(over, 0u);
   EXPECT_EQ(report.clamped_ticks, over);
-  EXPECT_NEAR(report.max_lateral_force_N, 10.0, 1e-9);
+  EXPECT_NEAR(report.felt_max_lateral_force_N, 10.0, 1e-9);
 }
 
 TEST(ServoLoop, DamperSeesTheFilteredHandVelocity) {
@@ -163,7 +163,7 @@ TEST(ServoLoop, WritesZeroForceOnceAfterTheLastTick) {
   ASSERT_EQ(device.writes.size(), report.ticks + 1);
   EXPECT_NEAR(device.writes[9].x, -2.0, 1e-12);
   EXPECT_EQ(device.writes.back(), glm::dvec2(0, 0));
-  EXPECT_NEAR(report.max_lateral_force_N, 2.0, 1e-12);
+  EXPECT_NEAR(report.felt_max_lateral_force_N, 2.0, 1e-12);
   EXPECT_EQ(report.clamped_ticks, 0u);
 }
 

@@ -268,7 +268,7 @@ TEST(SafetyClamp, ForceNeverExceedsTheDeviceMaximumAndIsCounted) {
   const ServoReport report = run_servo_loop(device, evaluator, clock, c);
   EXPECT_EQ(report.clamped_ticks, 50u);
   for (const glm::dvec2 f : device.writes) EXPECT_LE(std::hypot(f.x, f.y), 10.0 + 1e-12);
-  EXPECT_NEAR(report.max_lateral_force_N, 10.0, 1e-12);
+  EXPECT_NEAR(report.felt_max_lateral_force_N, 10.0, 1e-12);
 }
 
 }  // namespace

@@ -83,7 +83,7 @@ def main():
               f"a typo compiles to a diagnostic at its line: {d.get('line')}:{d.get('column')} {d.get('code')} {d.get('message')}")
 
         s1 = studio.state()
-        keys = {"ticks", "rate_hz", "overruns", "max_lateral_force_N", "material", "hand", "force_N"}
+        keys = {"ticks", "rate_hz", "overruns", "compiled_max_lateral_force_N", "material", "hand", "force_N"}
         check(keys <= set(s1), f"GET /api/state has {sorted(keys)}")
         s2, took = poll(studio, lambda s: s["ticks"] > s1["ticks"] + 50, 10)
         check(took is not None and s2["running"], f"ticks rise: {s1['ticks']} -> {s2['ticks']}")
@@ -94,17 +94,17 @@ def main():
         status, r = studio.post("/api/parameter", {"name": "roughness", "value": 0.8})
         t_answer = time.monotonic()
         check(status == 200 and r.get("ok") is True, "POST /api/parameter roughness 0.8 compiles")
-        new_force = r.get("max_lateral_force_N", 0)
+        new_force = r.get("compiled_max_lateral_force_N", 0)
         seen = []
 
         def shows_new(s):
             seen.append(s["ticks"])
-            return abs(s["max_lateral_force_N"] - new_force) < 1e-9 and s["material_version"] == r["version"]
+            return abs(s["compiled_max_lateral_force_N"] - new_force) < 1e-9 and s["material_version"] == r["version"]
 
         after, _ = poll(studio, shows_new, 5)
         took = time.monotonic() - t_answer
-        check(new_force > before["max_lateral_force_N"] * 1.2,
-              f"roughness 0.8 compiles to a larger force: {before['max_lateral_force_N']:.4f} -> {new_force:.4f} N")
+        check(new_force > before["compiled_max_lateral_force_N"] * 1.2,
+              f"roughness 0.8 compiles to a larger force: {before['compiled_max_lateral_force_N']:.4f} -> {new_force:.4f} N")
         check(shows_new(after) and took <= 0.2, f"/api/state shows the new compiled force {took * 1000:.0f} ms after the answer")
         later, _ = poll(studio, lambda s: seen.append(s["ticks"]) or s["ticks"] > before["ticks"] + 50, 10)
         check(all(b >= a for a, b in zip(seen, seen[1:])) and seen[-1] > before["ticks"] + 50,
@@ -173,7 +173,7 @@ def main():
         check(status == 200 and broken["ok"] is False and broken["diagnostics"], "POST /api/material with a typo: diagnostics")
         later, took = poll(studio, lambda s: s["ticks"] > playing["ticks"] + 100, 10)
         check(took is not None and later["material_version"] == playing["material_version"]
-              and later["max_lateral_force_N"] == playing["max_lateral_force_N"] and later["running"],
+              and later["compiled_max_lateral_force_N"] == playing["compiled_max_lateral_force_N"] and later["running"],
               "after the broken material the last good program still plays, ticking")
         status, fixed = studio.post("/api/material", r["text"], content_type="text/plain")
         check(fixed["ok"] is True and fixed["version"] > playing["material_version"], "the fixed text plays again")

@@ -66,7 +66,8 @@ void install_run_stop_handlers() {
 }
 
 Played play(runtime::Device& device, runtime::ForceSource& source, runtime::ServoConfig config, bool virtual_clock,
-            bool live, std::size_t keep_records, const std::function<void()>& poll) {
+            bool live, std::size_t keep_records, const schema::PatchProgram* felt_of,
+            const std::function<void()>& poll) {
   StopOnSignal signals;
   config.stop_request = &stop_requested;
   // The virtual clock runs the loop on this thread as fast as it can, so nothing drains the ring
@@ -75,6 +76,7 @@ Played play(runtime::Device& device, runtime::ForceSource& source, runtime::Serv
   runtime::TelemetryRing ring(virtual_clock && ticks > 0 ? ticks + 1 : kRealTimeRingRecords);
   config.telemetry = &ring;
   runtime::TelemetryReader reader(ring, config.rate_hz, keep_records);
+  if (felt_of != nullptr) reader.measure_felt_peak(*felt_of, config.ramp_s);
 
   Played played;
   if (virtual_clock) {
@@ -103,6 +105,10 @@ Played play(runtime::Device& device, runtime::ForceSource& source, runtime::Serv
     std::cerr << "warning: the telemetry reader fell behind; " << ring.dropped() << " tick records were dropped\n";
   played.records = reader.kept();
   played.mean_force_N = reader.mean_force_N();
+  if (const auto* felt = reader.felt()) {
+    played.felt_peak_N = felt->felt_peak_N();
+    played.ridge_crossings = felt->crossings();
+  }
   return played;
 }
 

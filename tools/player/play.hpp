@@ -4,9 +4,11 @@
 // (live figures on stderr, the records kept for --trace), the real-time note printed once.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/schema/patch_program.hpp"
 
 namespace sandpaper::cli {
 
@@ -14,13 +16,17 @@ struct Played {
   runtime::ServoReport report;
   std::vector<runtime::TelemetryRecord> records;  // every tick, from the telemetry ring (when kept)
   double mean_force_N = 0;                        // mean |F| written over every tick of the run
+  std::optional<double> felt_peak_N;              // runtime::FeltPeakMeter's, when measured and crossed
+  std::size_t ridge_crossings = 0;                // the crossings it averages
 };
 
 // `keep_records`: how many tick records to keep (the run's tick count for --trace, else 0).
 // `live`: print a line of figures on stderr once a second while playing (real time only).
+// `felt_of`: measure the felt peak of this program's grating after the start ramp (runtime/felt_peak.hpp); may be null.
 // `poll`: called on this thread about every 20 ms while playing in real time (run --watch reloads there).
 Played play(runtime::Device& device, runtime::ForceSource& source, runtime::ServoConfig config, bool virtual_clock,
-            bool live, std::size_t keep_records, const std::function<void()>& poll = {});
+            bool live, std::size_t keep_records, const schema::PatchProgram* felt_of,
+            const std::function<void()>& poll = {});
 
 // Called first thing in main() for `run`: from then on SIGINT/SIGTERM request a stop (the run ends at
 // its first tick, exit 0) instead of killing a process that is still loading or compiling.

@@ -45,6 +45,20 @@ std::string force_strip(const std::vector<runtime::TickRecord>& recs, double max
 // rest of the report comes from the telemetry, so a long run does not grow the process.
 constexpr double kRecordedSeconds = 1.0;
 
+nlohmann::json optional_json(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+
+// The roughness the map predicts from what the hand felt: from the felt peak where the run crossed
+// grating ridges (explain predicts the same quantity), else from the run's largest |F|.
+struct FeltRoughness {
+  double roughness = 0;
+  const char* from = "";
+};
+FeltRoughness felt_roughness_of(const Played& played, const runtime::ServoReport& rep,
+                                const calibration::PsychophysicalMap& map) {
+  if (played.felt_peak_N) return {map.percept_of(*played.felt_peak_N), "felt_peak_N"};
+  return {map.percept_of(rep.felt_max_lateral_force_N), "felt_max_lateral_force_N"};
+}
+
 nlohmann::json stalls_json(const runtime::ServoReport& rep) {
   return {{"count", rep.stalls}, {"longest_us", rep.longest_stall_us}, {"threshold_periods", runtime::kStallPeriods}};
 }
@@ -78,6 +92,10 @@ void add_play_options(CLI::App* run, PlayRequest& r) {
   run->add_option("--hand", r.hand, "simulated hand path")->check(CLI::IsMember({"scan", "circle"}))->capture_default_str();
   run->add_option("--speed", r.speed_mm_s, "hand speed, mm/s")->capture_default_str();
   run->add_option("--amplitude", r.amplitude_mm, "scan half-width or circle radius, mm")->capture_default_str();
+  run->add_option("--hand-start", r.hand_start_mm,
+                  "how far along its path the simulated hand starts, mm (0: the patch centre, heading +x); a "
+                  "fraction of one tick's travel moves where every tick lands on a texture")
+      ->capture_default_str();
   run->add_option("--trace", r.trace, "write every tick's time, position and force to this CSV file");
   run->add_flag("--virtual-clock", r.virtual_clock, "run on simulated time, as fast as possible (deterministic)");
   run->add_flag("--live", r.live, "print live servo figures on stderr once a second (default when stderr is a terminal)");
@@ -172,6 +190,10 @@ int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits
     std::cerr << "sandpaper: error: --virtual-clock needs a --duration (a simulated run cannot be stopped by hand)\n";
     return kExitUsage;
   }
+  if (!std::isfinite(r.hand_start_mm)) {
+    std::cerr << "sandpaper: error: --hand-start must be a finite length, mm\n";
+    return kExitUsage;
+  }
   if (!(r.speed_mm_s > 0) || !(r.amplitude_mm > 0) || !std::isfinite(r.speed_mm_s) || !std::isfinite(r.amplitude_mm)) {
     std::cerr << "sandpaper: error: --speed and --amplitude must be positive (mm/s, mm)\n";
     return kExitUsage;
@@ -195,6 +217,7 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
   script.path = r.hand == "circle" ? runtime::HandPath::Circle : runtime::HandPath::Scan;
   script.speed_m_s = r.speed_mm_s * 1e-3;
   script.amplitude_m = r.amplitude_mm * 1e-3;
+  script.start_m = r.hand_start_mm * 1e-3;
   const bool until_stopped = r.duration_s == 0;
   const auto ticks = until_stopped ? std::size_t{0} : static_cast<std::size_t>(std::llround(r.duration_s * r.rate_hz));
   const auto first_second = static_cast<std::size_t>(kRecordedSeconds * r.rate_hz);
@@ -229,12 +252,12 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
     std::cout << std::flush;
   }
   const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
-  const Played played = play(joystick, source, cfg, r.virtual_clock, r.live, keep, poll);
+  const Played played = play(joystick, source, cfg, r.virtual_clock, r.live, keep, &prog, poll);
   const runtime::ServoReport& rep = played.report;
   // Roughness is a property of textures (the map relates a texture's peak lateral force to it);
   // for springs and dampers alone it does not apply.
   const bool textured = prog.max_lateral_force_N > 0;
-  const double roughness = map.percept_of(rep.max_lateral_force_N);
+  const FeltRoughness felt = felt_roughness_of(played, rep, map);
   const double mean_force = played.mean_force_N;
 
   if (!r.trace.empty()) {
@@ -257,11 +280,15 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
                      {"compute_us", {{"p50", rep.compute_p50_us}, {"p99", rep.compute_p99_us}, {"max", rep.compute_max_us}}},
                      {"overruns", rep.overruns},
                      {"stalls", stalls_json(rep)},
-                     {"max_lateral_force_N", rep.max_lateral_force_N},
-                     {"mean_lateral_force_N", mean_force},
-                     {"roughness", textured ? nlohmann::json(roughness) : nlohmann::json(nullptr)},
+                     {"felt_max_lateral_force_N", rep.felt_max_lateral_force_N},
+                     {"felt_mean_lateral_force_N", mean_force},
+                     {"felt_peak_N", optional_json(played.felt_peak_N)},
+                     {"felt_ridge_crossings", played.felt_peak_N ? nlohmann::json(played.ridge_crossings) : nlohmann::json(nullptr)},
+                     {"felt_roughness", textured ? nlohmann::json(felt.roughness) : nlohmann::json(nullptr)},
+                     {"felt_roughness_from", textured ? nlohmann::json(felt.from) : nlohmann::json(nullptr)},
                      {"roughness_map", map.id},
                      {"compiled_max_lateral_force_N", prog.max_lateral_force_N},
+                     {"compiled_roughness", textured ? nlohmann::json(prog.roughness) : nlohmann::json(nullptr)},
                      {"clamped_ticks", rep.clamped_ticks},
                      {"stop_reason", rep.stop_reason},
                      {"stop_cause", runtime::stop_cause_name(rep.stop_cause)},
@@ -293,15 +320,20 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
                              rep.compute_p99_us, rep.compute_max_us);
     // Only a texture has a compiled maximum lateral force to compare with; force laws have none.
     const std::string compiled = textured ? fmt::format(" (texture compiled {:.4f} N)", prog.max_lateral_force_N) : "";
-    std::cout << fmt::format("  felt     max force {:.4f} N{}, mean {:.4f} N, clamped ticks {}\n", rep.max_lateral_force_N,
+    std::cout << fmt::format("  felt     max force {:.4f} N{}, mean {:.4f} N, clamped ticks {}\n", rep.felt_max_lateral_force_N,
                              compiled, mean_force, rep.clamped_ticks);
+    if (played.felt_peak_N)
+      std::cout << fmt::format("  felt     peak {:.4f} N: the mean over {} ridge crossings of each one's largest |F| "
+                               "(explain's felt at speed)\n",
+                               *played.felt_peak_N, played.ridge_crossings);
     if (textured)
-      std::cout << fmt::format("  percept  roughness {:.3f} predicted from the measured force ({})\n", roughness, map.id);
+      std::cout << fmt::format("  percept  felt roughness {:.3f} predicted from the felt {} ({}; compiled {:.3f})\n",
+                               felt.roughness, played.felt_peak_N ? "peak" : "maximum force", map.id, prog.roughness);
     else
       std::cout << "  percept  no texture: the roughness map does not apply\n";
     auto span = static_cast<std::size_t>(std::llround(0.256 * r.rate_hz));
-    std::cout << "  |F|      " << force_strip(joystick.records(), std::max(rep.max_lateral_force_N, 1e-9), 64, span)
-              << "  (first 256 ms; bar height 0 to " << fmt::format("{:.3g}", rep.max_lateral_force_N) << " N)\n";
+    std::cout << "  |F|      " << force_strip(joystick.records(), std::max(rep.felt_max_lateral_force_N, 1e-9), 64, span)
+              << "  (first 256 ms; bar height 0 to " << fmt::format("{:.3g}", rep.felt_max_lateral_force_N) << " N)\n";
     std::cout << "  servo    " << (r.virtual_clock ? "virtual clock" : rep.realtime_scheduling ? "SCHED_FIFO, memory locked"
                                                                      : "normal priority (SCHED_FIFO not permitted here)")
               << (rep.cpu >= 0 ? fmt::format(", pinned to CPU {}", rep.cpu) : "")
@@ -344,7 +376,7 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
                 << std::flush;
     const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
     // Through play(): Ctrl-C / SIGTERM stop the loop with zero force, and the device is given back below.
-    const Played played = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, keep);
+    const Played played = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, keep, &program);
     const runtime::ServoReport& rep = played.report;
     joystick.close();
     if (!r.trace.empty()) {
@@ -371,8 +403,10 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
                        {"period_us", {{"p50", rep.period_p50_us}, {"p99", rep.period_p99_us}, {"max", rep.period_max_us}, {"min", rep.period_min_us}}},
                        {"overruns", rep.overruns},
                        {"stalls", stalls_json(rep)},
-                       {"max_lateral_force_N", rep.max_lateral_force_N},
-                       {"mean_lateral_force_N", played.mean_force_N},
+                       {"felt_max_lateral_force_N", rep.felt_max_lateral_force_N},
+                       {"felt_mean_lateral_force_N", played.mean_force_N},
+                       {"felt_peak_N", optional_json(played.felt_peak_N)},
+                       {"felt_ridge_crossings", played.felt_peak_N ? nlohmann::json(played.ridge_crossings) : nlohmann::json(nullptr)},
                        {"compiled_max_lateral_force_N", program.max_lateral_force_N},
                        {"clamped_ticks", rep.clamped_ticks},
                        {"stop_reason", rep.stop_reason},
@@ -388,7 +422,11 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
     } else {
       std::cout << fmt::format("  loop     {} ticks, achieved {:.2f} Hz; period p99 {:.1f} us; overruns {}; {}\n", rep.ticks,
                                rep.rate_hz, rep.period_p99_us, rep.overruns, stalls_text(rep))
-                << fmt::format("  felt     max force {:.4f} N, clamped ticks {}\n", rep.max_lateral_force_N, rep.clamped_ticks)
+                << fmt::format("  felt     max force {:.4f} N{}, clamped ticks {}\n", rep.felt_max_lateral_force_N,
+                               played.felt_peak_N ? fmt::format(", peak {:.4f} N over {} ridge crossings", *played.felt_peak_N,
+                                                                played.ridge_crossings)
+                                                  : std::string(),
+                               rep.clamped_ticks)
                 << "  servo    " << (rep.realtime_scheduling ? "SCHED_FIFO, memory locked" : "normal priority (SCHED_FIFO not permitted here)")
                 << "; stopped: " << stop << "\n";
       if (!r.trace.empty()) std::cout << "  trace    " << r.trace << " (" << played.records.size() << " ticks)\n";

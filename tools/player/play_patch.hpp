@@ -22,7 +22,7 @@ struct Found;  // usb_devices.hpp
 
 // Units at the boundary: Hz, s, mm/s, mm, us, periods.
 struct PlayRequest {
-  double rate_hz = 1000, duration_s = 2, speed_mm_s = 50, amplitude_mm = 30;
+  double rate_hz = 1000, duration_s = 2, speed_mm_s = 50, amplitude_mm = 30, hand_start_mm = 0;
   std::string hand = "scan", trace;
   bool virtual_clock = false, live = false, json = false;
   RunDeviceOptions device;

@@ -70,6 +70,7 @@ WorkspaceRunOptions workspace_options_of(const PlayRequest& r, const CLI::App& r
   if (run.count("--hand")) ro.hand = r.hand;
   ro.speed_mm_s = r.speed_mm_s;
   if (run.count("--amplitude")) ro.amplitude_mm = r.amplitude_mm;
+  ro.hand_start_mm = r.hand_start_mm;
   ro.trace = r.trace;
   ro.virtual_clock = r.virtual_clock;
   ro.crossfade_ms = crossfade_ms;
@@ -83,6 +84,10 @@ int check_workspace_request(const WorkspaceRunOptions& ro, const runtime::Device
   if (!(ro.speed_mm_s > 0) || !std::isfinite(ro.speed_mm_s) ||
       (ro.amplitude_mm && (!(*ro.amplitude_mm > 0) || !std::isfinite(*ro.amplitude_mm)))) {
     std::cerr << "sandpaper: error: --speed and --amplitude must be positive (mm/s, mm)\n";
+    return kExitUsage;
+  }
+  if (!std::isfinite(ro.hand_start_mm)) {
+    std::cerr << "sandpaper: error: --hand-start must be a finite length, mm\n";
     return kExitUsage;
   }
   if (ro.amplitude_mm && *ro.amplitude_mm * 1e-3 > limits.workspace_radius_m) {
@@ -109,6 +114,7 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
   // An explicit --hand keeps the single-patch behaviour (scan along x); the default aims at the patches.
   script.direction_rad = ro.hand ? 0.0 : scan.direction_rad;
   script.amplitude_m = ro.amplitude_mm ? *ro.amplitude_mm * 1e-3 : scan.amplitude_m;
+  script.start_m = ro.hand_start_mm * 1e-3;
   // By default one whole lap of the path: out to one end, across to the other and back to the centre.
   const double lap_m = hand == "circle" ? 2 * kPi * script.amplitude_m : 4 * script.amplitude_m;
   const double duration_s = ro.duration_s.value_or(lap_m / script.speed_m_s);
@@ -132,7 +138,7 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
                              script.path == runtime::HandPath::Scan ? fmt::format(" along {:g} deg", script.direction_rad * 180 / kPi) : "",
                              ro.speed_mm_s, script.path == runtime::HandPath::Circle ? "radius" : "turning at +-",
                              script.amplitude_m * 1e3, ro.virtual_clock ? " (virtual clock)" : "");
-  const Played played = play(joystick, evaluator, cfg, ro.virtual_clock, ro.live, ro.trace.empty() ? 0 : ticks);
+  const Played played = play(joystick, evaluator, cfg, ro.virtual_clock, ro.live, ro.trace.empty() ? 0 : ticks, nullptr);
   const runtime::ServoReport& rep = played.report;
 
   // Which patch each tick was over, found again from the recorded positions (off the servo thread).
@@ -168,7 +174,7 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
                          {"material", ws.patches[i].program->name},
                          {"touched", ticks_on[i] > 0},
                          {"ticks", ticks_on[i]},
-                         {"max_lateral_force_N", max_force[i]},
+                         {"felt_max_lateral_force_N", max_force[i]},
                          {"compiled_max_lateral_force_N", ws.patches[i].program->max_lateral_force_N}});
     nlohmann::json j{{"workspace", ws.name},
                      {"device", limits.name},
@@ -181,7 +187,7 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
                      {"compute_us", {{"p50", rep.compute_p50_us}, {"p99", rep.compute_p99_us}, {"max", rep.compute_max_us}}},
                      {"overruns", rep.overruns},
                      {"stalls", {{"count", rep.stalls}, {"longest_us", rep.longest_stall_us}, {"threshold_periods", runtime::kStallPeriods}}},
-                     {"max_lateral_force_N", rep.max_lateral_force_N},
+                     {"felt_max_lateral_force_N", rep.felt_max_lateral_force_N},
                      {"clamped_ticks", rep.clamped_ticks},
                      {"stop_reason", rep.stop_reason},
                      {"stop_cause", runtime::stop_cause_name(rep.stop_cause)},
@@ -204,7 +210,7 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
     std::cout << fmt::format("  compute  p50 {:.2f} us, p99 {:.2f} us, max {:.2f} us per tick\n", rep.compute_p50_us,
                              rep.compute_p99_us, rep.compute_max_us);
     std::cout << fmt::format("  felt     max lateral force {:.4f} N, clamped ticks {}; crossfade {:g} ms at patch edges\n",
-                             rep.max_lateral_force_N, rep.clamped_ticks, ro.crossfade_ms);
+                             rep.felt_max_lateral_force_N, rep.clamped_ticks, ro.crossfade_ms);
     std::cout << fmt::format("  patches  {} of {} touched (patch 1 at the back)\n", touched, ws.patches.size());
     // A big workspace lists only the patches the hand touched.
     const bool list_all = ws.patches.size() <= 24;

@@ -21,6 +21,7 @@ struct WorkspaceRunOptions {
   std::optional<std::string> hand;
   double speed_mm_s = 50;
   std::optional<double> amplitude_mm;
+  double hand_start_mm = 0;
   std::string trace;
   bool virtual_clock = false;
   double crossfade_ms = 2;

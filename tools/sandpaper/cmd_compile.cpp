@@ -71,8 +71,8 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     std::cout << prog.name << ": ";
     // Without a texture there is no lateral-force roughness to report (issue 2's rule for `run`).
     if (prog.max_lateral_force_N > 0)
-      std::cout << "maximum lateral force " << prog.max_lateral_force_N << " N"
-                << (prog.command.command_unit == "N" ? std::string() : " (" + command_units(prog) + ")") << ", roughness "
+      std::cout << "compiled maximum lateral force " << prog.max_lateral_force_N << " N"
+                << (prog.command.command_unit == "N" ? std::string() : " (" + command_units(prog) + ")") << ", compiled roughness "
                 << prog.roughness << ", ";
     else
       std::cout << "no texture, ";
@@ -177,7 +177,7 @@ int cmd_library(const CommonOptions& o) {
     const auto& p = *r.program;
     if (o.json) {
       nlohmann::json j{{"name", e.name}, {"family", e.family}, {"aliases", e.aliases}, {"describes", p.describes},
-                       {"max_lateral_force_N", p.max_lateral_force_N}, {"roughness", p.roughness},
+                       {"compiled_max_lateral_force_N", p.max_lateral_force_N}, {"compiled_roughness", p.roughness},
                        {"deprecated_by", e.deprecated_by}, {"file", e.relative_path}};
       if (lib.layered()) j["root"] = lib.roots()[e.root].id, j["hidden"] = lib.entry(e.name) != &e;
       arr.push_back(std::move(j));

@@ -92,7 +92,7 @@ int cmd_export(const CommonOptions& o, const std::string& format, const std::str
     const auto& x = m["extras"]["sandpaper"];
     std::cout << "  " << x["name"].get<std::string>() << ": " << x["texture"].get<std::string>();
     if (x.contains("round_trip_force_error"))
-      std::cout << ", maximum lateral force " << x["max_lateral_force_N"].get<double>() << " N, 16-bit heights give the forces back within "
+      std::cout << ", compiled maximum lateral force " << x["compiled_max_lateral_force_N"].get<double>() << " N, 16-bit heights give the forces back within "
                 << x["round_trip_force_error"].get<double>() * 100 << " %";
     std::cout << "\n";
   }

@@ -28,10 +28,10 @@ int cmd_compile_gltf(const CommonOptions& o, const std::string& output) {
   if (r.program) {
     if (out.empty()) out = std::filesystem::path(o.file).replace_extension(".patch").string();
     schema::write_patch_file(out, *r.program, {o.compact});
-    j.update({{"name", r.program->name}, {"max_lateral_force_N", r.program->max_lateral_force_N},
-              {"roughness", r.program->roughness}, {"device", r.program->device}, {"output", out}});
+    j.update({{"name", r.program->name}, {"compiled_max_lateral_force_N", r.program->max_lateral_force_N},
+              {"compiled_roughness", r.program->roughness}, {"device", r.program->device}, {"output", out}});
     if (!o.json)
-      std::cout << r.program->name << ": maximum lateral force " << r.program->max_lateral_force_N << " N, roughness "
+      std::cout << r.program->name << ": compiled maximum lateral force " << r.program->max_lateral_force_N << " N, compiled roughness "
                 << r.program->roughness << ", " << r.program->terms.size() << " term(s) for device " << r.program->device
                 << " (from glTF) -> " << out << "\n";
   } else {

@@ -146,8 +146,8 @@ nlohmann::json entry_json(const cur::IndexedEntry& e, bool layered) {
           {"file", e.file},
           {"library_version", e.library_version},
           {"likes", e.likes},
-          {"roughness", e.roughness},
-          {"max_lateral_force_N", e.max_lateral_force_N},
+          {"compiled_roughness", e.roughness},
+          {"compiled_max_lateral_force_N", e.max_lateral_force_N},
           {"texture_kind", e.texture_kind},
           {"period_m", e.period_m},
           {"period_class", e.period_class},
@@ -362,7 +362,7 @@ int run_near(const Paths& p, const LibraryCommandOptions& o) {
   if (o.json) {
     auto arr = nlohmann::json::array();
     for (const auto& n : ns) {
-      nlohmann::json j{{"name", n.entry.name}, {"family", n.entry.family}, {"roughness", n.entry.roughness},
+      nlohmann::json j{{"name", n.entry.name}, {"family", n.entry.family}, {"compiled_roughness", n.entry.roughness},
                        {"distance_jnd", n.distance}, {"force_jnd", n.force_steps}, {"period_doublings", n.period_doublings},
                        {"why", n.why}};
       if (p.layered()) j["root"] = n.entry.root;

@@ -67,8 +67,8 @@ int cmd_workspace_compile(const CommonOptions& o, const std::string& output, boo
         steps.push_back({{"patch", order[i].patch + 1},
                          {"material", order[i].material},
                          {"name", order[i].name},
-                         {"max_lateral_force_N", order[i].force_N},
-                         {"roughness", order[i].roughness},
+                         {"compiled_max_lateral_force_N", order[i].force_N},
+                         {"compiled_roughness", order[i].roughness},
                          {"jnd_steps_to_next", i + 1 < order.size() ? nlohmann::json(order[i].jnd_to_next) : nlohmann::json(nullptr)}});
       out["roughness_order"] = steps;
       out["force_jnd"] = {{"weber_fraction", jnd.weber_fraction}, {"source", compiler::jnd_source(jnd)}, {"file", jnd.file}};

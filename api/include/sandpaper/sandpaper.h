@@ -53,7 +53,7 @@ typedef struct sp_player sp_player;
 typedef struct sp_report {
   uint64_t ticks;
   double rate_hz;             /* achieved servo rate, Hz */
-  double max_lateral_force_N; /* largest |F| written to the device, N */
+  double felt_max_lateral_force_N; /* largest |F| written to the device, N */
   uint64_t clamped_ticks;     /* ticks limited to the device's maximum force */
   uint64_t overruns;          /* ticks that started later than half a period after their deadline */
   int stop_cause;             /* runtime::StopCause as an int; 0 = completed */
@@ -82,8 +82,8 @@ void sp_material_free(sp_material* material);
  * roughness the roughness map predicts for it (Minsky 1995, Fig. 19), and its warnings (one per
  * line, "" when none). NULL material: "" or 0. */
 const char* sp_material_name(const sp_material* material);
-double sp_material_max_lateral_force_N(const sp_material* material);
-double sp_material_roughness(const sp_material* material);
+double sp_material_compiled_max_lateral_force_N(const sp_material* material);
+double sp_material_compiled_roughness(const sp_material* material);
 const char* sp_material_warnings(const sp_material* material);
 
 /* A player on the simulated joystick (calibration/devices/sim.toml): a scripted hand scanning

@@ -77,10 +77,11 @@ class Material {
  public:
   explicit Material(schema::PatchProgram program);
   const std::string& name() const noexcept { return program_->name; }
-  // Texture's maximum lateral force over the patch (N), as compiled for the device.
-  double max_lateral_force_N() const noexcept { return program_->max_lateral_force_N; }
+  // Texture's maximum lateral force over the patch (N), as compiled for the device; what a run
+  // felt is its report's felt_max_lateral_force_N.
+  double compiled_max_lateral_force_N() const noexcept { return program_->max_lateral_force_N; }
   // Ratio-scale roughness the roughness map predicts for that force (Minsky 1995, Fig. 19).
-  double roughness() const noexcept { return program_->roughness; }
+  double compiled_roughness() const noexcept { return program_->roughness; }
   // Compiler warnings, one line each: "file:line:col: message [W0330]".
   std::vector<std::string> warnings() const;
   const schema::PatchProgram& program() const noexcept { return *program_; }

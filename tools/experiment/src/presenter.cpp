@@ -43,7 +43,7 @@ Presentation VirtualPresenter::present(std::shared_ptr<const schema::PatchProgra
   config.ramp_s = 0;  // the envelope ramps
   const auto report = runtime::run_servo_loop(device, source, clock, config);
   Presentation p;
-  p.felt_max_N = report.max_lateral_force_N;
+  p.felt_max_N = report.felt_max_lateral_force_N;
   p.interrupted = report.stop_cause != runtime::StopCause::Completed;
   if (p.interrupted) p.cause = runtime::stop_cause_name(report.stop_cause);
   return p;

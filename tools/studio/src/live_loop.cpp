@@ -94,7 +94,7 @@ void LiveLoop::promote_locked() {
       state_.material = it->name;
       state_.material_version = it->version;
       state_.compiled_max_lateral_force_N = it->force;
-      state_.roughness = it->roughness;
+      state_.compiled_roughness = it->roughness;
       pending_.erase(pending_.begin(), it.base());
       return;
     }

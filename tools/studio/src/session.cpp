@@ -350,8 +350,8 @@ nlohmann::json Session::workspace() const {
                             {"name", p.program->name},
                             {"centre_mm", {p.centre_m[0] * 1e3, p.centre_m[1] * 1e3}},
                             {"size_mm", {p.size_m[0] * 1e3, p.size_m[1] * 1e3}},
-                            {"max_lateral_force_N", p.program->max_lateral_force_N},
-                            {"roughness", p.program->roughness}});
+                            {"compiled_max_lateral_force_N", p.program->max_lateral_force_N},
+                            {"compiled_roughness", p.program->roughness}});
   }
   return j;
 }

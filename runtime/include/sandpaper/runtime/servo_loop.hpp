@@ -85,7 +85,7 @@ struct ServoReport {
   double longest_stall_us = 0;  // the longest such gap (0 without stalls)
   std::uint64_t clamped_ticks = 0;   // ticks whose force was limited to the device maximum
   std::uint64_t ramped_ticks = 0;    // ticks whose force was scaled down by the start ramp
-  double max_lateral_force_N = 0;    // largest |F| actually written
+  double felt_max_lateral_force_N = 0;  // largest |F| actually written, N
   StopCause stop_cause = StopCause::Completed;
   std::string stop_reason = "completed";  // stop_cause_text(stop_cause), kept for compatibility
   bool realtime_scheduling = false;  // SCHED_FIFO obtained

@@ -21,6 +21,7 @@ struct HandScript {
   double speed_m_s = 0.05;        // along the path
   double amplitude_m = 0.03;      // scan half-width, or circle radius
   double direction_rad = 0;       // scan direction (0 = along x)
+  double start_m = 0;             // distance along the path already travelled at t = 0, m
 };
 
 // Where `script` puts the hand at time t (s), m. Pure; shared by the position-controlled and the

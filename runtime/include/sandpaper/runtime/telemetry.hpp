@@ -7,10 +7,12 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec2.hpp>
 
+#include "sandpaper/runtime/felt_peak.hpp"
 #include "sandpaper/runtime/spsc_ring.hpp"
 
 namespace sandpaper::runtime {
@@ -82,6 +84,14 @@ class TelemetryReader {
   double mean_force_N() const noexcept { return read_ ? sum_force_N_ / static_cast<double>(read_) : 0; }
   const TelemetryRecord& last() const noexcept { return last_; }
   const std::vector<TelemetryRecord>& kept() const noexcept { return kept_; }
+  // Measures the felt peak of `program`'s grating from the records drained from now on whose tick
+  // starts at or after `from_s` (s since the loop started: the end of the start ramp, so that the
+  // fade-in is not counted as the material); none without a grating. felt() is then the meter, else nullptr.
+  void measure_felt_peak(const schema::PatchProgram& program, double from_s) {
+    felt_ = FeltPeakMeter::for_program(program);
+    felt_from_s_ = from_s;
+  }
+  const FeltPeakMeter* felt() const noexcept { return felt_ ? &*felt_ : nullptr; }
 
  private:
   TelemetryRing& ring_;
@@ -92,6 +102,8 @@ class TelemetryReader {
   std::uint64_t read_ = 0, overruns_ = 0;
   double max_force_N_ = 0, sum_force_N_ = 0;
   TelemetryRecord last_{};
+  std::optional<FeltPeakMeter> felt_;
+  double felt_from_s_ = 0;
 };
 
 }  // namespace sandpaper::runtime

@@ -1,6 +1,7 @@
 #pragma once
 // JSON views of a patch program (for `sandpaper compile|explain|inspect --json`). Key names carry
-// their units (`max_lateral_force_N`, `period_m`); see docs/PATCH_FORMAT.md.
+// their units (`period_m`); a compiled value says so (`compiled_max_lateral_force_N`), as a run's
+// report says `felt_...`; see docs/PATCH_FORMAT.md.
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/schema/patch_program.hpp"

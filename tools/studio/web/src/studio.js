@@ -209,7 +209,7 @@ function applyCompile(r) {
     : "nothing has compiled yet: this text does not compile";
   $("#compile-state").title = $("#compile-state").textContent = r.ok
     ? `compiled: ${r.material || r.workspace?.name || ""}` +
-      (r.max_lateral_force_N !== undefined ? ` · ${r.max_lateral_force_N.toFixed(3)} N, roughness ${r.roughness.toFixed(2)}` : "")
+      (r.compiled_max_lateral_force_N !== undefined ? ` · ${r.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${r.compiled_roughness.toFixed(2)}` : "")
     : "does not compile: the last good program keeps playing";
   $("#saved").textContent = r.saved ? "saved" : "unsaved";
   markUnsaved(state.file, !r.saved);
@@ -382,7 +382,7 @@ function drawOverlay() {
   const live = state.live;
   if (!live) return;
   const [hx, hy] = toPx(live.hand[0], live.hand[1], r);
-  const scale = 80 / Math.max(live.max_lateral_force_N || 1, 0.05);  // the compiled maximum is 80 px
+  const scale = 80 / Math.max(live.compiled_max_lateral_force_N || 1, 0.05);  // the compiled maximum is 80 px
   const fx = live.force_N[0] * scale, fy = live.force_N[1] * scale;
   g.beginPath();
   g.arc(hx, hy, 7, 0, 2 * Math.PI);
@@ -473,7 +473,7 @@ function drawWorkspace() {
     // the force field, the program's own gradient), Blind black rectangles only.
     if (state.mode === "blind") d.classList.add("blind");
     else d.style.backgroundImage = `url(/api/preview/patch-${i}${state.mode === "depth" ? "-field" : ""}.png?v=${state.version})`;
-    d.title = `${p.source}: ${p.max_lateral_force_N.toFixed(3)} N, roughness ${p.roughness.toFixed(2)}`;
+    d.title = `${p.source}: ${p.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${p.compiled_roughness.toFixed(2)}`;
     if (state.mode !== "blind") {
       const label = document.createElement("span");
       label.textContent = p.source;
@@ -592,7 +592,7 @@ function drawStrip() {
   const c = $("#strip");
   const g = c.getContext("2d");
   g.clearRect(0, 0, c.width, c.height);
-  const top = Math.max(0.05, ...state.strip, state.live?.max_lateral_force_N || 0);
+  const top = Math.max(0.05, ...state.strip, state.live?.compiled_max_lateral_force_N || 0);
   g.strokeStyle = "#8a4b08";
   g.lineWidth = 1.5;
   g.beginPath();

@@ -32,7 +32,7 @@ struct LoopState {
   std::string material;             // name of the material the servo thread is playing now
   std::uint64_t material_version = 0;  // which load it is (1, 2, ...); 0 before the first
   double compiled_max_lateral_force_N = 0;  // of that material
-  double roughness = 0;                     // of that material (its compile map)
+  double compiled_roughness = 0;            // of that material (its compile map)
   double felt_max_lateral_force_N = 0;      // largest |F| written over about the last second
   glm::dvec2 hand_mm{0, 0};
   glm::dvec2 force_N{0, 0};

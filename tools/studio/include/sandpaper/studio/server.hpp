@@ -43,8 +43,8 @@ class Server {
   std::unique_ptr<Impl> impl_;
 };
 
-// The /api/state object: {"ticks", "rate_hz", "overruns", "max_lateral_force_N" (compiled, of the
-// material playing), "felt_max_lateral_force_N", "material", "material_version", "roughness",
+// The /api/state object: {"ticks", "rate_hz", "overruns", "compiled_max_lateral_force_N" (of the
+// material playing), "felt_max_lateral_force_N", "material", "material_version", "compiled_roughness",
 // "hand": [x_mm, y_mm], "force_N": [fx, fy], "running", "stop_cause", "restarts", "dummy_hand"}.
 nlohmann::json state_json(const LoopState& s, bool dummy_hand);
 

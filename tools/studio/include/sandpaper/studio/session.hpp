@@ -84,7 +84,7 @@ class Session {
   nlohmann::json language(const std::string& feature, int line, int character) const;
 
   // Workspaces: the canvas' view ({"name", "size_mm", "patches": [{index, source, name, centre_mm,
-  // size_mm, max_lateral_force_N, roughness}]}), and moving or resizing patch `index` (mm), which
+  // size_mm, compiled_max_lateral_force_N, compiled_roughness}]}), and moving or resizing patch `index` (mm), which
   // rewrites its numbers in the text and updates. RequestError 409 when the open file is a material.
   nlohmann::json workspace() const;
   nlohmann::json place_patch(int index, double x_mm, double y_mm, double width_mm, double height_mm);
