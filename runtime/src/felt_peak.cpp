@@ -33,6 +33,14 @@ void FeltPeakMeter::add_nonrt(glm::dvec2 position_m, glm::dvec2 force_N) {
   const double x = (position_m.x * normal_.x + position_m.y * normal_.y) / period_m_ * size_;
   const double along = force_N.x * normal_.x + force_N.y * normal_.y;
   if (!std::isfinite(x) || !std::isfinite(along)) return;
+  // A jump over more than kMaxPeriodsPerTick periods is no hand's motion (a replayed or faulty
+  // position): a gap, not thousands of ridges stepped over; and far from the origin the doubles
+  // that count periods stop being whole numbers.
+  constexpr double kMaxPeriodsPerTick = 1000, kMaxPeriods = 1e12;
+  if (std::abs(x) > kMaxPeriods * size_ || (last_x_ && std::abs(x - *last_x_) > kMaxPeriodsPerTick * size_)) {
+    break_nonrt();
+    return;
+  }
   const int moving = !last_x_ ? 0 : x > *last_x_ ? 1 : x < *last_x_ ? -1 : 0;
 
   // Ridges passed between the last tick and this one with no tick on them: crossings of 0.

@@ -85,3 +85,11 @@ TEST(FeltPeakMeter, AGapInTheTicksEndsWhatWasUnderWay) {
   EXPECT_EQ(m.crossings(), 0u);
   EXPECT_FALSE(m.felt_peak_N().has_value());
 }
+
+TEST(FeltPeakMeter, APositionJumpIsAGapNotThousandsOfRidges) {
+  auto m = *runtime::FeltPeakMeter::for_program(program());
+  // 1.25 m (1250 periods) along a 1 mm grating in one tick, a replayed or faulty position, then
+  // far out: neither counts crossings, and neither hangs.
+  for (double x : {3.5, 4.5, 10000.5, 10001.5, 1e300, 10002.5}) tick(m, x);
+  EXPECT_EQ(m.crossings(), 0u);
+}
