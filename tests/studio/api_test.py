@@ -125,6 +125,26 @@ def main():
               and st["document"]["file"] == "corduroy.hmat" and st["document"]["version"] == r2["version"],
               f"/api/state's document follows the API's change: {st['document']} after text_version {before_version}")
 
+        # Zoom and pan: any window of the patch, drawn on request. Corduroy's 3.2 mm grating over the
+        # whole 95 mm patch is 0.186 mm a pixel, coarser than its walls (3.2 / 64 = 0.05 mm); a 5 mm
+        # window, 0.0098 mm a pixel, is not.
+        status, whole = studio.get("/api/view?x_mm=0&y_mm=0&w_mm=95&h_mm=95")
+        check(status == 200 and whole["window_mm"] == [95, 95] and abs(whole["pixel_mm"] - 95 / 512) < 1e-9
+              and whole["finer_than_pixel"] is True, f"the whole patch, its walls finer than a pixel: {whole}")
+        status, png = studio.get(whole.get("png", "/api/view/none.png"))
+        check(status == 200 and png[:8] == b"\x89PNG\r\n\x1a\n", "the view's picture is served")
+        status, near = studio.get("/api/view?kind=field&x_mm=10&y_mm=-5&w_mm=5&h_mm=2.5")
+        check(status == 200 and near["centre_mm"] == [10, -5] and near["window_mm"] == [5, 2.5]
+              and near["finer_than_pixel"] is False and 0 < near["field_max_N"] <= 10,
+              f"a 5 x 2.5 mm force field off the centre: {near}")
+        for query, why in (("x_mm=0&y_mm=0&w_mm=500&h_mm=95", "twice the patch"), ("x_mm=48&y_mm=0&w_mm=5&h_mm=5", "on the patch"),
+                           ("x_mm=0&y_mm=0&w_mm=0&h_mm=5", "0.01 mm"), ("x_mm=nan&y_mm=0&w_mm=5&h_mm=5", "number"),
+                           ("x_mm=0&y_mm=0&w_mm=5", "h_mm"), ("kind=depth&x_mm=0&y_mm=0&w_mm=5&h_mm=5", "kind")):
+            status, err = studio.get("/api/view?" + query)
+            check(status == 400 and why in err.get("error", ""), f"/api/view?{query} is refused: {err.get('error')}")
+        status, _ = studio.get("/api/view/../../etc/passwd")
+        check(status == 404, "a view name outside the pattern is not a file")
+
         # The library browser: search through the index, an entry's numbers and text, its picture.
         status, found = studio.get("/api/library/search?q=wale%20corduroy")
         names = [e["name"] for e in found.get("entries", [])]

@@ -374,6 +374,51 @@ def main():
                    "the photograph's scan plot") is not None, "its scan plot is drawn")
         b.screenshot(str(out / "studio-photo.png"), full_page=False)
 
+        # Zoom and pan over the whole patch: the preview's window is 45 of the photograph's 60 mm.
+        stage_box = "(() => { const r = document.querySelector('#stage').getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; })()"
+        zoom_of = "(document.querySelector('#stage').dataset.zoom || '').split(',').map(Number)"
+        b.click("#zoom-whole")
+        whole = wait(b, caption + ".includes('(the whole patch)') && document.querySelector('#picture').naturalWidth === 512", "the whole patch")
+        box = b.evaluate(stage_box)
+        nat = b.evaluate("[document.querySelector('#picture').naturalWidth, document.querySelector('#picture').naturalHeight]")
+        check(whole is not None and all(abs(u - v) < 1e-3 for u, v in zip(b.evaluate(zoom_of), [0, 0, 60, 60 * 340 / 512]))
+              and abs(box[2] / box[3] - 512 / 340) < 0.01 * 512 / 340 and abs(nat[0] / nat[1] - 512 / 340) < 0.01 * 512 / 340,
+              f"'whole patch' shows all 60 x {60 * 340 / 512:.2f} mm unstretched: stage {box[2]:.0f} x {box[3]:.0f} px, "
+              f"picture {nat[0]} x {nat[1]} px; {b.evaluate(caption)!r}")
+        # The hand goes where the pointer is on the whole patch: a quarter of the way across is -15 mm.
+        mouse(b, "mousePressed", box[0] + 0.25 * box[2], box[1] + 0.5 * box[3])
+        mouse(b, "mouseReleased", box[0] + 0.25 * box[2], box[1] + 0.5 * box[3], 0)
+        st, _ = state_when(studio, lambda st: abs(st["hand"][0] + 15) < 0.2 and abs(st["hand"][1]) < 0.2)
+        check(st is not None, f"a click a quarter across the whole patch puts the hand at (-15, 0) mm: {studio.state()['hand']}")
+        # The wheel zooms in about the pointer: the place under it (x = +15 mm) stays under it.
+        b.send("Input.dispatchMouseEvent", {"type": "mouseWheel", "x": box[0] + 0.75 * box[2], "y": box[1] + 0.5 * box[3],
+                                            "deltaX": 0, "deltaY": -100})
+        zoomed = wait(b, zoom_of + "[2] < 59", "the wheel's zoom")
+        z = b.evaluate(zoom_of)
+        check(zoomed is not None and abs(z[2] - 48) < 1e-3 and abs(z[0] + (0.75 - 0.5) * z[2] - 15) < 1e-3,
+              f"one wheel notch zooms in 1.25 times about the pointer: window {z[2]:.3f} mm wide around x = {z[0]:.3f} mm, "
+              f"+15 mm still under the pointer")
+        # Shift-drag pans: a twentieth of the width to the left moves the window 2.4 mm to the right.
+        b.send("Input.dispatchMouseEvent", {"type": "mousePressed", "x": box[0] + 0.5 * box[2], "y": box[1] + 0.5 * box[3],
+                                            "button": "left", "buttons": 1, "clickCount": 1, "modifiers": 8})
+        b.send("Input.dispatchMouseEvent", {"type": "mouseMoved", "x": box[0] + 0.45 * box[2], "y": box[1] + 0.5 * box[3],
+                                            "button": "left", "buttons": 1, "modifiers": 8})
+        b.send("Input.dispatchMouseEvent", {"type": "mouseReleased", "x": box[0] + 0.45 * box[2], "y": box[1] + 0.5 * box[3],
+                                            "button": "left", "buttons": 0, "clickCount": 1, "modifiers": 8})
+        panned = wait(b, zoom_of + "[0] > %f" % (z[0] + 1), "the pan")
+        p = b.evaluate(zoom_of)
+        hand_after = studio.state()["hand"]
+        check(panned is not None and abs(p[0] - (z[0] + 0.05 * z[2])) < 1e-3 and abs(hand_after[0] + 15) < 0.2,
+              f"Shift-drag pans the window to x = {p[0]:.3f} mm (from {z[0]:.3f}) and leaves the hand where it was "
+              f"({hand_after[0]:.2f} mm)")
+        drawn = wait(b, "document.querySelector('#picture').src.includes('/api/view/') && " + caption + ".includes('around (%.1f, ' )"
+                     % p[0], "the panned window's picture")
+        check(drawn is not None, f"the studio draws the panned window: {b.evaluate(caption)!r}")
+        b.screenshot(str(out / "studio-zoom.png"), full_page=False)
+        b.click("#zoom-reset")
+        check(wait(b, caption + ".includes('scale bar') && !document.querySelector('#stage').dataset.zoom", "the preview window")
+              is not None, "'preview' goes back to the preview's own window")
+
         # The library browser: search, an entry's numbers and picture, its file to read, `like NAME` inserted.
         b.evaluate("(() => { const i = document.querySelector('#library-search'); i.scrollIntoView({block: 'center'}); i.focus(); })()")
         b.send("Input.insertText", {"text": "pinwale"})

@@ -159,7 +159,8 @@ Image render_force_field(const schema::PatchProgram& program, const Picture& lik
   std::vector<glm::dvec2> f(n);
   for (int row = 0; row < im.ny; ++row)
     for (int col = 0; col < im.nx; ++col) {
-      const glm::dvec2 p{-0.5 * im.window_m[0] + (col + 0.5) * im.pixel_m, 0.5 * im.window_m[1] - (row + 0.5) * im.pixel_m};
+      const glm::dvec2 p{like.centre_m[0] - 0.5 * im.window_m[0] + (col + 0.5) * im.pixel_m,
+                         like.centre_m[1] + 0.5 * im.window_m[1] - (row + 0.5) * im.pixel_m};
       const glm::dvec2 v = field.at(p);
       f[static_cast<std::size_t>(row) * im.nx + col] = v;
       max_force_N = std::max(max_force_N, std::hypot(v.x, v.y));

@@ -94,13 +94,24 @@ void shade_window(const schema::PatchProgram& drawn, Picture& pic) {
   for (int row = 0; row < pic.ny; ++row)
     for (int col = 0; col < pic.nx; ++col) {
       // Pixel centres; row 0 is the top of the picture, +y in patch coordinates.
-      hand.position_m = {-0.5 * pic.window_m[0] + (col + 0.5) * ps, 0.5 * pic.window_m[1] - (row + 0.5) * ps};
+      hand.position_m = {pic.centre_m[0] - 0.5 * pic.window_m[0] + (col + 0.5) * ps,
+                         pic.centre_m[1] + 0.5 * pic.window_m[1] - (row + 0.5) * ps};
       const glm::dvec2 f = eval.force_rt(hand, 0.0);
       const std::size_t i = static_cast<std::size_t>(row) * pic.nx + col;
       sx[i] = -f.x;  // F = -grad U: the surface rises against the force
       sy[i] = -f.y;
     }
   pic.shade = compiler::shade_slopes(pic.nx, pic.ny, sx, sy, std::nullopt);
+}
+
+// The program with only the terms that have a surface; the others' reasons appended to `left_out`.
+schema::PatchProgram surface_terms(const schema::PatchProgram& program, std::vector<std::string>& left_out) {
+  schema::PatchProgram drawn = program;
+  drawn.terms.clear();
+  for (const auto& t : program.terms)
+    if (picture_role(t) != PictureRole::None) drawn.terms.push_back(t);
+    else left_out.push_back(why_not_pictured(t));
+  return drawn;
 }
 
 }  // namespace
@@ -166,17 +177,52 @@ Picture render_picture(const schema::PatchProgram& program, int max_side) {
 Picture render_picture_window(const schema::PatchProgram& program, double window_side_m, int side) {
   if (!(window_side_m > 0) || side < 1) throw std::invalid_argument("render_picture_window: window and side must be positive");
   Picture pic;
-  schema::PatchProgram drawn = program;
-  drawn.terms.clear();
-  for (const auto& t : program.terms)
-    if (picture_role(t) != PictureRole::None) drawn.terms.push_back(t);
-    else pic.left_out.push_back(why_not_pictured(t));
+  const schema::PatchProgram drawn = surface_terms(program, pic.left_out);
   if (drawn.terms.empty()) return pic;
   pic.nx = pic.ny = side;
   pic.pixel_m = window_side_m / side;
   pic.window_m[0] = pic.window_m[1] = window_side_m;
   shade_window(drawn, pic);
   pic.caption = "Height field, " + mm(window_side_m) + " square around the patch centre (common scale)";
+  return pic;
+}
+
+double finest_detail_m(const schema::PatchProgram& program) {
+  double scale = std::numeric_limits<double>::infinity();
+  for (const auto& t : program.terms) scale = std::min(scale, finest_scale(t));
+  return scale;
+}
+
+Picture picture_frame(const double centre_m[2], const double window_m[2], int max_side) {
+  if (!(std::isfinite(window_m[0]) && std::isfinite(window_m[1]) && window_m[0] > 0 && window_m[1] > 0) ||
+      !(std::isfinite(centre_m[0]) && std::isfinite(centre_m[1])) || max_side < 1)
+    throw std::invalid_argument("picture_frame: the window must be positive and finite, the centre finite, max_side >= 1");
+  Picture pic;
+  const double ps = std::max(window_m[0], window_m[1]) / max_side;
+  pic.nx = std::clamp(static_cast<int>(std::lround(window_m[0] / ps)), 1, max_side);
+  pic.ny = std::clamp(static_cast<int>(std::lround(window_m[1] / ps)), 1, max_side);
+  pic.pixel_m = ps;
+  pic.window_m[0] = pic.nx * ps;
+  pic.window_m[1] = pic.ny * ps;
+  pic.centre_m[0] = centre_m[0];
+  pic.centre_m[1] = centre_m[1];
+  return pic;
+}
+
+Picture render_picture_view(const schema::PatchProgram& program, const double centre_m[2], const double window_m[2],
+                            int max_side) {
+  Picture pic = picture_frame(centre_m, window_m, max_side);
+  const schema::PatchProgram drawn = surface_terms(program, pic.left_out);
+  if (drawn.terms.empty()) {
+    pic.nx = pic.ny = 0;
+    return pic;
+  }
+  pic.finer_than_pixel = finest_detail_m(drawn) < pic.pixel_m;
+  shade_window(drawn, pic);
+  pic.caption = "Height field, " + mm(pic.window_m[0]) + " \xC3\x97 " + mm(pic.window_m[1]) + " around (" +
+                mm(centre_m[0]) + ", " + mm(centre_m[1]) + ")" +
+                (pic.finer_than_pixel ? "; the texture's finest detail is under a pixel (" + mm(pic.pixel_m) + ") here: zoom in for it"
+                                      : "");
   return pic;
 }
 

@@ -247,6 +247,40 @@ struct Server::Impl {
                                            number_field(j, "width_mm"), number_field(j, "height_mm")));
       });
     });
+    // Zoom and pan over the whole patch: a picture of any window, drawn on request.
+    http.Get("/api/view", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        auto number = [&](const char* key) {
+          if (!req.has_param(key)) throw RequestError(400, std::string("?") + key + "= is required (mm)");
+          const std::string text = req.get_param_value(key);
+          std::size_t used = 0;
+          double v = 0;
+          try {
+            v = std::stod(text, &used);
+          } catch (const std::exception&) {
+            used = 0;
+          }
+          if (used == 0 || used != text.size() || !std::isfinite(v))
+            throw RequestError(400, std::string("?") + key + "= takes a number of millimetres");
+          return v;
+        };
+        const double centre[2] = {number("x_mm"), number("y_mm")};
+        const double window[2] = {number("w_mm"), number("h_mm")};
+        send_json(res, session.render_view(req.has_param("kind") ? req.get_param_value("kind") : "height", centre, window));
+      });
+    });
+    http.Get(R"(/api/view/([A-Za-z0-9.\-]+))", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        const auto path = session.view_file(req.matches[1]);
+        if (!path) throw RequestError(404, "no view picture '" + std::string(req.matches[1]) + "' (only the last " +
+                                               std::to_string(Session::kKeptViews) + " are kept)");
+        std::ifstream in(*path, std::ios::binary);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        res.set_header("Cache-Control", "no-store");
+        res.set_content(ss.str(), "image/png");
+      });
+    });
     http.Get(R"(/api/preview/([A-Za-z0-9.\-]+))", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const std::string name = req.matches[1];

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -28,6 +30,13 @@ namespace {
 constexpr int kPreviewSide = 384;
 constexpr int kPatchPictureSide = 160;
 constexpr int kFieldArrows = 24;
+
+// A length in a message: 4 significant figures.
+std::string fmt_mm(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
 
 nlohmann::json parameter_json(const compiler::Parameter& p) {
   return {{"name", p.name},   {"label", p.label}, {"layer", p.layer}, {"value", p.value}, {"unit", p.unit},
@@ -420,6 +429,75 @@ void Session::render(const std::shared_ptr<const schema::PatchProgram>& program,
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir, ec))
     if (std::find(written.begin(), written.end(), e.path()) == written.end()) fs::remove(e.path(), ec);
+}
+
+nlohmann::json Session::render_view(const std::string& kind, const double centre_mm[2], const double window_mm[2]) {
+  if (kind != "height" && kind != "field") throw RequestError(400, "?kind= is \"height\" or \"field\"");
+  std::shared_ptr<const schema::PatchProgram> program;
+  std::uint64_t version = 0;
+  {
+    std::lock_guard lock(mutex_);
+    if (is_workspace_) throw RequestError(409, "the open file is a workspace: its patches have pictures of their own");
+    program = program_;
+    version = version_;
+  }
+  if (!program) throw RequestError(409, "nothing has compiled yet: there is no picture to zoom");
+  const double pw = program->size_m[0] * 1e3, ph = program->size_m[1] * 1e3;
+  for (int a = 0; a < 2; ++a) {
+    const double side = a == 0 ? pw : ph;
+    if (!std::isfinite(window_mm[a]) || window_mm[a] < 0.01 || window_mm[a] > 2 * side)
+      throw RequestError(400, std::string(a == 0 ? "w_mm" : "h_mm") + " must be from 0.01 mm to twice the patch's " +
+                                  (a == 0 ? "width" : "height") + " (" + fmt_mm(2 * side) + " mm)");
+    if (!std::isfinite(centre_mm[a]) || std::abs(centre_mm[a]) > 0.5 * side)
+      throw RequestError(400, std::string(a == 0 ? "x_mm" : "y_mm") + " must lie on the patch (within " +
+                                  fmt_mm(0.5 * side) + " mm of its centre)");
+  }
+  const double centre_m[2] = {centre_mm[0] * 1e-3, centre_mm[1] * 1e-3};
+  const double window_m[2] = {window_mm[0] * 1e-3, window_mm[1] * 1e-3};
+  nlohmann::json j{{"kind", kind}, {"version", version}};
+  catalog::Image image;
+  catalog::Picture picture;
+  if (kind == "height") {
+    picture = catalog::render_picture_view(*program, centre_m, window_m, kViewSide);
+    if (!picture.empty()) image = catalog::grey_image(picture);
+  } else {
+    // The window and pixels alone: the force field draws what a slow hand meets at each place,
+    // whether or not a surface shows it.
+    picture = catalog::picture_frame(centre_m, window_m, kViewSide);
+    picture.finer_than_pixel = catalog::finest_detail_m(*program) < picture.pixel_m;
+    double max_N = 0;
+    image = catalog::render_force_field(*program, picture, max_N);
+    catalog::position_only(*program, picture.left_out);
+    j["field_max_N"] = max_N;
+    if (!(max_N > 0)) image = {};
+  }
+  j["left_out"] = picture.left_out;
+  if (image.nx == 0) {
+    j["png"] = nullptr;
+    return j;
+  }
+  const std::uint64_t n = ++views_drawn_;
+  const fs::path dir = preview_dir_ / "views";
+  fs::create_directories(dir);
+  const std::string name = "view-" + std::to_string(n) + ".png";
+  catalog::write_image_png(dir / name, image);
+  std::error_code ec;
+  if (n > static_cast<std::uint64_t>(kKeptViews)) fs::remove(dir / ("view-" + std::to_string(n - kKeptViews) + ".png"), ec);
+  j["png"] = "/api/view/" + name;
+  j["centre_mm"] = {centre_mm[0], centre_mm[1]};
+  j["window_mm"] = {picture.window_m[0] * 1e3, picture.window_m[1] * 1e3};
+  j["pixel_mm"] = picture.pixel_m * 1e3;
+  j["finer_than_pixel"] = picture.finer_than_pixel;
+  return j;
+}
+
+std::optional<fs::path> Session::view_file(const std::string& name) const {
+  static const std::regex view(R"(view-\d{1,19}\.png)");
+  if (!std::regex_match(name, view)) return std::nullopt;
+  const fs::path p = preview_dir_ / "views" / name;
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec)) return std::nullopt;
+  return p;
 }
 
 std::optional<fs::path> Session::preview_file(const std::string& name, std::uint64_t min_version) const {

@@ -12,6 +12,8 @@ const state = {
   file: "", kind: "material", version: 0, parameters: [], preview: null, field: null, workspace: null,
   live: null, strip: [], selected: -1, mode: "normal", view: "height", remote: false, compileTimer: 0,
   lastCompileMs: 0,
+  zoom: null,       // null: the preview's own window; else {cx, cy, w, h}, mm, a window over the patch
+  patchMm: null,    // the playing material's patch [width, height], mm
 };
 
 async function api(method, path, body, json = true) {
@@ -214,6 +216,7 @@ function applyCompile(r) {
   $("#saved").textContent = r.saved ? "saved" : "unsaved";
   markUnsaved(state.file, !r.saved);
   state.version = r.version;
+  if (r.ok && r.size_m) state.patchMm = [r.size_m[0] * 1e3, r.size_m[1] * 1e3];
   if (r.text_version !== undefined) state.textVersion = Math.max(state.textVersion || 0, r.text_version);
   renderSliders(r.parameters || []);
   if (r.ok) refreshPreview();
@@ -309,6 +312,49 @@ async function refreshPreviewNow() {
   ]);
   state.preview = preview;
   state.field = field;
+  if (state.zoom) {
+    await showZoomed(v);
+  } else {
+    await showPreviewWindow(v, preview);
+  }
+  const svg = await fetch(`/api/preview/scan.svg?v=${v}`).then((r) => r.ok ? r.text() : "");
+  $("#scan").innerHTML = svg;
+  $("#stage").dataset.version = v;
+  drawOverlay();
+}
+
+// A window of the caller's choosing over the patch, drawn by the studio on request (/api/view).
+async function showZoomed(v) {
+  const z = state.zoom;
+  fitStage();
+  const q = `kind=${state.view === "field" ? "field" : "height"}&x_mm=${z.cx}&y_mm=${z.cy}&w_mm=${z.w}&h_mm=${z.h}`;
+  const view = await api("GET", `/api/view?${q}`);
+  const img = $("#picture");
+  $("#stage").dataset.zoom = `${z.cx.toFixed(3)},${z.cy.toFixed(3)},${z.w.toFixed(3)},${z.h.toFixed(3)}`;
+  if (!view.png) {
+    img.hidden = true;
+    $("#picture-caption").textContent = "No picture: no force depends on position alone." +
+      (view.left_out?.length ? " " + view.left_out.join(" ") : "");
+    return;
+  }
+  img.src = view.png;
+  img.hidden = false;
+  await img.decode().catch(() => {});
+  img.style.transform = "";
+  const whole = state.patchMm && z.w >= state.patchMm[0] - 1e-6 && z.h >= state.patchMm[1] - 1e-6;
+  $("#picture-caption").textContent = `${view.window_mm[0].toFixed(1)} × ${view.window_mm[1].toFixed(1)} mm` +
+    (whole ? " (the whole patch)" : ` around (${z.cx.toFixed(1)}, ${z.cy.toFixed(1)}) mm`) +
+    ` · ${view.pixel_mm.toPrecision(3)} mm a pixel · ` +
+    (state.view === "field" ? `force field at rest: hue = direction, brightness = |F| up to ${view.field_max_N.toFixed(3)} N`
+                            : "height field, lit from the upper left") +
+    (view.finer_than_pixel ? " · its finest detail (a grating's walls, a height map's samples) is under a pixel here: zoom in for it" : "") +
+    (view.left_out?.length ? ` · not drawn: ${view.left_out.join("; ")}` : "") +
+    " · wheel or +/− to zoom, Shift-drag to pan";
+}
+
+async function showPreviewWindow(v, preview) {
+  delete $("#stage").dataset.zoom;
+  $("#picture").style.transform = "";
   fitStage();
   const img = $("#picture");
   if (preview && preview.pixels) {
@@ -328,17 +374,17 @@ async function refreshPreviewNow() {
     $("#picture-caption").textContent = "No picture: no force depends on position alone." +
       (preview?.left_out?.length ? " " + preview.left_out.join(" ") : "");
   }
-  const svg = await fetch(`/api/preview/scan.svg?v=${v}`).then((r) => r.ok ? r.text() : "");
-  $("#scan").innerHTML = svg;
-  $("#stage").dataset.version = v;
-  drawOverlay();
 }
 
 // Stage pixels <-> millimetres: the picture covers window_mm centred on the patch centre (material),
-// or the workspace's rectangle (workspace); y up.
+// or on the zoom's centre, or the workspace's rectangle (workspace); y up.
 function windowMm() {
   if (state.kind === "workspace") return state.workspace?.size_mm || [228.6, 228.6];
+  if (state.zoom) return [state.zoom.w, state.zoom.h];
   return state.preview?.window_mm || [80, 80];
+}
+function centreMm() {
+  return state.kind === "material" && state.zoom ? [state.zoom.cx, state.zoom.cy] : [0, 0];
 }
 // The stage takes the shape of what it shows, so that a picture is never stretched (a 60 x 39.8 mm
 // photograph is drawn 3:2, not square) and pixels map to millimetres alike across and down.
@@ -348,12 +394,48 @@ function fitStage() {
 }
 function toMm(ev) {
   const r = $("#stage").getBoundingClientRect();
-  const [w, h] = windowMm();
-  return [((ev.clientX - r.left) / r.width - 0.5) * w, (0.5 - (ev.clientY - r.top) / r.height) * h];
+  const [w, h] = windowMm(), [cx, cy] = centreMm();
+  return [cx + ((ev.clientX - r.left) / r.width - 0.5) * w, cy + (0.5 - (ev.clientY - r.top) / r.height) * h];
 }
 function toPx(xMm, yMm, r) {
-  const [w, h] = windowMm();
-  return [(xMm / w + 0.5) * r.width, (0.5 - yMm / h) * r.height];
+  const [w, h] = windowMm(), [cx, cy] = centreMm();
+  return [((xMm - cx) / w + 0.5) * r.width, (0.5 - (yMm - cy) / h) * r.height];
+}
+
+// ---- zoom and pan over the whole patch ---------------------------------------------------------
+// A window of the patch kept inside it (a window larger than the patch is centred), at least 0.05 mm.
+function clampZoom(z) {
+  const [pw, ph] = state.patchMm || [z.w, z.h];
+  const w = Math.min(Math.max(z.w, 0.05), pw), h = Math.min(Math.max(z.h, 0.05), ph);
+  const cx = Math.min(Math.max(z.cx, -pw / 2 + w / 2), pw / 2 - w / 2);
+  const cy = Math.min(Math.max(z.cy, -ph / 2 + h / 2), ph / 2 - h / 2);
+  return { cx, cy, w, h };
+}
+function setZoom(z) {
+  state.zoom = z && clampZoom(z);
+  refreshPreview();
+}
+function currentWindow() {
+  const [w, h] = windowMm(), [cx, cy] = centreMm();
+  return { cx, cy, w, h };
+}
+// Zooms by `factor` (> 1: in) keeping the place under (xMm, yMm) where it is on the stage.
+function zoomAbout(factor, xMm, yMm) {
+  const z = currentWindow();
+  const w = z.w / factor, h = z.h / factor;
+  setZoom({ cx: xMm - (xMm - z.cx) / factor, cy: yMm - (yMm - z.cy) / factor, w, h });
+}
+function setupZoom() {
+  $("#zoom-whole").addEventListener("click", () => state.patchMm && setZoom({ cx: 0, cy: 0, w: state.patchMm[0], h: state.patchMm[1] }));
+  $("#zoom-in").addEventListener("click", () => { const z = currentWindow(); zoomAbout(2, z.cx, z.cy); });
+  $("#zoom-out").addEventListener("click", () => { const z = currentWindow(); zoomAbout(0.5, z.cx, z.cy); });
+  $("#zoom-reset").addEventListener("click", () => setZoom(null));
+  $("#stage").addEventListener("wheel", (ev) => {
+    if (state.kind !== "material" || !state.patchMm) return;
+    ev.preventDefault();
+    const [x, y] = toMm(ev);
+    zoomAbout(ev.deltaY < 0 ? 1.25 : 0.8, x, y);
+  }, { passive: false });
 }
 
 function drawOverlay() {
@@ -368,7 +450,7 @@ function drawOverlay() {
   g.clearRect(0, 0, canvas.width, canvas.height);
   // Field arrows (materials): where and which way a slow hand is pushed.
   const f = state.field;
-  if (state.kind === "material" && f && f.n && f.max_N > 0 && $("#arrows").checked) {
+  if (state.kind === "material" && !state.zoom && f && f.n && f.max_N > 0 && $("#arrows").checked) {
     g.strokeStyle = "rgba(30, 90, 200, 0.7)";
     g.lineWidth = 1;
     const cell = canvas.width / f.n;
@@ -432,19 +514,40 @@ function sendHand(mm) {
 
 function setupStage() {
   const stage = $("#stage");
-  let dragging = false;
+  let dragging = false, pan = null;
   stage.addEventListener("pointerdown", (ev) => {
     if (state.kind === "workspace" && workspacePointerDown(ev)) return;
-    dragging = true;
     stage.setPointerCapture(ev.pointerId);
+    // Shift-drag pans the picture: the place under the pointer stays under it.
+    if (ev.shiftKey && state.kind === "material" && state.patchMm) {
+      pan = { at: toMm(ev), from: currentWindow() };
+      return;
+    }
+    dragging = true;
     sendHand(toMm(ev));
   });
   stage.addEventListener("pointermove", (ev) => {
     if (state.kind === "workspace" && workspacePointerMove(ev)) return;
+    if (pan) {
+      const r = stage.getBoundingClientRect();
+      const dx = ((ev.clientX - r.left) / r.width - 0.5) * pan.from.w + pan.from.cx - pan.at[0];
+      const dy = (0.5 - (ev.clientY - r.top) / r.height) * pan.from.h + pan.from.cy - pan.at[1];
+      state.zoom = clampZoom({ ...pan.from, cx: pan.from.cx - dx, cy: pan.from.cy - dy });
+      // The picture follows the pointer until the studio draws the new window.
+      $("#picture").style.transform = `translate(${(pan.from.cx - state.zoom.cx) / pan.from.w * r.width}px, ` +
+        `${(state.zoom.cy - pan.from.cy) / pan.from.h * r.height}px)`;
+      drawOverlay();
+      return;
+    }
     if (dragging || $("#follow").checked) sendHand(toMm(ev));
   });
   stage.addEventListener("pointerup", (ev) => {
     if (state.kind === "workspace" && workspacePointerUp(ev)) return;
+    if (pan) {
+      pan = null;
+      refreshPreview();
+      return;
+    }
     dragging = false;
   });
 }
@@ -687,6 +790,8 @@ async function open(file) {
   await flushCompile();
   await state.compiling;
   state.opening = true;
+  state.zoom = null;  // a new patch: its own preview window first
+  state.patchMm = null;
   try {
     var r = await api("POST", "/api/open", { file });
     await loadCurrent();
@@ -796,6 +901,7 @@ async function init() {
   document.querySelectorAll("input[name=mode]").forEach((r) => r.addEventListener("change", () => { state.mode = r.value; drawWorkspace(); }));
   $("#arrows").addEventListener("change", drawOverlay);
   setupStage();
+  setupZoom();
   // Started on a folder, nothing plays until a file is chosen.
   const cur = await api("GET", "/api/current");
   if (cur.file) {

@@ -29,7 +29,9 @@ struct Picture {
   int nx = 0, ny = 0;                  // pixels; 0 when there is nothing to draw
   schema::ArrayFile shade;             // the .shade picture (0 = white), nx x ny, row 0 at the top
   double pixel_m = 0;                  // one pixel's side, m
-  double window_m[2] = {0, 0};         // width, height shown, m, centred on the patch centre
+  double window_m[2] = {0, 0};         // width, height shown, m
+  double centre_m[2] = {0, 0};         // the window's centre in patch coordinates, m (0, 0: the patch centre)
+  bool finer_than_pixel = false;       // a texture's finest scale is under one pixel: the shading aliases
   std::string caption;                 // what the picture is, in words (plain text)
   std::vector<std::string> left_out;   // terms not drawn, each with its reason
   bool empty() const { return nx == 0; }
@@ -46,6 +48,23 @@ Picture render_picture(const schema::PatchProgram& program, int max_side = 512);
 // whatever the material's own scale: pictures of different materials drawn this way compare at a glance
 // (the catalog's thumbnails). Throws std::invalid_argument for a non-positive window or side.
 Picture render_picture_window(const schema::PatchProgram& program, double window_side_m, int side);
+
+// The finest detail of the program's textures, m: a grating's period / 64 (its walls), a height
+// field's sample spacing; infinity without a texture. Under one pixel, a picture aliases.
+double finest_detail_m(const schema::PatchProgram& program);
+
+// The layout of a view: `window_m` (width, height, m) centred on `centre_m` (patch coordinates, m),
+// `max_side` pixels on the longer side, square pixels, the window rounded to whole pixels; nothing is
+// drawn (for render_force_field's `like`). Throws std::invalid_argument for a non-finite or
+// non-positive window, a non-finite centre, or max_side < 1.
+Picture picture_frame(const double centre_m[2], const double window_m[2], int max_side);
+
+// The same shading over any window: `window_m` (width, height, m) centred on `centre_m` (patch
+// coordinates, m), laid out as picture_frame lays it out. For zoom and pan over the whole patch
+// (the studio's view); finer_than_pixel says when the texture is finer than a pixel there. Empty
+// (left_out filled) when no term has a surface; throws as picture_frame does.
+Picture render_picture_view(const schema::PatchProgram& program, const double centre_m[2], const double window_m[2],
+                            int max_side);
 
 // The picture as an 8-bit grey PNG (255 = white), via OpenImageIO; `side` > 0 resizes it so that its
 // longer side is `side` pixels (a thumbnail). Throws std::runtime_error when the file cannot be written.

@@ -3,6 +3,7 @@
 // (saved or not), and the last program that compiled, which is what plays. Every method is called
 // from the HTTP threads and serialised by the session's own mutex; none touches the servo thread
 // except through LiveLoop's non-blocking hand-over (docs/STUDIO.md).
+#include <atomic>
 #include <condition_variable>
 #include <filesystem>
 #include <map>
@@ -94,6 +95,19 @@ class Session {
   // there is none. Waits (up to 10 s) until the program of load `min_version` or a later one is drawn.
   std::optional<std::filesystem::path> preview_file(const std::string& name, std::uint64_t min_version = 0) const;
 
+  // Zoom and pan: the playing material's height field (`kind` "height") or force field at rest
+  // ("field", as field.png draws it) over `window_mm` (width, height) centred on `centre_mm` (patch
+  // coordinates, mm), at most kViewSide pixels on its longer side. Returns {"png": the picture's URL
+  // path, "kind", "centre_mm", "window_mm" (as drawn: whole pixels), "pixel_mm", "finer_than_pixel",
+  // "field_max_N" (field), "left_out", "version"}. RequestError 400 for a window that is not positive
+  // and finite, larger than twice the patch or smaller than 0.01 mm, or a centre outside the patch;
+  // 409 when nothing has compiled or the open file is a workspace.
+  nlohmann::json render_view(const std::string& kind, const double centre_mm[2], const double window_mm[2]);
+  // A picture render_view drew ("view-<n>.png"; the last kKeptViews are kept), or nullopt.
+  std::optional<std::filesystem::path> view_file(const std::string& name) const;
+  static constexpr int kViewSide = 512;
+  static constexpr int kKeptViews = 8;
+
  private:
   nlohmann::json update_locked(const std::string& text);
   std::filesystem::path new_file_path(const std::string& relative) const;
@@ -126,6 +140,7 @@ class Session {
   std::uint64_t version_ = 0;  // of the playing program (LiveLoop's load version)
   std::uint64_t text_version_ = 0;  // every change of text_ (or of the open file) raises it
   std::shared_ptr<const schema::PatchProgram> program_;
+  std::atomic<std::uint64_t> views_drawn_{0};
   std::shared_ptr<const schema::WorkspaceProgram> workspace_;
   nlohmann::json last_compile_;
 };
