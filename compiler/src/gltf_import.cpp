@@ -12,6 +12,7 @@
 
 #include "gltf_support.hpp"
 #include "sandpaper/compiler/height_image.hpp"
+#include "sandpaper/schema/confined_path.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
@@ -133,8 +134,9 @@ struct Extras {
 
 class Reader {
  public:
-  Reader(const Compiler& c, const json& root, std::string shown, Diagnostics& diags)
-      : c_(c), root_(root), shown_(std::move(shown)), diags_(diags) {}
+  Reader(const Compiler& c, const json& root, std::string shown, std::optional<std::filesystem::path> folder,
+         Diagnostics& diags)
+      : c_(c), root_(root), shown_(std::move(shown)), folder_(std::move(folder)), diags_(diags) {}
 
   // The program of haptic material `index` (built once, shared by every mesh naming it).
   std::shared_ptr<const schema::PatchProgram> program(std::size_t index) {
@@ -275,15 +277,18 @@ class Reader {
     const std::string iw = "images[" + std::to_string(ii) + "]";
     const json* uri = optional_member(images[ii], "uri");
     if (!uri || !uri->is_string())
-      refuse("E0715", iw + " has no uri: Sandpaper reads haptic textures embedded as data:image/png;base64 URIs",
-             "export the material again with `sandpaper export --format gltf`");
+      refuse("E0715", iw + " has no uri: Sandpaper reads haptic textures embedded as data:image/png;base64 URIs or "
+                           "as PNG files in the asset's folder, not from buffer views",
+             "export the material again with `sandpaper export --format gltf`, or write the asset with its images as files");
     const std::string& u = uri->get_ref<const std::string&>();
     const std::string prefix = gltf::kPngDataUriPrefix;
-    if (u.compare(0, prefix.size(), prefix) != 0)
-      refuse("E0715", iw + ".uri is not a data:image/png;base64 URI" + (u.rfind("data:", 0) == 0 ? "" : " (files beside the asset are not read)"),
-             "export the material again with `sandpaper export --format gltf`");
-    auto bytes = gltf::base64_decode(std::string_view(u).substr(prefix.size()));
-    if (!bytes) refuse("E0715", iw + ".uri is not valid base64");
+    std::optional<std::vector<unsigned char>> bytes;
+    if (u.compare(0, prefix.size(), prefix) == 0) {
+      bytes = gltf::base64_decode(std::string_view(u).substr(prefix.size()));
+      if (!bytes) refuse("E0715", iw + ".uri is not valid base64");
+    } else {
+      bytes = image_file(u, iw);
+    }
     std::string why;
     const long long budget = kMaxGltfTexels - texels_;
     const long long limit = std::min<long long>(kind == "grating" ? 65536 : kMaxImagePixels, budget);
@@ -293,11 +298,39 @@ class Reader {
     return std::move(*png);
   }
 
+  // An image named by a relative URI (RFC 3986, percent-encoded): a file in the asset's own folder.
+  std::vector<unsigned char> image_file(const std::string& u, const std::string& iw) const {
+    const std::string shown = u.substr(0, 120);
+    const auto colon = u.find(':'), slash = u.find('/');
+    if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
+      refuse("E0715", iw + ".uri '" + shown + "' is neither a data:image/png;base64 URI nor a file in the asset's folder",
+             "embed the image, or put it beside the asset and name it by a relative path");
+    const auto path = gltf::percent_decode(u);
+    if (!path) refuse("E0715", iw + ".uri '" + shown + "' is not a valid relative URI (a stray '%')");
+    if (!folder_)
+      refuse("E0715", iw + ".uri names the file '" + shown + "', but the asset was read without its folder",
+             "read the asset from its file, with its images beside it");
+    std::filesystem::path full;
+    try {
+      full = schema::confined_path(*folder_, *path, "the asset's folder", "Sandpaper reads an asset's images from its own folder only");
+    } catch (const schema::OutsideFolder& e) {
+      refuse("E0715", iw + ".uri: " + e.what());
+    }
+    try {
+      const std::string data = schema::read_input_file(full, kMaxGltfBytes);
+      return std::vector<unsigned char>(data.begin(), data.end());
+    } catch (const schema::InputFileError& e) {
+      refuse("E0715", iw + ".uri: cannot read '" + shown + "' in the asset's folder: " + e.reason);
+    }
+    return {};
+  }
+
   SourceLocation at() const { return SourceLocation{std::make_shared<const SourceFile>(shown_, ""), 0, 0, 1}; }
 
   const Compiler& c_;
   const json& root_;
   std::string shown_;
+  std::optional<std::filesystem::path> folder_;
   Diagnostics& diags_;
   json materials_;
   std::map<std::size_t, std::shared_ptr<const schema::PatchProgram>> built_;
@@ -369,7 +402,8 @@ void centre_of(const json& node, std::size_t n, double centre[2]) {
   centre[1] = v[2] == 0 ? 0 : -v[2];
 }
 
-void read(const Compiler& c, const std::string& bytes, const std::string& shown, GltfImportResult& r) {
+void read(const Compiler& c, const std::string& bytes, const std::string& shown,
+          const std::optional<std::filesystem::path>& folder, GltfImportResult& r) {
   if (bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0)
     refuse("E0711", "'" + shown + "' is a binary glTF (.glb); Sandpaper reads the JSON form (.gltf)",
            "export with `sandpaper export --format gltf -o FILE.gltf`");
@@ -396,7 +430,7 @@ void read(const Compiler& c, const std::string& bytes, const std::string& shown,
     refuse("E0713", "extensions.MPEG_haptic_material.materials is not a non-empty array");
   const auto placed = haptic_nodes(root, materials.size());
   if (placed.empty()) refuse("E0713", "no mesh in the scene names a haptic material (meshes[].extensions.MPEG_haptic_material)");
-  Reader reader(c, root, shown, r.diagnostics);
+  Reader reader(c, root, shown, folder, r.diagnostics);
   reader.set_materials(materials);
   const json* extras = optional_member(root, "extras");
   const json* ours = extras ? optional_member(*extras, gltf::kExtrasKey) : nullptr;
@@ -428,13 +462,14 @@ void read(const Compiler& c, const std::string& bytes, const std::string& shown,
 
 bool is_gltf_path(const std::filesystem::path& path) { return path.extension() == ".gltf"; }
 
-GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& bytes, const std::string& shown_name) {
+GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& bytes, const std::string& shown_name,
+                                  const std::optional<std::filesystem::path>& folder) {
   GltfImportResult r;
   const SourceLocation at{std::make_shared<const SourceFile>(shown_name, ""), 0, 0, 1};
   try {
     if (bytes.size() > kMaxGltfBytes)
       refuse("E0710", "'" + shown_name + "' is larger than the limit of " + std::to_string(kMaxGltfBytes >> 20) + " MiB for a glTF file");
-    read(compiler, bytes, shown_name, r);
+    read(compiler, bytes, shown_name, folder, r);
   } catch (const Refusal& e) {
     r.program.reset();
     r.workspace.reset();
@@ -458,7 +493,8 @@ GltfImportResult import_gltf_file(const Compiler& compiler, const std::filesyste
                         "cannot read glTF file '" + path.string() + "': " + e.reason, "check the path");
     return r;
   }
-  return import_gltf_text(compiler, bytes, path.string());
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  return import_gltf_text(compiler, bytes, path.string(), folder);
 }
 
 }  // namespace sandpaper::compiler

@@ -35,6 +35,22 @@ std::string base64_encode(const std::vector<unsigned char>& bytes) {
   return out;
 }
 
+std::optional<std::string> percent_decode(std::string_view uri) {
+  auto hex = [](char c) { return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1; };
+  std::string out;
+  out.reserve(uri.size());
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] != '%') {
+      out += uri[i];
+      continue;
+    }
+    if (i + 2 >= uri.size() || hex(uri[i + 1]) < 0 || hex(uri[i + 2]) < 0) return std::nullopt;
+    out += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+    i += 2;
+  }
+  return out;
+}
+
 std::optional<std::vector<unsigned char>> base64_decode(std::string_view text) {
   if (text.size() % 4 != 0) return std::nullopt;
   std::array<int, 256> value{};

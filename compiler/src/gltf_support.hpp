@@ -24,6 +24,9 @@ inline constexpr double kTexelMax = 65535.0;
 std::string base64_encode(const std::vector<unsigned char>& bytes);
 // nullopt for a character outside the alphabet, bad padding or a length that is not a multiple of 4.
 std::optional<std::vector<unsigned char>> base64_decode(std::string_view text);
+// A URI's percent-encoding undone ("heights%20x.png" -> "heights x.png"); nullopt for a '%' not
+// followed by two hex digits.
+std::optional<std::string> percent_decode(std::string_view uri);
 
 // A greyscale 16-bit PNG of nx x ny texels, row 0 the top row. Throws std::runtime_error if
 // OpenImageIO cannot write one (a broken installation, not the user's input).

@@ -3,11 +3,14 @@
 // refused with their diagnostic code, never a crash.
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <zlib.h>
 
 #include <nlohmann/json.hpp>
@@ -390,7 +393,7 @@ TEST(GltfHostile, NonPngTexture) {
   a["images"][0]["uri"] = "data:image/png;base64," + base64({'G', 'I', 'F', '8', '9', 'a', 1, 0, 1, 0, 0, 0, 0, 0});
   EXPECT_EQ(only_error(import(a)).substr(0, 5), "E0716");
   json b = good_asset();
-  b["images"][0]["uri"] = "heights.png";  // a file beside the asset: not read
+  b["images"][0]["uri"] = "heights.png";  // a file, but the asset was read without its folder
   EXPECT_EQ(only_error(import(b)).substr(0, 5), "E0715");
   json c = good_asset();
   c["images"][0]["uri"] = "data:image/png;base64,@@@@";
@@ -488,4 +491,66 @@ TEST(GltfHostile, MissingFile) {
 }
 
 }  // namespace
+// ---- images as files in the asset's own folder (what glTF pipelines write) ----
+
+namespace {
+
+struct AssetFolder {
+  std::filesystem::path dir;
+  AssetFolder() {
+    dir = std::filesystem::temp_directory_path() / ("sandpaper-gltf-files-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / "asset");
+  }
+  ~AssetFolder() { std::filesystem::remove_all(dir); }
+  // The asset with its image moved out to `uri` (percent-encoded), written at `file` (decoded, in the
+  // asset's folder unless it climbs out), and the asset itself as asset/a.gltf.
+  std::filesystem::path write(const std::string& uri, const std::filesystem::path& file) const {
+    json a = good_asset();
+    const std::string embedded = a["images"][0]["uri"];
+    const auto png = unbase64(embedded.substr(embedded.find(',') + 1));
+    a["images"][0]["uri"] = uri;
+    std::filesystem::create_directories((dir / "asset" / file).parent_path());
+    std::ofstream(dir / "asset" / file, std::ios::binary).write(reinterpret_cast<const char*>(png.data()),
+                                                                 static_cast<std::streamsize>(png.size()));
+    std::ofstream(dir / "asset" / "a.gltf") << a.dump();
+    return dir / "asset" / "a.gltf";
+  }
+};
+
+}  // namespace
+
+TEST(GltfFiles, AnImageFileInTheAssetsFolderIsReadAsTheEmbeddedOneIs) {
+  AssetFolder f;
+  const auto embedded = import(good_asset());
+  ASSERT_TRUE(embedded.ok());
+  for (const auto& [uri, file] : {std::pair<std::string, std::string>{"heights.png", "heights.png"},
+                                  {"textures/corduroy%20heights.png", "textures/corduroy heights.png"}}) {
+    SCOPED_TRACE(uri);
+    const auto r = compiler::import_gltf_file(C(), f.write(uri, file));
+    ASSERT_TRUE(r.ok()) << only_error(r);
+    const auto c = compare(*embedded.program, *r.program);
+    EXPECT_EQ(c.worst_N, 0.0) << "the same PNG gives the same forces";
+    EXPECT_GT(c.peak_a_N, 1.0);
+  }
+}
+
+TEST(GltfFiles, NothingOutsideTheAssetsFolderIsRead) {
+  AssetFolder f;
+  // Climbing out, absolute, a scheme, a stray '%', a missing file, and a link that leads out.
+  const std::vector<std::pair<std::string, std::string>> refused{
+      {"../outside.png", "../outside.png"}, {"/etc/passwd", "x.png"},  {"https://example.com/h.png", "x.png"},
+      {"heights%2.png", "x.png"},           {"missing.png", "x.png"}};
+  for (const auto& [uri, file] : refused) {
+    SCOPED_TRACE(uri);
+    const std::string e = only_error(compiler::import_gltf_file(C(), f.write(uri, file)));
+    EXPECT_EQ(e.substr(0, 5), "E0715") << e;
+  }
+  f.write("x.png", "../outside.png");
+  std::filesystem::create_symlink(f.dir / "outside.png", f.dir / "asset" / "link.png");
+  const std::string e = only_error(compiler::import_gltf_file(C(), f.write("link.png", "y.png")));
+  EXPECT_EQ(e.substr(0, 5), "E0715") << e;
+  EXPECT_NE(e.find("outside the asset's folder"), std::string::npos) << e;
+}
+
 }  // namespace sandpaper

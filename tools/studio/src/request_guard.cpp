@@ -57,27 +57,8 @@ bool origin_allowed(std::string_view origin_header, const Listen& listen) {
 }
 
 std::filesystem::path confined_path(const std::filesystem::path& root, const std::string& relative) {
-  namespace fs = std::filesystem;
-  if (relative.empty()) throw OutsideFolder("an empty path names no file in the studio's folder");
-  if (relative.find('\0') != std::string::npos) throw OutsideFolder("a path may not contain NUL");
-  const fs::path rel(relative);
-  if (rel.is_absolute() || rel.has_root_name() || rel.has_root_directory())
-    throw OutsideFolder("'" + relative + "' is an absolute path; give a path relative to the studio's folder");
-  const fs::path base = fs::canonical(root);
-  // `..` is applied before symlinks are resolved: weakly_canonical keeps "missing/../link" lexical
-  // past a component that does not exist, so a link there would lead out unseen (a fuzz finding).
-  // Errors (a name too long, a link loop) are refusals, not exceptions (another one).
-  std::error_code ec;
-  const fs::path full = fs::weakly_canonical(base / rel.lexically_normal(), ec);
-  if (ec) throw OutsideFolder("'" + relative + "' cannot be resolved in the studio's folder: " + ec.message());
-  // Lexically inside: every component of base is a prefix of full's.
-  auto b = base.begin();
-  auto f = full.begin();
-  for (; b != base.end(); ++b, ++f)
-    if (f == full.end() || *b != *f)
-      throw OutsideFolder("'" + relative + "' is outside the studio's folder " + base.string() +
-                          "; the studio reads and writes only inside the folder it was opened on");
-  return full;
+  return schema::confined_path(root, relative, "the studio's folder",
+                               "the studio reads and writes only inside the folder it was opened on");
 }
 
 std::string refusal(std::string_view host_header, std::string_view origin_header, const Listen& listen) {

@@ -35,11 +35,14 @@ bool is_gltf_path(const std::filesystem::path& path);
 // Reads `path` (shown as given) and builds the program(s) for `compiler`'s device. Errors:
 // E0710 unreadable or too large, E0711 not JSON (or binary .glb, or over the JSON limits), E0712 not
 // a glTF 2.0 asset Sandpaper reads, E0713 no usable MPEG_haptic_material, E0714 Sandpaper's extras
-// missing or of the wrong type or range, E0715 a haptic texture that cannot be found or is not an
-// embedded PNG, E0716 a PNG that does not decode, E0717 texture sizes out of limits or not matching
+// missing or of the wrong type or range, E0715 a haptic texture that cannot be found, is neither an
+// embedded PNG (data:image/png;base64) nor a PNG file inside the asset's own folder (symbolic links
+// followed, nothing outside it read), E0716 a PNG that does not decode, E0717 texture sizes out of limits or not matching
 // the extras, E0718 forces the device cannot play. Warning W0703: parts the asset says it left out.
 GltfImportResult import_gltf_file(const Compiler& compiler, const std::filesystem::path& path);
-// The same for the file's bytes.
-GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& bytes, const std::string& shown_name);
+// The same for the file's bytes; `folder` is where its image files are read from (none: embedded
+// images only, as for an asset that came without its folder).
+GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& bytes, const std::string& shown_name,
+                                  const std::optional<std::filesystem::path>& folder = std::nullopt);
 
 }  // namespace sandpaper::compiler

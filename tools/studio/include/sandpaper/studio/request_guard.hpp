@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "sandpaper/schema/confined_path.hpp"
+
 namespace sandpaper::studio {
 
 // The address the server listens on, and the names a browser may use for it.
@@ -29,12 +31,9 @@ bool origin_allowed(std::string_view origin_header, const Listen& listen);
 std::string refusal(std::string_view host_header, std::string_view origin_header, const Listen& listen);
 
 // A path given by the page or a script, refused unless it stays inside the studio's folder.
-struct OutsideFolder : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-// `relative` resolved inside `root` (which must exist), symbolic links followed: the result is
-// absolute and lexically inside root's canonical path. Throws OutsideFolder for an absolute path, a
-// path that climbs out with "..", or a link that points outside.
+using schema::OutsideFolder;
+// `relative` resolved inside `root` (which must exist), symbolic links followed (schema::confined_path).
+// Throws OutsideFolder for an absolute path, a path that climbs out with "..", or a link that points outside.
 std::filesystem::path confined_path(const std::filesystem::path& root, const std::string& relative);
 
 }  // namespace sandpaper::studio
