@@ -60,3 +60,9 @@ file(RELATIVE_PATH SANDPAPER_PC_TO_PREFIX ${CMAKE_INSTALL_FULL_LIBDIR}/pkgconfig
 string(REGEX REPLACE "/$" "" SANDPAPER_PC_TO_PREFIX "${SANDPAPER_PC_TO_PREFIX}")
 configure_file(${CMAKE_CURRENT_LIST_DIR}/sandpaper.pc.in ${CMAKE_CURRENT_BINARY_DIR}/sandpaper.pc @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/sandpaper.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# The glTF-Transform extension for MPEG_haptic_material (docs/GLTF.md), for pipelines that read and
+# write Sandpaper's assets.
+install(FILES ${PROJECT_SOURCE_DIR}/interop/gltf-transform/mpeg-haptic-material.js
+  ${PROJECT_SOURCE_DIR}/interop/gltf-transform/gltf-transform.config.mjs
+  ${PROJECT_SOURCE_DIR}/interop/gltf-transform/package.json DESTINATION ${SANDPAPER_INSTALL_DATA_DIR}/gltf-transform)

@@ -54,7 +54,8 @@ if ! cmp -s "$web/package-lock.json" "$stamp" 2>/dev/null; then
   (cd "$web" && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error)
   cp "$web/package-lock.json" "$stamp"
 fi
-# The glTF checks' packages (Khronos' gltf-validator and ajv; ctest gltf.validate, docs/GLTF.md), the
+# The glTF checks' packages (Khronos' gltf-validator and ajv for ctest gltf.validate; glTF-Transform's
+# core, functions, extensions and CLI for ctest gltf.transform; docs/GLTF.md), the
 # same way: pinned by tests/gltf/package-lock.json, installed when it changed.
 gltf_checks="$(cd "$(dirname "$0")/.." && pwd)/tests/gltf"
 stamp="$gltf_checks/node_modules/.sandpaper-lock"
