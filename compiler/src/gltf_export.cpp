@@ -9,7 +9,11 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "gltf_support.hpp"
 #include "sandpaper/compiler/texture_heights.hpp"
@@ -341,6 +345,60 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
                         {{"version", gltf::kExtrasVersion},
                          {"workspace", {{"name", workspace->name}, {"size_m", {workspace->size_m[0], workspace->size_m[1]}}}}}}};
   return asset;
+}
+
+namespace {
+
+void put_u32(std::string& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
+}
+
+// The bytes of a data URI export_gltf wrote (base64 after the comma).
+std::vector<unsigned char> data_uri_bytes(const std::string& uri) {
+  const auto comma = uri.find(',');
+  auto bytes = comma == std::string::npos ? std::nullopt : gltf::base64_decode(std::string_view(uri).substr(comma + 1));
+  if (!bytes) throw std::logic_error("gltf_to_glb: the asset holds a data URI it did not write");
+  return *bytes;
+}
+
+}  // namespace
+
+std::string gltf_to_glb(const nlohmann::json& asset) {
+  nlohmann::json j = asset;
+  std::vector<unsigned char> bin;
+  auto pad = [&] { while (bin.size() % 4) bin.push_back(0); };
+  // The geometry buffer's bytes first, its views unchanged; then each image as a view of its own.
+  if (j.contains("buffers") && !j["buffers"].empty()) {
+    bin = data_uri_bytes(j["buffers"][0]["uri"].get<std::string>());
+    j["buffers"][0].erase("uri");
+  } else {
+    j["buffers"] = nlohmann::json::array({nlohmann::json::object()});
+  }
+  if (j.contains("images"))
+    for (auto& image : j["images"]) {
+      pad();
+      const auto png = data_uri_bytes(image["uri"].get<std::string>());
+      if (!j.contains("bufferViews")) j["bufferViews"] = nlohmann::json::array();
+      j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", png.size()}});
+      image.erase("uri");
+      image["bufferView"] = j["bufferViews"].size() - 1;
+      bin.insert(bin.end(), png.begin(), png.end());
+    }
+  pad();
+  j["buffers"][0]["byteLength"] = bin.size();
+  std::string text = j.dump();
+  while (text.size() % 4) text += ' ';  // the JSON chunk is padded with spaces
+  std::string out;
+  put_u32(out, 0x46546C67);             // "glTF"
+  put_u32(out, 2);
+  put_u32(out, static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + bin.size()));
+  put_u32(out, static_cast<std::uint32_t>(text.size()));
+  put_u32(out, 0x4E4F534A);             // "JSON"
+  out += text;
+  put_u32(out, static_cast<std::uint32_t>(bin.size()));
+  put_u32(out, 0x004E4942);             // "BIN\0"
+  out.append(bin.begin(), bin.end());
+  return out;
 }
 
 }  // namespace sandpaper::compiler

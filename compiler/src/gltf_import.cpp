@@ -135,8 +135,8 @@ struct Extras {
 class Reader {
  public:
   Reader(const Compiler& c, const json& root, std::string shown, std::optional<std::filesystem::path> folder,
-         Diagnostics& diags)
-      : c_(c), root_(root), shown_(std::move(shown)), folder_(std::move(folder)), diags_(diags) {}
+         const std::string* glb_bin, Diagnostics& diags)
+      : c_(c), root_(root), shown_(std::move(shown)), folder_(std::move(folder)), glb_bin_(glb_bin), diags_(diags) {}
 
   // The program of haptic material `index` (built once, shared by every mesh naming it).
   std::shared_ptr<const schema::PatchProgram> program(std::size_t index) {
@@ -276,14 +276,13 @@ class Reader {
     const std::size_t ii = index_into(member(textures[ti], "source", tw, "E0715"), images, tw + ".source", "E0715");
     const std::string iw = "images[" + std::to_string(ii) + "]";
     const json* uri = optional_member(images[ii], "uri");
-    if (!uri || !uri->is_string())
-      refuse("E0715", iw + " has no uri: Sandpaper reads haptic textures embedded as data:image/png;base64 URIs or "
-                           "as PNG files in the asset's folder, not from buffer views",
-             "export the material again with `sandpaper export --format gltf`, or write the asset with its images as files");
-    const std::string& u = uri->get_ref<const std::string&>();
-    const std::string prefix = gltf::kPngDataUriPrefix;
     std::optional<std::vector<unsigned char>> bytes;
-    if (u.compare(0, prefix.size(), prefix) == 0) {
+    const std::string prefix = gltf::kPngDataUriPrefix;
+    if (optional_member(images[ii], "bufferView") && !uri) {
+      bytes = buffer_view(images[ii]["bufferView"], iw + ".bufferView");
+    } else if (!uri || !uri->is_string()) {
+      refuse("E0715", iw + " has neither a uri nor a bufferView", "export the material again with `sandpaper export --format gltf`");
+    } else if (const std::string& u = uri->get_ref<const std::string&>(); u.compare(0, prefix.size(), prefix) == 0) {
       bytes = gltf::base64_decode(std::string_view(u).substr(prefix.size()));
       if (!bytes) refuse("E0715", iw + ".uri is not valid base64");
     } else {
@@ -296,6 +295,52 @@ class Reader {
     if (!png) refuse(why.find("over the limit") != std::string::npos ? "E0717" : "E0716", iw + ": " + why);
     texels_ += static_cast<long long>(png->texels.size());
     return std::move(*png);
+  }
+
+  // The bytes of buffer view `index`: a slice of its buffer, which is a .glb's BIN chunk (the
+  // buffer without a uri), an embedded data URI, or a file in the asset's folder.
+  std::vector<unsigned char> buffer_view(const json& index, const std::string& where) const {
+    const json& views = member(root_, "bufferViews", "the asset", "E0715");
+    const std::size_t vi = index_into(index, views, where, "E0715");
+    const std::string vw = "bufferViews[" + std::to_string(vi) + "]";
+    const json& buffers = member(root_, "buffers", "the asset", "E0715");
+    const std::size_t bi = index_into(member(views[vi], "buffer", vw, "E0715"), buffers, vw + ".buffer", "E0715");
+    const std::string bw = "buffers[" + std::to_string(bi) + "]";
+    auto size_field = [&](const json& j, const char* key, const std::string& w, bool required) -> std::uint64_t {
+      const json* v = optional_member(j, key);
+      if (!v) {
+        if (required) refuse("E0715", w + " has no \"" + key + "\"");
+        return 0;
+      }
+      if (!v->is_number_unsigned() || v->get<std::uint64_t>() > kMaxGltfBytes)
+        refuse("E0715", w + "." + key + " is not a byte count up to " + std::to_string(kMaxGltfBytes >> 20) + " MiB");
+      return v->get<std::uint64_t>();
+    };
+    const std::uint64_t offset = size_field(views[vi], "byteOffset", vw, false);
+    const std::uint64_t length = size_field(views[vi], "byteLength", vw, true);
+    std::vector<unsigned char> data;
+    const json* uri = optional_member(buffers[bi], "uri");
+    if (!uri) {
+      if (bi != 0 || !glb_bin_) refuse("E0715", bw + " has no uri and is not a .glb's BIN chunk");
+      data.assign(glb_bin_->begin(), glb_bin_->end());
+    } else if (!uri->is_string()) {
+      refuse("E0715", bw + ".uri is not a string");
+    } else if (const std::string& u = uri->get_ref<const std::string&>(); u.rfind("data:", 0) == 0) {
+      const auto comma = u.find(',');
+      const auto header = u.substr(0, comma == std::string::npos ? 0 : comma);
+      auto bytes = comma == std::string::npos || header.find(";base64") == std::string::npos
+                       ? std::nullopt
+                       : gltf::base64_decode(std::string_view(u).substr(comma + 1));
+      if (!bytes) refuse("E0715", bw + ".uri is not a base64 data URI");
+      data = std::move(*bytes);
+    } else {
+      data = image_file(u, bw);
+    }
+    if (offset > data.size() || length > data.size() - offset)
+      refuse("E0715", vw + " (bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) + ") passes the end of " +
+                          bw + " (" + std::to_string(data.size()) + " bytes)");
+    return std::vector<unsigned char>(data.begin() + static_cast<std::ptrdiff_t>(offset),
+                                      data.begin() + static_cast<std::ptrdiff_t>(offset + length));
   }
 
   // An image named by a relative URI (RFC 3986, percent-encoded): a file in the asset's own folder.
@@ -331,6 +376,7 @@ class Reader {
   const json& root_;
   std::string shown_;
   std::optional<std::filesystem::path> folder_;
+  const std::string* glb_bin_;  // a .glb's BIN chunk, or null
   Diagnostics& diags_;
   json materials_;
   std::map<std::size_t, std::shared_ptr<const schema::PatchProgram>> built_;
@@ -402,11 +448,45 @@ void centre_of(const json& node, std::size_t n, double centre[2]) {
   centre[1] = v[2] == 0 ? 0 : -v[2];
 }
 
-void read(const Compiler& c, const std::string& bytes, const std::string& shown,
+std::uint32_t u32_at(const std::string& b, std::size_t at) {
+  std::uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
+  return v;
+}
+
+// A binary glTF (glTF 2.0 section 4.4): a 12-byte header ("glTF", version 2, the file's length), a
+// JSON chunk, and an optional BIN chunk; later chunks are ignored, as the format allows.
+struct Glb {
+  std::string json, bin;
+  bool has_bin = false;
+};
+Glb split_glb(const std::string& b, const std::string& shown) {
+  const std::string what = "'" + shown + "' is a binary glTF (.glb) ";
+  if (b.size() < 20) refuse("E0711", what + "cut short: " + std::to_string(b.size()) + " bytes, less than its headers");
+  if (u32_at(b, 4) != 2) refuse("E0711", what + "of version " + std::to_string(u32_at(b, 4)) + ", not 2");
+  if (u32_at(b, 8) != b.size())
+    refuse("E0711", what + "whose header says " + std::to_string(u32_at(b, 8)) + " bytes, but it has " + std::to_string(b.size()),
+           "was it cut short?");
+  const std::uint64_t json_length = u32_at(b, 12);
+  if (u32_at(b, 16) != 0x4E4F534A) refuse("E0711", what + "whose first chunk is not JSON");
+  if (json_length > b.size() - 20) refuse("E0711", what + "whose JSON chunk passes the end of the file");
+  Glb g;
+  g.json = b.substr(20, json_length);
+  const std::uint64_t at = 20 + json_length;
+  if (b.size() - at >= 8 && u32_at(b, at + 4) == 0x004E4942) {
+    const std::uint64_t bin_length = u32_at(b, at);
+    if (bin_length > b.size() - at - 8) refuse("E0711", what + "whose BIN chunk passes the end of the file");
+    g.bin = b.substr(at + 8, bin_length);
+    g.has_bin = true;
+  }
+  return g;
+}
+
+void read(const Compiler& c, const std::string& file_bytes, const std::string& shown,
           const std::optional<std::filesystem::path>& folder, GltfImportResult& r) {
-  if (bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0)
-    refuse("E0711", "'" + shown + "' is a binary glTF (.glb); Sandpaper reads the JSON form (.gltf)",
-           "export with `sandpaper export --format gltf -o FILE.gltf`");
+  std::optional<Glb> glb;
+  if (file_bytes.size() >= 4 && file_bytes.compare(0, 4, "glTF") == 0) glb = split_glb(file_bytes, shown);
+  const std::string& bytes = glb ? glb->json : file_bytes;
   Census census;
   const bool parsed = json::sax_parse(bytes, &census);
   if (census.over)
@@ -430,7 +510,7 @@ void read(const Compiler& c, const std::string& bytes, const std::string& shown,
     refuse("E0713", "extensions.MPEG_haptic_material.materials is not a non-empty array");
   const auto placed = haptic_nodes(root, materials.size());
   if (placed.empty()) refuse("E0713", "no mesh in the scene names a haptic material (meshes[].extensions.MPEG_haptic_material)");
-  Reader reader(c, root, shown, folder, r.diagnostics);
+  Reader reader(c, root, shown, folder, glb && glb->has_bin ? &glb->bin : nullptr, r.diagnostics);
   reader.set_materials(materials);
   const json* extras = optional_member(root, "extras");
   const json* ours = extras ? optional_member(*extras, gltf::kExtrasKey) : nullptr;
@@ -460,7 +540,7 @@ void read(const Compiler& c, const std::string& bytes, const std::string& shown,
 
 }  // namespace
 
-bool is_gltf_path(const std::filesystem::path& path) { return path.extension() == ".gltf"; }
+bool is_gltf_path(const std::filesystem::path& path) { return path.extension() == ".gltf" || path.extension() == ".glb"; }
 
 GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& bytes, const std::string& shown_name,
                                   const std::optional<std::filesystem::path>& folder) {

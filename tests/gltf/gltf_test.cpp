@@ -353,7 +353,7 @@ TEST(GltfHostile, TruncatedJson) {
 }
 
 TEST(GltfHostile, BinaryGlbAndDeepNesting) {
-  EXPECT_EQ(only_error(compiler::import_gltf_text(C(), std::string("glTF\x02\0\0\0", 8), "t.glb")).substr(0, 5), "E0711");
+  EXPECT_EQ(only_error(compiler::import_gltf_text(C(), std::string("glTF\x02\0\0\0", 8), "t.glb")).substr(0, 5), "E0711");  // cut short
   EXPECT_EQ(only_error(compiler::import_gltf_text(C(), std::string(100000, '['), "t.gltf")).substr(0, 5), "E0711");
 }
 
@@ -551,6 +551,77 @@ TEST(GltfFiles, NothingOutsideTheAssetsFolderIsRead) {
   const std::string e = only_error(compiler::import_gltf_file(C(), f.write("link.png", "y.png")));
   EXPECT_EQ(e.substr(0, 5), "E0715") << e;
   EXPECT_NE(e.find("outside the asset's folder"), std::string::npos) << e;
+}
+
+// ---- binary glTF (.glb) ----
+
+namespace {
+
+std::uint32_t u32(const std::string& b, std::size_t at) {
+  std::uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
+  return v;
+}
+void set_u32(std::string& b, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) b[at + static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xFF);
+}
+compiler::GltfImportResult import_glb(const std::string& bytes) { return compiler::import_gltf_text(C(), bytes, "t.glb"); }
+
+}  // namespace
+
+TEST(GltfGlb, TheBinaryFormPlaysWhatTheJsonFormPlays) {
+  const json a = good_asset();
+  const std::string glb = compiler::gltf_to_glb(a);
+  // glTF 2.0 section 4.4: "glTF", version 2, the whole length; a JSON chunk, then a BIN chunk, each 4-aligned.
+  ASSERT_GE(glb.size(), 28u);
+  EXPECT_EQ(glb.substr(0, 4), "glTF");
+  EXPECT_EQ(u32(glb, 4), 2u);
+  EXPECT_EQ(u32(glb, 8), glb.size());
+  const std::uint32_t json_length = u32(glb, 12);
+  EXPECT_EQ(u32(glb, 16), 0x4E4F534Au);
+  EXPECT_EQ(json_length % 4, 0u);
+  EXPECT_EQ(u32(glb, 20 + json_length + 4), 0x004E4942u);
+  EXPECT_EQ(u32(glb, 20 + json_length) % 4, 0u);
+  const json inside = json::parse(glb.substr(20, json_length));
+  EXPECT_FALSE(inside["images"][0].contains("uri"));
+  EXPECT_FALSE(inside["buffers"][0].contains("uri"));
+  const auto from_json = import(a), from_glb = import_glb(glb);
+  ASSERT_TRUE(from_json.ok());
+  ASSERT_TRUE(from_glb.ok()) << only_error(from_glb);
+  const auto c = compare(*from_json.program, *from_glb.program);
+  EXPECT_EQ(c.worst_N, 0.0);
+  EXPECT_GT(c.peak_a_N, 1.0);
+}
+
+TEST(GltfGlb, BrokenBinaryFilesAreRefused) {
+  const std::string glb = compiler::gltf_to_glb(good_asset());
+  const std::uint32_t json_length = u32(glb, 12);
+  auto code = [](const compiler::GltfImportResult& r) { return only_error(r).substr(0, 5); };
+  EXPECT_EQ(code(import_glb(glb.substr(0, glb.size() - 1))), "E0711");  // cut short: the header's length
+  std::string v1 = glb;
+  set_u32(v1, 4, 1);
+  EXPECT_EQ(code(import_glb(v1)), "E0711");
+  std::string bin_first = glb;
+  set_u32(bin_first, 16, 0x004E4942);
+  EXPECT_EQ(code(import_glb(bin_first)), "E0711");
+  std::string long_json = glb;
+  set_u32(long_json, 12, static_cast<std::uint32_t>(glb.size()));
+  EXPECT_EQ(code(import_glb(long_json)), "E0711");
+  std::string long_bin = glb;
+  set_u32(long_bin, 20 + json_length, static_cast<std::uint32_t>(glb.size()));
+  EXPECT_EQ(code(import_glb(long_bin)), "E0711");
+  // An image view that passes the end of the BIN chunk, or a buffer with no uri in a .gltf.
+  json inside = json::parse(glb.substr(20, json_length));
+  const std::size_t view = inside["images"][0]["bufferView"];
+  inside["bufferViews"][view]["byteLength"] = 1u << 24;
+  std::string text = inside.dump();
+  while (text.size() % 4) text += ' ';
+  std::string past = glb.substr(0, 20) + text + glb.substr(20 + json_length);
+  set_u32(past, 12, static_cast<std::uint32_t>(text.size()));
+  set_u32(past, 8, static_cast<std::uint32_t>(past.size()));
+  EXPECT_EQ(code(import_glb(past)), "E0715");
+  json no_bin = json::parse(glb.substr(20, json_length));
+  EXPECT_EQ(code(import(no_bin)), "E0715");
 }
 
 }  // namespace sandpaper

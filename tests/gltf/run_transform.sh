@@ -36,11 +36,18 @@ for name in corduroy gravel sampler; do
   "$cli" copy "$out/src/$name.gltf" "$out/cli-with/$name.gltf" --config "$out/ext/gltf-transform.config.mjs"
   "$cli" copy "$out/src/$name.gltf" "$out/cli-without/$name.gltf"
 done
+# And binary: glTF-Transform writes a .glb (images in its BIN chunk) from Sandpaper's .glb.
+"$sandpaper" export examples/workspace/sampler.hws --format gltf -o "$out/src/sampler-binary.glb"
+"$cli" copy "$out/src/sampler-binary.glb" "$out/cli-with/sampler-binary.glb" --config "$out/ext/gltf-transform.config.mjs"
+"$cli" copy "$out/src/sampler-binary.glb" "$out/cli-without/sampler-binary.glb"
+"$sandpaper" compile "$out/src/sampler-binary.glb" -o "$out/src/sampler-binary.out" --json > "$out/src/sampler-binary.json"
 failed=0
-for name in corduroy gravel sampler; do
-  "$sandpaper" compile "$out/src/$name.gltf" -o "$out/src/$name.out" --json > "$out/src/$name.json"
-  for how in script cli; do
-  if "$sandpaper" compile "$out/$how-with/$name.gltf" -o "$out/$how-with/$name.out" --json > "$out/$how-with/$name.json"; then
+for name in corduroy gravel sampler sampler-binary; do
+  ext=gltf hows="script cli"
+  [ "$name" = sampler-binary ] && ext=glb hows=cli
+  [ "$name" = sampler-binary ] || "$sandpaper" compile "$out/src/$name.gltf" -o "$out/src/$name.out" --json > "$out/src/$name.json"
+  for how in $hows; do
+  if "$sandpaper" compile "$out/$how-with/$name.$ext" -o "$out/$how-with/$name.out" --json > "$out/$how-with/$name.json"; then
     if python3 - "$out/src/$name.json" "$out/$how-with/$name.json" "$sandpaper" "$out/src/$name.out" "$out/$how-with/$name.out" <<'PY'
 import json, subprocess, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
@@ -68,9 +75,9 @@ sys.exit(0 if same else 1)
 PY
     then :; else failed=$((failed + 1)); fi
   else
-    echo "FAIL  $out/$how-with/$name.gltf does not compile"; cat "$out/$how-with/$name.json"; failed=$((failed + 1))
+    echo "FAIL  $out/$how-with/$name.$ext does not compile"; cat "$out/$how-with/$name.json"; failed=$((failed + 1))
   fi
-  if "$sandpaper" compile "$out/$how-without/$name.gltf" -o "$out/$how-without/$name.out" 2> "$out/$how-without/$name.err"; then
+  if "$sandpaper" compile "$out/$how-without/$name.$ext" -o "$out/$how-without/$name.out" 2> "$out/$how-without/$name.err"; then
     echo "FAIL  without the extension ($how) $name still compiled: the test cannot tell"; failed=$((failed + 1))
   elif grep -q 'E0713' "$out/$how-without/$name.err"; then
     echo "ok    without the extension ($how), glTF-Transform drops $name's haptics (E0713)"

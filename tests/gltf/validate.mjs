@@ -28,7 +28,8 @@ const meshLevel = ajv.getSchema(ext.$id + '#/definitions/meshLevel');
 
 // Core glTF 2.0: the validator's errors (severity 0), as lines.
 async function coreErrors(bytes, name) {
-  const report = await validator.validateBytes(new Uint8Array(bytes), { uri: name, format: 'gltf', maxIssues: 0 });
+  const format = name.endsWith('.glb') ? 'glb' : 'gltf';
+  const report = await validator.validateBytes(new Uint8Array(bytes), { uri: name, format, maxIssues: 0 });
   const issues = report.issues;
   const lines = issues.messages.filter((m) => m.severity === 0).map((m) => `${m.code} at ${m.pointer}: ${m.message}`);
   return { lines, warnings: issues.numWarnings, infos: issues.numInfos };
@@ -59,9 +60,18 @@ function extensionErrors(asset) {
   return out;
 }
 
+// The asset's JSON: the file, or a .glb's JSON chunk (glTF 2.0 section 4.4: 12-byte header, then
+// the chunk's length and type, then the chunk).
+function assetJson(name, bytes) {
+  const b = Buffer.from(bytes);
+  if (!name.endsWith('.glb')) return JSON.parse(b.toString('utf8'));
+  if (b.toString('latin1', 0, 4) !== 'glTF' || b.readUInt32LE(16) !== 0x4E4F534A) throw new Error(`${name}: not a .glb`);
+  return JSON.parse(b.toString('utf8', 20, 20 + b.readUInt32LE(12)));
+}
+
 async function check(name, bytes) {
   const core = await coreErrors(bytes, name);
-  const extension = extensionErrors(JSON.parse(Buffer.from(bytes).toString('utf8')));
+  const extension = extensionErrors(assetJson(name, bytes));
   return { core, extension };
 }
 

@@ -12,6 +12,7 @@
 #include "exit_codes.hpp"
 #include "play_workspace.hpp"
 #include "safety_guards.hpp"
+#include "sandpaper/compiler/gltf_import.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/runtime/device.hpp"
@@ -108,9 +109,7 @@ int cmd_preview(const CommonOptions& o, const std::string& out_dir, int side);
 // (cmd_import.cpp): a .patch, or a workspace program.
 int cmd_export(const CommonOptions& o, const std::string& format, const std::string& output);
 int cmd_compile_gltf(const CommonOptions& o, const std::string& output);
-inline bool is_gltf_input(const CommonOptions& o) {
-  return o.expression.empty() && std::filesystem::path(o.file).extension() == ".gltf";
-}
+inline bool is_gltf_input(const CommonOptions& o) { return o.expression.empty() && compiler::is_gltf_path(o.file); }
 // `sandpaper lsp`: the language server on stdin/stdout (tools/lsp, docs/EDITORS.md) until the
 // client's `exit`; 0 after a clean shutdown, 1 otherwise.
 int cmd_lsp(const CommonOptions& o);

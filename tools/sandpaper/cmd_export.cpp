@@ -4,6 +4,8 @@
 #include <map>
 
 #include "cli.hpp"
+#include <filesystem>
+
 #include "sandpaper/compiler/gltf_export.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/compiler/workspace_parser.hpp"
@@ -58,7 +60,7 @@ int cmd_export(const CommonOptions& o, const std::string& format, const std::str
     return kExitUsage;
   }
   if (out.empty()) {
-    std::cerr << "sandpaper export: give the file to write with -o FILE.gltf\n";
+    std::cerr << "sandpaper export: give the file to write with -o FILE.gltf (or FILE.glb, binary)\n";
     return kExitUsage;
   }
   auto c = make_compiler(o);
@@ -76,7 +78,9 @@ int cmd_export(const CommonOptions& o, const std::string& format, const std::str
     asset = compiler::export_gltf({p}, std::nullopt, o.expression.empty() ? o.file : "<-e>", diags);
   }
   if (!report(o, diags) || !asset) return kExitBadInput;
-  schema::write_file_atomically(out, asset->dump() + "\n");
+  // FILE.glb: the binary form, images and geometry in its BIN chunk; else JSON with data URIs.
+  const bool binary = std::filesystem::path(out).extension() == ".glb";
+  schema::write_file_atomically(out, binary ? compiler::gltf_to_glb(*asset) : asset->dump() + "\n");
   const auto& materials = (*asset)["extensions"]["MPEG_haptic_material"]["materials"];
   if (o.json) {
     nlohmann::json j{{"ok", true}, {"output", out}, {"diagnostics", diagnostics_json(diags)}, {"meshes", (*asset)["meshes"].size()},
@@ -86,7 +90,7 @@ int cmd_export(const CommonOptions& o, const std::string& format, const std::str
     std::cout << schema::json_text(j, 2) << "\n";
     return kExitOk;
   }
-  std::cout << "glTF 2.0 (MPEG_haptic_material): " << (*asset)["meshes"].size() << " mesh(es), " << materials.size()
+  std::cout << (binary ? "binary glTF 2.0 (MPEG_haptic_material): " : "glTF 2.0 (MPEG_haptic_material): ") << (*asset)["meshes"].size() << " mesh(es), " << materials.size()
             << " haptic material(s) -> " << out << "\n";
   for (const auto& m : materials) {
     const auto& x = m["extras"]["sandpaper"];

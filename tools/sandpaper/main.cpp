@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
   auto* export_cmd = app.add_subcommand("export", "write a material or workspace as a glTF 2.0 asset with the MPEG_haptic_material extension (docs/GLTF.md)");
   add_common(export_cmd, o, true);
   std::string export_format, export_output;
-  export_cmd->add_option("--format", export_format, "gltf (glTF 2.0, one self-contained .gltf file)")->required();
+  export_cmd->add_option("--format", export_format, "gltf (glTF 2.0: -o FILE.gltf, one self-contained JSON file; -o FILE.glb, binary)")->required();
   export_cmd->add_option("-o,--output", export_output, "file to write, e.g. out.gltf")->required();
 
   auto* studio = app.add_subcommand("studio", "serve Sandpaper Studio: edit, see and feel a material while it plays (docs/STUDIO.md)");

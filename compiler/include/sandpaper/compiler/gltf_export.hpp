@@ -45,4 +45,8 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
                                           const std::optional<GltfWorkspaceInfo>& workspace,
                                           const std::string& shown_name, Diagnostics& diags);
 
+// The asset export_gltf made as a binary glTF (.glb, glTF 2.0 section 4.4): the JSON chunk, then
+// one BIN chunk holding the buffer and every image (as buffer views), nothing left as a data URI.
+std::string gltf_to_glb(const nlohmann::json& asset);
+
 }  // namespace sandpaper::compiler

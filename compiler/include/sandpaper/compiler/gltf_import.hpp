@@ -29,11 +29,11 @@ struct GltfImportResult {
   bool ok() const { return (program || workspace) && !diagnostics.has_errors(); }
 };
 
-// Whether `path` names a glTF file (extension .gltf).
+// Whether `path` names a glTF file (extension .gltf, or .glb for the binary form).
 bool is_gltf_path(const std::filesystem::path& path);
 
 // Reads `path` (shown as given) and builds the program(s) for `compiler`'s device. Errors:
-// E0710 unreadable or too large, E0711 not JSON (or binary .glb, or over the JSON limits), E0712 not
+// E0710 unreadable or too large, E0711 not JSON, a .glb whose headers or chunks do not hold together, or over the JSON limits, E0712 not
 // a glTF 2.0 asset Sandpaper reads, E0713 no usable MPEG_haptic_material, E0714 Sandpaper's extras
 // missing or of the wrong type or range, E0715 a haptic texture that cannot be found, is neither an
 // embedded PNG (data:image/png;base64) nor a PNG file inside the asset's own folder (symbolic links
