@@ -349,6 +349,7 @@ async function showZoomed(v) {
                             : "height field, lit from the upper left") +
     (view.finer_than_pixel ? " · its finest detail (a grating's walls, a height map's samples) is under a pixel here: zoom in for it" : "") +
     (view.left_out?.length ? ` · not drawn: ${view.left_out.join("; ")}` : "") +
+    ($("#arrows").checked ? " · arrows are drawn in the preview's own window only" : "") +
     " · wheel or +/− to zoom, Shift-drag to pan";
 }
 
@@ -899,7 +900,7 @@ async function init() {
   $("#library-read").addEventListener("click", () => { $("#library-text").hidden = !$("#library-text").hidden; });
   document.querySelectorAll("input[name=view]").forEach((r) => r.addEventListener("change", () => { state.view = r.value; refreshPreview(); }));
   document.querySelectorAll("input[name=mode]").forEach((r) => r.addEventListener("change", () => { state.mode = r.value; drawWorkspace(); }));
-  $("#arrows").addEventListener("change", drawOverlay);
+  $("#arrows").addEventListener("change", () => (state.zoom ? refreshPreview() : drawOverlay()));
   setupStage();
   setupZoom();
   // Started on a folder, nothing plays until a file is chosen.
