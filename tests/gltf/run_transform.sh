@@ -13,14 +13,8 @@
 set -euo pipefail
 sandpaper="$1" src="$2" out="$3"
 here="$src/tests/gltf"
-if ! command -v node >/dev/null 2>&1; then
-  echo "SKIPPED: node is not installed (tools/install-deps.sh installs it)"
-  exit 77
-fi
-if [ ! -d "$here/node_modules/@gltf-transform/core" ]; then
-  echo "SKIPPED: $here/node_modules is absent; run \`npm ci\` there (tools/install-deps.sh does)"
-  exit 77
-fi
+. "$here/need_node.sh"
+need_node @gltf-transform/core @gltf-transform/functions @gltf-transform/extensions @gltf-transform/cli
 rm -rf "$out"
 mkdir -p "$out/src" "$out/script-with" "$out/script-without" "$out/cli-with" "$out/cli-without"
 # The extension resolves @gltf-transform/* from where it lies: a copy of it beside this folder's packages.

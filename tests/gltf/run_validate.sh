@@ -7,14 +7,8 @@
 set -euo pipefail
 sandpaper="$1" src="$2" out="$3"
 here="$src/tests/gltf"
-if ! command -v node >/dev/null 2>&1; then
-  echo "SKIPPED: node is not installed (tools/install-deps.sh installs it)"
-  exit 77
-fi
-if [ ! -d "$here/node_modules/gltf-validator" ] || [ ! -d "$here/node_modules/ajv" ]; then
-  echo "SKIPPED: $here/node_modules is absent; run \`npm ci\` there (tools/install-deps.sh does)"
-  exit 77
-fi
+. "$here/need_node.sh"
+need_node gltf-validator ajv
 mkdir -p "$out"
 cd "$src"
 "$sandpaper" export examples/corduroy.hmat --format gltf -o "$out/corduroy.gltf"
