@@ -1,5 +1,6 @@
 #include "sandpaper/compiler/resolver.hpp"
 
+#include "sandpaper/schema/confined_path.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 
 #include <algorithm>
@@ -774,9 +775,16 @@ class Resolver {
     const auto in_library = syn_.file ? ctx_.library.source_file(syn_.file->name) : std::nullopt;
     if (in_library) {
       const auto inside = (std::filesystem::path(in_library->second).parent_path() / p).lexically_normal();
-      if (p.is_absolute() || inside.empty() || *inside.begin() == "..") {
+      bool leaves = p.is_absolute() || inside.empty() || *inside.begin() == "..";
+      // A symbolic link inside the library that leads out leaves it as surely as "..".
+      if (!leaves) try {
+          schema::confined_path(in_library->first, inside.generic_string(), "the library");
+        } catch (const schema::OutsideFolder&) {
+          leaves = true;
+        }
+      if (leaves) {
         diags_.error("E0314", h.path_location,
-                     "library entry's image '" + h.path + "' is outside the library",
+                     "library entry's image '" + h.path + "' is outside the library (symbolic links followed)",
                      "put the image in the library (library/images/) and name it relative to the entry's folder");
         return;
       }

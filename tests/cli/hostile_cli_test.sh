@@ -144,15 +144,25 @@ entry() {  # entry NAME IMAGE
 entry inside "../images/brick.png"
 entry absolute "$tmp/brick.png"
 entry climbing "../../brick.png"
+# A link inside the library that leads out of it, and a folder link that does: each as much outside as "..".
+ln -s "$tmp/brick.png" "$tmp/lib/images/linked.png"
+mkdir -p "$tmp/outside-images" && cp "$tmp/brick.png" "$tmp/outside-images/brick.png"
+ln -s "$tmp/outside-images" "$tmp/lib/images/elsewhere"
+entry linked "../images/linked.png"
+entry linked-folder "../images/elsewhere/brick.png"
 printf 'name = "hostile"\nversion = "0.1.0"\n[[families]]\nid = "cloth"\ntitle = "Cloth"\n' >"$tmp/lib/library.toml"
 "$sp" library check --library "$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "library check: escapes are errors" 1 $?
 has "the absolute path is reported" "$tmp/err" "cloth/absolute.hmat:5:.*E0612"
 has "the climbing path is reported" "$tmp/err" "cloth/climbing.hmat:5:.*E0612"
+has "an image that is a link leading out is reported" "$tmp/err" "cloth/linked.hmat:5:.*E0612.*symbolic link"
+has "an image under a folder link leading out is reported" "$tmp/err" "cloth/linked-folder.hmat:5:.*E0612.*symbolic link"
 if grep -q "inside.hmat.*E0612" "$tmp/err"; then bad "an image inside the library was reported"; else ok "an image inside the library is fine"; fi
 "$sp" compile --library "$tmp/lib" -e "like absolute" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "like an escaping entry: exit 1" 1 $?
 has "the error names the image" "$tmp/err" "brick.png. is outside the library"
+"$sp" compile --library "$tmp/lib" -e "like linked" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "like an entry whose image links out: exit 1" 1 $?
+has "the compiler follows the link too" "$tmp/err" "linked.png. is outside the library (symbolic links followed)"
 "$sp" compile --library "$tmp/lib" -e "like inside" -o "$tmp/x.patch" >"$tmp/out" 2>"$tmp/err"; check "like an entry inside: compiles" 0 $?
-rm "$tmp/lib/cloth/absolute.hmat" "$tmp/lib/cloth/climbing.hmat"
+rm "$tmp/lib/cloth/absolute.hmat" "$tmp/lib/cloth/climbing.hmat" "$tmp/lib/cloth/linked.hmat" "$tmp/lib/cloth/linked-folder.hmat"
 
 # Temporaries of killed runs are cleaned by the next run. Synthetic ones first: a PID above the
 # kernel's pid_max cannot be running.

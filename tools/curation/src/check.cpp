@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "sandpaper/schema/confined_path.hpp"
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/curation/display.hpp"
@@ -150,16 +151,27 @@ struct Checker {
                   "publication, derived (show the arithmetic), by-ear (designed by ear or eye, said plainly)");
   }
 
-  // E0612: an entry's image lies inside the library. The library is shared: an absolute path or one
-  // that climbs out reads whatever the compiling machine has there, and would name it in patches.
+  // E0612: an entry's image lies inside the library. The library is shared: an absolute path, one
+  // that climbs out, or a symbolic link that leads out reads whatever the compiling machine has there,
+  // and would name it in patches. Links are followed as the compiler follows them (schema::confined_path).
   void images(const LibraryEntry& e) {
     for (const auto& st : e.syntax.statements) {
       const auto* h = std::get_if<compiler::HeightmapStmt>(&st.node);
       if (!h) continue;
       const std::filesystem::path p(h->path);
       const auto inside = (std::filesystem::path(e.relative_path).parent_path() / p).lexically_normal();
-      if (p.is_absolute() || inside.empty() || *inside.begin() == "..")
-        out.error("E0612", at(h->path_location), "image " + quoted(h->path) + " is outside the library",
+      std::string why;
+      if (p.is_absolute() || inside.empty() || *inside.begin() == "..") {
+        why = "is outside the library";
+      } else {
+        try {
+          schema::confined_path(lib.roots()[e.root].dir, inside.generic_string(), "the library");
+        } catch (const schema::OutsideFolder&) {
+          why = "is a symbolic link, or lies under one, that leads outside the library";
+        }
+      }
+      if (!why.empty())
+        out.error("E0612", at(h->path_location), "image " + quoted(h->path) + " " + why,
                   "copy the image into the library (library/images/) and name it relative to the entry's folder, "
                   "e.g. \"../images/NAME.png\"");
     }
