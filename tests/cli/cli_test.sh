@@ -406,6 +406,16 @@ expect_exit 0 "search by roughness and family" -- "$sp" library search --roughne
 [ "$(wc -l <"$tmp/out")" -eq 1 ] && has "$tmp/out" '^ribbed-cloth ' "roughness range and family" || bad "one textile in 0.4..0.6"
 expect_exit 1 "search with no match exits 1, like grep" -- "$sp" library search velvet "${L[@]}" "${I[@]}"
 has "$tmp/err" '^no entries match$' "no match said"
+# The shipped library: cork says `roughness 0.22`, polished steel and glossy paper 0.05; window glass
+# and the thesis' non-textural stimuli have no texture, so no roughness.
+expect_exit 0 "a bound equal to the written roughness finds it" -- "$sp" library search --roughness 0.22..0.22 --index "$tmp/shipped.sqlite"
+has "$tmp/out" '^cork +woods +roughness 0.22 ' "0.22..0.22 finds cork (roughness 0.22)"
+expect_exit 0 "an upper bound takes in the value written" -- "$sp" library search --roughness ..0.05 --index "$tmp/shipped.sqlite"
+has "$tmp/out" '^polished-steel ' "..0.05 finds polished-steel (roughness 0.05)"
+has "$tmp/out" '^glossy-paper ' "..0.05 finds glossy-paper (roughness 0.05)"
+if grep -Eq '^(window-glass|v1-Nothing|pencil-eraser) ' "$tmp/out"; then bad "a roughness range lists untextured entries"; else ok; fi
+expect_exit 0 "untextured entries say so" -- "$sp" library search window glass --index "$tmp/shipped.sqlite"
+has "$tmp/out" '^window-glass +glass +untextured ' "window-glass is listed as untextured, not roughness 0.00"
 expect_exit 2 "a bad roughness range is a usage error" -- "$sp" library search --roughness 0.6 "${L[@]}" "${I[@]}"
 has "$tmp/err" 'write A\.\.B, A\.\. or \.\.B' "the range's form is given"
 expect_exit 0 "show by alias" -- "$sp" library show rib-cloth "${L[@]}" "${I[@]}"

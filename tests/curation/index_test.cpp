@@ -147,6 +147,23 @@ TEST(LibrarySearch, ByNameAliasWordsPrefixRangeAndFamily) {
   }
 }
 
+TEST(LibrarySearch, ABoundEqualToTheWrittenRoughnessFindsIt) {
+  const auto b = built("index-bounds");
+  const Index idx(b.index);
+  auto only = [&](const std::string& range) {
+    SearchQuery s;
+    s.roughness = parse_roughness_range(range);
+    return names(search(idx, s));
+  };
+  // Each entry's file says `roughness X`; the index holds what the map's round trip gives back,
+  // which may differ from X in the last bits. A bound written as X takes it in, at either end.
+  EXPECT_EQ(only("0.2..0.2"), std::vector<std::string>{"fine-rib"});
+  EXPECT_EQ(only("0.45..0.45"), std::vector<std::string>{"ribbed-cloth"});
+  EXPECT_EQ(only("0.8..0.8"), (std::vector<std::string>{"coarse-grit", "old-grit"}));  // old-grit is like coarse-grit
+  EXPECT_EQ(only("..0.2"), std::vector<std::string>{"fine-rib"});
+  EXPECT_TRUE(only("0.2001..0.44").empty());
+}
+
 TEST(LibrarySearch, RoughnessRangesAndTheirErrors) {
   auto r = parse_roughness_range("0.4..0.6");
   EXPECT_EQ(r.min, 0.4);

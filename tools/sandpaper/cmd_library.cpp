@@ -252,8 +252,12 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
     for (const auto& h : hits)
       wn = std::max(wn, shown_name(h.entry, p.layered()).size()), wf = std::max(wf, h.entry.family.size());
     for (const auto& h : hits) {
-      std::cout << pad(shown_name(h.entry, p.layered()), wn) << "  " << pad(h.entry.family, wf) << "  roughness " << std::fixed
-                << std::setprecision(2) << h.entry.roughness << std::defaultfloat << "  \"" << h.entry.describes << "\"";
+      std::cout << pad(shown_name(h.entry, p.layered()), wn) << "  " << pad(h.entry.family, wf) << "  ";
+      if (h.entry.max_lateral_force_N > 0)
+        std::cout << "roughness " << std::fixed << std::setprecision(2) << h.entry.roughness << std::defaultfloat;
+      else
+        std::cout << "untextured    ";  // as wide as "roughness 0.00"
+      std::cout << "  \"" << h.entry.describes << "\"";
       if (!h.matched_alias.empty()) std::cout << "  (alias " << h.matched_alias << ")";
       if (!h.entry.deprecated_by.empty()) std::cout << "  [deprecated: use " << h.entry.deprecated_by << "]";
       std::cout << "\n";

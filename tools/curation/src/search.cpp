@@ -60,8 +60,11 @@ std::vector<SearchHit> search(const Index& index, const SearchQuery& q) {
   }
   std::vector<SearchHit> hits;
   std::set<std::string> seen;
+  // An entry without a texture has no roughness (the map does not apply): a roughness range leaves
+  // it out, as the catalog's page does.
   auto keep = [&](const IndexedEntry& e) {
-    return (q.family.empty() || e.family == q.family) && (!q.roughness || q.roughness->contains(e.roughness));
+    return (q.family.empty() || e.family == q.family) &&
+           (!q.roughness || (e.max_lateral_force_N > 0 && q.roughness->contains(e.roughness)));
   };
   auto add = [&](const std::string& name, const std::string& why, const std::string& alias, double rank) {
     if (seen.count(name)) return;

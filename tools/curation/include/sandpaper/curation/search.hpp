@@ -9,9 +9,15 @@
 namespace sandpaper::curation {
 
 // A closed, half-open or open roughness range: "0.4..0.6", "0.4..", "..0.6" (ratio scale, inclusive).
+// A stored roughness is what the map's round trip gives back for the value written (`roughness
+// 0.22` is held as 0.21999999999999997), so the bounds take in values within kRoughnessTolerance of
+// them: the value written is in, and no two values a file can write (6 significant digits) are merged.
 struct RoughnessRange {
+  static constexpr double kRoughnessTolerance = 1e-9;
   std::optional<double> min, max;
-  bool contains(double r) const { return (!min || r >= *min) && (!max || r <= *max); }
+  bool contains(double r) const {
+    return (!min || r >= *min - kRoughnessTolerance) && (!max || r <= *max + kRoughnessTolerance);
+  }
 };
 // Throws std::invalid_argument with a message that gives the form, for anything else.
 RoughnessRange parse_roughness_range(const std::string& text);
