@@ -159,6 +159,17 @@ nlohmann::json entry_json(const cur::IndexedEntry& e, bool layered) {
   return j;
 }
 
+// Over a layered path, the entries of lower roots that the roots in front change are compiled over
+// the path, as explain compiles them; one that does not compile there is answered from its root's
+// index, with the compiler's errors on stderr.
+void see_through(cur::LayeredIndex& idx, const Paths& p, const char* who) {
+  if (!p.layered()) return;
+  const auto failed = idx.see_through_path(p.calibration, "sim");
+  if (failed.all().empty()) return;
+  std::cerr << compiler::format_diagnostics(failed) << "sandpaper " << who
+            << ": the entries above do not compile over this library path; their own root's index answers for them\n";
+}
+
 // "world:corduroy" for an entry of a layered path, else its name.
 std::string shown_name(const cur::IndexedEntry& e, bool layered) { return layered ? e.root + ":" + e.name : e.name; }
 
@@ -236,7 +247,8 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
   q.limit = o.limit;
   if (!o.roughness.empty()) q.roughness = cur::parse_roughness_range(o.roughness);  // invalid_argument: exit 2
   if (const int rc = ensure_index(p, o.quiet, "library search")) return rc;
-  const cur::LayeredIndex idx(p.roots, p.indexes);
+  cur::LayeredIndex idx(p.roots, p.indexes);
+  see_through(idx, p, "library search");
   const auto hits = idx.search(q);
   if (o.json) {
     auto arr = nlohmann::json::array();
@@ -272,11 +284,12 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
 
 int run_show(const Paths& p, const LibraryCommandOptions& o) {
   if (const int rc = ensure_index(p, o.quiet, "library show")) return rc;
-  const cur::LayeredIndex layers(p.roots, p.indexes);
+  cur::LayeredIndex layers(p.roots, p.indexes);
+  see_through(layers, p, "library show");
   const auto found = layers.resolve(o.name);
   if (!found) return unknown_entry(layers, o.name, "library show");
   const auto& [layer, name] = *found;
-  const auto& idx = layers.index(layer);
+  const auto& idx = layers.index_of(layer, name);
   const auto e = *layers.entry(layer, name);
   const auto statements = idx.statements(name);
   const auto prov = idx.provenance(name);
@@ -356,11 +369,12 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
 
 int run_near(const Paths& p, const LibraryCommandOptions& o) {
   if (const int rc = ensure_index(p, o.quiet, "library near")) return rc;
-  const cur::LayeredIndex layers(p.roots, p.indexes);
+  cur::LayeredIndex layers(p.roots, p.indexes);
+  see_through(layers, p, "library near");
   const auto found = layers.resolve(o.name);
   if (!found) return unknown_entry(layers, o.name, "library near");
   const auto& [layer, name] = *found;
-  const auto& idx = layers.index(layer);
+  const auto& idx = layers.index_of(layer, name);
   const auto ns = layers.nearest(layer, name, o.limit);
   const std::string from = p.layered() ? layers.id(layer) + ":" + name : name;
   if (o.json) {

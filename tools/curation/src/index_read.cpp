@@ -50,6 +50,15 @@ Index::Index(const std::filesystem::path& path) {
   }
 }
 
+Index::Index(sqlite3* db) : db_(db) {
+  const auto version = meta("schema_version");
+  if (version != std::to_string(kIndexSchemaVersion)) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw IndexError("an index of schema " + (version.empty() ? std::string("?") : version) + ", not " + std::to_string(kIndexSchemaVersion));
+  }
+}
+
 Index::~Index() { sqlite3_close(db_); }
 
 std::string Index::meta(const std::string& key) const {

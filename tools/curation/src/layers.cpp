@@ -22,7 +22,8 @@ std::string root_id(const Index& index, const std::filesystem::path& root_dir) {
   return id;
 }
 
-LayeredIndex::LayeredIndex(const std::vector<std::filesystem::path>& roots, const std::vector<std::filesystem::path>& index_paths) {
+LayeredIndex::LayeredIndex(const std::vector<std::filesystem::path>& roots, const std::vector<std::filesystem::path>& index_paths)
+    : roots_(roots) {
   for (std::size_t i = 0; i < roots.size(); ++i) {
     const auto& r = roots[i];
     Layer l;
@@ -60,7 +61,7 @@ bool LayeredIndex::hidden(std::size_t layer, const std::string& name) const {
 }
 
 std::optional<IndexedEntry> LayeredIndex::entry(std::size_t layer, const std::string& name) const {
-  auto e = layers_.at(layer).index->entry(name);
+  auto e = index_of(layer, name).entry(name);
   if (e) e->root = layers_[layer].id;
   return e;
 }
@@ -83,7 +84,8 @@ std::vector<SearchHit> LayeredIndex::search(const SearchQuery& q) const {
       const auto got = curation::search(idx, lq);
       // A hidden entry is still what its alias names if no root in front has that alias.
       for (const auto& h : got)
-        if (h.why == "alias" ? resolve(h.matched_alias) == std::make_pair(i, h.entry.name) : !hidden(i, h.entry.name))
+        if (!through_path(i, h.entry.name) &&
+            (h.why == "alias" ? resolve(h.matched_alias) == std::make_pair(i, h.entry.name) : !hidden(i, h.entry.name)))
           kept.push_back(h);
       if (kept.size() >= q.limit || got.size() < lq.limit) {
         for (auto& h : kept) {
@@ -93,6 +95,17 @@ std::vector<SearchHit> LayeredIndex::search(const SearchQuery& q) const {
         break;
       }
     }
+  }
+  // The entries compiled over the path (see_through_path): none is hidden, but an alias may be.
+  if (path_) {
+    const auto fams = q.family.empty() ? std::vector<std::string>{} : path_->families();
+    if (q.family.empty() || std::find(fams.begin(), fams.end(), q.family) != fams.end())
+      for (auto& h : curation::search(*path_, q)) {
+        const std::size_t i = path_layer_.at(h.entry.name);
+        if (h.why == "alias" && resolve(h.matched_alias) != std::make_pair(i, h.entry.name)) continue;
+        h.entry.root = layers_[i].id;
+        hits.emplace_back(i, std::move(h));
+      }
   }
   std::stable_sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
     const int ca = category(a.second), cb = category(b.second);
@@ -109,14 +122,14 @@ std::vector<SearchHit> LayeredIndex::search(const SearchQuery& q) const {
 std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::string& name, std::size_t limit) const {
   const auto from = entry(layer, name);
   if (!from) return {};
-  const double weber = layers_.at(layer).index->weber_fraction();
+  const double weber = index_of(layer, name).weber_fraction();
   std::vector<Neighbour> found;
   for (std::size_t i = 0; i < layers_.size(); ++i)
     for (std::size_t lim = limit;; lim *= 2) {
       std::vector<Neighbour> kept;
       const auto got = nearest_to(*layers_[i].index, *from, lim, weber);
       for (const auto& n : got)
-        if (!hidden(i, n.entry.name) && n.entry.name != from->name) kept.push_back(n);
+        if (!hidden(i, n.entry.name) && !through_path(i, n.entry.name) && n.entry.name != from->name) kept.push_back(n);
       if (kept.size() >= limit || got.size() < lim) {
         for (auto& n : kept) {
           n.entry.root = layers_[i].id;
@@ -124,6 +137,12 @@ std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::strin
         }
         break;
       }
+    }
+  if (path_)
+    for (auto& n : nearest_to(*path_, *from, limit + 1, weber)) {
+      if (n.entry.name == from->name) continue;
+      n.entry.root = layers_[path_layer_.at(n.entry.name)].id;
+      found.push_back(std::move(n));
     }
   std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
     return a.distance != b.distance ? a.distance < b.distance : a.entry.name < b.entry.name;

@@ -110,6 +110,9 @@ struct IndexError : std::runtime_error {
 class Index {
  public:
   explicit Index(const std::filesystem::path& path);
+  // Takes an open database that holds an index of this schema (an in-memory one: LayeredIndex's
+  // view over a path); throws IndexError, closing it, if it does not.
+  explicit Index(sqlite3* db);
   ~Index();
   Index(const Index&) = delete;
   Index& operator=(const Index&) = delete;

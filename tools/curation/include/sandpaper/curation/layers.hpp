@@ -6,11 +6,14 @@
 #include <cstddef>
 #include <filesystem>
 #include <memory>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "sandpaper/compiler/diagnostic.hpp"
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/near.hpp"
 #include "sandpaper/curation/search.hpp"
@@ -39,6 +42,19 @@ class LayeredIndex {
   bool hidden(std::size_t layer, const std::string& name) const;
   std::optional<IndexedEntry> entry(std::size_t layer, const std::string& name) const;
 
+  // Compiles on `device`, over the whole path, every entry of a root below the front one that the
+  // roots in front may change (its `like` chain, reference or replacement reaches a name a root in
+  // front defines, or the thesis' readings there), as explain compiles it; entry(), index_of(),
+  // search() and nearest() then answer for those entries with what the compiler gives over the
+  // path, not with their root's own rows (docs/LIBRARY.md, "Queries see what the compiler sees").
+  // Returns the errors of entries that do not compile over the path (their root's rows answer for
+  // them). Throws calibration::CalibrationError for unreadable calibration.
+  compiler::Diagnostics see_through_path(const std::filesystem::path& calibration_dir, const std::string& device = "sim");
+  // The index whose rows (statements, provenance, meta) answer for entry `name` of root `layer`.
+  const Index& index_of(std::size_t layer, const std::string& name) const;
+  // Whether entry `name` of root `layer` was compiled over the path by see_through_path().
+  bool through_path(std::size_t layer, const std::string& name) const { return through_.count({layer, name}) > 0; }
+
   // search() over every root: exact names first, then aliases, then word matches by bm25 (without
   // words: by roughness); ties front root first; hidden entries left out. Throws
   // std::invalid_argument for a family no root has.
@@ -54,6 +70,12 @@ class LayeredIndex {
     std::unique_ptr<Index> index;
   };
   std::vector<Layer> layers_;
+  std::vector<std::filesystem::path> roots_;
+  // see_through_path(): the affected entries' rows compiled over the path (in memory), and which
+  // root each is of.
+  std::unique_ptr<Index> path_;
+  std::set<std::pair<std::size_t, std::string>> through_;
+  std::map<std::string, std::size_t> path_layer_;
 };
 
 // What a layered library's catalog compares (docs/CATALOG.md, "A layered library"): every entry
