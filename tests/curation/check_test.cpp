@@ -7,6 +7,7 @@
 
 #include "curation_test_support.hpp"
 #include "sandpaper/curation/check.hpp"
+#include "sandpaper/curation/index.hpp"
 
 namespace sandpaper::test {
 namespace {
@@ -65,7 +66,7 @@ TEST(LibraryCheck, ADuplicateAliasNamesBothPlaces) {
   // Entries are checked in name order: coarse-grit claims the alias first, ribbed-cloth's is the clash.
   const auto& d = only(r, "E0607", "textiles/ribbed-cloth.hmat:4:9");
   EXPECT_NE(d.message.find("alias 'rib-cloth' is already an alias of 'coarse-grit'"), std::string::npos) << d.message;
-  EXPECT_NE(d.suggestion.find("remove this alias or choose another"), std::string::npos) << d.suggestion;
+  EXPECT_NE(d.suggestion.find("remove this alias, or say one that is free ('rib-cloth-2' is)"), std::string::npos) << d.suggestion;
   ASSERT_EQ(d.notes.size(), 1u);
   EXPECT_TRUE(ends_with(d.notes[0].location.str(), "abrasives/coarse-grit.hmat:5:9")) << d.notes[0].location.str();
   EXPECT_EQ(r.errors(), 1u) << compiler::format_diagnostics(r.diagnostics);
@@ -77,6 +78,41 @@ TEST(LibraryCheck, AnAliasThatIsAnotherEntrysNameIsADuplicate) {
   const auto r = check(lib);
   const auto& d = only(r, "E0607", "abrasives/coarse-grit.hmat:5:9");
   EXPECT_NE(d.message.find("is already the name of textiles/fine-rib.hmat"), std::string::npos) << d.message;
+}
+
+// A new file that takes a name already in the library: the error is the newcomer's (the file the
+// library's index does not have), though it comes first in path order, and the help names a free name.
+TEST(LibraryCheck, ANameClashIsBlamedOnTheFileTheIndexDoesNotHave) {
+  const auto lib = mini_library_copy("check-clash");
+  std::ostringstream sink;
+  curation::Progress quiet("indexing", 0, true, sink, false);
+  ASSERT_TRUE(curation::build_index({lib, {}, {}, "sim"}, quiet).ok);
+  std::string text = read(lib / "textiles/fine-rib.hmat");
+  write(lib / "abrasives/fine-rib.hmat", text);
+  // A `fine-rib-2` already taken as an alias: the suggestion skips it.
+  edit(lib / "abrasives/coarse-grit.hmat", "  alias grit-80\n", "  alias grit-80\n  alias fine-rib-2\n");
+  auto r = check(lib);
+  const auto& d = only(r, "E0607", "abrasives/fine-rib.hmat:1:10");
+  EXPECT_NE(d.message.find("name 'fine-rib' is already the name of textiles/fine-rib.hmat (in the library's index)"), std::string::npos)
+      << d.message;
+  EXPECT_NE(d.suggestion.find("for instance abrasives/fine-rib-3.hmat with material \"fine-rib-3\""), std::string::npos) << d.suggestion;
+  ASSERT_EQ(d.notes.size(), 1u);
+  EXPECT_TRUE(ends_with(d.notes[0].location.str(), "textiles/fine-rib.hmat:1:10")) << d.notes[0].location.str();
+
+  // Without an index, the later file in path order is the one blamed.
+  std::filesystem::remove_all(lib / ".index");
+  r = check(lib);
+  (void)only(r, "E0607", "textiles/fine-rib.hmat:1:10");
+}
+
+// A file whose material names another entry: the help does not suggest renaming the file to that name.
+TEST(LibraryCheck, AMaterialNamedLikeAnotherEntryIsNotToldToTakeItsFileName) {
+  const auto lib = mini_library_copy("check-e0602");
+  write(lib / "textiles/fine-rib-offcut.hmat", read(lib / "textiles/fine-rib.hmat"));
+  const auto r = check(lib);
+  const auto& d = only(r, "E0602", "textiles/fine-rib-offcut.hmat:1:10");
+  EXPECT_NE(d.suggestion.find("write material \"fine-rib-offcut\""), std::string::npos) << d.suggestion;
+  EXPECT_EQ(d.suggestion.find("rename the file to fine-rib.hmat"), std::string::npos) << d.suggestion;
 }
 
 TEST(LibraryCheck, ALikeCycleIsReportedOnceWithItsWholePathThroughAliases) {

@@ -13,7 +13,9 @@
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/curation/display.hpp"
+#include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/percepts.hpp"
+#include "sqlite_util.hpp"
 
 namespace sandpaper::curation {
 
@@ -51,6 +53,25 @@ struct Checker {
   const compiler::Library& lib;
   const DisplayPaths& disp;
   Diagnostics& out;
+  // The front root's files that its index (if it has one, of this folder) lists as owning their
+  // names: in a clash of names these are the established entries, and the other file is the newcomer.
+  std::set<std::string> indexed_files = {};
+
+  // Whether `name` is taken in the front root, as a name or an alias.
+  bool taken(const std::string& name) const {
+    for (const auto& e : lib.entries()) {
+      if (e.root != 0) continue;
+      if (e.name == name || e.syntax.name == name) return true;
+      for (const auto& a : e.aliases)
+        if (a == name) return true;
+    }
+    return false;
+  }
+  // A name no entry of the front root has: NAME-2, NAME-3, ...
+  std::string free_name(const std::string& name) const {
+    for (int i = 2;; ++i)
+      if (const auto n = name + "-" + std::to_string(i); !taken(n)) return n;
+  }
 
   SourceLocation at(const SourceLocation& loc) const { return disp.relocate(loc); }
   // The entry its root resolves its name to (not a second file with a name the root already has).
@@ -89,9 +110,13 @@ struct Checker {
       out.error("E0602", where, "library entry " + e.relative_path + " has no `material \"" + e.name + "\" { ... }` block",
                 "wrap the statements in material \"" + e.name + "\" { ... }: a library entry is named by its file stem");
     } else if (e.syntax.name != e.name) {
+      // Renaming the file to a name another entry has would only trade this error for E0607.
+      const bool other_has_it = lib.entry(e.syntax.name) != nullptr && lib.entry(e.syntax.name) != &e;
       out.error("E0602", where, "material " + quoted(e.syntax.name) + " is in a file named " + quoted(e.name + ".hmat"),
-                "write material \"" + e.name + "\", or rename the file to " + e.syntax.name +
-                    ".hmat: an entry's name is its file stem, so `like` finds it");
+                other_has_it ? "write material \"" + e.name + "\": an entry's name is its file stem, so `like` finds it ('" +
+                                   e.syntax.name + "' is another entry's name already)"
+                             : "write material \"" + e.name + "\", or rename the file to " + e.syntax.name +
+                                   ".hmat: an entry's name is its file stem, so `like` finds it");
     }
     if (e.describes.empty())
       out.error("E0603", where, "library entry " + quoted(e.name) + " has no `describes`",
@@ -196,21 +221,32 @@ struct Checker {
       if (fresh || it->second.entry == &e) return;
       const auto& f = it->second;
       const std::string first_as = f.alias ? "an alias of " + quoted(f.entry->name) : "the name of " + f.entry->relative_path;
+      const bool indexed = indexed_files.count(f.entry->relative_path) > 0;
+      const auto free = free_name(token);
+      const auto dir = std::filesystem::path(e.relative_path).parent_path().string();
       auto& d = out.error("E0607", at(loc),
-                          std::string(alias ? "alias " : "name ") + quoted(token) + " is already " + first_as,
-                          alias ? "names and aliases are unique across the whole library: remove this alias or choose another"
-                                : "names are unique across the whole library (not per family): rename one of the two files and "
-                                  "its material");
+                          std::string(alias ? "alias " : "name ") + quoted(token) + " is already " + first_as +
+                              (indexed ? " (in the library's index)" : ""),
+                          alias ? "names and aliases are unique across the whole library: remove this alias, or say one that is free (" +
+                                      quoted(free) + " is)"
+                                : "names are unique across the whole library (not per family): rename this file and its material "
+                                  "to a free name that says how it differs, for instance " +
+                                      (dir.empty() ? "" : dir + "/") + free + ".hmat with material \"" + free + "\"");
       d.notes.push_back({at(f.loc), f.alias ? "the alias of " + quoted(f.entry->name) : "the other entry named " + quoted(token)});
     };
+    // The established entries (those the index has) claim first, then the others in path order:
+    // the error lands on the newcomer, the file a reviewer is looking at.
+    std::vector<const LibraryEntry*> order;
+    for (const auto& e : lib.entries())
+      if (e.root == 0 && indexed_files.count(e.relative_path)) order.push_back(&e);
+    for (const auto& e : lib.entries())
+      if (e.root == 0 && !indexed_files.count(e.relative_path)) order.push_back(&e);
     // Names first (they win over aliases when `like` looks a word up), then aliases.
-    for (const auto& e : lib.entries())
-      if (e.root == 0) claim(e.name, e, entry_loc(e), false);
-    for (const auto& e : lib.entries())
-      if (e.root == 0)
-        for (const auto& st : e.syntax.statements)
+    for (const auto* e : order) claim(e->name, *e, entry_loc(*e), false);
+    for (const auto* e : order)
+      for (const auto& st : e->syntax.statements)
         if (const auto* a = std::get_if<compiler::AliasStmt>(&st.node))
-          if (a->name != e.name) claim(a->name, e, a->location, true);
+          if (a->name != e->name) claim(a->name, *e, a->location, true);
   }
 
   // E0609: `deprecated replaced-by` must name an existing entry that is not itself deprecated.
@@ -309,6 +345,20 @@ std::string signature(const Diagnostics& d) {
 
 namespace {
 
+// The files the front root's index lists, each as owner of its entry's name; none if the root has
+// no index of this schema, or one of another folder.
+std::set<std::string> indexed_files(const std::vector<std::filesystem::path>& roots) {
+  std::set<std::string> out;
+  try {
+    const Index idx(roots.size() > 1 ? layer_index_path(roots.front()) : default_index_path(roots.front()));
+    if (idx.meta("library_dir") != std::filesystem::absolute(roots.front()).lexically_normal().string()) return out;
+    sql::Stmt files(idx.handle(), "SELECT file FROM entries");
+    while (files.step()) out.insert(files.text(0));
+  } catch (const std::exception&) {
+  }
+  return out;
+}
+
 // Checks the front root of `roots` against the roots below it.
 void check_front_root(const std::vector<std::filesystem::path>& roots, const std::filesystem::path& cal_dir,
                       const calibration::CalibrationSet& cal, CheckResult& result, Progress& progress) {
@@ -320,6 +370,7 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
   auto& out = result.diagnostics;
   for (const auto& e : lib.entries()) result.entries += e.root == 0;
   Checker ck{lib, disp, out};
+  ck.indexed_files = indexed_files(roots);
 
   // The manifest and the entries' syntax (E0601, the compiler's E01xx/E02xx): the front root's.
   {
