@@ -8,7 +8,7 @@ nlohmann::json diagnostics_json(const Diagnostics& ds) {
   auto arr = nlohmann::json::array();
   for (const auto& d : ds.all()) {
     nlohmann::json j{{"code", d.code},
-                     {"severity", d.severity == Severity::Error ? "error" : "warning"},
+                     {"severity", d.severity == Severity::Error ? "error" : d.severity == Severity::Warning ? "warning" : "accepted"},
                      {"location", d.location.str()},
                      {"line", d.location.line},
                      {"column", d.location.column},

@@ -1,5 +1,6 @@
 #include "sandpaper/compiler/compiler.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -15,11 +16,35 @@
 namespace sandpaper::compiler {
 namespace {
 
-CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Library& lib,
-                             const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device) {
-  CompileResult r;
-  auto tokens = lex(file, r.diagnostics);
-  auto syntax = parse(tokens, file, r.diagnostics);
+// The file's own `accept CODE "reason"` statements turn the warnings of those codes into notes that
+// give the reason (metadata: not inherited through `like`, each entry accepts for itself).
+void apply_accepts(const MaterialSyntax& syntax, Diagnostics& diagnostics) {
+  std::vector<const AcceptStmt*> accepts;
+  for (const auto& st : syntax.statements)
+    if (const auto* a = std::get_if<AcceptStmt>(&st.node)) accepts.push_back(a);
+  if (accepts.empty()) return;
+  Diagnostics out;
+  for (const auto& d : diagnostics.all()) {
+    const auto it = std::find_if(accepts.begin(), accepts.end(), [&](const AcceptStmt* a) { return a->code == d.code; });
+    Diagnostic* added = nullptr;
+    if (d.severity == Severity::Warning && it != accepts.end()) {
+      added = &out.accepted(d.code, d.location, "accepted: " + d.message, d.suggestion);
+      added->notes = d.notes;
+      added->notes.push_back({(*it)->location, "accepted here: \"" + (*it)->reason + "\""});
+      continue;
+    }
+    if (d.code == "E0009" || d.code == "W0009") continue;  // recounted by append below
+    added = d.severity == Severity::Error     ? &out.error(d.code, d.location, d.message, d.suggestion)
+            : d.severity == Severity::Warning ? &out.warning(d.code, d.location, d.message, d.suggestion)
+                                              : &out.accepted(d.code, d.location, d.message, d.suggestion);
+    added->notes = d.notes;
+  }
+  diagnostics = std::move(out);
+}
+
+CompileResult compile_phases(const MaterialSyntax& syntax, const Library& lib,
+                             const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device,
+                             CompileResult r) {
   ResolveContext ctx{lib, cal, {}};
   ResolvedMaterial m = resolve(syntax, ctx, r.diagnostics);
   // Never use the output of a failed phase: stop at the first phase with errors.
@@ -32,9 +57,20 @@ CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Libra
   warn_believability(m, program, cal, r.diagnostics);
   // What a hand moving at a common speed feels of a grating at the device's servo rate (issue 15).
   warn_felt_at_speed(m, program, cal, device, r.diagnostics);
+  apply_accepts(syntax, r.diagnostics);
   for (const auto& d : r.diagnostics.all())
     if (d.severity == Severity::Warning) program.warnings.push_back({d.code, d.location.str() + ": " + d.message});
   r.program = std::move(program);
+  return r;
+}
+
+CompileResult compile_source(std::shared_ptr<const SourceFile> file, const Library& lib,
+                             const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device) {
+  CompileResult r;
+  auto tokens = lex(file, r.diagnostics);
+  auto syntax = parse(tokens, file, r.diagnostics);
+  r = compile_phases(syntax, lib, cal, device, std::move(r));
+  if (!r.program) apply_accepts(syntax, r.diagnostics);  // a failed compile's warnings are accepted too
   return r;
 }
 

@@ -16,6 +16,10 @@ Diagnostic& Diagnostics::warning(std::string code, SourceLocation loc, std::stri
   return add(Severity::Warning, std::move(code), std::move(loc), std::move(message), std::move(suggestion));
 }
 
+Diagnostic& Diagnostics::accepted(std::string code, SourceLocation loc, std::string message, std::string suggestion) {
+  return add(Severity::Note, std::move(code), std::move(loc), std::move(message), std::move(suggestion));
+}
+
 bool Diagnostics::error_limit_reached() const noexcept { return errors_ >= schema::limits::kMaxErrorsPerFile; }
 
 Diagnostic& Diagnostics::add(Severity severity, std::string code, SourceLocation loc, std::string message,

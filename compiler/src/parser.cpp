@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "sandpaper/compiler/percepts.hpp"
+#include "sandpaper/schema/diagnostic_codes.hpp"
 #include "sandpaper/schema/force_laws.hpp"
 
 namespace sandpaper::compiler {
@@ -44,7 +45,7 @@ const char* source_kind_phrase(SourceKind k) {
 bool is_metadata(const Statement& st) {
   return std::holds_alternative<FamilyStmt>(st.node) || std::holds_alternative<AliasStmt>(st.node) ||
          std::holds_alternative<LicenceStmt>(st.node) || std::holds_alternative<DeprecatedStmt>(st.node) ||
-         std::holds_alternative<OverridesStmt>(st.node);
+         std::holds_alternative<OverridesStmt>(st.node) || std::holds_alternative<AcceptStmt>(st.node);
 }
 
 bool carries_numbers(const Statement& st) {
@@ -56,7 +57,8 @@ const std::vector<std::string>& statement_keywords() {
   static const std::vector<std::string> k = [] {
     std::vector<std::string> words{"describes", "like",   "roughness", "grating", "heightmap", "pattern",    "quantize",
                                    "spring",    "damper", "force",     "physics", "energy",    "size",       "extrapolate",
-                                   "family",    "alias",  "licence",   "source",  "deprecated", "overrides"};
+                                   "family",    "alias",  "licence",   "source",  "deprecated", "overrides",
+                                   "accept"};
     for (const auto& w : percept_words()) words.emplace_back(w.word);
     return words;
   }();
@@ -189,6 +191,7 @@ class Parser {
     else if (k == "deprecated") st.node = deprecated();
     // overrides := 'overrides'
     else if (k == "overrides") st.node = OverridesStmt{kw.location};
+    else if (k == "accept") st.node = accept();
     else if (first && at_end_of_input()) {
       // The whole input is one name: a representative description.
       st.keyword = "like";
@@ -281,6 +284,34 @@ class Parser {
     }
     const Token& t = next();
     return LicenceStmt{t.text, t.location};
+  }
+
+  // accept := 'accept' CODE STRING     -- CODE a registered warning code (W0350), STRING the reason
+  AcceptStmt accept() {
+    const std::string help = "write accept W0350 \"why this entry means what the warning says\": a warning's code, then the reason a reviewer reads";
+    if (peek().kind != TokenKind::Word) {
+      diags_.error("E0220", peek().location, std::string("expected the code of the warning to accept, found ") + describe(peek()), help);
+      throw StatementError{};
+    }
+    const Token& code = next();
+    const auto* known = schema::find_diagnostic_code(code.text);
+    if (!known || known->severity != schema::DiagnosticSeverity::Warning) {
+      std::vector<std::string> warnings;
+      for (const auto& d : schema::diagnostic_codes())
+        if (d.severity == schema::DiagnosticSeverity::Warning) warnings.emplace_back(d.code);
+      const auto guess = closest_match(code.text, warnings);
+      diags_.error("E0220", code.location,
+                   known ? "`accept` takes a warning's code; " + code.text + " is an error, which no entry can accept"
+                         : "no warning has the code '" + code.text + "'",
+                   known ? "fix what " + code.text + " says" : guess.empty() ? "the codes are listed in schema/LANGUAGE.md, \"Diagnostics\"" : "did you mean " + guess + "?");
+      throw StatementError{};
+    }
+    if (peek().kind != TokenKind::String || peek().text.find_first_not_of(" \t") == std::string::npos) {
+      diags_.error("E0220", peek().location, "`accept " + code.text + "` needs the reason, quoted, found " + describe(peek()), help);
+      throw StatementError{};
+    }
+    const Token& reason = next();
+    return AcceptStmt{code.text, reason.text, code.location};
   }
 
   // deprecated := 'deprecated' 'replaced-by' NAME

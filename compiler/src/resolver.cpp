@@ -123,7 +123,7 @@ bool changes_what_it_inherits(const std::vector<const Statement*>& kept) {
     if (!std::holds_alternative<LikeStmt>(st->node) && !std::holds_alternative<DescribesStmt>(st->node) &&
         !std::holds_alternative<FamilyStmt>(st->node) && !std::holds_alternative<AliasStmt>(st->node) &&
         !std::holds_alternative<LicenceStmt>(st->node) && !std::holds_alternative<DeprecatedStmt>(st->node) &&
-        !std::holds_alternative<OverridesStmt>(st->node))
+        !std::holds_alternative<OverridesStmt>(st->node) && !std::holds_alternative<AcceptStmt>(st->node))
       return true;
   return false;
 }

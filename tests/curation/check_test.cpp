@@ -3,6 +3,7 @@
 // device), and the other checks. Each asserts the code, where, and that the help says how to fix it.
 #include <gtest/gtest.h>
 
+#include <set>
 #include <sstream>
 
 #include "curation_test_support.hpp"
@@ -41,7 +42,50 @@ TEST(LibraryCheck, TheMiniLibraryPassesOnEveryShippedDevice) {
   EXPECT_EQ(r.warnings(), 0u) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_EQ(r.entries, 5u);
   EXPECT_EQ(r.devices.size(), 3u);
-  EXPECT_EQ(r.summary(), "checked 5 entries on 3 devices: 0 errors, 0 warnings");
+  // The three gratings' W0350 (on each device where it holds: 3 + 3 + 1) are accepted in their files.
+  EXPECT_EQ(r.accepted.all().size(), 7u) << compiler::format_diagnostics(r.accepted);
+  EXPECT_EQ(r.summary(), "checked 5 entries on 3 devices (uncalibrated, W0331: openffboard-2axis): 0 errors, 0 warnings, 7 accepted");
+}
+
+// Every warning the compiler gives an entry, on every device, as explain gives it: W0350 (a fine
+// grating felt weaker at 100 mm/s) once per device with its own numbers.
+TEST(LibraryCheck, ShowsEveryWarningTheCompilerGivesAnEntryOnEveryDevice) {
+  const auto lib = mini_library_copy("check-warnings");
+  edit(lib / "textiles/fine-rib.hmat",
+       "  accept W0350 \"test data: a 1.2 mm grating read at the servo rate loses force at 100 mm/s, as W0350 says; kept to test "
+       "what depends on it\"\n",
+       "");
+  const auto r = check(lib);
+  const auto ws = with_code(r.diagnostics, "W0350");
+  ASSERT_EQ(ws.size(), 3u) << compiler::format_diagnostics(r.diagnostics);
+  std::set<std::string> devices;
+  for (const auto* w : ws) {
+    EXPECT_TRUE(ends_with(w->location.str(), "textiles/fine-rib.hmat:6:3")) << w->location.str();
+    for (const char* d : {"sim", "sandpaper-1995", "openffboard-2axis"})
+      if (w->message.find(std::string("servo on ") + d + " reads") != std::string::npos) devices.insert(d);
+  }
+  EXPECT_EQ(devices.size(), 3u);
+  EXPECT_EQ(r.warnings(), 3u) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.accepted.all().size(), 4u);
+}
+
+// `accept` with nothing to accept warns (W0614) where it stands; accepting an error or an unknown code is E0220.
+TEST(LibraryCheck, AnAcceptWithNothingToAcceptWarnsAndOnlyWarningsCanBeAccepted) {
+  auto lib = mini_library_copy("check-accept");
+  edit(lib / "textiles/ribbed-cloth.hmat", "  licence \"CC0-1.0\"\n", "  licence \"CC0-1.0\"\n  accept W0304 \"no image here\"\n");
+  auto r = check(lib);
+  const auto& w = only(r, "W0614", "textiles/ribbed-cloth.hmat:6:10");
+  EXPECT_NE(w.message.find("'ribbed-cloth' accepts W0304, but neither a device's compile nor `library check` gives it that warning"), std::string::npos) << w.message;
+  EXPECT_EQ(r.errors(), 0u) << compiler::format_diagnostics(r.diagnostics);
+
+  edit(lib / "textiles/ribbed-cloth.hmat", "accept W0304", "accept E0304");
+  r = check(lib);
+  EXPECT_FALSE(with_code(r.diagnostics, "E0220").empty()) << compiler::format_diagnostics(r.diagnostics);
+  edit(lib / "textiles/ribbed-cloth.hmat", "accept E0304", "accept W0305x");
+  r = check(lib);
+  const auto e = with_code(r.diagnostics, "E0220");
+  ASSERT_FALSE(e.empty()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NE(e[0]->suggestion.find("did you mean W0305?"), std::string::npos) << e[0]->suggestion;
 }
 
 TEST(LibraryCheck, AMissingSourceIsAnErrorAtTheStatement) {
@@ -119,7 +163,7 @@ TEST(LibraryCheck, ALikeCycleIsReportedOnceWithItsWholePathThroughAliases) {
   const auto lib = mini_library_copy("check-cycle");
   edit(lib / "textiles/ribbed-cloth.hmat", "  licence \"CC0-1.0\"\n", "  licence \"CC0-1.0\"\n  like fine-rib\n");
   const auto r = check(lib);
-  const auto& d = only(r, "E0608", "textiles/fine-rib.hmat:5:8");
+  const auto& d = only(r, "E0608", "textiles/fine-rib.hmat:6:8");
   EXPECT_NE(d.message.find("`like` cycle: fine-rib -> ribbed-cloth (as 'rib-cloth') -> fine-rib"), std::string::npos) << d.message;
   EXPECT_NE(d.suggestion.find("remove one of the `like` lines"), std::string::npos) << d.suggestion;
   ASSERT_EQ(d.notes.size(), 1u);
@@ -145,7 +189,7 @@ TEST(LibraryCheck, AnEntryTheWeakestDeviceCannotPlayFailsWithTheCompilersReasonA
   EXPECT_NE(d.message.find("calibration/devices/sandpaper-1995.toml"), std::string::npos) << d.message;
   ASSERT_FALSE(d.notes.empty());
   EXPECT_NE(d.notes[0].message.find("error[E0310]"), std::string::npos) << d.notes[0].message;
-  EXPECT_TRUE(ends_with(d.notes[0].location.str(), "abrasives/coarse-grit.hmat:8:13")) << d.notes[0].location.str();
+  EXPECT_TRUE(ends_with(d.notes[0].location.str(), "abrasives/coarse-grit.hmat:9:13")) << d.notes[0].location.str();
   EXPECT_NE(d.suggestion.find("every entry must play on every shipped device"), std::string::npos) << d.suggestion;
   EXPECT_NE(d.suggestion.find("roughness"), std::string::npos) << d.suggestion;  // E0310's own help: the highest it reaches
   EXPECT_NE(fails[1]->message.find("'old-grit' does not compile for device 'sandpaper-1995'"), std::string::npos);

@@ -196,6 +196,8 @@ int run_check(const Paths& p, const LibraryCommandOptions& o) {
                                                   {"devices", r.devices},
                                                   {"errors", r.errors()},
                                                   {"warnings", r.warnings()},
+                                                  {"uncalibrated_devices", r.uncalibrated},
+                                                  {"accepted", diagnostics_json(r.accepted)},
                                                   {"diagnostics", diagnostics_json(r.diagnostics)}},
                                    2)
               << "\n";

@@ -34,8 +34,12 @@ std::size_t CheckResult::warnings() const {
 }
 std::string CheckResult::summary() const {
   auto plural = [](std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
-  return "checked " + plural(entries, "entry", "entries") + " on " + plural(devices.size(), "device", "devices") + ": " +
-         plural(errors(), "error", "errors") + ", " + plural(warnings(), "warning", "warnings");
+  std::string unc;
+  for (const auto& d : uncalibrated) unc += (unc.empty() ? " (uncalibrated, W0331: " : ", ") + d;
+  return "checked " + plural(entries, "entry", "entries") + " on " + plural(devices.size(), "device", "devices") +
+         (unc.empty() ? "" : unc + ")") + ": " +
+         plural(errors(), "error", "errors") + ", " + plural(warnings(), "warning", "warnings") +
+         (accepted.all().empty() ? "" : ", " + std::to_string(accepted.all().size()) + " accepted");
 }
 
 namespace {
@@ -345,6 +349,47 @@ std::string signature(const Diagnostics& d) {
 
 namespace {
 
+// check's own warnings (W0601, W0603, W0612, ...) at an entry's file that the entry accepts move to
+// result.accepted, as the compiler moves its own; then an `accept` no warning needed is W0614
+// (the warning went away, or never was, and a later one of that code would be hidden unseen).
+void accept_check_warnings(const compiler::Library& lib, const DisplayPaths& disp, const Checker& ck,
+                           std::map<const LibraryEntry*, std::set<std::string>>& accepted_by, CheckResult& result) {
+  std::map<std::string, const LibraryEntry*> by_file;
+  for (const auto& e : lib.entries())
+    if (e.root == 0) by_file[disp.path_of(e)] = &e;
+  const auto accept_of = [](const LibraryEntry& e, const std::string& code) -> const compiler::AcceptStmt* {
+    for (const auto& st : e.syntax.statements)
+      if (const auto* a = std::get_if<compiler::AcceptStmt>(&st.node); a && a->code == code) return a;
+    return nullptr;
+  };
+  Diagnostics kept;
+  for (const auto& d : result.diagnostics.all()) {
+    const auto it = d.severity == compiler::Severity::Warning && d.location.file ? by_file.find(d.location.file->name) : by_file.end();
+    const auto* a = it != by_file.end() ? accept_of(*it->second, d.code) : nullptr;
+    Diagnostics one;
+    if (a) {
+      auto& x = one.accepted(d.code, d.location, "accepted: " + d.message, d.suggestion);
+      x.notes = d.notes;
+      x.notes.push_back({ck.at(a->location), "accepted here: \"" + a->reason + "\""});
+      result.accepted.append(one);
+      accepted_by[it->second].insert(d.code);
+      continue;
+    }
+    // (An E0009 / W0009 "too many" line is kept as it was: what it counts was not kept to move.)
+    auto& x = d.severity == compiler::Severity::Error ? one.error(d.code, d.location, d.message, d.suggestion)
+                                                      : one.warning(d.code, d.location, d.message, d.suggestion);
+    x.notes = d.notes;
+    kept.append(one);
+  }
+  for (const auto& [e, codes] : accepted_by)
+    for (const auto& st : e->syntax.statements)
+      if (const auto* a = std::get_if<compiler::AcceptStmt>(&st.node); a && !codes.count(a->code))
+        kept.warning("W0614", ck.at(a->location),
+                     quoted(e->name) + " accepts " + a->code + ", but neither a device's compile nor `library check` gives it that warning",
+                     "remove the line: an `accept` with nothing to accept would hide a later " + a->code + " unseen");
+  result.diagnostics = std::move(kept);
+}
+
 // The files the front root's index lists, each as owner of its entry's name; none if the root has
 // no index of this schema, or one of another folder.
 std::set<std::string> indexed_files(const std::vector<std::filesystem::path>& roots) {
@@ -431,6 +476,8 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
   for (std::size_t i = 0; i < result.devices.size(); ++i)
     if (result.devices[i] == "sim") coord_device = i;
   std::map<std::string, Percepts> percepts;
+  // The warning codes each compiled entry accepts and that a warning needed (see accept_check_warnings).
+  std::map<const LibraryEntry*, std::set<std::string>> accepted_by;
   for (const auto& e : lib.entries()) {
     if (e.root != 0) continue;
     if (broken.count(lib.qualified_name(e)) || !ck.owns_name(e)) {
@@ -439,16 +486,27 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
     }
     // (signature, devices, diagnostics) of each distinct failure.
     std::vector<std::tuple<std::string, std::vector<std::string>, Diagnostics>> failures;
+    // Every warning the compiler gives the entry, on any device (what explain would say): one
+    // that reads the same on every device is said once; else each says on which devices.
+    std::vector<std::pair<Diagnostic, std::vector<std::string>>> warnings;
+    const auto own_file = lib.source_name(e);
     for (std::size_t i = 0; i < compilers.size(); ++i) {
       const auto r = compilers[i].compile_file(disp.path_of(e));
-      if (i == coord_device)
-        for (const auto& w : r.diagnostics.all())
-          if (w.code == "W0340") out.append([&] {
-            Diagnostics one;
-            auto moved = disp.relocate(w);
-            one.warning(moved.code, moved.location, moved.message, moved.suggestion).notes = moved.notes;
-            return one;
-          }());
+      for (const auto& w : r.diagnostics.all()) {
+        if (w.severity == compiler::Severity::Error) continue;  // a note here is an accepted warning
+        // The device's, not the entry's: said once, in the summary.
+        if (w.code == "W0331") {
+          result.uncalibrated.insert(result.devices[i]);
+          continue;
+        }
+        // A warning at another entry's statement (one this entry inherits) is that entry's to see.
+        if (w.location.file && w.location.file->name != own_file && w.location.file->name.rfind("library/", 0) == 0) continue;
+        auto it = std::find_if(warnings.begin(), warnings.end(), [&](const auto& x) {
+          return x.first.code == w.code && x.first.message == w.message && x.first.location.str() == w.location.str();
+        });
+        if (it != warnings.end()) it->second.push_back(result.devices[i]);
+        else warnings.emplace_back(w, std::vector<std::string>{result.devices[i]});
+      }
       if (r.ok()) {
         if (i == coord_device && r.material) percepts[e.name] = percepts_of(*r.material, *r.program, cal);
         continue;
@@ -458,6 +516,21 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
       if (it != failures.end()) std::get<1>(*it).push_back(result.devices[i]);
       else failures.emplace_back(sig, std::vector<std::string>{result.devices[i]}, r.diagnostics);
     }
+    std::set<std::string> accepted_codes;
+    for (const auto& [w, devices] : warnings) {
+      if (w.severity == compiler::Severity::Note) accepted_codes.insert(w.code);
+      std::string on;
+      if (devices.size() < result.devices.size())
+        for (const auto& d : devices) on += (on.empty() ? " (on device " : ", ") + quoted(d);
+      auto moved = disp.relocate(w);
+      Diagnostics one;
+      const auto message = moved.message + (on.empty() ? "" : on + ")");
+      (w.severity == compiler::Severity::Note ? one.accepted(moved.code, moved.location, message, moved.suggestion)
+                                              : one.warning(moved.code, moved.location, message, moved.suggestion))
+          .notes = moved.notes;
+      (w.severity == compiler::Severity::Note ? result.accepted : out).append(one);
+    }
+    if (failures.empty()) accepted_by[&e] = std::move(accepted_codes);
     for (const auto& [sig, devices, diags] : failures) {
       std::string which, files;
       for (const auto& d : devices) {
@@ -548,10 +621,11 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
                        : "; " + std::to_string(more) + " more entr" + (more == 1 ? "y" : "ies") +
                              " of the family, earlier in name order, " + (more == 1 ? "is" : "are") + " also within one force JND"),
         "make them differ by at least one force JND (a roughness further apart) or in period class, or deprecate one; "
-        "if both are wanted (the thesis' own stimuli share force levels), this warning can stay");
+        "if both are wanted (the thesis' own stimuli share force levels), accept it in the entry: accept W0601 \"why both\"");
     for (std::size_t k = 0; k < partners.size(); ++k)
       d.notes.push_back({ck.entry_loc(*entries[partners[k].second]), quoted(entries[partners[k].second]->name) + " is here"});
   }
+  accept_check_warnings(lib, disp, ck, accepted_by, result);
 }
 
 }  // namespace

@@ -35,6 +35,9 @@ class Diagnostics {
   // The returned reference may be a scratch entry (past the limit); notes added to it are dropped.
   Diagnostic& error(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
   Diagnostic& warning(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
+  // A warning the material accepts (`accept CODE "reason"`): kept as a note with the warning's
+  // code, so that it is shown but neither counted as a warning nor listed in the patch program.
+  Diagnostic& accepted(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
   void append(const Diagnostics& other);
   bool has_errors() const noexcept { return errors_ > 0; }
   // True once errors are no longer kept: a phase may stop looking for more.

@@ -108,11 +108,14 @@ struct LicenceStmt { std::string licence; SourceLocation location; };  // `licen
 struct DeprecatedStmt { std::string replacement; SourceLocation location; };  // `deprecated replaced-by NAME`
 // `overrides`: the entry means to hide an entry of the same name in a library root below it.
 struct OverridesStmt { SourceLocation location; };
+// `accept W0350 "the fine ribs are the point of this entry"`: the entry means a warning the compiler
+// gives it; the warning becomes a note that shows the reason (library review does not fail on it).
+struct AcceptStmt { std::string code, reason; SourceLocation location; };
 
 using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, GratingStmt, HeightmapStmt, SpringStmt,
                                    DamperStmt, SizeStmt, ExtrapolateStmt, LawStmt, EnergyStmt, PatternStmt,
                                    QuantizeStmt, PerceptStmt, FamilyStmt, AliasStmt, LicenceStmt, DeprecatedStmt,
-                                   OverridesStmt>;
+                                   OverridesStmt, AcceptStmt>;
 
 // Where a statement's numbers come from: `source standard "FEPA 43-1:2006: P80 median 201 um"`, written
 // after the statement it sources (issue 6: every number in the library names its source).

@@ -5,7 +5,7 @@ import { StreamLanguage } from "@codemirror/language";
 
 const statements = new Set([
   "material", "describes", "like", "roughness", "grating", "heightmap", "pattern", "quantize", "spring", "damper",
-  "size", "extrapolate", "force", "physics", "energy", "family", "alias", "licence", "license", "deprecated", "overrides",
+  "size", "extrapolate", "force", "physics", "energy", "family", "alias", "licence", "license", "deprecated", "overrides", "accept",
   "source", "workspace", "patch", "viscosity", "stickiness", "slipperiness", "softness", "springiness", "bumpiness",
 ]);
 const options = new Set([
