@@ -471,6 +471,15 @@ def main(argv: list[str] | None = None) -> int:
     (out / "images").mkdir()
     for p in pngs:
         shutil.copyfile(args.images_from / p, out / "images" / p)
+        # Each image's licence and credit (REUSE sidecar), as library check requires: the source's own
+        # if it has one, else one saying where the copy came from.
+        side = args.images_from / (p + ".license")
+        if side.is_file():
+            shutil.copyfile(side, out / "images" / (p + ".license"))
+        else:
+            (out / "images" / (p + ".license")).write_text(
+                f"SPDX-FileCopyrightText: copied by tools/library_gen.py from {args.images_from / p}; see that folder for its source\n"
+                "SPDX-License-Identifier: LicenseRef-see-source-folder\n")
     if shipped:
         for item in sorted(SHIPPED.iterdir()):
             if item.name.startswith(".") or item.name == "library.toml":

@@ -217,13 +217,67 @@ TEST(LibraryCheck, LicencesMustBeSpdxAndUnknownOnesWarn) {
   edit(lib / "textiles/fine-rib.hmat", "licence \"CC0-1.0\"", "licence \"CC-BY-4\"");
   edit(lib / "textiles/ribbed-cloth.hmat", "licence \"CC0-1.0\"", "licence \"public domain!\"");
   const auto r = check(lib);
-  const auto& w = only(r, "W0603", "textiles/fine-rib.hmat:4:11");
+  // The warning points at the id, inside the quotes; the error at where the expression stops parsing.
+  const auto& w = only(r, "W0603", "textiles/fine-rib.hmat:4:12");
   EXPECT_EQ(w.severity, compiler::Severity::Warning);
   EXPECT_NE(w.suggestion.find("did you mean \"CC-BY-4.0\"?"), std::string::npos) << w.suggestion;
-  only(r, "E0605", "textiles/ribbed-cloth.hmat:5:11");
+  const auto& e = only(r, "E0605", "textiles/ribbed-cloth.hmat:5:19");
+  EXPECT_NE(e.message.find("expected AND, OR or WITH here"), std::string::npos) << e.message;
   EXPECT_TRUE(curation::known_licence("LicenseRef-museum-scan"));
   EXPECT_TRUE(curation::well_formed_licence("MIT OR Apache-2.0"));
   EXPECT_FALSE(curation::well_formed_licence(""));
+}
+
+// SPDX 2.3 Annex D: AND, OR, WITH, '+' and parentheses; the operators are case-sensitive.
+TEST(LibraryCheck, LicenceExpressionsParseAsSpdxSaysAndAVersionLeftOffIsGuessed) {
+  for (const char* ok : {"CC-BY-SA-4.0 AND CC0-1.0", "(MIT OR Apache-2.0) AND CC-BY-4.0", "GPL-2.0+ WITH Classpath-exception-2.0",
+                         "DocumentRef-scan:LicenseRef-museum", " CC0-1.0 "}) {
+    const auto ex = curation::parse_licence_expression(ok);
+    EXPECT_TRUE(ex.ok()) << ok << ": " << ex.error;
+  }
+  const auto two = curation::parse_licence_expression("CC-BY-SA-4.0 AND CC0-1.0");
+  EXPECT_EQ(two.ids, (std::vector<std::string>{"CC-BY-SA-4.0", "CC0-1.0"}));
+  for (const char* bad : {"", "MIT and CC0-1.0", "(MIT OR CC0-1.0", "MIT OR", "AND MIT", "MIT )", "MIT, CC0-1.0"})
+    EXPECT_FALSE(curation::parse_licence_expression(bad).ok()) << bad;
+  EXPECT_EQ(curation::parse_licence_expression("(MIT OR CC0-1.0").error_at, 15u);
+  EXPECT_EQ(curation::licence_guess("CC0"), "CC0-1.0");
+  EXPECT_EQ(curation::licence_guess("CC-BY-SA"), "CC-BY-SA-4.0");
+
+  const auto lib = mini_library_copy("check-licence-expr");
+  edit(lib / "textiles/fine-rib.hmat", "licence \"CC0-1.0\"", "licence \"CC-BY-SA-4.0 AND CC0-1.0\"");
+  edit(lib / "textiles/ribbed-cloth.hmat", "licence \"CC0-1.0\"", "licence \"CC0\"");
+  const auto r = check(lib);
+  const auto& w = only(r, "W0603", "textiles/ribbed-cloth.hmat:5:12");
+  EXPECT_NE(w.suggestion.find("did you mean \"CC0-1.0\"?"), std::string::npos) << w.suggestion;
+  EXPECT_EQ(r.errors(), 0u) << compiler::format_diagnostics(r.diagnostics);
+}
+
+// Every image an entry uses carries its own licence and credit in a REUSE sidecar (E0615), whose
+// licence is checked as an entry's is.
+TEST(LibraryCheck, AnImageWithoutItsLicenceAndCreditIsAnError) {
+  const auto lib = mini_library_copy("check-image-licence");
+  std::filesystem::create_directories(lib / "images");
+  std::filesystem::copy_file(std::filesystem::path(SANDPAPER_SOURCE_DIR) / "library/images/gravel.png", lib / "images/gravel.png");
+  write(lib / "abrasives/gravel-grit.hmat",
+        "material \"gravel-grit\" {\n  describes \"grit\"\n  family abrasives\n  licence \"CC0-1.0\"\n"
+        "  heightmap \"../images/gravel.png\" size 6 mm\n  source by-ear \"x\"\n  roughness 0.6\n  source by-ear \"x\"\n"
+        "  accept W0304 \"a photograph\"\n}\n");
+  auto r = check(lib);
+  const auto& none = only(r, "E0615", "abrasives/gravel-grit.hmat:5:13");
+  EXPECT_NE(none.message.find("has no licence: there is no"), std::string::npos) << none.message;
+  EXPECT_NE(none.suggestion.find("SPDX-License-Identifier: CC0-1.0"), std::string::npos) << none.suggestion;
+
+  write(lib / "images/gravel.png.license", "SPDX-License-Identifier: CC0\n");
+  r = check(lib);
+  const auto& credit = only(r, "E0615", "images/gravel.png.license:1:1");
+  EXPECT_NE(credit.message.find("no SPDX-FileCopyrightText"), std::string::npos) << credit.message;
+  const auto& guess = only(r, "W0603", "images/gravel.png.license:1:26");
+  EXPECT_NE(guess.suggestion.find("did you mean \"CC0-1.0\"?"), std::string::npos) << guess.suggestion;
+
+  write(lib / "images/gravel.png.license", "SPDX-FileCopyrightText: scikit-image sample data\nSPDX-License-Identifier: CC0-1.0\n");
+  r = check(lib);
+  EXPECT_TRUE(with_code(r.diagnostics, "E0615").empty()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_TRUE(with_code(r.diagnostics, "W0603").empty()) << compiler::format_diagnostics(r.diagnostics);
 }
 
 TEST(LibraryCheck, DeprecationMustPointAtALiveEntry) {

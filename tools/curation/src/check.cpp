@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <tuple>
 #include <map>
 #include <set>
@@ -60,6 +62,7 @@ struct Checker {
   // The front root's files that its index (if it has one, of this folder) lists as owning their
   // names: in a clash of names these are the established entries, and the other file is the newcomer.
   std::set<std::string> indexed_files = {};
+  std::set<std::string> images_seen = {};  // images whose licence is checked
 
   // Whether `name` is taken in the front root, as a name or an alias.
   bool taken(const std::string& name) const {
@@ -160,14 +163,72 @@ struct Checker {
     if (!lic || lic->licence.empty()) {
       out.error("E0605", lic ? at(lic->location) : where, "library entry " + quoted(e.name) + " has no licence",
                 "add licence \"CC0-1.0\" (or another SPDX id, https://spdx.org/licenses/): entries are shared");
-    } else if (!well_formed_licence(lic->licence)) {
-      out.error("E0605", at(lic->location), "licence " + quoted(lic->licence) + " is not an SPDX licence id or expression",
-                "write an SPDX id such as \"CC0-1.0\" or \"CC-BY-4.0\" (https://spdx.org/licenses/)");
-    } else if (!known_licence(lic->licence)) {
-      const auto guess = compiler::closest_match(lic->licence, known_licences());
-      out.warning("W0603", at(lic->location), "licence " + quoted(lic->licence) + " is not one library check knows",
+    } else {
+      auto loc = lic->location;
+      loc.column += 1;  // past the opening quote: the expression's offsets count from its first character
+      licence_text(lic->licence, loc, "licence");
+    }
+  }
+
+  // E0605 / W0603 for an SPDX expression written at `loc` (its first character): where it does not
+  // parse, and each id the check does not know, with "did you mean".
+  void licence_text(const std::string& text, SourceLocation loc, const std::string& what) {
+    const auto ex = parse_licence_expression(text);
+    if (!ex.ok()) {
+      auto l = loc;
+      l.column += static_cast<int>(ex.error_at);
+      out.error("E0605", at(l), what + " " + quoted(text) + " is not an SPDX licence id or expression: " + ex.error,
+                "write an SPDX id such as \"CC0-1.0\" or \"CC-BY-4.0\", or ids joined by AND, OR, WITH and parentheses "
+                "(\"CC-BY-SA-4.0 AND CC0-1.0\"; https://spdx.org/licenses/)");
+      return;
+    }
+    std::size_t from = 0;
+    for (const auto& id : ex.ids) {
+      if (known_licence(id)) continue;
+      auto l = loc;
+      const auto off = text.find(id, from);
+      if (off != std::string::npos) l.column += static_cast<int>(off), l.length = static_cast<int>(id.size()), from = off + id.size();
+      const auto guess = licence_guess(id);
+      out.warning("W0603", at(l), what + " id " + quoted(id) + " is not one library check knows",
                   guess.empty() ? "check the id at https://spdx.org/licenses/ (use LicenseRef-... for a licence outside SPDX)"
                                 : "did you mean \"" + guess + "\"?");
+    }
+  }
+
+  // E0615: an image names its licence and credit in a REUSE sidecar (<image>.license); said once an image.
+  void image_licence(const LibraryEntry& e, const compiler::HeightmapStmt& h, const std::filesystem::path& inside) {
+    const auto image = lib.roots()[e.root].dir / inside;
+    if (!images_seen.insert(image.lexically_normal().string()).second) return;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(image, ec)) return;  // the compiler's E0314 / missing-image error says so
+    const auto shown = disp.path_of(inside.generic_string());
+    const auto side = read_image_licence(image);
+    const std::string form = "SPDX-License-Identifier: CC0-1.0\nSPDX-FileCopyrightText: who made the image, and where it is from";
+    if (!side) {
+      out.error("E0615", at(h.path_location), "image " + quoted(h.path) + " has no licence: there is no " + shown + ".license",
+                "write " + shown + ".license (REUSE) with two lines:\n" + form);
+      return;
+    }
+    std::ifstream in(side->sidecar, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto file = std::make_shared<const compiler::SourceFile>(shown + ".license", text.substr(0, 64 * 1024));
+    SourceLocation top;
+    top.file = file;
+    top.line = 1;
+    top.column = 1;
+    if (side->licence.empty())
+      out.error("E0615", top, "image " + quoted(h.path) + "'s licence file has no SPDX-License-Identifier", "add a line:\n" + form.substr(0, form.find('\n')));
+    if (side->credit.empty())
+      out.error("E0615", top, "image " + quoted(h.path) + "'s licence file has no SPDX-FileCopyrightText (the credit)",
+                "add a line: SPDX-FileCopyrightText: who made the image, and where it is from");
+    if (!side->licence.empty()) {
+      SourceLocation l;
+      l.file = file;
+      l.line = side->licence_line;
+      const auto line = file->line_text(side->licence_line);
+      l.column = static_cast<int>(line.find(side->licence)) + 1;
+      l.length = static_cast<int>(side->licence.size());
+      licence_text(side->licence, l, "image licence");
     }
   }
 
@@ -203,6 +264,8 @@ struct Checker {
         out.error("E0612", at(h->path_location), "image " + quoted(h->path) + " " + why,
                   "copy the image into the library (library/images/) and name it relative to the entry's folder, "
                   "e.g. \"../images/NAME.png\"");
+      else
+        image_licence(e, *h, inside);
     }
   }
 

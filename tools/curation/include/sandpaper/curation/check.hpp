@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/curation/licences.hpp"
 #include "sandpaper/curation/progress.hpp"
 
 namespace sandpaper::curation {
@@ -42,10 +43,5 @@ struct CheckResult {
 // for an unknown device in `devices`. Problems of the library itself are diagnostics, never exceptions.
 CheckResult check_library(const CheckOptions& options, Progress& progress);
 
-// Whether `id` is a licence the check knows (a short list of SPDX ids used for content, plus
-// LicenseRef-*); `well_formed` says whether it at least has the form of an SPDX id or expression.
-bool known_licence(const std::string& id);
-bool well_formed_licence(const std::string& id);
-const std::vector<std::string>& known_licences();
 
 }  // namespace sandpaper::curation
