@@ -549,6 +549,13 @@ TEST(Catalog, IndexListsEveryEntryWithItsCompiledRoughness) {
   // Array files only on request (--arrays).
   EXPECT_FALSE(fs::exists(out / "entries" / "gravel.shade"));
   EXPECT_EQ(read(out / "entries" / "gravel.html").find(".shade\""), std::string::npos);
+  // An image texture's page gives the image's own licence, linked to its text, and its credit
+  // (library/images/gravel.png.license).
+  const auto gravel = read(out / "entries" / "gravel.html");
+  EXPECT_NE(gravel.find("<th scope=\"row\">image licence</th><td colspan=\"4\"><a class=\"licence\" "
+                        "href=\"https://spdx.org/licenses/CC0-1.0.html\">CC0-1.0</a> \xC2\xB7 scikit-image sample data"),
+            std::string::npos)
+      << gravel.substr(gravel.find("image licence") == std::string::npos ? 0 : gravel.find("image licence"), 400);
   EXPECT_TRUE(fs::is_regular_file(out / "assets" / "index.js"));
   EXPECT_TRUE(fs::is_regular_file(out / "assets" / "catalog.css"));
   fs::remove_all(out.parent_path());

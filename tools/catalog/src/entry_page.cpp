@@ -2,12 +2,14 @@
 #include "sandpaper/catalog/entry_page.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <regex>
 #include <sstream>
 #include <system_error>
 
 #include "sandpaper/catalog/html.hpp"
+#include "sandpaper/curation/licences.hpp"
 #include "sandpaper/schema/force_laws.hpp"
 
 namespace sandpaper::catalog {
@@ -99,6 +101,30 @@ std::string perceptual(const EntryView& v) {
   return o.str();
 }
 
+// The image's own licence and credit, from its REUSE sidecar (curation/licences.hpp): each SPDX id
+// linked to its licence text at spdx.org, then the credit.
+std::string image_licence_html(const std::string& image) {
+  const auto side = curation::read_image_licence(image);
+  if (!side || side->licence.empty()) return "<em>not stated</em> (no <code>" + esc(std::filesystem::path(image).filename().string()) + ".license</code>)";
+  std::string html = esc(side->licence);
+  const auto ex = curation::parse_licence_expression(side->licence);
+  if (ex.ok()) {
+    html.clear();
+    std::size_t from = 0;
+    for (const auto& id : ex.ids) {
+      const auto at = side->licence.find(id, from);
+      if (at == std::string::npos) continue;
+      html += esc(side->licence.substr(from, at - from));
+      html += id.rfind("LicenseRef-", 0) == 0 || id.find(':') != std::string::npos
+                  ? "<span class=\"licence\">" + esc(id) + "</span>"
+                  : "<a class=\"licence\" href=\"https://spdx.org/licenses/" + esc(id) + ".html\">" + esc(id) + "</a>";
+      from = at + id.size();
+    }
+    html += esc(side->licence.substr(from));
+  }
+  return html + (side->credit.empty() ? "" : " \xC2\xB7 " + esc(side->credit));
+}
+
 std::string texture_rows(const compiler::Library& lib, const compiler::ResolvedMaterial& m) {
   constexpr double deg = 180 / std::numbers::pi;
   std::string s;
@@ -110,6 +136,7 @@ std::string texture_rows(const compiler::Library& lib, const compiler::ResolvedM
     s += text_row("texture", "height map from the image <code>" + esc(h->stated_path) + "</code>" +
                                  (h->repeat ? ", repeated" : "") + (h->invert ? ", inverted (dark = high)" : "") +
                                  (h->channel.empty() ? "" : ", channel " + esc(h->channel)));
+    s += text_row("image licence", image_licence_html(h->path));
     s += param_row(lib, "width", h->width, 1e3, "mm") + param_row(lib, "height", h->height, 1e3, "mm") +
          opt_row(lib, "smoothing (sigma)", h->smoothing, 1e3, "mm") + opt_row(lib, "sampling", h->sampling, 1e3, "mm") +
          opt_row(lib, "relief depth", h->depth, 1e3, "mm") + opt_row(lib, "press", h->press, 1, "N");

@@ -51,6 +51,8 @@ class Hasher {
                              ? p.string()
                              : (std::filesystem::path(e.relative_path).parent_path() / p).lexically_normal().generic_string();
         in += "\nimage " + h->path + " " + file("library/" + rel, out);
+        // Its licence and credit, which the catalog's page shows (licences.hpp).
+        in += "\nimage-licence " + file("library/" + rel + ".license", out);
       }
     }
     for (const auto& name : e.likes) {
