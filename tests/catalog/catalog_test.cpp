@@ -216,6 +216,58 @@ TEST(CatalogPicture, SpringIsDrawnAsItsPotentialBowlAndADamperNotAtAll) {
   EXPECT_NE(none.left_out[0].find("velocity"), std::string::npos);
 }
 
+// The strongest frequency (cycles across the picture, 1..side/2) of a thumbnail's mean row, and
+// its share of the row's power (mean removed): 0 when the row is flat.
+std::pair<int, double> dominant_cycles(const catalog::Picture& pic) {
+  const int n = pic.nx;
+  std::vector<double> row(n, 0.0);
+  for (int col = 0; col < n; ++col) {
+    for (int r = 0; r < pic.ny; ++r) row[col] += pic.shade.values[static_cast<std::size_t>(r) * n + col];
+    row[col] /= pic.ny;
+  }
+  double mean = 0;
+  for (double v : row) mean += v / n;
+  double total = 0, best = 0;
+  int best_k = 0;
+  for (int k = 1; k <= n / 2; ++k) {
+    double re = 0, im = 0;
+    for (int i = 0; i < n; ++i) {
+      re += (row[i] - mean) * std::cos(2 * std::numbers::pi * k * i / n);
+      im -= (row[i] - mean) * std::sin(2 * std::numbers::pi * k * i / n);
+    }
+    const double p = re * re + im * im;
+    total += p;
+    if (p > best) best = p, best_k = k;
+  }
+  return {best_k, total > 0 ? best / total : 0.0};
+}
+
+// Thumbnails share one scale (40 mm across 128 pixels, 0.3125 mm a pixel): a grating's picture must
+// show its own period, or none when the period is under two pixels, never a beat between its walls
+// and the pixels (pinwale's 1.6 mm looked coarser than corduroy's 3.2 mm). k0 = 40 mm / period.
+TEST(CatalogPicture, AThumbnailShowsTheGratingsOwnPeriodOrNoneNeverAnAlias) {
+  const auto& c = test::shipped_compiler();
+  for (const double period_mm : {0.3, 0.5, 0.55, 0.7, 0.9, 1.1, 1.6, 2.2, 3.2, 5.0}) {
+    std::ostringstream text;
+    text << "grating period " << period_mm << " mm hill 60%; roughness 0.4";
+    const auto r = c.compile_text(text.str());
+    ASSERT_TRUE(r.ok()) << text.str();
+    const auto pic = catalog::render_picture_window(*r.program, 0.04, 128);
+    ASSERT_EQ(pic.nx, 128);
+    const double k0 = 40.0 / period_mm;
+    const auto [k, share] = dominant_cycles(pic);
+    int lo = 255, hi = 0;
+    for (auto v : pic.shade.values) lo = std::min<int>(lo, v), hi = std::max<int>(hi, v);
+    if (k0 < 64) {  // below the pixels' Nyquist frequency: the period can be drawn, and must be
+      EXPECT_NEAR(k, k0, 1.0) << period_mm << " mm: strongest at " << k << " cycles (share " << share << "), expected " << k0;
+    } else {
+      // Under two pixels a period the walls blur to grey: whatever remains must not be a strong
+      // stripe of another period (within 24 grey levels of flat).
+      EXPECT_LT(hi - lo, 24) << period_mm << " mm: contrast " << hi - lo << ", strongest at " << k << " cycles (share " << share << ")";
+    }
+  }
+}
+
 TEST(CatalogPlot, ScanIsTheEvaluatorsForceAtEachPoint) {
   const auto p = grating(std::numbers::pi / 4);
   const auto scan = catalog::scan_force(p, 0.01, 0.05, 801);

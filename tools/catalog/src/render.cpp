@@ -104,6 +104,92 @@ void shade_window(const schema::PatchProgram& drawn, Picture& pic) {
   pic.shade = compiler::shade_slopes(pic.nx, pic.ny, sx, sy, std::nullopt);
 }
 
+// Shades `drawn` over pic's window from its height field low-pass filtered at the pixel's scale, for
+// a texture finer than a pixel (`finest_m`: its finest length). Sampling the force at pixel centres
+// beats a fine grating's walls against the pixels (at 0.3125 mm a pixel, a 3.2 mm grating's strongest
+// stripes came out 0.8 mm apart). Here each pixel's slope is the mean slope of the height field under a Gaussian
+// footprint of sigma 0.7 pixel (frequency response exp(-2 pi^2 sigma^2 f^2)): a period of four pixels
+// keeps 55 % of its contrast, one of two pixels 9 %, one of 1.6 pixels 2 %. The footprint is a sum
+// over sub-cells half a pixel wide; a sub-cell's slope along x is the force along x integrated across
+// it (the height difference over its width, however sharp a wall is: steps of at most the finest
+// length, 16 at most), along y likewise. A 128-pixel thumbnail of the finest grating takes about
+// 2 million force evaluations.
+void shade_window_filtered(const schema::PatchProgram& drawn, double finest_m, Picture& pic) {
+  constexpr int m = 2;              // sub-cells a pixel side
+  constexpr double sigma_px = 0.7;  // the footprint
+  constexpr int max_steps = 16;     // force samples across a sub-cell
+  const double ps = pic.pixel_m, cell = ps / m;
+  const int steps = std::clamp(static_cast<int>(std::ceil(cell / finest_m)), 1, max_steps);
+  const double step = cell / steps;
+  const double sigma = sigma_px * m;  // in sub-cells
+  const int radius = static_cast<int>(std::ceil(3 * sigma));
+  const int cx = pic.nx * m + 2 * radius, cy = pic.ny * m + 2 * radius;  // the sub-grid, with a rim for the footprint
+  // Sub-cell (i, j)'s lower-left corner; row j = 0 at the top of the picture.
+  const double x0 = pic.centre_m[0] - 0.5 * pic.window_m[0] - radius * cell;
+  const double y0 = pic.centre_m[1] + 0.5 * pic.window_m[1] + radius * cell;
+  runtime::PatchEvaluator eval(drawn);
+  runtime::HandState hand;
+  std::vector<double> gx(static_cast<std::size_t>(cx) * cy), gy(gx.size());
+  double peak = 0;  // the steepest slope before filtering
+  for (int j = 0; j < cy; ++j)
+    for (int i = 0; i < cx; ++i) {
+      const double left = x0 + i * cell, top = y0 - j * cell;
+      double fx = 0, fy = 0;
+      for (int k = 0; k < steps; ++k) {
+        hand.position_m = {left + (k + 0.5) * step, top - 0.5 * cell};
+        const double ax = eval.force_rt(hand, 0.0).x;
+        hand.position_m = {left + 0.5 * cell, top - (k + 0.5) * step};
+        const double ay = eval.force_rt(hand, 0.0).y;
+        fx += ax;
+        fy += ay;
+        peak = std::max({peak, std::abs(ax), std::abs(ay)});
+      }
+      // F = -grad h (k folded in): the surface rises against the force.
+      gx[static_cast<std::size_t>(j) * cx + i] = -fx / steps;
+      gy[static_cast<std::size_t>(j) * cx + i] = -fy / steps;
+    }
+  // The footprint's weights over sub-cells around a pixel centre (which falls between sub-cells m/2 - 1 and m/2).
+  std::vector<double> w(2 * radius + m);
+  double sum = 0;
+  for (int d = 0; d < static_cast<int>(w.size()); ++d) {
+    const double off = (d - radius) + 0.5 - 0.5 * m;  // sub-cell centre minus pixel centre, in sub-cells
+    sum += w[d] = std::exp(-0.5 * off * off / (sigma * sigma));
+  }
+  for (auto& x : w) x /= sum;
+  const std::size_t n = static_cast<std::size_t>(pic.nx) * pic.ny;
+  std::vector<double> sx(n, 0.0), sy(n, 0.0), rows_x(static_cast<std::size_t>(cy) * pic.nx), rows_y(rows_x.size());
+  // Separable: along x for every sub-row, then along y at each pixel.
+  for (int j = 0; j < cy; ++j)
+    for (int col = 0; col < pic.nx; ++col) {
+      double ax = 0, ay = 0;
+      for (int d = 0; d < static_cast<int>(w.size()); ++d) {
+        const std::size_t at = static_cast<std::size_t>(j) * cx + col * m + d;
+        ax += w[d] * gx[at];
+        ay += w[d] * gy[at];
+      }
+      rows_x[static_cast<std::size_t>(j) * pic.nx + col] = ax;
+      rows_y[static_cast<std::size_t>(j) * pic.nx + col] = ay;
+    }
+  for (int row = 0; row < pic.ny; ++row)
+    for (int col = 0; col < pic.nx; ++col) {
+      double ax = 0, ay = 0;
+      for (int d = 0; d < static_cast<int>(w.size()); ++d) {
+        const std::size_t at = static_cast<std::size_t>(row * m + d) * pic.nx + col;
+        ax += w[d] * rows_x[at];
+        ay += w[d] * rows_y[at];
+      }
+      sx[static_cast<std::size_t>(row) * pic.nx + col] = ax;
+      sy[static_cast<std::size_t>(row) * pic.nx + col] = ay;
+    }
+  // The steepest filtered slope is drawn at 45 deg, unless under a quarter of the steepest before
+  // filtering: what is left of a grating too fine for the pixels is drawn as faint as it is, not
+  // stretched back to full contrast. (A resolvable grating's walls keep about a quarter or more.)
+  double steepest = 0;
+  for (std::size_t i = 0; i < n; ++i) steepest = std::max(steepest, std::hypot(sx[i], sy[i]));
+  const double reference = std::max(steepest, 0.25 * peak);
+  pic.shade = compiler::shade_slopes(pic.nx, pic.ny, sx, sy, reference > 0 ? std::optional<double>(1 / reference) : std::nullopt);
+}
+
 // The program with only the terms that have a surface; the others' reasons appended to `left_out`.
 schema::PatchProgram surface_terms(const schema::PatchProgram& program, std::vector<std::string>& left_out) {
   schema::PatchProgram drawn = program;
@@ -182,7 +268,9 @@ Picture render_picture_window(const schema::PatchProgram& program, double window
   pic.nx = pic.ny = side;
   pic.pixel_m = window_side_m / side;
   pic.window_m[0] = pic.window_m[1] = window_side_m;
-  shade_window(drawn, pic);
+  pic.finer_than_pixel = finest_detail_m(drawn) < pic.pixel_m;
+  if (pic.finer_than_pixel) shade_window_filtered(drawn, finest_detail_m(drawn), pic);
+  else shade_window(drawn, pic);
   pic.caption = "Height field, " + mm(window_side_m) + " square around the patch centre (common scale)";
   return pic;
 }
@@ -218,7 +306,8 @@ Picture render_picture_view(const schema::PatchProgram& program, const double ce
     return pic;
   }
   pic.finer_than_pixel = finest_detail_m(drawn) < pic.pixel_m;
-  shade_window(drawn, pic);
+  if (pic.finer_than_pixel) shade_window_filtered(drawn, finest_detail_m(drawn), pic);
+  else shade_window(drawn, pic);
   pic.caption = "Height field, " + mm(pic.window_m[0]) + " \xC3\x97 " + mm(pic.window_m[1]) + " around (" +
                 mm(centre_m[0]) + ", " + mm(centre_m[1]) + ")" +
                 (pic.finer_than_pixel ? "; the texture's finest detail is under a pixel (" + mm(pic.pixel_m) + ") here: zoom in for it"
