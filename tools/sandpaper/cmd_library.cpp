@@ -14,6 +14,7 @@
 #include "sandpaper/curation/display.hpp"
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/layers.hpp"
+#include "sandpaper/curation/review.hpp"
 #include "sandpaper/curation/near.hpp"
 #include "sandpaper/curation/search.hpp"
 
@@ -206,6 +207,46 @@ int run_check(const Paths& p, const LibraryCommandOptions& o) {
   }
   progress.finish(r.summary() + (o.werror && r.warnings() > 0 && r.errors() == 0 ? " (--werror: warnings fail)" : ""));
   return failed ? kExitBadInput : kExitOk;
+}
+
+int run_review(const Paths& p, const LibraryCommandOptions& o) {
+  if (p.layered()) {
+    std::cerr << "sandpaper library review: review one library root (--library ROOT): a pull request changes one repository\n";
+    return kExitUsage;
+  }
+  auto progress = cur::Progress::on_stderr("checking", 0, o.quiet);
+  const auto r = cur::review_library({p.library, p.calibration, o.devices, o.base}, progress);
+  if (!r.error.empty()) {
+    std::cerr << "sandpaper library review: " << r.error << "\n";
+    return kExitBadInput;
+  }
+  const auto summary = std::to_string(r.changed_files.size()) + " changed file" + (r.changed_files.size() == 1 ? "" : "s") + ", " +
+                       std::to_string(r.entries.size()) + (r.entries.size() == 1 ? " entry" : " entries") + " touched, checked on " +
+                       std::to_string(r.devices) + " devices: " + std::to_string(r.failing.all().size()) + " to fix, " +
+                       std::to_string(r.accepted.all().size()) + " accepted, " + std::to_string(r.old_warnings) +
+                       " warnings the base had already";
+  if (o.json) {
+    std::cout << schema::json_text(nlohmann::json{{"ok", r.ok()},
+                                                  {"base", o.base},
+                                                  {"changed_files", r.changed_files},
+                                                  {"entries", r.entries},
+                                                  {"failing", diagnostics_json(r.failing)},
+                                                  {"accepted", diagnostics_json(r.accepted)},
+                                                  {"old_warnings", r.old_warnings},
+                                                  {"by_hand", r.by_hand}},
+                                   2)
+              << "\n";
+  } else {
+    std::cerr << compiler::format_diagnostics(r.failing);
+    std::cout << "review of " << p.library.string() << " against " << o.base << ": " << summary << "\n";
+    if (!r.by_hand.empty()) {
+      std::cout << "for a person to look at:\n";
+      for (const auto& line : r.by_hand) std::cout << "  - " << line << "\n";
+    }
+    std::cout << (r.ok() ? "review passed\n" : "review FAILED: fix what is above, or accept a warning the entry means (accept CODE \"reason\")\n");
+  }
+  progress.finish("");
+  return r.ok() ? kExitOk : kExitBadInput;
 }
 
 int run_index(const Paths& p, const LibraryCommandOptions& o) {
@@ -433,6 +474,16 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.check->add_flag("--werror", o.werror, "warnings fail the check too");
   o.check->add_option("--root", o.root, "in a layered library (--library LAB:WORLD), check only the root with this id");
 
+  o.review = library.add_subcommand("review",
+                                    "review a change to a library in git: check what changed since --base (and what is built on it) on "
+                                    "every device; fail on errors and on new warnings not accepted; list what a person must look at");
+  add_paths(o.review, o, false);
+  o.review->add_option("--base", o.base, "the commit to compare with: a branch, tag or hash (for a pull request, its target branch)")
+      ->capture_default_str();
+  o.review->add_option("--device", o.devices, "review on these devices only (default: every device of the calibration)");
+  o.review->add_flag("--json", o.json, "print one JSON object");
+  o.review->add_flag("--quiet", o.quiet, "no progress on stderr");
+
   o.index_cmd = library.add_subcommand("index", "build the SQLite index (atomically; a failed build leaves the old one)");
   add_paths(o.index_cmd, o, true);
   o.index_cmd->add_flag("--json", o.json, "print JSON");
@@ -469,7 +520,8 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
 }
 
 int cmd_library_sub(const CommonOptions& common, LibraryCommandOptions o) {
-  const bool any = o.check->parsed() || o.index_cmd->parsed() || o.search->parsed() || o.show->parsed() || o.near->parsed();
+  const bool any = o.check->parsed() || o.index_cmd->parsed() || o.search->parsed() || o.show->parsed() || o.near->parsed() ||
+                   o.review->parsed();
   if (!any) return -1;
   o.json = o.json || common.json;
   try {
@@ -478,6 +530,7 @@ int cmd_library_sub(const CommonOptions& common, LibraryCommandOptions o) {
     if (o.index_cmd->parsed()) return run_index(p, o);
     if (o.search->parsed()) return run_search(p, o);
     if (o.show->parsed()) return run_show(p, o);
+    if (o.review->parsed()) return run_review(p, o);
     return run_near(p, o);
   } catch (const cur::IndexError& e) {
     std::cerr << "sandpaper library: " << e.what() << "\n";

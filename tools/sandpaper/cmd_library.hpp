@@ -23,7 +23,8 @@ struct LibraryCommandOptions {
   std::string name;                                  // show, near
   std::string root;                                  // check: only this root of a layered library
   std::vector<std::string> changed;                  // index: the files that changed ("-": read from stdin)
-  CLI::App *check = nullptr, *index_cmd = nullptr, *search = nullptr, *show = nullptr, *near = nullptr;
+  std::string base = "HEAD";                         // review: the commit to compare with
+  CLI::App *check = nullptr, *index_cmd = nullptr, *search = nullptr, *show = nullptr, *near = nullptr, *review = nullptr;
 };
 
 // Registers the subcommands on the `library` command.

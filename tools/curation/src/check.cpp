@@ -469,7 +469,8 @@ std::set<std::string> indexed_files(const std::vector<std::filesystem::path>& ro
 
 // Checks the front root of `roots` against the roots below it.
 void check_front_root(const std::vector<std::filesystem::path>& roots, const std::filesystem::path& cal_dir,
-                      const calibration::CalibrationSet& cal, CheckResult& result, Progress& progress) {
+                      const calibration::CalibrationSet& cal, CheckResult& result, Progress& progress,
+                      const std::optional<std::set<std::string>>& established) {
   // One read of the library, shared by the per-device compilers below (at 100,000 entries each copy
   // is about 2 GB).
   const auto shared = std::make_shared<const compiler::Library>(roots);
@@ -478,7 +479,7 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
   auto& out = result.diagnostics;
   for (const auto& e : lib.entries()) result.entries += e.root == 0;
   Checker ck{lib, disp, out};
-  ck.indexed_files = indexed_files(roots);
+  ck.indexed_files = established ? *established : indexed_files(roots);
 
   // The manifest and the entries' syntax (E0601, the compiler's E01xx/E02xx): the front root's.
   {
@@ -726,7 +727,7 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
   for (std::size_t i = 0; i < roots.size(); ++i)
     if (options.root.empty() || whole.roots()[i].id == options.root)
       check_front_root(std::vector<std::filesystem::path>(roots.begin() + static_cast<std::ptrdiff_t>(i), roots.end()), cal_dir,
-                       cal, result, progress);
+                       cal, result, progress, i == 0 ? options.established : std::nullopt);
   return result;
 }
 

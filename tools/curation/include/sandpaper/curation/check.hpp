@@ -4,6 +4,7 @@
 // the calibration, and warns about entries of one family the thesis' knowledge cannot tell apart.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -23,6 +24,10 @@ struct CheckOptions {
   // library_dir is not used.
   std::vector<std::filesystem::path> library_path;
   std::string root;                        // check only the root with this id (empty: every root)
+  // The front root's entry files (relative to it) that were there before the change being checked
+  // (library review: the base commit's). In a clash of names (E0607) these are established and the
+  // other file is the newcomer. Unset: the files the root's index lists.
+  std::optional<std::set<std::string>> established = std::nullopt;
 };
 
 struct CheckResult {
