@@ -85,7 +85,7 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
   if (p.max_lateral_force_N > 0) {
     os << "  compiled maximum lateral force " << p.max_lateral_force_N << " N (" << p.max_lateral_force_N / 9.80665e-3
        << " gf) over the patch less its rim\n";
-    os << "  compiled roughness    " << p.roughness << " on the ratio scale (1 = " << map.reference_si
+    os << "  compiled roughness    " << schema::roughness_text(p.roughness) << " on the ratio scale (1 = " << map.reference_si
        << " N; " << map.id << ", R^2 = " << map.r_squared.value_or(0) << ")\n";
   } else {
     os << "  no texture: no lateral-force roughness\n";
@@ -102,7 +102,7 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
     os << "\nfelt at speed (grating: the mean peak a tick reads per ridge, over every phase; docs/TEXTURES.md)\n";
     for (const auto& f : felt)
       os << "  " << f.speed_m_s * 1e3 << " mm/s at " << std::lround(f.rate_hz) << " Hz  " << f.peak_N << " N  ("
-         << f.fraction * 100 << " % of the compiled peak), felt roughness " << map.percept_of(f.peak_N) << "\n";
+         << f.fraction * 100 << " % of the compiled peak), felt roughness " << schema::roughness_text(map.percept_of(f.peak_N)) << "\n";
     // The remedies, measured: at the designer's stated speed, else at the common hand speed that
     // loses the most (W0350's), if one loses more than a JND.
     const double weber = cal.knowledge().force_jnd.weber_fraction;

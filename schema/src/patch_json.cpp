@@ -24,6 +24,13 @@ std::string display_value(double v, const std::string& unit) {
   return os.str();
 }
 
+std::string roughness_text(double r) {
+  std::ostringstream os;
+  os.precision(3);
+  os << r;
+  return os.str();
+}
+
 namespace {
 
 // Per-sample loops, uninstrumented in the fuzzing build (no_coverage.hpp).

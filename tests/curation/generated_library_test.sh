@@ -34,7 +34,7 @@ python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); sys.exit(0 if j["co
 # The catalog takes the same list for its index update, and draws that entry alone.
 "$sp" library catalog --library "$tmp/a" -o "$tmp/cat" --quiet >/dev/null 2>&1 || bad "library catalog failed"
 echo "# edited again" >>"$one"
-out=$("$sp" library catalog --library "$tmp/a" -o "$tmp/cat" --quiet --changed "$one" 2>&1)
+out=$("$sp" library catalog --library "$tmp/a" -o "$tmp/cat" --changed "$one" 2>/dev/null)
 [[ $out == *"(1 drawn, 59 unchanged, updated in place)"* ]] && ok || bad "catalog --changed: $out"
 cp "$tmp/a/.index/library.sqlite" "$tmp/index.before"
 "$sp" library index --library "$tmp/a" --changed "$tmp/check.json" --quiet >/dev/null 2>"$tmp/outside.err"

@@ -9,6 +9,7 @@
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/explain.hpp"
 #include "sandpaper/compiler/explain_json.hpp"
+#include "sandpaper/curation/display.hpp"
 #include "sandpaper/compiler/felt_at_speed.hpp"
 #include "sandpaper/compiler/force_levels.hpp"
 #include "sandpaper/compiler/sources_report.hpp"
@@ -64,16 +65,18 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     }
     std::cout << schema::json_text(j, 2) << "\n";
   } else if (explain) {
-    std::cout << compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device(), o.design_speed_mm_s * 1e-3,
-                                         o.position_rate_hz)
-              << compiler::sources_text(*in->compile->material, c.library());
+    // Library files where the user can open them, as `library check` and `library show` print them.
+    const curation::DisplayPaths shown(c.library());
+    std::cout << shown.in_text(compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device(),
+                                                      o.design_speed_mm_s * 1e-3, o.position_rate_hz) +
+                               compiler::sources_text(*in->compile->material, c.library()));
   } else {
     std::cout << prog.name << ": ";
     // Without a texture there is no lateral-force roughness to report (issue 2's rule for `run`).
     if (prog.max_lateral_force_N > 0)
       std::cout << "compiled maximum lateral force " << prog.max_lateral_force_N << " N"
                 << (prog.command.command_unit == "N" ? std::string() : " (" + command_units(prog) + ")") << ", compiled roughness "
-                << prog.roughness << ", ";
+                << schema::roughness_text(prog.roughness) << ", ";
     else
       std::cout << "no texture, ";
     std::cout << prog.terms.size() << " term(s) for device " << prog.device;
@@ -183,7 +186,7 @@ int cmd_library(const CommonOptions& o) {
       arr.push_back(std::move(j));
     } else {
       std::cout << name << std::string(width - name.size(), ' ') << e.family
-                << std::string(e.family.size() < 20 ? 20 - e.family.size() : 1, ' ') << "roughness " << p.roughness << "  \""
+                << std::string(e.family.size() < 20 ? 20 - e.family.size() : 1, ' ') << "roughness " << schema::roughness_text(p.roughness) << "  \""
                 << p.describes << "\"" << (e.deprecated_by.empty() ? "" : "  [deprecated: use " + e.deprecated_by + "]")
                 << (lib.entry(e.name) == &e ? "" : "  [hidden by " + lib.qualified_name(*lib.entry(e.name)) + "]") << "\n";
     }

@@ -7,6 +7,7 @@
 #include "sandpaper/compiler/gltf_import.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/json_text.hpp"
+#include "sandpaper/schema/patch_json.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/workspace_io.hpp"
 #include "sandpaper/schema/workspace_json.hpp"
@@ -32,7 +33,7 @@ int cmd_compile_gltf(const CommonOptions& o, const std::string& output) {
               {"compiled_roughness", r.program->roughness}, {"device", r.program->device}, {"output", out}});
     if (!o.json)
       std::cout << r.program->name << ": compiled maximum lateral force " << r.program->max_lateral_force_N << " N, compiled roughness "
-                << r.program->roughness << ", " << r.program->terms.size() << " term(s) for device " << r.program->device
+                << schema::roughness_text(r.program->roughness) << ", " << r.program->terms.size() << " term(s) for device " << r.program->device
                 << " (from glTF) -> " << out << "\n";
   } else {
     if (out.empty()) out = std::filesystem::path(o.file).replace_extension(".wsp").string();

@@ -20,7 +20,7 @@ int cmd_inspect(const std::string& file, bool json, bool tables) {
   std::cout << "  device     " << p.device << "\n";
   std::cout << "  size       " << p.size_m[0] * 1e3 << " mm x " << p.size_m[1] * 1e3 << " mm\n";
   if (p.max_lateral_force_N > 0)
-    std::cout << "  compiled maximum lateral force " << p.max_lateral_force_N << " N, compiled roughness " << p.roughness << " ("
+    std::cout << "  compiled maximum lateral force " << p.max_lateral_force_N << " N, compiled roughness " << schema::roughness_text(p.roughness) << " ("
               << p.roughness_map << ")\n";
   else
     std::cout << "  no texture (no lateral-force roughness)\n";

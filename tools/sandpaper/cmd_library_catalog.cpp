@@ -33,8 +33,8 @@ CLI::App* add_library_catalog_command(CLI::App& library) {
   sub->add_option("--library", o.common.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   sub->add_option("--calibration", o.common.calibration_dir,
                   "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
-  sub->add_flag("--quiet", o.quiet, "no progress on stderr");
-  sub->add_flag("--arrays", o.arrays, "also write each picture as Sandpaper's .shade array file (262 KB an entry)");
+  sub->add_flag("--quiet", o.quiet, "no progress on stderr and no summary on stdout: only errors");
+  sub->add_flag("--arrays", o.arrays, "also write each picture as Sandpaper's .shade array file (147 KB an entry: 384 x 384, one byte a pixel)");
   sub->add_option("--changed", o.changed,
                   "only these library files changed (as `library index --changed`; - reads them from stdin): "
                   "bring the index up to date from them without looking at the rest of the library")
@@ -75,7 +75,8 @@ int cmd_library_catalog(const CommonOptions& outer) {
     std::cerr << "; nothing was written (" << o.output << " is as it was)\n";
     return kExitBadInput;
   }
-  std::cout << "catalog of " << report.entries << " entries -> " << o.output << "/index.html (" << report.rendered << " drawn, "
+  if (o.quiet) return kExitOk;
+  std::cout << "catalog of " << report.entries << (report.entries == 1 ? " entry" : " entries") << " -> " << o.output << "/index.html (" << report.rendered << " drawn, "
             << report.reused << " unchanged" << (report.in_place && report.rendered > 0 ? ", updated in place" : "")
             << (report.record_unreadable ? "; the previous catalog's record (inputs.sqlite) was damaged, so every entry was drawn again" : "")
             << ")\n";

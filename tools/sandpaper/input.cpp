@@ -7,6 +7,7 @@
 #include "play_patch.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/gltf_import.hpp"
+#include "sandpaper/curation/display.hpp"
 #include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
@@ -46,7 +47,12 @@ std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Co
     return std::nullopt;
   }
   auto r = o.expression.empty() ? c.compile_file(o.file) : c.compile_text(o.expression);
-  std::cerr << compiler::format_diagnostics(r.diagnostics);
+  {
+    // Library files as `library check` and `library show` print them: where the user can open them.
+    compiler::Diagnostics shown;
+    curation::DisplayPaths(c.library()).append_relocated(shown, r.diagnostics);
+    std::cerr << compiler::format_diagnostics(shown);
+  }
   if (!r.ok()) {
     if (o.json)
       std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}, 2)

@@ -182,7 +182,7 @@ json LanguageServer::diagnostics_of(const Document& d, const compiler::Diagnosti
 int serve(std::istream& in, std::ostream& out, std::ostream& log, const compiler::Compiler& compiler) {
   LanguageServer server(compiler);
   log << "sandpaper lsp: ready on stdio (library " << compiler.library().directory().string() << ", "
-      << compiler.library().entries().size() << " entries; device " << compiler.device().name << ")" << std::endl;
+      << compiler.library().entries().size() << (compiler.library().entries().size() == 1 ? " entry" : " entries") << "; device " << compiler.device().name << ")" << std::endl;
   for (;;) {
     std::optional<std::string> body;
     try {

@@ -16,4 +16,8 @@ nlohmann::json to_json(const PatchProgram& p, bool with_tables = false);
 // Display form of an SI value: metres as mm, radians as deg, fractions as %, others as is.
 std::string display_value(double value_si, const std::string& si_unit);
 
+// A ratio-scale roughness for people: three significant digits ("0.452", "0.05", "1"), as every
+// human-readable output prints it (the CLI, explain, the catalog); JSON keeps every digit.
+std::string roughness_text(double roughness);
+
 }  // namespace sandpaper::schema

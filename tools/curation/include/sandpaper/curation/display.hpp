@@ -20,6 +20,17 @@ class DisplayPaths {
   explicit DisplayPaths(const std::filesystem::path& library_dir);
   // Every root of a layered library ("library/<id>/<rel>" as the compiler names their files).
   explicit DisplayPaths(const compiler::Library& library);
+  // Relative to the folder that holds each root ("world/textiles/corduroy.hmat"), whatever the
+  // working directory: what a page published apart from this machine shows (the catalog). The same
+  // text the CLI prints when run from that folder.
+  // The roots of a library path as (id, folder), front first, without reading the library.
+  explicit DisplayPaths(const std::vector<std::pair<std::string, std::filesystem::path>>& roots);
+  struct FromRootsParent {};
+  DisplayPaths(const compiler::Library& library, FromRootsParent);
+  // `text` with every library file the compiler names ("library/<rel>", "library/<id>/<rel>") or
+  // gives by its absolute path (a root's folder), where a path starts (at the start, after a
+  // space, '(' or '['), shown as above: explain's provenance, a catalog page's sources.
+  std::string in_text(const std::string& text) const;
   // "library/textiles/corduroy.hmat" (relative to cwd) or "/tmp/x/textiles/corduroy.hmat", in the front root.
   std::string path_of(const std::string& relative_path) const;
   // An entry's file as shown, in whichever root it is.
@@ -33,6 +44,7 @@ class DisplayPaths {
  private:
   std::string prefix_;  // the front root's; ends with '/'
   std::vector<std::pair<std::string, std::string>> roots_;  // (compiler's prefix, shown prefix), by root
+  std::vector<std::pair<std::string, std::string>> absolute_;  // (a root's absolute folder + '/', shown prefix)
   mutable std::map<std::string, std::shared_ptr<const compiler::SourceFile>> cache_;  // by the compiler's name
 };
 
