@@ -6,10 +6,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <fstream>
 #include <map>
+#include <set>
+#include <numbers>
 #include <streambuf>
 #include <tuple>
 #include <sstream>
@@ -18,6 +22,7 @@
 #include "curation_test_support.hpp"
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/near.hpp"
+#include "sandpaper/curation/percepts.hpp"
 #include "sandpaper/curation/search.hpp"
 #include "test_support.hpp"
 
@@ -325,7 +330,7 @@ std::map<std::string, std::string> rows_by_entry(const std::filesystem::path& in
       "SELECT name, * FROM provenance ORDER BY name, ordinal",
       "SELECT name, hash FROM inputs ORDER BY name",
       "SELECT name, kind, target FROM depends ORDER BY name, kind, target",
-      "SELECT name, aliases, describes, family, sources FROM search ORDER BY name",
+      "SELECT name, aliases, describes, family FROM search ORDER BY name",
       "SELECT e.name, c.log_force_min, c.log_force_max, c.log_period_min, c.log_period_max, k.kind_terms FROM coordinates c "
       "JOIN classes k ON k.id = c.class_min "
       "JOIN entries e ON e.rowid = c.id ORDER BY e.name",
@@ -683,6 +688,73 @@ TEST(LibraryIndex, AnUpdateToldWhichFilesChangedLooksAtThemAloneAndAgreesWithAWa
   EXPECT_EQ(read(b.index), before);
 }
 
+// Search on the shipped library as a curator types it (docs/LIBRARY.md, "search").
+TEST(LibrarySearch, WordsMatchDescriptionsAndFamiliesNotCitationsAndStimuliComeAfterMaterials) {
+  const auto dir = std::filesystem::path(temp_dir("search-shipped"));
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  ASSERT_TRUE(build_index({std::filesystem::path(SANDPAPER_SOURCE_DIR) / "library", {}, dir / "i.sqlite", "sim"}, quiet).ok);
+  const Index idx(dir / "i.sqlite");
+  const auto all = idx.entries();
+  std::vector<double> rs;
+  for (const auto& e : all)
+    if (e.max_lateral_force_N > 0) rs.push_back(e.roughness);
+  std::sort(rs.begin(), rs.end());
+  const double median = rs[rs.size() / 2];
+  const auto query = [&](std::vector<std::string> words, std::string family = "") {
+    SearchQuery q;
+    q.words = std::move(words);
+    q.family = std::move(family);
+    q.limit = 500;
+    return search(idx, q);
+  };
+  // "cloth": the textiles, by their family's description ("... cloths"), whatever their own says.
+  const auto cloth = query({"cloth"});
+  std::set<std::string> textiles;
+  for (const auto& e : all)
+    if (e.family == "textiles") textiles.insert(e.name);
+  std::set<std::string> got;
+  for (const auto& h : cloth) got.insert(h.entry.name);
+  EXPECT_EQ(got, textiles);
+  // "rough cloth": the textiles at or above the library's median roughness, roughest first.
+  const auto rough = query({"rough", "cloth"});
+  std::vector<std::string> want;
+  for (const auto& e : all)
+    if (e.family == "textiles" && e.max_lateral_force_N > 0 && e.roughness >= median) want.push_back(e.name);
+  std::sort(want.begin(), want.end(), [&](const auto& a, const auto& b) { return idx.entry(a)->roughness > idx.entry(b)->roughness; });
+  EXPECT_EQ(names(rough), want);
+  EXPECT_GT(want.size(), 2u);
+  EXPECT_LT(want.size(), textiles.size());
+  // "smooth": the smoother half, smoothest first; the thesis' stimuli after the materials, smoothest first too.
+  const auto smooth = query({"smooth"});
+  ASSERT_FALSE(smooth.empty());
+  for (std::size_t i = 0; i < smooth.size(); ++i) {
+    EXPECT_LE(smooth[i].entry.roughness, median) << smooth[i].entry.name;
+    if (i && smooth[i - 1].stimulus == smooth[i].stimulus) {
+      EXPECT_LE(smooth[i - 1].entry.roughness, smooth[i].entry.roughness);
+    }
+    if (i) {
+      EXPECT_LE(smooth[i - 1].stimulus, smooth[i].stimulus) << smooth[i - 1].entry.name << " before " << smooth[i].entry.name;
+    }
+  }
+  // A citation is not a description: wool-gabardine's source notes name denim-twill; `denim` finds denim.
+  EXPECT_EQ(names(query({"denim"})), std::vector<std::string>{"denim-twill"});
+  // "grating": the reference grating (a material) before the thesis' Table 8 gratings, which
+  // `--family thesis-gratings` still finds.
+  const auto gratings = query({"grating"});
+  ASSERT_GT(gratings.size(), 2u);
+  EXPECT_EQ(gratings.front().entry.name, "reference-grating");
+  bool stimuli = false;
+  for (const auto& h : gratings) {
+    const bool stimulus = h.entry.family.rfind("thesis-", 0) == 0;
+    EXPECT_FALSE(stimuli && !stimulus) << h.entry.name << " after a thesis stimulus";
+    stimuli = stimuli || stimulus;
+  }
+  EXPECT_TRUE(stimuli);
+  EXPECT_FALSE(query({"grating"}, "thesis-gratings").empty());
+  std::filesystem::remove_all(dir);
+}
+
 // near's R*Tree search gives exactly what comparing with every entry gives, on the shipped library.
 TEST(LibraryNear, TheRTreeSearchEqualsAFullScanOnTheShippedLibrary) {
   const auto dir = std::filesystem::path(temp_dir("near-rtree"));
@@ -734,6 +806,49 @@ TEST(LibraryNear, NearestByForceJndsPeriodAndKind) {
   EXPECT_NE(ns[0].why.find("same kind (grating)"), std::string::npos) << ns[0].why;
   // Symmetric in size.
   EXPECT_NEAR(distance_between(to, from, 0.125).distance, ns[0].distance, 1e-9);
+  // --family: only that family's entries, nearest first, though reference-grating is nearer.
+  const auto textiles = nearest(idx, "ribbed-cloth", 10, "textiles");
+  ASSERT_EQ(textiles.size(), 1u);
+  EXPECT_EQ(textiles[0].entry.name, "fine-rib");
+  const auto abrasives = nearest(idx, "ribbed-cloth", 1, "abrasives");
+  ASSERT_EQ(abrasives.size(), 1u);
+  EXPECT_EQ(abrasives[0].entry.family, "abrasives");
+  EXPECT_TRUE(nearest(idx, "ribbed-cloth", 10, "no-such-family").empty());
+}
+
+TEST(LibraryNear, SpatialScaleOfAHeightFieldIsTheSinusoidsPeriodAndScalesWithTheImage) {
+  // A sampled sinusoid's heights, h = A sin(2 pi x / P) (any amplitude and offset): the scale is its period.
+  for (const double period : {1e-3, 4e-3}) {
+    compiler::TextureHeights t;
+    t.nx = 256, t.ny = 8;
+    t.spacing_m[0] = period / 32, t.spacing_m[1] = 1e-3;
+    for (int y = 0; y < t.ny; ++y)
+      for (int x = 0; x < t.nx; ++x) t.h_m.push_back(2e-3 + 0.7e-3 * std::sin(2 * std::numbers::pi * x * t.spacing_m[0] / period));
+    // Eight whole periods: the sample autocorrelation's first zero lies within a few % of P / 4.
+    EXPECT_NEAR(spatial_scale_m(t), period, 0.03 * period);
+  }
+  // The same photograph laid over 40 mm and over 80 mm: the same kind and force, a scale twice as
+  // large, one doubling apart in `near`, and it says so.
+  const auto root = std::filesystem::path(temp_dir("near-scale"));
+  std::filesystem::create_directories(root / "lib" / "images");
+  std::filesystem::copy_file(SANDPAPER_SOURCE_DIR "/library/images/gravel.png", root / "lib" / "images" / "gravel.png");
+  for (const auto& [name, mm] : {std::pair<std::string, int>{"small", 40}, {"large", 80}}) {
+    std::ofstream f(root / "lib" / (name + ".hmat"));
+    // The smoothing scaled with the image: the large one is the small one magnified, nothing else.
+    f << "material \"" << name << "\" {\n  heightmap \"images/gravel.png\" size " << mm << " mm smoothing "
+      << mm / 100.0 << " mm\n  roughness 0.5\n}\n";
+  }
+  const auto r = build(root / "lib", root / "idx.sqlite");
+  ASSERT_TRUE(r.ok) << r.error << compiler::format_diagnostics(r.diagnostics);
+  const Index idx(root / "idx.sqlite");
+  const auto small = *idx.entry("small"), large = *idx.entry("large");
+  EXPECT_EQ(small.texture_kind, "image");
+  ASSERT_GT(small.period_m, 0);
+  EXPECT_NEAR(large.period_m / small.period_m, 2.0, 0.05);
+  const auto n = distance_between(small, large, 0.125);
+  EXPECT_NEAR(n.period_doublings, 1.0, 0.04);
+  EXPECT_NE(n.why.find("spatial scale"), std::string::npos) << n.why;
+  std::filesystem::remove_all(root);
 }
 
 }  // namespace

@@ -24,6 +24,9 @@ namespace {
 
 namespace cur = sandpaper::curation;
 
+// "1 entry", "2 entries".
+std::string entries_text(std::size_t n) { return std::to_string(n) + (n == 1 ? " entry" : " entries"); }
+
 std::string num(double v, int digits = 3) {
   std::ostringstream os;
   os.precision(digits);
@@ -130,7 +133,7 @@ int ensure_index(const Paths& p, bool quiet, const char* who) {
       }
       return rc;
     }
-    progress.finish("indexed " + std::to_string(r.entries) + " entries into " + r.path.string());
+    progress.finish("indexed " + entries_text(r.entries) + " into " + r.path.string());
   }
   return kExitOk;
 }
@@ -158,6 +161,39 @@ nlohmann::json entry_json(const cur::IndexedEntry& e, bool layered) {
           {"physical", e.physical}};
   if (layered) j["root"] = e.root;  // the id of the root it is from: `like ROOT:NAME` names it
   return j;
+}
+
+// The files of `entries` ((root, name)) saved in place since their root's index was built, by root:
+// an edit the cheap staleness check (index_state) does not see, in a folder whose time it keeps.
+std::map<std::size_t, std::vector<std::filesystem::path>> edited_since_index(
+    const Paths& p, const cur::LayeredIndex& layers, const std::vector<std::pair<std::size_t, std::string>>& entries) {
+  std::map<std::size_t, std::vector<std::string>> by_root;
+  for (const auto& [layer, name] : entries) by_root[layer].push_back(name);
+  std::map<std::size_t, std::vector<std::filesystem::path>> out;
+  for (const auto& [layer, names] : by_root)
+    if (auto files = cur::edited_inputs(layers.index(layer), p.roots[layer], names); !files.empty())
+      out[layer] = std::move(files);
+  return out;
+}
+
+// Brings the indexes up to date after those edits, saying so: the root's index from the files
+// alone (the bottom root) or built again (a root in front, small), then the roots in front of it.
+// Queries then answer with what the files say now, not with the old values.
+int refresh_edited(const Paths& p, const std::map<std::size_t, std::vector<std::filesystem::path>>& edited, bool quiet,
+                   const char* who) {
+  for (const auto& [layer, files] : edited) {
+    std::cerr << "sandpaper " << who << ": " << files.size() << " file" << (files.size() == 1 ? "" : "s") << " of "
+              << p.roots[layer].string() << " changed since its index was built (" << files.front().string()
+              << (files.size() > 1 ? ", ..." : "") << "); updating the index\n";
+    auto progress = cur::Progress::on_stderr("indexing", 0, quiet);
+    cur::IndexOptions io{p.roots[layer], p.calibration, p.indexes[layer], "sim"};
+    io.below = p.below(layer);
+    if (io.below.empty()) io.changed = files;
+    const auto r = cur::build_index(io, progress);
+    if (!r.ok) return print_build_failure(r, who);
+    progress.finish("indexed " + entries_text(r.entries));
+  }
+  return ensure_index(p, quiet, who);  // the roots in front of an updated one
 }
 
 // Over a layered path, the entries of lower roots that the roots in front change are compiled over
@@ -264,14 +300,14 @@ int run_index(const Paths& p, const LibraryCommandOptions& o) {
     if (!o.changed.empty()) io.changed = changed_files(o.changed);
     const auto r = cur::build_index(io, progress);
     if (!r.ok) return print_build_failure(r, "library index");
-    progress.finish("indexed " + std::to_string(r.entries) + " entries");
+    progress.finish("indexed " + entries_text(r.entries));
     const cur::Index built(r.path);
     const nlohmann::json j{{"ok", true},         {"entries", r.entries},           {"compiled", r.compiled},
                            {"reused", r.reused}, {"files_hashed", r.files_hashed}, {"resumed", r.resumed}, {"in_place", r.in_place},
                            {"index", r.path.string()}, {"root", cur::root_id(built, p.roots[i])}};
     roots.insert(roots.begin(), j);
     if (!o.json)
-      std::cout << "indexed " << r.entries << " entries of " << built.meta("library_name") << " " << built.meta("library_version")
+      std::cout << "indexed " << entries_text(r.entries) << " of " << built.meta("library_name") << " " << built.meta("library_version")
                 << (p.layered() ? " (root " + cur::root_id(built, p.roots[i]) + ")" : std::string()) << " into " << r.path.string() << " ("
                 << r.compiled << " compiled, " << r.reused << " unchanged" << (r.resumed ? ", resumed from an interrupted build" : "")
                 << (r.in_place ? ", updated in place" : "") << ")\n";
@@ -290,6 +326,20 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
   q.limit = o.limit;
   if (!o.roughness.empty()) q.roughness = cur::parse_roughness_range(o.roughness);  // invalid_argument: exit 2
   if (const int rc = ensure_index(p, o.quiet, "library search")) return rc;
+  // The hits' own files edited in place since the index was built: the index brought up to date
+  // from them, and the search asked again.
+  std::map<std::size_t, std::vector<std::filesystem::path>> edited;
+  {
+    cur::LayeredIndex first(p.roots, p.indexes);
+    if (p.layered()) first.see_through_path(p.calibration, "sim");  // its errors are said once, below
+    std::vector<std::pair<std::size_t, std::string>> found;
+    for (const auto& h : first.search(q))
+      for (std::size_t i = 0; i < first.size(); ++i)
+        if (!p.layered() || first.id(i) == h.entry.root) found.emplace_back(i, h.entry.name);
+    edited = edited_since_index(p, first, found);
+  }
+  if (!edited.empty())
+    if (const int rc = refresh_edited(p, edited, o.quiet, "library search")) return rc;
   cur::LayeredIndex idx(p.roots, p.indexes);
   see_through(idx, p, "library search");
   const auto hits = idx.search(q);
@@ -309,9 +359,9 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
     for (const auto& h : hits) {
       std::cout << pad(shown_name(h.entry, p.layered()), wn) << "  " << pad(h.entry.family, wf) << "  ";
       if (h.entry.max_lateral_force_N > 0)
-        std::cout << "roughness " << std::fixed << std::setprecision(2) << h.entry.roughness << std::defaultfloat;
+        std::cout << "roughness " << pad(schema::roughness_text(h.entry.roughness), 5);
       else
-        std::cout << "untextured    ";  // as wide as "roughness 0.00"
+        std::cout << "untextured     ";  // as wide as "roughness 0.123"
       std::cout << "  \"" << h.entry.describes << "\"";
       if (!h.matched_alias.empty()) std::cout << "  (alias " << h.matched_alias << ")";
       if (!h.entry.deprecated_by.empty()) std::cout << "  [deprecated: use " << h.entry.deprecated_by << "]";
@@ -327,6 +377,13 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
 
 int run_show(const Paths& p, const LibraryCommandOptions& o) {
   if (const int rc = ensure_index(p, o.quiet, "library show")) return rc;
+  std::map<std::size_t, std::vector<std::filesystem::path>> edited;
+  {
+    cur::LayeredIndex first(p.roots, p.indexes);
+    if (const auto at = first.resolve(o.name)) edited = edited_since_index(p, first, {*at});
+  }
+  if (!edited.empty())
+    if (const int rc = refresh_edited(p, edited, o.quiet, "library show")) return rc;
   cur::LayeredIndex layers(p.roots, p.indexes);
   see_through(layers, p, "library show");
   const auto found = layers.resolve(o.name);
@@ -381,7 +438,7 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
   }
   std::cout << "perceptual coordinates (compiled on device " << idx.meta("device") << ")\n";
   if (e.max_lateral_force_N > 0) {
-    std::cout << "  roughness              " << num(e.roughness) << " (ratio scale, " << idx.meta("roughness_map") << ")\n"
+    std::cout << "  roughness              " << schema::roughness_text(e.roughness) << " (ratio scale, " << idx.meta("roughness_map") << ")\n"
               << "  maximum lateral force  " << num(e.max_lateral_force_N) << " N\n"
               << "  texture                " << e.texture_kind;
     if (e.period_m > 0) std::cout << ", period " << num(e.period_m * 1000) << " mm";
@@ -399,26 +456,55 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
     for (const auto& [k, t] : s.sources) std::cout << "         source " << k << " \"" << t << "\"\n";
   }
   std::cout << "resolution (every parameter: value in SI, layer, where it was said)\n";
+  // Sources in any root of the path, shown as explain and check show them.
+  std::vector<std::pair<std::string, std::filesystem::path>> ids;
+  for (std::size_t i = 0; i < p.roots.size(); ++i) ids.emplace_back(layers.id(i), p.roots[i]);
+  const cur::DisplayPaths every_root(ids);
   std::size_t wp = 0;
   for (const auto& r : prov) wp = std::max(wp, r.parameter.size());
   for (const auto& r : prov) {
     // As explain shows them (95 mm, 0 deg), not in raw SI: the JSON keeps value_si and si_unit.
     const std::string value = r.si_unit.empty() ? r.stated : schema::display_value(r.value_si, r.si_unit);
-    std::cout << "  " << pad(r.parameter, wp) << "  " << pad(value, 12) << "  " << pad(r.layer, 10) << "  " << r.source << "\n";
+    std::cout << "  " << pad(r.parameter, wp) << "  " << pad(value, 12) << "  " << pad(r.layer, 10) << "  "
+              << every_root.in_text(r.source) << "\n";
     for (const auto& [k, t] : r.notes) std::cout << "      source " << k << " \"" << t << "\"\n";
   }
   return kExitOk;
 }
 
+// "a, b, c".
+std::string listed(const std::vector<std::string>& words) {
+  std::string s;
+  for (const auto& w : words) s += (s.empty() ? "" : ", ") + w;
+  return s;
+}
+
 int run_near(const Paths& p, const LibraryCommandOptions& o) {
   if (const int rc = ensure_index(p, o.quiet, "library near")) return rc;
+  std::map<std::size_t, std::vector<std::filesystem::path>> edited;
+  {
+    cur::LayeredIndex first(p.roots, p.indexes);
+    if (const auto at = first.resolve(o.name)) edited = edited_since_index(p, first, {*at});
+  }
+  if (!edited.empty())
+    if (const int rc = refresh_edited(p, edited, o.quiet, "library near")) return rc;
   cur::LayeredIndex layers(p.roots, p.indexes);
   see_through(layers, p, "library near");
   const auto found = layers.resolve(o.name);
   if (!found) return unknown_entry(layers, o.name, "library near");
   const auto& [layer, name] = *found;
   const auto& idx = layers.index_of(layer, name);
-  const auto ns = layers.nearest(layer, name, o.limit);
+  if (!o.family.empty()) {  // a family no root has is a typo, not an empty answer
+    std::vector<std::string> fams;
+    for (std::size_t i = 0; i < layers.size(); ++i)
+      for (auto& f : layers.index(i).families()) fams.push_back(std::move(f));
+    if (std::find(fams.begin(), fams.end(), o.family) == fams.end()) {
+      const auto guess = compiler::closest_match(o.family, fams);
+      throw std::invalid_argument("no family '" + o.family + "' in the library; " +
+                                  (guess.empty() ? "families: " + listed(fams) : "did you mean '" + guess + "'?"));
+    }
+  }
+  const auto ns = layers.nearest(layer, name, o.limit, o.family);
   const std::string from = p.layered() ? layers.id(layer) + ":" + name : name;
   if (o.json) {
     auto arr = nlohmann::json::array();
@@ -497,7 +583,7 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
       ->excludes("--full");
 
   o.search = library.add_subcommand("search", "find entries by name, alias, words and roughness range (exit 1 if none match)");
-  o.search->add_option("words", o.words, "words to look for (name, alias, description, family, sources)");
+  o.search->add_option("words", o.words, "words to look for in names, aliases, descriptions and families; rough/smooth keep the rougher/smoother half, roughest/smoothest first");
   o.search->add_option("--roughness", o.roughness, "ratio-scale range: A..B, A.. or ..B");
   o.search->add_option("--family", o.family, "only this family");
   o.search->add_option("--limit", o.limit, "at most this many entries")->capture_default_str();
@@ -514,6 +600,7 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.near = library.add_subcommand("near", "the perceptually nearest entries, with the distance in force JNDs and why");
   o.near->add_option("name", o.name, "entry name or alias")->required();
   o.near->add_option("--limit", o.limit, "at most this many entries")->capture_default_str();
+  o.near->add_option("--family", o.family, "only entries of this family");
   add_paths(o.near, o, true);
   o.near->add_flag("--json", o.json, "print JSON");
   o.near->add_flag("--quiet", o.quiet, "no progress if the index has to be built");

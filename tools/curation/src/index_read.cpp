@@ -1,6 +1,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdlib>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -232,6 +233,13 @@ std::vector<std::string> Index::names_and_aliases() const {
   return out;
 }
 
+std::vector<std::string> Index::stimulus_families() const {
+  std::vector<std::string> out;
+  sql::Stmt s(db_, "SELECT id FROM families WHERE stimulus_set != 0 ORDER BY ord");
+  while (s.step()) out.push_back(s.text(0));
+  return out;
+}
+
 std::vector<std::string> Index::families() const {
   std::vector<std::string> out;
   sql::Stmt s(db_, "SELECT id FROM families ORDER BY ord");
@@ -268,10 +276,33 @@ std::vector<IndexedProvenance> Index::provenance(const std::string& name) const 
 
 std::vector<std::pair<std::string, double>> Index::full_text(const std::string& q) const {
   std::vector<std::pair<std::string, double>> out;
-  // bm25 weights: a word in the name or an alias counts more than one in the description or sources.
-  sql::Stmt s(db_, "SELECT name, bm25(search, 10.0, 8.0, 4.0, 2.0, 1.0) AS rank FROM search WHERE search MATCH ? ORDER BY rank, name");
+  // bm25 weights: a word in the name or an alias counts more than one in the description or family.
+  sql::Stmt s(db_, "SELECT name, bm25(search, 10.0, 8.0, 4.0, 2.0) AS rank FROM search WHERE search MATCH ? ORDER BY rank, name");
   s.bind(1, q);
   while (s.step()) out.emplace_back(s.text(0), s.real(1));
+  return out;
+}
+
+std::vector<std::filesystem::path> edited_inputs(const Index& index, const std::filesystem::path& library_dir,
+                                                 const std::vector<std::string>& names) {
+  // The entries compiling them reads, then the library files each of those records.
+  std::set<std::string> targets;
+  sql::Stmt of_file(index.handle(), "SELECT name FROM entries WHERE file = ?");
+  sql::Stmt files(index.handle(), "SELECT target FROM depends WHERE name = ? AND kind = 'file'");
+  std::vector<std::string> reached_names = names;
+  for (const auto& f : index.files_reached(names)) {
+    of_file.bind(1, f);
+    while (of_file.step()) reached_names.push_back(of_file.text(0));
+    of_file.reset();
+  }
+  for (const auto& n : reached_names) {
+    files.bind(1, n);
+    while (files.step()) targets.insert(files.text(0));
+    files.reset();
+  }
+  std::vector<std::filesystem::path> out;
+  for (const auto& rel : stamps::edited(index.handle(), {{"library", library_dir}}, {targets.begin(), targets.end()}))
+    if (rel.rfind("library/", 0) == 0) out.push_back(library_dir / rel.substr(8));
   return out;
 }
 

@@ -13,7 +13,7 @@ namespace sandpaper::curation {
 
 const char* const kIndexSchemaSql = R"sql(
 CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
-CREATE TABLE families(id TEXT PRIMARY KEY, title TEXT NOT NULL, describes TEXT NOT NULL, ord INTEGER NOT NULL);
+CREATE TABLE families(id TEXT PRIMARY KEY, title TEXT NOT NULL, describes TEXT NOT NULL, ord INTEGER NOT NULL, stimulus_set INTEGER NOT NULL);
 CREATE TABLE entries(
   name TEXT PRIMARY KEY, family TEXT NOT NULL, describes TEXT NOT NULL, licence TEXT NOT NULL,
   deprecated_by TEXT NOT NULL, file TEXT NOT NULL, library_version TEXT NOT NULL, likes TEXT NOT NULL,
@@ -39,7 +39,7 @@ CREATE TABLE inputs(name TEXT PRIMARY KEY REFERENCES entries(name), hash TEXT NO
 CREATE TABLE depends(name TEXT NOT NULL REFERENCES entries(name), kind TEXT NOT NULL, target TEXT NOT NULL);
 CREATE INDEX depends_target ON depends(target, kind);
 CREATE INDEX depends_name ON depends(name);
-CREATE VIRTUAL TABLE search USING fts5(name, aliases, describes, family, sources, tokenize = 'unicode61 remove_diacritics 2');
+CREATE VIRTUAL TABLE search USING fts5(name, aliases, describes, family, tokenize = 'porter unicode61 remove_diacritics 2');
 CREATE TABLE classes(id INTEGER PRIMARY KEY, kind_terms TEXT NOT NULL UNIQUE);
 CREATE VIRTUAL TABLE coordinates USING rtree(id, log_force_min, log_force_max, log_period_min, log_period_max, class_min, class_max);
 )sql";
@@ -83,7 +83,7 @@ EntryWriter::EntryWriter(sqlite3* db, const compiler::Library& lib, const calibr
         sta_(db, "INSERT INTO statements VALUES (?, ?, ?, ?, ?)"),
         src_(db, "INSERT INTO sources VALUES (?, ?, ?, ?, ?)"),
         pro_(db, "INSERT INTO provenance VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)"),
-        fts_(db, "INSERT INTO search(rowid, name, aliases, describes, family, sources) VALUES (?, ?, ?, ?, ?, ?)"),
+        fts_(db, "INSERT INTO search(rowid, name, aliases, describes, family) VALUES (?, ?, ?, ?, ?)"),
         geo_(db, "INSERT INTO coordinates VALUES (?, ?, ?, ?, ?, ?, ?)"),
         cls_(db, "INSERT OR IGNORE INTO classes(kind_terms) VALUES (?)"),
         cls_id_(db, "SELECT id FROM classes WHERE kind_terms = ?"),
@@ -110,14 +110,12 @@ void EntryWriter::insert(const Compiled& c, const EntryInputs& inputs) {
       if (a != e.name) ali_.bind(1, a).bind(2, e.name).run();
     per_.bind(1, e.name).bind(2, std::string("roughness")).bind(3, pc.roughness).run();
     for (const auto& [p, v] : pc.others) per_.bind(1, e.name).bind(2, p).bind(3, v).run();
-    std::vector<std::string> source_texts;
     int ord = 0;
     for (const auto& st : e.syntax.statements) {
       sta_.bind(1, e.name).bind(2, ord).bind(3, st.location.line).bind(4, st.keyword).bind(5, st.text).run();
       for (const auto& s : st.sources) {
         src_.bind(1, e.name).bind(2, ord).bind(3, std::string(compiler::source_kind_word(s.kind))).bind(4, s.text)
             .bind(5, s.location.line).run();
-        source_texts.push_back(s.text);
       }
       ++ord;
     }
@@ -135,7 +133,7 @@ void EntryWriter::insert(const Compiled& c, const EntryInputs& inputs) {
     }
     const auto* fam = lib_.manifest().family(e.family);
     fts_.bind64(1, rowid).bind(2, e.name).bind(3, join(e.aliases, " ")).bind(4, e.describes)
-        .bind(5, e.family + (fam ? " " + fam->title : std::string())).bind(6, join(source_texts, "\n")).run();
+        .bind(5, e.family + (fam ? " " + fam->title + " " + fam->describes : std::string())).run();
     // `near` looks up textured entries by (ln force, log2 period) in an R*Tree; no period: the
     // whole period axis, so a box query over force alone finds it (near.cpp).
     if (pc.max_lateral_force_N > 0) {
@@ -171,9 +169,9 @@ void write_families_and_meta(sqlite3* db, const compiler::Library& lib, const st
   sql::exec(db, "DELETE FROM meta; DELETE FROM families;");
   sql::Stmt m(db, "INSERT INTO meta VALUES (?, ?)");
   for (const auto& [k, v] : meta) m.bind(1, k).bind(2, v).run();
-  sql::Stmt f(db, "INSERT INTO families VALUES (?, ?, ?, ?)");
+  sql::Stmt f(db, "INSERT INTO families VALUES (?, ?, ?, ?, ?)");
   int ord = 0;
-  for (const auto& fam : lib.manifest().families) f.bind(1, fam.id).bind(2, fam.title).bind(3, fam.describes).bind(4, ord++).run();
+  for (const auto& fam : lib.manifest().families) f.bind(1, fam.id).bind(2, fam.title).bind(3, fam.describes).bind(4, ord++).bind(5, fam.stimulus_set ? 1 : 0).run();
 }
 
 std::map<std::string, std::string> index_meta(const compiler::Compiler& c, const std::string& library_dir_abs,

@@ -7,14 +7,6 @@
 
 namespace sandpaper::curation {
 
-namespace {
-
-// The order search() gives within one index, as a key comparable across indexes.
-int category(const SearchHit& h) { return h.why == "name" ? 0 : h.why == "alias" ? 1 : 2; }
-double order(const SearchHit& h) { return h.why == "all" ? h.entry.roughness : h.rank; }
-
-}  // namespace
-
 std::string root_id(const Index& index, const std::filesystem::path& root_dir) {
   // Indexes built before schema 5's `library_id` row: the folder's name, as the compiler falls back to.
   auto id = index.meta("library_id");
@@ -108,9 +100,8 @@ std::vector<SearchHit> LayeredIndex::search(const SearchQuery& q) const {
       }
   }
   std::stable_sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
-    const int ca = category(a.second), cb = category(b.second);
-    if (ca != cb) return ca < cb;
-    if (order(a.second) != order(b.second)) return order(a.second) < order(b.second);
+    if (search_before(a.second, b.second)) return true;
+    if (search_before(b.second, a.second)) return false;
     return a.first < b.first;
   });
   std::vector<SearchHit> out;
@@ -119,7 +110,18 @@ std::vector<SearchHit> LayeredIndex::search(const SearchQuery& q) const {
   return out;
 }
 
-std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::string& name, std::size_t limit) const {
+std::string LayeredIndex::hides(std::size_t layer, const std::string& name) const {
+  if (layer + 1 >= layers_.size()) return "";
+  std::vector<std::string> names{name};
+  if (const auto e = layers_[layer].index->entry(name)) names.insert(names.end(), e->aliases.begin(), e->aliases.end());
+  for (std::size_t r = layer + 1; r < layers_.size(); ++r)
+    for (const auto& n : names)
+      if (const auto hit = layers_[r].index->resolve(n)) return layers_[r].id + ":" + *hit;
+  return "";
+}
+
+std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::string& name, std::size_t limit,
+                                             const std::string& family) const {
   const auto from = entry(layer, name);
   if (!from) return {};
   const double weber = index_of(layer, name).weber_fraction();
@@ -127,7 +129,7 @@ std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::strin
   for (std::size_t i = 0; i < layers_.size(); ++i)
     for (std::size_t lim = limit;; lim *= 2) {
       std::vector<Neighbour> kept;
-      const auto got = nearest_to(*layers_[i].index, *from, lim, weber);
+      const auto got = nearest_to(*layers_[i].index, *from, lim, weber, family);
       for (const auto& n : got)
         if (!hidden(i, n.entry.name) && !through_path(i, n.entry.name) && n.entry.name != from->name) kept.push_back(n);
       if (kept.size() >= limit || got.size() < lim) {
@@ -139,7 +141,7 @@ std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::strin
       }
     }
   if (path_)
-    for (auto& n : nearest_to(*path_, *from, limit + 1, weber)) {
+    for (auto& n : nearest_to(*path_, *from, limit + 1, weber, family)) {
       if (n.entry.name == from->name) continue;
       n.entry.root = layers_[path_layer_.at(n.entry.name)].id;
       found.push_back(std::move(n));

@@ -34,7 +34,7 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
       n.period_doublings = std::log2(b.period_m / a.period_m);
       const double p = kJndPerPeriodDoubling * n.period_doublings;
       d2 += p * p;
-      if (explain) why.push_back("period " + num(b.period_m * 1000) + " vs " + num(a.period_m * 1000) + " mm (" +
+      if (explain) why.push_back(std::string(a.texture_kind == "image" && b.texture_kind == "image" ? "spatial scale " : "period ") + num(b.period_m * 1000) + " vs " + num(a.period_m * 1000) + " mm (" +
                     num(n.period_doublings, 2) + " doublings)");
     } else if ((a.period_m > 0) != (b.period_m > 0)) {
       extra += kJndPerPeriodDoubling;
@@ -75,13 +75,14 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
   return n;
 }
 
-std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit) {
+std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit, const std::string& family) {
   const auto from = index.entry(name);
   if (!from) return {};
-  return nearest_to(index, *from, limit, index.weber_fraction());
+  return nearest_to(index, *from, limit, index.weber_fraction(), family);
 }
 
-std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_entry, std::size_t limit, double weber) {
+std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_entry, std::size_t limit, double weber,
+                                  const std::string& family) {
   // A Weber fraction of 0 or NaN makes the box below never grow, and the search never ends.
   if (!(weber > 0 && weber <= 1)) throw std::invalid_argument("nearest_to: the Weber fraction must be in (0, 1]");
   if (limit == 0) return {};
@@ -92,7 +93,7 @@ std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_e
   std::vector<Neighbour> found;
   auto consider = [&](const std::vector<IndexedEntry>& entries) {
     for (const auto& e : entries)
-      if (seen.insert(e.name).second) {
+      if (seen.insert(e.name).second && (family.empty() || e.family == family)) {
         found.push_back(distance_between(*from, e, weber, false));  // the why of the nearest only, below
         found.back().entry.name = e.name;
       }
@@ -136,7 +137,7 @@ std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_e
         consider(index.untextured());
         untextured_read = true;
       }
-      if (within(r) >= limit || found.size() + 1 >= total) break;
+      if (within(r) >= limit || seen.size() >= total) break;
     }
   } else {
     // No texture: force laws differ by parameters the R*Tree does not hold; the untextured

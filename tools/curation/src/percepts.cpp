@@ -1,10 +1,13 @@
 #include "sandpaper/curation/percepts.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numbers>
 #include <sstream>
 
 #include "sandpaper/compiler/knowledge_report.hpp"
+#include "sandpaper/compiler/texture_heights.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::curation {
@@ -46,6 +49,43 @@ std::string texture_text(const compiler::ResolvedMaterial& m) {
 
 }  // namespace
 
+double spatial_scale_m(const compiler::TextureHeights& t) {
+  const std::size_t nx = static_cast<std::size_t>(std::max(t.nx, 0)), ny = static_cast<std::size_t>(std::max(t.ny, 0));
+  if (nx < 4 || ny < 4 || t.h_m.size() != nx * ny || !(t.spacing_m[0] > 0) || !(t.spacing_m[1] > 0)) return 0;
+  double mean = 0;
+  for (const double v : t.h_m) mean += v;
+  mean /= static_cast<double>(t.h_m.size());
+  // The heights' autocorrelation (mean removed) at a lag of d samples along one axis, over the
+  // cells that have a neighbour there.
+  const auto correlation = [&](std::size_t d, bool along_x) {
+    double c = 0, c0 = 0;
+    const std::size_t ex = along_x ? nx - d : nx, ey = along_x ? ny : ny - d;
+    for (std::size_t y = 0; y < ey; ++y)
+      for (std::size_t x = 0; x < ex; ++x) {
+        const std::size_t i = y * nx + x, j = along_x ? i + d : i + d * nx;
+        c += (t.h_m[i] - mean) * (t.h_m[j] - mean);
+        c0 += (t.h_m[i] - mean) * (t.h_m[i] - mean);
+      }
+    return c0 > 0 ? c / c0 : 0.0;
+  };
+  double best = 0;
+  for (const bool along_x : {true, false}) {
+    const std::size_t n = along_x ? nx : ny;
+    double previous = 1;
+    for (std::size_t d = 1; d <= n / 2; ++d) {
+      const double c = correlation(d, along_x);
+      if (c <= 0) {
+        // The first zero, between d - 1 and d, interpolated.
+        const double zero = (static_cast<double>(d) - c / (c - previous)) * t.spacing_m[along_x ? 0 : 1];
+        if (best == 0 || 4 * zero < best) best = 4 * zero;
+        break;
+      }
+      previous = c;
+    }
+  }
+  return best;
+}
+
 Percepts percepts_of(const compiler::ResolvedMaterial& m, const schema::PatchProgram& p, const calibration::CalibrationSet& cal) {
   Percepts r;
   r.max_lateral_force_N = p.max_lateral_force_N;
@@ -54,6 +94,12 @@ Percepts percepts_of(const compiler::ResolvedMaterial& m, const schema::PatchPro
   if (p.max_lateral_force_N > 0) {
     r.texture_kind = k.texture.kind;
     r.period_m = k.texture.period_m;
+    // A photograph has no period but has a scale: its height field's, so that `near` tells a
+    // close-up of gravel from a wide view by size as well as by force.
+    if (r.texture_kind == "image" && r.period_m <= 0) {
+      std::string why;
+      if (const auto heights = compiler::texture_heights(p, &m, why)) r.period_m = spatial_scale_m(*heights);
+    }
   }
   if (k.period_class && k.period_class->hit.group) r.period_class = k.period_class->hit.group->id;
   if (k.character && k.character->hit.group) r.character = k.character->hit.group->id;
@@ -88,7 +134,8 @@ std::string physical_summary(const compiler::ResolvedMaterial& m, const schema::
 bool indistinguishable(const Percepts& a, const Percepts& b, const calibration::ForceJndData& jnd, double* steps) {
   if (!a.has_texture() || !b.has_texture()) return false;
   if (a.texture_kind != b.texture_kind || a.terms != b.terms) return false;
-  if (a.period_m <= 0 || b.period_m <= 0) return false;
+  // Kinds without a period never (image textures have a spatial scale, not a period): their pictures differ.
+  if (a.period_m <= 0 || b.period_m <= 0 || a.texture_kind == "image") return false;
   if (a.period_class != b.period_class) return false;
   const double s = jnd.steps_between(a.max_lateral_force_N, b.max_lateral_force_N);
   if (steps) *steps = s;

@@ -1,6 +1,7 @@
 #include "sandpaper/curation/search.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <map>
 #include <set>
@@ -34,6 +35,13 @@ RoughnessRange parse_roughness_range(const std::string& text) {
   return r;
 }
 
+bool search_before(const SearchHit& a, const SearchHit& b) {
+  const auto category = [](const SearchHit& h) { return h.why == "name" ? 0 : h.why == "alias" ? 1 : h.stimulus ? 3 : 2; };
+  const auto order = [](const SearchHit& h) { return h.why == "all" ? h.entry.roughness : h.rank; };
+  if (category(a) != category(b)) return category(a) < category(b);
+  return order(a) < order(b);
+}
+
 std::string fts_query(const std::vector<std::string>& words) {
   std::string q;
   for (std::size_t i = 0; i < words.size(); ++i) {
@@ -47,7 +55,40 @@ std::string fts_query(const std::vector<std::string>& words) {
   return q;
 }
 
-std::vector<SearchHit> search(const Index& index, const SearchQuery& q) {
+namespace {
+
+// +1 for a word that asks for rough entries, -1 for smooth ones, 0 for any other.
+int roughness_word(const std::string& w) {
+  for (const char* r : {"rough", "rougher", "roughest", "coarse", "coarser", "coarsest"})
+    if (w == r) return 1;
+  for (const char* s : {"smooth", "smoother", "smoothest"})
+    if (w == s) return -1;
+  return 0;
+}
+
+}  // namespace
+
+std::vector<SearchHit> search(const Index& index, const SearchQuery& query) {
+  // Words about roughness keep the rougher (or smoother) half and order by roughness; the rest are matched.
+  SearchQuery q = query;
+  int feel = 0;
+  q.words.clear();
+  for (const auto& w : query.words) {
+    std::string lower;
+    for (const char c : w) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (const int r = roughness_word(lower); r != 0 && index.entry(lower) == std::nullopt && !index.resolve(lower)) feel = r;
+    else q.words.push_back(w);
+  }
+  std::optional<double> median;
+  if (feel != 0) {
+    std::vector<double> rs;
+    for (const auto& e : index.entries())
+      if (e.max_lateral_force_N > 0) rs.push_back(e.roughness);
+    if (!rs.empty()) {
+      std::nth_element(rs.begin(), rs.begin() + static_cast<std::ptrdiff_t>(rs.size() / 2), rs.end());
+      median = rs[rs.size() / 2];
+    }
+  }
   if (!q.family.empty()) {
     const auto fams = index.families();
     if (std::find(fams.begin(), fams.end(), q.family) == fams.end()) {
@@ -64,7 +105,8 @@ std::vector<SearchHit> search(const Index& index, const SearchQuery& q) {
   // it out, as the catalog's page does.
   auto keep = [&](const IndexedEntry& e) {
     return (q.family.empty() || e.family == q.family) &&
-           (!q.roughness || (e.max_lateral_force_N > 0 && q.roughness->contains(e.roughness)));
+           (!q.roughness || (e.max_lateral_force_N > 0 && q.roughness->contains(e.roughness))) &&
+           (feel == 0 || (median && e.max_lateral_force_N > 0 && (feel > 0 ? e.roughness >= *median : e.roughness <= *median)));
   };
   auto add = [&](const std::string& name, const std::string& why, const std::string& alias, double rank) {
     if (seen.count(name)) return;
@@ -94,6 +136,20 @@ std::vector<SearchHit> search(const Index& index, const SearchQuery& q) {
       if (auto name = index.resolve(c); name && *name != c) add(*name, "alias", c, 0);
     for (const auto& [name, rank] : index.full_text(fts_query(q.words))) add(name, "words", "", rank);
   }
+  // A rough or smooth query: the matches by roughness, roughest (smoothest) first, ranked so.
+  if (feel != 0)
+    for (auto& h : hits)
+      if (h.why == "words" || h.why == "all") {
+        h.why = "words";
+        h.rank = -feel * h.entry.roughness;
+      }
+  // A published stimulus set's entries (the thesis' gratings) after the materials, unless the
+  // query asks for that family: exact names and aliases stay first.
+  if (q.family.empty()) {
+    const auto stimuli = index.stimulus_families();
+    for (auto& h : hits) h.stimulus = std::find(stimuli.begin(), stimuli.end(), h.entry.family) != stimuli.end();
+  }
+  std::stable_sort(hits.begin(), hits.end(), [](const SearchHit& a, const SearchHit& b) { return search_before(a, b); });
   if (hits.size() > q.limit) hits.resize(q.limit);
   return hits;
 }

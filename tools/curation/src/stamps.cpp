@@ -292,6 +292,22 @@ Known read_files(sqlite3* db) {
   return out;
 }
 
+std::vector<std::string> edited(sqlite3* db, const std::map<std::string, std::filesystem::path>& roots,
+                                const std::vector<std::string>& paths) {
+  std::vector<std::string> out;
+  sql::Stmt rec(db, "SELECT size, mtime_ns FROM files WHERE path = ?");
+  for (const auto& rel : paths) {
+    const auto slash = rel.find('/');
+    const auto root = roots.find(rel.substr(0, slash));
+    const auto s = root == roots.end() || slash == std::string::npos ? Stat{} : stat_of(root->second / rel.substr(slash + 1));
+    rec.bind(1, rel);
+    const bool same = rec.step() && s.regular && s.size == rec.integer64(0) && s.mtime_ns == rec.integer64(1);
+    rec.reset();
+    if (!same) out.push_back(rel);
+  }
+  return out;
+}
+
 bool unchanged(sqlite3* db, const std::map<std::string, std::filesystem::path>& roots) {
   auto on_disk = [&](const std::string& rel) -> std::filesystem::path {
     const auto slash = rel.find('/');

@@ -94,6 +94,11 @@ bool same_part(sqlite3* db, const Tree& tree, const Known& known, const std::vec
 // The recorded stamps of `paths` and of every path under one of `folders` ("calibration"),
 // sorted by path.
 Known read_files_of(sqlite3* db, const std::vector<std::string>& paths, const std::vector<std::string>& folders);
+// Of the tagged `paths` ("library/textiles/corduroy.hmat"), those whose file on disk (found
+// through `roots`, tag -> folder) is gone or has another size or modification time than recorded,
+// or that have no record.
+std::vector<std::string> edited(sqlite3* db, const std::map<std::string, std::filesystem::path>& roots,
+                                const std::vector<std::string>& paths);
 // The recorded paths of entry files ("library/.../NAME.hmat") whose name is `name`.
 std::vector<std::string> entry_files_named(sqlite3* db, const std::string& name);
 

@@ -21,8 +21,8 @@ struct sqlite3;
 namespace sandpaper::curation {
 
 // 7: an entry file whose path is not UTF-8 is no longer read (E0614, F30); an index of 6 may list
-// one, so it is built again.
-inline constexpr int kIndexSchemaVersion = 7;
+// one, so it is built again. 8: an image texture's period_m is its spatial scale (percepts.hpp).
+inline constexpr int kIndexSchemaVersion = 8;
 
 // $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
 std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
@@ -144,9 +144,12 @@ class Index {
   std::optional<std::string> resolve(const std::string& name_or_alias) const;
   std::vector<std::string> names_and_aliases() const;
   std::vector<std::string> families() const;
+  // The families that are published stimulus sets (library.toml `stimulus-set = true`): the thesis'.
+  std::vector<std::string> stimulus_families() const;
   std::vector<IndexedStatement> statements(const std::string& name) const;
   std::vector<IndexedProvenance> provenance(const std::string& name) const;
-  // FTS5 match over name, aliases, describes, family and sources: (name, bm25 rank; lower is better).
+  // FTS5 match (Porter stems) over name, aliases, describes and the family's id, title and describes;
+  // not the `source` notes, whose citations name other materials: (name, bm25 rank; lower is better).
   std::vector<std::pair<std::string, double>> full_text(const std::string& fts_query) const;
   // Every entry's input hash (table `inputs`), by name: what `library catalog` compares with the
   // hashes its pages were drawn from.
@@ -162,6 +165,13 @@ class Index {
  private:
   sqlite3* db_ = nullptr;
 };
+
+// The files on disk that compiling `names` read (each entry's file, its images and those of the
+// entries it is built on, as the `depends` table records them) whose size or modification time is
+// not what `index` recorded, or that are gone: an edit in place that index_state's cheap check
+// does not see. `library_dir` is the index's library folder.
+std::vector<std::filesystem::path> edited_inputs(const Index& index, const std::filesystem::path& library_dir,
+                                                 const std::vector<std::string>& names);
 
 enum class IndexState { Missing, Stale, Fresh };
 // Missing (no file), stale (another schema or library folder, or the stamps differ), fresh. The

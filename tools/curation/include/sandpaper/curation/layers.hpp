@@ -41,6 +41,9 @@ class LayeredIndex {
   // Whether a root in front of `layer` has an entry named `name` (which then hides this one).
   bool hidden(std::size_t layer, const std::string& name) const;
   std::optional<IndexedEntry> entry(std::size_t layer, const std::string& name) const;
+  // The entry of a root below `layer` that entry `name` of `layer` hides by its name or an alias,
+  // as "ID:NAME" (compiler::Library::shadowed_by's, by the indexes); "" if none.
+  std::string hides(std::size_t layer, const std::string& name) const;
 
   // Compiles on `device`, over the whole path, every entry of a root below the front one that the
   // roots in front may change (its `like` chain, reference or replacement reaches a name a root in
@@ -60,7 +63,9 @@ class LayeredIndex {
   // std::invalid_argument for a family no root has.
   std::vector<SearchHit> search(const SearchQuery& q) const;
   // The `limit` perceptually nearest entries, of any root, to `name` of root `layer`.
-  std::vector<Neighbour> nearest(std::size_t layer, const std::string& name, std::size_t limit) const;
+  // Of family `family` only, unless it is empty.
+  std::vector<Neighbour> nearest(std::size_t layer, const std::string& name, std::size_t limit,
+                                 const std::string& family = "") const;
   // Every name and alias, for "did you mean" (qualified ID:NAME too).
   std::vector<std::string> names_and_aliases() const;
 

@@ -33,12 +33,22 @@ struct SearchHit {
   IndexedEntry entry;
   std::string matched_alias;  // the alias the query named, if it matched by alias
   std::string why;            // "name", "alias", "words", "all" (no words: every entry in range)
-  double rank = 0;            // bm25 for word matches (lower is better)
+  double rank = 0;            // bm25 for word matches (lower is better); -roughness after "rough", roughness after "smooth"
+  bool stimulus = false;      // of a published stimulus set's family (Index::stimulus_families), the query naming no family
 };
 
+// The order of hits: exact names, exact aliases, word matches by rank (or, without words, every
+// entry by roughness), then a stimulus set's entries by rank. Ties keep their order.
+bool search_before(const SearchHit& a, const SearchHit& b);
+
 // Ranked: an exact name first, then an exact alias, then full-text matches by bm25 (the last word
-// also matches as a prefix); filtered by family and roughness. Without words: every entry in range,
-// by roughness. Throws std::invalid_argument for a family the index does not have (with "did you mean").
+// also matches as a prefix; words match by their Porter stems: "cloth" finds "cloths"); filtered by
+// family and roughness. Without words: every entry in range, by roughness. The words rough, rougher,
+// roughest, coarse, coarser, coarsest (smooth, smoother, smoothest) are not matched as text unless
+// an entry is so named: they keep the textured entries at or above (below) the library's median
+// roughness and order the matches roughest (smoothest) first. A stimulus set's entries come after
+// the materials unless `family` names theirs. Throws std::invalid_argument for a family the index
+// does not have (with "did you mean").
 std::vector<SearchHit> search(const Index& index, const SearchQuery& q);
 
 // The FTS5 query for `words`: each word quoted, the last one also as a prefix ("corduroy" "wal"*).
