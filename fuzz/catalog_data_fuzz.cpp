@@ -54,6 +54,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ref.family = "abrasives";
   ref.describes = "the reference grating </script> \\ '";
   ref.roughness = 0.5;
+  ref.max_lateral_force_N = 1.2;
+  ref.period_m = 0.0025;
+  ref.kind = "grating|grating";
+  ref.licence = "CC0-1.0";
+  ref.source_kinds = 5;
   ref.page = "entries/ref.html";
   ref.thumbnail = "entries/ref-thumb.png";
   catalog::IndexRow rib;
@@ -61,6 +66,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   rib.family = "cloth";
   rib.aliases = {"ribbed-cloth"};
   rib.describes = "ribbed cloth";
+  rib.root = "lab";
   rib.page = "entries/rib.html";
   const std::vector<catalog::IndexRow> changed{ref, rib};
   const auto once = catalog::patch_index(read, manifest(), changed);

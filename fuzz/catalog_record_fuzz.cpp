@@ -13,7 +13,7 @@
 namespace {
 
 // The picture settings the corpus's records were written with (catalog.cpp settings_of, defaults).
-const std::string kSettings = R"({"arrays":false,"picture_side":384,"thumbnail_side":128,"thumbnail_window_m":0.04})";
+const std::string kSettings = R"({"arrays":false,"format":3,"picture_side":384,"thumbnail_side":128,"thumbnail_window_m":0.04})";
 
 void check_files(const sandpaper::catalog::RecordedEntry& e) {
   const auto files = e.files();

@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
 """Browser test of `sandpaper library catalog` (docs/CATALOG.md): writes the catalog of the shipped
 library, opens index.html from file:// in headless Chromium, reads every entry page by page, filters by
-family and by a roughness range and checks exactly which entries remain, follows a link to an entry
-page and checks what it shows. (index_scale_browser_test.py tries the index with 100,000 entries.)
+family, by a roughness range, by licence and by source kind and checks exactly which entries remain,
+orders them by roughness, ticks three and compares them side by side (pictures at one scale, the
+numbers, force plots on shared axes), follows a link to an entry page and checks what it shows, and
+that its similar entries are those `sandpaper library near` gives. (index_scale_browser_test.py tries
+the index with 100,000 entries.)
 
 The expected entries come from the library itself, not from the catalog: roughness from
 `sandpaper library --json` (which compiles each entry on its own), families from the entries' files.
-Screenshots: <out>/index-filtered.png, <out>/entry.png.
+Screenshots: <out>/index-filtered.png, <out>/entry.png, <out>/compare.png.
 
 Exit 0 pass, 1 fail (including: Chromium missing), 77 skipped (SANDPAPER_SKIP_BROWSER_TESTS=1).
 """
@@ -15,6 +18,7 @@ import json
 import os
 import pathlib
 import re
+import shutil
 import subprocess
 import sys
 import urllib.parse
@@ -40,12 +44,133 @@ def expected_entries(sandpaper, library):
     for e in json.loads(out):
         textured = e.get("compiled_max_lateral_force_N", 0) > 0
         entries[e["name"]] = {"roughness": e["compiled_roughness"] if textured else None, "family": e.get("family")}
-    # `family WORD` as written in each entry's own file (the statement is not inherited through `like`).
+    # `family WORD`, `licence "..."` and the kinds of `source` notes as written in each entry's own
+    # file (none of them is inherited through `like`).
     for f in library.rglob("*.hmat"):
-        if f.stem in entries and entries[f.stem]["family"] is None:
-            m = re.search(r"^\s*family\s+([A-Za-z0-9_.-]+)", f.read_text(), re.M)
+        if f.stem not in entries:
+            continue
+        text = f.read_text()
+        if entries[f.stem]["family"] is None:
+            m = re.search(r"^\s*family\s+([A-Za-z0-9_.-]+)", text, re.M)
             entries[f.stem]["family"] = m.group(1) if m else ""
+        m = re.search(r'^\s*licence\s+"([^"]*)"', text, re.M)
+        entries[f.stem]["licence"] = m.group(1) if m else ""
+        entries[f.stem]["sources"] = set(re.findall(r"^\s*source\s+(measurement|standard|publication|derived|by-ear)\b",
+                                                    text, re.M))
     return entries
+
+
+def ordered_names(b):
+    """Every entry the filters keep, in the order shown, page by page (see visible_names)."""
+    names = []
+    while True:
+        names += page_names(b)
+        page, pages = b.evaluate("[Number(document.body.dataset.page), Number(document.body.dataset.pages)]")
+        if page >= pages:
+            break
+        b.click("#pager-bottom .next")
+        b.wait_for(f"document.body.dataset.page === '{page + 1}'", f"page {page + 1}")
+    return names
+
+
+def choose(b, select_id, value):
+    b.evaluate("(() => { const s = document.getElementById(%s); s.value = %s;"
+               " s.dispatchEvent(new Event('change', {bubbles: true})); })()" % (json.dumps(select_id), json.dumps(value)))
+
+
+def order_licence_and_sources(b, expected, names):
+    """Order by roughness, and the licence and source-kind filters, against the entries' own files."""
+    choose(b, "order", "roughness")
+    got = ordered_names(b)
+    rough = lambda n: expected[n]["roughness"]
+    textured = sorted((n for n in names if rough(n) is not None), key=lambda n: (rough(n), n))
+    check(got[:len(textured)] == textured and set(got[len(textured):]) == {n for n in names if rough(n) is None},
+          f"order=roughness lists the textured entries smoothest first, then those without a texture "
+          f"(first {got[:4]}, want {textured[:4]})")
+    choose(b, "order", "-roughness")
+    got = ordered_names(b)
+    check(got[:len(textured)] == sorted(textured, key=lambda n: (-rough(n), n)),
+          f"order=-roughness lists the roughest first ({got[:4]})")
+    check("order=-roughness" in b.evaluate("location.hash"), "the order is kept in the URL hash")
+    choose(b, "order", "")
+
+    licences = {}
+    for n in names:
+        licences.setdefault(expected[n]["licence"], set()).add(n)
+    options = b.evaluate("Array.from(document.querySelectorAll('#licence option')).map(o => [o.value, o.textContent])")
+    check({v for v, _ in options if v} == {l if l else "(none)" for l in licences},
+          f"the licence filter lists the licences the entries state ({[v for v, _ in options]})")
+    # The least used licence: a filter that drops most entries.
+    rare = min(licences, key=lambda l: (len(licences[l]), l))
+    choose(b, "licence", rare if rare else "(none)")
+    got = visible_names(b)
+    check(got == licences[rare] and len(got) < len(names), f"licence {rare!r}: shows exactly {sorted(licences[rare])}, got {sorted(got)}")
+    choose(b, "licence", "")
+
+    for kind in ("measurement", "derived", "by-ear"):
+        want = {n for n in names if kind in expected[n]["sources"]}
+        check(0 < len(want) < len(names), f"some entries have a {kind} note and some do not ({len(want)})")
+        choose(b, "source", kind)
+        got = visible_names(b)
+        check(got == want, f"source {kind}: shows exactly the {len(want)} entries with such a note ({len(got)} shown"
+              + ("" if got == want else f"; missing {sorted(want - got)[:5]}, extra {sorted(got - want)[:5]}") + ")")
+    want = {n for n in names if not expected[n]["sources"]}
+    choose(b, "source", "none")
+    check(visible_names(b) == want, f"source none: the {len(want)} entries without a note")
+    choose(b, "source", "")
+
+
+def compare(b, expected, picks, out):
+    """Ticks `picks` in the index, opens the compare page and checks it against the library's numbers."""
+    for n in picks:
+        b.evaluate("(() => { const f = document.getElementById('q'); f.value = %s;"
+                   " f.dispatchEvent(new Event('input', {bubbles: true})); })()" % json.dumps(n))
+        b.wait_for(f"!!document.querySelector('#entries tr[data-name=\"{n}\"] td.pick input')", f"{n}'s row")
+        b.click(f"#entries tr[data-name=\"{n}\"] td.pick input")
+    check(b.evaluate("document.getElementById('compare-bar').hidden") is False, "ticking shows the compare bar")
+    check(b.evaluate("document.getElementById('compare-count').textContent").startswith(f"{len(picks)} entries"),
+          "the bar counts the ticked entries")
+    href = b.evaluate("document.getElementById('compare-go').getAttribute('href')")
+    check(urllib.parse.parse_qs(href.split("#", 1)[1]).get("e") == picks, f"the compare link names them in order ({href})")
+    b.clear_events()
+    b.click("#compare-go")
+    b.wait_event("Page.loadEventFired")
+    b.wait_for("document.body.dataset.ready === 'true'", "the compare page's script")
+    heads = b.evaluate("Array.from(document.querySelectorAll('#compare thead th[data-name]')).map(t => t.dataset.name)")
+    check(heads == picks, f"the compare page has a column an entry, in order ({heads})")
+    b.wait_for("Array.from(document.querySelectorAll('.compare-picture img')).every(i => i.complete)", "the pictures")
+    imgs = b.evaluate("Array.from(document.querySelectorAll('.compare-picture img')).map(i => "
+                      "[i.naturalWidth, i.getBoundingClientRect().width, Number(i.dataset.windowMm)])")
+    check(len(imgs) == len([n for n in picks if expected[n]["roughness"] is not None]) and
+          all(w > 0 and abs(css - imgs[0][1]) < 0.5 and mm == imgs[0][2] for w, css, mm in imgs),
+          f"every picture loaded and shows the same square at the same size: one scale ({imgs})")
+    rows = b.evaluate("Object.fromEntries(Array.from(document.querySelectorAll('#compare tbody tr')).map(tr =>"
+                      " [tr.querySelector('th').textContent, Array.from(tr.querySelectorAll('td')).map(td => td.textContent)]))")
+    want = [expected[n]["roughness"] for n in picks]
+    got = rows.get("roughness (compiled)", [])
+    check(len(got) == len(picks) and all(g.startswith("\u2014") if w is None else abs(float(g) - w) <= 0.0051 * max(w, 0.01)
+                                   for g, w in zip(got, want)),
+          f"the roughness row gives each entry's compiled roughness to 3 digits ({got} vs {want})")
+    check(rows.get("licence") == [expected[n]["licence"] or "not stated" for n in picks], f"the licence row ({rows.get('licence')})")
+    ymax = b.evaluate("Array.from(document.querySelectorAll('#plots svg.force-plot')).map(s => s.dataset.yMax)")
+    check(len(ymax) == len(picks) and len(set(ymax)) == 1, f"the force plots share one axis ({ymax})")
+    peaks = b.evaluate("Array.from(document.querySelectorAll('#plots svg.force-plot polyline.force-along')).map(p =>"
+                       " p.getAttribute('points').trim().split(/\\s+/).length)")
+    check(all(p > 10 for p in peaks), f"each plot has its curve ({peaks} points)")
+    b.screenshot(str(out / "compare.png"), full_page=True)
+
+
+def similar(b, sandpaper, library, out, name):
+    """The entry page's similar entries against `sandpaper library near` over the same library."""
+    env = dict(os.environ, SANDPAPER_LIBRARY_INDEX=str(out / "near-index.sqlite"))
+    r = subprocess.run([sandpaper, "library", "near", name, "--json", "--limit", "5", "--library", str(library), "--quiet"],
+                       capture_output=True, text=True, env=env)
+    if not check(r.returncode == 0, f"sandpaper library near {name} exits 0 ({r.stderr.strip()[:200]})"):
+        return
+    want = [n["name"] for n in json.loads(r.stdout)["nearest"]]
+    b.wait_for("document.body.dataset.similar === 'ready'", "the similar entries")
+    got = b.evaluate("Array.from(document.querySelectorAll('#similar-list li[data-name]')).map(l => l.dataset.name)")
+    check(got == want, f"{name}'s similar entries are `library near`'s, in its order ({got} vs {want})")
 
 
 def page_names(b):
@@ -90,6 +215,20 @@ def main():
         return status
 
     args.out.mkdir(parents=True, exist_ok=True)
+    # A copy of the library in which two entries state other licences than the shipped entries' one
+    # (CC0-1.0), so that the licence filter has something to tell apart.
+    library = args.out / "library"
+    shutil.rmtree(library, ignore_errors=True)
+    shutil.copytree(args.library, library, ignore=shutil.ignore_patterns(".index"))
+    # The shipped library has no `source measurement` note yet: the tweed gets one, so that the
+    # source filter's "measured" keeps one entry rather than none.
+    for f, licence, note in (("textiles/tweed.hmat", "CC-BY-4.0", '\n  source measurement "a browser test\'s note"'),
+                             ("stones/slate.hmat", "CC-BY-SA-4.0 AND CC0-1.0", "")):
+        text = (library / f).read_text()
+        if check(re.search(r'^\s*licence\s+"CC0-1.0"', text, re.M) is not None, f"{f} states a licence to change"):
+            (library / f).write_text(re.sub(r'^(\s*licence\s+)"CC0-1.0"', lambda m: m.group(1) + f'"{licence}"' + note,
+                                            text, count=1, flags=re.M))
+    args.library = library
     catalog = args.out / "catalog"
     r = subprocess.run([args.sandpaper, "library", "catalog", "-o", str(catalog), "--library", str(args.library),
                         "--quiet"], capture_output=True, text=True)
@@ -140,6 +279,8 @@ def main():
         h = urllib.parse.parse_qs(b.evaluate("location.hash").lstrip("#"))
         check(h.get("rmin") == [str(lo)] and h.get("rmax") == [str(hi)], f"the range is kept in the URL hash ({h})")
         b.screenshot(str(args.out / "index-filtered.png"))
+        b.click("#clear")
+        order_licence_and_sources(b, expected, names)
 
         # The hash restores the filter on a fresh load (from another page: a hash change alone loads nothing).
         b.navigate("about:blank")
@@ -180,10 +321,21 @@ def main():
             b.click("nav a")
             b.wait_event("Page.loadEventFired")
             check(b.evaluate("location.pathname").endswith("/index.html"), "the entry page links back to the index")
+
+        # Compare: two gratings a period doubling apart and a photograph, where the library has them.
+        picks = [n for n in ("corduroy", "pinwale-corduroy", "gravel") if n in names]
+        if check(len(picks) >= 2, f"the library has entries to compare ({picks})"):
+            b.navigate("about:blank")
+            b.navigate(index_url)
+            b.wait_for("document.body.dataset.ready === 'true'", "the index's script")
+            compare(b, expected, picks, args.out)
+            b.navigate("about:blank")
+            b.navigate((catalog / "entries" / f"{picks[0]}.html").resolve().as_uri())
+            similar(b, args.sandpaper, args.library, args.out, picks[0])
     finally:
         b.close()
 
-    print(f"screenshots: {args.out / 'index-filtered.png'}, {args.out / 'entry.png'}")
+    print(f"screenshots: {args.out / 'index-filtered.png'}, {args.out / 'entry.png'}, {args.out / 'compare.png'}")
     if failures:
         print(f"{len(failures)} check(s) failed", file=sys.stderr)
         return 1

@@ -148,6 +148,16 @@ TEST(CatalogFromLayers, DrawsWhatAnEditChangesOverThePathAndEqualsTheCatalogOfTh
   EXPECT_EQ(a.compared, 7u);  // what the lab hides changed: every entry compared
   EXPECT_EQ(a.rendered, 2);  // canvas, and sturdy, which is `like canvas`: now the lab's
   EXPECT_NE(pages_under(p.root / "from-layers").at("entries/canvas.html").find("our canvas"), std::string::npos);
+  EXPECT_NE(pages_under(p.root / "from-layers").at("entries/canvas.html").find("in front of <code>world:canvas</code>"),
+            std::string::npos);
+
+  // A new world entry that a lab entry now hides by name: the lab's page says so (a lab's entries
+  // are drawn again whenever a root below changes; both() compares them with the whole path's).
+  test::write_text(p.world / "cloth/felt.hmat",
+                   "material \"felt\" {\n  describes \"the world's felt\"\n  grating period 4 mm\n  roughness 0.3\n}\n");
+  a = p.both();
+  EXPECT_NE(pages_under(p.root / "from-layers").at("entries/felt.html").find("in front of <code>world:felt</code>"),
+            std::string::npos);
 }
 
 TEST(CatalogFromLayers, ToldWhichFilesChangedItDrawsWhatAWalkDraws) {

@@ -74,14 +74,14 @@ nlohmann::json json_of_script(const std::string& script, const std::string& pref
 // that the head's counts and spans agree with the parts.
 nlohmann::json entries_of_index(const std::map<std::string, std::string>& files) {
   const auto head = json_of_script(files.at(catalog::kIndexDataFile), "window.sandpaperCatalog = JSON.parse('", "');\n");
-  EXPECT_EQ(head["format"], 2);
+  EXPECT_EQ(head["format"], 3);
   nlohmann::json entries = nlohmann::json::array();
   std::vector<int> counts(head["families"].size(), 0);
   std::size_t unfiled = 0;
   for (std::size_t k = 0; k < head["parts"].size(); ++k) {
     const auto d = json_of_script(files.at(catalog::index_part_file(k)),
                                   "(window.sandpaperCatalogParts = window.sandpaperCatalogParts || []).push(JSON.parse('", "'));\n");
-    EXPECT_EQ(d["format"], 2);
+    EXPECT_EQ(d["format"], 3);
     EXPECT_EQ(d["part"], k);
     EXPECT_EQ(d["name"].size(), head["parts"][k]["rows"]);
     EXPECT_EQ(d["name"].front(), head["parts"][k]["first"]);
@@ -98,6 +98,12 @@ nlohmann::json entries_of_index(const std::map<std::string, std::string>& files)
                          {"aliases", d["aliases"].value(key, nlohmann::json::array())},
                          {"describes", d["describes"][i]},
                          {"roughness", d["roughness"][i]},
+                         {"max_lateral_force_N", d["force_N"][i]},
+                         {"period_m", d["period_m"][i]},
+                         {"kind", d["kind"][i]},
+                         {"source_kinds", d["sources"][i]},
+                         {"root", d["root"].value(key, "")},
+                         {"licence", d["licence"][i]},
                          {"deprecated_by", d["deprecated_by"].value(key, "")},
                          {"page", "entries/" + name + ".html"},
                          {"thumbnail", no_thumbnail.count(static_cast<int>(i)) ? nlohmann::json(nullptr)
@@ -374,6 +380,12 @@ TEST(CatalogIndex, DataFileKeepsEveryFieldTheIndexShowsAndFiltersBy) {
   rows[0].roughness = 0.123456789;
   rows[0].aliases = {"ribbed", "rep"};
   rows[0].describes = "a rib";
+  rows[0].max_lateral_force_N = 1.23456789;
+  rows[0].period_m = 0.0016;
+  rows[0].kind = "grating|grating+damper";
+  rows[0].source_kinds = 1u << static_cast<unsigned>(compiler::SourceKind::Measurement) |
+                         1u << static_cast<unsigned>(compiler::SourceKind::ByEar);
+  rows[0].root = "lab";
   rows[1].name = "old-rib";
   rows[1].family = "cloth";
   rows[1].roughness = 0.5;
@@ -385,21 +397,22 @@ TEST(CatalogIndex, DataFileKeepsEveryFieldTheIndexShowsAndFiltersBy) {
   for (auto& r : rows) {
     r.page = "entries/" + r.name + ".html";
     if (r.name != "spring") r.thumbnail = "entries/" + r.name + "-thumb.png";
-    r.licence = "CC0-1.0";
+    r.licence = r.name == "stone" ? "CC-BY-SA-4.0 AND CC0-1.0" : "CC0-1.0";
   }
   const auto data = catalog::index_data(manifest, rows);
   auto want = data["entries"];
-  for (auto& e : want) {  // what the index does not show stays on the entry pages
-    e.erase("licence");
-    e.erase("max_lateral_force_N");
-  }
-  want[0]["roughness"] = 0.123457;
+  want[0]["roughness"] = 0.123457;  // six significant digits
+  want[0]["max_lateral_force_N"] = 1.23457;
   const auto files = catalog::index_files(data);
   EXPECT_EQ(entries_of_index(files), want);
   const std::string html = files.at("index.html");
   for (const char* s : {"<option value=\"cloth\">Cloth (2)</option>", "<option value=\"empty\">Empty (0)</option>",
                         "<option value=\"rocks\">rocks (1)</option>", "<option value=\"(none)\">no family</option>",
-                        "<p id=\"count\" aria-live=\"polite\">4 entries</p>", "Version 1.2.3"})
+                        "<p id=\"count\" aria-live=\"polite\">4 entries</p>", "Version 1.2.3",
+                        // The filters by licence (filled from the data), by source kind, and the order.
+                        "<select id=\"licence\" name=\"licence\">", "<option value=\"measurement\">measured</option>",
+                        "<option value=\"by-ear\">by ear</option>", "<option value=\"roughness\">roughness, smoothest first</option>",
+                        "<a id=\"compare-go\" href=\"assets/compare.html\">"})
     EXPECT_NE(html.find(s), std::string::npos) << s;
   // The page finds pages and thumbnails by name; a row that says otherwise cannot be written.
   rows[2].page = "elsewhere/spring.html";
@@ -645,6 +658,36 @@ TEST(Catalog, EntryPageShowsDeprecationLayersAndSourceNotes) {
   // And by the name the compiler gives an inherited number's file ("library/" and the path in the
   // library's folder), whatever the folder is called (here library-small).
   EXPECT_EQ(catalog::notes_for(c.library(), "library rib (library/cloth/rib.hmat:8:3)").size(), 2u);
+  // How to feel it: the commands, with the entry's name; and the similar entries, filled by a script.
+  for (const char* s : {"<pre><code>sandpaper run -e rib --device sim</code></pre>", "sandpaper run -e rib --device usb",
+                        "<code>sandpaper studio</code>", "<ol id=\"similar-list\">", "data-entry=\"rib\" data-weber=\"0.125\"",
+                        "<script src=\"../assets/similar.js\"></script>"})
+    EXPECT_NE(rib.find(s), std::string::npos) << s;
+  // The index's data says which kinds of source the entry's own notes are (rib's file has a derived
+  // and a by-ear note and no measurement), its period and kind for the similar entries.
+  const auto entries = entries_of_index(index_files_in(out));
+  const auto at = std::find_if(entries.begin(), entries.end(), [](const auto& e) { return e["name"] == "rib"; });
+  ASSERT_NE(at, entries.end());
+  const unsigned kinds = (*at)["source_kinds"];
+  EXPECT_TRUE(kinds & (1u << static_cast<unsigned>(compiler::SourceKind::Derived)));
+  EXPECT_TRUE(kinds & (1u << static_cast<unsigned>(compiler::SourceKind::ByEar)));
+  EXPECT_FALSE(kinds & (1u << static_cast<unsigned>(compiler::SourceKind::Measurement)));
+  EXPECT_NEAR((*at)["period_m"].get<double>(), 3e-3, 1e-12);  // "grating period 3 mm" in cloth/rib.hmat
+  EXPECT_EQ((*at)["kind"], "grating|grating");
+  EXPECT_EQ((*at)["root"], "");
+  // Its compare data: the scan over the thumbnail's 40 mm square, the force as the program's.
+  const std::string cmp = read(out / "entries" / "rib.compare.js");
+  const auto d = json_of_script(cmp, "(window.sandpaperCompare = window.sandpaperCompare || []).push(JSON.parse('", "'));\n");
+  EXPECT_EQ(d["name"], "rib");
+  EXPECT_EQ(d["thumbnail"], "rib-thumb.png");
+  EXPECT_DOUBLE_EQ(d["window_m"].get<double>(), 0.04);
+  EXPECT_NEAR(d["scan"]["s_mm"].front().get<double>(), -20, 1e-9);
+  EXPECT_NEAR(d["scan"]["s_mm"].back().get<double>(), 20, 1e-9);
+  double peak = 0;
+  for (const auto& f : d["scan"]["along_N"]) peak = std::max(peak, std::abs(f.get<double>()));
+  const auto rib_program = c.compile_file(c.library().entry("rib")->file).program;
+  EXPECT_NEAR(peak, rib_program->max_lateral_force_N, 0.02 * rib_program->max_lateral_force_N);
+  EXPECT_EQ(d["sources"], nlohmann::json::array({"derived", "by-ear"}));
   fs::remove_all(out.parent_path());
 }
 

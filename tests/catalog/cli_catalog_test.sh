@@ -25,6 +25,7 @@ has "progress on stderr (not a terminal: a line at the end)" "$tmp/err" "catalog
 check "index, pages and pictures exist" 0 $?
 "$sp" library catalog -o "$tmp/site" --library "$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "a catalog replaces the previous one" 0 $?
 [ ! -s "$tmp/err" ]; check "--quiet prints no progress" 0 $?
+[ ! -s "$tmp/out" ]; check "--quiet prints no summary either" 0 $?
 cp "$tmp/site/index.html" "$tmp/index.before"
 
 printf 'material "broken" {\n  grating period -2 mm\n}\n' >"$tmp/lib/broken.hmat"
@@ -45,12 +46,18 @@ mkdir -p "$tmp/lab"
 printf 'id = "lab"\nname = "lab"\nversion = "0.1.0"\n' >"$tmp/lab/library.toml"
 printf 'material "rib" {\n  overrides\n  like lib:rib\n  describes "our rib"\n  roughness 0.5\n}\n' >"$tmp/lab/rib.hmat"
 printf 'material "wide-rib" {\n  like rib\n  grating period 4 mm\n}\n' >"$tmp/lab/wide-rib.hmat"
-"$sp" library catalog -o "$tmp/layered" --library "$tmp/lab:$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "a layered path is drawn" 0 $?
+"$sp" library catalog -o "$tmp/layered" --library "$tmp/lab:$tmp/lib" >"$tmp/out" 2>"$tmp/err"; check "a layered path is drawn" 0 $?
 has "the lab's rib hides the library's" "$tmp/out" "catalog of 3 entries"
 has "the page is the lab's" "$tmp/layered/entries/rib.html" "our rib"
+has "the page names its root and what it hides" "$tmp/layered/entries/rib.html" "<code>lab</code>, in front of <code>lib:rib</code>, which it hides"
+has "the index's data names the root" "$tmp/layered/catalog-data/part-00000.js" '"root":{"[0-9]*":"lab"'
+printf 'material "one" {\n  grating period 2 mm\n  roughness 0.4\n}\n' >"$tmp/one.hmat" && mkdir -p "$tmp/lib1" && mv "$tmp/one.hmat" "$tmp/lib1/"
+"$sp" library catalog -o "$tmp/site1" --library "$tmp/lib1" >"$tmp/out" 2>/dev/null; check "a library of one entry" 0 $?
+has "one entry is \"1 entry\"" "$tmp/out" "catalog of 1 entry ->"
+has "its index page too" "$tmp/site1/index.html" "<p id=\"count\" aria-live=\"polite\">1 entry</p>"
 [ -f "$tmp/lab/.index/library.sqlite" ] && [ -f "$tmp/lib/.index/library.sqlite" ]; check "each root has its index" 0 $?
 echo "# touched" >>"$tmp/lab/wide-rib.hmat"
-"$sp" library catalog -o "$tmp/layered" --library "$tmp/lab:$tmp/lib" --quiet >"$tmp/out" 2>"$tmp/err"; check "drawn again" 0 $?
+"$sp" library catalog -o "$tmp/layered" --library "$tmp/lab:$tmp/lib" >"$tmp/out" 2>"$tmp/err"; check "drawn again" 0 $?
 has "an edit in place draws that entry alone" "$tmp/out" "(1 drawn, 2 unchanged, updated in place)"
 
 exit $((fails > 0))

@@ -1,9 +1,10 @@
 // The catalog index: a page of rows at a time from the entries in catalog-data.js and its parts,
-// filtered by family, roughness range and words. The data comes by <script src> rather than fetch(),
+// filtered by family, roughness range, licence, source kind and words, in name or roughness order;
+// ticked entries open side by side in compare.html. The data comes by <script src> rather than fetch(),
 // which browsers refuse for file://; it is columns of arrays (index_page.hpp, index_files), and only the rows of the
 // page shown are ever made, so that 100,000 entries open as fast as 100. The filters and the page live
-// in the URL hash (#family=textiles&rmin=0.2&rmax=0.5&q=silk&page=3), so a view can be bookmarked or
-// shared and the back button returns to it.
+// in the URL hash (#family=textiles&rmin=0.2&rmax=0.5&q=silk&order=roughness&page=3&cmp=a,b), so a
+// view can be bookmarked or shared and the back button returns to it.
 (function () {
   'use strict';
   var PAGE_SIZE = 100;
@@ -11,6 +12,15 @@
   var rmin = document.getElementById('rmin');
   var rmax = document.getElementById('rmax');
   var q = document.getElementById('q');
+  var licence = document.getElementById('licence');
+  var source = document.getElementById('source');
+  var order = document.getElementById('order');
+  var compareBar = document.getElementById('compare-bar');
+  var compareCount = document.getElementById('compare-count');
+  var compareGo = document.getElementById('compare-go');
+  // The source kinds' bits in the data's `sources` column (compiler::SourceKind's order).
+  var SOURCE_BITS = {measurement: 1, standard: 2, publication: 4, derived: 8, 'by-ear': 16};
+  var ticked = [];  // the names ticked for comparison, in the order ticked
   var count = document.getElementById('count');
   var none = document.getElementById('none');
   var tbody = document.querySelector('#entries tbody');
@@ -31,19 +41,36 @@
   var noThumbnail = new Uint8Array(total);
   data.no_thumbnail.forEach(function (i) { noThumbnail[i] = 1; });
   var haystacks = null;  // lower-case text each entry's words are matched in; made at the first word search
+  var indexOfName = Object.create(null);
+  data.name.forEach(function (n, i) { indexOfName[n] = i; });
+
+  // The licence filter lists the licences the entries state, most used first, with their counts.
+  (function listLicences() {
+    var counts = {};
+    data.licence.forEach(function (l) { counts[l] = (counts[l] || 0) + 1; });
+    Object.keys(counts).sort(function (a, b) { return counts[b] - counts[a] || (a < b ? -1 : a > b ? 1 : 0); })
+      .forEach(function (l) {
+        var o = document.createElement('option');
+        o.value = l === '' ? '(none)' : l;
+        o.textContent = (l === '' ? 'not stated' : l) + ' (' + grouped(counts[l]) + ')';
+        licence.appendChild(o);
+      });
+  })();
 
   // The parts' columns end to end; a part's rows are numbered within it, so its aliases, deprecations
   // and missing thumbnails are shifted by the rows before it. Null if any part is missing or not its own.
   function joinParts(head, parts) {
-    if (!head || head.format !== 2 || !Array.isArray(head.parts) || parts.length !== head.parts.length) return null;
-    var d = {families: head.families, name: [], family: [], roughness: [], describes: [], aliases: {},
-             deprecated_by: {}, no_thumbnail: []};
+    if (!head || head.format !== 3 || !Array.isArray(head.parts) || parts.length !== head.parts.length) return null;
+    var columns = ['name', 'family', 'roughness', 'describes', 'licence', 'sources', 'force_N', 'period_m', 'kind'];
+    var d = {families: head.families, aliases: {}, deprecated_by: {}, root: {}, no_thumbnail: []};
+    columns.forEach(function (c) { d[c] = []; });
     for (var k = 0; k < parts.length; k++) {
       var p = parts[k], base = d.name.length;
-      if (!p || p.format !== 2 || p.part !== k || p.name.length !== head.parts[k].rows) return null;
-      ['name', 'family', 'roughness', 'describes'].forEach(function (c) { Array.prototype.push.apply(d[c], p[c]); });
+      if (!p || p.format !== 3 || p.part !== k || p.name.length !== head.parts[k].rows) return null;
+      columns.forEach(function (c) { Array.prototype.push.apply(d[c], p[c]); });
       Object.keys(p.aliases).forEach(function (i) { d.aliases[base + Number(i)] = p.aliases[i]; });
       Object.keys(p.deprecated_by).forEach(function (i) { d.deprecated_by[base + Number(i)] = p.deprecated_by[i]; });
+      Object.keys(p.root).forEach(function (i) { d.root[base + Number(i)] = p.root[i]; });
       p.no_thumbnail.forEach(function (i) { d.no_thumbnail.push(base + i); });
     }
     return d.name.length === head.entries ? d : null;
@@ -79,6 +106,9 @@
       rmin: rmin.value.trim(),
       rmax: rmax.value.trim(),
       q: q.value.trim(),
+      licence: licence.value,
+      source: source.value,
+      order: order.value,
       page: page
     };
     f.min = number(f.rmin);
@@ -93,21 +123,31 @@
     if (f.rmin) p.set('rmin', f.rmin);
     if (f.rmax) p.set('rmax', f.rmax);
     if (f.q) p.set('q', f.q);
+    if (f.licence) p.set('licence', f.licence);
+    if (f.source) p.set('source', f.source);
+    if (f.order) p.set('order', f.order);
     if (f.page > 1) p.set('page', String(f.page));
+    if (ticked.length) p.set('cmp', ticked.join(','));
     return p.toString();
   }
 
-  // The indices of the entries that pass the filters, in the library's order. An entry without a
-  // roughness (no texture) passes only while no roughness bound is set.
+  // The indices of the entries that pass the filters, in the library's order or by roughness (the
+  // entries without one, having no texture, last; equal ones by name). An entry without a roughness
+  // passes only while no roughness bound is set. A source kind keeps the entries with a `source`
+  // note of that kind; "none", those with no note at all.
   var last = {key: null, shown: null};
   function filtered(f) {
-    var key = JSON.stringify([f.family, f.min, f.max, f.words]);
+    var key = JSON.stringify([f.family, f.min, f.max, f.words, f.licence, f.source, f.order]);
     if (key === last.key) return last.shown;
     var fam = f.family === '' ? null : f.family === '(none)' ? -1 : familyOf[f.family];
+    var lic = f.licence === '' ? null : f.licence === '(none)' ? '' : f.licence;
+    var bit = f.source === '' || f.source === 'none' ? 0 : SOURCE_BITS[f.source] || -1;
     var ranged = f.min !== null || f.max !== null;
     var shown = [];
     for (var i = 0; i < total; i++) {
       if (fam !== null && data.family[i] !== fam) continue;
+      if (lic !== null && data.licence[i] !== lic) continue;
+      if (f.source === 'none' ? data.sources[i] !== 0 : bit !== 0 && !(data.sources[i] & bit)) continue;
       if (ranged) {
         var r = data.roughness[i];
         if (r === null || (f.min !== null && r < f.min) || (f.max !== null && r > f.max)) continue;
@@ -118,6 +158,14 @@
         if (!ok) continue;
       }
       shown.push(i);
+    }
+    if (f.order === 'roughness' || f.order === '-roughness') {
+      var sign = f.order === 'roughness' ? 1 : -1;
+      shown.sort(function (a, b) {
+        var ra = data.roughness[a], rb = data.roughness[b];
+        if (ra === null || rb === null) return ra === rb ? a - b : ra === null ? 1 : -1;
+        return ra !== rb ? sign * (ra - rb) : a - b;
+      });
     }
     last = {key: key, shown: shown};
     return shown;
@@ -137,6 +185,13 @@
     var tr = element('tr', {'data-name': name});
     if (deprecatedBy) tr.className = 'deprecated';
 
+    var pick = element('td', {'class': 'pick'});
+    var box = element('input', {type: 'checkbox', 'aria-label': 'compare ' + name});
+    box.checked = ticked.indexOf(name) >= 0;
+    box.addEventListener('change', function () { tick(name, box.checked); });
+    pick.appendChild(box);
+    tr.appendChild(pick);
+
     var thumb = element('td', {'class': 'thumb'});
     if (noThumbnail[i]) {
       thumb.appendChild(element('span', {'class': 'no-thumb', title: 'no position-dependent force to draw'}, '\u2014'));
@@ -154,6 +209,7 @@
     var aliases = aliasesOf(i);
     if (aliases.length) cell.appendChild(element('div', {'class': 'aliases'}, aliases.join(', ')));
     if (deprecatedBy) cell.appendChild(element('div', {'class': 'deprecated-tag'}, 'deprecated: use ' + deprecatedBy));
+    if (data.root[i]) cell.appendChild(element('div', {'class': 'root-tag'}, 'from ' + data.root[i]));
     tr.appendChild(cell);
 
     var f = data.families[data.family[i]];
@@ -170,6 +226,26 @@
 
   var current = null;  // the state shown: readControls' object with the page clamped
 
+  // The compare bar: how many are ticked, and the link to see them side by side.
+  function showTicked() {
+    compareBar.hidden = ticked.length === 0;
+    compareCount.textContent = ticked.length + (ticked.length === 1 ? ' entry ticked: tick another to compare'
+                                                                      : ' entries ticked');
+    var p = new URLSearchParams();
+    ticked.forEach(function (n) { p.append('e', n); });
+    compareGo.href = 'assets/compare.html#' + p.toString();
+    compareGo.setAttribute('aria-disabled', ticked.length < 2 ? 'true' : 'false');
+    compareGo.classList.toggle('disabled', ticked.length < 2);
+  }
+
+  function tick(name, on) {
+    var at = ticked.indexOf(name);
+    if (on && at < 0) ticked.push(name);
+    if (!on && at >= 0) ticked.splice(at, 1);
+    showTicked();
+    writeHash(current, false);
+  }
+
   function render(f) {
     var shown = filtered(f);
     var pages = Math.max(1, Math.ceil(shown.length / PAGE_SIZE));
@@ -180,8 +256,9 @@
     tbody.textContent = '';
     tbody.appendChild(rows);
 
-    count.textContent = shown.length === total ? grouped(total) + ' entries'
-                                               : grouped(shown.length) + ' of ' + grouped(total) + ' entries match';
+    count.textContent = shown.length === total ? grouped(total) + (total === 1 ? ' entry' : ' entries')
+                                               : grouped(shown.length) + ' of ' + grouped(total) +
+                                                 (total === 1 ? ' entry matches' : shown.length === 1 ? ' entries matches' : ' entries match');
     none.hidden = shown.length !== 0;
     var where = 'page ' + grouped(f.page) + ' of ' + grouped(pages) +
                 (shown.length ? ' (' + grouped(from + 1) + '\u2013' + grouped(to) + ')' : '');
@@ -224,6 +301,12 @@
     rmin.value = p.get('rmin') || '';
     rmax.value = p.get('rmax') || '';
     q.value = p.get('q') || '';
+    [[licence, 'licence'], [source, 'source'], [order, 'order']].forEach(function (c) {
+      c[0].value = p.get(c[1]) || '';
+      if (c[0].selectedIndex < 0) c[0].value = '';
+    });
+    ticked = (p.get('cmp') || '').split(',').filter(function (n) { return n !== '' && n in indexOfName; });
+    showTicked();
     return readControls(Number(p.get('page')) || 1);
   }
 
@@ -240,15 +323,22 @@
     if (nav.id === 'pager-bottom') document.getElementById('entries').scrollIntoView();
   }
 
-  [family, rmin, rmax, q].forEach(function (el) {
+  [family, rmin, rmax, q, licence, source, order].forEach(function (el) {
     el.addEventListener('input', filtersChanged);
     el.addEventListener('change', filtersChanged);
   });
   document.getElementById('clear').addEventListener('click', function () {
-    family.value = '';
+    family.value = licence.value = source.value = order.value = '';
     rmin.value = rmax.value = q.value = '';
     filtersChanged();
   });
+  document.getElementById('compare-clear').addEventListener('click', function () {
+    ticked = [];
+    Array.prototype.forEach.call(tbody.querySelectorAll('td.pick input'), function (b) { b.checked = false; });
+    showTicked();
+    writeHash(current, false);
+  });
+  compareGo.addEventListener('click', function (ev) { if (ticked.length < 2) ev.preventDefault(); });
   pagers.forEach(function (nav) {
     nav.querySelector('.prev').addEventListener('click', function () { turn(-1, nav); });
     nav.querySelector('.next').addEventListener('click', function () { turn(1, nav); });

@@ -24,11 +24,13 @@
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/catalog/assets.hpp"
+#include "sandpaper/catalog/compare_data.hpp"
 #include "sandpaper/catalog/entry_page.hpp"
 #include "sandpaper/catalog/index_page.hpp"
 #include "sandpaper/catalog/plot.hpp"
 #include "sandpaper/catalog/render.hpp"
 #include "sandpaper/curation/inputs.hpp"
+#include "sandpaper/curation/percepts.hpp"
 #include "sandpaper/curation/progress.hpp"
 #include "sandpaper/schema/array_file.hpp"
 #include "record.hpp"
@@ -126,7 +128,7 @@ void swap_in(const fs::path& fresh, const fs::path& dir) {
 std::vector<std::string> recorded_files(const std::string& name, const RecordedEntry& e) {
   if (auto files = e.files()) return std::move(*files);
   if (!plain_file_name(name)) return {};
-  return {name + ".html", name + ".png", name + "-thumb.png", name + ".shade"};
+  return {name + ".html", name + ".png", name + "-thumb.png", name + ".shade", compare_data_file(name)};
 }
 
 // The largest index data file an in-place update reads back: a part of 2,048 rows is about 100 KB, the
@@ -136,8 +138,11 @@ constexpr std::uintmax_t kMaxDataFileBytes = std::uintmax_t{256} << 20;
 // At most this many entries drawn or removed for an in-place update.
 constexpr std::size_t kInPlaceLimit = 256;
 
+// The catalog's files as this version writes them: a record of another version draws everything again.
+constexpr int kCatalogFormat = 3;
+
 std::string settings_of(const CatalogOptions& o) {
-  return nlohmann::json{{"picture_side", o.picture_side}, {"thumbnail_side", o.thumbnail_side},
+  return nlohmann::json{{"format", kCatalogFormat}, {"picture_side", o.picture_side}, {"thumbnail_side", o.thumbnail_side},
                         {"thumbnail_window_m", o.thumbnail_window_m}, {"arrays", o.arrays}}
       .dump();
 }
@@ -365,8 +370,6 @@ CatalogReport write_catalog_pass(const CatalogSource& source, const CatalogOptio
       files.push_back(e.name + "-thumb.png");
       if (options.arrays) files.push_back(view.shade_file);
     }
-    write_text(tmp.path / "entries" / (e.name + ".html"), entry_page_html(view));
-
     row.name = e.name;
     row.family = e.family;
     row.describes = program.describes;
@@ -376,15 +379,37 @@ CatalogReport write_catalog_pass(const CatalogSource& source, const CatalogOptio
     if (program.max_lateral_force_N > 0) row.roughness = program.roughness;
     row.max_lateral_force_N = program.max_lateral_force_N;
     row.page = "entries/" + e.name + ".html";
+    const auto percepts = curation::percepts_of(*r.material, program, drawing->calibration());
+    row.period_m = percepts.period_m;
+    row.kind = percepts.texture_kind + "|" + percepts.terms;
+    for (const auto& st : e.syntax.statements)
+      for (const auto& note : st.sources) row.source_kinds |= 1u << static_cast<unsigned>(note.kind);
+    if (library.layered()) row.root = library.roots().at(e.root).id;
+    if (source.hides) view.hides = source.hides(e.name);
+    else if (const auto* hidden = library.shadowed_by(e)) view.hides = library.qualified_name(*hidden);
+    view.root = row.root;
+    view.weber_fraction = drawing->calibration().knowledge().force_jnd.weber_fraction;
+    write_text(tmp.path / "entries" / (e.name + ".html"), entry_page_html(view));
+    // The compare page's scan: through the centre of the thumbnail's square, so every entry's curve
+    // covers the same span on one axis.
+    const ForceScan compare_scan = scan_force(program, std::min(options.thumbnail_window_m / 2,
+                                                             half_length_inside(d, program.size_m[0], program.size_m[1])),
+                                           scan.speed_m_s, 801);
+    const auto* fam = source.manifest.family(e.family);
+    write_text(tmp.path / "entries" / compare_data_file(e.name),
+               compare_data_script(row, fam ? fam->title : e.family, program.device, percepts.terms, compare_scan,
+                                   options.thumbnail_window_m));
+    files.push_back(compare_data_file(e.name));
     drawn[e.name] = RecordedEntry{hash, row, nlohmann::json(files).dump()};
     rows.push_back(std::move(row));
     ++report.rendered;
   }
   if (partial) report.reused += static_cast<int>(entry_count - entries->size());  // not compared: as recorded
-  progress.finish(report.failures.empty() ? "catalog: " + std::to_string(report.rendered) + " of " +
-                                                std::to_string(entry_count) + " entries compiled and drawn"
-                                          : "catalog: " + std::to_string(report.failures.size()) + " of " +
-                                                std::to_string(entry_count) + " entries do not compile");
+  const std::string of_all = " of " + std::to_string(entry_count) + (entry_count == 1 ? " entry" : " entries");
+  progress.finish(report.failures.empty()
+                      ? "catalog: " + std::to_string(report.rendered) + of_all + " compiled and drawn"
+                      : "catalog: " + std::to_string(report.failures.size()) + of_all +
+                            (report.failures.size() == 1 ? " does not compile" : " do not compile"));
   if (!report.failures.empty()) return report;
 
   const std::string marker = "Written by `sandpaper library catalog`; the folder is replaced whole by the next run, or its "

@@ -84,6 +84,10 @@ std::optional<CatalogReport> write_catalog_from_layers(const std::vector<std::fi
     inputs = curation::layered_inputs(idx, roots);
   }
   source.entries = std::move(inputs.entries);
+  source.hides = [&](const std::string& name) {
+    const auto at = idx.resolve(name);
+    return at ? idx.hides(at->first, at->second) : std::string();
+  };
   std::optional<compiler::Compiler> drawing;
   source.compiler_for = [&](const std::vector<std::string>& names) -> const compiler::Compiler& {
     compiler::CompileOptions o;

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "sandpaper/catalog/html.hpp"
+#include "sandpaper/curation/display.hpp"
 #include "sandpaper/curation/licences.hpp"
 #include "sandpaper/schema/force_laws.hpp"
 
@@ -19,14 +20,12 @@ using compiler::Param;
 
 std::string esc(const std::string& s) { return html_escape(s); }
 
-// Where a number came from, as shown: the library's files relative to the folder that holds the
-// library ("library/textiles/corduroy.hmat:7:3"), as the compiler names entries reached by `like`.
-std::string shown_source(const compiler::Library& lib, std::string s) {
-  std::string prefix = lib.directory().parent_path().string();
-  if (prefix.empty()) return s;
-  if (prefix.back() != '/') prefix += '/';
-  for (auto at = s.find(prefix); at != std::string::npos; at = s.find(prefix, at)) s.erase(at, prefix.size());
-  return s;
+// Where a number came from, as shown: a library file relative to the folder that holds its root
+// ("library/textiles/corduroy.hmat:7:3"; "world/textiles/..." in a layered library), whether the
+// compiler named it (an entry reached by `like`) or was given its path (the entry itself): the
+// text `library check`, `explain` and `library show` print when run from that folder.
+std::string shown_source(const compiler::Library& lib, const std::string& s) {
+  return curation::DisplayPaths(lib, curation::DisplayPaths::FromRootsParent{}).in_text(s);
 }
 
 std::string entry_link(const compiler::Library& lib, const std::string& name) {
@@ -74,7 +73,41 @@ std::string representative(const EntryView& v) {
     if (i < m.like_origins.size())
       o << " <span class=\"origin\">(" << esc(shown_source(*v.library, m.like_origins[i])) << ")</span>";
   }
-  o << "</dd>\n<dt>file</dt><dd><code>" << esc(e.relative_path) << "</code></dd>\n</dl>\n</section>\n";
+  o << "</dd>\n<dt>file</dt><dd><code>" << esc(e.relative_path) << "</code></dd>\n";
+  if (!v.root.empty())
+    o << "<dt>root</dt><dd class=\"root\"><code>" << esc(v.root) << "</code>"
+      << (v.hides.empty() ? std::string(" (hides no entry below it)")
+                          : ", in front of <code>" + esc(v.hides) + "</code>, which it hides") << "</dd>\n";
+  o << "</dl>\n</section>\n";
+  return o.str();
+}
+
+// The commands that play the entry: what a reader who found it here types next.
+std::string how_to_feel(const EntryView& v) {
+  const std::string name = esc(v.entry->name);
+  std::ostringstream o;
+  o << "<section id=\"feel\"><h2>How to feel it</h2>\n"
+    << "<p>On the simulated joystick, with a hand moving over the patch, and the force it feels printed:</p>\n"
+    << "<pre><code>sandpaper run -e " << name << " --device sim</code></pre>\n"
+    << "<p>On a force-feedback joystick (an OpenFFBoard over USB; <code>sandpaper devices</code> lists what is plugged in):</p>\n"
+    << "<pre><code>sandpaper run -e " << name << " --device usb</code></pre>\n"
+    << "<p>In the studio, to feel it while changing its numbers: <code>sandpaper studio</code>, then a material that says "
+    << "<code>like " << name << "</code>.";
+  if (!v.root.empty())
+    o << " This library is layered: give its folders with <code>--library</code>, front first, as it was drawn.";
+  o << "</p>\n</section>\n";
+  return o.str();
+}
+
+// Filled in the browser from the index's data (assets/similar.js): the same distance as `sandpaper
+// library near` over what the index holds (force, spatial period, texture kind and terms).
+std::string similar(const EntryView& v) {
+  std::ostringstream o;
+  o << "<section id=\"similar\"><h2>Similar entries</h2>\n<p class=\"similar-how\">The nearest entries in force JND "
+       "steps (Weber fraction " << format_number(v.weber_fraction, 3) << "), as <code>sandpaper library near "
+    << esc(v.entry->name) << "</code> measures them from the texture: maximum lateral force, spatial period and "
+       "texture kind.</p>\n<ol id=\"similar-list\"><li class=\"muted\">Reading the index\xE2\x80\xA6</li></ol>\n"
+       "<noscript><p>The list needs JavaScript.</p></noscript>\n</section>\n";
   return o.str();
 }
 
@@ -297,7 +330,8 @@ std::string entry_page_html(const EntryView& v) {
   o << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
     << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>" << esc(e.name) << " \xE2\x80\x94 "
     << esc(lib.manifest().name.empty() ? std::string("Sandpaper library") : lib.manifest().name) << "</title>\n"
-    << "<link rel=\"stylesheet\" href=\"../assets/catalog.css\">\n</head>\n<body class=\"entry\">\n";
+    << "<link rel=\"stylesheet\" href=\"../assets/catalog.css\">\n</head>\n<body class=\"entry\" data-entry=\""
+    << esc(e.name) << "\" data-weber=\"" << format_number(v.weber_fraction, 6) << "\">\n";
   o << "<nav><a href=\"../index.html\">\xE2\x86\x90 all entries</a></nav>\n";
   if (!e.deprecated_by.empty())
     o << "<div class=\"deprecated\" role=\"alert\">Deprecated: use " << entry_link(lib, e.deprecated_by)
@@ -308,10 +342,10 @@ std::string entry_page_html(const EntryView& v) {
     o << "roughness <strong>" << format_number(v.program->roughness, 3) << "</strong> \xC2\xB7 ";
   o << "licence <span class=\"licence\">" << (e.licence.empty() ? "not stated" : esc(e.licence)) << "</span></p>\n</header>\n";
   o << "<div class=\"figures\">\n" << figure(v) << plot(v) << "</div>\n";
-  o << representative(v) << perceptual(v) << physical(v) << provenance(v);
+  o << how_to_feel(v) << representative(v) << perceptual(v) << physical(v) << similar(v) << provenance(v);
   o << "<footer>Licence of this entry: <span class=\"licence\">" << (e.licence.empty() ? "not stated" : esc(e.licence))
     << "</span>. " << esc(lib.manifest().name) << (lib.manifest().version.empty() ? "" : " " + esc(lib.manifest().version))
-    << ".</footer>\n</body>\n</html>\n";
+    << ".</footer>\n<script src=\"../assets/similar.js\"></script>\n</body>\n</html>\n";
   return o.str();
 }
 

@@ -1,5 +1,6 @@
 #include "sandpaper/catalog/html.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -66,6 +67,24 @@ std::string format_number(double value, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, value);
   return buf;
+}
+
+std::string json_statement(std::string_view start, const std::string& json_text, std::string_view end) {
+  std::string out(start);
+  out.reserve(json_text.size() + json_text.size() / 16 + 128);
+  // Copied in runs between the characters that need escaping (a data file has few of them).
+  for (std::size_t p = 0; p < json_text.size();) {
+    const std::size_t q = std::min(json_text.find_first_of("<>\\'", p), json_text.size());
+    out.append(json_text, p, q - p);
+    if (q == json_text.size()) break;
+    const char c = json_text[q];
+    if (c == '<') out += "\\\\u003c";  // \u003c in the JSON, its backslash escaped for the string literal
+    else if (c == '>') out += "\\\\u003e";
+    else out += {'\\', c};
+    p = q + 1;
+  }
+  out += end;
+  return out;
 }
 
 }  // namespace sandpaper::catalog

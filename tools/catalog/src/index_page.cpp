@@ -1,6 +1,7 @@
 // The catalog's index page (index_page.hpp).
 #include "sandpaper/catalog/index_page.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -59,6 +60,10 @@ nlohmann::json index_data(const compiler::LibraryManifest& manifest, const std::
                        {"describes", r.describes},
                        {"roughness", r.roughness ? json(*r.roughness) : json(nullptr)},
                        {"max_lateral_force_N", r.max_lateral_force_N},
+                       {"period_m", r.period_m},
+                       {"kind", r.kind},
+                       {"source_kinds", r.source_kinds},
+                       {"root", r.root},
                        {"licence", r.licence},
                        {"deprecated_by", r.deprecated_by},
                        {"page", r.page},
@@ -69,6 +74,18 @@ nlohmann::json index_data(const compiler::LibraryManifest& manifest, const std::
 }
 
 namespace {
+
+// The source filter's words for the `source` kinds (syntax.hpp), as a reader would pick them.
+const char* source_kind_label(compiler::SourceKind k) {
+  switch (k) {
+    case compiler::SourceKind::Measurement: return "measured";
+    case compiler::SourceKind::Standard: return "from a standard";
+    case compiler::SourceKind::Publication: return "published";
+    case compiler::SourceKind::Derived: return "derived";
+    case compiler::SourceKind::ByEar: return "by ear";
+  }
+  return "";
+}
 
 // 100000 -> "100,000", as index.js writes counts.
 std::string grouped(std::size_t n) {
@@ -103,7 +120,7 @@ std::string page_html(const std::string& library_name, const std::string& versio
     << "<noscript><style>#filters, #count, #entries { display: none; }</style></noscript>\n"
     << "</head>\n<body class=\"index\">\n";
   o << "<header><h1>" << html_escape(name) << "</h1>\n<p>" << (version.empty() ? "" : "Version " + html_escape(version) + " \xC2\xB7 ")
-    << grouped(entries) << " entries, each a material in three layers (representative, perceptual, physical) with the "
+    << grouped(entries) << (entries == 1 ? " entry" : " entries") << ", each a material in three layers (representative, perceptual, physical) with the "
        "source of every number. Roughness is on the calibrated ratio scale (0.1 very fine \xE2\x80\xA6 1 the strongest "
        "calibrated stimulus).</p>\n</header>\n";
   o << "<noscript><p class=\"noscript\">This index needs JavaScript to list, filter and page through the entries. "
@@ -119,10 +136,23 @@ std::string page_html(const std::string& library_name, const std::string& versio
        "min=\"0\" step=\"0.01\" inputmode=\"decimal\" placeholder=\"0\"></label> <label>to <input id=\"rmax\" name=\"rmax\" "
        "type=\"number\" min=\"0\" step=\"0.01\" inputmode=\"decimal\" placeholder=\"any\"></label></fieldset>\n"
     << "<label>Words <input id=\"q\" name=\"q\" type=\"search\" placeholder=\"name, alias or description\"></label>\n"
-    << "<button type=\"button\" id=\"clear\">Show all</button>\n</form>\n";
-  o << "<p id=\"count\" aria-live=\"polite\">" << grouped(entries) << " entries</p>\n";
+    // The licences are the entries' own: index.js lists them with their counts from the data.
+    << "<label>Licence <select id=\"licence\" name=\"licence\">\n<option value=\"\">any licence</option>\n</select></label>\n"
+    << "<label>Sources <select id=\"source\" name=\"source\">\n<option value=\"\">any</option>\n";
+  for (const auto k : {compiler::SourceKind::Measurement, compiler::SourceKind::Standard, compiler::SourceKind::Publication,
+                       compiler::SourceKind::Derived, compiler::SourceKind::ByEar})
+    o << "<option value=\"" << compiler::source_kind_word(k) << "\">" << source_kind_label(k) << "</option>\n";
+  o << "<option value=\"none\">none stated</option>\n</select></label>\n"
+    << "<label>Order <select id=\"order\" name=\"order\">\n<option value=\"\">by name</option>\n"
+       "<option value=\"roughness\">roughness, smoothest first</option>\n"
+       "<option value=\"-roughness\">roughness, roughest first</option>\n</select></label>\n"
+    << "<button type=\"button\" id=\"clear\">Show all</button>\n</form>\n"
+    << "<div id=\"compare-bar\" hidden><span id=\"compare-count\" aria-live=\"polite\"></span>\n"
+       "<a id=\"compare-go\" href=\"assets/compare.html\">Compare side by side</a>\n"
+       "<button type=\"button\" id=\"compare-clear\">Untick all</button></div>\n";
+  o << "<p id=\"count\" aria-live=\"polite\">" << grouped(entries) << (entries == 1 ? " entry" : " entries") << "</p>\n";
   pager(o, "pager-top", true);
-  o << "<table id=\"entries\">\n<thead><tr><th scope=\"col\">picture</th><th scope=\"col\">name</th><th scope=\"col\">family</th>"
+  o << "<table id=\"entries\">\n<thead><tr><th scope=\"col\"><span class=\"visually-hidden\">compare</span></th><th scope=\"col\">picture</th><th scope=\"col\">name</th><th scope=\"col\">family</th>"
        "<th scope=\"col\" class=\"num\">roughness</th><th scope=\"col\">describes</th></tr></thead>\n<tbody>\n</tbody>\n</table>\n"
        "<p id=\"none\" hidden>No entry matches these filters.</p>\n";
   pager(o, "pager-bottom", false);
@@ -134,35 +164,13 @@ std::string page_html(const std::string& library_name, const std::string& versio
 }
 
 
-// A JSON text as the data files carry it: a JavaScript string literal for JSON.parse, between a
-// statement's head and tail. V8 parses JSON faster than an object literal (a third less time to the
-// first rows at 100,000 entries). The JSON is ASCII (\uXXXX escapes), so that a file reads the same
-// whatever encoding the browser assumes for it, and holds no < or >, so that it could be put inside
-// a <script> element unchanged.
+// The data files' statements around their JSON (json_statement, html.hpp).
 constexpr std::string_view kHeadStart = "window.sandpaperCatalog = JSON.parse('", kHeadEnd = "');\n";
 constexpr std::string_view kPartStart =
     "(window.sandpaperCatalogParts = window.sandpaperCatalogParts || []).push(JSON.parse('";
 constexpr std::string_view kPartEnd = "'));\n";
 
-std::string js_literal(std::string_view start, const std::string& json_text, std::string_view end) {
-  std::string out(start);
-  out.reserve(json_text.size() + json_text.size() / 16 + 128);
-  // Copied in runs between the characters that need escaping (a data file has few of them).
-  for (std::size_t p = 0; p < json_text.size();) {
-    const std::size_t q = std::min(json_text.find_first_of("<>\\'", p), json_text.size());
-    out.append(json_text, p, q - p);
-    if (q == json_text.size()) break;
-    const char c = json_text[q];
-    if (c == '<') out += "\\\\u003c";  // \u003c in the JSON, its backslash escaped for the string literal
-    else if (c == '>') out += "\\\\u003e";
-    else out += {'\\', c};
-    p = q + 1;
-  }
-  out += end;
-  return out;
-}
-
-// The JSON inside a file js_literal wrote (its escapes \\ and \' undone), or nullopt.
+// The JSON inside a file json_statement wrote (its escapes \\ and \' undone), or nullopt.
 std::optional<std::string> json_inside(const std::string& script, std::string_view start, std::string_view end) {
   if (script.size() < start.size() + end.size() || script.compare(0, start.size(), start) != 0 ||
       script.compare(script.size() - end.size(), end.size(), end) != 0)
@@ -189,11 +197,13 @@ std::string roughness_text(const std::optional<double>& r) {
   std::snprintf(buf, sizeof buf, "%.6g", *r);
   return nlohmann::json(std::strtod(buf, nullptr)).dump();
 }
+// Forces and periods to the same six digits: the page compares them in JND steps (12.5 %).
+std::string six_digits(double v) { return roughness_text(std::isfinite(v) ? v : 0.0); }
 
-// One part's columns, each value as its JSON text; aliases, deprecated_by and no_thumbnail by row in the part.
+// One part's columns, each value as its JSON text; aliases, deprecated_by, root and no_thumbnail by row in the part.
 struct PartColumns {
-  std::vector<std::string> name, family, roughness, describes;
-  std::map<std::size_t, std::string> aliases, deprecated_by;
+  std::vector<std::string> name, family, roughness, describes, licence, sources, force, period, kind;
+  std::map<std::size_t, std::string> aliases, deprecated_by, root;
   std::set<std::size_t> no_thumbnail;
 
   // Sets row i (which must exist) from r; family_index holds the families' indices by id.
@@ -206,6 +216,13 @@ struct PartColumns {
     family[i] = std::to_string(r.family.empty() ? -1 : family_index.at(r.family));
     roughness[i] = roughness_text(r.roughness);
     describes[i] = json_string(r.describes);
+    licence[i] = json_string(r.licence);
+    sources[i] = std::to_string(r.source_kinds);
+    force[i] = six_digits(r.max_lateral_force_N);
+    period[i] = six_digits(r.period_m);
+    kind[i] = json_string(r.kind);
+    if (r.root.empty()) root.erase(i);
+    else root[i] = json_string(r.root);
     if (r.aliases.empty()) aliases.erase(i);
     else aliases[i] = nlohmann::json(r.aliases).dump(-1, ' ', true);
     if (r.deprecated_by.empty()) deprecated_by.erase(i);
@@ -214,7 +231,7 @@ struct PartColumns {
     else no_thumbnail.erase(i);
   }
   void resize(std::size_t n) {
-    for (auto* c : {&name, &family, &roughness, &describes}) c->resize(n);
+    for (auto* c : {&name, &family, &roughness, &describes, &licence, &sources, &force, &period, &kind}) c->resize(n);
   }
 };
 
@@ -242,9 +259,12 @@ std::string part_script(std::size_t k, const PartColumns& c) {
   thumbs += "]";
   const std::string j = "{\"aliases\":" + object_text(c.aliases) + ",\"deprecated_by\":" + object_text(c.deprecated_by) +
                         ",\"describes\":" + joined(c.describes) + ",\"family\":" + joined(c.family) +
-                        ",\"format\":2,\"name\":" + joined(c.name) + ",\"no_thumbnail\":" + thumbs +
-                        ",\"part\":" + std::to_string(k) + ",\"roughness\":" + joined(c.roughness) + "}";
-  return js_literal(kPartStart, j, kPartEnd);
+                        ",\"force_N\":" + joined(c.force) + ",\"format\":3,\"kind\":" + joined(c.kind) +
+                        ",\"licence\":" + joined(c.licence) + ",\"name\":" + joined(c.name) +
+                        ",\"no_thumbnail\":" + thumbs + ",\"part\":" + std::to_string(k) +
+                        ",\"period_m\":" + joined(c.period) + ",\"root\":" + object_text(c.root) +
+                        ",\"roughness\":" + joined(c.roughness) + ",\"sources\":" + joined(c.sources) + "}";
+  return json_statement(kPartStart, j, kPartEnd);
 }
 
 // A part as the head describes it: its first and last names, its rows, and how many of them are in
@@ -297,7 +317,7 @@ std::string head_script(const Head& h) {
   for (std::size_t k = 0; k < h.families.size(); ++k)
     j += std::string(k ? "," : "") + "{\"count\":" + std::to_string(h.families[k].count) +
          ",\"id\":" + json_string(h.families[k].id) + ",\"title\":" + json_string(h.families[k].title) + "}";
-  j += "],\"format\":2,\"library\":{\"name\":" + json_string(h.library_name) + ",\"version\":" + json_string(h.version) +
+  j += "],\"format\":3,\"library\":{\"name\":" + json_string(h.library_name) + ",\"version\":" + json_string(h.version) +
        "},\"part_rows\":" + std::to_string(kIndexPartRows) + ",\"parts\":[";
   for (std::size_t k = 0; k < h.parts.size(); ++k)
   {
@@ -308,7 +328,7 @@ std::string head_script(const Head& h) {
          ",\"unfiled\":" + std::to_string(h.parts[k].unfiled) + "}";
   }
   j += std::string("],\"sorted\":") + (h.sorted ? "true" : "false") + ",\"unfiled\":" + std::to_string(h.unfiled) + "}";
-  return js_literal(kHeadStart, j, kHeadEnd);
+  return json_statement(kHeadStart, j, kHeadEnd);
 }
 
 std::string page_of(const Head& h) {
@@ -332,6 +352,12 @@ std::vector<IndexRow> rows_of(const nlohmann::json& data) {
     r.deprecated_by = e["deprecated_by"].get<std::string>();
     r.aliases = e["aliases"].get<std::vector<std::string>>();
     if (e["roughness"].is_number()) r.roughness = e["roughness"].get<double>();
+    r.max_lateral_force_N = e.value("max_lateral_force_N", 0.0);
+    r.period_m = e.value("period_m", 0.0);
+    r.kind = e.value("kind", std::string());
+    r.source_kinds = e.value("source_kinds", 0u);
+    r.root = e.value("root", std::string());
+    r.licence = e.value("licence", std::string());
     r.page = e["page"].get<std::string>();
     if (!e["thumbnail"].is_null()) r.thumbnail = e["thumbnail"].get<std::string>();
     rows.push_back(std::move(r));
@@ -492,7 +518,7 @@ PartColumns parse_part(const std::string& script, std::size_t k, std::size_t row
     return it->second;
   };
   const auto text_at = [&](std::pair<std::size_t, std::size_t> v) { return t->substr(v.first, v.second - v.first); };
-  if (text_at(value_of("format")) != "2" || text_at(value_of("part")) != std::to_string(k)) throw BadText();
+  if (text_at(value_of("format")) != "3" || text_at(value_of("part")) != std::to_string(k)) throw BadText();
   PartColumns c;
   const auto column = [&](const char* key, std::vector<std::string>& out) {
     const auto [b, e] = value_of(key);
@@ -503,6 +529,11 @@ PartColumns parse_part(const std::string& script, std::size_t k, std::size_t row
   column("family", c.family);
   column("roughness", c.roughness);
   column("describes", c.describes);
+  column("licence", c.licence);
+  column("sources", c.sources);
+  column("force_N", c.force);
+  column("period_m", c.period);
+  column("kind", c.kind);
   const auto by_row = [&](const char* key, std::map<std::size_t, std::string>& out) {
     const auto [b, e] = value_of(key);
     for (const auto& [row, text] : members(*t, b, e)) {
@@ -513,6 +544,7 @@ PartColumns parse_part(const std::string& script, std::size_t k, std::size_t row
   };
   by_row("aliases", c.aliases);
   by_row("deprecated_by", c.deprecated_by);
+  by_row("root", c.root);
   const auto [tb, te] = value_of("no_thumbnail");
   for (const auto& [b, e] : elements(*t, tb, te)) {
     const auto i = integer_at<std::size_t>(*t, b, e);
@@ -535,7 +567,7 @@ Head parse_head(const std::string& script) {
   const auto t = json_inside(script, kHeadStart, kHeadEnd);
   if (!t || t->empty() || skip_value(*t, 0) != t->size()) throw BadText();
   const auto j = nlohmann::json::parse(*t);
-  if (j.at("format") != 2 || j.at("part_rows") != kIndexPartRows) throw BadText();
+  if (j.at("format") != 3 || j.at("part_rows") != kIndexPartRows) throw BadText();
   Head h;
   h.library_name = j.at("library").at("name").get<std::string>();
   h.version = j.at("library").at("version").get<std::string>();

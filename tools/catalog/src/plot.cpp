@@ -146,9 +146,7 @@ void simplify(const std::vector<double>& x, const std::vector<double>& y, std::s
 std::string polyline(const PlotAxes& a, const ForceScan& scan, const std::vector<double>& f, const char* cls) {
   std::vector<double> x(f.size()), y(f.size());
   for (std::size_t i = 0; i < f.size(); ++i) x[i] = a.x_px(scan.s_m[i] * 1e3), y[i] = a.y_px(f[i]);
-  std::vector<char> keep(f.size(), 0);
-  if (!f.empty()) keep.front() = keep.back() = 1;
-  if (f.size() > 2) simplify(x, y, 0, f.size() - 1, kPlotTolerancePx, keep);
+  const auto keep = kept_points(x, y, kPlotTolerancePx);
   std::string s = "<polyline class=\"" + std::string(cls) + "\" fill=\"none\" points=\"";
   bool first = true;
   for (std::size_t i = 0; i < f.size(); ++i) {
@@ -161,6 +159,13 @@ std::string polyline(const PlotAxes& a, const ForceScan& scan, const std::vector
 }
 
 }  // namespace
+
+std::vector<char> kept_points(const std::vector<double>& x, const std::vector<double>& y, double tolerance) {
+  std::vector<char> keep(x.size(), 0);
+  if (!x.empty()) keep.front() = keep.back() = 1;
+  if (x.size() > 2) simplify(x, y, 0, x.size() - 1, tolerance, keep);
+  return keep;
+}
 
 std::string force_plot_svg(const ForceScan& scan, const std::string& title) {
   const PlotAxes a = plot_axes(scan);

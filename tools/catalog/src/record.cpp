@@ -14,7 +14,8 @@ constexpr const char* kSchema =
     "CREATE TABLE IF NOT EXISTS meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);"
     "CREATE TABLE IF NOT EXISTS entries(name TEXT PRIMARY KEY, hash TEXT NOT NULL, family TEXT NOT NULL,"
     " describes TEXT NOT NULL, licence TEXT NOT NULL, deprecated_by TEXT NOT NULL, aliases TEXT NOT NULL,"
-    " roughness REAL, max_lateral_force_N REAL NOT NULL, page TEXT NOT NULL, thumbnail TEXT NOT NULL, files TEXT NOT NULL);";
+    " roughness REAL, max_lateral_force_N REAL NOT NULL, page TEXT NOT NULL, thumbnail TEXT NOT NULL, files TEXT NOT NULL,"
+    " period_m REAL NOT NULL, kind TEXT NOT NULL, source_kinds INTEGER NOT NULL, root TEXT NOT NULL);";
 
 void check(sqlite3* db, int rc, const char* what) {
   if (rc != SQLITE_OK && rc != SQLITE_DONE && rc != SQLITE_ROW)
@@ -111,12 +112,16 @@ RecordedEntry entry_of(sqlite3_stmt* s) {
   r.page = text(s, 9);
   r.thumbnail = text(s, 10);
   e.files_json = text(s, 11);
+  r.period_m = sqlite3_column_double(s, 12);
+  r.kind = text(s, 13);
+  r.source_kinds = static_cast<unsigned>(sqlite3_column_int64(s, 14));
+  r.root = text(s, 15);
   return e;
 }
 
 constexpr const char* kColumns =
-    "SELECT name, hash, family, describes, licence, deprecated_by, aliases, roughness, max_lateral_force_N, page, thumbnail, files "
-    "FROM entries";
+    "SELECT name, hash, family, describes, licence, deprecated_by, aliases, roughness, max_lateral_force_N, page, thumbnail, files, "
+    "period_m, kind, source_kinds, root FROM entries";
 
 }  // namespace
 
@@ -213,7 +218,7 @@ RecordWriter::~RecordWriter() {
 }
 
 void RecordWriter::put(const std::string& name, const RecordedEntry& e) {
-  Stmt s(db_, "INSERT OR REPLACE INTO entries VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  Stmt s(db_, "INSERT OR REPLACE INTO entries VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   const auto& r = e.row;
   bind_text(s.s, 1, name);
   bind_text(s.s, 2, e.hash);
@@ -227,6 +232,10 @@ void RecordWriter::put(const std::string& name, const RecordedEntry& e) {
   bind_text(s.s, 10, r.page);
   bind_text(s.s, 11, r.thumbnail);
   bind_text(s.s, 12, e.files_json);
+  sqlite3_bind_double(s.s, 13, r.period_m);
+  bind_text(s.s, 14, r.kind);
+  sqlite3_bind_int64(s.s, 15, r.source_kinds);
+  bind_text(s.s, 16, r.root);
   check(db_, sqlite3_step(s.s), "put");
 }
 

@@ -79,6 +79,9 @@ struct CatalogSource {
   std::optional<std::string> since;
   std::size_t entry_count = 0;
   std::function<std::vector<std::pair<std::string, std::string>>()> every_entry;
+  // In a layered library, the entry of a root below that a shown entry hides ("world:corduroy", or
+  // ""), when compiler_for's library holds only part of the path; unset: that library's shadowed_by.
+  std::function<std::string(const std::string& name)> hides;
 };
 CatalogReport write_catalog(const CatalogSource& source, const CatalogOptions& options);
 

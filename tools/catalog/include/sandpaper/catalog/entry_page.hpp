@@ -1,7 +1,9 @@
 #pragma once
 // One entry's page: its picture and force plot, its three layers (representative, perceptual,
 // physical; thesis 1.5.2), the provenance of every compiled number with the entry's `source` notes,
-// its licence, and a banner when it is deprecated.
+// its licence, a banner when it is deprecated, how to feel it (the commands), and the entries
+// nearest it (assets/similar.js, from the index's data, so that the page need not change when
+// another entry does).
 #include <string>
 #include <vector>
 
@@ -23,6 +25,9 @@ struct EntryView {
   const ForceScan* scan = nullptr;
   std::string picture_file;              // "corduroy.png", beside the page; empty without a picture
   std::string shade_file;                // "corduroy.shade" (Sandpaper's array file), or empty
+  std::string root;                      // in a layered library, the id of the entry's root; else ""
+  std::string hides;                     // the entry of a root below it hides ("world:corduroy"), or ""
+  double weber_fraction = 0;             // the force JND the similar entries are measured in (calibration's knowledge)
 };
 
 // The `source` notes of the library statement a provenance record points at ("... (path:line:col)"),

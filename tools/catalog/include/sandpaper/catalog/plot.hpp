@@ -49,6 +49,9 @@ struct PlotAxes {
 PlotAxes plot_axes(const ForceScan& scan);
 // "1, 2, 5 x 10^k" steps that divide [lo, hi] into about `target` intervals.
 std::vector<double> nice_ticks(double lo, double hi, int target = 6);
+// Which of the points (x[i], y[i]) a line drawn through only them keeps within `tolerance` of every
+// point (Ramer-Douglas-Peucker; same units as x and y): 1 to keep. The first and last are kept.
+std::vector<char> kept_points(const std::vector<double>& x, const std::vector<double>& y, double tolerance);
 // Inline SVG (role="img"), with the along-scan force as a polyline of class "force-along" (one
 // point per sample, in order) and, if any, the across force as "force-across"; axis labels
 // "<axis> (mm)" and "lateral force (N)" in elements of class "axis-label".
