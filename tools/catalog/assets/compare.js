@@ -24,14 +24,7 @@
   function digits(v, n) { return String(Number(v.toPrecision(n))); }
   function page(name) { return '../entries/' + encodeURIComponent(name) + '.html'; }
 
-  function load(src, done) {
-    var s = document.createElement('script');
-    s.src = src;
-    s.async = false;
-    s.onload = function () { done(true); };
-    s.onerror = function () { done(false); };
-    document.body.appendChild(s);
-  }
+  var load = window.sandpaperLoadScript;  // assets/load.js
 
   // 1, 2 or 5 times a power of ten, about `target` steps over [lo, hi] (plot.hpp's nice_ticks).
   function ticks(lo, hi, target) {
@@ -75,7 +68,7 @@
   }
 
   function plot(e, axes) {
-    var W = 640, H = 170, left = 66, right = 626, top = 14, bottom = 140;
+    var W = 640, H = 182, left = 66, right = 626, top = 14, bottom = 140;
     var x = function (mm) { return left + (mm - axes.x0) / (axes.x1 - axes.x0) * (right - left); };
     var y = function (n) { return bottom - (n - axes.y0) / (axes.y1 - axes.y0) * (bottom - top); };
     var s = svg('svg', {'class': 'force-plot', viewBox: '0 0 ' + W + ' ' + H, role: 'img', 'data-name': e.name,

@@ -20,15 +20,7 @@
     list.appendChild(li);
   }
 
-  // Scripts added in order run in that order (async off), as the index page's own tags do.
-  function load(src, done) {
-    var s = document.createElement('script');
-    s.src = src;
-    s.async = false;
-    s.onload = function () { done(true); };
-    s.onerror = function () { done(false); };
-    document.body.appendChild(s);
-  }
+  var load = window.sandpaperLoadScript;  // assets/load.js
 
   function partFile(k) { return '../catalog-data/part-' + String(k).padStart(5, '0') + '.js'; }
 

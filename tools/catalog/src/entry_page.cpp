@@ -345,7 +345,7 @@ std::string entry_page_html(const EntryView& v) {
   o << how_to_feel(v) << representative(v) << perceptual(v) << physical(v) << similar(v) << provenance(v);
   o << "<footer>Licence of this entry: <span class=\"licence\">" << (e.licence.empty() ? "not stated" : esc(e.licence))
     << "</span>. " << esc(lib.manifest().name) << (lib.manifest().version.empty() ? "" : " " + esc(lib.manifest().version))
-    << ".</footer>\n<script src=\"../assets/similar.js\"></script>\n</body>\n</html>\n";
+    << ".</footer>\n<script src=\"../assets/load.js\"></script>\n<script src=\"../assets/similar.js\"></script>\n</body>\n</html>\n";
   return o.str();
 }
 
