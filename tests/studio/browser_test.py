@@ -460,7 +460,9 @@ def main():
         # the page says which version plays.
         status, changed = studio.post("/api/parameter", {"name": "roughness", "value": 0.7})
         check(status == 200 and changed.get("ok"), f"POST /api/parameter roughness 0.7: {status}")
-        want = "compiled: board \u00b7 %.3f N, roughness 0.70" % changed["compiled_max_lateral_force_N"]
+        # Roughness to three significant digits, as every Sandpaper output prints it.
+        want = "compiled: board \u00b7 %.3f N, roughness %s" % (changed["compiled_max_lateral_force_N"],
+                                                             float("%.3g" % changed["compiled_roughness"]))
         followed = wait(b, "window.studio.text() === %s && document.querySelector('#compile-state').textContent === %s"
                         " && document.querySelector('#playing-what').textContent === %s"
                         % (json.dumps(changed["text"]), json.dumps(want), json.dumps(f"playing this text (v{changed['version']})")),

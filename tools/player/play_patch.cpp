@@ -19,6 +19,7 @@
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/json_text.hpp"
+#include "sandpaper/schema/patch_json.hpp"
 #include "usb_devices.hpp"
 
 namespace sandpaper::cli {
@@ -327,8 +328,9 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
                                "(explain's felt at speed)\n",
                                *played.felt_peak_N, played.ridge_crossings);
     if (textured)
-      std::cout << fmt::format("  percept  felt roughness {:.3f} predicted from the felt {} ({}; compiled {:.3f})\n",
-                               felt.roughness, played.felt_peak_N ? "peak" : "maximum force", map.id, prog.roughness);
+      std::cout << fmt::format("  percept  felt roughness {} predicted from the felt {} ({}; compiled {})\n",
+                               schema::roughness_text(felt.roughness), played.felt_peak_N ? "peak" : "maximum force", map.id,
+                               schema::roughness_text(prog.roughness));
     else
       std::cout << "  percept  no texture: the roughness map does not apply\n";
     auto span = static_cast<std::size_t>(std::llround(0.256 * r.rate_hz));

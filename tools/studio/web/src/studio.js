@@ -28,6 +28,9 @@ async function api(method, path, body, json = true) {
   return data;
 }
 
+// A roughness as every Sandpaper output prints it: three significant digits (schema::roughness_text).
+function roughnessText(r) { return String(Number(r.toPrecision(3))); }
+
 function setStatus(text, bad = false) {
   const s = $("#status");
   s.textContent = text;
@@ -211,7 +214,7 @@ function applyCompile(r) {
     : "nothing has compiled yet: this text does not compile";
   $("#compile-state").title = $("#compile-state").textContent = r.ok
     ? `compiled: ${r.material || r.workspace?.name || ""}` +
-      (r.compiled_max_lateral_force_N !== undefined ? ` · ${r.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${r.compiled_roughness.toFixed(2)}` : "")
+      (r.compiled_max_lateral_force_N !== undefined ? ` · ${r.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${roughnessText(r.compiled_roughness)}` : "")
     : "does not compile: the last good program keeps playing";
   $("#saved").textContent = r.saved ? "saved" : "unsaved";
   markUnsaved(state.file, !r.saved);
@@ -577,7 +580,7 @@ function drawWorkspace() {
     // the force field, the program's own gradient), Blind black rectangles only.
     if (state.mode === "blind") d.classList.add("blind");
     else d.style.backgroundImage = `url(/api/preview/patch-${i}${state.mode === "depth" ? "-field" : ""}.png?v=${state.version})`;
-    d.title = `${p.source}: ${p.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${p.compiled_roughness.toFixed(2)}`;
+    d.title = `${p.source}: ${p.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${roughnessText(p.compiled_roughness)}`;
     if (state.mode !== "blind") {
       const label = document.createElement("span");
       label.textContent = p.source;
@@ -732,7 +735,7 @@ async function searchLibrary() {
       li.innerHTML = `<span class="name"></span><span class="figures"></span><span class="describes"></span>`;
       li.querySelector(".name").textContent = e.name;
       li.querySelector(".figures").textContent = e.compiled_max_lateral_force_N > 0
-        ? `roughness ${e.compiled_roughness.toFixed(2)}, ${e.compiled_max_lateral_force_N.toFixed(2)} N` : "untextured";
+        ? `roughness ${roughnessText(e.compiled_roughness)}, ${e.compiled_max_lateral_force_N.toFixed(2)} N` : "untextured";
       li.querySelector(".describes").textContent = e.describes;
       li.addEventListener("click", () => showLibraryEntry(e.name));
       ul.append(li);
@@ -753,7 +756,7 @@ async function showLibraryEntry(name) {
   img.hidden = !e.picture;
   if (e.picture) img.src = `/api/library/picture?name=${encodeURIComponent(e.name)}`;
   const figures = e.compiled_max_lateral_force_N > 0
-    ? `compiled roughness ${e.compiled_roughness.toFixed(3)}, maximum lateral force ${e.compiled_max_lateral_force_N.toFixed(3)} N` +
+    ? `compiled roughness ${roughnessText(e.compiled_roughness)}, maximum lateral force ${e.compiled_max_lateral_force_N.toFixed(3)} N` +
       (e.period_mm ? `, period ${e.period_mm.toFixed(2)} mm` : "")
     : "no texture";
   $("#library-numbers").textContent = `${e.name} (${e.family}): ${e.describes}. ${figures}. ${e.file}`;
