@@ -32,17 +32,19 @@ done
 [[ -n $(find "$data/library" -name corduroy.hmat) ]] || fail "library entry corduroy not installed"
 # Installed stripped, as Debian installs (cmake/install_strip.cmake): no debug sections in the
 # programs, the Python module or the static libraries; each program's debug information apart,
-# under lib/debug/.build-id by its build id, where gdb finds it.
+# under lib/debug/.build-id by its build id, where gdb finds it. (grep reads readelf's whole output:
+# with pipefail, `grep -q` leaving early would fail the pipeline when readelf then got SIGPIPE, as
+# it did in a loaded CI run.)
 for exe in "$root/bin/sandpaper" "$root/bin/sandpaper-play"; do
-  ! readelf -S -W "$exe" | grep -q ' \.debug_info ' || fail "$exe was installed with its debug information"
+  ! readelf -S -W "$exe" | grep ' \.debug_info ' >/dev/null || fail "$exe was installed with its debug information"
   id=$(readelf -n "$exe" | sed -n 's/.*Build ID: \([0-9a-f]*\).*/\1/p')
   [[ -n $id ]] || fail "$exe has no build id"
   debug=$root/$rel_lib/debug/.build-id/${id:0:2}/${id:2}.debug
-  [[ -f $debug ]] && readelf -S -W "$debug" | grep -q ' \.debug_info ' || fail "no debug information for $exe at $debug"
-  readelf -x .gnu_debuglink "$exe" | grep -q "${id:2:8}" || fail "$exe does not name its debug file"
+  [[ -f $debug ]] && readelf -S -W "$debug" | grep ' \.debug_info ' >/dev/null || fail "no debug information for $exe at $debug"
+  readelf -x .gnu_debuglink "$exe" | grep "${id:2:8}" >/dev/null || fail "$exe does not name its debug file"
 done
 for lib in "$root/$rel_lib"/libsandpaper_*.a; do
-  ! readelf -S -W "$lib" 2>/dev/null | grep -q ' \.debug_info ' || fail "$lib was installed with its debug information"
+  ! readelf -S -W "$lib" 2>/dev/null | grep ' \.debug_info ' >/dev/null || fail "$lib was installed with its debug information"
 done
 installed_mb=$(du -sm --exclude=debug "$root" | cut -f1)
 echo "installed: ${installed_mb} MB without the debug files, $(du -sm "$root/$rel_lib/debug" | cut -f1) MB of debug files"
