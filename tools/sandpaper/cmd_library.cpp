@@ -326,23 +326,28 @@ int run_search(const Paths& p, const LibraryCommandOptions& o) {
   q.limit = o.limit;
   if (!o.roughness.empty()) q.roughness = cur::parse_roughness_range(o.roughness);  // invalid_argument: exit 2
   if (const int rc = ensure_index(p, o.quiet, "library search")) return rc;
+  auto hits = [&] {
+    cur::LayeredIndex idx(p.roots, p.indexes);
+    see_through(idx, p, "library search");
+    return idx.search(q);
+  }();
   // The hits' own files edited in place since the index was built: the index brought up to date
-  // from them, and the search asked again.
+  // from them, and the search asked again (only then).
   std::map<std::size_t, std::vector<std::filesystem::path>> edited;
   {
-    cur::LayeredIndex first(p.roots, p.indexes);
-    if (p.layered()) first.see_through_path(p.calibration, "sim");  // its errors are said once, below
+    const cur::LayeredIndex layers(p.roots, p.indexes);
     std::vector<std::pair<std::size_t, std::string>> found;
-    for (const auto& h : first.search(q))
-      for (std::size_t i = 0; i < first.size(); ++i)
-        if (!p.layered() || first.id(i) == h.entry.root) found.emplace_back(i, h.entry.name);
-    edited = edited_since_index(p, first, found);
+    for (const auto& h : hits)
+      for (std::size_t i = 0; i < layers.size(); ++i)
+        if (!p.layered() || layers.id(i) == h.entry.root) found.emplace_back(i, h.entry.name);
+    edited = edited_since_index(p, layers, found);
   }
-  if (!edited.empty())
+  if (!edited.empty()) {
     if (const int rc = refresh_edited(p, edited, o.quiet, "library search")) return rc;
-  cur::LayeredIndex idx(p.roots, p.indexes);
-  see_through(idx, p, "library search");
-  const auto hits = idx.search(q);
+    cur::LayeredIndex idx(p.roots, p.indexes);
+    see_through(idx, p, "library search");
+    hits = idx.search(q);
+  }
   if (o.json) {
     auto arr = nlohmann::json::array();
     for (const auto& h : hits) {
