@@ -30,7 +30,7 @@ for world in "$@"; do
   "$bin/sandpaper_layered_inputs" "$lab" "$world" >"$work/hashes.tsv"
   python3 "$here/catalog_seed.py" --hashes "$work/hashes.tsv" "$lab/.index/library.sqlite" "$world/.index/library.sqlite" "$cat" >/dev/null
   timed "$n layered-catalog-after-seed" "$B" library catalog --library "$lab:$world" -o "$cat" --quiet
-  sleep 3  # past the 2 s window in which a file's stamp is racy (tools/curation/src/stamps.hpp)
+  sleep 3  # past the 2 s window in which a file's stamp is racy (curation/src/stamps.hpp)
   for i in 1 2 3; do timed "$n layered-catalog-none" "$B" library catalog --library "$lab:$world" -o "$cat" --quiet; done
   for i in 1 2 3; do
     echo "# touched c$i" >>"$lab/our-grating.hmat"

@@ -24,7 +24,7 @@ for spec in "$@"; do
   n=$(basename "$lib")
   "$B" library index --library "$lib" --quiet >/dev/null
   "$B" library catalog --library "$lib" -o "$cat" --quiet >/dev/null
-  sleep 3  # past the 2 s window in which a file's stamp is racy (tools/curation/src/stamps.hpp)
+  sleep 3  # past the 2 s window in which a file's stamp is racy (curation/src/stamps.hpp)
   # Told which file changed (`--changed`): nothing walked.
   for i in 1 2 3; do echo "# touched l$i" >>"$f"; timed "$n index-changed" "$B" library index --library "$lib" --quiet --changed "$f"; done
   for i in 1 2 3; do timed "$n index-changed-none" "$B" library index --library "$lib" --quiet --changed "$f"; done

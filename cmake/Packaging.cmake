@@ -49,7 +49,9 @@ set(CPACK_DEBIAN_PACKAGE_SUGGESTS
 
 # The library index `sandpaper library search` reads is built where the library lies, which only
 # root may write under /usr: the postinst builds it, the prerm removes it (cmake/deb/).
-set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_LIST_DIR}/deb/postinst ${CMAKE_CURRENT_LIST_DIR}/deb/prerm)
+if(SANDPAPER_CURATION)
+  set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${CMAKE_CURRENT_LIST_DIR}/deb/postinst ${CMAKE_CURRENT_LIST_DIR}/deb/prerm)
+endif()
 
 # On the staged install, before the package is made (cmake/deb/prebuild.cmake): the Python module
 # moves from lib/python3.X/dist-packages (a build configured for /usr/local) to

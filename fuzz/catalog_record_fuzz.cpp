@@ -1,4 +1,4 @@
-// The catalog's record (inputs.sqlite in the catalog folder, tools/catalog/src/record.hpp), read by
+// The catalog's record (inputs.sqlite in the catalog folder, curation/catalog/src/record.hpp), read by
 // every run to decide what to draw and, in place, which old files to delete. Any bytes there give a
 // record or none, never a crash; and no file list it yields names anything outside entries/
 // (a record from elsewhere must not make a run delete or publish files outside the catalog).

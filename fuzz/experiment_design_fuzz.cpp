@@ -1,4 +1,4 @@
-// Experiment design files (tools/experiment: design.hpp, docs/EXPERIMENTS.md) through parse_design,
+// Experiment design files (experiments: design.hpp, docs/EXPERIMENTS.md) through parse_design,
 // as `sandpaper experiment run` reads them, anchored in examples/experiments/ so the shipped
 // designs' relative material paths resolve. An accepted design is then scheduled for two subjects
 // as `run` does; every trial must name stimuli of the design.

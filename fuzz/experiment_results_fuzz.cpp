@@ -1,4 +1,4 @@
-// Experiment results (tools/experiment: results.hpp): the input is a results folder's
+// Experiment results (experiments: results.hpp): the input is a results folder's
 // results.jsonl, beside a design.toml copied from examples/experiments/ (the one whose checksum the
 // input names, else roughness-magnitude.toml, so that a header can match). read_results as
 // `experiment resume` and `analyse` read it; an accepted folder's records as JSON, then the analysis

@@ -1,4 +1,4 @@
-// A library's licences (tools/curation/include/sandpaper/curation/licences.hpp): the SPDX
+// A library's licences (curation/include/sandpaper/curation/licences.hpp): the SPDX
 // expression of an entry's `licence` and an image's REUSE sidecar, both written by contributors.
 // Any text gives a parse or an error at an offset inside it, never a crash; what parses names only
 // ids made of SPDX's id characters; the sidecar's values are substrings of its lines.

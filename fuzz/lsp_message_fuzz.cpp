@@ -1,4 +1,4 @@
-// What `sandpaper lsp` reads from its editor (tools/lsp): a stream of framed JSON-RPC messages, run
+// What `sandpaper lsp` reads from its editor (editors/lsp): a stream of framed JSON-RPC messages, run
 // through the same serve() loop as the CLI with the shipped compiler behind it. Checked: serve()
 // returns 0 or 1 and throws nothing, and everything it writes is framed JSON-RPC 2.0 (a response
 // with an id, or a notification with a method), whatever came in.

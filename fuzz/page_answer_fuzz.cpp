@@ -1,4 +1,4 @@
-// The subject page's answers (tools/experiment: page_answer.hpp), as POST /api/answer reads them:
+// The subject page's answers (experiments: page_answer.hpp), as POST /api/answer reads them:
 // the first four bytes make the screen being answered (its kind; for a sort, patches 1-16 and piles
 // 1-patches; its number 0-255), the rest is the request body. Each accepted answer is checked
 // against an independent statement of the screen's rule (docs/EXPERIMENTS.md, "The subject's page"),

@@ -1,10 +1,10 @@
-// What the studio reads from a request before any handler runs (tools/studio: request_guard.hpp):
+// What the studio reads from a request before any handler runs (http/: request_guard.hpp):
 // the Host and Origin headers (the DNS-rebinding and cross-origin guard) and a file path the page
 // sends (confined to the studio's folder), plus the --listen address. The input is split at line
 // breaks: listen address, Host, Origin, then the path (the rest, line breaks included).
 // Each answer is checked against an independent statement of the rule (docs/STUDIO.md, "Safety"):
 // an allowed Host names this server exactly; a confined path lies inside the folder, links followed.
-// Expected rejections: std::invalid_argument (listen), studio::OutsideFolder (path). Nothing else.
+// Expected rejections: std::invalid_argument (listen), http::OutsideFolder (path). Nothing else.
 #include <cctype>
 #include <cstddef>
 #include <cstdint>
@@ -14,7 +14,7 @@
 #include <string_view>
 
 #include "fuzz_support.hpp"
-#include "sandpaper/studio/request_guard.hpp"
+#include "sandpaper/http/request_guard.hpp"
 
 namespace {
 
@@ -62,33 +62,33 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view host = next_line(rest), origin = next_line(rest);
   const std::string relative(rest);
 
-  studio::Listen listen;
+  http::Listen listen;
   listen.port = 4780;
   try {
-    listen = studio::parse_listen(listen_text);
+    listen = http::parse_listen(listen_text);
     fuzz::check(listen.port >= 0 && listen.port <= 65535, "parse_listen gave a port outside 0..65535");
   } catch (const std::invalid_argument&) {
   }
 
-  const std::string why = studio::refusal(host, origin, listen);
-  if (studio::host_allowed(host, listen)) {
+  const std::string why = http::refusal(host, origin, listen);
+  if (http::host_allowed(host, listen)) {
     const std::string h = lower(host), port = ":" + std::to_string(listen.port);
     const std::string self = lower(listen.host).find(':') != std::string::npos ? "[" + lower(listen.host) + "]" : lower(listen.host);
     const bool names_this_server = h == self + port ||
-        (studio::is_loopback(listen.host) && (h == "localhost" + port || h == "127.0.0.1" + port || h == "[::1]" + port));
+        (http::is_loopback(listen.host) && (h == "localhost" + port || h == "127.0.0.1" + port || h == "[::1]" + port));
     fuzz::check(names_this_server, "an allowed Host header that does not name this server: " + h);
   }
-  fuzz::check(why.empty() == (studio::host_allowed(host, listen) && studio::origin_allowed(origin, listen)),
+  fuzz::check(why.empty() == (http::host_allowed(host, listen) && http::origin_allowed(origin, listen)),
               "refusal() disagrees with host_allowed() and origin_allowed()");
 
   try {
-    const fs::path full = studio::confined_path(studio_root(), relative);
+    const fs::path full = http::confined_path(studio_root(), relative);
     fuzz::check(inside(full, studio_root()), "a confined path outside the studio's folder: " + full.string());
     // Links followed as far as the path exists: what opening or creating the file would reach.
     std::error_code ec;
     const fs::path real = fs::weakly_canonical(full, ec);
     if (!ec) fuzz::check(inside(real, studio_root()), "a confined path whose links lead outside: " + real.string());
-  } catch (const studio::OutsideFolder&) {
+  } catch (const http::OutsideFolder&) {
   }
   return 0;
 }

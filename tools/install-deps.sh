@@ -16,8 +16,9 @@ pkgs=(
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium python3                          # the library catalog's and the studio's browser tests (tests/*/browser_test.py)
   neovim                                    # the language server's test with a real editor (tests/lsp/neovim_test.py)
-  libcpp-httplib-dev                        # the studio's HTTP server (tools/studio/, docs/STUDIO.md)
+  libcpp-httplib-dev                        # the studio's HTTP server (studio/, docs/STUDIO.md)
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (bindings/python, docs/PYTHON.md)
+  jq                                        # JSON in the CLI's shell tests (tests/cli/)
   dpkg-dev file                             # the Debian package: cpack -G DEB's dpkg-shlibdeps (cmake/Packaging.cmake)
   qemu-system-x86                           # the USB lab's guest: docs/USB_PID.md "In the lab" (usb-lab/guest/lab.py)
   linux-image-amd64 kmod                    # the USB lab's guest kernel and its modules (dummy_hcd, usb_f_fs, usbhid)
@@ -35,7 +36,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# Node.js and npm build the studio's page (CodeMirror 6 bundled by esbuild; tools/studio/web). Debian's
+# Node.js and npm build the studio's page (CodeMirror 6 bundled by esbuild; studio/web). Debian's
 # nodejs and npm when the machine has neither.
 if ! command -v npm >/dev/null 2>&1; then
   sudo=""
@@ -47,7 +48,7 @@ fi
 # The page's packages, exactly as the committed lockfile pins them, from the npm registry; again only
 # when the lockfile changed since the last install. No install scripts run (esbuild finds its binary
 # in its platform package).
-web="$(cd "$(dirname "$0")" && pwd)/studio/web"
+web="$(cd "$(dirname "$0")/.." && pwd)/studio/web"
 stamp="$web/node_modules/.sandpaper-lock"
 if ! cmp -s "$web/package-lock.json" "$stamp" 2>/dev/null; then
   echo "installing the studio page's npm packages (npm ci)"

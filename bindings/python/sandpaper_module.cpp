@@ -218,7 +218,7 @@ py::dict height_field(const PyMaterial& m) {
   return out;
 }
 
-// The experiments' simulated observer (tools/experiment, docs/EXPERIMENTS.md), for sessions run
+// The experiments' simulated observer (experiments, docs/EXPERIMENTS.md), for sessions run
 // from Python: the same answers `sandpaper experiment run --observer simulated:...` gives.
 struct PyObserver {
   std::unique_ptr<sp::experiment::Observer> observer;

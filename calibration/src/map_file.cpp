@@ -43,7 +43,7 @@ std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOption
   const auto& slope = r.coefficient("log force");
   const auto& constant = r.coefficient("constant");
   // The compiler turns a roughness into a force by the inverse power, 1 / slope: a map with slope 0
-  // is refused by its loader, so it is not written (fuzz finding F33: a balanced design whose means
+  // is refused by its loader, so it is not written (a balanced design whose means
   // do not move with force).
   if (slope.value == 0)
     throw FitError(fit.path, 0,

@@ -79,7 +79,7 @@ RegressionResult least_squares(const std::vector<std::string>& names, const std:
   r.ss_residual = resid.squaredNorm();
   r.ss_total = with_constant ? (Y.array() - Y.mean()).matrix().squaredNorm() : Y.squaredNorm();
   // Summed directly rather than as total - residual: the difference of two nearly equal sums came
-  // out negative when the regression explains nothing, and so did the F ratio (fuzz finding F28).
+  // out negative when the regression explains nothing, and so did the F ratio.
   r.ss_regression = with_constant ? (fitted.array() - Y.mean()).matrix().squaredNorm() : fitted.squaredNorm();
   r.r_squared = r.ss_total > 0 ? std::clamp(r.ss_regression / r.ss_total, 0.0, 1.0) : 0.0;
   const double df_total = static_cast<double>(with_constant ? n - 1 : n);

@@ -191,7 +191,7 @@ bool generate(const ResolvedMaterial& m, const calibration::CalibrationSet& cal,
     if (m.quantize_bits) record(out, "texture.quantization", *m.quantize_bits, "bit");
     // A period the device cannot resolve plays as aliased noise, or (a denormal) as a non-finite force
     // that stops the servo at its first tick: two position counts per period at the least, and never
-    // under a micrometre, the finest any joystick senses (issue 16).
+    // under a micrometre, the finest any joystick senses.
     if (const auto* g = std::get_if<ResolvedGrating>(&m.texture)) {
       const double least_m = std::max(kLeastPeriod_m, 2 * device.position_resolution_m);
       if (!(g->period.si >= least_m)) {

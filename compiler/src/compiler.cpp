@@ -55,7 +55,7 @@ CompileResult compile_phases(const MaterialSyntax& syntax, const Library& lib,
   warn_roughness_domain(m, cal, r.diagnostics);
   // What the thesis found about textures like this one (Ch. 4): needs the compiled force.
   warn_believability(m, program, cal, r.diagnostics);
-  // What a hand moving at a common speed feels of a grating at the device's servo rate (issue 15).
+  // What a hand moving at a common speed feels of a grating at the device's servo rate.
   warn_felt_at_speed(m, program, cal, device, r.diagnostics);
   apply_accepts(syntax, r.diagnostics);
   for (const auto& d : r.diagnostics.all())

@@ -83,7 +83,7 @@ const char* severity_name(Severity s) {
 
 // The source line with a gutter, and a caret line under the location (Souffle/clang style). A long
 // line is clipped to a window around the caret, marked with "...", so that a 40 KB line echoed under
-// each of its errors cannot grow the output with the square of its length (issue 16).
+// each of its errors cannot grow the output with the square of its length.
 void append_excerpt(std::string& out, const SourceLocation& loc) {
   if (!loc.file || loc.line <= 0) return;
   std::string_view text = loc.file->line_text(loc.line);

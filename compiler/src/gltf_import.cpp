@@ -212,7 +212,7 @@ class Reader {
       x.pair("grid_origin_m", -10, 10, f.origin_m);
       f.repeat = x.flag("repeat");
       // The patch reader's rule (schema/src/patch_io.cpp): one texel across is a field constant along
-      // that axis, which only a repeating field can mean (fuzz finding F15: a 256 x 1 texture that
+      // that axis, which only a repeating field can mean (a 256 x 1 texture that
       // does not repeat made a program the reader refuses).
       if (!f.repeat && (png.nx < 2 || png.ny < 2))
         refuse("E0717", "the height texture of " + where + " is " + std::to_string(png.nx) + " x " + std::to_string(png.ny) +
@@ -540,7 +540,6 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
 
 }  // namespace
 
-bool is_gltf_path(const std::filesystem::path& path) { return path.extension() == ".gltf" || path.extension() == ".glb"; }
 
 GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& bytes, const std::string& shown_name,
                                   const std::optional<std::filesystem::path>& folder) {

@@ -88,7 +88,7 @@ std::vector<unsigned char> encode_png16(int nx, int ny, const std::vector<std::u
 
 std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long long max_pixels, std::string& why) {
   // Decoded here rather than by libpng: libpng reports a corrupt stream by longjmp, which leaks
-  // inside OpenImageIO's reader (found by the `gltf` fuzz target), and the reader needs only what
+  // inside OpenImageIO's reader, and the reader needs only what
   // the writer writes. Every chunk's length and CRC are checked, and the image data inflates to
   // exactly the bytes its header promises, into a buffer sized from the header after the limit.
   auto fail = [&](std::string w) {

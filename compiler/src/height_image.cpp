@@ -24,7 +24,7 @@ namespace sandpaper::compiler {
 namespace {
 
 // The height channels of a picture, read as 32-bit floats: at most 256 MiB (4096 x 4096 x R, G, B
-// is 192 MiB). Checked from the header, before any pixel is allocated (issue 16).
+// is 192 MiB). Checked from the header, before any pixel is allocated.
 constexpr std::uint64_t kMaxImageReadBytes = std::uint64_t{256} << 20;
 
 std::string mm(double m) {

@@ -76,7 +76,7 @@ class Lexer {
   }
 
   // A run of characters that start no token is one error, not one per byte: a line of 40,000 stray
-  // characters gives one diagnostic (issue 16). The text is valid UTF-8 here (lex() checked).
+  // characters gives one diagnostic. The text is valid UTF-8 here (lex() checked).
   void unexpected() {
     const std::size_t b = pos_;
     const int col = col_;

@@ -32,10 +32,10 @@ SANDPAPER_NO_COVERAGE void blur_pass(Heights& a, bool along_x, const std::vector
   const int n = along_x ? a.nx : a.ny;
   const int lines = along_x ? a.ny : a.nx;
   // Each line is copied out contiguous: a column read in place strides a whole row per tap, and
-  // that cache miss, not the arithmetic, was most of a large tile's time (fuzz finding F10).
+  // that cache miss, not the arithmetic, was most of a large tile's time.
   std::vector<double> in(static_cast<std::size_t>(n)), line(static_cast<std::size_t>(n));
   // A tile narrower than the kernel: the kernel folded onto the tile gives the same sums with n
-  // taps instead of 2r + 1 (a 98 px grid under a 3,700 px sigma took 29 s: fuzz finding F8).
+  // taps instead of 2r + 1 (a 98 px grid under a 3,700 px sigma took 29 s).
   std::vector<double> folded;
   if (a.wrap && 2 * r + 1 > n) {
     folded.assign(static_cast<std::size_t>(n), 0.0);

@@ -264,7 +264,7 @@ class Resolver {
                      "break the cycle: an entry must not, through `like`, start from itself");
         return base;
       }
-    // Bounded, so that a chain of thousands of entries cannot exhaust the stack (issue 16).
+    // Bounded, so that a chain of thousands of entries cannot exhaust the stack.
     if (ctx_.entry_stack.size() >= static_cast<std::size_t>(schema::limits::kMaxLikeDepth)) {
       std::string chain;
       const auto& st = ctx_.entry_stack;
@@ -925,8 +925,10 @@ void warn_roughness_domain(const ResolvedMaterial& m, const calibration::Calibra
       if (map.period && !map.period->contains(p))
         diags.warning("W0302", m.roughness->location,
                        "grating period " + fmt_num(p * 1e3) + " mm is outside the periods the " + map.id +
-                           " map was measured on (0.7-10 mm); the roughness extrapolates",
-                       "periods from 0.7 mm to 10 mm keep the prediction inside the data");
+                           " map was measured on (" + fmt_num(map.period->min * 1e3) + "-" +
+                           fmt_num(map.period->max * 1e3) + " mm); the roughness extrapolates",
+                       "periods from " + fmt_num(map.period->min * 1e3) + " mm to " + fmt_num(map.period->max * 1e3) +
+                           " mm keep the prediction inside the data");
     } else if (std::holds_alternative<ResolvedHeightmap>(m.texture)) {
       diags.warning("W0304", m.roughness->location,
                      "the " + map.id + " map was measured on gratings; for an image texture the roughness extrapolates",

@@ -262,8 +262,8 @@ ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem
     const long long offset = is_grid && m[3].matched ? px(m[3]) : 0;
     const std::string k1 = m[is_grid ? 4 : 3].str(), k2 = m[is_grid ? 5 : 4].str(), suffix = m[is_grid ? 6 : 5].str();
     if (valley < 1 || hill < 1) return fail(name + ": valley and hill need at least one pixel each");
-    // The name's kernels get the bound a `pattern ... kernel N` statement gets (found by fuzzing:
-    // gridB5W5_1777...7 overflowed the blur radius).
+    // The name's kernels get the bound a `pattern ... kernel N` statement gets (else a name such as
+    // gridB5W5_1777...7 overflows the blur radius).
     for (const auto& k : {k1, k2})
       if (!k.empty() && !(kernel_value(k) <= kMaxPatternKernel))
         return fail(name + ": kernel " + k + " is more than the largest kernel, " + sig(kMaxPatternKernel) + " px");

@@ -93,7 +93,7 @@ void warn_within_one_jnd(const Compiler& compiler, const WorkspaceSyntax& syntax
     return "patch " + std::to_string(t.patch + 1) + " (\"" + syntax.patches[t.patch].material + "\", " + newtons(t.force) + ")";
   };
   // Every pair is compared, but only the first kShownPairs are spelled out: 2,000 materials have
-  // millions of close pairs, and one summary says how many more there are (issue 16).
+  // millions of close pairs, and one summary says how many more there are.
   constexpr std::size_t kShownPairs = 20;
   std::size_t close_pairs = 0;
   for (std::size_t j = 1; j < textured.size(); ++j)

@@ -14,7 +14,7 @@ namespace {
 double margin_m(double centre, double half) { return 1e-9 * std::max(1.0, std::abs(centre) + half); }
 
 // The cell holding `offset` (m, >= 0 or NaN) at `per_m` cells per metre, within [0, n - 1]. In
-// double before the cast: a degenerate span (a denormal workspace, a fuzz finding) makes per_m
+// double before the cast: a degenerate span (a denormal workspace) makes per_m
 // infinite, and inf or NaN is no uint32.
 std::uint32_t cell_index(double offset, double per_m, std::uint32_t n) noexcept {
   const double c = offset * per_m;

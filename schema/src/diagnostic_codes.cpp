@@ -106,7 +106,7 @@ constexpr std::array kCodes = {
     DiagnosticCode{"E0613", E, "`library check`: two roots of a layered library path have one `id`", kLang},
     DiagnosticCode{"E0614", E, "a library entry file whose path is not UTF-8: no `like` can name it, and it is not read", kLang},
     DiagnosticCode{"E0615", E, "`library check`: an image without its licence and credit (a REUSE sidecar `<image>.license` with `SPDX-License-Identifier` and `SPDX-FileCopyrightText`)", kLang},
-    // glTF import and export (docs/GLTF.md; added by the glTF work, issue 17).
+    // glTF import and export (docs/GLTF.md).
     DiagnosticCode{"E0701", E, "`export --format gltf`: a material with no texture (grating or height map) for glTF's haptic textures to carry", kGltf},
     DiagnosticCode{"E0702", E, "`export --format gltf`: a texture that cannot be exported (a generated pattern, a height field without its material, a flat texture)", kGltf},
     DiagnosticCode{"E0710", E, "glTF file cannot be read: missing, not a regular file, or over 128 MiB", kGltf},

@@ -189,7 +189,7 @@ class Reader {
     if (n > source_.remaining()) throw PatchFormatError("patch program truncated");
     std::string s(n, '\0');
     source_.read(s.data(), n);
-    // Strings go on to JSON and terminals; the compiler writes only UTF-8 (issue 16).
+    // Strings go on to JSON and terminals; the compiler writes only UTF-8.
     if (std::size_t bad = 0; !is_valid_utf8(s, bad))
       throw PatchFormatError("patch program holds a string that is not UTF-8 (byte " + std::to_string(bad) + " of it)");
     return s;
@@ -530,7 +530,7 @@ PatchProgram read_payload(Reader& r) {
   }
   if (!r.done()) throw PatchFormatError("patch program has trailing bytes");
   // What the runtime would refuse is refused here, as a file error: a program with a NaN size has a
-  // valid checksum but is still a bad file, not a bad command line (exit 1, issue 16).
+  // valid checksum but is still a bad file, not a bad command line (exit 1).
   const auto finite = [](double v) { return std::isfinite(v); };
   if (!(finite(p.size_m[0]) && p.size_m[0] > 0 && finite(p.size_m[1]) && p.size_m[1] > 0))
     throw PatchFormatError("patch program whose size is not positive and finite");

@@ -57,7 +57,7 @@ class Cursor {
     need(n);
     std::string s(reinterpret_cast<const char*>(p_), n);
     p_ += n;
-    // Names go on to JSON and terminals; the compiler writes only UTF-8 (issue 16, a fuzz finding).
+    // Names go on to JSON and terminals; the compiler writes only UTF-8 .
     if (std::size_t bad = 0; !is_valid_utf8(s, bad))
       throw PatchFormatError("workspace program holds a string that is not UTF-8 (byte " + std::to_string(bad) + " of it)");
     return s;
@@ -188,7 +188,7 @@ WorkspaceProgram read_workspace_program_file(const std::filesystem::path& path) 
       ws.patches.push_back(std::move(p));
     }
     // The compiler's range for any quantity (1e-12 to 1e12 in SI): a denormal workspace size made the
-    // runtime's patch grid overflow (a fuzz finding).
+    // runtime's patch grid overflow.
     if (!plausible_length(ws.size_m[0]) || !plausible_length(ws.size_m[1]))
       throw PatchFormatError("workspace program whose size is not between 1e-12 m and 1e12 m");
     if (!c.done()) throw PatchFormatError("workspace program has trailing bytes");

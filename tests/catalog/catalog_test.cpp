@@ -1,4 +1,4 @@
-// The catalog's renderer, force plot and pages (tools/catalog/): the picture is the shading of the
+// The catalog's renderer, force plot and pages (curation/catalog/): the picture is the shading of the
 // compiled field lit from the upper left, the plot is the evaluator's force, the index lists every
 // entry with its compiled roughness, and a failed run leaves the previous catalog as it was.
 #include <algorithm>

@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
         sandpaper::catalog::write_png(out / rows[static_cast<std::size_t>(i)].thumbnail, synthetic_thumbnail(i));
         ++drawn;
       }
-    // As tools/catalog/src/catalog.cpp writes the index.
+    // As curation/catalog/src/catalog.cpp writes the index.
     fs::create_directories(out / sandpaper::catalog::kIndexPartsFolder);
     for (const auto& [relative, text] : sandpaper::catalog::index_files(manifest, rows)) write_text(out / relative, text);
     for (const auto& a : sandpaper::catalog::assets())

@@ -471,7 +471,7 @@ has "$tmp/err" 'no library folder at /no/such/lab' "the missing root is named"
 expect_exit 0 "library with no subcommand still lists" -- "$sp" library
 has "$tmp/out" 'roughness' "library lists entries"
 
-# The safety stops are the same options on every command that plays (tools/player/safety_guards.hpp).
+# The safety stops are the same options on every command that plays (player/include/sandpaper/player/safety_guards.hpp).
 expect_exit 2 "studio: --watchdog is a USB option" -- "$sp" studio examples/corduroy.hmat --watchdog 500 --listen 127.0.0.1:0
 has "$tmp/err" '--watchdog applies to --device usb' "studio says why --watchdog is refused"
 expect_exit 2 "experiment run: --watchdog is a USB option" -- "$sp" experiment run examples/experiments/force-jnd.toml \

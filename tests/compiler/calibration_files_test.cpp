@@ -280,5 +280,29 @@ TEST(CalibrationFiles, UnchangedCopyLoads) {
   EXPECT_EQ(load_error(copy_of_shipped("cal-unchanged")), "");
 }
 
+// W0302 names the periods the compile map was measured on, read from the map, not the shipped
+// map's 0.7-10 mm: a lab's map measured on 1-5 mm warns at 7 mm and says 1-5 mm.
+TEST(CalibrationFiles, APeriodOutsideTheMapsDomainIsNamedWithThatDomain) {
+  auto dir = copy_of_shipped("cal-domain");
+  auto f = dir / "maps/minsky1995-fig19.toml";
+  write(f, replace(read(f), "period = [\"0.7 mm\", \"10 mm\"]", "period = [\"1 mm\", \"5 mm\"]"));
+  compiler::CompileOptions co;
+  co.calibration_dir = dir;
+  const compiler::Compiler c(co);
+  const auto r = c.compile_text("grating period 7 mm; roughness 0.5");
+  ASSERT_TRUE(r.ok());
+  const compiler::Diagnostic* w = nullptr;
+  for (const auto& d : r.diagnostics.all())
+    if (d.code == "W0302") w = &d;
+  ASSERT_NE(w, nullptr);
+  EXPECT_NE(w->message.find("grating period 7 mm is outside the periods the minsky1995-fig19 map was measured on (1-5 mm)"),
+            std::string::npos)
+      << w->message;
+  EXPECT_EQ(w->suggestion, "periods from 1 mm to 5 mm keep the prediction inside the data");
+  // Inside the lab's domain there is no W0302.
+  const auto inside = c.compile_text("grating period 3 mm; roughness 0.5");
+  for (const auto& d : inside.diagnostics.all()) EXPECT_NE(d.code, "W0302") << d.message;
+}
+
 }  // namespace
 }  // namespace sandpaper

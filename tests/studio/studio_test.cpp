@@ -11,47 +11,47 @@
 
 #include "sandpaper/runtime/dummy_joystick.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
-#include "sandpaper/studio/request_guard.hpp"
+#include "sandpaper/http/request_guard.hpp"
 #include "sandpaper/studio/session.hpp"
 #include "test_support.hpp"
 
 namespace sandpaper {
 namespace {
 namespace fs = std::filesystem;
-using studio::Listen;
+using http::Listen;
 
 TEST(RequestGuard, AcceptsOnlyThisServersHostNames) {
   const Listen l{"127.0.0.1", 4780};
-  EXPECT_TRUE(studio::host_allowed("127.0.0.1:4780", l));
-  EXPECT_TRUE(studio::host_allowed("localhost:4780", l));
-  EXPECT_TRUE(studio::host_allowed("LOCALHOST:4780", l));
-  EXPECT_TRUE(studio::host_allowed("[::1]:4780", l));
-  EXPECT_FALSE(studio::host_allowed("127.0.0.1:4781", l));
-  EXPECT_FALSE(studio::host_allowed("evil.example:4780", l));  // DNS rebinding
-  EXPECT_FALSE(studio::host_allowed("localhost", l));
-  EXPECT_FALSE(studio::host_allowed("", l));
+  EXPECT_TRUE(http::host_allowed("127.0.0.1:4780", l));
+  EXPECT_TRUE(http::host_allowed("localhost:4780", l));
+  EXPECT_TRUE(http::host_allowed("LOCALHOST:4780", l));
+  EXPECT_TRUE(http::host_allowed("[::1]:4780", l));
+  EXPECT_FALSE(http::host_allowed("127.0.0.1:4781", l));
+  EXPECT_FALSE(http::host_allowed("evil.example:4780", l));  // DNS rebinding
+  EXPECT_FALSE(http::host_allowed("localhost", l));
+  EXPECT_FALSE(http::host_allowed("", l));
   const Listen lan{"192.0.2.7", 80};
-  EXPECT_TRUE(studio::host_allowed("192.0.2.7:80", lan));
-  EXPECT_FALSE(studio::host_allowed("localhost:80", lan));
+  EXPECT_TRUE(http::host_allowed("192.0.2.7:80", lan));
+  EXPECT_FALSE(http::host_allowed("localhost:80", lan));
 }
 
 TEST(RequestGuard, AcceptsNoOriginOrItsOwnOnly) {
   const Listen l{"127.0.0.1", 4780};
-  EXPECT_TRUE(studio::origin_allowed("", l));
-  EXPECT_TRUE(studio::origin_allowed("http://127.0.0.1:4780", l));
-  EXPECT_TRUE(studio::origin_allowed("http://localhost:4780", l));
-  EXPECT_FALSE(studio::origin_allowed("http://evil.example", l));
-  EXPECT_FALSE(studio::origin_allowed("https://127.0.0.1:4780", l));
-  EXPECT_FALSE(studio::origin_allowed("null", l));
+  EXPECT_TRUE(http::origin_allowed("", l));
+  EXPECT_TRUE(http::origin_allowed("http://127.0.0.1:4780", l));
+  EXPECT_TRUE(http::origin_allowed("http://localhost:4780", l));
+  EXPECT_FALSE(http::origin_allowed("http://evil.example", l));
+  EXPECT_FALSE(http::origin_allowed("https://127.0.0.1:4780", l));
+  EXPECT_FALSE(http::origin_allowed("null", l));
 }
 
 TEST(RequestGuard, ParsesListenAddresses) {
-  EXPECT_EQ(studio::parse_listen("127.0.0.1:0").port, 0);
-  EXPECT_EQ(studio::parse_listen("[::1]:8000").host, "::1");
-  EXPECT_THROW(studio::parse_listen("127.0.0.1"), std::invalid_argument);
-  EXPECT_THROW(studio::parse_listen("127.0.0.1:99999"), std::invalid_argument);
-  EXPECT_TRUE(studio::is_loopback("127.0.0.2"));
-  EXPECT_FALSE(studio::is_loopback("0.0.0.0"));
+  EXPECT_EQ(http::parse_listen("127.0.0.1:0").port, 0);
+  EXPECT_EQ(http::parse_listen("[::1]:8000").host, "::1");
+  EXPECT_THROW(http::parse_listen("127.0.0.1"), std::invalid_argument);
+  EXPECT_THROW(http::parse_listen("127.0.0.1:99999"), std::invalid_argument);
+  EXPECT_TRUE(http::is_loopback("127.0.0.2"));
+  EXPECT_FALSE(http::is_loopback("0.0.0.0"));
 }
 
 TEST(RequestGuard, ConfinesPathsToTheFolder) {
@@ -60,17 +60,17 @@ TEST(RequestGuard, ConfinesPathsToTheFolder) {
   std::ofstream(root / "sub" / "a.hmat") << "roughness 0.5\n";
   const fs::path outside = test::temp_dir("studio-outside");
   fs::create_directory_symlink(outside, root / "link");
-  EXPECT_EQ(studio::confined_path(root, "sub/a.hmat"), fs::canonical(root / "sub" / "a.hmat"));
-  EXPECT_EQ(studio::confined_path(root, "sub/../sub/new.hmat"), fs::canonical(root) / "sub" / "new.hmat");
-  EXPECT_THROW(studio::confined_path(root, "../x.hmat"), studio::OutsideFolder);
-  EXPECT_THROW(studio::confined_path(root, "sub/../../x.hmat"), studio::OutsideFolder);
-  EXPECT_THROW(studio::confined_path(root, "/etc/passwd"), studio::OutsideFolder);
-  EXPECT_THROW(studio::confined_path(root, "link/x.hmat"), studio::OutsideFolder);  // a link that leads out
-  EXPECT_THROW(studio::confined_path(root, ""), studio::OutsideFolder);
+  EXPECT_EQ(http::confined_path(root, "sub/a.hmat"), fs::canonical(root / "sub" / "a.hmat"));
+  EXPECT_EQ(http::confined_path(root, "sub/../sub/new.hmat"), fs::canonical(root) / "sub" / "new.hmat");
+  EXPECT_THROW(http::confined_path(root, "../x.hmat"), http::OutsideFolder);
+  EXPECT_THROW(http::confined_path(root, "sub/../../x.hmat"), http::OutsideFolder);
+  EXPECT_THROW(http::confined_path(root, "/etc/passwd"), http::OutsideFolder);
+  EXPECT_THROW(http::confined_path(root, "link/x.hmat"), http::OutsideFolder);  // a link that leads out
+  EXPECT_THROW(http::confined_path(root, ""), http::OutsideFolder);
   // Found by fuzzing (issue 16): `..` after a folder that does not exist, then the link out; and a
   // name too long for the file system, which threw std::filesystem_error instead of a refusal.
-  EXPECT_THROW(studio::confined_path(root, "missing/../link/passwd"), studio::OutsideFolder);
-  EXPECT_THROW(studio::confined_path(root, std::string(300, 'a')), studio::OutsideFolder);
+  EXPECT_THROW(http::confined_path(root, "missing/../link/passwd"), http::OutsideFolder);
+  EXPECT_THROW(http::confined_path(root, std::string(300, 'a')), http::OutsideFolder);
 }
 
 TEST(DummyJoystick, MovesTowardTheTargetNoFasterThanItsTopSpeed) {

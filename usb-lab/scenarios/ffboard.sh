@@ -11,7 +11,7 @@ FFB_DEVICE_LOG=/tmp/ffboard-device.log
 # What the scenarios give `run --device usb` so that the fault or figure under test, not the TCG
 # guest's punctuality, ends a run: a loaded machine stalls the guest for hundreds of milliseconds,
 # past the servo's 50 ms deadline guard and the driver's 202 ms watchdog for this device.
-# `run`, `studio` and `experiment run` take them alike (tools/player/safety_guards.hpp).
+# `run`, `studio` and `experiment run` take them alike (player/include/sandpaper/player/safety_guards.hpp).
 LAB_RUN_GUARDS="--deadline-guard 600000 --watchdog 1000"
 
 # The gadget as the firmware describes itself (sandpaper-lab-device --identity: key=value lines).

@@ -49,7 +49,7 @@ RegressionResult least_squares(const std::vector<std::string>& names, const std:
                                const std::vector<double>& y, Constant constant);
 
 // True when `y` varies by no more than rounding: its sum of squares about its mean is at most
-// 1e-20 of its sum of squares (or both are 0). A regression on it fits noise (fuzz finding F32).
+// 1e-20 of its sum of squares (or both are 0). A regression on it fits noise.
 bool varies_too_little(const std::vector<double>& y);
 
 // Two-sided p of a t-ratio with `df` degrees of freedom; upper-tail p of an F-ratio (Boost.Math).

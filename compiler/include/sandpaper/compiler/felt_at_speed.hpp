@@ -1,6 +1,6 @@
 #pragma once
 // The peak lateral force a hand really feels crossing a grating at a given speed and servo rate
-// (issue 15; thesis 3.3.3: "update rates below approximately 1 kHz lead to degradation"). The ticks
+// (thesis 3.3.3: "update rates below approximately 1 kHz lead to degradation"). The ticks
 // fall every v / f along the hand's path and the runtime interpolates the table between them, so a
 // force pulse narrower than one tick's travel is stepped over.
 #include <algorithm>
@@ -62,7 +62,7 @@ inline const std::vector<double> kCommonHandSpeeds_m_s{0.05, 0.1};
 // The servo rate `run` plays `device` at by default: 1000 Hz within the device's range, Hz.
 double default_servo_rate_hz(const calibration::DeviceCalibration& device);
 
-// The two remedies for a grating that loses peak force at `speed_m_s` on `rate_hz` (issue 15), both
+// The two remedies for a grating that loses peak force at `speed_m_s` on `rate_hz`, both
 // measured by felt_at_speed: a servo at `fast_rate_hz` (offered when above `rate_hz`; the device's
 // fastest), or the grating rebuilt with the least `smoothing` (Gaussian sigma, m) that keeps the felt
 // peak within half a force JND of its compiled maximum at that speed and rate. The compiled maximum is unchanged by either (the force

@@ -18,7 +18,7 @@
 namespace sandpaper::compiler {
 
 // The largest disagreement allowed between a texture's forces and those its exported 16-bit
-// heights give back, as a fraction of the maximum lateral force (issue 17: within 0.5 %).
+// heights give back, as a fraction of the maximum lateral force (within 0.5 %).
 inline constexpr double kGltfForceTolerance = 0.005;
 
 // One patch to export. `material` is the program's resolution: a height map's heights are

@@ -30,7 +30,7 @@ struct GltfImportResult {
 };
 
 // Whether `path` names a glTF file (extension .gltf, or .glb for the binary form).
-bool is_gltf_path(const std::filesystem::path& path);
+inline bool is_gltf_path(const std::filesystem::path& path) { return path.extension() == ".gltf" || path.extension() == ".glb"; }
 
 // Reads `path` (shown as given) and builds the program(s) for `compiler`'s device. Errors:
 // E0710 unreadable or too large, E0711 not JSON, a .glb whose headers or chunks do not hold together, or over the JSON limits, E0712 not

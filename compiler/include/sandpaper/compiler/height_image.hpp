@@ -15,7 +15,7 @@ inline constexpr long long kMaxImagePixels = 4096LL * 4096LL;
 // Multiply-adds an image's smoothing may take (both passes; a pass sums 2 ceil(3 sigma) + 1 taps per
 // sample), beyond it E0304 before the blur runs: about 1.5 s on one core in a release build, 110
 // times the largest shipped image's (8.9e6, library/outdoors/asphalt.hmat). A 16 x 64,524 px TIFF
-// under 0.5 mm over 20 mm took 1e10: 4 s in release, over 25 s under ASan (fuzz finding F38).
+// under 0.5 mm over 20 mm took 1e10: 4 s in release, over 25 s under ASan.
 inline constexpr double kMaxImageSmoothingOps = 1e9;
 // Resampling (`sampling`, OpenImageIO's resize) walks a window of source pixels for each sample
 // (height_image.cpp, resample_plan). Its y window is kept on a thread's stack, and OpenImageIO

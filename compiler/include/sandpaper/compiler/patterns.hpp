@@ -18,11 +18,11 @@ inline constexpr double kThesisPixel_m = 0.37e-3;
 inline constexpr int kMaxPatternPixels = 4096;
 // Largest pattern array in all (a tile, or a covering array with its smoothing margin), pixels:
 // 2048 x 2048, 4.6 times the largest shipped (952 x 952). Sides alone let a nine-character grid
-// name make a 4095 x 8190 px tile: 8.8 s, 1.2 GB and a 268 MB patch (fuzz finding F12).
+// name make a 4095 x 8190 px tile: 8.8 s, 1.2 GB and a 268 MB patch.
 inline constexpr double kMaxPatternArea = 4194304;
 // Multiply-adds a pattern's smoothing may take, beyond it E0304: about 0.5 s on one core in a
 // release build, 50 times what the largest thesis stimulus or shipped pattern needs (4e6; 2e9 let a
-// 915 px grid tile take 5 s and over 25 s under ASan: fuzz finding F10, docs/RELIABILITY.md).
+// 915 px grid tile take 5 s and over 25 s under ASan: docs/RELIABILITY.md).
 inline constexpr double kMaxSmoothingOps = 2e8;
 inline constexpr double kMaxPatternKernel = 256;
 // The version-2 seed (3.5.2): 256 px per period, smoothed by a Gaussian of kernel 24.
@@ -31,7 +31,7 @@ inline constexpr double kSeedKernel_px = 24;
 
 // Gaussian sigma, pixels, of a version-1 kernel of size n. Reading (docs/TEXTURES.md, "Quantization"):
 // the kernel size is the sigma in pixels, the reading that reproduces 3.6.1's "5 to 8" force levels of
-// the version-1 gratings (until issue 15 it was n / 4, as for the version-2 seed's kernel 24, which
+// the version-1 gratings (it was once n / 4, as for the version-2 seed's kernel 24, which
 // gave 1 to 4). The version-2 seed keeps its own reading (kSeedSigmaPerPeriod).
 constexpr double kernel_sigma_px(double kernel_px) { return kernel_px; }
 

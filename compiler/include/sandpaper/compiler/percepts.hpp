@@ -1,5 +1,5 @@
 #pragma once
-// The perceptual words besides roughness (issue 4): viscosity (stickiness), slipperiness, softness
+// The perceptual words besides roughness: viscosity (stickiness), slipperiness, softness
 // (springiness) and bumpiness. Each compiles through its percept's compile map in
 // calibration/maps/; today those maps are provisional (not measured on a joystick), and every use
 // warns W0320. schema/LANGUAGE.md, "Other perceptual words"; docs/CALIBRATION.md, "Provisional maps".

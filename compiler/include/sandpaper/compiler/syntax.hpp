@@ -118,7 +118,7 @@ using StatementNode = std::variant<DescribesStmt, LikeStmt, RoughnessStmt, Grati
                                    OverridesStmt, AcceptStmt>;
 
 // Where a statement's numbers come from: `source standard "FEPA 43-1:2006: P80 median 201 um"`, written
-// after the statement it sources (issue 6: every number in the library names its source).
+// after the statement it sources (every number in the library names its source).
 enum class SourceKind { Measurement, Standard, Publication, Derived, ByEar };
 const char* source_kind_word(SourceKind k);     // "measurement", ..., "by-ear" (as written)
 const char* source_kind_phrase(SourceKind k);   // "a measurement", ..., "designed by ear"

@@ -29,7 +29,7 @@ struct ServoConfig {
   double velocity_limit_m_s = 2.0;  // filtered hand speed above this stops the loop (VelocityLimit)
   // A tick starting more than this many periods after its deadline stops the loop (DeadlineMissed).
   // 0: 50 ms at the run's rate (50 periods at 1 kHz, 500 at 10 kHz). Measured (docs/performance.md,
-  // "Punctual ticks"): this VM stalls for up to 26 ms at any rate, so a fixed 50 periods stopped
+  // "Punctual ticks"): a shared virtual machine stalls for up to 26 ms at any rate, so a fixed 50 periods stopped
   // every 10 kHz run within 4 s, while 50 ms passed every run and still ends one whose handle held
   // a stale force for 50 ms.
   double deadline_guard_periods = 0.0;

@@ -1,7 +1,7 @@
 #pragma once
 // Limits on outside input, one place for all of them; docs/RELIABILITY.md lists each with the error
 // it gives. Each is far above what a hand-written or shipped file needs and far below what would
-// exhaust memory or time on a small machine (issue 16).
+// exhaust memory or time on a small machine.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -34,12 +34,12 @@ inline constexpr std::size_t kMaxWorkspacePatches = 65536;
 // finding F35). A texture at the image limit is 128 MiB; the largest shipped workspace, sampler.hws, holds 8 MiB.
 inline constexpr std::uint64_t kMaxWorkspaceGridBytes = std::uint64_t{512} << 20;
 // Sizes and positions a workspace program may hold (m): what its reader takes, so the compiler
-// refuses what it could not read back (fuzz finding F9: a patch 42e-30 mm wide).
+// refuses what it could not read back (a patch 42e-30 mm wide).
 inline constexpr double kMinPlausibleLength_m = 1e-12;
 inline constexpr double kMaxPlausibleLength_m = 1e12;
 // A number in a calibration CSV (a force, a command, a period, a magnitude estimate): 0, or within
 // these in magnitude, as a quantity in the language. Past the top a gauge fit's sums of squares
-// overflow (fuzz finding F27: a force of 7.5e300 N gave a gain of 1.4e296 N per unit, s.e. inf,
+// overflow (a force of 7.5e300 N gave a gain of 1.4e296 N per unit, s.e. inf,
 // exit 0); below the bottom a fitted map's bounds did not read back (F31: 1.7e-310 N, exit 3).
 inline constexpr double kMinMeasurement = 1e-12;
 inline constexpr double kMaxMeasurement = 1e12;

@@ -18,7 +18,7 @@ inline constexpr double kDefaultWorkspaceSide_m = 9 * 0.0254;
 
 struct PlacedPatch {
   // program->size_m equals size_m (place_patch sets it). Shared: the patches of one material at
-  // one size hold one program, so 10,000 patches of a material cost one program (issue 16).
+  // one size hold one program, so 10,000 patches of a material cost one program.
   std::shared_ptr<const PatchProgram> program;
   double centre_m[2] = {0, 0};  // patch centre in workspace coordinates
   double size_m[2] = {0, 0};    // width, height of the patch rectangle; overrides the material's own size

@@ -1,0 +1,168 @@
+#pragma once
+// The `sandpaper` command line: one command a file (cmd_<name>.cpp), registered and dispatched in main.cpp;
+// `sandpaper --help` lists them. Exit codes: 0 success, 1 the input is wrong (diagnostics printed), 2 usage or
+// environment errors, 3 internal errors.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/player/exit_codes.hpp"
+#include "sandpaper/player/play_workspace.hpp"
+#include "sandpaper/player/safety_guards.hpp"
+#include "sandpaper/compiler/gltf_import.hpp"
+#include "sandpaper/compiler/compile_json.hpp"
+#include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/runtime/device.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::cli {
+
+
+struct CommonOptions {
+  std::string file;        // material file or patch program
+  std::string expression;  // -e text
+  std::string device = "sim";
+  std::string library_dir;
+  std::string calibration_dir;
+  bool json = false;
+  bool compact = false;    // compile: height-field grids as binary16 where forces stay within 0.1 %
+  double position_rate_hz = 0;   // explain: how often new positions reach the servo, Hz (0: the servo rate)
+  double design_speed_mm_s = 0;  // explain: the hand speed the material is designed for, mm/s (0: none)
+};
+
+// What a material or patch input turned into. For .patch inputs `compile` is empty.
+struct LoadedInput {
+  std::optional<compiler::CompileResult> compile;
+  schema::PatchProgram program;
+};
+
+compiler::Compiler make_compiler(const CommonOptions& o);
+// Compiles the file or expression (or reads a .patch); prints diagnostics to stderr. Returns
+// nullopt (after printing) when the input has errors.
+std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Compiler& c, bool allow_patch);
+using compiler::diagnostics_json;  // compiler/compile_json.hpp
+// The simulated device's limits from the compiler's device calibration (calibration/devices/<name>.toml).
+runtime::DeviceLimits limits_of(const compiler::Compiler& c);
+
+int cmd_compile(const CommonOptions& o, const std::string& output, bool explain);
+// `sandpaper compile A.hmat B.hmat FOLDER/ -o OUT/`: every material (a folder's .hmat files, found
+// recursively, keep their place below it) compiled in this one process into OUT. Exit 1 if any
+// failed (those write nothing), 2 for unusable arguments (nothing is compiled).
+int cmd_compile_batch(const CommonOptions& o, const std::vector<std::string>& inputs, const std::string& out_dir);
+struct PlayRequest;  // player/include/sandpaper/player/play_patch.hpp
+int cmd_run(const CommonOptions& o, PlayRequest r, bool watch = false);
+// Replaces this process with `sandpaper-play` (beside this executable) given argv[2..] (what
+// followed `run`); returns -1, after a note, when it cannot, and the caller plays in-process.
+int exec_player(int argc, char** argv);
+int cmd_inspect(const std::string& file, bool json, bool tables);
+// USB HID PID joysticks (cmd_devices.cpp, docs/USB_PID.md): list them; play on the first one found.
+int cmd_devices(const CommonOptions& o);
+int cmd_run_usb(const CommonOptions& o, const PlayRequest& r);
+int cmd_library(const CommonOptions& o);
+// The first HID PID joystick that has a device calibration, opened and owning its transport; nullptr
+// with `error` set (and udev help printed when access was denied) when there is none.
+// `watchdog_ms` > 0: the joystick's stale-position and write watchdog (run's --watchdog).
+std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error,
+                                                   double watchdog_ms = 0);
+// `sandpaper studio` (cmd_studio.cpp, docs/STUDIO.md): `path` a material, a workspace or a folder.
+struct StudioOptions {
+  std::string path = ".";
+  std::string listen = "127.0.0.1:4780";
+  bool listen_given = false;
+  double rate_hz = 1000;
+  SafetyGuards guards;
+};
+int cmd_studio(const CommonOptions& o, const StudioOptions& so);
+
+// Workspaces (.hws, thesis Appendix B): WorkspaceRunOptions and the playing are in player/include/sandpaper/player/play_workspace.hpp.
+// True when the input is a workspace file rather than a material.
+inline bool is_workspace_input(const CommonOptions& o) {
+  return o.expression.empty() && std::filesystem::path(o.file).extension() == ".hws";
+}
+int cmd_workspace_compile(const CommonOptions& o, const std::string& output, bool explain);
+int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro);
+
+// Movies and shuffles (thesis Appendix B).
+struct MovieShuffleOptions {
+  std::string movie;
+  std::uint64_t seed = 0;
+  std::string output;       // empty: <movie stem>-<YYYYMMDD>-<HHMMSS>.shuffle beside the movie
+  std::string date, time;   // empty: the system clock's
+};
+int cmd_movie_shuffle(const MovieShuffleOptions& m, bool json);
+int cmd_movie_show(const std::string& file, bool json);
+// `sandpaper array`: lengths as text with units ("80mm", "80x60mm", "0.37mm"); empty = not given.
+struct ArrayOptions {
+  std::string image, size, sampling, channel, depth, output, shade;
+  bool invert = false;
+};
+int cmd_array(const ArrayOptions& o);
+// `sandpaper preview`: height.png, field.png, scan.svg and preview.json in `out_dir`, pictures at most
+// `side` pixels on their longer side (cmd_preview.cpp; docs/STUDIO.md).
+int cmd_preview(const CommonOptions& o, const std::string& out_dir, int side);
+// `sandpaper export FILE --format gltf -o OUT.gltf` (cmd_export.cpp, docs/GLTF.md): a material or
+// workspace as glTF 2.0 with MPEG_haptic_material. `sandpaper compile ASSET.gltf` reads one back
+// (cmd_import.cpp): a .patch, or a workspace program.
+int cmd_export(const CommonOptions& o, const std::string& format, const std::string& output);
+int cmd_compile_gltf(const CommonOptions& o, const std::string& output);
+inline bool is_gltf_input(const CommonOptions& o) { return o.expression.empty() && compiler::is_gltf_path(o.file); }
+// `sandpaper lsp`: the language server on stdin/stdout (editors/lsp, docs/EDITORS.md) until the
+// client's `exit`; 0 after a clean shutdown, 1 otherwise.
+int cmd_lsp(const CommonOptions& o);
+// `sandpaper diagnostics`: the table of diagnostic codes (schema/diagnostic_codes.hpp) as text,
+// markdown (what schema/LANGUAGE.md holds) or JSON.
+int cmd_diagnostics(bool markdown, bool json);
+
+}  // namespace sandpaper::cli
+
+// `sandpaper calibrate fit|device`: psychophysical maps and device files fitted from
+// measurements (cmd_calibrate.cpp; docs/CALIBRATION.md, "Fitting").
+namespace CLI {
+class App;
+}
+namespace sandpaper::cli {
+struct CalibrateOptions {
+  std::string input;             // responses.csv or readings.csv
+  std::string output;            // map or device file to write; empty: report only
+  std::string percept = "roughness", id;   // fit
+  std::string name, base, date;  // device
+  bool json = false;
+  CLI::App* fit = nullptr;       // set by add_calibrate_command
+  CLI::App* device = nullptr;
+};
+// Registers `calibrate` with its two subcommands on `app`; options land in `o`.
+void add_calibrate_command(CLI::App& app, CalibrateOptions& o);
+// Runs whichever subcommand was parsed; -1 if neither was. Exit codes as above.
+int cmd_calibrate(const CalibrateOptions& o);
+// `sandpaper library catalog -o DIR` (cmd_library_catalog.cpp, docs/CATALOG.md): registers it under
+// `library`; runs it with the `library` group's options `o` filling what catalog's own leave unset.
+// The files of a `--changed` option, "-" replaced by stdin's lines (cmd_library.cpp).
+std::vector<std::filesystem::path> changed_files(const std::vector<std::string>& listed);
+CLI::App* add_library_catalog_command(CLI::App& library);
+int cmd_library_catalog(const CommonOptions& o);
+
+// `sandpaper experiment run|resume|analyse` (cmd_experiment.cpp, docs/EXPERIMENTS.md).
+struct ExperimentOptions {
+  CommonOptions common;            // --library, --calibration, --json
+  std::string target;              // run: the design; resume and analyse: the results folder
+  std::string subject, output;     // run
+  std::string device = "sim";      // sim or usb
+  std::string observer = "terminal";  // terminal, page or simulated:...
+  std::string listen = "127.0.0.1:4781";  // --observer page
+  bool virtual_clock = false;
+  std::string map_out, map_id, pictures;  // analyse
+  bool allow_mixed_designs = false;
+  SafetyGuards guards;             // run: the live loop's safety stops
+  CLI::App* run = nullptr;
+  CLI::App* resume = nullptr;
+  CLI::App* analyse = nullptr;
+};
+void add_experiment_command(CLI::App& app, ExperimentOptions& o);
+// Runs whichever subcommand was parsed; -1 if none was.
+int cmd_experiment(const ExperimentOptions& o);
+}  // namespace sandpaper::cli

@@ -1,0 +1,144 @@
+// `sandpaper run`: compiles a material (or reads a .patch) and plays it through the runtime-only
+// player code (player/). A plain .patch is handed to the `sandpaper-play` executable itself
+// (exec_player), so that the playing process maps none of the compiler's libraries.
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "cli.hpp"
+#include "sandpaper/player/play_patch.hpp"
+#include "sandpaper/compiler/source_watch.hpp"
+#include "sandpaper/runtime/owning_source.hpp"
+#include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/runtime/swappable_source.hpp"
+#include "sandpaper/schema/patch_io.hpp"
+#include "sandpaper/player/usb_devices.hpp"
+
+namespace sandpaper::cli {
+
+int exec_player(int argc, char** argv) {
+  // Beside this executable in a build tree and in an installed bin/ alike.
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return -1;
+  const std::string player = (self.parent_path() / "sandpaper-play").string();
+  if (access(player.c_str(), X_OK) != 0) return -1;
+  std::vector<char*> args;
+  args.push_back(const_cast<char*>(player.c_str()));
+  for (int i = 2; i < argc; ++i) args.push_back(argv[i]);  // everything after `run`
+  args.push_back(nullptr);
+  // A Ctrl-C during the exec must not kill the player before it installs its handlers: blocked
+  // signals stay blocked (and pending) across exec, and sandpaper-play unblocks them once it has.
+  sigset_t stops;
+  sigemptyset(&stops);
+  sigaddset(&stops, SIGINT);
+  sigaddset(&stops, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stops, nullptr);
+  execv(player.c_str(), args.data());
+  const int error = errno;
+  sigprocmask(SIG_UNBLOCK, &stops, nullptr);
+  std::cerr << "sandpaper: note: cannot start " << player << " (" << std::strerror(error) << "); playing in this process\n";
+  return -1;
+}
+
+int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
+  r.json = o.json;  // --json is one of the options every command shares
+  if (watch) {
+    if (o.file.empty() || r.virtual_clock || o.device == "usb" || !r.device.replay.empty() || !r.trace.empty()) {
+      std::cerr << "sandpaper run --watch: watches a material file (.hmat or .patch) played in real time on --device sim, without --trace\n";
+      return kExitUsage;
+    }
+  }
+  if (o.device == "usb") return cmd_run_usb(o, r);
+  auto c = make_compiler(o);
+  if (o.device != "sim" && !c.device().emulated) {
+    std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim, --device usb and "
+                 "emulated devices (sandpaper-1995) run\n";
+    return kExitUsage;
+  }
+  apply_emulation(c.device(), r);
+  const runtime::DeviceLimits limits = limits_of(c);
+  if (const int rc = check_play_request(r, limits); rc != kExitOk) return rc;
+
+  auto in = load_input(o, c, /*allow_patch=*/true);
+  if (!in) return kExitBadInput;
+  const auto& prog = in->program;
+  // A compiled .patch keeps its warnings (e.g. W0320, a provisional map): show them as compiling would.
+  if (!in->compile)
+    for (const auto& w : prog.warnings) std::cerr << "warning[" << w.code << "]: " << w.message << "\n";
+  if (prog.device != o.device) {
+    std::cerr << "sandpaper: error: " << o.file << " was compiled for device '" << prog.device << "', not '" << o.device
+              << "'; recompile it with --device " << o.device << "\n";
+    return kExitUsage;
+  }
+  if (!watch) return play_on_sim(prog, limits, c.calibration().roughness_map(), r);
+
+  // --watch: the material plays through a hot-swappable source; on every save it is recompiled here,
+  // off the servo thread, and handed over with a crossfade. A save that does not compile leaves the
+  // last good program playing.
+  runtime::SwappableSource swappable(
+      std::make_unique<runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>>(
+          std::make_shared<const schema::PatchProgram>(prog)),
+      0.02);
+  // Saves are noticed by their text, not the file's stamp alone (source_watch.hpp: an editor's
+  // truncate-then-write can leave one stamp on both).
+  compiler::SourceWatch saved(o.file);
+  auto next_check = std::chrono::steady_clock::now();
+  const auto reload = [&] {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_check) return;
+    next_check = now + std::chrono::milliseconds(250);
+    swappable.collect_retired_nonrt();
+    if (!saved.changed()) return;
+    std::shared_ptr<const schema::PatchProgram> next;
+    if (schema::looks_like_patch_file(o.file)) {
+      try {
+        next = std::make_shared<const schema::PatchProgram>(schema::read_patch_file(o.file));
+      } catch (const schema::PatchFormatError& e) {
+        std::cerr << "watch: " << o.file << ": " << e.what() << "; the last good program keeps playing\n";
+        return;
+      }
+    } else {
+      auto compiled = c.compile_file(o.file);
+      std::cerr << compiler::format_diagnostics(compiled.diagnostics);
+      if (!compiled.ok()) {
+        std::cerr << "watch: " << o.file << " does not compile; the last good program keeps playing\n";
+        return;
+      }
+      next = std::make_shared<const schema::PatchProgram>(std::move(*compiled.program));
+    }
+    try {
+      swappable.offer_nonrt(std::make_unique<runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>>(next));
+      std::cerr << fmt::format("watch: reloaded {}: maximum lateral force {:.4g} N, roughness {:.3g}\n", next->name,
+                               next->max_lateral_force_N, next->roughness);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "watch: " << o.file << ": " << e.what() << "; the last good program keeps playing\n";
+    }
+  };
+  std::cerr << "watch: playing " << prog.name << " until Ctrl-C; save " << o.file << " to hear and feel the change\n";
+  return play_on_sim(prog, limits, c.calibration().roughness_map(), r, &swappable, reload);
+}
+
+int cmd_run_usb(const CommonOptions& o, const PlayRequest& r) {
+  CommonOptions base = o;
+  base.device = "sim";
+  const auto probe = make_compiler(base);
+  std::vector<Found> found;
+  if (!find_devices(probe.calibration(), found, "run --device usb")) return kExitUsage;
+  const Found* chosen = first_calibrated(found, "run --device usb");
+  if (!chosen) return kExitUsage;
+  CommonOptions co = o;
+  co.device = chosen->calibration->name;
+  const auto c = make_compiler(co);
+  auto in = load_input(co, c, /*allow_patch=*/true);
+  if (!in) return kExitBadInput;
+  return play_on_usb(in->program, *chosen, r);
+}
+
+}  // namespace sandpaper::cli

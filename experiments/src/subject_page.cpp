@@ -1,0 +1,174 @@
+// The page observer: one screen at a time. The session thread sets a screen and waits; the page,
+// on the server's threads, reads the screen and posts the answer; a condition variable hands it over.
+#include "sandpaper/experiment/subject_page.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include "sandpaper/experiment/page_answer.hpp"
+#include "sandpaper/http/request_guard.hpp"
+#include "sandpaper/schema/json_text.hpp"
+
+namespace sandpaper::experiment {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::size_t kMaxRequestBytes = 64 * 1024;
+constexpr auto kLongPoll = std::chrono::seconds(15);
+
+class PageObserverImpl final : public Observer {
+ public:
+  PageObserverImpl(const std::string& listen, const std::atomic<bool>* stop, std::string& url) : stop_(stop) {
+    listen_ = http::parse_listen(listen);
+    http_.set_payload_max_length(kMaxRequestBytes);
+    http_.set_tcp_nodelay(true);  // as the studio's server (studio/src/server.cpp): no 40 ms waits on answers
+    http_.new_task_queue = [] { return new httplib::ThreadPool(8); };
+    http_.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+      const std::string why = http::refusal(req.get_header_value("Host"), req.get_header_value("Origin"), listen_);
+      if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
+      res.status = 403;
+      res.set_content(schema::json_text(json{{"error", why}}), "application/json");
+      return httplib::Server::HandlerResponse::Handled;
+    });
+    for (const auto& a : page_assets()) {
+      const PageAsset asset = a;
+      http_.Get(asset.path, [asset](const httplib::Request&, httplib::Response& res) {
+        res.set_header("Cache-Control", "no-cache");
+        res.set_content(asset.body, std::string(asset.content_type) + "; charset=utf-8");
+      });
+    }
+    http_.Get("/api/screen", [this](const httplib::Request& req, httplib::Response& res) {
+      long after = -1;
+      page_seen_ = true;
+      if (req.has_param("after")) after = std::strtol(req.get_param_value("after").c_str(), nullptr, 10);
+      std::unique_lock lock(mutex_);
+      changed_.wait_for(lock, kLongPoll, [&] { return screen_seq_ > after || closing_; });
+      json j = screen_;
+      j["seq"] = screen_seq_;
+      delivered_seq_ = std::max(delivered_seq_, screen_seq_);
+      delivered_.notify_all();
+      res.set_header("Cache-Control", "no-store");
+      res.set_content(schema::json_text(j), "application/json");
+    });
+    http_.Post("/api/answer", [this](const httplib::Request& req, httplib::Response& res) {
+      json body;
+      std::lock_guard lock(mutex_);
+      if (const std::string why = parse_page_answer(req.body, screen_seq_, body); !why.empty()) return refuse(res, why);
+      if (!waiting_) return refuse(res, "no question is waiting for an answer");
+      if (const std::string why = page_answer_refusal(screen_, body); !why.empty()) return refuse(res, why);
+      answer_ = body;
+      waiting_ = false;
+      answered_.notify_all();
+      res.set_content(schema::json_text(json{{"ok", true}}), "application/json");
+    });
+    int port = listen_.port;
+    if (port == 0) port = http_.bind_to_any_port(listen_.host);
+    else if (!http_.bind_to_port(listen_.host, port)) port = -1;
+    if (port < 0) throw std::runtime_error("cannot listen on " + listen);
+    listen_.port = port;
+    const bool v6 = listen_.host.find(':') != std::string::npos;
+    url = "http://" + (v6 ? "[" + listen_.host + "]" : listen_.host) + ":" + std::to_string(port) + "/";
+    server_ = std::thread([this] { http_.listen_after_bind(); });
+  }
+
+  ~PageObserverImpl() override {
+    {
+      // The last screen ("Thank you", "Paused") reaches an open page before the server goes: wait
+      // until the page has fetched it, for 10 s at most (the page may have been closed).
+      std::unique_lock lock(mutex_);
+      delivered_.wait_for(lock, std::chrono::seconds(10), [&] { return delivered_seq_ >= screen_seq_ || !page_seen_; });
+      closing_ = true;
+    }
+    changed_.notify_all();
+    http_.stop();
+    if (server_.joinable()) server_.join();
+  }
+
+  std::string describe() const override { return "page"; }
+
+  void instructions(const std::string& title, const std::string& text) override {
+    ask({{"kind", "instructions"}, {"title", title}, {"text", text}});
+  }
+  void rest(int done, int total) override { ask({{"kind", "rest"}, {"done", done}, {"total", total}}); }
+  void announce(const Trial& t, int total) override {
+    show({{"kind", "feel"}, {"trial", t.index + 1}, {"total", total}, {"practice", t.practice},
+          {"patches", t.stimuli.size()}});
+  }
+  std::optional<double> estimate(const Trial& t, const Presented&, bool confidence) override {
+    auto a = ask({{"kind", confidence ? "confidence" : "estimate"}, {"trial", t.index + 1}, {"practice", t.practice}});
+    if (!a) return std::nullopt;
+    return answer_value(*a);
+  }
+  std::optional<int> choose_interval(const Trial& t, const Presented&) override {
+    auto a = ask({{"kind", "interval"}, {"trial", t.index + 1}, {"practice", t.practice}});
+    if (!a) return std::nullopt;
+    return answer_interval(*a);
+  }
+  std::optional<std::vector<int>> sort(const Trial& t, const Presented& p, int piles) override {
+    auto a = ask({{"kind", "sort"}, {"trial", t.index + 1}, {"patches", p.names.size()}, {"piles", piles}});
+    if (!a) return std::nullopt;
+    return answer_piles(*a);
+  }
+  void ended(bool finished) override { show({{"kind", finished ? "done" : "paused"}}); }
+
+ private:
+  static void refuse(httplib::Response& res, const std::string& why) {
+    res.status = 400;
+    res.set_content(schema::json_text(json{{"error", why}}), "application/json");
+  }
+
+  void show(json screen) {
+    std::lock_guard lock(mutex_);
+    screen_ = std::move(screen);
+    ++screen_seq_;
+    waiting_ = false;
+    changed_.notify_all();
+  }
+
+  // Shows a screen that needs an answer and waits for it; nullopt when stopped (a signal).
+  std::optional<json> ask(json screen) {
+    std::unique_lock lock(mutex_);
+    screen_ = std::move(screen);
+    ++screen_seq_;
+    waiting_ = true;
+    changed_.notify_all();
+    while (waiting_) {
+      if (stop_ && stop_->load()) {
+        waiting_ = false;
+        return std::nullopt;
+      }
+      answered_.wait_for(lock, std::chrono::milliseconds(100));
+    }
+    return answer_;
+  }
+
+  const std::atomic<bool>* stop_;
+  http::Listen listen_;
+  httplib::Server http_;
+  std::thread server_;
+  std::mutex mutex_;
+  std::condition_variable changed_, answered_;
+  json screen_ = json{{"kind", "starting"}};
+  std::int64_t screen_seq_ = 0, delivered_seq_ = -1;
+  std::condition_variable delivered_;
+  std::atomic<bool> page_seen_{false};  // a page has asked for a screen at least once
+  bool waiting_ = false, closing_ = false;
+  json answer_;
+};
+
+}  // namespace
+
+std::unique_ptr<Observer> make_page_observer(const std::string& listen, const std::atomic<bool>* stop, std::string& url) {
+  return std::make_unique<PageObserverImpl>(listen, stop, url);
+}
+
+}  // namespace sandpaper::experiment

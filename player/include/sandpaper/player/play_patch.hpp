@@ -1,0 +1,77 @@
+#pragma once
+// Playing one patch program, the part of `sandpaper run` that needs no compiler: shared by
+// `sandpaper run` (which compiles first) and the runtime-only `sandpaper-play` (which reads a
+// compiled .patch). Prints the run's report (text or --json) and returns the exit code.
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "sandpaper/player/run_device.hpp"
+#include "sandpaper/player/safety_guards.hpp"
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/runtime/force_source.hpp"
+#include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/runtime/quantizing_joystick.hpp"
+#include "sandpaper/runtime/servo_loop.hpp"
+#include "sandpaper/schema/patch_program.hpp"
+
+namespace sandpaper::cli {
+
+struct Found;  // usb_devices.hpp
+
+// Units at the boundary: Hz, s, mm/s, mm, us, periods.
+struct PlayRequest {
+  double rate_hz = 1000, duration_s = 2, speed_mm_s = 50, amplitude_mm = 30, hand_start_mm = 0;
+  std::string hand = "scan", trace;
+  bool virtual_clock = false, live = false, json = false;
+  RunDeviceOptions device;
+  double spin_margin_us = runtime::ServoConfig{}.spin_margin_s * 1e6;
+  SafetyGuards guards;
+  int cpu = -1;
+  bool rate_given = false;  // --rate was on the command line
+  // A device emulated on the simulator ([emulation] in its device file; apply_emulation sets these).
+  bool emulated = false;
+  runtime::DeviceQuantization quantization;
+  runtime::TableSampling tables = runtime::TableSampling::Interpolate;
+};
+
+// For a device whose file has [emulation] (sandpaper-1995): plays on the simulated joystick with the
+// device's position and force quantisation and table sampling, at its servo rate unless --rate was
+// given (1000 Hz clamped to the device's range). Does nothing for other devices.
+void apply_emulation(const calibration::DeviceCalibration& device, PlayRequest& r);
+
+// Registers run's playing options on `run` (--rate ... --trace, --virtual-clock, --live, the hand
+// device options, --spin-margin, --deadline-guard, --cpu). The same for `sandpaper run` and `sandpaper-play`.
+void add_play_options(CLI::App* run, PlayRequest& r);
+
+// Which executable is playing: "sandpaper-play" (the runtime alone) or "sandpaper" (compiled in-process).
+std::string player_name();
+
+// The servo settings of a request.
+runtime::ServoConfig servo_config_of(const PlayRequest& r);
+
+// The device limits (SI) a device calibration states.
+runtime::DeviceLimits limits_of(const calibration::DeviceCalibration& device);
+
+// 0 when `trace` is empty or its folder is writable; else kExitUsage after saying so.
+int check_trace_folder(const std::string& trace);
+
+// Checks what can be checked before loading the material (rate and servo settings for the device,
+// hand speed and amplitude, a writable trace folder): 0, or kExitUsage after printing why.
+int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits);
+// --duration (s) within schema::limits::kMaxRunSeconds, and a run that keeps a record of every tick
+// within kMaxRecordedTicks at `rate_hz`; kExitOk, or kExitUsage after saying why.
+int check_run_length(double duration_s, double rate_hz, bool records_every_tick);
+
+// Plays `program` on the simulated device `limits` and reports. `roughness_map` predicts the felt
+// roughness from the measured force. `playing`: a source to play instead of `program`'s evaluator
+// (run --watch's swappable one); `poll` is called about every 20 ms while playing in real time.
+int play_on_sim(const schema::PatchProgram& program, const runtime::DeviceLimits& limits,
+                const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r,
+                runtime::ForceSource* playing = nullptr, const std::function<void()>& poll = {});
+
+// Plays `program` on the USB joystick `chosen` (its calibration must be the program's device).
+int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const PlayRequest& r);
+
+}  // namespace sandpaper::cli
