@@ -28,15 +28,15 @@ void apply_accepts(const MaterialSyntax& syntax, Diagnostics& diagnostics) {
     const auto it = std::find_if(accepts.begin(), accepts.end(), [&](const AcceptStmt* a) { return a->code == d.code; });
     Diagnostic* added = nullptr;
     if (d.severity == Severity::Warning && it != accepts.end()) {
-      added = &out.accepted(d.code, d.location, "accepted: " + d.message, d.suggestion);
+      added = &out.accepted(schema::Code::of(d.code), d.location, "accepted: " + d.message, d.suggestion);
       added->notes = d.notes;
       added->notes.push_back({(*it)->location, "accepted here: \"" + (*it)->reason + "\""});
       continue;
     }
     if (d.code == "E0009" || d.code == "W0009") continue;  // recounted by append below
-    added = d.severity == Severity::Error     ? &out.error(d.code, d.location, d.message, d.suggestion)
-            : d.severity == Severity::Warning ? &out.warning(d.code, d.location, d.message, d.suggestion)
-                                              : &out.accepted(d.code, d.location, d.message, d.suggestion);
+    added = d.severity == Severity::Error     ? &out.error(schema::Code::of(d.code), d.location, d.message, d.suggestion)
+            : d.severity == Severity::Warning ? &out.warning(schema::Code::of(d.code), d.location, d.message, d.suggestion)
+                                              : &out.accepted(schema::Code::of(d.code), d.location, d.message, d.suggestion);
     added->notes = d.notes;
   }
   diagnostics = std::move(out);

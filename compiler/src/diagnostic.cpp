@@ -8,33 +8,32 @@
 
 namespace sandpaper::compiler {
 
-Diagnostic& Diagnostics::error(std::string code, SourceLocation loc, std::string message, std::string suggestion) {
-  return add(Severity::Error, std::move(code), std::move(loc), std::move(message), std::move(suggestion));
+Diagnostic& Diagnostics::error(schema::Code code, SourceLocation loc, std::string message, std::string suggestion) {
+  return add(Severity::Error, code, std::move(loc), std::move(message), std::move(suggestion));
 }
 
-Diagnostic& Diagnostics::warning(std::string code, SourceLocation loc, std::string message, std::string suggestion) {
-  return add(Severity::Warning, std::move(code), std::move(loc), std::move(message), std::move(suggestion));
+Diagnostic& Diagnostics::warning(schema::Code code, SourceLocation loc, std::string message, std::string suggestion) {
+  return add(Severity::Warning, code, std::move(loc), std::move(message), std::move(suggestion));
 }
 
-Diagnostic& Diagnostics::accepted(std::string code, SourceLocation loc, std::string message, std::string suggestion) {
-  return add(Severity::Note, std::move(code), std::move(loc), std::move(message), std::move(suggestion));
+Diagnostic& Diagnostics::accepted(schema::Code code, SourceLocation loc, std::string message, std::string suggestion) {
+  return add(Severity::Note, code, std::move(loc), std::move(message), std::move(suggestion));
 }
 
 bool Diagnostics::error_limit_reached() const noexcept { return errors_ >= schema::limits::kMaxErrorsPerFile; }
 
-Diagnostic& Diagnostics::add(Severity severity, std::string code, SourceLocation loc, std::string message,
+Diagnostic& Diagnostics::add(Severity severity, schema::Code code, SourceLocation loc, std::string message,
                              std::string suggestion) {
   const bool is_error = severity == Severity::Error;
-  // A code outside the shared table would reach users undocumented, and the language server
-  // could not link it: that is Sandpaper's bug, whatever the input.
-  const schema::DiagnosticCode* entry = schema::find_diagnostic_code(code);
-  if (!entry || (entry->severity == schema::DiagnosticSeverity::Error) != is_error)
-    throw InternalError("diagnostic code " + code + (entry ? " raised with the wrong severity" : " is not in schema/src/diagnostic_codes.cpp"));
+  // The table knows whether a code is an error or a warning; raising it as the other would show
+  // users a severity its documentation contradicts: that is Sandpaper's bug, whatever the input.
+  if ((code.severity() == schema::DiagnosticSeverity::Error) != is_error)
+    throw InternalError("diagnostic code " + std::string(code.text()) + " raised with the wrong severity");
   std::size_t& kept = is_error ? errors_ : warnings_;
   const std::size_t limit = is_error ? schema::limits::kMaxErrorsPerFile : schema::limits::kMaxWarningsPerFile;
   if (kept < limit) {
     ++kept;
-    list_.push_back({std::move(code), severity, std::move(loc), std::move(message), std::move(suggestion), {}});
+    list_.push_back({std::string(code.text()), severity, std::move(loc), std::move(message), std::move(suggestion), {}});
     return list_.back();
   }
   drop(is_error, std::move(loc), 1);
@@ -63,7 +62,7 @@ void Diagnostics::drop(bool is_error, SourceLocation loc, std::size_t count) {
 void Diagnostics::append(const Diagnostics& other) {
   for (const auto& d : other.list_) {
     if (d.code == "E0009" || d.code == "W0009") continue;  // recounted here
-    Diagnostic& added = add(d.severity, d.code, d.location, d.message, d.suggestion);
+    Diagnostic& added = add(d.severity, schema::Code::of(d.code), d.location, d.message, d.suggestion);
     added.notes = d.notes;
   }
   if (other.dropped_errors_ > 0) drop(true, other.list_[other.summary_error_].location, other.dropped_errors_);

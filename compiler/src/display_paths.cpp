@@ -104,8 +104,8 @@ void DisplayPaths::append_relocated(compiler::Diagnostics& to, const compiler::D
   compiler::Diagnostics moved;
   for (const auto& d : from.all()) {
     auto r = relocate(d);
-    auto& added = r.severity == compiler::Severity::Error ? moved.error(r.code, r.location, r.message, r.suggestion)
-                                                          : moved.warning(r.code, r.location, r.message, r.suggestion);
+    auto& added = r.severity == compiler::Severity::Error ? moved.error(schema::Code::of(r.code), r.location, r.message, r.suggestion)
+                                                          : moved.warning(schema::Code::of(r.code), r.location, r.message, r.suggestion);
     added.notes = r.notes;
     added.severity = r.severity;
   }

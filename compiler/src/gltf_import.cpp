@@ -25,8 +25,8 @@ struct Refusal {
   std::string code, message, suggestion;
 };
 
-[[noreturn]] void refuse(std::string code, std::string message, std::string suggestion = {}) {
-  throw Refusal{std::move(code), std::move(message), std::move(suggestion)};
+[[noreturn]] void refuse(schema::Code code, std::string message, std::string suggestion = {}) {
+  throw Refusal{std::string(code.text()), std::move(message), std::move(suggestion)};
 }
 
 std::string num(double v) {
@@ -69,7 +69,7 @@ struct Census : json::json_sax_t {
 };
 
 // JSON access that names the place of anything missing or mistyped.
-const json& member(const json& j, const char* key, const std::string& where, const char* code = "E0712") {
+const json& member(const json& j, const char* key, const std::string& where, schema::Code code = "E0712") {
   if (!j.is_object()) refuse(code, where + " is not a JSON object");
   auto it = j.find(key);
   if (it == j.end()) refuse(code, where + " has no \"" + key + "\"");
@@ -82,7 +82,7 @@ const json* optional_member(const json& j, const char* key) {
   return it == j.end() ? nullptr : &*it;
 }
 
-std::size_t index_into(const json& j, const json& array, const std::string& where, const char* code) {
+std::size_t index_into(const json& j, const json& array, const std::string& where, schema::Code code) {
   if (!j.is_number_unsigned()) refuse(code, where + " is not an index (a non-negative integer)");
   const auto i = j.get<std::uint64_t>();
   if (!array.is_array() || i >= array.size())
@@ -292,7 +292,7 @@ class Reader {
     const long long budget = kMaxGltfTexels - texels_;
     const long long limit = std::min<long long>(kind == "grating" ? 65536 : kMaxImagePixels, budget);
     auto png = gltf::decode_png16(*bytes, std::max<long long>(limit, 0), why);
-    if (!png) refuse(why.find("over the limit") != std::string::npos ? "E0717" : "E0716", iw + ": " + why);
+    if (!png) refuse(why.find("over the limit") != std::string::npos ? schema::Code("E0717") : schema::Code("E0716"), iw + ": " + why);
     texels_ += static_cast<long long>(png->texels.size());
     return std::move(*png);
   }
@@ -552,7 +552,7 @@ GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& b
   } catch (const Refusal& e) {
     r.program.reset();
     r.workspace.reset();
-    r.diagnostics.error(e.code, at, e.message, e.suggestion);
+    r.diagnostics.error(schema::Code::of(e.code), at, e.message, e.suggestion);
   } catch (const json::exception& e) {
     // Every access above is checked first; this is a defect's safety net, still the input's error.
     r.program.reset();

@@ -58,8 +58,8 @@ std::string first_line(const std::string& log) {
   return log.substr(0, end) + " (and " + std::to_string(more) + " more lines like it)";
 }
 
-bool fail(HeightImageError& e, std::string code, std::string message, std::string suggestion) {
-  e = {std::move(code), std::move(message), std::move(suggestion)};
+bool fail(HeightImageError& e, schema::Code code, std::string message, std::string suggestion) {
+  e = {std::string(code.text()), std::move(message), std::move(suggestion)};
   return false;
 }
 

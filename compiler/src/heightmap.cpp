@@ -236,7 +236,7 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
   HeightImageError err;
   auto img = load_height_image(req, err);
   if (!img) {
-    diags.error(err.code, h.location, err.message, err.suggestion);
+    diags.error(schema::Code::of(err.code), h.location, err.message, err.suggestion);
     return std::nullopt;
   }
   const int nx = img->nx, ny = img->ny;

@@ -57,9 +57,9 @@ void report_material(const CompiledMaterial& cm, const WorkspaceSyntax& syntax, 
       d.notes.push_back({syntax.patches[cm.patches[kShown]].material_location,
                          "and " + std::to_string(cm.patches.size() - kShown) + " more patches with the same material"});
     if (d.severity == Severity::Error)
-      annotated.error(d.code, d.location, d.message, d.suggestion).notes = d.notes;
+      annotated.error(schema::Code::of(d.code), d.location, d.message, d.suggestion).notes = d.notes;
     else
-      annotated.warning(d.code, d.location, d.message, d.suggestion).notes = d.notes;
+      annotated.warning(schema::Code::of(d.code), d.location, d.message, d.suggestion).notes = d.notes;
   }
   out.append(annotated);
 }

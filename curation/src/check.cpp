@@ -82,7 +82,7 @@ void accept_check_warnings(const compiler::Library& lib, const compiler::Display
     const auto* a = it != by_file.end() ? accept_of(*it->second, d.code) : nullptr;
     Diagnostics one;
     if (a) {
-      auto& x = one.accepted(d.code, d.location, "accepted: " + d.message, d.suggestion);
+      auto& x = one.accepted(schema::Code::of(d.code), d.location, "accepted: " + d.message, d.suggestion);
       x.notes = d.notes;
       x.notes.push_back({ck.at(a->location), "accepted here: \"" + a->reason + "\""});
       result.accepted.append(one);
@@ -90,8 +90,8 @@ void accept_check_warnings(const compiler::Library& lib, const compiler::Display
       continue;
     }
     // (An E0009 / W0009 "too many" line is kept as it was: what it counts was not kept to move.)
-    auto& x = d.severity == compiler::Severity::Error ? one.error(d.code, d.location, d.message, d.suggestion)
-                                                      : one.warning(d.code, d.location, d.message, d.suggestion);
+    auto& x = d.severity == compiler::Severity::Error ? one.error(schema::Code::of(d.code), d.location, d.message, d.suggestion)
+                                                      : one.warning(schema::Code::of(d.code), d.location, d.message, d.suggestion);
     x.notes = d.notes;
     kept.append(one);
   }
@@ -141,8 +141,8 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
                                                  d.location.file->name == "library/library.toml")))
         front.append([&] {
           Diagnostics one;
-          auto& x = d.severity == compiler::Severity::Error ? one.error(d.code, d.location, d.message, d.suggestion)
-                                                            : one.warning(d.code, d.location, d.message, d.suggestion);
+          auto& x = d.severity == compiler::Severity::Error ? one.error(schema::Code::of(d.code), d.location, d.message, d.suggestion)
+                                                            : one.warning(schema::Code::of(d.code), d.location, d.message, d.suggestion);
           x.notes = d.notes;
           return one;
         }());
@@ -240,8 +240,8 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
       auto moved = disp.relocate(w);
       Diagnostics one;
       const auto message = moved.message + (on.empty() ? "" : on + ")");
-      (w.severity == compiler::Severity::Note ? one.accepted(moved.code, moved.location, message, moved.suggestion)
-                                              : one.warning(moved.code, moved.location, message, moved.suggestion))
+      (w.severity == compiler::Severity::Note ? one.accepted(schema::Code::of(moved.code), moved.location, message, moved.suggestion)
+                                              : one.warning(schema::Code::of(moved.code), moved.location, message, moved.suggestion))
           .notes = moved.notes;
       (w.severity == compiler::Severity::Note ? result.accepted : out).append(one);
     }

@@ -247,7 +247,7 @@ IndexBuildResult build(const IndexOptions& options, Progress& progress, bool who
       if (!res.ok()) {
         compiler::Diagnostics errors;
         for (const auto& d : res.diagnostics.all())
-          if (d.severity == compiler::Severity::Error) errors.error(d.code, d.location, d.message, d.suggestion).notes = d.notes;
+          if (d.severity == compiler::Severity::Error) errors.error(schema::Code::of(d.code), d.location, d.message, d.suggestion).notes = d.notes;
         disp.append_relocated(r.diagnostics, errors);
       } else if (!r.diagnostics.has_errors()) {
         writer.insert({&e, std::move(*res.material), std::move(*res.program)}, in);

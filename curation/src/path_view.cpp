@@ -47,7 +47,7 @@ compiler::Diagnostics LayeredIndex::see_through_path(const std::filesystem::path
     auto res = c.compile_file(disp.path_of(*entry));
     if (!res.ok()) {
       for (const auto& d : res.diagnostics.all())
-        if (d.severity == compiler::Severity::Error) failed.error(d.code, d.location, d.message, d.suggestion).notes = d.notes;
+        if (d.severity == compiler::Severity::Error) failed.error(schema::Code::of(d.code), d.location, d.message, d.suggestion).notes = d.notes;
       continue;
     }
     // Its own root's input hash and `depends` rows: what the catalog and near read from any index.

@@ -50,9 +50,9 @@ std::string relative_to(const compiler::Diagnostic& d, const fs::path& root) {
 
 void copy_into(compiler::Diagnostics& to, const compiler::Diagnostic& d) {
   compiler::Diagnostics one;
-  auto& x = d.severity == compiler::Severity::Error     ? one.error(d.code, d.location, d.message, d.suggestion)
-            : d.severity == compiler::Severity::Warning ? one.warning(d.code, d.location, d.message, d.suggestion)
-                                                        : one.accepted(d.code, d.location, d.message, d.suggestion);
+  auto& x = d.severity == compiler::Severity::Error     ? one.error(schema::Code::of(d.code), d.location, d.message, d.suggestion)
+            : d.severity == compiler::Severity::Warning ? one.warning(schema::Code::of(d.code), d.location, d.message, d.suggestion)
+                                                        : one.accepted(schema::Code::of(d.code), d.location, d.message, d.suggestion);
   x.notes = d.notes;
   to.append(one);
 }

@@ -201,7 +201,7 @@ CatalogReport write_catalog(const compiler::Compiler& compiler, const CatalogOpt
   for (const auto& d : compiler.library().scan_diagnostics().all())
     if (d.code == "E0614") {
       compiler::Diagnostics one;
-      one.error(d.code, d.location, d.message, d.suggestion);
+      one.error(schema::Code::of(d.code), d.location, d.message, d.suggestion);
       unread.failures.push_back({d.location.file ? d.location.file->name : std::string("?"), compiler::format_diagnostics(one)});
     }
   if (!unread.failures.empty()) return unread;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sandpaper/compiler/source.hpp"
+#include "sandpaper/schema/diagnostic_codes.hpp"
 
 namespace sandpaper::compiler {
 
@@ -32,12 +33,15 @@ struct Diagnostic {
 // were and the rest are counted, not kept (a hostile file cannot fill memory with diagnostics).
 class Diagnostics {
  public:
-  // The returned reference may be a scratch entry (past the limit); notes added to it are dropped.
-  Diagnostic& error(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
-  Diagnostic& warning(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
+  // `code` is a literal checked when compiling ("E0202"), or schema::Code::of(text) for one copied
+  // from another diagnostic; raising an E code as a warning or a W code as an error is an
+  // InternalError. The returned reference may be a scratch entry (past the limit); notes added to it
+  // are dropped.
+  Diagnostic& error(schema::Code code, SourceLocation loc, std::string message, std::string suggestion = {});
+  Diagnostic& warning(schema::Code code, SourceLocation loc, std::string message, std::string suggestion = {});
   // A warning the material accepts (`accept CODE "reason"`): kept as a note with the warning's
   // code, so that it is shown but neither counted as a warning nor listed in the patch program.
-  Diagnostic& accepted(std::string code, SourceLocation loc, std::string message, std::string suggestion = {});
+  Diagnostic& accepted(schema::Code code, SourceLocation loc, std::string message, std::string suggestion = {});
   void append(const Diagnostics& other);
   bool has_errors() const noexcept { return errors_ > 0; }
   // True once errors are no longer kept: a phase may stop looking for more.
@@ -45,7 +49,7 @@ class Diagnostics {
   const std::vector<Diagnostic>& all() const noexcept { return list_; }
 
  private:
-  Diagnostic& add(Severity severity, std::string code, SourceLocation loc, std::string message,
+  Diagnostic& add(Severity severity, schema::Code code, SourceLocation loc, std::string message,
                   std::string suggestion);
   void drop(bool is_error, SourceLocation loc, std::size_t count);
   std::vector<Diagnostic> list_;
