@@ -8,14 +8,12 @@
 #include <cstdint>
 #include <mutex>
 #include <optional>
-#include <thread>
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/experiment/page_answer.hpp"
-#include "sandpaper/http/request_guard.hpp"
-#include "sandpaper/schema/json_text.hpp"
+#include "sandpaper/http/local_server.hpp"
 
 namespace sandpaper::experiment {
 namespace {
@@ -23,30 +21,17 @@ namespace {
 using nlohmann::json;
 
 constexpr std::size_t kMaxRequestBytes = 64 * 1024;
+// One page and a script or two: each open long-poll holds a pool thread.
+constexpr std::size_t kServerThreads = 8;
 constexpr auto kLongPoll = std::chrono::seconds(15);
 
 class PageObserverImpl final : public Observer {
  public:
-  PageObserverImpl(const std::string& listen, const std::atomic<bool>* stop, std::string& url) : stop_(stop) {
-    listen_ = http::parse_listen(listen);
-    http_.set_payload_max_length(kMaxRequestBytes);
-    http_.set_tcp_nodelay(true);  // as the studio's server (studio/src/server.cpp): no 40 ms waits on answers
-    http_.new_task_queue = [] { return new httplib::ThreadPool(8); };
-    http_.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-      const std::string why = http::refusal(req.get_header_value("Host"), req.get_header_value("Origin"), listen_);
-      if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
-      res.status = 403;
-      res.set_content(schema::json_text(json{{"error", why}}), "application/json");
-      return httplib::Server::HandlerResponse::Handled;
-    });
-    for (const auto& a : page_assets()) {
-      const PageAsset asset = a;
-      http_.Get(asset.path, [asset](const httplib::Request&, httplib::Response& res) {
-        res.set_header("Cache-Control", "no-cache");
-        res.set_content(asset.body, std::string(asset.content_type) + "; charset=utf-8");
-      });
-    }
-    http_.Get("/api/screen", [this](const httplib::Request& req, httplib::Response& res) {
+  PageObserverImpl(const std::string& listen, const std::atomic<bool>* stop, std::string& url)
+      : stop_(stop), server_({kServerThreads, kMaxRequestBytes}) {
+    httplib::Server& api = server_.server();
+    server_.serve_assets(page_assets());
+    api.Get("/api/screen", [this](const httplib::Request& req, httplib::Response& res) {
       long after = -1;
       page_seen_ = true;
       if (req.has_param("after")) after = std::strtol(req.get_param_value("after").c_str(), nullptr, 10);
@@ -57,9 +42,9 @@ class PageObserverImpl final : public Observer {
       delivered_seq_ = std::max(delivered_seq_, screen_seq_);
       delivered_.notify_all();
       res.set_header("Cache-Control", "no-store");
-      res.set_content(schema::json_text(j), "application/json");
+      http::send_json(res, j);
     });
-    http_.Post("/api/answer", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/answer", [this](const httplib::Request& req, httplib::Response& res) {
       json body;
       std::lock_guard lock(mutex_);
       if (const std::string why = parse_page_answer(req.body, screen_seq_, body); !why.empty()) return refuse(res, why);
@@ -68,16 +53,11 @@ class PageObserverImpl final : public Observer {
       answer_ = body;
       waiting_ = false;
       answered_.notify_all();
-      res.set_content(schema::json_text(json{{"ok", true}}), "application/json");
+      http::send_json(res, json{{"ok", true}});
     });
-    int port = listen_.port;
-    if (port == 0) port = http_.bind_to_any_port(listen_.host);
-    else if (!http_.bind_to_port(listen_.host, port)) port = -1;
-    if (port < 0) throw std::runtime_error("cannot listen on " + listen);
-    listen_.port = port;
-    const bool v6 = listen_.host.find(':') != std::string::npos;
-    url = "http://" + (v6 ? "[" + listen_.host + "]" : listen_.host) + ":" + std::to_string(port) + "/";
-    server_ = std::thread([this] { http_.listen_after_bind(); });
+    server_.bind(http::parse_listen(listen));
+    url = server_.url();
+    server_.start();
   }
 
   ~PageObserverImpl() override {
@@ -89,8 +69,7 @@ class PageObserverImpl final : public Observer {
       closing_ = true;
     }
     changed_.notify_all();
-    http_.stop();
-    if (server_.joinable()) server_.join();
+    server_.stop();
   }
 
   std::string describe() const override { return "page"; }
@@ -121,10 +100,7 @@ class PageObserverImpl final : public Observer {
   void ended(bool finished) override { show({{"kind", finished ? "done" : "paused"}}); }
 
  private:
-  static void refuse(httplib::Response& res, const std::string& why) {
-    res.status = 400;
-    res.set_content(schema::json_text(json{{"error", why}}), "application/json");
-  }
+  static void refuse(httplib::Response& res, const std::string& why) { http::send_error(res, 400, why); }
 
   void show(json screen) {
     std::lock_guard lock(mutex_);
@@ -152,9 +128,7 @@ class PageObserverImpl final : public Observer {
   }
 
   const std::atomic<bool>* stop_;
-  http::Listen listen_;
-  httplib::Server http_;
-  std::thread server_;
+  http::LocalServer server_;
   std::mutex mutex_;
   std::condition_variable changed_, answered_;
   json screen_ = json{{"kind", "starting"}};

@@ -23,14 +23,8 @@ constexpr std::size_t kMaxRequestBytes = 2 * schema::limits::kMaxSourceBytes + (
 // The event stream's rate: a strip chart and a force arrow at 30 frames a second.
 constexpr auto kEventPeriod = std::chrono::milliseconds(33);
 
-void send_json(httplib::Response& res, const nlohmann::json& j, int status = 200) {
-  res.status = status;
-  res.set_content(schema::json_text(j), "application/json");
-}
-
-void send_error(httplib::Response& res, int status, const std::string& message) {
-  send_json(res, {{"error", message}}, status);
-}
+using http::send_error;
+using http::send_json;
 
 nlohmann::json body_json(const httplib::Request& req) {
   try {
@@ -95,9 +89,8 @@ struct Server::Impl {
   LiveLoop& loop;
   LibraryBrowser& library;
   std::string version;
-  http::Listen listen;
-  httplib::Server http;
-  std::atomic<bool> stopping{false};
+  http::LocalServer server{{kServerThreads, kMaxRequestBytes}};
+  httplib::Server& api = server.server();
 
   Impl(Session& s, LiveLoop& l, LibraryBrowser& b, std::string v) : session(s), loop(l), library(b), version(std::move(v)) {}
 
@@ -123,52 +116,33 @@ struct Server::Impl {
   }
 
   void routes() {
-    http.set_payload_max_length(kMaxRequestBytes);
-    // An answer goes out as headers then body; with Nagle's algorithm the body waits for the
-    // page's delayed ACK of the headers, 40 ms on Linux, on every request (measured in the USB lab).
-    http.set_tcp_nodelay(true);
-    http.new_task_queue = [] { return new httplib::ThreadPool(kServerThreads); };
-    // The guard: a request for another host name (DNS rebinding) or from another origin (a web page
-    // elsewhere posting to localhost) is refused before any handler runs.
-    http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
-      const std::string why = http::refusal(req.get_header_value("Host"), req.get_header_value("Origin"), listen);
-      if (why.empty()) return httplib::Server::HandlerResponse::Unhandled;
-      send_error(res, 403, why);
-      return httplib::Server::HandlerResponse::Handled;
-    });
-    for (const auto& a : web_assets()) {
-      const WebAsset asset = a;
-      http.Get(asset.path, [asset](const httplib::Request&, httplib::Response& res) {
-        res.set_header("Cache-Control", "no-cache");
-        res.set_content(asset.body, std::string(asset.content_type) + "; charset=utf-8");
-      });
-    }
-    http.Get("/api/health", [this](const httplib::Request&, httplib::Response& res) {
+    server.serve_assets(web_assets());
+    api.Get("/api/health", [this](const httplib::Request&, httplib::Response& res) {
       send_json(res, {{"ok", true}, {"version", version}});
     });
-    http.Get("/api/files", [this](const httplib::Request&, httplib::Response& res) {
+    api.Get("/api/files", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.files()); });
     });
-    http.Get("/api/current", [this](const httplib::Request&, httplib::Response& res) {
+    api.Get("/api/current", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.current()); });
     });
-    http.Post("/api/open", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/open", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.open(string_field(body_json(req), "file"))); });
     });
-    http.Post("/api/compile", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/compile", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.compile_only(req.body)); });
     });
-    http.Post("/api/material", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/material", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.update(req.body)); });
     });
-    http.Post("/api/parameter", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/parameter", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const auto j = body_json(req);
         send_json(res, session.set_parameter(string_field(j, "name"), number_field(j, "value"),
                                              string_field(j, "unit", false)));
       });
     });
-    http.Post("/api/language", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/language", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const auto j = body_json(req);
         const double line = number_field(j, "line"), character = number_field(j, "character");
@@ -178,16 +152,16 @@ struct Server::Impl {
       });
     });
     // The library browser: search (the SQLite index), an entry's numbers and text, its picture.
-    http.Get("/api/library/search", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Get("/api/library/search", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] { send_json(res, library.search(req.has_param("q") ? req.get_param_value("q") : "")); });
     });
-    http.Get("/api/library/entry", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Get("/api/library/entry", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         if (!req.has_param("name")) throw RequestError(400, "?name= names the library entry");
         send_json(res, library.entry(req.get_param_value("name")));
       });
     });
-    http.Get("/api/library/picture", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Get("/api/library/picture", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const auto file = req.has_param("name") ? library.picture(req.get_param_value("name")) : std::nullopt;
         if (!file) throw RequestError(404, "no picture for that library entry");
@@ -197,16 +171,16 @@ struct Server::Impl {
         res.set_content(ss.str(), "image/png");
       });
     });
-    http.Post("/api/new", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/new", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.create(string_field(body_json(req), "file"))); });
     });
-    http.Post("/api/save-as", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/save-as", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.save_as(string_field(body_json(req), "file"))); });
     });
-    http.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
+    api.Post("/api/save", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.save()); });
     });
-    http.Post("/api/hand", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/hand", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const auto j = body_json(req);
         const double x = number_field(j, "x_mm"), y = number_field(j, "y_mm");
@@ -225,23 +199,15 @@ struct Server::Impl {
         send_json(res, answer);
       });
     });
-    http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
+    api.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, event_json()); });
     });
     // Server-Sent Events: the state 30 times a second while the page is open.
-    http.Get("/api/events", [this](const httplib::Request&, httplib::Response& res) {
-      res.set_header("Cache-Control", "no-cache");
-      res.set_chunked_content_provider("text/event-stream", [this](std::size_t, httplib::DataSink& sink) {
-        std::this_thread::sleep_for(kEventPeriod);
-        if (stopping.load()) return false;
-        const std::string event = "data: " + schema::json_text(event_json()) + "\n\n";
-        return sink.write(event.data(), event.size());
-      });
-    });
-    http.Get("/api/workspace", [this](const httplib::Request&, httplib::Response& res) {
+    server.event_stream("/api/events", kEventPeriod, [this] { return event_json(); });
+    api.Get("/api/workspace", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.workspace()); });
     });
-    http.Post("/api/workspace/patch", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Post("/api/workspace/patch", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const auto j = body_json(req);
         const double index = number_field(j, "index");
@@ -251,7 +217,7 @@ struct Server::Impl {
       });
     });
     // Zoom and pan over the whole patch: a picture of any window, drawn on request.
-    http.Get("/api/view", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Get("/api/view", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         auto number = [&](const char* key) {
           if (!req.has_param(key)) throw RequestError(400, std::string("?") + key + "= is required (mm)");
@@ -272,7 +238,7 @@ struct Server::Impl {
         send_json(res, session.render_view(req.has_param("kind") ? req.get_param_value("kind") : "height", centre, window));
       });
     });
-    http.Get(R"(/api/view/([A-Za-z0-9.\-]+))", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Get(R"(/api/view/([A-Za-z0-9.\-]+))", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const auto path = session.view_file(req.matches[1]);
         if (!path) throw RequestError(404, "no view picture '" + std::string(req.matches[1]) + "' (only the last " +
@@ -284,7 +250,7 @@ struct Server::Impl {
         res.set_content(ss.str(), "image/png");
       });
     });
-    http.Get(R"(/api/preview/([A-Za-z0-9.\-]+))", [this](const httplib::Request& req, httplib::Response& res) {
+    api.Get(R"(/api/preview/([A-Za-z0-9.\-]+))", [this](const httplib::Request& req, httplib::Response& res) {
       guarded(res, [&] {
         const std::string name = req.matches[1];
         std::uint64_t load = 0;
@@ -314,24 +280,10 @@ Server::Server(Session& session, LiveLoop& loop, LibraryBrowser& library, std::s
 
 Server::~Server() { stop(); }
 
-int Server::bind(const http::Listen& listen) {
-  impl_->listen = listen;
-  int port = listen.port;
-  if (port == 0) {
-    port = impl_->http.bind_to_any_port(listen.host);
-  } else if (!impl_->http.bind_to_port(listen.host, port)) {
-    port = -1;
-  }
-  if (port < 0) throw std::runtime_error("cannot listen on " + listen.host + ":" + std::to_string(listen.port));
-  impl_->listen.port = port;
-  return port;
-}
+int Server::bind(const http::Listen& listen) { return impl_->server.bind(listen); }
 
-void Server::serve() { impl_->http.listen_after_bind(); }
+void Server::serve() { impl_->server.serve(); }
 
-void Server::stop() {
-  impl_->stopping.store(true);
-  impl_->http.stop();
-}
+void Server::stop() { impl_->server.stop(); }
 
 }  // namespace sandpaper::studio

@@ -1,7 +1,7 @@
 #pragma once
 // The subject's full-screen page (docs/EXPERIMENTS.md, "The subject's page"): an observer whose
-// answers come from a browser. The experiment process serves the page itself (cpp-httplib, with the
-// studio's Host/Origin guard: http/request_guard.hpp); the page long-polls GET /api/screen for what
+// answers come from a browser. The experiment process serves the page itself (http/local_server.hpp,
+// the server and Host/Origin guard the studio uses too); the page long-polls GET /api/screen for what
 // to show and POSTs each answer to /api/answer, which checks it against the screen it answers.
 #include <atomic>
 #include <memory>
@@ -9,15 +9,12 @@
 #include <vector>
 
 #include "sandpaper/experiment/observer.hpp"
+#include "sandpaper/http/local_server.hpp"
 
 namespace sandpaper::experiment {
 
 // The page's files (experiments/web/), compiled in by cmake/embed_files.cmake.
-struct PageAsset {
-  const char* path;          // "/", "/subject.js", "/subject.css"
-  const char* content_type;
-  const char* body;
-};
+using PageAsset = http::Asset;
 const std::vector<PageAsset>& page_assets();
 
 class PageObserver;

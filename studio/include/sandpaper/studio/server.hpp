@@ -9,18 +9,14 @@
 
 #include "sandpaper/studio/library_browser.hpp"
 #include "sandpaper/studio/live_loop.hpp"
-#include "sandpaper/http/request_guard.hpp"
+#include "sandpaper/http/local_server.hpp"
 #include "sandpaper/studio/session.hpp"
 
 namespace sandpaper::studio {
 
 // The page's files, built from studio/web/ by esbuild and compiled in (web_assets.cpp, generated
 // by cmake/embed_files.cmake).
-struct WebAsset {
-  const char* path;          // "/", "/studio.js", "/studio.css"
-  const char* content_type;  // "text/html", "text/css", "text/javascript" (served as UTF-8)
-  const char* body;
-};
+using WebAsset = http::Asset;
 const std::vector<WebAsset>& web_assets();
 
 class Server {

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/http/local_server.hpp"
 #include "sandpaper/compiler/parameters.hpp"
 #include "sandpaper/schema/workspace_program.hpp"
 #include "sandpaper/studio/live_loop.hpp"
@@ -23,11 +24,7 @@
 namespace sandpaper::studio {
 
 // A request the studio refuses, with the HTTP status to answer and a message saying how to fix it.
-struct RequestError : std::runtime_error {
-  RequestError(int status_, const std::string& message) : std::runtime_error(message), status(status_) {}
-  int status;
-};
-
+using RequestError = http::RequestError;
 
 class Session {
  public:
