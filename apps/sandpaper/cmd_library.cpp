@@ -143,7 +143,6 @@ std::vector<std::filesystem::path> changed_files(const std::vector<std::string>&
   return out;
 }
 
-
 void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.check = library.add_subcommand("check", "validate every entry: metadata, sources, names, cycles, compiles on every device, JND collisions");
   add_paths(o.check, o, false);

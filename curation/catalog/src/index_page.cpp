@@ -22,7 +22,6 @@ using namespace index_parts;
 
 namespace index_parts {
 
-
 // The manifest's families in its order, then any family an entry names that the manifest lacks (by id).
 std::vector<FamilyCount> families_of(const compiler::LibraryManifest& manifest, const std::vector<IndexRow>& rows) {
   std::map<std::string, int> count;
@@ -162,8 +161,6 @@ std::string page_html(const std::string& library_name, const std::string& versio
   return o.str();
 }
 
-
-
 // The JSON inside a file json_statement wrote (its escapes \\ and \' undone), or nullopt.
 std::optional<std::string> json_inside(const std::string& script, std::string_view start, std::string_view end) {
   if (script.size() < start.size() + end.size() || script.compare(0, start.size(), start) != 0 ||
@@ -193,7 +190,6 @@ std::string roughness_text(const std::optional<double>& r) {
 }
 // Forces and periods to the same six digits: the page compares them in JND steps (12.5 %).
 std::string six_digits(double v) { return roughness_text(std::isfinite(v) ? v : 0.0); }
-
 
 std::string joined(const std::vector<std::string>& values) {
   std::size_t n = 0;
@@ -227,7 +223,6 @@ std::string part_script(std::size_t k, const PartColumns& c) {
   return json_statement(kPartStart, j, kPartEnd);
 }
 
-
 // Counts c's rows into span's counts (over `families` families); std::invalid_argument for a family
 // index outside them.
 void tally(const PartColumns& c, std::size_t families, PartSpan& span) {
@@ -242,7 +237,6 @@ void tally(const PartColumns& c, std::size_t families, PartSpan& span) {
     else ++span.counts[static_cast<std::size_t>(f)];
   }
 }
-
 
 // The head's family counts and unfiled entries: the sums over its parts.
 void total(Head& h) {
