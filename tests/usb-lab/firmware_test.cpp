@@ -471,8 +471,10 @@ TEST(OpenFFBoardFirmwareLab, TheHandMovesOnePeriodPerControlStep) {
 // the test began were counted after it (539 counted in 533.4 periods).
 TEST(OpenFFBoardFirmwareLab, TimerUpdatesAreRunOrCountedDropped) {
   open_like_the_driver();
-  const FirmwareState before = firmware().state();
+  // The clock first: every period counted after `before` then passed after `start` (the other order
+  // let a period the timer thread added between the two exceed the elapsed time on a loaded machine).
   const auto start = Clock::now();
+  const FirmwareState before = firmware().state();
   const auto counted = [](const FirmwareState& s) { return s.ffb_timer_updates + s.ffb_timer_updates_dropped; };
   std::this_thread::sleep_for(milliseconds(500));
   // A starved timer thread counts the periods it missed when it wakes: wait for it (5 s at most).
