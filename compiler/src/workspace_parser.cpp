@@ -1,6 +1,7 @@
 #include "sandpaper/compiler/workspace_parser.hpp"
 
 #include "sandpaper/schema/input_limits.hpp"
+#include "token_cursor.hpp"
 
 #include <cmath>
 
@@ -9,18 +10,15 @@ namespace {
 
 using schema::Dimension;
 
-// Thrown inside a statement to abandon it; the diagnostic has already been recorded.
-struct StatementError {};
-
 const std::vector<std::string>& workspace_keywords() {
   static const std::vector<std::string> k{"size", "patch"};
   return k;
 }
 
-class WorkspaceParser {
+class WorkspaceParser : TokenCursor {
  public:
   WorkspaceParser(const std::vector<Token>& tokens, std::shared_ptr<const SourceFile> file, Diagnostics& diags)
-      : toks_(tokens), file_(std::move(file)), diags_(diags) {}
+      : TokenCursor(tokens), file_(std::move(file)), diags_(diags) {}
 
   // workspace_file := End* 'workspace' STRING '{' (ws_statement? End)* '}' End* Eof
   WorkspaceSyntax file() {
@@ -227,29 +225,8 @@ class WorkspaceParser {
     return Quantity{n.number, u.text, n.number * def->to_si, span};
   }
 
-  static std::string describe(const Token& t) {
-    switch (t.kind) {
-      case TokenKind::Word: return "'" + t.text + "'";
-      case TokenKind::Number: return "the number " + t.text;
-      case TokenKind::String: return "the string \"" + t.text + "\"";
-      default: return token_kind_name(t.kind);
-    }
-  }
-
-  const Token& peek() const { return toks_[pos_]; }
-  const Token& next() {
-    const Token& t = toks_[pos_];
-    if (pos_ + 1 < toks_.size()) ++pos_;  // never step past Eof
-    return t;
-  }
-  void skip_ends() {
-    while (peek().kind == TokenKind::End) next();
-  }
-
-  const std::vector<Token>& toks_;
   std::shared_ptr<const SourceFile> file_;
   Diagnostics& diags_;
-  std::size_t pos_ = 0;
 };
 
 }  // namespace

@@ -4,7 +4,7 @@
 #include <limits>
 #include <variant>
 
-#include "force_laws.hpp"
+#include "term_forces.hpp"
 #include "force_tables.hpp"
 #include "term_checks.hpp"
 

@@ -63,6 +63,52 @@ TEST(EditorGrammar, UnitsAreExactlyTheLanguages) {
   EXPECT_EQ(alternatives(pattern("quantity"), ")\\s*("), language);
 }
 
+// The words of the JavaScript `const NAME = new Set([...])` in `text`.
+std::set<std::string> js_set(const std::string& text, const std::string& name) {
+  const auto start = text.find("const " + name + " = new Set([");
+  EXPECT_NE(start, std::string::npos) << "no Set " << name;
+  const auto end = text.find("])", start);
+  const std::string list = text.substr(start, end - start);
+  std::set<std::string> words;
+  const std::regex quoted("\"([^\"]+)\"");
+  for (std::sregex_iterator it(list.begin(), list.end(), quoted), e; it != e; ++it) words.insert((*it)[1]);
+  return words;
+}
+
+std::string read_source(const std::filesystem::path& relative) {
+  std::ifstream in(kSource / relative);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The studio's highlighter (studio/web/src/hmat.js) keeps lists of its own: its statement words
+// are the language's, with the block openers and the licence's American spelling the parser takes,
+// and its units are the language's.
+TEST(EditorGrammar, TheStudiosHighlighterKnowsTheLanguagesWordsAndUnits) {
+  const std::string js = read_source("studio/web/src/hmat.js");
+  const auto& keywords = sandpaper::compiler::statement_keywords();
+  std::set<std::string> language(keywords.begin(), keywords.end());
+  language.insert({"material", "workspace", "patch", "license"});
+  EXPECT_EQ(js_set(js, "statements"), language);
+  std::set<std::string> units;
+  for (const auto& u : sandpaper::schema::all_units()) units.insert(std::string(u.name));
+  EXPECT_EQ(js_set(js, "units"), units);
+}
+
+// The fuzzing dictionary (fuzz/dict/material.dict) holds every statement word and unit, so that
+// the material target starts from the whole language.
+TEST(EditorGrammar, TheFuzzDictionaryHoldsEveryWordAndUnit) {
+  const std::string dict = read_source("fuzz/dict/material.dict");
+  std::set<std::string> entries;
+  std::stringstream lines(dict);
+  for (std::string l; std::getline(lines, l);)
+    if (l.size() >= 2 && l.front() == '"' && l.back() == '"') entries.insert(l.substr(1, l.size() - 2));
+  for (const auto& k : sandpaper::compiler::statement_keywords()) EXPECT_TRUE(entries.count(k)) << k << " not in material.dict";
+  for (const auto& u : sandpaper::schema::all_units())
+    EXPECT_TRUE(entries.count(std::string(u.name))) << u.name << " not in material.dict";
+}
+
 TEST(EditorGrammar, QuantitiesTakeTheWholeUnit) {
   using Q = std::vector<std::pair<std::string, std::string>>;
   EXPECT_EQ(quantities("grating period 3.2 mm hill 50%"), (Q{{"3.2", "mm"}, {"50", "%"}}));

@@ -56,7 +56,16 @@ PictureRole picture_role(const schema::Term& term) {
                         [](const schema::LinearFieldTerm& f) {
                           return f.tangential_N_per_m == 0 ? PictureRole::Potential : PictureRole::None;
                         },
-                        [](const auto&) { return PictureRole::None; },
+                        // Every other kind by name, no fallback: a new kind does not compile until
+                        // it says whether and how it is drawn (here and in why_not_pictured).
+                        [](const schema::DamperTerm&) { return PictureRole::None; },
+                        [](const schema::NapTerm&) { return PictureRole::None; },
+                        [](const schema::MinusTerm&) { return PictureRole::None; },
+                        [](const schema::FollowerSpringTerm&) { return PictureRole::None; },
+                        [](const schema::PointMassesTerm&) { return PictureRole::None; },
+                        [](const schema::AttractorTerm&) { return PictureRole::None; },
+                        [](const schema::FrictionTerm&) { return PictureRole::None; },
+                        [](const schema::NapFrictionTerm&) { return PictureRole::None; },
                     },
                     term);
 }
@@ -77,7 +86,15 @@ std::string why_not_pictured(const schema::Term& term) {
           [](const schema::FrictionTerm&) { return std::string("friction: its force depends on where the contact last stuck (state)"); },
           [](const schema::NapFrictionTerm&) { return std::string("nap friction: its force depends on where the contact last stuck (state)"); },
           [](const schema::LinearFieldTerm&) { return std::string("the circulating field: a tangential force has no potential surface"); },
-          [&](const auto&) { return term_kind(term) + ": drawn"; },
+          // The drawn kinds by name, no fallback (picture_role says why).
+          [&](const schema::GratingTerm&) { return term_kind(term) + ": drawn"; },
+          [&](const schema::HeightFieldTerm&) { return term_kind(term) + ": drawn"; },
+          [&](const schema::PeriodicTerm&) { return term_kind(term) + ": drawn"; },
+          [&](const schema::RidgeTerm&) { return term_kind(term) + ": drawn"; },
+          [&](const schema::SpringTerm&) { return term_kind(term) + ": drawn"; },
+          [&](const schema::ConstantForceTerm&) { return term_kind(term) + ": drawn"; },
+          [&](const schema::BowlTerm&) { return term_kind(term) + ": drawn"; },
+          [&](const schema::LinearSpringTerm&) { return term_kind(term) + ": drawn"; },
       },
       term);
 }

@@ -16,7 +16,7 @@ const options = new Set([
 const kinds = new Set(["measurement", "standard", "publication", "derived", "by-ear", "bars", "grid", "perlin", "noise", "stripes"]);
 const units = new Set([
   "m", "cm", "mm", "um", "in", "N", "mN", "gf", "ozf", "ju", "pu", "N/m", "N/mm", "N*s/m", "deg", "%", "kg", "g", "s",
-  "ms", "J", "mJ", "W", "mW",
+  "ms", "J", "mJ", "W", "mW", "m/s", "mm/s",
 ]);
 
 export const hmatLanguage = StreamLanguage.define({

@@ -1,8 +1,8 @@
 #pragma once
-// The closed-form force laws of Appendix B and thesis 3.2.2, one function per term kind. Each gives
-// the force (N) at hand position p (m, from the patch centre), velocity v (m/s) and acceleration
-// a (m/s^2). The laws are stated in schema/include/sandpaper/schema/patch_program.hpp; the
-// evaluator checked the parameters (periods > 0 and so on) before the first tick.
+// The force of each term kind in closed form (Appendix B and thesis 3.2.2), one function a kind.
+// Each gives the force (N) at hand position p (m, from the patch centre), velocity v (m/s) and
+// acceleration a (m/s^2). The laws are stated in schema/include/sandpaper/schema/patch_program.hpp;
+// the evaluator checked the parameters (periods > 0 and so on) before the first tick.
 #include <cmath>
 #include <numbers>
 
