@@ -6,16 +6,17 @@
 include(CMakePackageConfigHelpers)
 
 set(SANDPAPER_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Sandpaper)
-# Exported as Sandpaper::<name>: the API and what it is built from. sandpaper_usb (USB HID PID
-# joysticks) is exported for applications that play real hardware; Sandpaper::sandpaper does not
-# link it, so libusb is needed only by those that do.
+# Exported as Sandpaper::<name>: the API and what it is built from, among them the device factory
+# (sandpaper_devices) and the USB HID PID driver (sandpaper_usb) that Player::usb opens joysticks
+# with, so an application links libusb.
 set_target_properties(sandpaper_schema PROPERTIES EXPORT_NAME schema)
 set_target_properties(sandpaper_calibration PROPERTIES EXPORT_NAME calibration)
 set_target_properties(sandpaper_compiler PROPERTIES EXPORT_NAME compiler)
 set_target_properties(sandpaper_runtime PROPERTIES EXPORT_NAME runtime)
 set_target_properties(sandpaper_usb PROPERTIES EXPORT_NAME usb)
+set_target_properties(sandpaper_devices PROPERTIES EXPORT_NAME devices)
 install(TARGETS sandpaper_api sandpaper_compiler sandpaper_image_io sandpaper_data_dirs_installed sandpaper_calibration
-                sandpaper_runtime sandpaper_usb sandpaper_schema
+                sandpaper_runtime sandpaper_usb sandpaper_devices sandpaper_schema
   EXPORT SandpaperTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

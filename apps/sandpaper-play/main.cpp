@@ -16,7 +16,6 @@
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/workspace_io.hpp"
-#include "sandpaper/player/usb_devices.hpp"
 
 namespace {
 
@@ -39,7 +38,7 @@ int play_file(const std::string& file, const std::string& device, const std::str
       std::cerr << "sandpaper: error: device '" << device << "' cannot be played yet; only --device sim runs workspaces\n";
       return cli::kExitUsage;
     }
-    const runtime::DeviceLimits limits = cli::limits_of(*dev);
+    const runtime::DeviceLimits limits = runtime::limits_of(*dev);
     const cli::WorkspaceRunOptions ro = cli::workspace_options_of(r, app, crossfade_ms);
     if (const int rc = cli::check_workspace_request(ro, limits); rc != cli::kExitOk) return rc;
     const auto ws = schema::read_workspace_program_file(file);
@@ -51,37 +50,21 @@ int play_file(const std::string& file, const std::string& device, const std::str
       }
     return cli::play_workspace_on_sim(ws, limits, ro);
   }
-  if (device == "usb") {
-    std::vector<cli::Found> found;
-    if (!cli::find_devices(set, found, "run --device usb")) return cli::kExitUsage;
-    const cli::Found* chosen = cli::first_calibrated(found, "run --device usb");
-    if (!chosen) return cli::kExitUsage;
-    const auto program = schema::read_patch_file(file);
-    return cli::play_on_usb(program, *chosen, r);
-  }
-  const calibration::DeviceCalibration* dev = set.find_device(device);
-  if (dev == nullptr) {
-    std::cerr << "sandpaper-play: error: no device calibration named '" << device << "' in " << set_dir.string() << "\n";
-    return cli::kExitUsage;
-  }
-  if (device != "sim" && !dev->emulated) {
-    std::cerr << "sandpaper: error: device '" << device << "' cannot be played yet; only --device sim, --device usb and "
-                 "emulated devices (sandpaper-1995) run\n";
-    return cli::kExitUsage;
-  }
-  set.select_device(device);
-  cli::apply_emulation(*dev, r);
-  const runtime::DeviceLimits limits = cli::limits_of(*dev);
-  if (const int rc = cli::check_play_request(r, limits); rc != cli::kExitOk) return rc;
+  const std::string command = "run --device " + device;
+  runtime::DeviceSpec spec;
+  if (const int rc = cli::prepare_play_device(set, device, r, spec, command); rc != cli::kExitOk) return rc;
+  set.select_device(spec.device);
   const auto program = schema::read_patch_file(file);  // PatchFormatError: exit 1, below
   // A compiled .patch keeps its warnings (e.g. W0320, a provisional map): show them as compiling would.
   for (const auto& w : program.warnings) std::cerr << "warning[" << w.code << "]: " << w.message << "\n";
-  if (program.device != device) {
-    std::cerr << "sandpaper: error: " << file << " was compiled for device '" << program.device << "', not '" << device
-              << "'; recompile it with --device " << device << "\n";
+  if (program.device != spec.device) {
+    std::cerr << "sandpaper: error: " << file << " was compiled for device '" << program.device << "', not '" << spec.device
+              << "'; recompile it with --device " << spec.device << "\n";
     return cli::kExitUsage;
   }
-  return cli::play_on_sim(program, limits, set.roughness_map(), r);
+  runtime::OpenedDevice opened;
+  if (const int rc = cli::open_play_device(set, std::move(spec), opened, command); rc != cli::kExitOk) return rc;
+  return cli::play_patch(program, opened, set.roughness_map(), r);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/runtime/device.hpp"
+#include "sandpaper/runtime/devices/open_device.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
@@ -42,6 +43,8 @@ struct LoadedInput {
 };
 
 compiler::Compiler make_compiler(const CommonOptions& o);
+// The device calibrations --calibration selects (or the default folder); CalibrationError when unreadable.
+calibration::CalibrationSet load_calibration_set(const CommonOptions& o);
 // Compiles the file or expression (or reads a .patch); prints diagnostics to stderr. Returns
 // nullopt (after printing) when the input has errors.
 std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Compiler& c, bool allow_patch);
@@ -60,15 +63,13 @@ int cmd_run(const CommonOptions& o, PlayRequest r, bool watch = false);
 // followed `run`); returns -1, after a note, when it cannot, and the caller plays in-process.
 int exec_player(int argc, char** argv);
 int cmd_inspect(const std::string& file, bool json, bool tables);
-// USB HID PID joysticks (cmd_devices.cpp, docs/USB_PID.md): list them; play on the first one found.
+// USB HID PID joysticks plugged in (cmd_devices.cpp, docs/USB_PID.md).
 int cmd_devices(const CommonOptions& o);
-int cmd_run_usb(const CommonOptions& o, const PlayRequest& r);
 int cmd_library(const CommonOptions& o);
-// The first HID PID joystick that has a device calibration, opened and owning its transport; nullptr
-// with `error` set (and udev help printed when access was denied) when there is none.
-// `watchdog_ms` > 0: the joystick's stale-position and write watchdog (run's --watchdog).
-std::unique_ptr<runtime::Device> open_usb_joystick(const CommonOptions& o, std::string& device_name, std::string& error,
-                                                   double watchdog_ms = 0);
+// Opens the device `spec` names through the device factory (runtime/devices/open_device.hpp) with
+// the calibration `o` selects; nullopt after printing "sandpaper COMMAND: why" (and the udev help).
+std::optional<runtime::OpenedDevice> open_device_for(const CommonOptions& o, runtime::DeviceSpec spec,
+                                                     const std::string& command);
 // `sandpaper studio` (cmd_studio.cpp, docs/STUDIO.md): `path` a material, a workspace or a folder.
 struct StudioOptions {
   std::string path = ".";

@@ -74,44 +74,45 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   hand.path = runtime::HandPath::Scan;
   hand.speed_m_s = d.hand_speed_m_s;
   hand.amplitude_m = d.hand_amplitude_m;
-  if (eo.device == "usb") {
-    if (eo.virtual_clock) {
-      std::cerr << "sandpaper experiment: --virtual-clock plays the simulated joystick; a USB joystick runs in real time\n";
-      return nullptr;
-    }
-    CommonOptions o;
-    o.calibration_dir = eo.common.calibration_dir;
-    o.library_dir = eo.common.library_dir;
-    std::string name, error;
-    auto dev = open_usb_joystick(o, name, error, eo.guards.watchdog_ms);
-    if (!dev) {
-      std::cerr << "sandpaper experiment: " << error << "\n";
-      return nullptr;
-    }
-    if (name != d.device) {
-      std::cerr << fmt::format("sandpaper experiment: the design compiles for device `{}` but the joystick found is `{}`; "
-                               "set device = \"{}\" in the design\n", d.device, name, name);
-      return nullptr;
-    }
-    device_used = name + " (USB)";
-    return std::make_unique<ex::LivePresenter>(std::move(dev), device_used, po);
-  }
-  if (eo.device != "sim") {
+  // --device sim plays the design's device on the simulated joystick (an emulated one with its
+  // quantisation); usb, the joystick plugged in, which must be the design's device.
+  if (eo.device != "sim" && eo.device != "usb") {
     std::cerr << "sandpaper experiment: --device is sim or usb (the design's `device` names the calibration)\n";
     return nullptr;
   }
-  if (eo.guards.watchdog_ms != 0) {
-    std::cerr << "sandpaper experiment: --watchdog applies to --device usb (a simulated joystick cannot go quiet)\n";
-    return nullptr;
-  }
-  const auto limits = limits_of(c);
+  runtime::DeviceSpec spec;
+  spec.device = eo.device == "usb" ? eo.device : d.device;
+  spec.simulate = eo.device == "sim";
+  spec.script = hand;
+  spec.watchdog_s = eo.guards.watchdog_ms * 1e-3;
+  spec.virtual_clock = eo.virtual_clock;
+  CommonOptions o;
+  o.calibration_dir = eo.common.calibration_dir;
+  o.library_dir = eo.common.library_dir;
+  const std::string command = "experiment --device " + eo.device;
   if (eo.virtual_clock) {
-    auto p = std::make_unique<ex::VirtualPresenter>(limits, hand, po);
+    // Each presentation is a run of its own on simulated time: the presenter builds the device.
+    try {
+      (void)runtime::choose_device(load_calibration_set(o), spec);
+    } catch (const runtime::DeviceOpenError& e) {
+      std::cerr << "sandpaper " << command << ": " << e.what() << "\n" << e.help;
+      return nullptr;
+    }
+    auto p = std::make_unique<ex::VirtualPresenter>(limits_of(c), hand, po);
     device_used = p->describe();
     return p;
   }
-  device_used = fmt::format("simulated joystick in real time, hand scanning at {:g} mm/s", hand.speed_m_s * 1e3);
-  return std::make_unique<ex::LivePresenter>(std::make_unique<runtime::SimJoystick>(limits, hand, 0), device_used, po);
+  auto opened = open_device_for(o, std::move(spec), command);
+  if (!opened) return nullptr;
+  if (opened->calibration != d.device) {
+    std::cerr << fmt::format("sandpaper experiment: the design compiles for device `{}` but the joystick found is `{}`; "
+                             "set device = \"{}\" in the design\n", d.device, opened->calibration, opened->calibration);
+    return nullptr;
+  }
+  device_used = opened->real ? opened->calibration + " (USB)"
+                             : fmt::format("{} simulated in real time, hand scanning at {:g} mm/s{}", d.device,
+                                           hand.speed_m_s * 1e3, opened->emulation ? ", with its quantisation" : "");
+  return std::make_unique<ex::LivePresenter>(std::move(opened->device), device_used, po);
 }
 
 int report_outcome(const ex::SessionOutcome& out, const std::filesystem::path& dir, bool json) {

@@ -18,7 +18,6 @@
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/swappable_source.hpp"
 #include "sandpaper/schema/patch_io.hpp"
-#include "sandpaper/player/usb_devices.hpp"
 
 namespace sandpaper::cli {
 
@@ -49,35 +48,38 @@ int exec_player(int argc, char** argv) {
 
 int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
   r.json = o.json;  // --json is one of the options every command shares
-  if (watch) {
-    if (o.file.empty() || r.virtual_clock || o.device == "usb" || !r.device.replay.empty() || !r.trace.empty()) {
-      std::cerr << "sandpaper run --watch: watches a material file (.hmat or .patch) played in real time on --device sim, without --trace\n";
-      return kExitUsage;
-    }
-  }
-  if (o.device == "usb") return cmd_run_usb(o, r);
-  auto c = make_compiler(o);
-  if (o.device != "sim" && !c.device().emulated) {
-    std::cerr << "sandpaper: error: device '" << o.device << "' cannot be played yet; only --device sim, --device usb and "
-                 "emulated devices (sandpaper-1995) run\n";
+  const std::string command = "run --device " + o.device;
+  if (watch && (o.file.empty() || r.virtual_clock || !r.device.replay.empty() || !r.trace.empty())) {
+    std::cerr << "sandpaper run --watch: watches a material file (.hmat or .patch) played in real time on --device sim, without --trace\n";
     return kExitUsage;
   }
-  apply_emulation(c.device(), r);
-  const runtime::DeviceLimits limits = limits_of(c);
-  if (const int rc = check_play_request(r, limits); rc != kExitOk) return rc;
-
-  auto in = load_input(o, c, /*allow_patch=*/true);
+  // The device is settled first (a USB joystick names the calibration its programs take), the
+  // material compiled for it, and only then is the device claimed.
+  const auto set = load_calibration_set(o);
+  runtime::DeviceSpec spec;
+  if (const int rc = prepare_play_device(set, o.device, r, spec, command); rc != kExitOk) return rc;
+  CommonOptions co = o;
+  co.device = spec.device;
+  auto c = make_compiler(co);
+  auto in = load_input(co, c, /*allow_patch=*/true);
   if (!in) return kExitBadInput;
   const auto& prog = in->program;
   // A compiled .patch keeps its warnings (e.g. W0320, a provisional map): show them as compiling would.
   if (!in->compile)
     for (const auto& w : prog.warnings) std::cerr << "warning[" << w.code << "]: " << w.message << "\n";
-  if (prog.device != o.device) {
-    std::cerr << "sandpaper: error: " << o.file << " was compiled for device '" << prog.device << "', not '" << o.device
-              << "'; recompile it with --device " << o.device << "\n";
+  if (prog.device != spec.device) {
+    std::cerr << "sandpaper: error: " << o.file << " was compiled for device '" << prog.device << "', not '" << spec.device
+              << "'; recompile it with --device " << spec.device << "\n";
     return kExitUsage;
   }
-  if (!watch) return play_on_sim(prog, limits, c.calibration().roughness_map(), r);
+  runtime::OpenedDevice device;
+  if (const int rc = open_play_device(set, std::move(spec), device, command); rc != kExitOk) return rc;
+  if (watch && device.real) {
+    std::cerr << "sandpaper run --watch: plays on --device sim; a real joystick plays a material with run, or in the studio\n";
+    return kExitUsage;
+  }
+  const auto& map = c.calibration().roughness_map();
+  if (!watch) return play_patch(prog, device, map, r);
 
   // --watch: the material plays through a hot-swappable source; on every save it is recompiled here,
   // off the servo thread, and handed over with a crossfade. A save that does not compile leaves the
@@ -122,23 +124,7 @@ int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
     }
   };
   std::cerr << "watch: playing " << prog.name << " until Ctrl-C; save " << o.file << " to hear and feel the change\n";
-  return play_on_sim(prog, limits, c.calibration().roughness_map(), r, &swappable, reload);
-}
-
-int cmd_run_usb(const CommonOptions& o, const PlayRequest& r) {
-  CommonOptions base = o;
-  base.device = "sim";
-  const auto probe = make_compiler(base);
-  std::vector<Found> found;
-  if (!find_devices(probe.calibration(), found, "run --device usb")) return kExitUsage;
-  const Found* chosen = first_calibrated(found, "run --device usb");
-  if (!chosen) return kExitUsage;
-  CommonOptions co = o;
-  co.device = chosen->calibration->name;
-  const auto c = make_compiler(co);
-  auto in = load_input(co, c, /*allow_patch=*/true);
-  if (!in) return kExitBadInput;
-  return play_on_usb(in->program, *chosen, r);
+  return play_patch(prog, device, map, r, &swappable, reload);
 }
 
 }  // namespace sandpaper::cli

@@ -9,7 +9,6 @@
 
 #include "cli.hpp"
 #include "sandpaper/runtime/dummy_joystick.hpp"
-#include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/studio/server.hpp"
 
 #ifndef SANDPAPER_VERSION
@@ -54,29 +53,18 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
   if (!o.library_dir.empty()) o.library_dir = fs::absolute(o.library_dir).string();
   if (!o.calibration_dir.empty()) o.calibration_dir = fs::absolute(o.calibration_dir).string();
 
-  std::unique_ptr<runtime::Device> device;
-  runtime::DummyJoystick* dummy = nullptr;
-  if (o.device == "usb") {
-    std::string name, error;
-    device = open_usb_joystick(o, name, error, so.guards.watchdog_ms);
-    if (!device) {
-      std::cerr << "sandpaper studio --device usb: " << error << "\n";
-      return kExitUsage;
-    }
-    o.device = name;
-  } else if (o.device != "sim") {
-    std::cerr << "sandpaper studio: --device takes sim (the default: Dummy mode, the mouse moves the hand) or usb\n";
-    return kExitUsage;
-  } else if (so.guards.watchdog_ms != 0) {
-    std::cerr << "sandpaper studio: --watchdog applies to --device usb (the Dummy-mode hand cannot go quiet)\n";
-    return kExitUsage;
-  }
+  // --device sim plays Dummy mode: the pointer over the preview moves the simulated handle (a real
+  // joystick is moved by the hand holding it).
+  runtime::DeviceSpec spec;
+  spec.device = o.device;
+  spec.hand = runtime::SimulatedHand::Pointer;
+  spec.watchdog_s = so.guards.watchdog_ms * 1e-3;
+  auto joystick = open_device_for(o, std::move(spec), "studio --device " + o.device);
+  if (!joystick) return kExitUsage;
+  o.device = joystick->calibration;
   const compiler::Compiler compiler = make_compiler(o);
-  if (!device) {
-    auto d = std::make_unique<runtime::DummyJoystick>(limits_of(compiler));
-    dummy = d.get();
-    device = std::move(d);
-  }
+  runtime::DummyJoystick* dummy = joystick->pointer;
+  std::unique_ptr<runtime::Device> device = std::move(joystick->device);
   // Material files name their images relative to themselves; the studio compiles from its folder.
   if (::chdir(root.c_str()) != 0) {
     std::cerr << "sandpaper studio: cannot work in " << root << ": " << std::strerror(errno) << "\n";

@@ -70,6 +70,11 @@ std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Co
   return in;
 }
 
-runtime::DeviceLimits limits_of(const compiler::Compiler& c) { return limits_of(c.device()); }
+runtime::DeviceLimits limits_of(const compiler::Compiler& c) { return runtime::limits_of(c.device()); }
+
+calibration::CalibrationSet load_calibration_set(const CommonOptions& o) {
+  return calibration::CalibrationSet::load(o.calibration_dir.empty() ? calibration::default_calibration_dir()
+                                                                     : std::filesystem::path(o.calibration_dir));
+}
 
 }  // namespace sandpaper::cli

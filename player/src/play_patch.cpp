@@ -16,11 +16,11 @@
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/trace_csv.hpp"
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
+#include "sandpaper/runtime/devices/open_device.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/patch_json.hpp"
-#include "sandpaper/player/usb_devices.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -109,13 +109,11 @@ void add_play_options(CLI::App* run, PlayRequest& r) {
 }
 
 void apply_emulation(const calibration::DeviceCalibration& device, PlayRequest& r) {
-  if (!device.emulated) return;
+  const auto emulation = runtime::emulation_of(device);
+  if (!emulation) return;
   r.emulated = true;
-  r.quantization.position_step_m = device.position_resolution_m;
-  for (int a = 0; a < 2; ++a)
-    r.quantization.force_step_N[a] = device.quantized() ? device.force_step_N(a) : 0.0;
-  r.quantization.command_max = device.command_max;
-  r.tables = device.hold_tables ? runtime::TableSampling::Hold : runtime::TableSampling::Interpolate;
+  r.quantization = emulation->quantization;
+  r.tables = emulation->tables;
   if (!r.rate_given) r.rate_hz = std::clamp(1000.0, device.min_rate_hz, device.max_rate_hz);
 }
 
@@ -132,16 +130,6 @@ runtime::ServoConfig servo_config_of(const PlayRequest& r) {
   r.guards.apply(cfg);
   cfg.cpu = r.cpu;
   return cfg;
-}
-
-runtime::DeviceLimits limits_of(const calibration::DeviceCalibration& dev) {
-  runtime::DeviceLimits limits;
-  limits.name = dev.name;
-  limits.max_force_N = dev.max_force_N;
-  limits.min_rate_hz = dev.min_rate_hz;
-  limits.max_rate_hz = dev.max_rate_hz;
-  limits.workspace_radius_m = dev.workspace_radius_m;
-  return limits;
 }
 
 int check_trace_folder(const std::string& trace) {
@@ -207,39 +195,76 @@ int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits
   return check_trace_folder(r.trace);
 }
 
-int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& limits,
-                const calibration::PsychophysicalMap& map, const PlayRequest& r, runtime::ForceSource* playing,
-                const std::function<void()>& poll) {
-  if (r.guards.watchdog_ms != 0) {
-    std::cerr << "sandpaper: error: --watchdog applies to --device usb (a simulated joystick cannot go quiet)\n";
+runtime::DeviceSpec device_spec_of(const PlayRequest& r, const std::string& device) {
+  runtime::DeviceSpec spec;
+  spec.device = device;
+  spec.script.path = r.hand == "circle" ? runtime::HandPath::Circle : runtime::HandPath::Scan;
+  spec.script.speed_m_s = r.speed_mm_s * 1e-3;
+  spec.script.amplitude_m = r.amplitude_mm * 1e-3;
+  spec.script.start_m = r.hand_start_mm * 1e-3;
+  spec.hand = !r.device.replay.empty()           ? runtime::SimulatedHand::Replay
+              : r.device.hand_model == "dynamic" ? runtime::SimulatedHand::Dynamic
+                                                 : runtime::SimulatedHand::Script;
+  spec.hand_model = r.device.hand;
+  spec.replay_name = r.device.replay;
+  spec.watchdog_s = r.guards.watchdog_ms * 1e-3;
+  spec.virtual_clock = r.virtual_clock;
+  // The simulated device records the first second, for the force strip (the rest of the report
+  // comes from the telemetry, so a long run does not grow the process).
+  const auto first_second = static_cast<std::size_t>(kRecordedSeconds * r.rate_hz);
+  spec.record_ticks = r.duration_s == 0 ? first_second
+                                        : std::min(static_cast<std::size_t>(std::llround(r.duration_s * r.rate_hz)), first_second);
+  return spec;
+}
+
+int prepare_play_device(const calibration::CalibrationSet& set, const std::string& device, PlayRequest& r,
+                        runtime::DeviceSpec& spec, const std::string& command) {
+  spec = device_spec_of(r, device);
+  runtime::DeviceChoice choice;
+  try {
+    choice = runtime::choose_device(set, spec);
+  } catch (const runtime::DeviceOpenError& e) {
+    std::cerr << "sandpaper " << command << ": " << e.what() << "\n" << e.help;
     return kExitUsage;
   }
-  runtime::HandScript script;
-  script.path = r.hand == "circle" ? runtime::HandPath::Circle : runtime::HandPath::Scan;
-  script.speed_m_s = r.speed_mm_s * 1e-3;
-  script.amplitude_m = r.amplitude_mm * 1e-3;
-  script.start_m = r.hand_start_mm * 1e-3;
-  const bool until_stopped = r.duration_s == 0;
-  const auto ticks = until_stopped ? std::size_t{0} : static_cast<std::size_t>(std::llround(r.duration_s * r.rate_hz));
-  const auto first_second = static_cast<std::size_t>(kRecordedSeconds * r.rate_hz);
-  const std::size_t recorded = until_stopped ? first_second : std::min(ticks, first_second);
-  std::vector<glm::dvec2> replayed;
-  runtime::ServoConfig cfg = servo_config_of(r);
-  if (!r.device.replay.empty()) {
+  const calibration::DeviceCalibration& cal = *set.find_device(choice.calibration);
+  apply_emulation(cal, r);
+  std::vector<glm::dvec2> positions;
+  if (spec.hand == runtime::SimulatedHand::Replay) {
     double replay_duration = 0;
-    if (const int rc = load_replay(r.device, r.rate_hz, replayed, replay_duration); rc != kExitOk) return rc;
-    cfg.duration_s = replay_duration;
+    if (const int rc = load_replay(r.device, r.rate_hz, positions, replay_duration); rc != kExitOk) return rc;
+    r.duration_s = replay_duration;
   }
-  // An emulated device: the hand moves a plain simulated handle, read and driven through the device's
-  // quantisation; the loop rounds its commands to the device's units (servo_config_of), so the
-  // telemetry and the trace show what was sent.
-  std::unique_ptr<runtime::RecordingDevice> device;
-  if (r.emulated)
-    device = std::make_unique<runtime::QuantizingJoystick>(make_run_device(r.device, limits, script, 0, replayed),
-                                                           r.quantization, recorded);
-  else
-    device = make_run_device(r.device, limits, script, recorded, replayed);
-  runtime::RecordingDevice& joystick = *device;
+  // Again, now that an emulated device's rate and a replay's length are known.
+  spec = device_spec_of(r, choice.calibration);
+  spec.replay_positions_m = std::move(positions);
+  if (choice.real) {
+    // A real joystick: its servo rates are checked as the loop starts.
+    if (const int rc = check_run_length(r.duration_s, r.rate_hz, !r.trace.empty()); rc != kExitOk) return rc;
+    return check_trace_folder(r.trace);
+  }
+  return check_play_request(r, runtime::limits_of(cal));
+}
+
+int open_play_device(const calibration::CalibrationSet& set, runtime::DeviceSpec spec, runtime::OpenedDevice& out,
+                     const std::string& command) {
+  try {
+    out = runtime::open_device(set, std::move(spec));
+  } catch (const runtime::DeviceOpenError& e) {
+    std::cerr << "sandpaper " << command << ": " << e.what() << "\n" << e.help;
+    return kExitUsage;
+  }
+  return kExitOk;
+}
+
+namespace {
+
+int play_on_sim(const schema::PatchProgram& prog, runtime::OpenedDevice& opened, const calibration::PsychophysicalMap& map,
+                const PlayRequest& r, runtime::ForceSource* playing, const std::function<void()>& poll) {
+  const runtime::DeviceLimits& limits = opened.device->limits();
+  const bool until_stopped = r.duration_s == 0;
+  const runtime::ServoConfig cfg = servo_config_of(r);
+  runtime::RecordingDevice& joystick = *opened.recording;
   runtime::PatchEvaluator evaluator(prog, r.tables);
   runtime::ForceSource& source = playing != nullptr ? *playing : static_cast<runtime::ForceSource&>(evaluator);
 
@@ -248,7 +273,7 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
     std::cout << fmt::format("playing {} on {}: {:g} Hz {}, hand {} at {:g} mm/s, {} {:g} mm{}\n", prog.name, limits.name,
                              r.rate_hz, how_long, r.hand, r.speed_mm_s, r.hand == "circle" ? "radius" : "turning at +-",
                              r.amplitude_mm, r.virtual_clock ? " (virtual clock)" : "");
-    std::cout << "  device   " << describe_run_device(r.device) << "\n";
+    std::cout << "  device   " << opened.description << "\n";
     if (r.emulated) std::cout << "  emulated " << describe_emulation(r) << "\n";
     std::cout << std::flush;
   }
@@ -301,7 +326,7 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
                      {"clock", r.virtual_clock ? "virtual" : "monotonic"},
                      {"player", player_name()},
                      {"hand", {{"path", r.hand}, {"speed_mm_s", r.speed_mm_s}, {"amplitude_mm", r.amplitude_mm}}},
-                     {"hand_device", describe_run_device(r.device)},
+                     {"hand_device", opened.description},
                      {"emulation", r.emulated ? nlohmann::json{{"position_step_mm", r.quantization.position_step_m * 1e3},
                                                                {"force_step_N", {r.quantization.force_step_N[0], r.quantization.force_step_N[1]}},
                                                                {"command_max", r.quantization.command_max},
@@ -345,35 +370,17 @@ int play_on_sim(const schema::PatchProgram& prog, const runtime::DeviceLimits& l
   return exit_status_of(rep);
 }
 
-int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const PlayRequest& r) {
-  using runtime::usb::UsbStatus;
-  const auto& cal = *chosen.calibration;
-  if (program.device != cal.name) {
-    std::cerr << "sandpaper: error: the patch was compiled for device '" << program.device << "', not '" << cal.name
-              << "'; recompile it with --device " << cal.name << "\n";
-    return kExitUsage;
-  }
+int play_on_usb(const schema::PatchProgram& program, runtime::OpenedDevice& opened, const PlayRequest& r) {
   const runtime::ServoConfig cfg = servo_config_of(r);
-  std::unique_ptr<runtime::usb::LibusbTransport> transport;
-  std::string message;
-  const UsbStatus s = runtime::usb::LibusbTransport::open(static_cast<std::uint16_t>(chosen.info.vendor_id),
-                                                          static_cast<std::uint16_t>(chosen.info.product_id), transport, message);
-  if (s != UsbStatus::Ok) {
-    std::cerr << "sandpaper run --device usb: cannot open " << ids(chosen.info.vendor_id, chosen.info.product_id) << ": " << message << "\n";
-    if (s == UsbStatus::AccessDenied) print_udev_help(std::cerr, chosen.info.vendor_id, chosen.info.product_id);
-    return kExitUsage;
-  }
-  if (const int rc = check_run_length(r.duration_s, r.rate_hz, !r.trace.empty()); rc != kExitOk) return rc;
-  if (const int rc = check_trace_folder(r.trace); rc != kExitOk) return rc;
+  const auto& info = *opened.usb;
+  const std::string& device_name = opened.calibration;
   try {
-    runtime::usb::HidPidOptions usb_options;
-    usb_options.stale_limit_s = r.guards.watchdog_ms * 1e-3;
-    runtime::usb::HidPidJoystick joystick(*transport, cal, usb_options);
+    runtime::usb::HidPidJoystick& joystick = *opened.usb_joystick;
     runtime::validate_config(cfg, joystick.limits());
     runtime::PatchEvaluator evaluator(program);
-    const std::string usb_ids = ids(chosen.info.vendor_id, chosen.info.product_id);
+    const std::string usb_ids = runtime::usb_ids(info.vendor_id, info.product_id);
     if (!r.json)
-      std::cout << fmt::format("playing {} on {} ({}): {:g} Hz {}\n", program.name, cal.name, usb_ids, r.rate_hz,
+      std::cout << fmt::format("playing {} on {} ({}): {:g} Hz {}\n", program.name, device_name, usb_ids, r.rate_hz,
                                r.duration_s == 0 ? std::string("until Ctrl-C") : fmt::format("for {:g} s", r.duration_s))
                 << std::flush;
     const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
@@ -396,8 +403,8 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
                              (usb_error.empty() ? std::string() : " (USB: " + usb_error + ")");
     if (r.json) {
       nlohmann::json j{{"material", program.name},
-                       {"device", cal.name},
-                       {"usb", {{"id", usb_ids}, {"bus", chosen.info.bus}, {"address", chosen.info.address}}},
+                       {"device", device_name},
+                       {"usb", {{"id", usb_ids}, {"bus", info.bus}, {"address", info.address}}},
                        {"ticks", rep.ticks},
                        {"rate_hz", rep.rate_hz},
                        {"rate_hz_target", r.rate_hz},
@@ -434,14 +441,26 @@ int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const 
       if (!r.trace.empty()) std::cout << "  trace    " << r.trace << " (" << played.records.size() << " ticks)\n";
     }
     return exit_status_of(rep);
-  } catch (const runtime::usb::HidPidError& e) {
-    std::cerr << "sandpaper run --device usb: " << e.what() << "\n";
-    if (e.status == UsbStatus::AccessDenied) print_udev_help(std::cerr, chosen.info.vendor_id, chosen.info.product_id);
-    return kExitUsage;
   } catch (const std::invalid_argument& e) {
     std::cerr << "sandpaper: error: " << e.what() << "\n";
     return kExitUsage;
   }
+}
+
+}  // namespace
+
+int play_patch(const schema::PatchProgram& program, runtime::OpenedDevice& device,
+               const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r, runtime::ForceSource* playing,
+               const std::function<void()>& poll) {
+  // Forces are compiled against a device's command scale (thesis 7.6.3): another device's program
+  // would push with the wrong strength.
+  if (program.device != device.calibration) {
+    std::cerr << "sandpaper: error: the patch was compiled for device '" << program.device << "', not '" << device.calibration
+              << "'; recompile it with --device " << device.calibration << "\n";
+    return kExitUsage;
+  }
+  if (device.real) return play_on_usb(program, device, r);
+  return play_on_sim(program, device, roughness_map, r, playing, poll);
 }
 
 }  // namespace sandpaper::cli

@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 
 #include "sandpaper/player/exit_codes.hpp"
-#include "sandpaper/runtime/replay_joystick.hpp"
 #include "sandpaper/runtime/trace_csv.hpp"
 
 namespace sandpaper::cli {
@@ -64,22 +63,6 @@ int load_replay(const RunDeviceOptions& d, double rate_hz, std::vector<glm::dvec
   for (const auto& t : trace) positions.push_back(t.position_m);
   duration_s = static_cast<double>(trace.size()) / rate_hz;
   return kExitOk;
-}
-
-std::unique_ptr<runtime::RecordingDevice> make_run_device(const RunDeviceOptions& d, const runtime::DeviceLimits& limits,
-                                                          const runtime::HandScript& script, std::size_t ticks,
-                                                          std::vector<glm::dvec2>& positions) {
-  if (!d.replay.empty()) return std::make_unique<runtime::ReplayJoystick>(limits, std::move(positions));
-  if (d.hand_model == "dynamic") return std::make_unique<runtime::DynamicHandJoystick>(limits, script, d.hand, ticks);
-  return std::make_unique<runtime::SimJoystick>(limits, script, ticks);
-}
-
-std::string describe_run_device(const RunDeviceOptions& d) {
-  if (!d.replay.empty()) return "replay of " + d.replay;
-  if (d.hand_model == "dynamic")
-    return fmt::format("dynamic hand ({:g} kg, {:g} N/m, {:g} N*s/m)", d.hand.mass_kg, d.hand.stiffness_N_per_m,
-                       d.hand.damping_Ns_per_m);
-  return "position-controlled hand";
 }
 
 }  // namespace sandpaper::cli

@@ -328,6 +328,13 @@ has "$tmp/err" 'no USB force-feedback device' "devices says there is none"
 has "$tmp/err" 'known devices: openffboard-2axis \(1209:ffb0\)' "devices names the known IDs"
 expect_exit 2 "run --device usb, none present" -- "$sp" run -e corduroy --device usb --duration 0.1
 has "$tmp/err" 'run --device usb: no USB force-feedback device' "run --device usb says why"
+# The device factory refuses what a real joystick cannot do before it searches USB.
+expect_exit 2 "run --device usb --virtual-clock" -- "$sp" run -e corduroy --device usb --virtual-clock --duration 0.1
+has "$tmp/err" 'run --device usb: --virtual-clock plays the simulated joystick' "a USB run says it runs in real time"
+expect_exit 2 "run --device usb --hand-model dynamic" -- "$sp" run -e corduroy --device usb --hand-model dynamic --duration 0.1
+has "$tmp/err" 'a USB joystick is moved by the hand holding it' "a USB run refuses a simulated hand"
+expect_exit 2 "run on a device named by its USB calibration, none present" -- "$sp" run -e corduroy --device openffboard-2axis --duration 0.1
+has "$tmp/err" 'no USB force-feedback device found' "a device with a [usb] table is looked for on USB"
 # Stopping: SIGINT to a running real-time run stops it within a tick, exit 0, the cause reported.
 # The signal goes once the process has its handlers (SigCgt in /proc, SIGINT and SIGTERM bits), not
 # after a guessed sleep: under load start-up alone can take longer than any sleep.

@@ -3,6 +3,7 @@
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 
 #include "hid_pid_internal.hpp"
+#include "sandpaper/runtime/device_limits.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -47,12 +48,7 @@ constexpr double kDefaultStaleLimitS = 0.05;
 
 HidPidJoystick::HidPidJoystick(UsbTransport& transport, const calibration::DeviceCalibration& calibration,
                                HidPidOptions options)
-    : transport_(transport), calibration_(calibration), options_(options) {
-  limits_.name = calibration.name;
-  limits_.max_force_N = calibration.max_force_N;
-  limits_.min_rate_hz = calibration.min_rate_hz;
-  limits_.max_rate_hz = calibration.max_rate_hz;
-  limits_.workspace_radius_m = calibration.workspace_radius_m;
+    : transport_(transport), calibration_(calibration), options_(options), limits_(limits_of(calibration)) {
   if (options_.stale_limit_s <= 0)
     options_.stale_limit_s = std::max(kDefaultStaleLimitS, 2 * calibration.usb_idle_report_period_s);
   open();

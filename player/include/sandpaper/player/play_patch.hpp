@@ -10,6 +10,7 @@
 #include "sandpaper/player/run_device.hpp"
 #include "sandpaper/player/safety_guards.hpp"
 #include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/runtime/devices/open_device.hpp"
 #include "sandpaper/runtime/force_source.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/quantizing_joystick.hpp"
@@ -17,8 +18,6 @@
 #include "sandpaper/schema/patch_program.hpp"
 
 namespace sandpaper::cli {
-
-struct Found;  // usb_devices.hpp
 
 // Units at the boundary: Hz, s, mm/s, mm, us, periods.
 struct PlayRequest {
@@ -51,9 +50,6 @@ std::string player_name();
 // The servo settings of a request.
 runtime::ServoConfig servo_config_of(const PlayRequest& r);
 
-// The device limits (SI) a device calibration states.
-runtime::DeviceLimits limits_of(const calibration::DeviceCalibration& device);
-
 // 0 when `trace` is empty or its folder is writable; else kExitUsage after saying so.
 int check_trace_folder(const std::string& trace);
 
@@ -64,14 +60,28 @@ int check_play_request(const PlayRequest& r, const runtime::DeviceLimits& limits
 // within kMaxRecordedTicks at `rate_hz`; kExitOk, or kExitUsage after saying why.
 int check_run_length(double duration_s, double rate_hz, bool records_every_tick);
 
-// Plays `program` on the simulated device `limits` and reports. `roughness_map` predicts the felt
-// roughness from the measured force. `playing`: a source to play instead of `program`'s evaluator
-// (run --watch's swappable one); `poll` is called about every 20 ms while playing in real time.
-int play_on_sim(const schema::PatchProgram& program, const runtime::DeviceLimits& limits,
-                const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r,
-                runtime::ForceSource* playing = nullptr, const std::function<void()>& poll = {});
+// The device spec (runtime/devices/open_device.hpp) of a request to play on `device` (a calibration's
+// name, or usb): the hand options, the replayed positions, the ticks to record.
+runtime::DeviceSpec device_spec_of(const PlayRequest& r, const std::string& device);
 
-// Plays `program` on the USB joystick `chosen` (its calibration must be the program's device).
-int play_on_usb(const schema::PatchProgram& program, const Found& chosen, const PlayRequest& r);
+// Everything about playing `r` on `device` (a calibration's name, or usb) that can be settled before
+// the material is compiled and the device claimed: which calibration the device takes programs for
+// (for usb, the joystick plugged in: found, not opened), an emulated device's settings applied to `r`,
+// --replay loaded (setting the duration), the request checked against the device's limits. Fills
+// `spec` for open_play_device; `spec.device` is then the calibration to compile for. kExitOk, or
+// kExitUsage / kExitBadInput after printing why, naming `command` ("run --device usb").
+int prepare_play_device(const calibration::CalibrationSet& set, const std::string& device, PlayRequest& r,
+                        runtime::DeviceSpec& spec, const std::string& command);
+// Opens the device prepare_play_device settled on: kExitOk, or kExitUsage after printing why.
+int open_play_device(const calibration::CalibrationSet& set, runtime::DeviceSpec spec, runtime::OpenedDevice& out,
+                     const std::string& command);
+
+// Plays `program` on `device` (from open_play_device; the program must be compiled for its
+// calibration) and reports. `roughness_map` predicts the felt roughness from the measured force.
+// `playing`: a source to play instead of `program`'s evaluator (run --watch's swappable one);
+// `poll` is called about every 20 ms while playing in real time.
+int play_patch(const schema::PatchProgram& program, runtime::OpenedDevice& device,
+               const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r,
+               runtime::ForceSource* playing = nullptr, const std::function<void()>& poll = {});
 
 }  // namespace sandpaper::cli

@@ -1,7 +1,8 @@
 #pragma once
-// `sandpaper run`'s choice of simulated device: the position-controlled joystick (default), the
+// `sandpaper run`'s options for what moves the simulated handle: the scripted hand (default), the
 // dynamic hand (--hand-model dynamic, with --hand-mass/--hand-stiffness/--hand-damping), or the
-// replay of a recorded trace (--replay trace.csv). docs/RUNTIME.md describes them.
+// replay of a recorded trace (--replay trace.csv). docs/RUNTIME.md describes them; the device
+// factory (runtime/devices/open_device.hpp) builds the device.
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,12 +25,5 @@ void add_run_device_options(CLI::App* run, RunDeviceOptions& d);
 // returns 0. Returns kExitBadInput (unreadable or malformed trace) or kExitUsage (a trace recorded at
 // another rate: give its rate with --rate), after printing why.
 int load_replay(const RunDeviceOptions& d, double rate_hz, std::vector<glm::dvec2>& positions, double& duration_s);
-
-// The device to play on; `positions` are used (moved from) only when replaying.
-std::unique_ptr<runtime::RecordingDevice> make_run_device(const RunDeviceOptions& d, const runtime::DeviceLimits& limits,
-                                                          const runtime::HandScript& script, std::size_t ticks,
-                                                          std::vector<glm::dvec2>& positions);
-// "position-controlled hand", "dynamic hand (0.554 kg, 135 N/m, 6.45 N*s/m)" or "replay of FILE".
-std::string describe_run_device(const RunDeviceOptions& d);
 
 }  // namespace sandpaper::cli

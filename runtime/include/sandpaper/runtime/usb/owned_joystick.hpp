@@ -24,6 +24,9 @@ class OwnedHidPidJoystick final : public Device {
   bool write_force_rt(glm::dvec2 force_N) noexcept override { return joystick_.write_force_rt(force_N); }
   DeviceFault last_fault_rt() const noexcept override { return joystick_.last_fault_rt(); }
 
+  // The driver itself: its fault_status() after a run, or close() before the report is printed.
+  HidPidJoystick& joystick() noexcept { return joystick_; }
+
  private:
   std::unique_ptr<LibusbTransport> transport_;  // declared first: outlives the joystick
   HidPidJoystick joystick_;

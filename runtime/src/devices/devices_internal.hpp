@@ -1,0 +1,18 @@
+#pragma once
+// The factory entries that live in files of their own.
+#include "sandpaper/runtime/devices/open_device.hpp"
+
+namespace sandpaper::runtime {
+
+// `v` as printf's %g writes it (these files use no formatting library: the installed package's
+// dependencies stay as they are).
+std::string g_text(double v);
+
+// USB HID PID joysticks: `usb`, or a calibration with a [usb] table not asked to be simulated.
+bool serves_usb(const DeviceSpec& spec, const calibration::DeviceCalibration* cal);
+OpenedDevice open_usb(const calibration::CalibrationSet& set, DeviceSpec& spec, const calibration::DeviceCalibration* cal);
+// The calibration of the joystick open_usb would open (searching USB, opening nothing).
+std::string usb_calibration(const calibration::CalibrationSet& set, const DeviceSpec& spec,
+                            const calibration::DeviceCalibration* cal);
+
+}  // namespace sandpaper::runtime
