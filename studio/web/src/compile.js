@@ -1,0 +1,53 @@
+// Compiling the typed text (POST /api/material) and applying a compile's answer to the whole page.
+import { api } from "./api.js";
+import { showDiagnostics } from "./diagnostics.js";
+import { editor } from "./editor.js";
+import { markUnsaved } from "./file-list.js";
+import { $, roughnessText, setStatus } from "./page.js";
+import { refreshPreview } from "./preview.js";
+import { renderSliders } from "./sliders.js";
+import { state } from "./state.js";
+
+export function compileNow() {
+  state.compileTimer = 0;
+  const text = editor.state.doc.toString();
+  const t0 = performance.now();
+  // Remembered, so that opening another file waits for it: posted after the open, it would become
+  // the other file's text.
+  state.sentText = text;
+  const sent = (async () => {
+    try {
+      const r = await api("POST", "/api/material", text, false);
+      if (editor.state.doc.toString() !== text) return;  // typed on meanwhile: the next compile answers
+      state.lastCompileMs = performance.now() - t0;
+      applyCompile(r);
+    } catch (e) {
+      setStatus(e.message, true);
+    }
+  })();
+  state.compiling = sent;
+  return sent;
+}
+
+export function applyCompile(r) {
+  showDiagnostics(r.diagnostics || []);
+  document.body.dataset.compiles = r.ok ? "yes" : "no";
+  $("#stale").textContent = r.version
+    ? `the last good picture (v${r.version}, still playing): this text does not compile`
+    : "nothing has compiled yet: this text does not compile";
+  $("#compile-state").title = $("#compile-state").textContent = r.ok
+    ? `compiled: ${r.material || r.workspace?.name || ""}` +
+      (r.compiled_max_lateral_force_N !== undefined ? ` · ${r.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${roughnessText(r.compiled_roughness)}` : "")
+    : "does not compile: the last good program keeps playing";
+  $("#saved").textContent = r.saved ? "saved" : "unsaved";
+  markUnsaved(state.file, !r.saved);
+  state.version = r.version;
+  if (r.ok && r.size_m) state.patchMm = [r.size_m[0] * 1e3, r.size_m[1] * 1e3];
+  if (r.text_version !== undefined) state.textVersion = Math.max(state.textVersion || 0, r.text_version);
+  renderSliders(r.parameters || []);
+  if (r.ok) refreshPreview();
+}
+
+export async function flushCompile() {
+  if (state.compileTimer) { clearTimeout(state.compileTimer); await compileNow(); }
+}

@@ -1,0 +1,101 @@
+// The preview of what plays: the studio's pictures of a material (its own window or a zoomed one) and
+// its scan line, or the workspace; one refresh at a time.
+import { api } from "./api.js";
+import { drawOverlay } from "./overlay.js";
+import { $, setStatus } from "./page.js";
+import { fitStage } from "./stage.js";
+import { state } from "./state.js";
+import { drawWorkspace } from "./workspace.js";
+
+// One refresh at a time, the latest version last: a browser has six connections to the studio, and
+// pictures waiting for their render must not hold them all while a slider's edits queue behind them.
+let previewBusy = false, previewAgain = false;
+export async function refreshPreview() {
+  if (previewBusy) { previewAgain = true; return; }
+  previewBusy = true;
+  try {
+    do { previewAgain = false; await refreshPreviewNow(); } while (previewAgain);
+  } catch (e) {
+    setStatus(e.message, true);
+  } finally {
+    previewBusy = false;
+  }
+}
+
+async function refreshPreviewNow() {
+  const v = state.version;
+  if (state.kind === "workspace") {
+    state.workspace = await api("GET", "/api/workspace");
+    drawWorkspace();
+    return;
+  }
+  const [preview, field] = await Promise.all([
+    fetch(`/api/preview/preview.json?v=${v}`).then((r) => r.ok ? r.json() : null),
+    fetch(`/api/preview/field.json?v=${v}`).then((r) => r.ok ? r.json() : null),
+  ]);
+  state.preview = preview;
+  state.field = field;
+  if (state.zoom) {
+    await showZoomed(v);
+  } else {
+    await showPreviewWindow(v, preview);
+  }
+  const svg = await fetch(`/api/preview/scan.svg?v=${v}`).then((r) => r.ok ? r.text() : "");
+  $("#scan").innerHTML = svg;
+  $("#stage").dataset.version = v;
+  drawOverlay();
+}
+
+// A window of the caller's choosing over the patch, drawn by the studio on request (/api/view).
+async function showZoomed(v) {
+  const z = state.zoom;
+  fitStage();
+  const q = `kind=${state.view === "field" ? "field" : "height"}&x_mm=${z.cx}&y_mm=${z.cy}&w_mm=${z.w}&h_mm=${z.h}`;
+  const view = await api("GET", `/api/view?${q}`);
+  const img = $("#picture");
+  $("#stage").dataset.zoom = `${z.cx.toFixed(3)},${z.cy.toFixed(3)},${z.w.toFixed(3)},${z.h.toFixed(3)}`;
+  if (!view.png) {
+    img.hidden = true;
+    $("#picture-caption").textContent = "No picture: no force depends on position alone." +
+      (view.left_out?.length ? " " + view.left_out.join(" ") : "");
+    return;
+  }
+  img.src = view.png;
+  img.hidden = false;
+  await img.decode().catch(() => {});
+  img.style.transform = "";
+  const whole = state.patchMm && z.w >= state.patchMm[0] - 1e-6 && z.h >= state.patchMm[1] - 1e-6;
+  $("#picture-caption").textContent = `${view.window_mm[0].toFixed(1)} × ${view.window_mm[1].toFixed(1)} mm` +
+    (whole ? " (the whole patch)" : ` around (${z.cx.toFixed(1)}, ${z.cy.toFixed(1)}) mm`) +
+    ` · ${view.pixel_mm.toPrecision(3)} mm a pixel · ` +
+    (state.view === "field" ? `force field at rest: hue = direction, brightness = |F| up to ${view.field_max_N.toFixed(3)} N`
+                            : "height field, lit from the upper left") +
+    (view.finer_than_pixel ? " · its finest detail (a grating's walls, a height map's samples) is under a pixel here: zoom in for it" : "") +
+    (view.left_out?.length ? ` · not drawn: ${view.left_out.join("; ")}` : "") +
+    ($("#arrows").checked ? " · arrows are drawn in the preview's own window only" : "") +
+    " · wheel or +/− to zoom, Shift-drag to pan";
+}
+
+async function showPreviewWindow(v, preview) {
+  delete $("#stage").dataset.zoom;
+  $("#picture").style.transform = "";
+  fitStage();
+  const img = $("#picture");
+  if (preview && preview.pixels) {
+    img.src = `/api/preview/${state.view === "field" ? "field" : "height"}.png?v=${v}`;
+    img.hidden = false;
+    await img.decode().catch(() => {});
+    $("#picture-caption").textContent = `${preview.window_mm[0].toFixed(1)} × ${preview.window_mm[1].toFixed(1)} mm` +
+      ` · scale bar ${preview.scale_bar_mm} mm · ` + (state.view === "field"
+        ? `force field at rest: hue = direction, brightness = |F| up to ${preview.field_max_N.toFixed(3)} N` +
+          (preview.field_limit_N > 0 && preview.field_max_N >= preview.field_limit_N * (1 - 1e-9)
+            ? ` (the device's limit)` : "") +
+          (preview.field_left_out?.length ? ` · not drawn: ${preview.field_left_out.join("; ")}` : "")
+        : "height field, lit from the upper left" +
+          (preview.left_out?.length ? ` · not drawn: ${preview.left_out.join("; ")}` : ""));
+  } else {
+    img.hidden = true;
+    $("#picture-caption").textContent = "No picture: no force depends on position alone." +
+      (preview?.left_out?.length ? " " + preview.left_out.join(" ") : "");
+  }
+}

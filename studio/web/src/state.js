@@ -1,0 +1,9 @@
+// The page's state, shared by every module (and shown to tests and scripts as window.studio.state):
+// one object, so that each module reads what another wrote without importing it.
+export const state = {
+  file: "", kind: "material", version: 0, parameters: [], preview: null, field: null, workspace: null,
+  live: null, strip: [], selected: -1, mode: "normal", view: "height", remote: false, compileTimer: 0,
+  lastCompileMs: 0,
+  zoom: null,       // null: the preview's own window; else {cx, cy, w, h}, mm, a window over the patch
+  patchMm: null,    // the playing material's patch [width, height], mm
+};
