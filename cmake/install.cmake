@@ -29,7 +29,7 @@ foreach(_dir schema calibration compiler runtime api)
     PATTERN fit_error.hpp EXCLUDE PATTERN regression.hpp EXCLUDE)
 endforeach()
 
-# The data the installed libraries read by default (compiler/src/data_dirs.cpp, the "installed"
+# The data the installed libraries read by default (compiler/src/library/data_dirs.cpp, the "installed"
 # variant): the library as it is, and calibration/ without its code.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/library/ DESTINATION ${SANDPAPER_INSTALL_DATA_DIR}/library
   PATTERN .index EXCLUDE)

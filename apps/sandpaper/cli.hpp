@@ -53,6 +53,8 @@ using compiler::diagnostics_json;  // compiler/compile_json.hpp
 runtime::DeviceLimits limits_of(const compiler::Compiler& c);
 
 int cmd_compile(const CommonOptions& o, const std::string& output, bool explain);
+// `compile --dump STAGE` (cmd_dump.cpp): tokens, syntax, resolved or patch, printed on stdout.
+int cmd_dump(const CommonOptions& o, const std::string& stage);
 // `sandpaper compile A.hmat B.hmat FOLDER/ -o OUT/`: every material (a folder's .hmat files, found
 // recursively, keep their place below it) compiled in this one process into OUT. Exit 1 if any
 // failed (those write nothing), 2 for unusable arguments (nothing is compiled).

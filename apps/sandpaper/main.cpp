@@ -51,6 +51,11 @@ int main(int argc, char** argv) {
   compile->add_option("-e,--expression", o.expression, "material as one line: statements separated by ';', or a library name");
   add_common(compile, o, false);
   compile->add_option("-o,--output", output, "patch program to write (default: the input with .patch); a folder for several inputs");
+  std::string dump_stage;
+  compile->add_option("--dump", dump_stage,
+                      "print what one compiler phase made of a material instead of writing it: tokens, syntax, the "
+                      "resolved material, or the patch program as JSON (tests/golden/stages/ holds them for the examples)")
+      ->check(CLI::IsMember({"tokens", "syntax", "resolved", "patch"}));
   compile->add_flag("--compact", o.compact,
                     "store height-field grids as 16-bit floats where every force stays within 0.1 % of the grid's largest (half the file)");
   auto* explain = app.add_subcommand("explain", "show how each layer of a material resolved, with units and sources");
@@ -196,6 +201,13 @@ int main(int argc, char** argv) {
       }
       if (compile_inputs.size() == 1) o.file = compile_inputs[0];
       if (!needs_input(compile)) return kExitUsage;
+      if (!dump_stage.empty()) {
+        if (is_gltf_input(o) || is_workspace_input(o) || !output.empty()) {
+          std::cerr << "sandpaper compile --dump: dumps one material (.hmat or -e) to stdout; without -o\n";
+          return kExitUsage;
+        }
+        return cmd_dump(o, dump_stage);
+      }
       if (is_gltf_input(o)) {
 #if SANDPAPER_WITH_GLTF
         return cmd_compile_gltf(o, output);

@@ -17,7 +17,7 @@ struct Subsystem {
 };
 inline constexpr Subsystem kCuration{"the curator's tools (library check, index, search, catalog, preview)",
                                      "SANDPAPER_CURATION", "curation/"};
-inline constexpr Subsystem kGltf{"glTF 2.0 import and export", "SANDPAPER_GLTF", "compiler/src/gltf_*.cpp"};
+inline constexpr Subsystem kGltf{"glTF 2.0 import and export", "SANDPAPER_GLTF", "compiler/src/interop/gltf_*.cpp"};
 inline constexpr Subsystem kStudio{"Sandpaper Studio", "SANDPAPER_STUDIO", "studio/"};
 inline constexpr Subsystem kLsp{"the language server", "SANDPAPER_LSP", "editors/lsp/"};
 inline constexpr Subsystem kExperiments{"the experiments with people", "SANDPAPER_EXPERIMENTS", "experiments/"};

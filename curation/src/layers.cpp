@@ -4,6 +4,7 @@
 #include <set>
 
 #include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/compiler/library_layers.hpp"
 
 namespace sandpaper::curation {
 
@@ -39,17 +40,13 @@ std::optional<std::pair<std::size_t, std::string>> LayeredIndex::resolve(const s
       }
     return std::nullopt;
   }
-  // The first root that has it as a name or an alias (names first within a root), as the
-  // compiler's Library resolves `like NAME`.
-  for (std::size_t i = 0; i < layers_.size(); ++i)
-    if (auto n = layers_[i].index->resolve(name)) return std::make_pair(i, *n);
-  return std::nullopt;
+  const auto knows = [this](std::size_t r, const std::string& n) { return layers_[r].index->resolve(n); };
+  return compiler::layers::resolve(layers_.size(), name, knows);
 }
 
 bool LayeredIndex::hidden(std::size_t layer, const std::string& name) const {
-  for (std::size_t i = 0; i < layer && i < layers_.size(); ++i)
-    if (layers_[i].index->resolve(name)) return true;
-  return false;
+  const auto knows = [this](std::size_t r, const std::string& n) { return layers_[r].index->resolve(n); };
+  return compiler::layers::hidden(std::min(layer, layers_.size()), name, knows);
 }
 
 std::optional<IndexedEntry> LayeredIndex::entry(std::size_t layer, const std::string& name) const {
@@ -114,10 +111,9 @@ std::string LayeredIndex::hides(std::size_t layer, const std::string& name) cons
   if (layer + 1 >= layers_.size()) return "";
   std::vector<std::string> names{name};
   if (const auto e = layers_[layer].index->entry(name)) names.insert(names.end(), e->aliases.begin(), e->aliases.end());
-  for (std::size_t r = layer + 1; r < layers_.size(); ++r)
-    for (const auto& n : names)
-      if (const auto hit = layers_[r].index->resolve(n)) return layers_[r].id + ":" + *hit;
-  return "";
+  const auto knows = [this](std::size_t r, const std::string& n) { return layers_[r].index->resolve(n); };
+  const auto hit = compiler::layers::hides(layer, layers_.size(), names, knows);
+  return hit ? layers_[hit->first].id + ":" + hit->second : "";
 }
 
 std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::string& name, std::size_t limit,

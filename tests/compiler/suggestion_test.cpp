@@ -1,4 +1,4 @@
-// "Did you mean" suggestions (compiler/src/diagnostic.cpp): the edit distance, and closest_match,
+// "Did you mean" suggestions (compiler/src/front/diagnostic.cpp): the edit distance, and closest_match,
 // which skips candidates by length and stops a walk once it is over the best so far, checked against
 // a plain full-table Levenshtein and the documented choice (the nearest within a third of the word's
 // length, ties to the closest length, then the first listed).

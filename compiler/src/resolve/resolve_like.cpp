@@ -101,7 +101,7 @@ ResolvedMaterial Resolver::from_library(const LikeStmt& like, bool reference) {
                            (path ? "library entry '" : "thesis stimulus '") + like.name + "' has errors",
                            path ? "fix " + file->name + " (its errors follow)"
                                 : "the generated text does not compile in this build (its errors follow); "
-                                  "see compiler/src/thesis_stimuli.cpp");
+                                  "see compiler/src/resolve/thesis_stimuli.cpp");
     for (const auto& s : sub.all()) {
       if (s.severity != Severity::Error) continue;
       d.notes.push_back({s.location, s.message});

@@ -236,7 +236,7 @@ DeviceCalibration load_device_file(const std::filesystem::path& path, const std:
 
 // The calibration directory: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, else the shipped
 // calibration/ (the source tree's in a build tree, the installed package's when installed); defined
-// with compiler::find_calibration_dir() in compiler/src/data_dirs.cpp.
+// with compiler::find_calibration_dir() in compiler/src/library/data_dirs.cpp.
 std::filesystem::path default_calibration_dir();
 
 }  // namespace sandpaper::calibration

@@ -105,6 +105,8 @@ class Library {
   void read_roots(std::vector<std::filesystem::path> roots);
   void scan(std::size_t root, const std::vector<std::string>* only_files = nullptr);
   void index_names();
+  // The entry name root `root` gives `name_or_alias` (library_layers.hpp's question), or nullopt.
+  std::optional<std::string> knows(std::size_t root, const std::string& name_or_alias) const;
   std::vector<LibraryRoot> roots_;
   LibraryManifest manifest_;
   std::vector<LibraryEntry> entries_;

@@ -1,4 +1,5 @@
 #include "sandpaper/compiler/library.hpp"
+#include "sandpaper/compiler/library_layers.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -166,8 +167,13 @@ void Library::index_names() {
   for (std::size_t i = 0; i < entries_.size(); ++i) by_root_[entries_[i].root].emplace(entries_[i].name, i);
   for (std::size_t i = 0; i < entries_.size(); ++i)
     for (const auto& a : entries_[i].aliases) by_root_[entries_[i].root].emplace(a, i);
+  // Each name or alias means what the layered rule says: the first root that knows it.
+  const auto knows_in = [this](std::size_t r, const std::string& n) { return knows(r, n); };
   for (const auto& names : by_root_)
-    for (const auto& [name, i] : names) by_name_.emplace(name, i);
+    for (const auto& entry : names)
+      if (!by_name_.count(entry.first))
+        if (const auto hit = layers::resolve(roots_.size(), entry.first, knows_in))
+          by_name_.emplace(entry.first, by_root_[hit->first].at(entry.first));
 }
 
 void Library::scan(std::size_t root, const std::vector<std::string>* only_files) {
@@ -241,18 +247,18 @@ std::filesystem::path Library::thesis_directory() const {
   return roots_.front().dir;
 }
 
+std::optional<std::string> Library::knows(std::size_t root, const std::string& name_or_alias) const {
+  auto it = by_root_[root].find(name_or_alias);
+  if (it == by_root_[root].end()) return std::nullopt;
+  return entries_[it->second].name;
+}
+
 const LibraryEntry* Library::shadowed_by(const LibraryEntry& e) const {
-  for (std::size_t r = e.root + 1; r < roots_.size(); ++r) {
-    for (const auto& n : [&] {
-           std::vector<std::string> v{e.name};
-           v.insert(v.end(), e.aliases.begin(), e.aliases.end());
-           return v;
-         }()) {
-      auto it = by_root_[r].find(n);
-      if (it != by_root_[r].end()) return &entries_[it->second];
-    }
-  }
-  return nullptr;
+  std::vector<std::string> names{e.name};
+  names.insert(names.end(), e.aliases.begin(), e.aliases.end());
+  const auto knows_in = [this](std::size_t r, const std::string& n) { return knows(r, n); };
+  const auto hit = layers::hides(e.root, roots_.size(), names, knows_in);
+  return hit ? &entries_[by_root_[hit->first].at(hit->second)] : nullptr;
 }
 
 std::vector<std::string> Library::names() const {

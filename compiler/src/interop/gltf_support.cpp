@@ -1,5 +1,5 @@
 #include "gltf_support.hpp"
-#include "png_chunks.hpp"
+#include "../codegen/png_chunks.hpp"
 
 #include "sandpaper/compiler/image_io.hpp"
 

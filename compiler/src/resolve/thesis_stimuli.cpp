@@ -99,7 +99,7 @@ const char* kVersion1Origin =
 std::string version1_text(const std::string& name, const std::string& describes, const std::string& statement,
                           double pu, const std::string& force_note, const Version1Data& d) {
   std::ostringstream os;
-  os << "# " << name << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
+  os << "# " << name << ", made by the thesis stimulus generator (compiler/src/resolve/thesis_stimuli.cpp).\n"
      << "# Force: " << sig(pu) << " pu (" << force_note << "), a reading: the OCR loses each version-1\n"
      << "# stimulus's force (library/thesis/version1.toml, docs/TEXTURES.md, \"Version-1 forces\").\n"
      << "material \"" << name << "\" {\n"
@@ -226,7 +226,7 @@ ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem
     const std::string period = sig(static_cast<double>(tenths) / 10.0) + " mm";
     const long long ju = level_tenths * kJoystickUnitsPerLevel / 10;  // whole: 40 / 10 = 4 ju per tenth
     const std::string level = sig(static_cast<double>(level_tenths) / 10.0);
-    os << "# " << name << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
+    os << "# " << name << ", made by the thesis stimulus generator (compiler/src/resolve/thesis_stimuli.cpp).\n"
        << "# Minsky 1995 Table 8: force level " << level << " = command amplitude " << ju
        << " joystick units; equal hill and valley widths;\n"
        << "# the version-2 seed grating (3.5.2), 8-bit, repeated every " << period << ".\n"
@@ -359,7 +359,7 @@ ThesisLookup find_thesis_stimulus(const std::string& name, const std::filesystem
     describes = "Minsky 1995 Texture-menu ATNSpring: pushed from a point trailing the hand by 100 ms, " + at_speed;
   }
   std::ostringstream os;
-  os << "# " << n << ", made by the thesis stimulus generator (compiler/src/thesis_stimuli.cpp).\n"
+  os << "# " << n << ", made by the thesis stimulus generator (compiler/src/resolve/thesis_stimuli.cpp).\n"
      << "# Constants are readings ([laws] in library/thesis/version1.toml): the thesis gives none.\n"
      << "material \"" << n << "\" {\n"
      << "  describes \"" << describes << "\"\n"
