@@ -57,7 +57,12 @@ int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
   // material compiled for it, and only then is the device claimed.
   const auto set = load_calibration_set(o);
   runtime::DeviceSpec spec;
-  if (const int rc = prepare_play_device(set, o.device, r, spec, command); rc != kExitOk) return rc;
+  bool real = false;
+  if (const int rc = prepare_play_device(set, o.device, r, spec, command, &real); rc != kExitOk) return rc;
+  if (watch && real) {
+    std::cerr << "sandpaper run --watch: plays on --device sim; a real joystick plays a material with run, or in the studio\n";
+    return kExitUsage;
+  }
   CommonOptions co = o;
   co.device = spec.device;
   auto c = make_compiler(co);
@@ -74,10 +79,6 @@ int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
   }
   runtime::OpenedDevice device;
   if (const int rc = open_play_device(set, std::move(spec), device, command); rc != kExitOk) return rc;
-  if (watch && device.real) {
-    std::cerr << "sandpaper run --watch: plays on --device sim; a real joystick plays a material with run, or in the studio\n";
-    return kExitUsage;
-  }
   const auto& map = c.calibration().roughness_map();
   if (!watch) return play_patch(prog, device, map, r);
 

@@ -218,7 +218,7 @@ runtime::DeviceSpec device_spec_of(const PlayRequest& r, const std::string& devi
 }
 
 int prepare_play_device(const calibration::CalibrationSet& set, const std::string& device, PlayRequest& r,
-                        runtime::DeviceSpec& spec, const std::string& command) {
+                        runtime::DeviceSpec& spec, const std::string& command, bool* real) {
   spec = device_spec_of(r, device);
   runtime::DeviceChoice choice;
   try {
@@ -227,6 +227,7 @@ int prepare_play_device(const calibration::CalibrationSet& set, const std::strin
     std::cerr << "sandpaper " << command << ": " << e.what() << "\n" << e.help;
     return kExitUsage;
   }
+  if (real) *real = choice.real;
   const calibration::DeviceCalibration& cal = *set.find_device(choice.calibration);
   apply_emulation(cal, r);
   std::vector<glm::dvec2> positions;

@@ -23,6 +23,15 @@ has() {  # has FILE REGEX DESCRIPTION
 # the guard itself is tested on a scripted clock (StopCauses.DeadlineMissedForLongerThanAllowed).
 RT=(--deadline-guard 600000)
 
+# compile --dump prints one phase's output, as the golden files per phase hold it, and writes nothing.
+expect_exit 0 "compile --dump resolved" -- "$sp" compile examples/corduroy.hmat --dump resolved
+cmp -s "$tmp/out" tests/golden/stages/examples/corduroy.resolved && ok || bad "--dump resolved differs from the golden resolved material"
+expect_exit 0 "compile --dump syntax" -- "$sp" compile -e "grating period 2 mm; roughness 0.4" --dump syntax
+has "$tmp/out" '^1:1 grating period=2 mm \[0.002\]$' "the syntax of an -e expression"
+expect_exit 1 "compile --dump tokens of a broken statement" -- "$sp" compile -e 'grating period "x' --dump tokens
+has "$tmp/err" 'E0' "the lexer's error is reported"
+expect_exit 2 "compile --dump with -o" -- "$sp" compile examples/corduroy.hmat --dump syntax -o "$tmp/dump.patch"
+[ ! -e "$tmp/dump.patch" ] && [ ! -e examples/corduroy.patch ] && ok || bad "compile --dump wrote a patch"
 # The main job: compile the example, inspect it, play it on the simulated joystick.
 expect_exit 0 "compile example" -- "$sp" compile examples/corduroy.hmat -o "$tmp/c.patch"
 [ -s "$tmp/c.patch" ] && ok || bad "compile wrote no patch"

@@ -68,10 +68,11 @@ runtime::DeviceSpec device_spec_of(const PlayRequest& r, const std::string& devi
 // the material is compiled and the device claimed: which calibration the device takes programs for
 // (for usb, the joystick plugged in: found, not opened), an emulated device's settings applied to `r`,
 // --replay loaded (setting the duration), the request checked against the device's limits. Fills
-// `spec` for open_play_device; `spec.device` is then the calibration to compile for. kExitOk, or
-// kExitUsage / kExitBadInput after printing why, naming `command` ("run --device usb").
+// `spec` for open_play_device; `spec.device` is then the calibration to compile for, and `*real`
+// (when given) whether a person's hand moves the device. kExitOk, or kExitUsage / kExitBadInput after
+// printing why, naming `command` ("run --device usb").
 int prepare_play_device(const calibration::CalibrationSet& set, const std::string& device, PlayRequest& r,
-                        runtime::DeviceSpec& spec, const std::string& command);
+                        runtime::DeviceSpec& spec, const std::string& command, bool* real = nullptr);
 // Opens the device prepare_play_device settled on: kExitOk, or kExitUsage after printing why.
 int open_play_device(const calibration::CalibrationSet& set, runtime::DeviceSpec spec, runtime::OpenedDevice& out,
                      const std::string& command);

@@ -3,11 +3,11 @@
 // list of its fields. The patch writer and reader (patch_io.cpp), the JSON view (patch_json.cpp),
 // the runtime's parameter checks (runtime/src/term_checks.cpp), is_passive and has_state all read
 // these entries. A new kind also needs its struct in the Term variant, its evaluator, the
-// language's line in compiler/src/codegen/laws.cpp and its picture in the catalog; the evaluator's and the
-// catalog's visits have no fallback, so the build stops until they handle it (docs/PATCH_FORMAT.md,
-// "Adding a term kind", and docs/ARCHITECTURE.md list every place). Kinds with variable-size tables (grating, height field) or a
-// count that selects fields (point masses) have no field list; their code is written by hand beside
-// the generic code.
+// language's line in compiler/src/codegen/laws.cpp and its picture in the catalog; the evaluator's
+// and the catalog's visits have no fallback, so the build stops until they handle it
+// (docs/PATCH_FORMAT.md, "Adding a term kind", and docs/ARCHITECTURE.md list every place). Kinds
+// with variable-size tables (grating, height field) or a count that selects fields (point masses)
+// have no field list; their code is written by hand beside the generic code.
 #include <array>
 #include <cstddef>
 #include <cstdint>
