@@ -12,6 +12,7 @@
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/compiler/stage_dumps.hpp"
 #include "sandpaper/schema/patch_json.hpp"
+#include "golden_support.hpp"
 #include "test_support.hpp"
 
 using namespace sandpaper;
@@ -19,22 +20,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void check_golden(const fs::path& golden, const std::string& actual) {
-  if (std::getenv("SANDPAPER_UPDATE_GOLDEN")) {
-    fs::create_directories(golden.parent_path());
-    std::ofstream(golden, std::ios::binary) << actual;
-    return;
-  }
-  ASSERT_TRUE(fs::exists(golden)) << golden << " is missing: build the update-golden target";
-  EXPECT_EQ(read(golden), actual) << "differs from " << golden;
-}
+using test::check_golden;
+using test::read_bytes;
 
 std::vector<fs::path> materials(const fs::path& dir) {
   std::vector<fs::path> out;
@@ -49,7 +36,7 @@ std::vector<fs::path> materials(const fs::path& dir) {
 void check_stages(const fs::path& input, const fs::path& out) {
   SCOPED_TRACE(input.string());
   const std::string stem = input.stem().string();
-  auto file = std::make_shared<const compiler::SourceFile>(input.string(), read(input));
+  auto file = std::make_shared<const compiler::SourceFile>(input.string(), read_bytes(input));
   compiler::Diagnostics front;
   const auto tokens = compiler::lex(file, front);
   check_golden(out / (stem + ".tokens"), compiler::dump_tokens(tokens));

@@ -10,6 +10,7 @@
 
 #include "sandpaper/compiler/explain.hpp"
 #include "sandpaper/schema/patch_json.hpp"
+#include "golden_support.hpp"
 #include "test_support.hpp"
 
 using namespace sandpaper;
@@ -17,22 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// Compares `actual` with the golden file, or rewrites it when SANDPAPER_UPDATE_GOLDEN is set.
-void check_golden(const fs::path& golden, const std::string& actual) {
-  if (std::getenv("SANDPAPER_UPDATE_GOLDEN")) {
-    std::ofstream(golden, std::ios::binary) << actual;
-    return;
-  }
-  ASSERT_TRUE(fs::exists(golden)) << golden << " is missing: build the update-golden target";
-  EXPECT_EQ(read(golden), actual) << "differs from " << golden;
-}
+using test::check_golden;
 
 std::vector<fs::path> inputs(const char* dir) {
   std::vector<fs::path> out;
