@@ -1,4 +1,4 @@
-// Height-map images read through OpenImageIO (compiler/src/codegen/height_image.cpp, `heightmap "x.png"`):
+// Height-map images read through OpenImageIO (compiler/src/codegen/height_field_image.cpp, `heightmap "x.png"`):
 // the bytes as the image file of a material, named with the extension its first bytes ask for (as a
 // user names a file; bytes that match no format are read as TGA, which has no magic; only the reader
 // the extension names opens the file, docs/RELIABILITY.md F21). The header checks (size, channels,

@@ -75,7 +75,7 @@ int cmd_array(const ArrayOptions& o) {
     return kExitUsage;
   }
   auto [width, height] = parse_size(o.size);
-  compiler::HeightImageRequest req;
+  compiler::HeightFieldImageRequest req;
   req.path = req.shown_path = o.image;
   req.channel = o.channel;
   req.invert = o.invert;
@@ -84,8 +84,8 @@ int cmd_array(const ArrayOptions& o) {
   if (!o.sampling.empty()) req.sampling_m = parse_length(o.sampling);
   std::optional<double> depth;
   if (!o.depth.empty()) depth = parse_length(o.depth);
-  compiler::HeightImageError err;
-  auto img = compiler::load_height_image(req, err);
+  compiler::HeightFieldImageError err;
+  auto img = compiler::load_height_field_image(req, err);
   if (!img) {
     std::cerr << "sandpaper array: error[" << err.code << "]: " << err.message << "\n = help: " << err.suggestion << "\n";
     return kExitBadInput;

@@ -22,7 +22,7 @@
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/compiler/data_dirs.hpp"
 #include "sandpaper/compiler/explain_json.hpp"
-#include "sandpaper/compiler/texture_heights.hpp"
+#include "sandpaper/compiler/recovered_height_field.hpp"
 #include "sandpaper/experiment/observer.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/recording_device.hpp"
@@ -190,11 +190,11 @@ py::dict lateral_force_field(const PyMaterial& m, std::optional<int> n_given, st
   return out;
 }
 
-// The heights the texture is the gradient of (compiler/texture_heights.hpp), as numpy arrays.
+// The heights the texture is the gradient of (compiler/recovered_height_field.hpp), as numpy arrays.
 py::dict height_field(const PyMaterial& m) {
   std::string why;
   const auto* resolved = m.result->material ? &*m.result->material : nullptr;
-  const auto t = sp::compiler::texture_heights(m.material.program(), resolved, why);
+  const auto t = sp::compiler::recover_height_field(m.material.program(), resolved, why);
   if (!t) throw sp::Error("no height field for '" + m.material.name() + "': " + why);
   py::array_t<double> x({t->nx}), y({t->ny}), h({t->ny, t->nx});
   auto xs = x.mutable_unchecked<1>(), ys = y.mutable_unchecked<1>();

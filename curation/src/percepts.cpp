@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "sandpaper/compiler/knowledge_report.hpp"
-#include "sandpaper/compiler/texture_heights.hpp"
+#include "sandpaper/compiler/recovered_height_field.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::curation {
@@ -49,7 +49,7 @@ std::string texture_text(const compiler::ResolvedMaterial& m) {
 
 }  // namespace
 
-double spatial_scale_m(const compiler::TextureHeights& t) {
+double spatial_scale_m(const compiler::RecoveredHeightField& t) {
   const std::size_t nx = static_cast<std::size_t>(std::max(t.nx, 0)), ny = static_cast<std::size_t>(std::max(t.ny, 0));
   if (nx < 4 || ny < 4 || t.h_m.size() != nx * ny || !(t.spacing_m[0] > 0) || !(t.spacing_m[1] > 0)) return 0;
   double mean = 0;
@@ -98,7 +98,7 @@ Percepts percepts_of(const compiler::ResolvedMaterial& m, const schema::PatchPro
     // close-up of gravel from a wide view by size as well as by force.
     if (r.texture_kind == "image" && r.period_m <= 0) {
       std::string why;
-      if (const auto heights = compiler::texture_heights(p, &m, why)) r.period_m = spatial_scale_m(*heights);
+      if (const auto heights = compiler::recover_height_field(p, &m, why)) r.period_m = spatial_scale_m(*heights);
     }
   }
   if (k.period_class && k.period_class->hit.group) r.period_class = k.period_class->hit.group->id;

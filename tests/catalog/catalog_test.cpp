@@ -194,7 +194,7 @@ TEST(CatalogPicture, ShadingIsTheArrayExportsAndTheUpperLeftSlopeIsBrightest) {
   EXPECT_GT(a.values[1], a.values[2]);
   EXPECT_EQ(255 - a.values[2], kFlat);
   // shade_relief now shades through shade_slopes: a ramp rising to the right faces left and is lit.
-  compiler::HeightImage img;
+  compiler::HeightFieldImage img;
   img.nx = 4;
   img.ny = 2;
   img.values = {0, 1, 2, 3, 0, 1, 2, 3};

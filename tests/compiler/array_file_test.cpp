@@ -20,8 +20,8 @@ std::vector<unsigned char> bytes_of(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-compiler::HeightImage image(int nx, int ny, const std::function<float(int, int)>& f) {
-  compiler::HeightImage img;
+compiler::HeightFieldImage image(int nx, int ny, const std::function<float(int, int)>& f) {
+  compiler::HeightFieldImage img;
   img.nx = nx;
   img.ny = ny;
   for (int y = 0; y < ny; ++y)

@@ -819,7 +819,7 @@ TEST(LibraryNear, NearestByForceJndsPeriodAndKind) {
 TEST(LibraryNear, SpatialScaleOfAHeightFieldIsTheSinusoidsPeriodAndScalesWithTheImage) {
   // A sampled sinusoid's heights, h = A sin(2 pi x / P) (any amplitude and offset): the scale is its period.
   for (const double period : {1e-3, 4e-3}) {
-    compiler::TextureHeights t;
+    compiler::RecoveredHeightField t;
     t.nx = 256, t.ny = 8;
     t.spacing_m[0] = period / 32, t.spacing_m[1] = 1e-3;
     for (int y = 0; y < t.ny; ++y)

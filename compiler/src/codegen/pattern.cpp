@@ -21,7 +21,7 @@ struct Heights {
   double at(int x, int y) const { return h[static_cast<std::size_t>(y) * nx + x]; }
 };
 
-// Radius of the discrete Gaussian: 3 sigma, as the image path (heightmap.cpp) uses.
+// Radius of the discrete Gaussian: 3 sigma, as the image path (height_field.cpp) uses.
 // Callers bound sigma (kMaxPatternKernel); the clamp keeps the cast defined whatever they pass.
 int blur_radius(double sigma_px) {
   return sigma_px > 0 ? static_cast<int>(std::min(std::ceil(3.0 * sigma_px), 1e6)) : 0;

@@ -24,7 +24,7 @@ std::uint8_t to_byte(double v) { return static_cast<std::uint8_t>(std::clamp(std
 
 }  // namespace
 
-schema::ArrayFile quantize_depth(const HeightImage& img) {
+schema::ArrayFile quantize_depth(const HeightFieldImage& img) {
   schema::ArrayFile a = sized(img.nx, img.ny);
   // The range of these samples (resampling may reach a little past the source's range).
   auto [lo, hi] = std::minmax_element(img.values.begin(), img.values.end());
@@ -34,7 +34,7 @@ schema::ArrayFile quantize_depth(const HeightImage& img) {
   return a;
 }
 
-schema::ArrayFile shade_relief(const HeightImage& img, double dx_m, double dy_m, std::optional<double> depth_m) {
+schema::ArrayFile shade_relief(const HeightFieldImage& img, double dx_m, double dy_m, std::optional<double> depth_m) {
   sized(img.nx, img.ny);  // checks the sides before the slopes are allocated
   const int nx = img.nx, ny = img.ny;
   auto [lo, hi] = std::minmax_element(img.values.begin(), img.values.end());

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "gltf_support.hpp"
-#include "sandpaper/compiler/texture_heights.hpp"
+#include "sandpaper/compiler/recovered_height_field.hpp"
 #include "sandpaper/schema/term_kinds.hpp"
 
 namespace sandpaper::compiler {
@@ -74,7 +74,7 @@ double worst(const std::vector<float>& a, const std::vector<float>& b) {
   return w;
 }
 
-bool grating_texture(const TextureHeights& th, const schema::GratingTerm& g, double max_force_N, Texture& t,
+bool grating_texture(const RecoveredHeightField& th, const schema::GratingTerm& g, double max_force_N, Texture& t,
                      std::string& why) {
   std::vector<double> back;
   if (!quantize(th.h_m, t.texels, back, t.range_m)) {
@@ -91,7 +91,7 @@ bool grating_texture(const TextureHeights& th, const schema::GratingTerm& g, dou
   return true;
 }
 
-bool height_field_texture(const TextureHeights& th, const schema::HeightFieldTerm& term,
+bool height_field_texture(const RecoveredHeightField& th, const schema::HeightFieldTerm& term,
                           const schema::PatchProgram& program, Texture& t, std::string& why) {
   const int nx = th.nx, ny = th.ny;
   std::vector<std::uint16_t> grid_texels;
@@ -126,7 +126,7 @@ bool make_texture(const schema::PatchProgram& program, const ResolvedMaterial* m
     const auto* grating = std::get_if<schema::GratingTerm>(&term);
     const auto* field = std::get_if<schema::HeightFieldTerm>(&term);
     if (!have && (grating || field)) {
-      const auto heights = texture_heights(program, material, why);  // of this, the first texture term
+      const auto heights = recover_height_field(program, material, why);  // of this, the first texture term
       if (!heights) return false;
       if (grating ? !grating_texture(*heights, *grating, program.max_lateral_force_N, t, why)
                   : !height_field_texture(*heights, *field, program, t, why))

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gltf_support.hpp"
-#include "sandpaper/compiler/height_image.hpp"
+#include "sandpaper/compiler/height_field_image.hpp"
 #include "sandpaper/schema/confined_path.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 

@@ -52,7 +52,7 @@ namespace sandpaper::compiler::gltf {
 // F_i = -k (h_i - h_{i-1}) / (period / n), wrapped. h in m, k in N, F in N.
 std::vector<float> grating_forces(const std::vector<double>& h, double period_m, double k_N);
 // Height field: nx * ny heights (row 0 at -y), central differences, one-sided at clamped edges,
-// wrapped when `repeat` (as compiler/src/codegen/heightmap.cpp builds its fields). Fills fx, fy (N).
+// wrapped when `repeat` (as compiler/src/codegen/height_field.cpp builds its fields). Fills fx, fy (N).
 void height_field_forces(const std::vector<double>& h, int nx, int ny, double dx_m, double dy_m, bool repeat,
                          double k_N, std::vector<float>& fx, std::vector<float>& fy);
 

@@ -9,7 +9,7 @@
 
 #include "sandpaper/schema/confined_path.hpp"
 #include "sandpaper/schema/input_limits.hpp"
-#include "sandpaper/compiler/height_image.hpp"
+#include "sandpaper/compiler/height_field_image.hpp"
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/schema/force_laws.hpp"
@@ -98,7 +98,7 @@ void Resolver::heightmap(const HeightmapStmt& h, ResolvedMaterial& m) {
 }
 
 void Resolver::image_shape(const HeightmapStmt& h, ResolvedHeightmap& r) {
-  const auto px = height_image_size(r.path);
+  const auto px = height_field_image_size(r.path);
   if (!px || px->first < 1 || px->second < 1) return;
   const auto [nx, ny] = *px;
   const std::string shape = std::to_string(nx) + " x " + std::to_string(ny) + " px";

@@ -9,7 +9,7 @@
 
 #include "sandpaper/schema/confined_path.hpp"
 #include "sandpaper/schema/input_limits.hpp"
-#include "sandpaper/compiler/height_image.hpp"
+#include "sandpaper/compiler/height_field_image.hpp"
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
 #include "sandpaper/schema/force_laws.hpp"

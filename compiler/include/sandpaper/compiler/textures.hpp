@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "sandpaper/compiler/diagnostic.hpp"
-#include "sandpaper/compiler/height_image.hpp"
+#include "sandpaper/compiler/height_field_image.hpp"
 #include "sandpaper/compiler/resolved.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
@@ -37,7 +37,7 @@ struct HeightFieldBuild {
   double gain = 0;
 };
 
-// Reads the image (height_image.hpp) and builds its lateral-force field F = -k grad h. With a
+// Reads the image (height_field_image.hpp) and builds its lateral-force field F = -k grad h. With a
 // target force, k makes the largest |F| inside the rim equal it. Without one (the stylus reading,
 // thesis 3.4 EQ 5-11, F = m g tan(theta)): h.depth and h.press must be set; the image's height
 // range maps to 0..depth metres and k = press. Unusable images (E0401-E0406) and smoothing too

@@ -7,7 +7,7 @@
 
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/compiler/resolved.hpp"
-#include "sandpaper/compiler/texture_heights.hpp"
+#include "sandpaper/compiler/recovered_height_field.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
 namespace sandpaper::curation {
@@ -31,11 +31,11 @@ Percepts percepts_of(const compiler::ResolvedMaterial& m, const schema::PatchPro
                      const calibration::CalibrationSet& cal);
 
 // A texture's spatial scale, m: four times the lag at which the autocorrelation of its heights
-// (compiler::texture_heights, mean removed) first falls to zero, along x or along y, whichever is
+// (compiler::recover_height_field, mean removed) first falls to zero, along x or along y, whichever is
 // shorter: a sinusoid of period P across that axis gives P (its autocorrelation is cos(2 pi d / P)).
 // Proportional to an image's size on the patch. 0 for a flat field, or one that does not
 // decorrelate within half its width.
-double spatial_scale_m(const compiler::TextureHeights& heights);
+double spatial_scale_m(const compiler::RecoveredHeightField& heights);
 
 // One line, units explicit: "grating period 3.2 mm, hill 60 %; maximum lateral force 1.23 N; spring 200 N/m".
 std::string physical_summary(const compiler::ResolvedMaterial& m, const schema::PatchProgram& p);

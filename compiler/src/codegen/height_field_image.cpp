@@ -1,7 +1,7 @@
 // Picture -> one height per sample. The rule (docs/TEXTURES.md, "Real images"): one channel is the
 // height; two are grey + alpha; three or more give Rec. 709 luminance of R, G, B (alpha and any
 // others ignored); `channel NAME` picks one channel instead.
-#include "sandpaper/compiler/height_image.hpp"
+#include "sandpaper/compiler/height_field_image.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -58,12 +58,12 @@ std::string first_line(const std::string& log) {
   return log.substr(0, end) + " (and " + std::to_string(more) + " more lines like it)";
 }
 
-bool fail(HeightImageError& e, schema::Code code, std::string message, std::string suggestion) {
+bool fail(HeightFieldImageError& e, schema::Code code, std::string message, std::string suggestion) {
   e = {std::string(code.text()), std::move(message), std::move(suggestion)};
   return false;
 }
 
-bool check_dimensions(const HeightImageRequest& r, long long nx, long long ny, const char* unit, HeightImageError& e) {
+bool check_dimensions(const HeightFieldImageRequest& r, long long nx, long long ny, const char* unit, HeightFieldImageError& e) {
   if (nx <= 0 || ny <= 0)
     return fail(e, "E0402",
                 "image '" + r.shown_path + "' is empty (" + std::to_string(nx) + " x " + std::to_string(ny) + " " + unit + ")",
@@ -77,7 +77,7 @@ bool check_dimensions(const HeightImageRequest& r, long long nx, long long ny, c
 }
 
 // Under 3 samples a side, without `sampling` to enlarge it: E0402.
-bool too_small(const HeightImageRequest& r, const RawImage& raw, HeightImageError& e) {
+bool too_small(const HeightFieldImageRequest& r, const RawImage& raw, HeightFieldImageError& e) {
   if (raw.nx >= 3 && raw.ny >= 3) return false;
   fail(e, "E0402",
        "image '" + r.shown_path + "' is " + std::to_string(raw.nx) + " x " + std::to_string(raw.ny) +
@@ -86,7 +86,7 @@ bool too_small(const HeightImageRequest& r, const RawImage& raw, HeightImageErro
   return true;
 }
 
-bool read_depth_file(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
+bool read_depth_file(const HeightFieldImageRequest& r, RawImage& raw, HeightFieldImageError& e) {
   std::string text;
   try {
     text = schema::read_input_file(r.path, schema::limits::kMaxImageFileBytes);
@@ -132,7 +132,7 @@ class OpenPicture {
 };
 
 // Opens the picture and reads its header: nothing is allocated for pixels yet.
-OpenPicture open_picture(const HeightImageRequest& r, RawImage& raw, HeightImageError& e) {
+OpenPicture open_picture(const HeightFieldImageRequest& r, RawImage& raw, HeightFieldImageError& e) {
   // A device or FIFO (/dev/zero, a pipe) would make a format probe read forever or block.
   std::error_code ec;
   const auto status = std::filesystem::status(r.path, ec);
@@ -209,8 +209,8 @@ OpenPicture open_picture(const HeightImageRequest& r, RawImage& raw, HeightImage
 }
 
 // Reads the channels [first, last] of an open picture, within a stated memory budget.
-bool read_channels(const HeightImageRequest& r, const OpenPicture& in, int first, int last, RawImage& raw,
-                   HeightImageError& e) {
+bool read_channels(const HeightFieldImageRequest& r, const OpenPicture& in, int first, int last, RawImage& raw,
+                   HeightFieldImageError& e) {
   raw.first = first;
   raw.read = last - first + 1;
   const std::uint64_t bytes = static_cast<std::uint64_t>(raw.nx) * static_cast<std::uint64_t>(raw.ny) *
@@ -231,8 +231,8 @@ bool read_channels(const HeightImageRequest& r, const OpenPicture& in, int first
 }
 
 // The weight of each channel in the height, by the rule at the top of this file; `how` describes it.
-bool choose_weights(const HeightImageRequest& r, const RawImage& raw, std::vector<float>& weight, std::string& how,
-                    HeightImageError& e) {
+bool choose_weights(const HeightFieldImageRequest& r, const RawImage& raw, std::vector<float>& weight, std::string& how,
+                    HeightFieldImageError& e) {
   weight.assign(static_cast<std::size_t>(raw.nc), 0.0f);
   auto index_of = [&](const std::string& n) {
     auto it = std::find(raw.channel_names.begin(), raw.channel_names.end(), n);
@@ -332,18 +332,18 @@ Resample resample_plan(int nx, int ny, int tx, int ty) {
 }
 
 // Samples for `sampling` s over the request's width x height (at least 1 a side).
-std::pair<double, double> samples_at(const HeightImageRequest& r, double s) {
+std::pair<double, double> samples_at(const HeightFieldImageRequest& r, double s) {
   return {std::max(1.0, std::round(r.width_m / s)), std::max(1.0, std::round(r.height_m / s))};
 }
 
 // Whether a smoothing asked for stays within its budget over fx x fy samples.
-bool smoothing_fits(const HeightImageRequest& r, double fx, double fy) {
+bool smoothing_fits(const HeightFieldImageRequest& r, double fx, double fy) {
   return !r.smoothing_m || smoothing_ops(fx, fy, r.width_m / fx, r.height_m / fy, *r.smoothing_m) <= kMaxImageSmoothingOps;
 }
 
 // Whether a sampling passes every check below: 3 x 3 to 4096 x 4096 samples, and a resize (when the
 // sample grid differs from the pixels) within both resize limits; and the smoothing's budget after.
-bool sampling_fits(const HeightImageRequest& r, const RawImage& raw, double s) {
+bool sampling_fits(const HeightFieldImageRequest& r, const RawImage& raw, double s) {
   const auto [fx, fy] = samples_at(r, s);
   if (fx < 3 || fy < 3 || fx * fy > static_cast<double>(kMaxImagePixels)) return false;
   return resample_within_limits(raw.nx, raw.ny, static_cast<int>(fx), static_cast<int>(fy)) && smoothing_fits(r, fx, fy);
@@ -352,7 +352,7 @@ bool sampling_fits(const HeightImageRequest& r, const RawImage& raw, double s) {
 // E0402 for a resize past the resize limits (resample_within_limits), naming the sampling nearest the
 // one asked that fits (1 % steps, finer and coarser, up to a factor of about 20,000 each way) and,
 // when the picture is at least 3 x 3 and its smoothing fits over its pixels, the picture's own.
-bool refuse_resample(const HeightImageRequest& r, const RawImage& raw, int tx, int ty, const Resample& p, HeightImageError& e) {
+bool refuse_resample(const HeightFieldImageRequest& r, const RawImage& raw, int tx, int ty, const Resample& p, HeightFieldImageError& e) {
   const double s = *r.sampling_m;
   std::ostringstream m;
   m << "sampling " << mm(s) << " over " << mm(r.width_m) << " x " << mm(r.height_m) << " resamples the image's " << raw.nx
@@ -390,7 +390,7 @@ bool resample_within_limits(int source_nx, int source_ny, int tx, int ty) {
   return p.y_taps <= kMaxResampleTaps && p.x_weights <= kMaxResampleXWeights && p.visits <= kMaxImageResampleVisits;
 }
 
-std::optional<HeightImage> load_height_image(const HeightImageRequest& r, HeightImageError& e) {
+std::optional<HeightFieldImage> load_height_field_image(const HeightFieldImageRequest& r, HeightFieldImageError& e) {
   auto kind = schema::array_kind_of(r.path);
   if (kind == schema::ArrayKind::Shade) {
     fail(e, "E0406",
@@ -399,7 +399,7 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
     return std::nullopt;
   }
   RawImage raw;
-  HeightImage img;
+  HeightFieldImage img;
   std::string how;
   std::vector<float> weight;
   if (kind == schema::ArrayKind::Depth) {
@@ -488,10 +488,10 @@ std::optional<HeightImage> load_height_image(const HeightImageRequest& r, Height
   return img;
 }
 
-std::optional<std::pair<int, int>> height_image_size(const std::string& path) {
-  HeightImageRequest r;
+std::optional<std::pair<int, int>> height_field_image_size(const std::string& path) {
+  HeightFieldImageRequest r;
   r.path = r.shown_path = path;
-  HeightImageError e;
+  HeightFieldImageError e;
   RawImage raw;
   const auto kind = schema::array_kind_of(path);
   if (kind == schema::ArrayKind::Shade) return std::nullopt;

@@ -18,7 +18,7 @@ inline constexpr long long kMaxImagePixels = 4096LL * 4096LL;
 // under 0.5 mm over 20 mm took 1e10: 4 s in release, over 25 s under ASan.
 inline constexpr double kMaxImageSmoothingOps = 1e9;
 // Resampling (`sampling`, OpenImageIO's resize) walks a window of source pixels for each sample
-// (height_image.cpp, resample_plan). Its y window is kept on a thread's stack, and OpenImageIO
+// (height_field_image.cpp, resample_plan). Its y window is kept on a thread's stack, and OpenImageIO
 // aborts past 2^20 pixels (F39): at most kMaxResampleTaps. Its x window's weights, one set for each
 // column of samples, are on the heap: at most kMaxResampleXWeights (64 MiB; a 16,000,000 x 1 px
 // picture over 3 columns took 268 MiB of them, 509 MB at peak). The whole resize makes at most
@@ -29,7 +29,7 @@ inline constexpr long long kMaxResampleTaps = 65537;
 inline constexpr long long kMaxResampleXWeights = 16777216;
 inline constexpr double kMaxImageResampleVisits = 2e9;
 
-// Multiply-adds of an image's smoothing (heightmap.cpp's blur_x + blur_y) on an nx x ny grid with
+// Multiply-adds of an image's smoothing (height_field.cpp's blur_x + blur_y) on an nx x ny grid with
 // dx x dy m per sample, under a Gaussian of sigma_m m: each pass sums 2 ceil(3 sigma) + 1 taps per
 // sample, none under 0.3 px. In double: a sigma of millions of px can be asked for.
 double smoothing_ops(double nx, double ny, double dx, double dy, double sigma_m);
@@ -39,7 +39,7 @@ double smoothing_ops(double nx, double ny, double dx, double dy, double sigma_m)
 // suggestions that name a sampling, so that the sampling they name compiles.
 bool resample_within_limits(int source_nx, int source_ny, int tx, int ty);
 
-struct HeightImageRequest {
+struct HeightFieldImageRequest {
   std::string path;        // file to open
   std::string shown_path;  // as the user wrote it, for messages
   std::string channel;     // a channel name; empty: the luminance rule
@@ -55,7 +55,7 @@ struct HeightImageRequest {
 
 // Heights in the image's own unit: integer pixels 0..1 (OpenImageIO's normalisation), float pixels
 // as stored, .depth items value / 255. Row-major, row 0 = the picture's top edge.
-struct HeightImage {
+struct HeightFieldImage {
   int nx = 0, ny = 0;
   std::vector<float> values;
   float lo = 0, hi = 0;        // range of the source's heights (after inversion, before resampling)
@@ -64,17 +64,17 @@ struct HeightImage {
 };
 
 // A picture that cannot be used: code (E0401-E0406, schema/LANGUAGE.md), what, how to fix it.
-struct HeightImageError {
+struct HeightFieldImageError {
   std::string code, message, suggestion;
 };
 
 // Returns nullopt and fills `error` for a file that is unreadable (E0401), of no or too many
 // samples (E0402), flat or non-finite (E0403), without the named channel (E0404), a .depth of the
 // wrong size (E0405) or a .shade picture (E0406).
-std::optional<HeightImage> load_height_image(const HeightImageRequest& request, HeightImageError& error);
+std::optional<HeightFieldImage> load_height_field_image(const HeightFieldImageRequest& request, HeightFieldImageError& error);
 
 // The picture's size, {width, height} in px (items for a .depth), from its header alone; nullopt
-// when it cannot be opened (load_height_image then says why, with the same checks).
-std::optional<std::pair<int, int>> height_image_size(const std::string& path);
+// when it cannot be opened (load_height_field_image then says why, with the same checks).
+std::optional<std::pair<int, int>> height_field_image_size(const std::string& path);
 
 }  // namespace sandpaper::compiler

@@ -224,7 +224,7 @@ void blur_y(std::vector<float>& img, int nx, int ny, double sigma_px, bool wrap)
 std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, std::optional<double> target_force_N,
                                                   Diagnostics& diags, bool keep_heights) {
   if (!target_force_N && !h.stylus()) throw InternalError("make_height_field: neither a target force nor depth + press");
-  HeightImageRequest req;
+  HeightFieldImageRequest req;
   req.path = h.path;
   req.shown_path = h.stated_path;
   req.channel = h.channel;
@@ -233,8 +233,8 @@ std::optional<HeightFieldBuild> make_height_field(const ResolvedHeightmap& h, st
   req.width_m = h.width.si;
   req.height_m = h.height.si;
   if (h.smoothing) req.smoothing_m = h.smoothing->si;
-  HeightImageError err;
-  auto img = load_height_image(req, err);
+  HeightFieldImageError err;
+  auto img = load_height_field_image(req, err);
   if (!img) {
     diags.error(schema::Code::of(err.code), h.location, err.message, err.suggestion);
     return std::nullopt;

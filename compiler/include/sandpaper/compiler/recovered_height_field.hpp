@@ -1,5 +1,7 @@
 #pragma once
-// The heights a compiled texture is the gradient of (F = -k grad h, thesis 3.4): what the glTF
+// The height field a compiled texture is the gradient of (F = -k grad h, thesis 3.4), recovered
+// from the program (the height-field concept has one name: the `heightmap` statement reads a
+// picture into one, height_field_image.hpp; codegen builds its term, textures.hpp): what the glTF
 // export writes as its haptic texture (docs/GLTF.md) and Python's Material.height_field() returns.
 // A compiled program keeps only forces, so a grating's profile is worked back from its force table
 // and a height map's smoothed heights are rebuilt from its image.
@@ -12,7 +14,7 @@
 
 namespace sandpaper::compiler {
 
-struct TextureHeights {
+struct RecoveredHeightField {
   std::string kind;              // "grating" or "height_field"
   int nx = 0, ny = 0;            // samples; a grating: nx over one period, ny = 1
   std::vector<double> h_m;       // nx * ny, row-major, row 0 at -y (a grating: along its force direction)
@@ -29,7 +31,7 @@ struct TextureHeights {
 // The heights of `program`'s texture: its first grating or height-field term. nullopt with `why`
 // when it has none, when they cannot be known (a generated pattern, or a height field without the
 // `material` it was compiled from) or when the image no longer gives the compiled field.
-std::optional<TextureHeights> texture_heights(const schema::PatchProgram& program, const ResolvedMaterial* material,
-                                              std::string& why);
+std::optional<RecoveredHeightField> recover_height_field(const schema::PatchProgram& program,
+                                                         const ResolvedMaterial* material, std::string& why);
 
 }  // namespace sandpaper::compiler

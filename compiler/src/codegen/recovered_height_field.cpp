@@ -1,4 +1,4 @@
-#include "sandpaper/compiler/texture_heights.hpp"
+#include "sandpaper/compiler/recovered_height_field.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 namespace sandpaper::compiler {
 namespace {
 
-std::optional<TextureHeights> grating_heights(const schema::GratingTerm& g, std::string& why) {
+std::optional<RecoveredHeightField> grating_heights(const schema::GratingTerm& g, std::string& why) {
   const std::size_t n = g.force_N.size();
   double mean = 0, k = 0;
   for (float f : g.force_N) mean += f, k = std::max(k, std::abs(static_cast<double>(f)));
@@ -19,7 +19,7 @@ std::optional<TextureHeights> grating_heights(const schema::GratingTerm& g, std:
   mean /= static_cast<double>(n);
   // Backward differences inverted exactly: h_i = h_{i-1} - du F_i / k. The table's mean (float
   // rounding) is taken out so that the heights close on themselves over a period.
-  TextureHeights t;
+  RecoveredHeightField t;
   const double du = g.period_m / static_cast<double>(n);
   t.h_m.assign(n, 0.0);
   for (std::size_t i = 1; i < n; ++i) t.h_m[i] = t.h_m[i - 1] - du * (g.force_N[i] - mean) / k;
@@ -34,7 +34,7 @@ std::optional<TextureHeights> grating_heights(const schema::GratingTerm& g, std:
   return t;
 }
 
-std::optional<TextureHeights> height_field_heights(const schema::HeightFieldTerm& term, const schema::PatchProgram& program,
+std::optional<RecoveredHeightField> height_field_heights(const schema::HeightFieldTerm& term, const schema::PatchProgram& program,
                                                    const ResolvedMaterial* material, std::string& why) {
   const auto* hm = material ? std::get_if<ResolvedHeightmap>(&material->texture) : nullptr;
   if (!hm) {
@@ -51,7 +51,7 @@ std::optional<TextureHeights> height_field_heights(const schema::HeightFieldTerm
     why = "its height map '" + hm->stated_path + "' no longer gives the compiled field";
     return std::nullopt;
   }
-  TextureHeights t;
+  RecoveredHeightField t;
   // Heights in metres: the stylus reading's are (k = press); otherwise a nominal relief whose
   // steepest slope inside the rim is 1, so k is the maximum lateral force.
   t.nominal = !stylus;
@@ -70,7 +70,7 @@ std::optional<TextureHeights> height_field_heights(const schema::HeightFieldTerm
 
 }  // namespace
 
-std::optional<TextureHeights> texture_heights(const schema::PatchProgram& program, const ResolvedMaterial* material,
+std::optional<RecoveredHeightField> recover_height_field(const schema::PatchProgram& program, const ResolvedMaterial* material,
                                               std::string& why) {
   for (const auto& term : program.terms) {
     if (const auto* g = std::get_if<schema::GratingTerm>(&term)) return grating_heights(*g, why);
