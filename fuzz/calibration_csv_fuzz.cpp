@@ -56,7 +56,7 @@ void magnitude_estimates(std::string_view text) {
     fuzz::write_file(path, map_text);
     try {
       const auto map = calibration::load_map_file(path);
-      for (const auto& s : fit.stimuli) (void)map.percept_of(s.force_N);
+      for (const auto& s : fit.stimuli) (void)map.percept_of(s.x);
     } catch (const calibration::CalibrationError& e) {
       fuzz::fail(std::string("calibrate fit wrote a map the loader refuses: ") + e.what());
     }

@@ -155,11 +155,13 @@ struct ExperimentOptions {
   std::string target;              // run: the design; resume and analyse: the results folder
   std::string subject, output;     // run
   std::string device = "sim";      // sim or usb
-  std::string observer = "terminal";  // terminal, page or simulated:...
+  std::string observer;            // terminal, page or simulated:...; empty: terminal (run), the recorded one (resume)
+  bool switch_observer = false;    // resume: answer with --observer, not the recorded observer
   std::string listen = "127.0.0.1:4781";  // --observer page
   bool virtual_clock = false;
   std::string map_out, map_id, pictures;  // analyse
   bool allow_mixed_designs = false;
+  bool include_incomplete = false; // analyse: pool subjects who did not answer every trial
   SafetyGuards guards;             // run: the live loop's safety stops
   CLI::App* run = nullptr;
   CLI::App* resume = nullptr;

@@ -48,16 +48,30 @@ void install_stop_handlers() {
   sigaction(SIGTERM, &sa, nullptr);
 }
 
-std::unique_ptr<ex::Observer> make_observer(const ExperimentOptions& eo, const std::string& subject) {
-  if (eo.observer == "terminal") return ex::make_terminal_observer(std::cin, std::cerr);
-  if (eo.observer == "page") {
+// `observer` as written on the command line or recorded in the results; `percept` the design's, whose
+// default compile map gives a simulated observer the exponent it was not given.
+std::unique_ptr<ex::Observer> make_observer(const ExperimentOptions& eo, const std::string& observer,
+                                            const std::string& subject, const ex::Design& design,
+                                            const compiler::Compiler& compiler) {
+  if (observer == "terminal") return ex::make_terminal_observer(std::cin, std::cerr);
+  if (observer == "page") {
     std::string url;
     auto o = ex::make_page_observer(eo.listen, &g_stop, url);
     // The readiness line scripts wait for.
     std::cerr << "subject page: " << url << " (open it full screen on the subject's screen)" << std::endl;
     return o;
   }
-  return ex::make_simulated_observer(ex::parse_simulated_observer(eo.observer), subject);
+  auto spec = ex::parse_simulated_observer(observer);
+  if (!spec.dimension.empty() && spec.dimension != design.percept)
+    throw ex::DesignError(fmt::format("--observer: the simulated observer judges {}, but the design scales {}; give "
+                                      "dimension={} or leave dimension out", spec.dimension, design.percept, design.percept));
+  if (!spec.exponent) {
+    const auto* map = compiler.calibration().default_compile_map(design.percept);
+    spec.exponent = map ? map->slope : 0.76;
+    // Recorded with the exponent it used, so a resumed session answers alike.
+    spec.text += fmt::format("{}exponent={:g}", spec.text.empty() ? "" : ",", *spec.exponent);
+  }
+  return ex::make_simulated_observer(spec, subject);
 }
 
 // The presenter for `--device sim|usb`; nullptr (after printing why) when none can be made.
@@ -174,14 +188,31 @@ int run_or_resume(const ExperimentOptions& eo, bool resume) {
     std::cout << fmt::format("{}: every trial is answered already ({} of {})\n", dir.string(), first, schedule.size());
     return kExitOk;
   }
+  // Resume answers with the observer the results record; another one only when asked for by name.
+  std::string observer_text = eo.observer.empty() ? "terminal" : eo.observer;
+  std::optional<std::pair<std::string, std::string>> switched;
+  if (resume) {
+    const std::string recorded = previous->current_observer();
+    if (eo.observer.empty() || eo.observer == recorded) observer_text = recorded;
+    else if (!eo.switch_observer) {
+      std::cerr << fmt::format("sandpaper experiment resume: {}: these results were answered by observer `{}`; resuming "
+                               "with `{}` would mix observers in one subject. Leave --observer out to continue with "
+                               "`{}`, or add --switch-observer to change it on purpose (the switch is recorded)\n",
+                               dir.string(), recorded, eo.observer, recorded);
+      return kExitUsage;
+    } else switched.emplace(recorded, eo.observer);
+  }
   install_stop_handlers();
-  auto observer = make_observer(eo, subject);
+  auto observer = make_observer(eo, observer_text, subject, design, compiler);
   std::string device_used;
   auto presenter = make_presenter(eo, design, compiler, device_used);
   if (!presenter) return kExitUsage;
   std::optional<ex::ResultsWriter> writer;
   if (resume) {
     writer.emplace(ex::ResultsWriter::reopen(dir));
+    if (switched)
+      writer->append({{"record", "observer-switch"}, {"from", switched->first}, {"to", observer->describe()},
+                      {"trial", first}, {"time", ex::utc_now_iso()}});
   } else {
     ex::ResultsHeader h;
     h.design_checksum = design.checksum;
@@ -189,6 +220,7 @@ int run_or_resume(const ExperimentOptions& eo, bool resume) {
     h.subject = subject;
     h.task = ex::task_name(design.task);
     h.device = design.device;
+    h.percept = design.percept;
     h.observer = observer->describe();
     h.started = ex::utc_now_iso();
     h.trials = static_cast<int>(schedule.size());
@@ -203,12 +235,23 @@ int run_or_resume(const ExperimentOptions& eo, bool resume) {
 
 void print_analysis(const ex::Analysis& a) {
   const auto& j = a.report;
-  std::cout << fmt::format("{}: {} subjects, {} runs, {} answers ({} interrupted trials)\n", a.task, j["subjects"].get<int>(),
-                           a.runs.size(), j["records_answered"].get<int>(), j["interruptions"].get<int>());
+  std::cout << fmt::format("{}: {} subjects, {} runs pooled, {} answers ({} to practice trials, {} to recorded trials), "
+                           "{} interruption records\n",
+                           a.task, j["subjects"].get<int>(), a.runs.size(), j["records_answered"].get<int>(),
+                           j["practice_answered"].get<int>(), j["recorded_answered"].get<int>(), j["interruptions"].get<int>());
+  for (const auto& r : j["runs"])
+    if (!r["complete"].get<bool>())
+      std::cout << fmt::format("  {} (subject {}): {} of {} recorded trials answered, incomplete: {}\n",
+                               r["folder"].get<std::string>(), r["subject"].get<std::string>(), r["answered_recorded"].get<int>(),
+                               r["recorded_trials"].get<int>(),
+                               r["included"].get<bool>() ? "pooled (--include-incomplete)"
+                                                         : "left out (finish it with `experiment resume`, or pass --include-incomplete)");
   if (a.magnitude) {
     const auto& m = j["magnitude_estimation"];
-    std::cout << fmt::format("log R = {:.4f} log F {} {:.4f}  (F in N)\n", m["slope"].get<double>(),
-                             m["intercept"].get<double>() < 0 ? "-" : "+", std::abs(m["intercept"].get<double>()));
+    const auto& fp = a.magnitude->predictor;
+    std::cout << fmt::format("log {} = {:.4f} log {} {} {:.4f}  ({} in {})\n", m.value("percept", std::string("roughness")),
+                             m["slope"].get<double>(), fp.name, m["intercept"].get<double>() < 0 ? "-" : "+",
+                             std::abs(m["intercept"].get<double>()), fp.name, fp.unit == "1" ? "units of 1" : fp.unit);
     std::cout << fmt::format("  slope {:.4f} (s.e. {:.4f}), intercept s.e. {:.4f}, R^2 {:.4f} (adjusted {:.4f}), s {:.4g}, "
                              "df {}, F {:.4g}\n",
                              m["slope"].get<double>(), m["slope_se"].get<double>(), m["intercept_se"].get<double>(),
@@ -253,7 +296,8 @@ void print_analysis(const ex::Analysis& a) {
 // Writing into a calibration folder's maps/ must leave it loadable: a second roughness map for the
 // same device, or a second map with this id, would make every later compile fail. Refused here,
 // naming the file to replace instead. (Overwriting an earlier fit in the same file is fine.)
-void refuse_second_device_map(const std::filesystem::path& out, const std::string& device, const std::string& id) {
+void refuse_second_device_map(const std::filesystem::path& out, const std::string& device, const std::string& percept,
+                              const std::string& id) {
   const auto maps = out.parent_path();
   const auto dir = maps.parent_path();
   std::error_code ec;
@@ -272,19 +316,22 @@ void refuse_second_device_map(const std::filesystem::path& out, const std::strin
     if (m.id == id)
       throw ex::DesignError(fmt::format("--map-out: map id `{}` is already used by {}; give --map-id another id, or write "
                                         "to that file to replace it", id, e.path().string()));
-    if (m.for_device && m.domain_device == device && m.percept == "roughness")
-      throw ex::DesignError(fmt::format("--map-out: device `{}` already has a roughness map, {}; write to that file to "
-                                        "replace it, or remove it first", device, e.path().string()));
+    if (m.for_device && m.domain_device == device && m.percept == percept)
+      throw ex::DesignError(fmt::format("--map-out: device `{}` already has a {} map, {}; write to that file to "
+                                        "replace it, or remove it first", device, percept, e.path().string()));
   }
 }
 
 int analyse(const ExperimentOptions& eo) {
   ex::AnalyseOptions ao;
   ao.allow_mixed_designs = eo.allow_mixed_designs;
+  ao.include_incomplete = eo.include_incomplete;
   ao.pictures_dir = eo.pictures;
   auto a = ex::analyse(eo.target, ao);
   if (!eo.map_out.empty()) {
-    if (!a.magnitude) throw ex::DesignError("--map-out: only a magnitude-estimation study fits a roughness map (this one is " + a.task + ")");
+    if (!a.magnitude) throw ex::DesignError("--map-out: only a magnitude-estimation study fits a map (this one is " + a.task + ")");
+    const std::string percept = a.runs.front().header.percept;
+    const auto& x = a.magnitude->predictor;
     std::set<std::string> devices;
     std::vector<std::string> subjects;
     for (const auto& r : a.runs) {
@@ -297,18 +344,18 @@ int analyse(const ExperimentOptions& eo) {
     CommonOptions o = eo.common;
     o.device = *devices.begin();
     const auto compiler = make_compiler(o);
-    const auto* base = compiler.calibration().default_compile_map("roughness");
+    const auto* base = compiler.calibration().default_compile_map(percept);
     calibration::MapFileOptions mo;
     const std::filesystem::path out(eo.map_out);
     mo.id = eo.map_id.empty() ? out.stem().string() : eo.map_id;
-    refuse_second_device_map(out, *devices.begin(), mo.id);
-    mo.percept = "roughness";
+    refuse_second_device_map(out, *devices.begin(), percept, mo.id);
+    mo.percept = percept;
     mo.device = *devices.begin();
-    mo.description = "perceived roughness of gratings against their maximum lateral force on device " + mo.device +
+    mo.description = "perceived " + percept + " against the " + x.quantity + " on device " + mo.device +
                      ", measured by magnitude estimation (sandpaper experiment)";
-    // Ratio-scale 1 at the default map's reference force, so a roughness number asks for the force
-    // that this device's own subjects judged as the default map's subjects judged that force.
-    if (base) mo.reference_N = base->reference_si;
+    // Ratio-scale 1 at the default map's reference, so a number asks for the force (stiffness, ...)
+    // that this device's own subjects judged as the default map's subjects judged it.
+    if (base && base->ratio_predictor == x.name) mo.reference_N = base->reference_si;
     const auto& run0 = a.runs.front();
     mo.provenance = fmt::format("fitted by sandpaper experiment analyse on {}: {} subjects ({}), {} answered trials, "
                                 "design {} ({}), observers {}",
@@ -326,7 +373,9 @@ int analyse(const ExperimentOptions& eo) {
       throw;
     }
     std::filesystem::rename(check, out);
-    a.report["map"] = {{"file", out.string()}, {"id", mo.id}, {"device", mo.device}, {"reference_N", mo.reference_N}};
+    a.report["map"] = {{"file", out.string()}, {"id", mo.id}, {"device", mo.device}, {"percept", percept},
+                       {"predictor", x.name}, {"reference", mo.reference_N}, {"reference_unit", x.unit}};
+    if (x.name == "force") a.report["map"]["reference_N"] = mo.reference_N;
   }
   if (eo.common.json)
     std::cout << schema::json_text(a.report, 2) << "\n";
@@ -346,7 +395,7 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
   };
   auto playing = [&](CLI::App* sub) {
     sub->add_option("--device", eo.device, "sim (the simulated joystick) or usb (the first HID PID joystick); the design names the calibration")->capture_default_str();
-    sub->add_option("--observer", eo.observer, "terminal (a person types the answers), page (the subject's full-screen page) or simulated:exponent=0.76,noise=0.15,seed=3")->capture_default_str();
+    sub->add_option("--observer", eo.observer, "terminal (a person types the answers; run's default), page (the subject's full-screen page) or simulated:exponent=0.76,noise=0.15,seed=3; resume: default the observer the results record");
     sub->add_option("--listen", eo.listen, "--observer page: ADDR:PORT to serve the page on (port 0: any free port)")->capture_default_str();
     sub->add_flag("--virtual-clock", eo.virtual_clock, "simulated joystick only: each stimulus plays on simulated time, at once (simulated observers, tests)");
   };
@@ -359,15 +408,17 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
   common(eo.run);
   eo.resume = ex->add_subcommand("resume", "continue a results folder from its first unanswered trial, in the same order");
   eo.resume->add_option("results", eo.target, "results folder")->required();
+  eo.resume->add_flag("--switch-observer", eo.switch_observer, "answer with --observer although the results record another observer (the switch is recorded)");
   playing(eo.resume);
   common(eo.resume);
   eo.analyse = ex->add_subcommand("analyse", "pool results folders and analyse them as the thesis did");
   eo.analyse->alias("analyze");
   eo.analyse->add_option("results", eo.target, "a results folder, or a folder of them")->required();
-  eo.analyse->add_option("--map-out", eo.map_out, "magnitude estimation: write the fitted roughness map for the runs' device (calibration/maps/<device>-roughness.toml)");
+  eo.analyse->add_option("--map-out", eo.map_out, "magnitude estimation: write the fitted map of the design's percept for the runs' device (calibration/maps/<device>-<percept>.toml)");
   eo.analyse->add_option("--map-id", eo.map_id, "the map's id (default: the file's stem)");
   eo.analyse->add_option("--pictures", eo.pictures, "folder for the pictures (default: <results>/analysis)");
   eo.analyse->add_flag("--allow-mixed-designs", eo.allow_mixed_designs, "pool runs of different designs");
+  eo.analyse->add_flag("--include-incomplete", eo.include_incomplete, "pool subjects who did not answer every trial (left out by default)");
   common(eo.analyse);
 }
 

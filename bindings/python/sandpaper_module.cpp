@@ -353,9 +353,12 @@ PYBIND11_MODULE(sandpaper, m) {
                          "modulus * F^exponent with log-normal noise, two-interval choices at a Weber fraction.")
       .def(py::init([](const std::string& spec, const std::string& subject) {
              try {
-               return PyObserver{sp::experiment::make_simulated_observer(
-                                     sp::experiment::parse_simulated_observer("simulated:" + spec), subject),
-                                 0};
+               auto parsed = sp::experiment::parse_simulated_observer("simulated:" + spec);
+               // The CLI takes a missing exponent from the percept's compile map; here there is none.
+               if (!parsed.exponent && !parsed.dimension.empty() && parsed.dimension != "roughness")
+                 throw std::invalid_argument("give exponent= for dimension " + parsed.dimension +
+                                             " (e.g. the slope of its compile map in calibration/maps/)");
+               return PyObserver{sp::experiment::make_simulated_observer(parsed, subject), 0};
              } catch (const std::invalid_argument& e) {
                throw py::value_error(e.what());
              }

@@ -21,6 +21,14 @@ Range range_of(const toml::node_view<const toml::node>& v) {
   return {detail::quantity_si(*a->get(0)), detail::quantity_si(*a->get(1))};
 }
 
+// A dimensionless value written as a bare number string ("0.43"); NaN when it is not one.
+double bare_number(const toml::node& n) {
+  const std::string text = n.value<std::string>().value_or("");
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  return !text.empty() && end != text.c_str() && *end == '\0' && std::isfinite(v) ? v : std::nan("");
+}
+
 std::optional<Range> optional_range(const toml::table& doc, const char* key) {
   auto v = doc["domain"][key];
   if (!v.as_array()) return std::nullopt;
@@ -53,7 +61,8 @@ PsychophysicalMap read_map(const Toml& f, Problems& problems) {
     pr.se = optional_value<double>(p["se"]);
     pr.t = optional_value<double>(p["t"]);
     pr.p = optional_value<double>(p["p"]);
-    if (auto u = schema::find_unit(pr.unit)) pr.unit_si = u->to_si;
+    if (pr.unit == "1") pr.unit_si = 1;  // dimensionless: the friction coefficient
+    else if (auto u = schema::find_unit(pr.unit)) pr.unit_si = u->to_si;
     else problems.add(f, *p["unit"].node(), "unknown unit `" + pr.unit + "` for predictor " + pr.name,
                       "use a unit of schema/LANGUAGE.md, e.g. N, gf, pu, mm");
     m.predictors.push_back(std::move(pr));
@@ -74,16 +83,24 @@ PsychophysicalMap read_map(const Toml& f, Problems& problems) {
   m.feature = optional_range(c, "feature");
   m.damping = optional_range(c, "damping");
   m.stiffness = optional_range(c, "stiffness");
+  if (const auto* a = c["domain"]["friction"].as_array()) {
+    m.friction = Range{bare_number(*a->get(0)), bare_number(*a->get(1))};
+    if (std::isnan(m.friction->min) || std::isnan(m.friction->max))
+      problems.add(f, *a, "[domain] friction is a range of friction coefficients, bare numbers such as [\"0.43\", \"2.79\"]", "");
+  }
+  m.apparatus = c["domain"]["apparatus"].value_or(std::string());
+  m.weber_fraction = optional_value<double>(c["jnd"]["weber_fraction"]);
+  m.jnd_source = c["jnd"]["source"].value_or(std::string());
   m.domain_texture = c["domain"]["texture"].value_or(std::string());
   m.domain_device = c["domain"]["device"].value_or(std::string());
   m.effector = c["domain"]["effector"].value_or(std::string());
   m.citation = *c["source"]["citation"].value<std::string>();
   m.where = *c["source"]["where"].value<std::string>();
 
-  for (const auto* r : {&m.force, &m.period, &m.feature, &m.damping, &m.stiffness})
+  for (const auto* r : {&m.force, &m.period, &m.feature, &m.damping, &m.stiffness, &m.friction})
     // low == high is a domain of one value: a map fitted on stimuli of one period (F34).
-    if (*r && !((*r)->min > 0 && (*r)->min <= (*r)->max))
-      problems.add(f, *c["domain"].node(), "a domain range must be positive, [low, high] with low <= high", "");
+    if (*r && !((*r)->min > 0 && (*r)->min <= (*r)->max && std::isfinite((*r)->max)))
+      problems.add(f, *c["domain"].node(), "a domain range must be positive and finite, [low, high] with low <= high", "");
 
   if (m.for_device && m.domain_device.empty())
     problems.add(f, *c["use"].node(), "a map with use = \"device\" names its device in [domain] device",
@@ -108,7 +125,13 @@ PsychophysicalMap read_map(const Toml& f, Problems& problems) {
     m.slope = rp->coefficient;
     m.slope_se = rp->se.value_or(0);
     auto q = schema::parse_quantity(*ref_node.value<std::string>());
-    if (!q || q->unit.to_si <= 0 || !(q->si() > 0))
+    if (rp->unit == "1") {
+      // A dimensionless predictor's reference is a bare number ("0.43").
+      const double v = bare_number(ref_node);
+      if (!(v > 0))
+        problems.add(f, ref_node, "ratio_scale.reference of a dimensionless predictor must be a positive number, e.g. \"0.43\"", "");
+      else m.reference_si = v;
+    } else if (!q || q->unit.to_si <= 0 || !(q->si() > 0))
       problems.add(f, ref_node, "ratio_scale.reference must be a positive quantity with a unit, e.g. \"382 gf\"", "");
     else if (auto u = schema::find_unit(rp->unit); u && u->dimension != q->unit.dimension)
       problems.add(f, ref_node, "ratio_scale.reference's unit does not measure the same thing as the predictor's `" +

@@ -36,10 +36,12 @@ json regression_json(const RegressionResult& r) {
 
 json fit_json(const MagnitudeEstimationFit& fit) {
   const auto& r = fit.force;
-  const auto& slope = r.coefficient("log force");
+  const auto& slope = r.coefficient(fit.slope_name());
   const auto& constant = r.coefficient("constant");
-  json j = {{"law", "log10 mean estimate = intercept + slope * log10(force / 1 N)"},
-            {"force_unit", "N"},
+  const auto& x = fit.predictor;
+  json j = {{"law", "log10 mean estimate = intercept + slope * log10(" + x.name + " / 1 " + x.unit + ")"},
+            {"predictor", x.name},
+            {x.name == "force" ? "force_unit" : "predictor_unit", x.unit},
             {"slope", slope.value},
             {"slope_se", slope.se},
             {"slope_t", num(slope.t)},
@@ -91,8 +93,12 @@ json fit_json(const MagnitudeEstimationFit& fit) {
   json stimuli = json::array();
   for (std::size_t i = 0; i < fit.stimuli.size(); ++i) {
     const auto& s = fit.stimuli[i];
-    stimuli.push_back({{"stimulus", s.stimulus}, {"force_N", s.force_N}, {"period_mm", s.period_m * 1e3},
-                       {"estimates", s.estimates}, {"mean_response", s.mean_response}, {"log_residual", r.residuals[i]}});
+    json e = {{"stimulus", s.stimulus}, {"estimates", s.estimates}, {"mean_response", s.mean_response},
+              {"log_residual", r.residuals[i]}};
+    if (x.name == "force") e["force_N"] = s.x;
+    else e[x.name] = s.x;  // in predictor_unit
+    if (s.period_m > 0) e["period_mm"] = s.period_m * 1e3;
+    stimuli.push_back(std::move(e));
   }
   j["stimuli"] = stimuli;
   json subjects = json::array();

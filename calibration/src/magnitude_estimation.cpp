@@ -32,9 +32,9 @@ MagnitudeEstimationData from_table(const CsvTable& t) {
     tr.stimulus = row.fields[c_stimulus];
     if (tr.subject.empty()) throw FitError(t.path, row.line, "`subject` is empty; every trial names its subject");
     if (tr.stimulus.empty()) throw FitError(t.path, row.line, "`stimulus` is empty; every trial names its stimulus");
-    tr.force_N = number_field(t, row, c_force);
-    if (!(tr.force_N > 0))
-      throw FitError(t.path, row.line, fmt::format("force_N is {:g}: forces must be positive (the fit takes log10 of the force)", tr.force_N));
+    tr.x = number_field(t, row, c_force);
+    if (!(tr.x > 0))
+      throw FitError(t.path, row.line, fmt::format("force_N is {:g}: forces must be positive (the fit takes log10 of the force)", tr.x));
     const double period_mm = number_field(t, row, c_period);
     if (!(period_mm > 0))
       throw FitError(t.path, row.line, fmt::format("period_mm is {:g}: periods must be positive (the period regression takes log10 of it)", period_mm));
@@ -75,7 +75,10 @@ MagnitudeEstimationFit fit_magnitude_estimation(const MagnitudeEstimationData& d
   const std::string& file = data.path;
   MagnitudeEstimationFit f;
   f.path = file;
+  f.predictor = data.predictor;
   f.normalisation = normalisation;
+  const std::string& what = data.predictor.name;  // "force", "stiffness", ...
+  const std::string unit = data.predictor.unit == "1" ? "" : " " + data.predictor.unit;
   if (data.trials.empty()) throw FitError(file, 0, "no trials");
 
   // Stimuli and subjects in order of first appearance; a stimulus is one force and one period.
@@ -87,17 +90,17 @@ MagnitudeEstimationFit fit_magnitude_estimation(const MagnitudeEstimationData& d
   for (const auto& tr : data.trials) {
     auto [si, new_stim] = stim_index.try_emplace(tr.stimulus, f.stimuli.size());
     if (new_stim) {
-      f.stimuli.push_back({tr.stimulus, tr.force_N, tr.period_m, 0, 0});
+      f.stimuli.push_back({tr.stimulus, tr.x, tr.period_m, 0, 0});
       stim_first_line.push_back(tr.line);
     } else {
       const auto& s = f.stimuli[si->second];
       const auto differs = [](double a, double b) { return std::abs(a - b) > 1e-9 * std::max(std::abs(a), std::abs(b)); };
-      if (differs(s.force_N, tr.force_N) || differs(s.period_m, tr.period_m))
+      if (differs(s.x, tr.x) || differs(s.period_m, tr.period_m))
         throw FitError(file, tr.line,
-                       fmt::format("stimulus `{}` is {:g} N, {:g} mm here but {:g} N, {:g} mm on line {}: a stimulus has one "
-                                   "force and one period (give different stimuli different names)",
-                                   tr.stimulus, tr.force_N, tr.period_m * 1e3, s.force_N, s.period_m * 1e3,
-                                   stim_first_line[si->second]));
+                       fmt::format("stimulus `{}` is {:g}{}, {:g} mm here but {:g}{}, {:g} mm on line {}: a stimulus has one "
+                                   "{} and one period (give different stimuli different names)",
+                                   tr.stimulus, tr.x, unit, tr.period_m * 1e3, s.x, unit, s.period_m * 1e3,
+                                   stim_first_line[si->second], what));
     }
     auto [ji, new_subj] = subj_index.try_emplace(tr.subject, f.subjects.size());
     if (new_subj) {
@@ -174,38 +177,39 @@ MagnitudeEstimationFit fit_magnitude_estimation(const MagnitudeEstimationData& d
                      fmt::format("stimulus `{}` has no answered trial; it cannot be averaged (remove it or add estimates)",
                                  f.stimuli[i].stimulus));
 
-  // What a fit of log estimate on log force needs: three stimuli (one residual degree of freedom)
-  // at two or more force levels.
+  // What a fit of log estimate on log x needs: three stimuli (one residual degree of freedom)
+  // at two or more levels of x.
   if (ns < 3)
     throw FitError(file, 0,
                    fmt::format("too few stimuli: {} distinct stimul{}; a fit of slope and intercept needs at least 3 "
                                "(residual degrees of freedom = stimuli - 2 >= 1)",
                                ns, ns == 1 ? "us" : "i"));
   std::set<double> force_levels;
-  for (const auto& s : f.stimuli) force_levels.insert(s.force_N);
+  for (const auto& s : f.stimuli) force_levels.insert(s.x);
   if (force_levels.size() < 2)
     throw FitError(file, 0,
-                   fmt::format("only one force level ({:g} N) across the {} stimuli: the slope of roughness on force "
-                               "needs stimuli at two or more forces",
-                               f.stimuli.front().force_N, ns));
+                   fmt::format("only one {0} level ({1:g}{2}) across the {3} stimuli: the slope of the percept on {0} "
+                               "needs stimuli at two or more levels",
+                               what, f.stimuli.front().x, unit, ns));
 
   std::vector<double> log_force(ns), log_period(ns), log_mean_r(ns);
   for (std::size_t i = 0; i < ns; ++i) {
     auto& s = f.stimuli[i];
     const double lm = stim_sum[i] / s.estimates;
     s.mean_response = std::pow(10.0, lm);
-    log_force[i] = std::log10(s.force_N);
-    log_period[i] = std::log10(s.period_m * 1e3);
+    log_force[i] = std::log10(s.x);
+    log_period[i] = s.period_m > 0 ? std::log10(s.period_m * 1e3) : 0.0;
     log_mean_r[i] = lm;
   }
   // Means that do not vary leave a slope of rounding noise, which a map cannot hold (the loader
   // refuses a zero slope): every estimate the same, or normalised to the same (F32).
   if (varies_too_little(log_mean_r))
     throw FitError(file, 0,
-                   fmt::format("every stimulus has the same mean estimate ({:.6g}): there is nothing for force to "
+                   fmt::format("every stimulus has the same mean estimate ({:.6g}): there is nothing for {} to "
                                "explain; check the response column",
-                               std::pow(10.0, log_mean_r.front())));
-  f.force = least_squares({"log force"}, {log_force}, log_mean_r, Constant::Fitted);
+                               std::pow(10.0, log_mean_r.front()), what));
+  const std::string slope_name = f.slope_name();
+  f.force = least_squares({slope_name}, {log_force}, log_mean_r, Constant::Fitted);
   if (!(f.force.ss_residual > 1e-20 * f.force.ss_total))
     throw FitError(file, 0,
                    "the mean estimates lie exactly on a line (residual sum of squares 0): no residual is left to estimate "
@@ -214,19 +218,21 @@ MagnitudeEstimationFit fit_magnitude_estimation(const MagnitudeEstimationData& d
   // Figure 20: log period beside log force, when the data can say anything about period.
   std::set<double> period_levels;
   for (const auto& s : f.stimuli) period_levels.insert(s.period_m);
-  if (period_levels.size() < 2) {
+  if (period_levels.count(0.0)) {
+    f.period_note = "not fitted: the stimuli have no spatial period";
+  } else if (period_levels.size() < 2) {
     f.period_note = fmt::format("not fitted: every stimulus has the same period ({:g} mm)", f.stimuli.front().period_m * 1e3);
   } else if (ns < 4) {
     f.period_note = "not fitted: force, period and a constant need at least 4 stimuli";
   } else {
     try {
-      f.force_period = least_squares({"log force", "log period"}, {log_force, log_period}, log_mean_r, Constant::Fitted);
+      f.force_period = least_squares({slope_name, "log period"}, {log_force, log_period}, log_mean_r, Constant::Fitted);
       f.force_period_origin =
-          least_squares({"log force", "log period"}, {log_force, log_period}, log_mean_r, Constant::ThroughOrigin);
+          least_squares({slope_name, "log period"}, {log_force, log_period}, log_mean_r, Constant::ThroughOrigin);
     } catch (const std::invalid_argument&) {
       f.force_period.reset();
       f.force_period_origin.reset();
-      f.period_note = "not fitted: log period is collinear with log force over these stimuli";
+      f.period_note = "not fitted: log period is collinear with log " + what + " over these stimuli";
     }
   }
 
@@ -244,7 +250,7 @@ MagnitudeEstimationFit fit_magnitude_estimation(const MagnitudeEstimationData& d
       }
     if (x.size() < 3 || levels.size() < 2) continue;
     try {
-      f.subjects[j].slope = least_squares({"log force"}, {x}, y, Constant::Fitted).coefficient("log force").value;
+      f.subjects[j].slope = least_squares({slope_name}, {x}, y, Constant::Fitted).coefficient(slope_name).value;
       slopes.push_back(*f.subjects[j].slope);
     } catch (const std::invalid_argument&) {
     }

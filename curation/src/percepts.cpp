@@ -122,7 +122,7 @@ std::string physical_summary(const compiler::ResolvedMaterial& m, const schema::
   if (m.quantize_bits) parts.push_back("heights quantized to " + num(m.quantize_bits->si) + " bits");
   if (m.spring) parts.push_back("spring " + num(m.spring->si) + " N/m");
   if (m.damper) parts.push_back("damper " + num(m.damper->si) + " N*s/m");
-  if (m.antiviscous) parts.push_back("anti-viscous " + num(m.antiviscous->si) + " N*s/m");
+  if (m.friction_coefficient) parts.push_back("friction coefficient " + num(m.friction_coefficient->si) + ", pressed with 1 N");
   for (const auto& l : m.laws) parts.push_back(l.text.empty() ? std::string(l.physics ? "physics " : "force ") + l.name : l.text);
   if (m.energy_budget) parts.push_back("energy budget " + num(m.energy_budget->si) + " J");
   parts.push_back("patch " + mm(p.size_m[0]) + " x " + mm(p.size_m[1]));

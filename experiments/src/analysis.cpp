@@ -7,10 +7,12 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <toml++/toml.h>
 
 #include "sandpaper/calibration/fit_json.hpp"
 #include "sandpaper/calibration/regression.hpp"
 #include "sandpaper/experiment/clustering.hpp"
+#include "sandpaper/experiment/percept_quantity.hpp"
 #include "sandpaper/experiment/plots.hpp"
 #include "sandpaper/experiment/psychometric.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
@@ -26,6 +28,16 @@ void write_picture(Analysis& a, const std::filesystem::path& dir, const std::str
   a.pictures.push_back(dir / name);
 }
 
+// The design's practice trials (its `practice`), read from the run's copy of the design.
+int practice_trials(const Results& r) {
+  try {
+    const auto doc = toml::parse(r.design_text);
+    return static_cast<int>(doc["practice"].value_or(std::int64_t{0}));
+  } catch (const toml::parse_error&) {
+    return 0;  // read_results checked the copy's checksum; a copy that does not parse has no practice to count
+  }
+}
+
 std::vector<const Answer*> analysed(const Analysis& a) {
   std::vector<const Answer*> out;
   for (const auto& r : a.runs)
@@ -37,6 +49,16 @@ std::vector<const Answer*> analysed(const Analysis& a) {
 json magnitude(Analysis& a, const std::filesystem::path& pictures) {
   calibration::MagnitudeEstimationData data;
   data.path = a.runs.size() == 1 ? a.runs.front().dir.string() : a.runs.front().dir.parent_path().string();
+  const std::string& percept = a.runs.front().header.percept;
+  for (const auto& r : a.runs)
+    if (r.header.percept != percept)
+      throw DesignError(fmt::format("error: {} scaled {} but {} scaled {}; a fit is of one percept", a.runs.front().dir.string(),
+                                    percept, r.dir.string(), r.header.percept));
+  const PerceptQuantity* q = find_percept_quantity(percept);
+  if (!q) throw DesignError("error: results of percept `" + percept + "`, which no analysis knows (" + percept_quantity_names() + ")");
+  const bool roughness = percept == "roughness";
+  data.predictor = fit_predictor(*q);
+  const auto x_of = [&](const Answer& ans) { return roughness ? ans.compiled_force_N.at(0) : ans.quantity.at(0); };
   for (const auto& r : a.runs)
     for (const auto& ans : r.answers) {
       if (ans.practice) continue;
@@ -44,8 +66,10 @@ json magnitude(Analysis& a, const std::filesystem::path& pictures) {
       t.subject = r.header.subject;
       t.stimulus = ans.stimuli.at(0);
       // The map inverts the compiled number (what `compile --device` will ask the device for), so the
-      // regression is on the compiled force; the felt force is reported beside it.
-      t.force_N = ans.compiled_force_N.at(0);
+      // regression is on the compiled force (or stiffness, ...); the felt force is reported beside it.
+      if (!roughness && ans.quantity.empty())
+        throw DesignError(r.dir.string() + ": error: trial " + std::to_string(ans.trial + 1) + " records no " + q->results_key);
+      t.x = x_of(ans);
       t.period_m = ans.period_m.at(0);
       t.response = ans.response;
       data.trials.push_back(std::move(t));
@@ -68,9 +92,10 @@ json magnitude(Analysis& a, const std::filesystem::path& pictures) {
   for (const auto& r : a.runs)
     for (const auto& ans : r.answers)
       if (!ans.practice && ans.response && gm[r.header.subject] > 0)
-        points.push_back({ans.compiled_force_N.at(0), *ans.response / gm[r.header.subject] * fit.grand_geometric_mean});
-  const std::string title = fmt::format("Magnitude estimation of roughness: {} subjects, {} stimuli", fit.subjects.size(),
+        points.push_back({x_of(ans), *ans.response / gm[r.header.subject] * fit.grand_geometric_mean});
+  const std::string title = fmt::format("Magnitude estimation of {}: {} subjects, {} stimuli", percept, fit.subjects.size(),
                                         fit.stimuli.size());
+  j["percept"] = percept;
   write_picture(a, pictures, "magnitude-estimation.svg", magnitude_plot_svg(fit, points, title));
   j["plot"] = (pictures / "magnitude-estimation.svg").string();
   return j;
@@ -246,9 +271,36 @@ Analysis analyse(const std::filesystem::path& dir, const AnalyseOptions& options
   if (by_design.size() > 1 && !options.allow_mixed_designs)
     throw DesignError("error: these results come from different designs (checksums differ); analyse them separately, "
                       "or pass --allow-mixed-designs:\n" + listing(by_design));
+  // Completeness: a subject who stopped early answered fewer recorded trials than the schedule holds.
+  // Their estimates are left out of a fit (and so of a map) unless asked for: a free modulus
+  // estimated from part of the set is not the subject's modulus over the set.
+  json runs = json::array();
+  std::vector<Results> kept;
+  for (auto& r : a.runs) {
+    const int practice = practice_trials(r);
+    int answered_practice = 0, answered_recorded = 0;
+    for (const auto& ans : r.answers) (ans.practice ? answered_practice : answered_recorded)++;
+    const int recorded = std::max(0, r.header.trials - practice);
+    const bool complete = r.next_trial() >= r.header.trials;
+    const bool included = complete || options.include_incomplete;
+    runs.push_back({{"folder", r.dir.string()}, {"subject", r.header.subject}, {"device", r.header.device},
+                    {"observer", r.header.observer}, {"trials", r.header.trials}, {"practice_trials", practice},
+                    {"recorded_trials", recorded}, {"answered", r.answers.size()},
+                    {"answered_practice", answered_practice}, {"answered_recorded", answered_recorded},
+                    {"complete", complete}, {"included", included}});
+    if (included) kept.push_back(std::move(r));
+    else a.left_out.push_back(r.dir);
+  }
+  if (kept.empty())
+    throw DesignError(fmt::format("error: no subject in {} answered every trial, and incomplete subjects are left out of "
+                                  "the analysis; finish them with `sandpaper experiment resume`, or pass "
+                                  "--include-incomplete to pool them anyway",
+                                  dir.string()));
+  a.runs = std::move(kept);
   std::set<std::string> subjects;
-  int trials = 0, answered = 0, interrupted = 0;
+  int trials = 0, answered = 0, interrupted = 0, answered_practice = 0;
   for (const auto& r : a.runs) {
+    for (const auto& ans : r.answers) answered_practice += ans.practice ? 1 : 0;
     subjects.insert(r.header.subject);
     trials += r.header.trials;
     answered += static_cast<int>(r.answers.size());
@@ -256,11 +308,6 @@ Analysis analyse(const std::filesystem::path& dir, const AnalyseOptions& options
   }
   a.task = a.runs.front().header.task;
   const auto pictures = options.pictures_dir.empty() ? dir / "analysis" : options.pictures_dir;
-  json runs = json::array();
-  for (const auto& r : a.runs)
-    runs.push_back({{"folder", r.dir.string()}, {"subject", r.header.subject}, {"device", r.header.device},
-                    {"observer", r.header.observer}, {"trials", r.header.trials},
-                    {"answered", r.answers.size()}, {"complete", r.next_trial() >= r.header.trials}});
   a.report = {{"ok", true},
               {"task", a.task},
               {"design_checksums", [&] {
@@ -272,6 +319,14 @@ Analysis analyse(const std::filesystem::path& dir, const AnalyseOptions& options
               {"runs", runs},
               {"trials_scheduled", trials},
               {"records_answered", answered},
+              {"practice_answered", answered_practice},
+              {"recorded_answered", answered - answered_practice},
+              {"include_incomplete", options.include_incomplete},
+              {"left_out", [&] {
+                 json l = json::array();
+                 for (const auto& p : a.left_out) l.push_back(p.string());
+                 return l;
+               }()},
               {"interruptions", interrupted}};
   if (a.task == "magnitude-estimation") {
     json m = magnitude(a, pictures);

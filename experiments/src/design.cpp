@@ -100,6 +100,10 @@ Design parse_design(const std::string& text, const std::filesystem::path& path) 
            : task == "two-interval" ? Task::TwoInterval
                                     : Task::MagnitudeEstimation;
   d.device = doc["device"].value_or(std::string("sim"));
+  d.percept = doc["percept"].value_or(std::string("roughness"));
+  if (d.percept != "roughness" && d.task != Task::MagnitudeEstimation)
+    problems.add(*doc["percept"].node(), "percept = \"" + d.percept + "\" is scaled by magnitude estimation only; "
+                                         "use task = \"magnitude-estimation\", or leave percept out (roughness)");
   const auto base = path.parent_path();
   for (const auto& node : *doc["stimuli"].as_array()) {
     StimulusRef s;

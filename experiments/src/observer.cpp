@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "sandpaper/experiment/clustering.hpp"
+#include "sandpaper/experiment/percept_quantity.hpp"
 
 namespace sandpaper::experiment {
 namespace {
@@ -38,7 +39,10 @@ class SimulatedObserver final : public Observer {
 
   std::optional<double> estimate(const Trial&, const Presented& p, bool confidence) override {
     const double f = std::max(p.felt_force_N.at(0), 1e-6);
-    if (!confidence) return modulus_ * std::pow(f, spec_.exponent) * std::exp(spec_.noise * gauss());
+    // Every percept is judged from the force the hand met: the scripted hand's excursion and speed
+    // are fixed, so a spring's, a damper's and friction's largest force is proportional to the
+    // stiffness, damping or coefficient, and an exponent on the felt force is the exponent on it.
+    if (!confidence) return modulus_ * std::pow(f, spec_.exponent.value_or(0.76)) * std::exp(spec_.noise * gauss());
     // Chapter 4's pattern: confidence rises with force and falls for coarse periods (> 9.25 mm,
     // the region calibration/knowledge/believability.toml holds); 50 % at 30 pu = 0.55 N.
     const double period_mm = p.period_m.at(0) * 1e3;
@@ -100,11 +104,13 @@ class TerminalObserver final : public Observer {
                         total, t.stimuli.size() > 1 ? "s" : "")
          << std::flush;
   }
-  std::optional<double> estimate(const Trial&, const Presented&, bool confidence) override {
+  std::optional<double> estimate(const Trial&, const Presented& presented, bool confidence) override {
+    const auto* q = find_percept_quantity(presented.percept);
     for (;;) {
-      out_ << (confidence ? "How confident are you that this is a textured surface (0-100 %)? "
-                          : "How rough was it (any positive number; larger = rougher)? ")
-           << std::flush;
+      if (confidence) out_ << "How confident are you that this is a textured surface (0-100 %)? ";
+      else if (q) out_ << q->question << " (any positive number; " << q->more << ")? ";
+      else out_ << "How rough was it (any positive number; larger = rougher)? ";
+      out_ << std::flush;
       auto line = read_line();
       if (!line) return std::nullopt;
       double v = 0;
@@ -183,15 +189,22 @@ SimulatedObserverSpec parse_simulated_observer(const std::string& spec) {
         throw std::invalid_argument("simulated observer: seed must be a whole number >= 0");
       s.seed = v;
     } else if (key == "exponent") s.exponent = number(key, value);
+    else if (key == "dimension") {
+      if (!find_percept_quantity(value))
+        throw std::invalid_argument("simulated observer: dimension `" + value + "` is not one of " + percept_quantity_names());
+      s.dimension = value;
+    }
     else if (key == "noise") s.noise = number(key, value);
     else if (key == "modulus") s.modulus = number(key, value);
     else if (key == "weber") s.weber = number(key, value);
     else if (key == "period_weight") s.period_weight = number(key, value);
     else
       throw std::invalid_argument("simulated observer: unknown parameter `" + key +
-                                  "` (known: exponent, noise, modulus, weber, period_weight, seed)");
+                                  "` (known: dimension, exponent, noise, modulus, weber, period_weight, seed)");
   }
-  if (!(s.exponent > 0)) throw std::invalid_argument("simulated observer: exponent must be > 0");
+  if (s.exponent && !(*s.exponent != 0))
+    throw std::invalid_argument("simulated observer: exponent must not be 0 (negative for a percept that falls as its "
+                                "quantity grows, e.g. softness)");
   if (!(s.noise >= 0)) throw std::invalid_argument("simulated observer: noise must be >= 0");
   if (!(s.modulus > 0)) throw std::invalid_argument("simulated observer: modulus must be > 0");
   if (!(s.weber > 0)) throw std::invalid_argument("simulated observer: weber must be > 0");

@@ -82,27 +82,29 @@ std::string magnitude_plot_svg(const calibration::MagnitudeEstimationFit& fit, c
     y0 = std::min(y0, y);
     y1 = std::max(y1, y);
   };
-  for (const auto& p : trials) extend(std::log10(p.force_N), std::log10(p.estimate));
-  for (const auto& s : fit.stimuli) extend(std::log10(s.force_N), std::log10(s.mean_response));
+  for (const auto& p : trials) extend(std::log10(p.x), std::log10(p.estimate));
+  for (const auto& s : fit.stimuli) extend(std::log10(s.x), std::log10(s.mean_response));
+  const auto& xp = fit.predictor;
+  const std::string unit = xp.unit == "1" ? "" : " " + xp.unit;
   const double mx = (x1 - x0) * 0.05 + 1e-3, my = (y1 - y0) * 0.05 + 1e-3;
   Frame f{x0 - mx, x1 + mx, y0 - my, y1 + my};
   std::string out = open_svg(title);
-  out += axes(f, "log10 maximum lateral force (N)", "log10 normalised estimate");
+  out += axes(f, "log10 " + xp.quantity + (xp.unit == "1" ? "" : " (" + xp.unit + ")"), "log10 normalised estimate");
   for (const auto& p : trials)
     out += fmt::format("<circle class=\"trial\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2\" fill=\"#9ab\" fill-opacity=\"0.5\"/>\n",
-                       f.px(std::log10(p.force_N)), f.py(std::log10(p.estimate)));
+                       f.px(std::log10(p.x)), f.py(std::log10(p.estimate)));
   for (const auto& s : fit.stimuli)
-    out += fmt::format("<circle class=\"mean\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4.5\" fill=\"#c33\"><title>{}: {:.4g} N, "
+    out += fmt::format("<circle class=\"mean\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4.5\" fill=\"#c33\"><title>{}: {:.4g}{}, "
                        "mean {:.4g}</title></circle>\n",
-                       f.px(std::log10(s.force_N)), f.py(std::log10(s.mean_response)), escape(s.stimulus), s.force_N,
+                       f.px(std::log10(s.x)), f.py(std::log10(s.mean_response)), escape(s.stimulus), s.x, escape(unit),
                        s.mean_response);
   const double a = fit.intercept(), b = fit.slope();
   out += fmt::format("<line class=\"fit\" x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#222\" stroke-width=\"2\"/>\n",
                      f.px(x0), f.py(a + b * x0), f.px(x1), f.py(a + b * x1));
   const auto& r = fit.force;
-  out += fmt::format("<text x=\"{}\" y=\"{}\">log R = {:.3f} log F {} {:.3f}; slope s.e. {:.3f}, R^2 {:.3f}, s {:.3g}, "
+  out += fmt::format("<text x=\"{}\" y=\"{}\">log P = {:.3f} log {} {} {:.3f}; slope s.e. {:.3f}, R^2 {:.3f}, s {:.3g}, "
                      "df {}, F {:.0f}</text>\n",
-                     f.left + 8, f.top + 16, b, a < 0 ? "-" : "+", std::abs(a), fit.slope_se(), r.r_squared, r.s,
+                     f.left + 8, f.top + 16, b, escape(xp.name), a < 0 ? "-" : "+", std::abs(a), fit.slope_se(), r.r_squared, r.s,
                      r.df_residual, r.f_ratio);
   out += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"#555\">{} stimuli (red: geometric mean per stimulus), {} subjects, "
                      "{} answered trials (blue)</text>\n",

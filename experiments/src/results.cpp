@@ -63,6 +63,12 @@ Answer answer_from(const nlohmann::json& j) {
   a.compiled_force_N = vec<double>(j, "compiled_force_N");
   a.felt_force_N = vec<double>(j, "felt_force_N");
   a.period_m = vec<double>(j, "period_m");
+  for (const char* key : {"stiffness_N_per_m", "damping_N_s_per_m", "friction_coefficient"})
+    if (j.contains(key)) {
+      a.quantity_key = key;
+      a.quantity = vec<double>(j, key);
+      if (a.quantity.size() != a.stimuli.size()) throw std::invalid_argument(std::string(key) + " and stimuli differ in length");
+    }
   if (j.contains("response") && !j.at("response").is_null()) a.response = j.at("response").get<double>();
   a.increment = j.value("increment", 0.0);
   a.comparison_interval = whole(j, "comparison_interval", 0);
@@ -91,6 +97,7 @@ nlohmann::json to_json(const Answer& a) {
                    {"practice", a.practice},     {"repetition", a.repetition},
                    {"stimuli", a.stimuli},       {"compiled_force_N", a.compiled_force_N},
                    {"felt_force_N", a.felt_force_N}, {"period_m", a.period_m}};
+  if (!a.quantity_key.empty()) j[a.quantity_key] = a.quantity;
   if (a.response) j["response"] = *a.response;
   if (a.comparison_interval) {
     j["increment"] = a.increment;
@@ -108,7 +115,7 @@ nlohmann::json to_json(const ResultsHeader& h) {
   return {{"record", "header"},      {"format", kResultsFormat}, {"design_checksum", h.design_checksum},
           {"design", h.design_path}, {"subject", h.subject},     {"task", h.task},
           {"device", h.device},      {"observer", h.observer},   {"started", h.started},
-          {"trials", h.trials}};
+          {"trials", h.trials},      {"percept", h.percept}};
 }
 
 Results read_results(const std::filesystem::path& dir) {
@@ -138,6 +145,7 @@ Results read_results(const std::filesystem::path& dir) {
         r.header.design_path = j.value("design", "");
         r.header.subject = j.at("subject").get<std::string>();
         r.header.task = j.at("task").get<std::string>();
+        r.header.percept = j.value("percept", std::string("roughness"));
         r.header.device = j.value("device", "");
         r.header.observer = j.value("observer", "");
         r.header.started = j.value("started", "");
@@ -147,6 +155,8 @@ Results read_results(const std::filesystem::path& dir) {
         r.answers.push_back(answer_from(j));
       } else if (kind == "interrupted") {
         r.interruptions.push_back({whole(j, "trial"), j.value("cause", "")});
+      } else if (kind == "observer-switch") {
+        r.observer_switches.push_back({j.at("from").get<std::string>(), j.at("to").get<std::string>(), whole(j, "trial")});
       } else {
         throw std::invalid_argument("unknown record `" + kind + "`");
       }

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "sandpaper/experiment/percept_quantity.hpp"
+
 namespace sandpaper::experiment {
 namespace {
 
@@ -16,7 +18,7 @@ struct Played {
 };
 
 // Plays one stimulus into `out`; false when the loop stopped.
-bool play(Presenter& presenter, const Stimulus& s, double gain, Played& out) {
+bool play(Presenter& presenter, const Stimulus& s, double gain, Played& out, std::vector<double>& quantity) {
   const Presentation p = presenter.present(s.program, gain);
   if (p.interrupted) {
     out.interrupted = true;
@@ -27,6 +29,7 @@ bool play(Presenter& presenter, const Stimulus& s, double gain, Played& out) {
   out.presented.felt_force_N.push_back(p.felt_max_N);
   out.presented.compiled_force_N.push_back(s.force_N * gain);
   out.presented.period_m.push_back(s.period_m);
+  quantity.push_back(s.quantity);
   return true;
 }
 
@@ -46,22 +49,27 @@ SessionOutcome run_session(const Design& design, const std::vector<Stimulus>& st
     const Trial& t = schedule[static_cast<std::size_t>(i)];
     observer.announce(t, out.total);
     Played played;
+    played.presented.percept = design.percept;
+    std::vector<double> quantity;
     bool ok = true;
     if (design.task == Task::TwoInterval) {
       const Stimulus& s = stimuli[static_cast<std::size_t>(t.stimuli.at(0))];
       for (int interval = 1; ok && interval <= 2; ++interval)
-        ok = play(presenter, s, interval == t.comparison_interval ? 1.0 + t.increment : 1.0, played);
+        ok = play(presenter, s, interval == t.comparison_interval ? 1.0 + t.increment : 1.0, played, quantity);
     } else {
       for (int k : t.stimuli) {
-        ok = play(presenter, stimuli[static_cast<std::size_t>(k)], 1.0, played);
+        ok = play(presenter, stimuli[static_cast<std::size_t>(k)], 1.0, played, quantity);
         if (!ok) break;
       }
     }
     if (!ok) {
       writer.append({{"record", "interrupted"}, {"trial", t.index}, {"cause", played.cause}, {"time", utc_now_iso()}});
-      log << fmt::format("trial {} of {} interrupted: the loop stopped ({}); the force is off. Fix the device, then "
-                         "`sandpaper experiment resume` continues from this trial.\n",
-                         t.index + 1, out.total, played.cause);
+      // Only a device fault needs mending; a stop asked for (Ctrl-C) does not.
+      const bool asked = played.cause == "stop_requested";
+      log << fmt::format("trial {} of {} interrupted: {}; the force is off. {}`sandpaper experiment resume` continues "
+                         "from this trial.\n",
+                         t.index + 1, out.total, asked ? "stopped as asked" : "the loop stopped (" + played.cause + ")",
+                         asked ? "" : "Fix the device, then ");
       out.interrupted = true;
       out.cause = played.cause;
       observer.ended(false);
@@ -76,6 +84,10 @@ SessionOutcome run_session(const Design& design, const std::vector<Stimulus>& st
     a.compiled_force_N = played.presented.compiled_force_N;
     a.felt_force_N = played.presented.felt_force_N;
     a.period_m = played.presented.period_m;
+    if (const auto* q = find_percept_quantity(design.percept); q && design.percept != "roughness") {
+      a.quantity_key = q->results_key;
+      a.quantity = quantity;
+    }
     bool answered = true;
     switch (design.task) {
       case Task::MagnitudeEstimation:

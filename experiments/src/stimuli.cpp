@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "sandpaper/compiler/knowledge_report.hpp"
+#include "sandpaper/experiment/percept_quantity.hpp"
 
 namespace sandpaper::experiment {
 
@@ -27,6 +28,20 @@ std::vector<Stimulus> prepare_stimuli(const Design& design, const compiler::Comp
     Stimulus s;
     s.name = ref.text;
     s.program = std::make_shared<const schema::PatchProgram>(*r.program);
+    if (design.percept != "roughness") {
+      const PerceptQuantity* q = find_percept_quantity(design.percept);
+      if (!q) throw DesignError(fmt::format("{}: error: percept `{}` cannot be scaled (known: {})\n", design.path,
+                                            design.percept, percept_quantity_names()));
+      const auto x = stimulus_quantity(*q, *r.program);
+      if (!x) {
+        refuse(ref, fmt::format("has no {} to scale {} on; give each stimulus {}", q->predictor, q->percept, q->law));
+        continue;
+      }
+      s.quantity = *x;
+      s.force_N = r.program->max_lateral_force_N;
+      out.push_back(std::move(s));
+      continue;
+    }
     s.force_N = r.program->max_lateral_force_N;
     const auto k = compiler::assess_knowledge(*r.material, *r.program, compiler.calibration());
     s.period_m = k.texture.period_m;

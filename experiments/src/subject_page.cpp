@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/experiment/page_answer.hpp"
+#include "sandpaper/experiment/percept_quantity.hpp"
 #include "sandpaper/http/local_server.hpp"
 
 namespace sandpaper::experiment {
@@ -82,8 +83,11 @@ class PageObserverImpl final : public Observer {
     show({{"kind", "feel"}, {"trial", t.index + 1}, {"total", total}, {"practice", t.practice},
           {"patches", t.stimuli.size()}});
   }
-  std::optional<double> estimate(const Trial& t, const Presented&, bool confidence) override {
-    auto a = ask({{"kind", confidence ? "confidence" : "estimate"}, {"trial", t.index + 1}, {"practice", t.practice}});
+  std::optional<double> estimate(const Trial& t, const Presented& p, bool confidence) override {
+    const auto* q = find_percept_quantity(p.percept);
+    auto a = ask({{"kind", confidence ? "confidence" : "estimate"}, {"trial", t.index + 1}, {"practice", t.practice},
+                  {"question", q ? std::string(q->question) + "?" : "How rough was it?"},
+                  {"hint", q ? "Any positive number: " + std::string(q->more) + "." : "Any positive number: larger for rougher."}});
     if (!a) return std::nullopt;
     return answer_value(*a);
   }

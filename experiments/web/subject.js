@@ -194,7 +194,7 @@ function render(s) {
       break;
     }
     case "estimate":
-      numberScreen(s, "How rough was it?", "Any positive number: larger for rougher.", false);
+      numberScreen(s, s.question || "How rough was it?", s.hint || "Any positive number: larger for rougher.", false);
       break;
     case "confidence":
       numberScreen(s, "Was it a textured surface?", "How confident are you, from 0 (not at all) to 100 (certain)?", true);

@@ -66,7 +66,7 @@ TEST(Csv, MagnitudeEstimationColumnsInAnyOrder) {
   ASSERT_EQ(d.trials.size(), 2u);
   EXPECT_EQ(d.trials[0].subject, "S1");
   EXPECT_EQ(d.trials[0].stimulus, "a39p25");
-  EXPECT_DOUBLE_EQ(d.trials[0].force_N, 0.75);
+  EXPECT_DOUBLE_EQ(d.trials[0].x, 0.75);
   EXPECT_DOUBLE_EQ(d.trials[0].period_m, 2.5e-3);
   EXPECT_DOUBLE_EQ(*d.trials[0].response, 4.5);
   EXPECT_EQ(d.trials[0].line, 2);

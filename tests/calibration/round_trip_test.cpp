@@ -49,7 +49,7 @@ TEST(RoundTrip, FittedMapLoads) {
   EXPECT_EQ(m.stimuli.value_or(0), 30);
   ASSERT_TRUE(m.force && m.period);
   for (const auto& s : fit.stimuli) {
-    EXPECT_TRUE(m.force->contains(s.force_N, 0)) << s.stimulus;
+    EXPECT_TRUE(m.force->contains(s.x, 0)) << s.stimulus;
     EXPECT_TRUE(m.period->contains(s.period_m, 0)) << s.stimulus;
   }
   // The ratio scale: roughness 1 at the strongest stimulus, halving the force scales it by 2^-slope.

@@ -92,7 +92,7 @@ Experiment simulate_experiment(const ExperimentOptions& o) {
         Trial t;
         t.subject = fmt::format("S{:02d}", j + 1);
         t.stimulus = s.name;
-        t.force_N = s.force_N;
+        t.x = s.force_N;
         t.period_m = s.period_mm * 1e-3;
         const bool answered = rng.uniform() >= o.missing;
         if (answered) t.response = round_significant(std::pow(10.0, log_r), o.significant_digits);
@@ -106,7 +106,7 @@ std::string experiment_csv(const MagnitudeEstimationData& d, const std::vector<i
   std::string out = comment + "subject,run,stimulus,force_N,period_mm,response\n";
   for (std::size_t k = 0; k < d.trials.size(); ++k) {
     const auto& t = d.trials[k];
-    out += fmt::format("{},{},{},{:.6g},{:g},{}\n", t.subject, k < runs.size() ? runs[k] : 0, t.stimulus, t.force_N,
+    out += fmt::format("{},{},{},{:.6g},{:g},{}\n", t.subject, k < runs.size() ? runs[k] : 0, t.stimulus, t.x,
                        t.period_m * 1e3, t.response ? fmt::format("{:g}", *t.response) : std::string());
   }
   return out;

@@ -257,24 +257,35 @@ expect_exit 2 "array size without unit" -- "$sp" array library/images/brick.png 
 # Perceptual words beyond roughness (issue 4): every output that uses a provisional map says so.
 expect_exit 0 "compile perceptual words --json" -- "$sp" compile examples/perceptual-words.hmat -o "$tmp/pw.patch" --json
 has "$tmp/out" '"code": "W0320"' "compile --json carries the provisional warning"
-has "$tmp/out" 'provisional map viscosity-provisional \(calibration/maps/viscosity-provisional.toml\)' "the warning names map and file"
-has "$tmp/out" '"source": "[^"]* via softness-provisional \(calibration/maps/softness-provisional.toml\)"' "provenance names map and file"
+has "$tmp/out" 'provisional map bumpiness-provisional \(calibration/maps/bumpiness-provisional.toml\)' "the warning names map and file"
+has "$tmp/out" '"code": "W0321"' "compile --json carries the real-material warning"
+has "$tmp/out" '"source": "[^"]* via harper-stevens1964 \(calibration/maps/harper-stevens1964.toml\)"' "provenance names map and file"
 has "$tmp/err" 'warning\[W0320\]: `bumpiness 0.6`' "compile prints the warning"
 expect_exit 0 "inspect the perceptual patch" -- "$sp" inspect "$tmp/pw.patch"
 has "$tmp/out" 'warning W0320' "the patch file keeps the warning"
 expect_exit 0 "run the perceptual patch" -- "$sp" run "$tmp/pw.patch" --device sim --virtual-clock --duration 0.2
-has "$tmp/err" 'warning\[W0320\]: .*softness-provisional' "run of a .patch shows its provisional warnings"
-expect_exit 0 "explain slipperiness" -- "$sp" explain -e "slipperiness 0.3"
-has "$tmp/out" 'PROVISIONAL map slipperiness-provisional' "explain names the provisional map"
-has "$tmp/out" 'W0320 .*slipperiness-provisional' "explain lists the warning"
-has "$tmp/out" 'W0306' "slipperiness is not passive"
+has "$tmp/err" 'warning\[W0320\]: .*bumpiness-provisional' "run of a .patch shows its provisional warnings"
+has "$tmp/err" 'warning\[W0321\]: .*harper-stevens1964' "and its real-material warnings"
+for pair in "softness 0.7:harper-stevens1964" "viscosity 0.5:stevens-guirao1964" "slipperiness 0.6:ekman1965"; do
+  text=${pair%%:*}; map=${pair##*:}
+  expect_exit 0 "explain $text" -- "$sp" explain -e "$text"
+  has "$tmp/out" "calibration $map, calibration/maps/$map.toml" "explain names the map of $text"
+  has "$tmp/out" "source: " "explain names the source of $text"
+  has "$tmp/out" "domain: .*real material" "explain names the domain of $text"
+  if grep -q W0320 "$tmp/out" "$tmp/err"; then bad "$text warned provisional"; else ok; fi
+  expect_exit 0 "explain $text --json" -- "$sp" explain -e "$text" --json
+  has "$tmp/out" "\"citation\": \"" "explain --json gives the citation of $text"
+  has "$tmp/out" "\"apparatus\": \"real material\"" "explain --json gives the domain of $text"
+  if grep -q W0320 "$tmp/out"; then bad "$text --json warned provisional"; else ok; fi
+done
+if grep -q W0306 "$tmp/out" "$tmp/err"; then bad "slipperiness (friction) warned non-passive"; else ok; fi
 expect_exit 0 "run viscosity on sim" -- "$sp" run -e "viscosity 0.5" --device sim --virtual-clock --duration 0.5 --hand circle --json
-has "$tmp/err" 'W0320.*viscosity-provisional' "run shows the provisional warning"
+has "$tmp/err" 'W0321.*stevens-guirao1964' "run shows the real-material warning"
 has "$tmp/out" '"stop_reason": "completed"' "viscosity plays"
 expect_exit 0 "roughness alone" -- "$sp" compile -e "grating period 2 mm; roughness 0.5" --json
 if grep -q W0320 "$tmp/out" "$tmp/err"; then bad "the measured roughness map warned provisional"; else ok; fi
 expect_exit 1 "viscosity above its map" -- "$sp" compile -e "viscosity 1.5"
-has "$tmp/err" 'E0303.*top of the viscosity-provisional' "above the domain is an error"
+has "$tmp/err" 'E0303.*top of the stevens-guirao1964' "above the domain is an error"
 has "$tmp/err" 'extrapolate' "the error says how to go beyond"
 expect_exit 1 "misspelt perceptual word" -- "$sp" compile -e "stickyness 0.3"
 has "$tmp/err" 'did you mean `stickiness`' "perceptual word suggestion"

@@ -39,11 +39,11 @@ struct Word {
   const char* target;     // provenance name of the ratio-scale target
 };
 const Word kWords[] = {
-    {"viscosity", "viscosity-provisional", "damper.damping", "damper.viscosity_target"},
-    {"stickiness", "viscosity-provisional", "damper.damping", "damper.viscosity_target"},
-    {"slipperiness", "slipperiness-provisional", "antiviscous.damping", "antiviscous.slipperiness_target"},
-    {"softness", "softness-provisional", "spring.stiffness", "spring.softness_target"},
-    {"springiness", "softness-provisional", "spring.stiffness", "spring.softness_target"},
+    {"viscosity", "stevens-guirao1964", "damper.damping", "damper.viscosity_target"},
+    {"stickiness", "stevens-guirao1964", "damper.damping", "damper.viscosity_target"},
+    {"slipperiness", "ekman1965", "friction.coefficient", "friction.slipperiness_target"},
+    {"softness", "harper-stevens1964", "spring.stiffness", "spring.softness_target"},
+    {"springiness", "harper-stevens1964", "spring.stiffness", "spring.softness_target"},
     {"bumpiness", "bumpiness-provisional", "texture.period", "texture.bumpiness_target"},
 };
 
@@ -56,30 +56,39 @@ std::string material(const Word& w, double value) {
 
 }  // namespace
 
-TEST(PerceptMaps, ShippedProvisionalMapsAreTheCompileMaps) {
+// Softness, viscosity and slipperiness compile through maps from the literature (sourced, each with
+// a Weber fraction, each felt on real materials); bumpiness still through a provisional one.
+TEST(PerceptMaps, ShippedCompileMapsAreSourcedExceptBumpiness) {
   const auto& cal = test::shipped_compiler().calibration();
-  for (const char* percept : {"viscosity", "slipperiness", "softness", "bumpiness"}) {
-    SCOPED_TRACE(percept);
-    const auto* m = cal.compile_map(percept);
+  struct Expect { const char* percept; const char* id; bool provisional; double weber; };
+  for (const Expect& e : {Expect{"viscosity", "stevens-guirao1964", false, 0.34}, Expect{"slipperiness", "ekman1965", false, 0.11},
+                          Expect{"softness", "harper-stevens1964", false, 0.23}, Expect{"bumpiness", "bumpiness-provisional", true, 0}}) {
+    SCOPED_TRACE(e.percept);
+    const auto* m = cal.compile_map(e.percept);
     ASSERT_NE(m, nullptr);
-    EXPECT_TRUE(m->provisional);
-    EXPECT_EQ(m->id, std::string(percept) + "-provisional");
-    EXPECT_EQ(m->file, "calibration/maps/" + std::string(percept) + "-provisional.toml");
+    EXPECT_EQ(m->provisional, e.provisional);
+    EXPECT_EQ(m->id, e.id);
+    EXPECT_EQ(m->file, "calibration/maps/" + std::string(e.id) + ".toml");
     EXPECT_FALSE(m->citation.empty());
+    EXPECT_EQ(m->real_material(), !e.provisional);
+    if (e.weber > 0) EXPECT_DOUBLE_EQ(m->weber_fraction.value_or(0), e.weber);
+    else EXPECT_FALSE(m->weber_fraction);
     // Percept 1 lies at one end of the map's domain: the ratio scale and the domain agree.
-    const auto* d = m->damping ? &*m->damping : m->stiffness ? &*m->stiffness : m->period ? &*m->period : nullptr;
+    const auto* d = m->damping ? &*m->damping : m->stiffness ? &*m->stiffness : m->period ? &*m->period
+                  : m->friction ? &*m->friction : nullptr;
     ASSERT_NE(d, nullptr);
     EXPECT_NEAR(std::max(m->percept_of(d->min), m->percept_of(d->max)), 1.0, 1e-12);
   }
   EXPECT_FALSE(cal.roughness_map().provisional);
 }
 
-// The exponents and references, restated from the map files' comments and sources (Stevens and
-// Guirao 1964; Stevens's table, hardness 0.8 inverted; designed for slipperiness and bumpiness).
+// The exponents and references, restated from the sources (Stevens and Guirao 1964: 0.42; Stevens's
+// table, hardness 0.8 inverted; Ekman et al. 1965's bound -1 with Smith and Scott 1996's most
+// slippery surface, 0.43; designed for bumpiness).
 TEST(PerceptMaps, FilesStateTheDocumentedLaws) {
   struct Law { const char* id; double slope, reference_si; };
-  for (const Law& l : {Law{"viscosity-provisional", 0.42, 10.0}, Law{"softness-provisional", -0.8, 20.0},
-                       Law{"slipperiness-provisional", 1.0, 3.0}, Law{"bumpiness-provisional", 0.5, 0.010}}) {
+  for (const Law& l : {Law{"stevens-guirao1964", 0.42, 10.0}, Law{"harper-stevens1964", -0.8, 20.0},
+                       Law{"ekman1965", -1.0, 0.43}, Law{"bumpiness-provisional", 0.5, 0.010}}) {
     SCOPED_TRACE(l.id);
     const auto m = map_file(l.id);
     EXPECT_DOUBLE_EQ(m.slope, l.slope);
@@ -116,7 +125,15 @@ TEST(PerceptResolution, NumbersAgreeWithTheLawsRestated) {
   EXPECT_NEAR(provenance(*b.program, "texture.period").value_si, 0.0036, 1e-12);
   auto sl = compile("slipperiness 0.3");
   ASSERT_TRUE(sl.ok());
-  EXPECT_NEAR(provenance(*sl.program, "antiviscous.damping").value_si, 0.9, 1e-12);
+  EXPECT_NEAR(provenance(*sl.program, "friction.coefficient").value_si, 0.43 / 0.3, 1e-12);  // mu 1.43
+  // One Coulomb friction term, holding and sliding alike, the hand pressing with 1 N.
+  const schema::FrictionTerm* f = nullptr;
+  for (const auto& t : sl.program->terms)
+    if (const auto* x = std::get_if<schema::FrictionTerm>(&t)) f = x;
+  ASSERT_NE(f, nullptr);
+  EXPECT_NEAR(f->kinetic_coefficient, 0.43 / 0.3, 1e-12);
+  EXPECT_DOUBLE_EQ(f->static_coefficient, f->kinetic_coefficient);
+  EXPECT_DOUBLE_EQ(f->press_N, 1.0);
 }
 
 TEST(PerceptResolution, AliasesAreTheSameContinuum) {
@@ -133,17 +150,20 @@ TEST(PerceptResolution, AliasesAreTheSameContinuum) {
   EXPECT_LT(provenance(*softer.program, "spring.stiffness").value_si, provenance(*c.program, "spring.stiffness").value_si);
 }
 
-TEST(PerceptResolution, SlipperinessIsAntiViscousDampingWithAnEnergyBound) {
+// Slipperiness is scaled against the friction coefficient (Ekman et al. 1965; Smith and Scott 1996),
+// so it compiles to Coulomb friction: passive, no energy bound, no W0306.
+TEST(PerceptResolution, SlipperinessIsPassiveCoulombFriction) {
   auto r = compile("slipperiness 0.5");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
   ASSERT_EQ(r.program->terms.size(), 1u);
-  const auto* d = std::get_if<schema::DamperTerm>(&r.program->terms[0]);
-  ASSERT_NE(d, nullptr);
-  EXPECT_NEAR(d->damping_Ns_per_m, -1.5, 1e-12);
-  EXPECT_FALSE(schema::is_passive(r.program->terms[0]));
-  EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0306"), 1u);
-  EXPECT_DOUBLE_EQ(r.program->energy_budget_J, 0.05);  // the defaults of docs/RUNTIME.md
-  EXPECT_DOUBLE_EQ(r.program->energy_refill_W, 0.01);
+  const auto* f = std::get_if<schema::FrictionTerm>(&r.program->terms[0]);
+  ASSERT_NE(f, nullptr);
+  EXPECT_NEAR(f->kinetic_coefficient, 0.86, 1e-12);  // 0.43 / 0.5
+  EXPECT_TRUE(schema::is_passive(r.program->terms[0]));
+  EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0306"), 0u);
+  EXPECT_NEAR(provenance(*r.program, "friction.press").value_si, 1.0, 1e-12);
+  // slipperiness 0 would be an infinite coefficient.
+  EXPECT_EQ(test::codes(compile("slipperiness 0")), std::vector<std::string>{"E0304"});
 }
 
 TEST(PerceptResolution, BumpinessSetsTheInheritedGratingsPeriodOnly) {
@@ -177,7 +197,7 @@ TEST(PerceptResolution, FileBeatsWhatItInheritsEitherWay) {
   o.library_dir = dir;
   o.calibration_dir = std::string(SANDPAPER_SOURCE_DIR) + "/calibration";
   compiler::Compiler c(o);
-  const auto visc = map_file("viscosity-provisional");
+  const auto visc = map_file("stevens-guirao1964");
 
   // Inherited: the target and its warning come along, the provenance still names the map and file.
   auto inherited = c.compile_text("like honey");
@@ -186,10 +206,11 @@ TEST(PerceptResolution, FileBeatsWhatItInheritsEitherWay) {
   EXPECT_NEAR(damping.value_si, visc.value_for(0.8), 1e-12);
   EXPECT_EQ(damping.layer, "representative");
   EXPECT_NE(damping.source.find("library honey"), std::string::npos) << damping.source;
-  EXPECT_NE(damping.source.find("via viscosity-provisional (calibration/maps/viscosity-provisional.toml)"),
+  EXPECT_NE(damping.source.find("via stevens-guirao1964 (calibration/maps/stevens-guirao1964.toml)"),
             std::string::npos)
       << damping.source;
-  EXPECT_EQ(count(test::codes(inherited, Severity::Warning), "W0320"), 2u);
+  EXPECT_EQ(count(test::codes(inherited, Severity::Warning), "W0321"), 2u);  // both maps' sources felt real materials
+  EXPECT_EQ(count(test::codes(inherited, Severity::Warning), "W0320"), 0u);
 
   // The file's physical damper beats the inherited viscosity: no viscosity target, no viscosity warning.
   auto physical = c.compile_text("like honey; damper 2 N*s/m");
@@ -197,14 +218,14 @@ TEST(PerceptResolution, FileBeatsWhatItInheritsEitherWay) {
   EXPECT_DOUBLE_EQ(provenance(*physical.program, "damper.damping").value_si, 2.0);
   EXPECT_EQ(provenance(*physical.program, "damper.damping").layer, "physical");
   for (const auto& pv : physical.program->provenance) EXPECT_NE(pv.parameter, "damper.viscosity_target");
-  EXPECT_EQ(count(test::codes(physical, Severity::Warning), "W0320"), 1u);  // softness is still inherited
+  EXPECT_EQ(count(test::codes(physical, Severity::Warning), "W0321"), 1u);  // softness is still inherited
 }
 
 TEST(PerceptResolution, FilesViscosityBeatsInheritedDamper) {
   // library/textiles/silk-satin.hmat states damper 0.5 N*s/m.
   auto r = compile("like silk-satin; viscosity 0.2");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
-  EXPECT_NEAR(provenance(*r.program, "damper.damping").value_si, map_file("viscosity-provisional").value_for(0.2), 1e-12);
+  EXPECT_NEAR(provenance(*r.program, "damper.damping").value_si, map_file("stevens-guirao1964").value_for(0.2), 1e-12);
   EXPECT_EQ(provenance(*r.program, "damper.damping").layer, "perceptual");
 }
 
@@ -212,7 +233,7 @@ TEST(PerceptDiagnostics, OutOfRangeValuesAreErrorsThatSayWhatToWrite) {
   struct Case { const char* text; const char* code; const char* in_message; };
   for (const Case& c : {Case{"viscosity -0.2", "E0304", "negative"}, Case{"softness 0", "E0304", "infinitely stiff"},
                         Case{"bumpiness 0; roughness 0.3", "E0304", "period 0"},
-                        Case{"viscosity 1.2", "E0303", "top of the viscosity-provisional map's domain"},
+                        Case{"viscosity 1.2", "E0303", "top of the stevens-guirao1964 map's domain"},
                         Case{"slipperiness 2", "E0303", "above 1"}, Case{"softness 1.5", "E0303", "above 1"},
                         Case{"viscosity thick", "E0307", "unknown viscosity level"},
                         Case{"springiness 0.5 N/m", "E0205", "takes no unit"}, Case{"viscosty 0.4", "E0202", "viscosty"}}) {
@@ -244,29 +265,37 @@ TEST(PerceptDiagnostics, ExtrapolationWarns) {
   EXPECT_EQ(count(test::codes(inside, Severity::Warning), "W0301"), 0u);
 }
 
-TEST(PerceptWarnings, EveryProvisionalMapWarnsInEveryOutput) {
+// A provisional map (bumpiness) warns W0320; a sourced map whose subjects felt real materials
+// (softness, viscosity, slipperiness) warns W0321 instead; each in every output, naming the map.
+TEST(PerceptWarnings, EveryProvisionalOrRealMaterialMapWarnsInEveryOutput) {
   const auto& c = test::shipped_compiler();
   for (const Word& w : kWords) {
     SCOPED_TRACE(w.word);
     auto r = compile(material(w, 0.5));
     ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
     const std::string file = std::string("calibration/maps/") + w.map + ".toml";
+    const bool provisional = c.calibration().find_map(w.map)->provisional;
+    const std::string code = provisional ? "W0320" : "W0321", other = provisional ? "W0321" : "W0320";
     // Diagnostics (what `compile` prints on stderr).
-    ASSERT_EQ(count(test::codes(r, Severity::Warning), "W0320"), 1u);
+    ASSERT_EQ(count(test::codes(r, Severity::Warning), code), 1u);
+    EXPECT_EQ(count(test::codes(r, Severity::Warning), other), 0u);
     for (const auto& d : r.diagnostics.all())
-      if (d.code == "W0320") {
-        EXPECT_NE(d.message.find(std::string("provisional map ") + w.map), std::string::npos) << d.message;
+      if (d.code == code) {
+        if (provisional) EXPECT_NE(d.message.find(std::string("provisional map ") + w.map), std::string::npos) << d.message;
+        else EXPECT_NE(d.message.find("real materials"), std::string::npos) << d.message;
         EXPECT_NE(d.message.find(file), std::string::npos) << d.message;
       }
     // The patch program's warnings, and so `compile --json`, `inspect` and `run`.
     bool in_program = false;
-    for (const auto& pw : r.program->warnings) in_program |= pw.code == "W0320" && pw.message.find(w.map) != std::string::npos;
+    for (const auto& pw : r.program->warnings) in_program |= pw.code == code && pw.message.find(w.map) != std::string::npos;
     EXPECT_TRUE(in_program);
-    EXPECT_NE(schema::to_json(*r.program).dump().find("W0320"), std::string::npos);
-    // explain's text: the warning, and the map named beside the percept.
+    EXPECT_NE(schema::to_json(*r.program).dump().find(code), std::string::npos);
+    // explain's text: the warning, and the map named beside the percept with its source and domain.
     const auto text = compiler::explain_text(*r.material, *r.program, c.calibration(), c.device());
-    EXPECT_NE(text.find("W0320"), std::string::npos);
-    EXPECT_NE(text.find(std::string("PROVISIONAL map ") + w.map + ", " + file), std::string::npos) << text;
+    EXPECT_NE(text.find(code), std::string::npos);
+    EXPECT_NE(text.find(std::string(provisional ? "PROVISIONAL map " : "calibration ") + w.map + ", " + file), std::string::npos) << text;
+    EXPECT_NE(text.find("source: " + c.calibration().find_map(w.map)->citation), std::string::npos) << text;
+    EXPECT_NE(text.find("domain: "), std::string::npos) << text;
     // Provenance names the map and its file.
     EXPECT_NE(provenance(*r.program, w.parameter).source.find(std::string("via ") + w.map + " (" + file + ")"),
               std::string::npos);
@@ -301,7 +330,7 @@ class PerceptCalibration : public ::testing::Test {
 
 TEST_F(PerceptCalibration, AWordWithoutAMapIsAnError) {
   auto cal = copy_calibration();
-  fs::remove(cal + "/maps/viscosity-provisional.toml");
+  fs::remove(cal + "/maps/stevens-guirao1964.toml");
   auto r = compiler_on(cal).compile_text("viscosity 0.4");
   ASSERT_EQ(test::codes(r), std::vector<std::string>{"E0320"});
   EXPECT_NE(r.diagnostics.all()[0].suggestion.find("damper 2 N*s/m"), std::string::npos);
@@ -310,27 +339,38 @@ TEST_F(PerceptCalibration, AWordWithoutAMapIsAnError) {
 TEST_F(PerceptCalibration, NamedLevelsComeFromTheLevelsFiles) {
   auto cal = copy_calibration();
   std::ofstream(cal + "/levels/viscosity-levels.toml")
-      << "schema = \"sandpaper-levels/1\"\npercept = \"viscosity\"\nmap = \"viscosity-provisional\"\n"
+      << "schema = \"sandpaper-levels/1\"\npercept = \"viscosity\"\nmap = \"stevens-guirao1964\"\n"
          "[[level]]\nname = \"syrup\"\nvalue = 0.7\nrationale = \"a test level\"\n";
   auto c = compiler_on(cal);
   auto r = c.compile_text("stickiness syrup");
   ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
-  EXPECT_NEAR(provenance(*r.program, "damper.damping").value_si, map_file("viscosity-provisional").value_for(0.7), 1e-12);
+  EXPECT_NEAR(provenance(*r.program, "damper.damping").value_si, map_file("stevens-guirao1964").value_for(0.7), 1e-12);
   auto typo = c.compile_text("viscosity syrop");
   ASSERT_EQ(test::codes(typo), std::vector<std::string>{"E0307"});
   EXPECT_EQ(typo.diagnostics.all()[0].suggestion, "did you mean `syrup`?");
 }
 
+// The warnings follow the map file: a bumpiness map marked measured stops W0320; a viscosity map
+// whose apparatus is a joystick stops W0321.
 TEST_F(PerceptCalibration, AMeasuredMapDoesNotWarn) {
   auto cal = copy_calibration();
-  const std::string path = cal + "/maps/viscosity-provisional.toml";
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  s.replace(s.find("status = \"provisional\""), std::string("status = \"provisional\"").size(), "status = \"measured\"");
-  std::ofstream(path) << s;
-  auto r = compiler_on(cal).compile_text("viscosity 0.4");
-  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
-  EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0320"), 0u);
+  const auto rewrite = [](const std::string& path, const std::string& from, const std::string& to) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    ASSERT_NE(s.find(from), std::string::npos) << path;
+    s.replace(s.find(from), from.size(), to);
+    std::ofstream(path) << s;
+  };
+  rewrite(cal + "/maps/bumpiness-provisional.toml", "status = \"provisional\"", "status = \"measured\"");
+  rewrite(cal + "/maps/stevens-guirao1964.toml", "apparatus = \"real material\"", "apparatus = \"joystick\"");
+  auto c = compiler_on(cal);
+  auto b = c.compile_text("bumpiness 0.5; roughness 0.4");
+  ASSERT_TRUE(b.ok()) << compiler::format_diagnostics(b.diagnostics);
+  EXPECT_EQ(count(test::codes(b, Severity::Warning), "W0320"), 0u);
+  auto v = c.compile_text("viscosity 0.4");
+  ASSERT_TRUE(v.ok()) << compiler::format_diagnostics(v.diagnostics);
+  EXPECT_EQ(count(test::codes(v, Severity::Warning), "W0321"), 0u);
+  EXPECT_EQ(count(test::codes(test::shipped_compiler().compile_text("viscosity 0.4"), Severity::Warning), "W0321"), 1u);
 }

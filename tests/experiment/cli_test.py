@@ -179,8 +179,15 @@ def main():
         with open(os.path.join(killed, "results.jsonl"), "a") as f:
             f.write('{"record":"answer","trial":3,"stim')  # as if killed while writing trial 4
         r = run(sp, "experiment", "resume", killed, "--observer", SIM, "--virtual-clock")
+        c.check(r.returncode == 2 and "answered by observer `terminal`" in r.stderr and "--switch-observer" in r.stderr,
+                f"resuming a terminal session with another observer is refused without --switch-observer (exit {r.returncode})")
+        r = run(sp, "experiment", "resume", killed, "--observer", SIM, "--switch-observer", "--virtual-clock")
         c.check(r.returncode == 0 and "resuming at trial 4" in r.stderr and "all 40 trials answered" in r.stdout,
                 f"resume continues at trial 4 and finishes (exit {r.returncode})")
+        with open(os.path.join(killed, "results.jsonl")) as f:
+            switches = [json.loads(l) for l in f if '"observer-switch"' in l]
+        c.check(len(switches) == 1 and switches[0]["from"] == "terminal" and switches[0]["to"].startswith("simulated:")
+                and switches[0]["trial"] == 3, f"the switch of observer is recorded at trial 4 ({switches})")
         got = answers(killed)
         ref = answers(os.path.join(results, "S01"))
         c.check([a["trial"] for a in got] == list(range(40)), "each trial answered once, in order")
@@ -202,8 +209,68 @@ def main():
         p.wait(timeout=60)
         c.check(ready and p.returncode == 0 and b"continue with `sandpaper experiment resume" in out
                 and "stopped at trial 2 of 40" in err.wait_closed(), f"Ctrl-C at a question stops the session (exit {p.returncode})")
-        r = run(sp, "experiment", "resume", stopped, "--observer", SIM, "--virtual-clock")
+        r = run(sp, "experiment", "resume", stopped, "--observer", SIM, "--switch-observer", "--virtual-clock")
         c.check(r.returncode == 0 and len(answers(stopped)) == 40, "and it resumes to the end")
+
+        # A simulated session killed after 21 trials (results are flushed per trial: a kill -9 leaves
+        # the header and the answered trials) resumes with its recorded observer, not the terminal.
+        cut = os.path.join(tmp, "cut")
+        shutil.copytree(os.path.join(results, "S02"), os.path.join(cut, "S02"))
+        with open(os.path.join(cut, "S02", "results.jsonl")) as f:
+            lines = f.readlines()
+        with open(os.path.join(cut, "S02", "results.jsonl"), "w") as f:
+            f.writelines(lines[:1 + 21])
+        incomplete = os.path.join(tmp, "incomplete")
+        for s in ("S01", "S03", "S04"):
+            shutil.copytree(os.path.join(results, s), os.path.join(incomplete, s))
+        shutil.copytree(os.path.join(cut, "S02"), os.path.join(incomplete, "S02"))
+        r = run(sp, "experiment", "analyse", incomplete, "--json")
+        rep = json.loads(r.stdout) if r.returncode == 0 else {}
+        left = [x for x in rep.get("runs", []) if not x["included"]]
+        c.check(r.returncode == 0 and rep.get("subjects") == 3 and len(left) == 1 and left[0]["subject"] == "S02"
+                and left[0]["answered_recorded"] == 17 and left[0]["recorded_trials"] == 36
+                and rep.get("magnitude_estimation", {}).get("n_trials") == 3 * 36,
+                f"analyse leaves out S02, 17 of 36 recorded trials answered, and fits 3 subjects ({r.returncode}, {left})")
+        r = run(sp, "experiment", "analyse", incomplete)
+        c.check(r.returncode == 0 and "17 of 36 recorded trials answered, incomplete: left out" in r.stdout
+                and "12 to practice trials, 108 to recorded trials" in r.stdout, f"and says so in text: {r.stdout[:400]}")
+        r = run(sp, "experiment", "analyse", incomplete, "--json", "--include-incomplete")
+        rep = json.loads(r.stdout) if r.returncode == 0 else {}
+        c.check(r.returncode == 0 and rep.get("subjects") == 4 and rep.get("magnitude_estimation", {}).get("n_trials") == 3 * 36 + 17,
+                "--include-incomplete pools it")
+        r = run(sp, "experiment", "resume", os.path.join(cut, "S02"), "--virtual-clock", stdin=subprocess.DEVNULL)
+        got = answers(os.path.join(cut, "S02"))
+        c.check(r.returncode == 0 and "resuming at trial 22" in r.stderr and "observer simulated:" in r.stderr
+                and "all 40 trials answered" in r.stdout, f"resume takes the recorded simulated observer (exit {r.returncode}) {r.stderr[-300:]}")
+        c.check([a["trial"] for a in got] == list(range(40)), "and ends with every trial answered once")
+
+        # Each dimension's design: six simulated subjects, the fitted map installed for the sim device,
+        # and explain then compiles through it.
+        for percept, design_file, exponent, predictor in (("softness", "softness-magnitude.toml", -0.8, "stiffness"),
+                                                          ("viscosity", "viscosity-magnitude.toml", 0.42, "damping"),
+                                                          ("slipperiness", "slipperiness-magnitude.toml", -1.0, "friction")):
+            dres = os.path.join(tmp, "dim", percept)
+            ok = True
+            for s in range(1, 7):
+                r = run(sp, "experiment", "run", "examples/experiments/" + design_file, "--subject", f"S0{s}", "-o",
+                        os.path.join(dres, f"S0{s}"), "--observer", f"simulated:dimension={percept},noise=0.15,seed={s}",
+                        "--virtual-clock", "--calibration", cal)
+                ok = ok and r.returncode == 0
+            c.check(ok, f"the {percept} design runs for 6 simulated subjects ({r.stderr[-300:]})")
+            map_path = os.path.join(cal, "maps", f"sim-{percept}.toml")
+            r = run(sp, "experiment", "analyse", dres, "--map-out", map_path, "--calibration", cal, "--json")
+            rep = json.loads(r.stdout) if r.returncode == 0 else {}
+            me = rep.get("magnitude_estimation", {})
+            c.check(r.returncode == 0 and abs(me.get("slope", 99) - exponent) < 2 * me.get("slope_se", 0),
+                    f"{percept}: slope {me.get('slope')} +- {me.get('slope_se')} recovers the observer's default exponent {exponent}")
+            c.check(rep.get("map", {}).get("predictor") == predictor and os.path.isfile(map_path), f"{percept}: --map-out writes {map_path}")
+            value = {"softness": "0.7", "viscosity": "0.5", "slipperiness": "0.6"}[percept]
+            r = run(sp, "explain", "-e", f"{percept} {value}", "--device", "sim", "--calibration", cal, "--json")
+            ex = json.loads(r.stdout) if r.returncode == 0 else {}
+            pj = (ex.get("explain", ex).get("percepts") or [{}])[0]
+            c.check(r.returncode == 0 and pj.get("map", {}).get("id") == f"sim-{percept}"
+                    and abs(pj["map"]["slope"] - me.get("slope", 0)) < 1e-4,
+                    f"{percept}: explain then compiles through the installed map ({pj.get('map', {}).get('id')})")
 
         # Runs of different designs are not pooled unless asked.
         other = os.path.join(tmp, "other.toml")

@@ -213,4 +213,8 @@ def test_the_simulated_observer_answers_as_the_experiments_do():
     conf = obs.estimate(3.0, period_m=0.0025, confidence=True)
     assert 0 <= conf <= 100
     with pytest.raises(ValueError):
-        sandpaper.SimulatedObserver("exponent=-1")
+        sandpaper.SimulatedObserver("exponent=0")
+    with pytest.raises(ValueError):
+        sandpaper.SimulatedObserver("dimension=softness")  # which exponent?
+    soft = sandpaper.SimulatedObserver("dimension=softness,exponent=-0.8,noise=0,seed=1", subject="S01")
+    assert soft.estimate(2.0) / soft.estimate(0.5) == pytest.approx(4 ** -0.8, rel=1e-9)  # a stiffer spring: less soft

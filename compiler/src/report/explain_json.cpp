@@ -7,6 +7,7 @@
 #include "sandpaper/compiler/felt_at_speed.hpp"
 #include "sandpaper/compiler/force_levels.hpp"
 #include "sandpaper/compiler/knowledge_report.hpp"
+#include "sandpaper/compiler/percepts.hpp"
 
 namespace sandpaper::compiler {
 
@@ -16,6 +17,7 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
   j["knowledge"] = compiler::knowledge_json(compiler::assess_knowledge(material, prog, c.calibration()),
                                             c.calibration());
   j["maps"] = compiler::maps_json(c.calibration());
+  j["percepts"] = compiler::percepts_json(material, c.calibration());
   // The same names as a run's report: `run --json` measures felt_peak_N where this predicts it.
   const auto& map = c.calibration().roughness_map();
   nlohmann::json felt = nlohmann::json::array();

@@ -225,7 +225,7 @@ std::string dump_resolved(const ResolvedMaterial& m) {
   line(os, "roughness", m.roughness);
   line(os, "spring", m.spring);
   line(os, "damper", m.damper);
-  line(os, "antiviscous", m.antiviscous);
+  line(os, "friction coefficient", m.friction_coefficient);
   for (const auto& p : m.percepts) {
     os << "percept " << p.word << " (" << p.percept << ") sets " << p.parameter << " through " << p.map_id
        << (p.provisional ? " (provisional)" : "") << "\n";

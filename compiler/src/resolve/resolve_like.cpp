@@ -132,7 +132,7 @@ ResolvedMaterial Resolver::from_library(const LikeStmt& like, bool reference) {
   inherit(m.roughness, label);
   inherit(m.spring, label);
   inherit(m.damper, label);
-  inherit(m.antiviscous, label);
+  inherit(m.friction_coefficient, label);
   for (auto& t : m.percepts) inherit(t.value, label);
   inherit(m.quantize_bits, label);
   for (auto& law : m.laws)

@@ -142,7 +142,7 @@ void Resolver::percept(const PerceptStmt& s, const Statement& st, ResolvedMateri
   const std::string param = w->parameter;
   drop_targets(m, param);
   if (param == "damper.damping") m.damper = p;
-  else if (param == "antiviscous.damping") m.antiviscous = p;
+  else if (param == "friction.coefficient") m.friction_coefficient = p;
   else if (param == "spring.stiffness") m.spring = p;
   else if (param == "texture.period") {
     // The period of the grating this file inherits (its other parameters kept), or a new grating.
@@ -158,7 +158,7 @@ void Resolver::percept(const PerceptStmt& s, const Statement& st, ResolvedMateri
   } else throw InternalError("resolver: no parameter '" + param + "' for perceptual word '" + s.word + "'");
   m.percepts.push_back({s.word, w->percept, param,
                         Param{value, stated, Layer::Perceptual, s.value_location.str(), s.value_location}, map->id,
-                        map->file, map->provisional});
+                        map->file, map->provisional, map->real_material()});
 }
 
 void Resolver::drop_targets(ResolvedMaterial& m, const std::string& parameter) {

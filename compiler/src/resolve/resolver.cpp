@@ -62,7 +62,7 @@ Param default_param(double si, std::string why) { return Param{si, std::move(why
 // "library corduroy" or "thesis stimulus barsB15W20_2".
 void inherit(Param& p, const std::string& label) {
   if (p.layer == Layer::Default) return;  // a default stays a default, wherever it came through
-  // A value that came through a map keeps naming it ("... via viscosity-provisional (calibration/...)").
+  // A value that came through a map keeps naming it ("... via stevens-guirao1964 (calibration/...)").
   const auto via = p.source.find(" via ");
   const std::string map = p.location.file && via != std::string::npos ? p.source.substr(via) : "";
   p.source = label + " (" + (p.location.file ? p.location.str() : p.source) + ")" + map;
@@ -269,7 +269,7 @@ void Resolver::finish(ResolvedMaterial& m) {
     diags_.error("E0316", start, "the material is empty: it has no statement",
                  "describe it, e.g. `like corduroy`, `roughness medium` or `grating period 2.5 mm`; a material "
                  "meant to feel like nothing says `force Nothing`");
-  else if (!has_texture && !m.spring && !m.damper && !m.antiviscous && !has_force_law && !diags_.has_errors())
+  else if (!has_texture && !m.spring && !m.damper && !m.friction_coefficient && !has_force_law && !diags_.has_errors())
     diags_.warning("W0305", start,
                    "the material has no force terms; it will feel like nothing",
                    "add a texture, a spring or a damper");

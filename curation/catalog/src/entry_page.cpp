@@ -193,7 +193,7 @@ std::string physical(const EntryView& v) {
   o << texture_rows(lib, m);
   o << opt_row(lib, "height quantization", m.quantize_bits, 1, "bits") << opt_row(lib, "maximum lateral force", m.max_lateral_force, 1, "N")
     << opt_row(lib, "spring stiffness", m.spring, 1, "N/m") << opt_row(lib, "damping", m.damper, 1, "N\xC2\xB7s/m")
-    << opt_row(lib, "anti-viscous damping", m.antiviscous, 1, "N\xC2\xB7s/m");
+    << opt_row(lib, "friction coefficient (pressed with 1 N)", m.friction_coefficient, 1, "");
   for (const auto& law : m.laws) {
     o << text_row(std::string(law.physics ? "physics " : "force ") + law.name, "<code>" + esc(law.text) + "</code>");
     const auto* def = schema::find_law(law.physics ? schema::LawFamily::Physics : schema::LawFamily::Force, law.name);

@@ -29,9 +29,9 @@ struct Range {
 
 // One term of a log-linear map: coefficient * log10(x / unit).
 struct Predictor {
-  std::string name;            // "force", "period", "feature", "damping", "stiffness"
+  std::string name;            // "force", "period", "feature", "damping", "stiffness", "friction"
   std::string quantity;        // in words
-  std::string unit;            // unit inside the logarithm, e.g. "pu"
+  std::string unit;            // unit inside the logarithm, e.g. "pu"; "1": dimensionless (friction)
   double unit_si = 1;          // that unit in SI
   double coefficient = 0;
   std::optional<double> se, t, p;
@@ -57,9 +57,17 @@ struct PsychophysicalMap {
   std::string ratio_predictor;
   double slope = 0, slope_se = 0;
   double reference_si = 0;
-  // Measured domain, SI; absent quantities were not reported.
-  std::optional<Range> force, period, feature, damping, stiffness;
+  // Measured domain, SI; absent quantities were not reported. friction: the coefficient (no unit).
+  std::optional<Range> force, period, feature, damping, stiffness, friction;
   std::string domain_texture, domain_device, effector;
+  // What the source's subjects touched ([domain] apparatus): "joystick", "manipulandum" (another
+  // force-feedback device), "real material" (specimens felt directly: a joystick extrapolates,
+  // W0321), "none" (not measured); empty when the file does not say.
+  std::string apparatus;
+  // Discrimination ([jnd]): the Weber fraction of the predictor (0.23: a 23 % change of stiffness is
+  // one JND) and where it was measured; nullopt when the file gives none.
+  std::optional<double> weber_fraction;
+  std::string jnd_source;
   std::string citation, where;
 
   // Ratio-scale percept of a patch whose ratio predictor is `x_si` (>= 0); 0 for x <= 0.
@@ -71,6 +79,8 @@ struct PsychophysicalMap {
   // "M. Minsky, ..., section 5.3.1, Figure 19"
   std::string source() const { return citation + ", " + where; }
   const Predictor* predictor(const std::string& name) const;
+  // The source's subjects felt real specimens, not a force-feedback device.
+  bool real_material() const { return apparatus == "real material"; }
 };
 
 // A named point on a percept's ratio scale ("coarse"), with why it sits where it does.

@@ -12,18 +12,30 @@
 
 namespace sandpaper::calibration {
 
-// One magnitude estimate: a CSV row `subject,stimulus,force_N,period_mm,response`.
+// One magnitude estimate: a CSV row `subject,stimulus,force_N,period_mm,response` (roughness), or
+// a trial of an experiment on another percept, whose predictor is its stimulus's physical quantity.
 struct Trial {
   std::string subject;
   std::string stimulus;
-  double force_N = 0;       // maximum lateral force of the stimulus, N (> 0)
-  double period_m = 0;      // spatial period of the stimulus, m (> 0)
+  double x = 0;             // the predictor's value, SI (> 0): maximum lateral force N for roughness
+  double period_m = 0;      // spatial period of the stimulus, m (> 0); 0: none (not a texture)
   std::optional<double> response;  // the estimate (> 0); nullopt: an empty cell, the trial gave no answer
   int line = 0;             // 1-based CSV line, 0 for trials made in code
 };
 
+// The physical quantity a percept is regressed on: roughness on force (Minsky 1995 Figure 19),
+// softness on stiffness, viscosity on damping, slipperiness on the friction coefficient
+// (docs/CALIBRATION.md). `name` is the map's predictor name; `unit` the SI unit the fit's
+// logarithms are taken in ("1": dimensionless).
+struct FitPredictor {
+  std::string name = "force";
+  std::string unit = "N";
+  std::string quantity = "maximum lateral force of the stimulus";
+};
+
 struct MagnitudeEstimationData {
   std::string path;         // the CSV, for diagnostics and the map's [source]
+  FitPredictor predictor;
   std::vector<Trial> trials;
 };
 
@@ -40,7 +52,7 @@ enum class Normalisation {
 
 struct StimulusMean {
   std::string stimulus;
-  double force_N = 0, period_m = 0;
+  double x = 0, period_m = 0;   // the predictor's value (SI) and the period, m (0: none)
   int estimates = 0;            // answered trials averaged
   double mean_response = 0;     // geometric mean of the (normalised) estimates
 };
@@ -64,13 +76,15 @@ struct BetweenSubjects {
 
 struct MagnitudeEstimationFit {
   std::string path;
+  FitPredictor predictor;
   Normalisation normalisation = Normalisation::GeometricMean;
   double grand_geometric_mean = 0;       // geometric mean of the subjects' geometric means
   std::vector<StimulusMean> stimuli;     // in order of first appearance
   std::vector<SubjectSummary> subjects;  // in order of first appearance
   int runs = 0;                          // the most trials any subject gave one stimulus
   int trials = 0, answered = 0;
-  // Figure 19: log10 mean estimate = constant + slope * log10(force / 1 N). Names "constant", "log force".
+  // Figure 19: log10 mean estimate = constant + slope * log10(x / 1 unit). Names "constant" and
+  // "log <predictor>" ("log force").
   RegressionResult force;
   // Figure 20 with a constant: ... + c * log10(period / 1 mm). nullopt with `period_note` saying why
   // (one period, too few stimuli, period collinear with force).
@@ -80,8 +94,9 @@ struct MagnitudeEstimationFit {
   std::string period_note;
   BetweenSubjects between;
 
-  double slope() const { return force.coefficient("log force").value; }
-  double slope_se() const { return force.coefficient("log force").se; }
+  std::string slope_name() const { return "log " + predictor.name; }
+  double slope() const { return force.coefficient(slope_name()).value; }
+  double slope_se() const { return force.coefficient(slope_name()).se; }
   double intercept() const { return force.coefficient("constant").value; }
 };
 
@@ -99,7 +114,8 @@ struct MapFileOptions {
   // Non-empty: a device's own map (use = "device", [domain] device = this), which the compiler uses
   // only for that device (docs/EXPERIMENTS.md). Empty: the default compile map (use = "compile").
   std::string device;
-  double reference_N = 0;   // ratio-scale reference force, N; 0: the strongest stimulus
+  double reference_N = 0;   // ratio-scale reference, in the predictor's SI unit (a force N for roughness);
+                            // 0: the most intense stimulus
   std::string provenance;   // "# " lines written first, and the [source] where; empty: calibrate fit's
   std::string citation;     // [source] citation; empty: "magnitude-estimation data in <csv>"
 };

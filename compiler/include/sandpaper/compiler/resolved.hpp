@@ -84,11 +84,12 @@ struct ResolvedPattern {
 struct PerceptTarget {
   std::string word;       // as written: "stickiness"
   std::string percept;    // "viscosity"
-  std::string parameter;  // what it set: "damper.damping", "antiviscous.damping", "spring.stiffness", "texture.period"
+  std::string parameter;  // what it set: "damper.damping", "friction.coefficient", "spring.stiffness", "texture.period"
   Param value;            // the ratio-scale number, stated "stickiness 0.4"
-  std::string map_id;     // "viscosity-provisional"
-  std::string map_file;   // "calibration/maps/viscosity-provisional.toml"
-  bool provisional = false;  // the map is not yet measured: every output warns W0320
+  std::string map_id;     // "stevens-guirao1964"
+  std::string map_file;   // "calibration/maps/stevens-guirao1964.toml"
+  bool provisional = false;  // the map has no published or measured source: every output warns W0320
+  bool real_material = false;  // the map's source felt real specimens, not a device: every output warns W0321
 };
 
 struct ResolvedMaterial {
@@ -103,7 +104,7 @@ struct ResolvedMaterial {
   std::optional<Param> roughness;          // the ratio-scale roughness asked for, if any
   std::optional<Param> spring;             // N/m
   std::optional<Param> damper;             // N*s/m
-  std::optional<Param> antiviscous;        // N*s/m: b of F = +b v (`slipperiness`; Appendix B AntiViscous)
+  std::optional<Param> friction_coefficient;  // mu of Coulomb friction (`slipperiness`; docs/FORCE_LAWS.md, Friction)
   std::vector<PerceptTarget> percepts;     // viscosity, slipperiness, softness, bumpiness targets
   std::vector<ResolvedLaw> laws;           // force laws and physics models, summed in order
   std::optional<Param> energy_budget;      // J, for non-passive laws

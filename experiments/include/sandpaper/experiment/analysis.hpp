@@ -21,6 +21,7 @@ namespace sandpaper::experiment {
 
 struct AnalyseOptions {
   bool allow_mixed_designs = false;   // pool results of designs with different checksums
+  bool include_incomplete = false;    // pool runs that did not answer every trial (left out by default)
   std::filesystem::path pictures_dir; // where the SVG pictures go; empty: <dir>/analysis
 };
 
@@ -28,6 +29,7 @@ struct Analysis {
   nlohmann::json report;              // what `analyse --json` prints
   std::string task;
   std::vector<Results> runs;          // the results folders pooled, in path order
+  std::vector<std::filesystem::path> left_out;  // incomplete runs not pooled
   std::optional<calibration::MagnitudeEstimationFit> magnitude;  // magnitude estimation only
   std::vector<std::filesystem::path> pictures;                   // written
 };
@@ -35,8 +37,10 @@ struct Analysis {
 // Every results folder at or under `dir` (a folder holding results.jsonl), sorted by path.
 std::vector<std::filesystem::path> find_results(const std::filesystem::path& dir);
 
-// Reads, pools and analyses; writes the pictures. Throws DesignError for no results, runs of
-// different tasks, or of different designs (unless allowed), listing the folders of each; and
+// Reads, pools and analyses; writes the pictures. Runs that did not answer every trial are left out
+// (reported in `runs` and `left_out`) unless options.include_incomplete. Throws DesignError for no
+// results, no complete run, runs of different tasks, or of different designs (unless allowed),
+// listing the folders of each; and
 // calibration::FitError when the data cannot support the fit (say what is missing).
 Analysis analyse(const std::filesystem::path& dir, const AnalyseOptions& options);
 

@@ -35,6 +35,9 @@ struct Design {
   std::string title;
   Task task = Task::MagnitudeEstimation;
   std::string device = "sim";
+  // What a magnitude-estimation design scales (percept_quantity.hpp): "roughness" (the default),
+  // "softness", "viscosity" or "slipperiness".
+  std::string percept = "roughness";
   std::vector<StimulusRef> stimuli;
   int repetitions = 1;
   std::uint64_t seed = 0;

@@ -19,6 +19,7 @@ struct Presented {
   std::vector<double> felt_force_N;      // measured from the running loop
   std::vector<double> compiled_force_N;
   std::vector<double> period_m;
+  std::string percept = "roughness";  // what the subject is asked about (the design's percept)
 };
 
 class Observer {
@@ -42,7 +43,10 @@ class Observer {
 
 // Parameters of `--observer simulated:exponent=0.76,noise=0.15,seed=3` (names as in the spec; every
 // one optional):
-//   exponent  Stevens exponent of roughness on felt force (magnitude estimates)           0.76
+//   dimension the percept it judges (roughness, softness, viscosity, slipperiness); must be the
+//             design's                                                      the design's percept
+//   exponent  Stevens exponent of the percept on the felt force (magnitude estimates); negative
+//             for softness and slipperiness            the slope of the percept's compile map
 //   noise     sd of the natural log of each estimate (log-normal noise); also the sd of the
 //             feature noise when sorting and of the confidence, as a fraction of 100 %     0.15
 //   modulus   geometric mean of the subjects' moduli (each subject draws its own)           10
@@ -50,7 +54,9 @@ class Observer {
 //   period_weight  sorting: weight of log period beside log force in the feature space      0.5
 //   seed      random seed (mixed with the subject's id)                                      0
 struct SimulatedObserverSpec {
-  double exponent = 0.76, noise = 0.15, modulus = 10, weber = 0.1, period_weight = 0.5;
+  std::optional<double> exponent;  // nullopt: the caller fills in the percept's compile-map slope
+  std::string dimension;           // empty: the design's percept
+  double noise = 0.15, modulus = 10, weber = 0.1, period_weight = 0.5;
   std::uint64_t seed = 0;
   std::string text;  // as given
 };

@@ -1,6 +1,6 @@
 #pragma once
 // The analysis' pictures as standalone SVG: the magnitude-estimation fit (Figure 19's axes, log
-// mean estimate against log force, with the data points), dendrograms of the sorting task (6.3) and
+// mean estimate against log force or another percept's physical quantity, with the data points), dendrograms of the sorting task (6.3) and
 // the two-interval psychometric function.
 #include <string>
 #include <vector>
@@ -12,7 +12,7 @@
 namespace sandpaper::experiment {
 
 struct EstimatePoint {
-  double force_N = 0;
+  double x = 0;         // the fit's predictor, in its SI unit (force N for roughness)
   double estimate = 0;  // normalised estimate of one trial
 };
 

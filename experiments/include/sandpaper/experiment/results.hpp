@@ -1,7 +1,7 @@
 #pragma once
 // A subject's results folder (docs/EXPERIMENTS.md, "Results"): design.toml, a byte-for-byte copy of
 // the design that was run, and results.jsonl, one JSON object per line: a header, then one record
-// per answered (or interrupted) trial. Each record is appended and flushed to disk (fdatasync)
+// per answered (or interrupted) trial, and one per deliberate change of observer on resuming. Each record is appended and flushed to disk (fdatasync)
 // before the next trial starts, so `kill -9` loses at most the trial in progress; a torn last
 // line is ignored on reading and cut off when the session resumes.
 #include <filesystem>
@@ -21,6 +21,7 @@ struct ResultsHeader {
   std::string design_checksum;   // Design::checksum of design.toml
   std::string design_path;       // the design as it was given to `run`
   std::string subject, task, device, observer;
+  std::string percept = "roughness";  // the design's percept (absent in older results: roughness)
   std::string started;           // ISO 8601, UTC
   int trials = 0;                // in the schedule, practice included
 };
@@ -34,6 +35,10 @@ struct Answer {
   std::vector<double> compiled_force_N;      // per stimulus: the compiled maximum lateral force (x gain)
   std::vector<double> felt_force_N;          // per stimulus: the largest |F| the loop actually wrote
   std::vector<double> period_m;
+  // Per stimulus, a percept other than roughness: the physical quantity it is scaled on, SI, written
+  // under its own key (percept_quantity.hpp: "stiffness_N_per_m", ...). Empty for roughness.
+  std::string quantity_key;
+  std::vector<double> quantity;
   std::optional<double> response;            // magnitude estimate (> 0) or confidence (0-100 %)
   double increment = 0;                      // two-interval
   int comparison_interval = 0, chosen_interval = 0;
@@ -48,12 +53,21 @@ struct Interruption {
   std::string cause;                         // runtime::stop_cause_name
 };
 
+// `experiment resume --switch-observer`: from this trial on, `to` answered instead of `from`.
+struct ObserverSwitch {
+  std::string from, to;
+  int trial = 0;
+};
+
 struct Results {
   std::filesystem::path dir;
   std::string design_text;                   // design.toml
   ResultsHeader header;
   std::vector<Answer> answers;               // in file order
   std::vector<Interruption> interruptions;
+  std::vector<ObserverSwitch> observer_switches;
+  // The observer answering now: the header's, or the last switch's.
+  std::string current_observer() const { return observer_switches.empty() ? header.observer : observer_switches.back().to; }
   // The first trial index with no answer (trials are answered in order); header.trials when done.
   int next_trial() const;
 };
