@@ -123,6 +123,14 @@ sp_status sp_library_roughness_level(const sp_library* library, const char* leve
   return guarded([&] { return new_material(library->library.roughness_level(level), out); });
 }
 
+sp_status sp_library_level(const sp_library* library, const char* percept, const char* level, sp_material** out) {
+  if (!library) return null_argument("sp_library_level", "library");
+  if (!percept) return null_argument("sp_library_level", "percept");
+  if (!level) return null_argument("sp_library_level", "level");
+  if (!out) return null_argument("sp_library_level", "out");
+  return guarded([&] { return new_material(library->library.level(percept, level), out); });
+}
+
 void sp_material_free(sp_material* material) { delete material; }
 
 const char* sp_material_name(const sp_material* material) {

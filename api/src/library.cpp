@@ -64,25 +64,31 @@ Material Library::compile(const std::string& name_or_statements) const {
   return Material(std::move(*result.program));
 }
 
-Material Library::roughness_level(const std::string& level) const {
-  roughness_level_value(level);  // refuse unknown names (and anything that is not a bare name) here
-  return compile("roughness " + level);
+Material Library::roughness_level(const std::string& level) const { return this->level("roughness", level); }
+
+Material Library::level(const std::string& percept, const std::string& level) const {
+  level_value(percept, level);  // refuse unknown names (and anything that is not a bare name) here
+  return compile(percept + " " + level);
 }
 
 const compiler::Compiler& Library::compiler() const noexcept { return *impl_->compiler; }
 
 std::vector<std::string> Library::names() const { return impl_->compiler->library().names(); }
 
-std::vector<std::string> Library::roughness_levels() const {
+std::vector<std::string> Library::roughness_levels() const { return levels("roughness"); }
+
+double Library::roughness_level_value(const std::string& level) const { return level_value("roughness", level); }
+
+std::vector<std::string> Library::levels(const std::string& percept) const {
   std::vector<std::string> out;
-  for (const auto& l : impl_->compiler->calibration().roughness_levels()) out.push_back(l.name);
+  for (const auto* l : impl_->compiler->calibration().levels(percept)) out.push_back(l->name);
   return out;
 }
 
-double Library::roughness_level_value(const std::string& level) const {
-  const calibration::Level* found = impl_->compiler->calibration().find_level(level);
-  if (!found) throw UnknownLevel(level, roughness_levels());
-  return found->value;
+double Library::level_value(const std::string& percept, const std::string& level) const {
+  for (const auto* l : impl_->compiler->calibration().levels(percept))
+    if (l->name == level) return l->value;
+  throw UnknownLevel(level, levels(percept), percept);
 }
 
 const std::filesystem::path& Library::library_dir() const noexcept { return impl_->library_dir; }

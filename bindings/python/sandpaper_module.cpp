@@ -344,6 +344,23 @@ PYBIND11_MODULE(sandpaper, m) {
         return compile(lib, "roughness " + level);
       }, py::arg("level"), "a named roughness level (\"coarse\") on the reference texture; raises UnknownLevel")
       .def("roughness_levels", &roughness_levels, "roughness level names, weakest first")
+      .def("level", [](const PyLibrary& lib, const std::string& percept, const std::string& level) {
+        bool known = false;
+        std::vector<std::string> names;
+        for (const auto* l : lib.compiler->calibration().levels(percept)) {
+          names.push_back(l->name);
+          known |= l->name == level;
+        }
+        if (!known) throw sp::UnknownLevel(level, names, percept);
+        py::gil_scoped_release release;
+        return compile(lib, percept + " " + level);
+      }, py::arg("percept"), py::arg("level"),
+         "a named level of any percept with levels (\"softness\", \"soft\"), alone, as `softness soft`; raises UnknownLevel")
+      .def("levels", [](const PyLibrary& lib, const std::string& percept) {
+        std::vector<std::string> out;
+        for (const auto* l : lib.compiler->calibration().levels(percept)) out.push_back(l->name);
+        return out;
+      }, py::arg("percept"), "a percept's level names, weakest first (empty: none)")
       .def("names", [](const PyLibrary& lib) { return lib.compiler->library().names(); }, "entry names, sorted")
       .def_readonly("library_dir", &PyLibrary::library_dir)
       .def_readonly("calibration_dir", &PyLibrary::calibration_dir);

@@ -55,6 +55,29 @@ TEST(Api, RoughnessLevelIsTheCalibratedLevel) {
   EXPECT_EQ(levels.back(), "very-coarse");
 }
 
+// Levels of the other calibrated dimensions: each compiles alone, through its map, to the physical
+// quantity the levels file places it at (20 N/m * 0.630957^(-1/0.8) = 35.57 N/m; 0.43 / 1 = 0.43).
+TEST(Api, EveryCalibratedDimensionHasNamedLevels) {
+  EXPECT_EQ(shipped().levels("viscosity"), (std::vector<std::string>{"very-thin", "thin", "medium", "thick", "very-thick"}));
+  EXPECT_DOUBLE_EQ(shipped().level_value("softness", "soft"), 0.630957);
+  const auto provenance = [](const sandpaper::Material& m, const std::string& name) {
+    for (const auto& p : m.program().provenance)
+      if (p.parameter == name) return p.value_si;
+    return -1.0;
+  };
+  EXPECT_NEAR(provenance(shipped().level("softness", "soft"), "spring.stiffness"), 35.566, 1e-3);
+  EXPECT_NEAR(provenance(shipped().level("slipperiness", "very-slippery"), "friction.coefficient"), 0.43, 1e-9);
+  EXPECT_GT(provenance(shipped().level("viscosity", "very-thick"), "damper.damping"),
+            provenance(shipped().level("viscosity", "thick"), "damper.damping"));
+  try {
+    shipped().level("bumpiness", "big");
+    FAIL() << "no exception";
+  } catch (const UnknownLevel& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown bumpiness level \"big\"; known levels: none"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(shipped().level("softness", "soft; spring 100 N/m"), UnknownLevel);
+}
+
 TEST(Api, UnknownLevelNamesTheKnownOnes) {
   try {
     shipped().roughness_level("corse");

@@ -27,6 +27,7 @@ int main(void) {
   sp_library* lib = NULL;
   sp_material* corduroy = NULL;
   sp_material* coarse = NULL;
+  sp_material* soft = NULL;
   sp_material* grating = NULL;
   sp_material* untouched = (sp_material*)&checks; /* a failed call must leave out-parameters alone */
   sp_player* player = NULL;
@@ -44,6 +45,11 @@ int main(void) {
   CHECK(sp_library_compile(lib, "grating period 2.5 mm hill 50% amplitude 0.8 N", &grating) == SP_OK, "%s", sp_last_error());
   CHECK(sp_library_roughness_level(lib, "coarse", &coarse) == SP_OK, "%s", sp_last_error());
   CHECK(sp_material_compiled_roughness(coarse) > 0.0, "coarse roughness %g", sp_material_compiled_roughness(coarse));
+  CHECK(sp_library_level(lib, "softness", "soft", &soft) == SP_OK, "%s", sp_last_error());
+  CHECK(contains(sp_material_warnings(soft), "W0321") && contains(sp_material_warnings(soft), "harper-stevens1964"),
+        "a softness level names its map: %s", sp_material_warnings(soft));
+  CHECK(sp_library_level(lib, "slipperiness", "slipery", &untouched) == SP_ERROR_UNKNOWN_LEVEL, "%s", sp_last_error());
+  CHECK(contains(sp_last_error(), "did you mean \"slippery\""), "%s", sp_last_error());
 
   /* Errors: a status, a message that says how to fix it, and out-parameters untouched. */
   CHECK(sp_library_compile(lib, "grating period 2.5 parsecs", &untouched) == SP_ERROR_COMPILE, "%s", sp_last_error());
@@ -110,6 +116,7 @@ int main(void) {
   sp_player_close(player);
   sp_material_free(corduroy);
   sp_material_free(coarse);
+  sp_material_free(soft);
   sp_library_close(lib);
   sp_player_close(NULL);
   sp_material_free(NULL);

@@ -235,7 +235,7 @@ TEST(PerceptDiagnostics, OutOfRangeValuesAreErrorsThatSayWhatToWrite) {
                         Case{"bumpiness 0; roughness 0.3", "E0304", "period 0"},
                         Case{"viscosity 1.2", "E0303", "top of the stevens-guirao1964 map's domain"},
                         Case{"slipperiness 2", "E0303", "above 1"}, Case{"softness 1.5", "E0303", "above 1"},
-                        Case{"viscosity thick", "E0307", "unknown viscosity level"},
+                        Case{"viscosity thik", "E0307", "unknown viscosity level"},
                         Case{"springiness 0.5 N/m", "E0205", "takes no unit"}, Case{"viscosty 0.4", "E0202", "viscosty"}}) {
     SCOPED_TRACE(c.text);
     auto r = compile(c.text);
@@ -328,9 +328,30 @@ class PerceptCalibration : public ::testing::Test {
   }
 };
 
+// The shipped levels of each sourced map compile to the quantity their file places them at.
+TEST(PerceptResolution, ShippedLevelsCompileThroughTheirMaps) {
+  struct Case { const char* text; const char* parameter; double si; };
+  for (const Case& c : {Case{"softness soft", "spring.stiffness", 20 * std::pow(0.630957, -1 / 0.8)},
+                        Case{"springiness very-firm", "spring.stiffness", 20 * std::pow(0.15849, -1 / 0.8)},
+                        Case{"viscosity very-thick", "damper.damping", 10.0},
+                        Case{"slipperiness very-slippery", "friction.coefficient", 0.43},
+                        Case{"slipperiness very-sticky", "friction.coefficient", 0.43 / 0.154122}}) {
+    SCOPED_TRACE(c.text);
+    auto r = compile(c.text);
+    ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+    EXPECT_NEAR(provenance(*r.program, c.parameter).value_si, c.si, 1e-9 * c.si);
+    // Every level lies inside its map's domain: no extrapolation warning.
+    EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0301"), 0u);
+  }
+  auto typo = compile("softness sof");
+  ASSERT_EQ(test::codes(typo), std::vector<std::string>{"E0307"});
+  EXPECT_EQ(typo.diagnostics.all()[0].suggestion, "did you mean `soft`?");
+}
+
 TEST_F(PerceptCalibration, AWordWithoutAMapIsAnError) {
   auto cal = copy_calibration();
   fs::remove(cal + "/maps/stevens-guirao1964.toml");
+  fs::remove(cal + "/levels/viscosity-levels.toml");  // its levels are on that map
   auto r = compiler_on(cal).compile_text("viscosity 0.4");
   ASSERT_EQ(test::codes(r), std::vector<std::string>{"E0320"});
   EXPECT_NE(r.diagnostics.all()[0].suggestion.find("damper 2 N*s/m"), std::string::npos);

@@ -43,6 +43,21 @@ def test_a_failed_compile_raises_with_the_diagnostics_as_data(lib):
     assert err.diagnostics[0]["line"] == 1
 
 
+def test_every_calibrated_dimension_has_named_levels(lib):
+    # calibration/levels/: four equal log steps over each map's domain, weakest first.
+    assert lib.levels("softness") == ["very-firm", "firm", "medium", "soft", "very-soft"]
+    assert lib.levels("slipperiness")[-1] == "very-slippery"
+    assert lib.levels("bumpiness") == []
+    soft = lib.level("softness", "soft")
+    assert any("harper-stevens1964" in w for w in soft.warnings)  # W0321 names the map
+    target = soft.explain()["percepts"][0]
+    assert target["map"]["id"] == "harper-stevens1964" and target["parameter_unit"] == "N/m"
+    assert target["parameter_value"] == pytest.approx(20 * 0.630957 ** (-1 / 0.8), rel=1e-9)  # 35.57 N/m
+    with pytest.raises(sandpaper.UnknownLevel) as info:
+        lib.level("viscosity", "thickk")
+    assert 'did you mean "thick"' in str(info.value)
+
+
 def test_an_unknown_level_names_the_known_ones(lib):
     with pytest.raises(sandpaper.UnknownLevel) as info:
         lib.roughness_level("coarsee")

@@ -37,7 +37,7 @@ typedef enum sp_status {
   SP_ERROR_ARGUMENT = 1,       /* a NULL handle or out-parameter, a rate or duration out of range */
   SP_ERROR_DATA = 2,           /* library or calibration missing or malformed, unknown device */
   SP_ERROR_COMPILE = 3,        /* the material did not compile: sp_last_error() has the diagnostics */
-  SP_ERROR_UNKNOWN_LEVEL = 4,  /* a roughness level name calibration/levels/ does not define */
+  SP_ERROR_UNKNOWN_LEVEL = 4,  /* a level name calibration/levels/ does not define for its percept */
   SP_ERROR_STATE = 5,          /* start with nothing loaded or while playing; stop or wait before start */
   SP_ERROR_DEVICE = 6,         /* no joystick plugged in that the calibration knows, it cannot be opened, or a
                                   material compiled for another device */
@@ -76,6 +76,10 @@ void sp_library_close(sp_library* library);
 sp_status sp_library_compile(const sp_library* library, const char* name_or_statements, sp_material** out);
 /* A named roughness level ("coarse") on the library's reference texture, as `roughness coarse`. */
 sp_status sp_library_roughness_level(const sp_library* library, const char* level, sp_material** out);
+/* A named level of any percept with levels (calibration/levels/): ("softness", "soft") compiles
+ * `softness soft`, a spring; ("slipperiness", "slippery") Coulomb friction. SP_ERROR_UNKNOWN_LEVEL
+ * for a percept without levels or a level it does not define (sp_last_error() lists the known ones). */
+sp_status sp_library_level(const sp_library* library, const char* percept, const char* level, sp_material** out);
 void sp_material_free(sp_material* material);
 
 /* The material's name, its maximum lateral force as compiled for the device (N), the ratio-scale

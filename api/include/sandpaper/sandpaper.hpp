@@ -53,10 +53,11 @@ class CompileError : public Error {
   compiler::Diagnostics diagnostics_;
 };
 
-// A roughness level name that calibration/levels/ does not define; what() lists the known ones.
+// A level name that calibration/levels/ does not define for its percept (or a percept with no
+// levels); what() lists the known ones.
 class UnknownLevel : public Error {
  public:
-  UnknownLevel(std::string name, std::vector<std::string> known);
+  UnknownLevel(std::string name, std::vector<std::string> known, const std::string& percept = "roughness");
   const std::string& name() const noexcept { return name_; }
   const std::vector<std::string>& known() const noexcept { return known_; }
 
@@ -125,12 +126,20 @@ class Library {
   // A named roughness level ("coarse"; calibration/levels/roughness-levels.toml) on the library's
   // reference texture, as `roughness coarse` in a material file. Throws UnknownLevel, CompileError.
   Material roughness_level(const std::string& level) const;
+  // A named level of any percept with levels ("softness", "soft"; calibration/levels/), alone, as
+  // `softness soft` in a material file: a spring, a damper, friction, or roughness on the reference
+  // texture. Throws UnknownLevel (unknown percept or level), CompileError.
+  Material level(const std::string& percept, const std::string& level) const;
 
   // Entry names, sorted.
   std::vector<std::string> names() const;
   // Roughness level names, weakest first, and a level's ratio-scale value (throws UnknownLevel).
   std::vector<std::string> roughness_levels() const;
   double roughness_level_value(const std::string& level) const;
+  // The same for any percept: its level names, weakest first (empty for a percept without levels),
+  // and a level's ratio-scale value (throws UnknownLevel).
+  std::vector<std::string> levels(const std::string& percept) const;
+  double level_value(const std::string& percept, const std::string& level) const;
   // The compiler behind it (its calibration, device and library), for anything this API does not cover.
   const ::sandpaper::compiler::Compiler& compiler() const noexcept;
   // The directories in use (absolute when given so), for reports.
