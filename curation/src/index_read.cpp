@@ -76,12 +76,22 @@ static IndexError damaged_index(sqlite3* db, const std::string& what) {
                     "; rebuild it with `sandpaper library index --full`");
 }
 
-double Index::weber_fraction() const {
-  const std::string text = meta("weber_fraction");
+// A Weber fraction from `meta`: a number in (0, 1], else the index is damaged.
+static double meta_fraction(sqlite3* db, const std::string& key, const std::string& text) {
   char* end = nullptr;
   const double w = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || !(w > 0.0 && w <= 1.0))
-    throw damaged_index(db_, "its weber_fraction is '" + text + "', not a number in (0, 1]");
+    throw damaged_index(db, "its " + key + " is '" + text + "', not a number in (0, 1]");
+  return w;
+}
+
+double Index::weber_fraction() const { return meta_fraction(db_, "weber_fraction", meta("weber_fraction")); }
+
+WeberFractions Index::weber_fractions() const {
+  WeberFractions w(weber_fraction());
+  w.stiffness = meta_fraction(db_, "weber_fraction.stiffness", meta("weber_fraction.stiffness"));
+  w.damping = meta_fraction(db_, "weber_fraction.damping", meta("weber_fraction.damping"));
+  w.friction = meta_fraction(db_, "weber_fraction.friction", meta("weber_fraction.friction"));
   return w;
 }
 
@@ -205,6 +215,18 @@ double Index::class_of(const std::string& kind_terms) const {
   sql::Stmt s(db_, "SELECT id FROM classes WHERE kind_terms = ?");
   s.bind(1, kind_terms);
   return s.step() ? static_cast<double>(s.integer64(0)) : -2;
+}
+
+std::vector<IndexedEntry> Index::untextured_in_box(const LawBox& b) const {
+  std::vector<IndexedEntry> out;
+  sql::Stmt s(db_, std::string("SELECT ") + kEntryColumns +
+                       " JOIN laws l ON l.id = e.rowid WHERE l.stiffness_max >= ? AND l.stiffness_min <= ? AND "
+                       "l.damping_max >= ? AND l.damping_min <= ? AND l.friction_max >= ? AND l.friction_min <= ? AND "
+                       "l.class_max >= ? AND l.class_min <= ?");
+  for (std::size_t d = 0; d < 3; ++d) s.bind(static_cast<int>(1 + 2 * d), b.lo[d]).bind(static_cast<int>(2 + 2 * d), b.hi[d]);
+  s.bind(7, b.class_lo).bind(8, b.class_hi);
+  while (s.step()) out.push_back(read_entry(db_, s, true));
+  return out;
 }
 
 std::vector<IndexedEntry> Index::untextured() const {

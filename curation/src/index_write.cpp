@@ -42,6 +42,7 @@ CREATE INDEX depends_name ON depends(name);
 CREATE VIRTUAL TABLE search USING fts5(name, aliases, describes, family, tokenize = 'porter unicode61 remove_diacritics 2');
 CREATE TABLE classes(id INTEGER PRIMARY KEY, kind_terms TEXT NOT NULL UNIQUE);
 CREATE VIRTUAL TABLE coordinates USING rtree(id, log_force_min, log_force_max, log_period_min, log_period_max, class_min, class_max);
+CREATE VIRTUAL TABLE laws USING rtree(id, stiffness_min, stiffness_max, damping_min, damping_max, friction_min, friction_max, class_min, class_max);
 )sql";
 
 namespace {
@@ -85,6 +86,7 @@ EntryWriter::EntryWriter(sqlite3* db, const compiler::Library& lib, const calibr
         pro_(db, "INSERT INTO provenance VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)"),
         fts_(db, "INSERT INTO search(rowid, name, aliases, describes, family) VALUES (?, ?, ?, ?, ?)"),
         geo_(db, "INSERT INTO coordinates VALUES (?, ?, ?, ?, ?, ?, ?)"),
+        law_(db, "INSERT INTO laws VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)"),
         cls_(db, "INSERT OR IGNORE INTO classes(kind_terms) VALUES (?)"),
         cls_id_(db, "SELECT id FROM classes WHERE kind_terms = ?"),
         inp_(db, "INSERT INTO inputs VALUES (?, ?)"),
@@ -147,6 +149,20 @@ void EntryWriter::insert(const Compiled& c, const EntryInputs& inputs) {
       const double cls = static_cast<double>(cls_id_.integer64(0));
       cls_id_.reset();
       geo_.bind64(1, rowid).bind(2, f).bind(3, f).bind(4, lo).bind(5, hi).bind(6, cls).bind(7, cls).run();
+    } else {
+      // An untextured entry by its force laws: stiffness, damping and friction coefficient in their
+      // percepts' JNDs (a dimension it lacks spans the axis), and its terms as the class.
+      const auto place = law_coordinates(pc.term_params, weber_fractions_of(cal_));
+      const std::string kind_terms = "|" + pc.terms;
+      cls_.bind(1, kind_terms).run();
+      cls_id_.bind(1, kind_terms);
+      cls_id_.step();
+      const double cls = static_cast<double>(cls_id_.integer64(0));
+      cls_id_.reset();
+      law_.bind64(1, rowid);
+      for (std::size_t d = 0; d < place.size(); ++d)
+        law_.bind(static_cast<int>(2 + 2 * d), place[d] ? *place[d] : -1e30).bind(static_cast<int>(3 + 2 * d), place[d] ? *place[d] : 1e30);
+      law_.bind(8, cls).bind(9, cls).run();
     }
     inp_.bind(1, e.name).bind(2, inputs.hash).run();
     for (const auto& f : inputs.files) dep_.bind(1, e.name).bind(2, std::string("file")).bind(3, f).run();
@@ -160,6 +176,7 @@ void delete_entry(sqlite3* db, const std::string& name) {
     const auto rowid = id.integer64(0);
     sql::Stmt(db, "DELETE FROM search WHERE rowid = ?").bind64(1, rowid).run();
     sql::Stmt(db, "DELETE FROM coordinates WHERE id = ?").bind64(1, rowid).run();
+    sql::Stmt(db, "DELETE FROM laws WHERE id = ?").bind64(1, rowid).run();
   }
   for (const char* table : {"aliases", "percepts", "statements", "sources", "provenance", "inputs", "depends", "entries"})
     sql::Stmt(db, std::string("DELETE FROM ") + table + " WHERE name = ?").bind(1, name).run();
@@ -190,6 +207,9 @@ std::map<std::string, std::string> index_meta(const compiler::Compiler& c, const
       {"calibration_dir", std::filesystem::absolute(calibration_dir).lexically_normal().string()},
       {"device", device},
       {"weber_fraction", std::to_string(c.calibration().knowledge().force_jnd.weber_fraction)},
+      {"weber_fraction.stiffness", std::to_string(weber_fractions_of(c.calibration()).stiffness)},
+      {"weber_fraction.damping", std::to_string(weber_fractions_of(c.calibration()).damping)},
+      {"weber_fraction.friction", std::to_string(weber_fractions_of(c.calibration()).friction)},
       {"force_jnd_file", c.calibration().knowledge().force_jnd.file},
       {"roughness_map", c.calibration().roughness_map().provenance()},
   };

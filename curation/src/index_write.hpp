@@ -40,7 +40,7 @@ class EntryWriter {
   sqlite3* db_;
   const compiler::Library& lib_;
   const calibration::CalibrationSet& cal_;
-  sql::Stmt ent_, ali_, per_, sta_, src_, pro_, fts_, geo_, cls_, cls_id_, inp_, dep_;
+  sql::Stmt ent_, ali_, per_, sta_, src_, pro_, fts_, geo_, law_, cls_, cls_id_, inp_, dep_;
   std::map<std::string, const compiler::LibraryEntry*> by_file_;
 };
 

@@ -120,7 +120,7 @@ std::vector<Neighbour> LayeredIndex::nearest(std::size_t layer, const std::strin
                                              const std::string& family) const {
   const auto from = entry(layer, name);
   if (!from) return {};
-  const double weber = index_of(layer, name).weber_fraction();
+  const WeberFractions weber = index_of(layer, name).weber_fractions();
   std::vector<Neighbour> found;
   for (std::size_t i = 0; i < layers_.size(); ++i)
     for (std::size_t lim = limit;; lim *= 2) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -19,7 +20,8 @@ std::string num(double v, int digits = 3) {
 
 }  // namespace
 
-Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double weber, bool explain) {
+Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, const WeberFractions& webers, bool explain) {
+  const double weber = webers.force;
   Neighbour n;
   if (explain) n.entry = b;
   const bool ta = a.max_lateral_force_N > 0, tb = b.max_lateral_force_N > 0;
@@ -52,8 +54,10 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
   } else {
     if (explain) why.push_back("neither has a texture");
   }
-  // Force laws: at a given hand speed or displacement their force scales with the parameter, so a
-  // ratio of parameters is counted in force JNDs too; opposite signs (damping vs anti-viscous) as a kind.
+  // Force laws: a spring's stiffness, a damper's damping and a friction coefficient in their own
+  // percepts' JNDs (softness, viscosity, slipperiness); any other parameter in force JNDs, as at a
+  // given hand speed or displacement its force scales with it; opposite signs (damping vs
+  // anti-viscous) as a kind.
   for (const auto& [k, va] : a.term_params)
     for (const auto& [k2, vb] : b.term_params) {
       if (k != k2 || va == 0 || vb == 0) continue;
@@ -61,9 +65,10 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
         extra += kKindSteps;
         if (explain) why.push_back(k + " of opposite sign (" + num(vb) + " vs " + num(va) + ")");
       } else if (va != vb) {
-        const double s = std::log(vb / va) / std::log1p(weber);
+        const double w = webers.for_term(k);
+        const double s = std::log(vb / va) / std::log1p(w);
         d2 += s * s;
-        if (explain) why.push_back(k + " " + num(vb) + " vs " + num(va) + " (" + num(std::abs(s), 2) + " JND)");
+        if (explain) why.push_back(k + " " + num(vb) + " vs " + num(va) + " (" + num(std::abs(s), 2) + " JND at " + num(w * 100, 2) + " %)");
       }
     }
   if (a.terms != b.terms) {
@@ -78,13 +83,14 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, double 
 std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit, const std::string& family) {
   const auto from = index.entry(name);
   if (!from) return {};
-  return nearest_to(index, *from, limit, index.weber_fraction(), family);
+  return nearest_to(index, *from, limit, index.weber_fractions(), family);
 }
 
-std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_entry, std::size_t limit, double weber,
+std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_entry, std::size_t limit, const WeberFractions& webers,
                                   const std::string& family) {
   // A Weber fraction of 0 or NaN makes the box below never grow, and the search never ends.
-  if (!(weber > 0 && weber <= 1)) throw std::invalid_argument("nearest_to: the Weber fraction must be in (0, 1]");
+  if (!webers.valid()) throw std::invalid_argument("nearest_to: every Weber fraction must be in (0, 1]");
+  const double weber = webers.force;
   if (limit == 0) return {};
   const auto* from = &from_entry;
   // Every entry but `from` itself, when it is one of this index's.
@@ -94,7 +100,7 @@ std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_e
   auto consider = [&](const std::vector<IndexedEntry>& entries) {
     for (const auto& e : entries)
       if (seen.insert(e.name).second && (family.empty() || e.family == family)) {
-        found.push_back(distance_between(*from, e, weber, false));  // the why of the nearest only, below
+        found.push_back(distance_between(*from, e, webers, false));  // the why of the nearest only, below
         found.back().entry.name = e.name;
       }
   };
@@ -140,10 +146,29 @@ std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_e
       if (within(r) >= limit || seen.size() >= total) break;
     }
   } else {
-    // No texture: force laws differ by parameters the R*Tree does not hold; the untextured
-    // entries first (textured ones are kTextureSteps or more away), then all if too few.
-    consider(index.untextured());
-    if (within(kTextureSteps) < limit) consider(index.textured_in_box(Index::Box{}));
+    // No texture: the same terms lie in a box of half-width r JNDs on each law dimension `from`
+    // has (the distance is at least the largest of them: laws_in_box); other terms are kKindSteps
+    // or more away, textured entries kTextureSteps or more.
+    // The index placed its entries with its own fractions; the box is read on that scale.
+    const auto c = law_coordinates(from->term_params, index.weber_fractions());
+    const double cls = index.class_of("|" + from->terms);
+    bool others_read = false, textured_read = false;
+    for (double r = 1;; r *= 2) {
+      Index::LawBox box;
+      for (std::size_t d = 0; d < c.size(); ++d)
+        if (c[d]) box.lo[d] = *c[d] - r, box.hi[d] = *c[d] + r;
+      box.class_lo = box.class_hi = cls;
+      consider(index.untextured_in_box(box));
+      if (!others_read && r >= kKindSteps) {
+        consider(index.untextured());
+        others_read = true;
+      }
+      if (!textured_read && r >= kTextureSteps) {
+        consider(index.textured_in_box(Index::Box{}));
+        textured_read = true;
+      }
+      if (within(r) >= limit || seen.size() >= total) break;
+    }
   }
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) {
     return a.distance != b.distance ? a.distance < b.distance : a.entry.name < b.entry.name;
@@ -151,7 +176,7 @@ std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from_e
   if (found.size() > limit) found.resize(limit);
   // The nearest, read whole (aliases and other percepts) for the caller.
   for (auto& n : found)
-    if (auto e = index.entry(n.entry.name)) n = distance_between(*from, *e, weber);
+    if (auto e = index.entry(n.entry.name)) n = distance_between(*from, *e, webers);
   return found;
 }
 

@@ -765,7 +765,8 @@ TEST(LibraryNear, TheRTreeSearchEqualsAFullScanOnTheShippedLibrary) {
   ASSERT_TRUE(build_index({lib, {}, index, "sim"}, quiet).ok);
   const Index idx(index);
   const auto all = idx.entries();
-  const double weber = std::stod(idx.meta("weber_fraction"));
+  // Each dimension in its percept's JNDs, as the index was built (weber_fractions.hpp).
+  const WeberFractions weber = idx.weber_fractions();
   std::size_t compared = 0;
   for (const auto& from : all) {
     for (const std::size_t limit : {std::size_t{1}, std::size_t{7}, all.size()}) {
@@ -786,6 +787,64 @@ TEST(LibraryNear, TheRTreeSearchEqualsAFullScanOnTheShippedLibrary) {
     }
   }
   EXPECT_GT(compared, 300u);
+}
+
+// Springs are apart in softness JNDs, dampers in viscosity JNDs, friction in slipperiness JNDs
+// (each map's [jnd]: 23 %, 34 %, 11 %), not all in force JNDs; the untextured search by the `laws`
+// R*Tree finds the same as comparing with every entry.
+TEST(LibraryNear, ForceLawsAreApartInTheirOwnPerceptsJnds) {
+  const auto dir = std::filesystem::path(temp_dir("near-laws"));
+  const auto lib = dir / "library";
+  std::filesystem::create_directories(lib / "laws");
+  std::ofstream(lib / "library.toml") << "name = \"laws\"\nversion = \"1.0.0\"\n"
+                                          "[families.laws]\ntitle = \"Laws\"\ndescribes = \"force laws\"\n";
+  const auto entry = [&](const std::string& name, const std::string& body) {
+    std::ofstream(lib / "laws" / (name + ".hmat")) << "material \"" << name << "\" {\n  family laws\n  licence \"CC0-1.0\"\n  "
+                                                   << body << "\n}\n";
+  };
+  for (int k : {20, 40, 80, 160}) entry("spring" + std::to_string(k), "spring " + std::to_string(k) + " N/m");
+  for (int b : {1, 2, 4}) entry("damper" + std::to_string(b), "damper " + std::to_string(b) + " N*s/m");
+  entry("slide04", "physics Friction static 0.4 kinetic 0.4 press 1 N");
+  entry("slide08", "physics Friction static 0.8 kinetic 0.8 press 1 N");
+  const auto index = dir / "library.sqlite";
+  std::ostringstream sink;
+  Progress quiet("indexing", 0, true, sink, false);
+  ASSERT_TRUE(build_index({lib, std::filesystem::path(SANDPAPER_SOURCE_DIR) / "calibration", index, "sim"}, quiet).ok) << sink.str();
+  const Index idx(index);
+  const auto w = idx.weber_fractions();
+  EXPECT_DOUBLE_EQ(w.stiffness, 0.23);
+  EXPECT_DOUBLE_EQ(w.damping, 0.34);
+  EXPECT_DOUBLE_EQ(w.friction, 0.11);
+  EXPECT_DOUBLE_EQ(w.force, 0.125);
+  const auto springs = nearest(idx, "spring40", 3);
+  ASSERT_EQ(springs.size(), 3u);
+  EXPECT_EQ(springs[0].entry.name, "spring20");  // a doubling either way: ties by name
+  EXPECT_NEAR(springs[0].distance, std::log(2.0) / std::log(1.23), 1e-9);  // 3.35 softness JNDs, not 5.9 force JNDs
+  EXPECT_NEAR(springs[2].distance, std::log(4.0) / std::log(1.23), 1e-9);
+  EXPECT_NE(springs[0].why.find("at 23 %"), std::string::npos) << springs[0].why;
+  EXPECT_NEAR(nearest(idx, "damper1", 1)[0].distance, std::log(2.0) / std::log(1.34), 1e-9);
+  // Friction: the static and the kinetic coefficient each a doubling, 2 x 6.6 slipperiness JNDs in
+  // quadrature (9.4): farther than the 8 that other terms count, so slide08 comes after them.
+  double slide08 = -1;
+  for (const auto& n : nearest(idx, "slide04", 10))
+    if (n.entry.name == "slide08") slide08 = n.distance;
+  EXPECT_NEAR(slide08, std::hypot(1.0, 1.0) * std::log(2.0) / std::log(1.11), 1e-9);
+  // Every entry, every limit: the R*Tree search equals a full scan.
+  const auto all = idx.entries();
+  for (const auto& from : all)
+    for (const std::size_t limit : {std::size_t{1}, std::size_t{3}, all.size()}) {
+      std::vector<Neighbour> scan;
+      for (const auto& e : all)
+        if (e.name != from.name) scan.push_back(distance_between(from, e, w));
+      std::sort(scan.begin(), scan.end(), [](const auto& a, const auto& b) {
+        return a.distance != b.distance ? a.distance < b.distance : a.entry.name < b.entry.name;
+      });
+      if (scan.size() > limit) scan.resize(limit);
+      const auto got = nearest(idx, from.name, limit);
+      ASSERT_EQ(got.size(), scan.size()) << from.name;
+      for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i].entry.name, scan[i].entry.name) << from.name << " #" << i;
+    }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(LibraryNear, NearestByForceJndsPeriodAndKind) {

@@ -6,6 +6,7 @@
 // a temp file beside the index, renamed over it only when every entry compiled; any failure
 // leaves the previous index byte-identical; a build killed part-way is resumed by the next one.
 #include <filesystem>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -15,6 +16,7 @@
 #include "sandpaper/compiler/diagnostic.hpp"
 #include "sandpaper/compiler/library.hpp"
 #include "sandpaper/curation/progress.hpp"
+#include "sandpaper/curation/weber_fractions.hpp"
 
 struct sqlite3;
 
@@ -22,7 +24,7 @@ namespace sandpaper::curation {
 
 // 7: an entry file whose path is not UTF-8 is no longer read (E0614, F30); an index of 6 may list
 // one, so it is built again. 8: an image texture's period_m is its spatial scale (percepts.hpp).
-inline constexpr int kIndexSchemaVersion = 8;
+inline constexpr int kIndexSchemaVersion = 9;
 
 // $SANDPAPER_LIBRARY_INDEX, else <library_dir>/.index/library.sqlite.
 std::filesystem::path default_index_path(const std::filesystem::path& library_dir);
@@ -121,6 +123,9 @@ class Index {
   // The force JND's Weber fraction the index was compiled with (dimensionless, e.g. 0.125; Minsky
   // 1995 5.4.2), from `meta`. Throws IndexError (damaged, F43) unless a number in (0, 1].
   double weber_fraction() const;
+  // Every dimension's fraction (weber_fractions.hpp), from `meta`; throws IndexError (damaged) unless each is
+  // a number in (0, 1].
+  WeberFractions weber_fractions() const;
   std::vector<IndexedEntry> entries() const;       // sorted by name
   std::optional<IndexedEntry> entry(const std::string& name) const;
   // Entries by their row ids in `entries` (the ids of `search` and `coordinates` too).
@@ -139,6 +144,13 @@ class Index {
   // The class of texture kind and program terms "kind|terms" in this index; -2 if no entry has it.
   double class_of(const std::string& kind_terms) const;
   std::vector<IndexedEntry> untextured() const;
+  // Untextured entries in a box of law coordinates (weber_fractions.hpp's law_coordinates, JNDs; a dimension
+  // an entry lacks spans its whole axis) and class (program terms).
+  struct LawBox {
+    std::array<double, 3> lo{-1e30, -1e30, -1e30}, hi{1e30, 1e30, 1e30};
+    double class_lo = -1e30, class_hi = 1e30;
+  };
+  std::vector<IndexedEntry> untextured_in_box(const LawBox& box) const;
   std::size_t size() const;  // entries
   // The entry's name for a name or alias; nullopt if neither.
   std::optional<std::string> resolve(const std::string& name_or_alias) const;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "sandpaper/curation/index.hpp"
+#include "sandpaper/curation/weber_fractions.hpp"
 
 namespace sandpaper::curation {
 
@@ -24,14 +25,14 @@ struct Neighbour {
 
 // Distance between two indexed entries with Weber fraction `weber` (0.125). `explain` false: the
 // numbers only (no `why`, no copy of `to`), for comparing many entries.
-Neighbour distance_between(const IndexedEntry& from, const IndexedEntry& to, double weber, bool explain = true);
+Neighbour distance_between(const IndexedEntry& from, const IndexedEntry& to, const WeberFractions& weber, bool explain = true);
 // The `limit` nearest entries to `name` (a name; resolve aliases first), nearest first, ties by name;
 // of family `family` only, unless it is empty.
 std::vector<Neighbour> nearest(const Index& index, const std::string& name, std::size_t limit, const std::string& family = "");
 // The same for an entry that may be another index's (a root in front, in a layered path), with
 // that index's Weber fraction; an entry of this index with from's name is not a neighbour.
-// Throws std::invalid_argument unless 0 < weber <= 1 (a caller's error).
-std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from, std::size_t limit, double weber,
+// Throws std::invalid_argument unless every fraction is in (0, 1] (a caller's error).
+std::vector<Neighbour> nearest_to(const Index& index, const IndexedEntry& from, std::size_t limit, const WeberFractions& weber,
                                   const std::string& family = "");
 
 }  // namespace sandpaper::curation
