@@ -109,6 +109,7 @@ Played play(runtime::Device& device, runtime::ForceSource& source, runtime::Serv
     played.felt_peak_N = felt->felt_peak_N();
     played.ridge_crossings = felt->crossings();
   }
+  played.felt_texture_max_N = reader.felt_texture_max_N();
   return played;
 }
 

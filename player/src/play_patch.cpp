@@ -48,8 +48,9 @@ constexpr double kRecordedSeconds = 1.0;
 
 nlohmann::json optional_json(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
 
-// The roughness the map predicts from what the hand felt: from the felt peak where the run crossed
-// grating ridges (explain predicts the same quantity), else from the run's largest |F|.
+// The roughness the map predicts from what the hand felt of the texture: from the felt peak where
+// the run crossed grating ridges (explain predicts the same quantity), else from the texture terms'
+// largest |F| at the played positions; never from friction, springs or dampers beside the texture.
 struct FeltRoughness {
   double roughness = 0;
   const char* from = "";
@@ -57,6 +58,7 @@ struct FeltRoughness {
 FeltRoughness felt_roughness_of(const Played& played, const runtime::ServoReport& rep,
                                 const calibration::PsychophysicalMap& map) {
   if (played.felt_peak_N) return {map.percept_of(*played.felt_peak_N), "felt_peak_N"};
+  if (played.felt_texture_max_N) return {map.percept_of(*played.felt_texture_max_N), "felt_texture_max_N"};
   return {map.percept_of(rep.felt_max_lateral_force_N), "felt_max_lateral_force_N"};
 }
 
@@ -311,6 +313,7 @@ int play_on_sim(const schema::PatchProgram& prog, runtime::OpenedDevice& opened,
                      {"felt_mean_lateral_force_N", mean_force},
                      {"felt_peak_N", optional_json(played.felt_peak_N)},
                      {"felt_ridge_crossings", played.felt_peak_N ? nlohmann::json(played.ridge_crossings) : nlohmann::json(nullptr)},
+                     {"felt_texture_max_N", optional_json(played.felt_texture_max_N)},
                      {"felt_roughness", textured ? nlohmann::json(felt.roughness) : nlohmann::json(nullptr)},
                      {"felt_roughness_from", textured ? nlohmann::json(felt.from) : nlohmann::json(nullptr)},
                      {"roughness_map", map.id},
@@ -354,9 +357,10 @@ int play_on_sim(const schema::PatchProgram& prog, runtime::OpenedDevice& opened,
                                "(explain's felt at speed)\n",
                                *played.felt_peak_N, played.ridge_crossings);
     if (textured)
-      std::cout << fmt::format("  percept  felt roughness {} predicted from the felt {} ({}; compiled {})\n",
-                               schema::roughness_text(felt.roughness), played.felt_peak_N ? "peak" : "maximum force", map.id,
-                               schema::roughness_text(prog.roughness));
+      std::cout << fmt::format("  percept  felt roughness {} predicted from the texture's felt {} ({}; compiled {})\n",
+                               schema::roughness_text(felt.roughness),
+                               played.felt_peak_N ? "peak" : played.felt_texture_max_N ? "maximum force" : "maximum force (all terms)",
+                               map.id, schema::roughness_text(prog.roughness));
     else
       std::cout << "  percept  no texture: the roughness map does not apply\n";
     auto span = static_cast<std::size_t>(std::llround(0.256 * r.rate_hz));

@@ -51,9 +51,12 @@ std::size_t TelemetryReader::drain_nonrt() {
     max_force_N_ = std::max(max_force_N_, magnitude);
     sum_force_N_ += magnitude;
     if (kept_.size() < keep_) kept_.push_back(r);
-    if (felt_ && r.t_s >= felt_from_s_) {
-      if (read_ > 1 && r.tick != last_.tick + 1) felt_->break_nonrt();
-      felt_->add_nonrt(r.position_m, r.force_N);
+    if (r.t_s >= felt_from_s_) {
+      const glm::dvec2 texture_N = texture_ ? texture_->at_nonrt(r.position_m) : r.force_N;
+      if (felt_) {
+        if (read_ > 1 && r.tick != last_.tick + 1) felt_->break_nonrt();
+        felt_->add_nonrt(r.position_m, texture_N);
+      }
     }
     last_ = r;
   }

@@ -72,6 +72,18 @@ for r in rows:
 levels = {round(abs(float(r["force_x_N"])) / unit) for r in rows if float(r["t_s"]) >= 0.05} - {0}
 assert 1 <= len(levels) <= 15, levels   # the 8-bit seed's levels, held: a staircase, not a ramp
 PY
+# Roughness is predicted from the texture's own force: velvet's nap friction adds to what the hand
+# meets (the largest |F| is over twice the grating's 0.23 N) but not to its roughness (compiled 0.12).
+for how in "--speed 20" "--hand circle --speed 20"; do
+  expect_exit 0 "velvet $how" -- "$sp" run -e "like velvet" --device sim --virtual-clock --duration 2 $how --json
+  python3 - "$tmp/out" <<'PY' && ok || bad "velvet's roughness counted its friction ($how)"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["felt_max_lateral_force_N"] > 2 * j["compiled_max_lateral_force_N"], j["felt_max_lateral_force_N"]
+assert j["felt_texture_max_N"] <= j["compiled_max_lateral_force_N"] * 1.001, j["felt_texture_max_N"]
+assert abs(j["felt_roughness"] - j["compiled_roughness"]) < 0.1 * j["compiled_roughness"], (j["felt_roughness"], j["felt_roughness_from"])
+PY
+done
 expect_exit 0 "a compiled patch on the emulated joystick" -- "$sp" compile -e a10p25 --device sandpaper-1995 -o "$tmp/a95.patch"
 expect_exit 0 "sandpaper-play plays it" -- "$sp" run "$tmp/a95.patch" --device sandpaper-1995 --virtual-clock --duration 0.2 --json
 has "$tmp/out" '"player": "sandpaper-play"' "the runtime-only player plays the emulated device"

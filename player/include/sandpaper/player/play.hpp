@@ -18,6 +18,7 @@ struct Played {
   double mean_force_N = 0;                        // mean |F| written over every tick of the run
   std::optional<double> felt_peak_N;              // runtime::FeltPeakMeter's, when measured and crossed
   std::size_t ridge_crossings = 0;                // the crossings it averages
+  std::optional<double> felt_texture_max_N;       // largest |F| of the texture terms alone at the played positions
 };
 
 // `keep_records`: how many tick records to keep (the run's tick count for --trace, else 0).

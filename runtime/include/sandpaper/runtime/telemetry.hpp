@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 
 #include "sandpaper/runtime/felt_peak.hpp"
+#include "sandpaper/runtime/texture_force.hpp"
 #include "sandpaper/runtime/spsc_ring.hpp"
 
 namespace sandpaper::runtime {
@@ -87,11 +88,18 @@ class TelemetryReader {
   // Measures the felt peak of `program`'s grating from the records drained from now on whose tick
   // starts at or after `from_s` (s since the loop started: the end of the start ramp, so that the
   // fade-in is not counted as the material); none without a grating. felt() is then the meter, else nullptr.
+  // The meter is fed the texture terms' force at each record's position (texture_force.hpp), not
+  // the force written: friction or a spring beside the grating is not its roughness.
   void measure_felt_peak(const schema::PatchProgram& program, double from_s) {
     felt_ = FeltPeakMeter::for_program(program);
+    texture_ = TextureForce::for_program(program);
     felt_from_s_ = from_s;
   }
   const FeltPeakMeter* felt() const noexcept { return felt_ ? &*felt_ : nullptr; }
+  // Largest |F| of the texture terms alone over the measured records (N); nullopt without a texture.
+  std::optional<double> felt_texture_max_N() const noexcept {
+    return texture_ ? std::optional<double>(texture_->max_N()) : std::nullopt;
+  }
 
  private:
   TelemetryRing& ring_;
@@ -103,6 +111,7 @@ class TelemetryReader {
   double max_force_N_ = 0, sum_force_N_ = 0;
   TelemetryRecord last_{};
   std::optional<FeltPeakMeter> felt_;
+  std::optional<TextureForce> texture_;
   double felt_from_s_ = 0;
 };
 
