@@ -35,6 +35,43 @@ double seconds(const toml::node* n, double fallback) {
 
 }  // namespace
 
+std::string subject_title_of(const Design& d) {
+  if (!d.subject_title.empty()) return d.subject_title;
+  switch (d.task) {
+    case Task::MagnitudeEstimation: {
+      const std::string& p = d.percept;
+      const std::string adjective = p == "roughness" ? "rough" : p == "softness" ? "soft" : p == "viscosity" ? "thick"
+                                    : p == "slipperiness" ? "slippery" : p;
+      return "How " + adjective + " does each surface feel?";
+    }
+    case Task::Confidence: return "Is it a textured surface?";
+    case Task::Sorting: return "Sort the surfaces by feel";
+    case Task::TwoInterval: return "Which felt stronger?";
+  }
+  return "Feeling surfaces";
+}
+
+std::vector<std::string> instruction_paragraphs(const std::string& text) {
+  std::vector<std::string> out;
+  std::string current, line;
+  std::istringstream in(text);
+  const auto flush = [&] {
+    if (!current.empty()) out.push_back(current);
+    current.clear();
+  };
+  while (std::getline(in, line)) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos) {
+      flush();
+      continue;
+    }
+    line = line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
+    current += (current.empty() ? "" : " ") + line;
+  }
+  flush();
+  return out;
+}
+
 const char* task_name(Task t) noexcept {
   switch (t) {
     case Task::MagnitudeEstimation: return "magnitude-estimation";
@@ -94,6 +131,7 @@ Design parse_design(const std::string& text, const std::filesystem::path& path) 
   d.text = text;
   d.checksum = design_checksum(text);
   d.title = *doc["title"].value<std::string>();
+  d.subject_title = doc["subject_title"].value_or(std::string());
   const std::string task = *doc["task"].value<std::string>();
   d.task = task == "confidence" ? Task::Confidence
            : task == "sorting"  ? Task::Sorting

@@ -89,7 +89,9 @@ class TerminalObserver final : public Observer {
   TerminalObserver(std::istream& in, std::ostream& out) : in_(in), out_(out) {}
   std::string describe() const override { return "terminal"; }
   void instructions(const std::string& title, const std::string& text) override {
-    out_ << "\n" << title << "\n\n" << text << "\n\nPress Enter to begin. " << std::flush;
+    out_ << "\n" << title << "\n\n";
+    for (const auto& p : instruction_paragraphs(text)) out_ << p << "\n\n";
+    out_ << "Press Enter to begin. " << std::flush;
     std::string line;
     std::getline(in_, line);
   }

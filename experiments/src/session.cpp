@@ -41,7 +41,7 @@ SessionOutcome run_session(const Design& design, const std::vector<Stimulus>& st
   SessionOutcome out;
   out.total = static_cast<int>(schedule.size());
   out.next_trial = first_trial;
-  observer.instructions(design.title, design.instructions);
+  observer.instructions(subject_title_of(design), design.instructions);
   int main_done = 0;
   for (const auto& t : schedule)
     if (!t.practice && t.index < first_trial) ++main_done;

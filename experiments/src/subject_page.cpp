@@ -76,7 +76,7 @@ class PageObserverImpl final : public Observer {
   std::string describe() const override { return "page"; }
 
   void instructions(const std::string& title, const std::string& text) override {
-    ask({{"kind", "instructions"}, {"title", title}, {"text", text}});
+    ask({{"kind", "instructions"}, {"title", title}, {"text", text}, {"paragraphs", instruction_paragraphs(text)}});
   }
   void rest(int done, int total) override { ask({{"kind", "rest"}, {"done", done}, {"total", total}}); }
   void announce(const Trial& t, int total) override {

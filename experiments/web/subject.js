@@ -185,7 +185,8 @@ function render(s) {
   document.body.dataset.seq = String(s.seq);
   switch (s.kind) {
     case "instructions":
-      continueScreen(s.title, el("p", { class: "instructions" }, s.text.trim()), "Begin");
+      // One <p> per paragraph, its lines flowing: the design's hard line breaks are the editor's, not the subject's.
+      continueScreen(s.title, el("div", { class: "instructions" }, ...(s.paragraphs || [s.text.trim()]).map((t) => el("p", {}, t))), "Begin");
       break;
     case "feel": {
       const what = s.patches > 1 ? "Feel each patch as it plays" : "Feel the surface";

@@ -29,6 +29,42 @@ TEST(Design, ShippedExamplesRead) {
   EXPECT_EQ(load_design(kExamples / "texture-confidence.toml").task, Task::Confidence);
 }
 
+TEST(Design, EachDimensionHasAMagnitudeEstimationDesign) {
+  for (const char* percept : {"softness", "viscosity", "slipperiness"}) {
+    const auto d = load_design(kExamples / (std::string(percept) + "-magnitude.toml"));
+    EXPECT_EQ(d.percept, percept);
+    EXPECT_EQ(d.task, Task::MagnitudeEstimation);
+    EXPECT_EQ(d.stimuli.size(), 9u);
+  }
+  EXPECT_EQ(load_design(kExamples / "roughness-magnitude.toml").percept, "roughness");
+  // Another task cannot scale another percept.
+  try {
+    parse_design("schema = \"sandpaper-experiment/1\"\ntitle = \"t\"\ntask = \"sorting\"\npercept = \"softness\"\n"
+                 "stimuli = [\"spring 20 N/m\", \"spring 40 N/m\", \"spring 80 N/m\"]\ninstructions = \"x\"\n[sorting]\npiles = [2]\n",
+                 "bad.toml");
+    FAIL() << "accepted";
+  } catch (const DesignError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.toml:4:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("magnitude estimation only"), std::string::npos) << e.what();
+  }
+}
+
+// The subject sees a subject's heading and flowing paragraphs, not the experimenter's title and
+// the TOML's hard line breaks.
+TEST(Design, TheSubjectSeesASubjectsTitleAndFlowingParagraphs) {
+  auto d = load_design(kExamples / "roughness-magnitude.toml");
+  EXPECT_NE(d.title.find("Minsky 1995"), std::string::npos);
+  EXPECT_EQ(subject_title_of(d), "How rough does each surface feel?");
+  EXPECT_EQ(subject_title_of(load_design(kExamples / "softness-magnitude.toml")), "How soft does each surface feel?");
+  d.subject_title = "Surfaces";
+  EXPECT_EQ(subject_title_of(d), "Surfaces");
+  EXPECT_EQ(instruction_paragraphs("\n  One line\nand the next.\n\n\nA second\n   paragraph.  \n"),
+            (std::vector<std::string>{"One line and the next.", "A second paragraph."}));
+  const auto shipped = instruction_paragraphs(load_design(kExamples / "roughness-magnitude.toml").instructions);
+  ASSERT_EQ(shipped.size(), 1u);  // the shipped text has no blank line: one paragraph, its breaks flowing
+  EXPECT_EQ(shipped[0].find('\n'), std::string::npos);
+}
+
 TEST(Design, ChecksumTellsDesignsApart) {
   EXPECT_EQ(design_checksum("a"), design_checksum("a"));
   EXPECT_NE(design_checksum("a"), design_checksum("b"));

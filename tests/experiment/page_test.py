@@ -150,6 +150,11 @@ def main():
         b.navigate(s.url)
         c.check(screen(b, "instructions") and "Feel each surface." in b.evaluate("document.body.innerText"),
                 "the instructions are shown")
+        heading = b.evaluate("document.querySelector('h1').innerText")
+        c.check(heading == "How rough does each surface feel?", f"the subject sees a subject's title, not the design's ({heading!r})")
+        paras = b.evaluate("JSON.stringify([...document.querySelectorAll('.instructions p')].map(p => p.innerText))")
+        c.check(json.loads(paras) == ["Feel each surface. Answer on this page."],
+                f"the design's hard line break flows within its paragraph ({paras})")
         b.screenshot(str(out / "subject-instructions.png"), full_page=False)
         key(b, "Enter", 13)
         values = ["4", "7.5", "12", "2"]

@@ -32,7 +32,8 @@ struct Design {
   std::string path;              // as given, for messages
   std::string text;              // the file's bytes, copied into every results folder
   std::string checksum;          // "fnv1a64:<16 hex digits>" of `text`: runs of one design pool together
-  std::string title;
+  std::string title;              // the experimenter's ("... Minsky 1995 chapter 5")
+  std::string subject_title;      // what the subject sees; empty: subject_title_of() picks one
   Task task = Task::MagnitudeEstimation;
   std::string device = "sim";
   // What a magnitude-estimation design scales (percept_quantity.hpp): "roughness" (the default),
@@ -51,6 +52,13 @@ struct Design {
   std::vector<int> piles;        // sorting: successive pile counts
   std::vector<double> increments;  // two-interval: comparison force = standard x (1 + increment)
 };
+
+// The heading the subject sees: the design's subject_title, else one for the task and percept
+// ("Rate how rough each surface feels"), never the experimenter's title with its citation.
+std::string subject_title_of(const Design& d);
+// The instructions as paragraphs: a blank line ends one, a single line break inside one is a
+// space (TOML's multi-line strings keep the author's hard breaks), surrounding blanks trimmed.
+std::vector<std::string> instruction_paragraphs(const std::string& text);
 
 // FNV-1a, 64 bit (Fowler, Noll, Vo): a stable hash of bytes, for checksums and seeds, not security.
 std::uint64_t fnv1a64(std::string_view bytes) noexcept;
