@@ -30,7 +30,8 @@ struct ShippedDesign {
 const std::vector<ShippedDesign>& shipped_designs() {
   static const std::vector<ShippedDesign> all = [] {
     std::vector<ShippedDesign> v;
-    for (const char* name : {"roughness-magnitude.toml", "roughness-sorting.toml", "texture-confidence.toml", "force-jnd.toml"}) {
+    for (const char* name : {"roughness-magnitude.toml", "roughness-sorting.toml", "texture-confidence.toml", "force-jnd.toml",
+                             "softness-magnitude.toml"}) {
       std::ifstream in(sandpaper::fuzz::source_dir() / "examples" / "experiments" / name, std::ios::binary);
       std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
       v.push_back({text, sandpaper::experiment::design_checksum(text)});
