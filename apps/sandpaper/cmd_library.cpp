@@ -189,7 +189,7 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.show->add_flag("--json", o.json, "print JSON");
   o.show->add_flag("--quiet", o.quiet, "no progress if the index has to be built");
 
-  o.near = library.add_subcommand("near", "the perceptually nearest entries, with the distance in force JNDs and why");
+  o.near = library.add_subcommand("near", "the perceptually nearest entries, with the distance in JNDs (each dimension its percept's) and why");
   o.near->add_option("name", o.name, "entry name or alias")->required();
   o.near->add_option("--limit", o.limit, "at most this many entries")->capture_default_str();
   o.near->add_option("--family", o.family, "only entries of this family");

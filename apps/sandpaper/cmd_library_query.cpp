@@ -210,6 +210,7 @@ int run_near(const Paths& p, const LibraryCommandOptions& o) {
     }
   }
   const auto ns = layers.nearest(layer, name, o.limit, o.family);
+  const cur::WeberFractions w = idx.weber_fractions();
   const std::string from = p.layered() ? layers.id(layer) + ":" + name : name;
   if (o.json) {
     auto arr = nlohmann::json::array();
@@ -222,13 +223,17 @@ int run_near(const Paths& p, const LibraryCommandOptions& o) {
     }
     std::cout << schema::json_text(
                      nlohmann::json{
-                         {"from", from}, {"weber_fraction", idx.weber_fraction()}, {"nearest", arr}},
+                         {"from", from}, {"weber_fraction", idx.weber_fraction()},
+                         {"weber_fractions", {{"force", w.force}, {"stiffness", w.stiffness}, {"damping", w.damping}, {"friction", w.friction}}},
+                         {"nearest", arr}},
                      2)
               << "\n";
     return kExitOk;
   }
-  std::cout << "nearest to " << from << " (distance in force JND steps of " << num(idx.weber_fraction() * 100)
-            << " %; a period doubling counts " << num(cur::kJndPerPeriodDoubling) << ", docs/LIBRARY.md)\n";
+  std::cout << "nearest to " << from << " (distance in JND steps: force " << num(w.force * 100) << " %, stiffness "
+            << num(w.stiffness * 100) << " %, damping " << num(w.damping * 100) << " %, friction coefficient "
+            << num(w.friction * 100) << " %; a period doubling counts " << num(cur::kJndPerPeriodDoubling)
+            << ", docs/LIBRARY.md)\n";
   std::size_t wn = 0;
   for (const auto& n : ns) wn = std::max(wn, shown_name(n.entry, p.layered()).size());
   for (const auto& n : ns)

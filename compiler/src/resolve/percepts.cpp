@@ -148,6 +148,7 @@ nlohmann::json percepts_json(const ResolvedMaterial& m, const calibration::Calib
                             {"status", map->provisional ? "provisional" : "measured"},
                             {"slope", map->slope},
                             {"reference", map->reference_si},
+                            {"reference_unit", w->si_unit},
                             {"citation", map->citation},
                             {"where", map->where},
                             {"domain", domain},
