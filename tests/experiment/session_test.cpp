@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <string>
 
 #include "sandpaper/experiment/observer.hpp"
 #include "sandpaper/experiment/presenter.hpp"
@@ -22,10 +23,11 @@ const char* kDesign =
 // Presents on the virtual clock, but reports the loop stopped on presentation `fail_at`.
 class FaultyPresenter final : public Presenter {
  public:
-  FaultyPresenter(int fail_at, PresentOptions o)
-      : inner_(runtime::sim_device_limits(), runtime::HandScript{runtime::HandPath::Scan, 0.03, 0.02, 0}, o), fail_at_(fail_at) {}
+  FaultyPresenter(int fail_at, PresentOptions o, std::string cause = "device_unplugged")
+      : inner_(runtime::sim_device_limits(), runtime::HandScript{runtime::HandPath::Scan, 0.03, 0.02, 0}, o),
+        fail_at_(fail_at), cause_(std::move(cause)) {}
   Presentation present(std::shared_ptr<const schema::PatchProgram> program, double gain) override {
-    if (count_++ == fail_at_) return {0, true, "device_unplugged"};
+    if (count_++ == fail_at_) return {0, true, cause_};
     return inner_.present(std::move(program), gain);
   }
   std::string describe() const override { return "faulty"; }
@@ -33,6 +35,7 @@ class FaultyPresenter final : public Presenter {
  private:
   VirtualPresenter inner_;
   int fail_at_, count_ = 0;
+  std::string cause_;
 };
 
 PresentOptions options(const Design& d) { return {d.rate_hz, d.ramp_s, d.duration_s}; }
@@ -65,6 +68,7 @@ TEST(Session, FaultMarksTheTrialInterruptedAndResumeContinuesThere) {
   EXPECT_EQ(r.interruptions[0].trial, 4);
   EXPECT_EQ(r.next_trial(), 4);
   EXPECT_NE(log.str().find("trial 5 of 7 interrupted"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("Fix the device, then"), std::string::npos) << log.str();
   {
     auto writer = ResultsWriter::reopen(dir);
     VirtualPresenter presenter(runtime::sim_device_limits(), runtime::HandScript{runtime::HandPath::Scan, 0.03, 0.02, 0},
@@ -82,6 +86,29 @@ TEST(Session, FaultMarksTheTrialInterruptedAndResumeContinuesThere) {
     // The ramped presentation reached the compiled force (within the scan's sampling).
     EXPECT_NEAR(r.answers[i].felt_force_N[0], r.answers[i].compiled_force_N[0], 0.03 * r.answers[i].compiled_force_N[0]);
   }
+}
+
+// Ctrl-C during a presentation stops the loop as asked: nothing is wrong with the device, so the
+// session does not tell the experimenter to fix it.
+TEST(Session, AStopAskedForDoesNotBlameTheDevice) {
+  const auto dir = std::filesystem::path(test::temp_dir("session-ctrl-c")) / "S01";
+  const auto d = parse_design(kDesign, "d.toml");
+  const auto stimuli = prepare_stimuli(d, test::shipped_compiler());
+  const auto schedule = make_schedule(d, "S01");
+  ResultsHeader h;
+  h.design_checksum = d.checksum;
+  h.subject = "S01";
+  h.task = "magnitude-estimation";
+  h.trials = static_cast<int>(schedule.size());
+  auto writer = ResultsWriter::create(dir, d, h);
+  FaultyPresenter presenter(2, options(d), "stop_requested");
+  auto observer = make_simulated_observer(parse_simulated_observer("simulated:seed=1"), "S01");
+  std::ostringstream log;
+  const auto out = run_session(d, stimuli, schedule, 0, presenter, *observer, writer, log);
+  EXPECT_TRUE(out.interrupted);
+  EXPECT_NE(log.str().find("trial 3 of 7 interrupted: stopped as asked"), std::string::npos) << log.str();
+  EXPECT_EQ(log.str().find("Fix the device"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("`sandpaper experiment resume` continues"), std::string::npos) << log.str();
 }
 
 TEST(Session, TheSubjectCanStopAtTheTerminal) {
