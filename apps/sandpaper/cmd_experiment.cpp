@@ -249,9 +249,10 @@ void print_analysis(const ex::Analysis& a) {
   if (a.magnitude) {
     const auto& m = j["magnitude_estimation"];
     const auto& fp = a.magnitude->predictor;
-    std::cout << fmt::format("log {} = {:.4f} log {} {} {:.4f}  ({} in {})\n", m.value("percept", std::string("roughness")),
+    std::cout << fmt::format("log {} = {:.4f} log {} {} {:.4f}  ({})\n", m.value("percept", std::string("roughness")),
                              m["slope"].get<double>(), fp.name, m["intercept"].get<double>() < 0 ? "-" : "+",
-                             std::abs(m["intercept"].get<double>()), fp.name, fp.unit == "1" ? "units of 1" : fp.unit);
+                             std::abs(m["intercept"].get<double>()),
+                             fp.unit == "1" ? fp.name + " has no unit" : fp.name + " in " + fp.unit);
     std::cout << fmt::format("  slope {:.4f} (s.e. {:.4f}), intercept s.e. {:.4f}, R^2 {:.4f} (adjusted {:.4f}), s {:.4g}, "
                              "df {}, F {:.4g}\n",
                              m["slope"].get<double>(), m["slope_se"].get<double>(), m["intercept_se"].get<double>(),

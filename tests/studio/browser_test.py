@@ -326,6 +326,10 @@ def main():
                                                   "windowsVirtualKeyCode": 32})
             shown = wait(b, listed, f"the completion list, asked for with Ctrl-Space ({attempt + 1})", 20)
         offered = b.evaluate("[...document.querySelectorAll('.cm-tooltip-autocomplete li')].map(li => li.textContent)") or []
+        if shown is None:  # what the editor held when the list did not come, for the failure's message
+            caret = b.evaluate("(() => { const v = window.studio.editor; const p = v.state.selection.main.head;"
+                               " const l = v.state.doc.lineAt(p); return [l.number, p - l.from, l.text]; })()")
+            print(f"   editor line, caret: {caret}; text ends {b.evaluate('window.studio.text()')[-120:]!r}")
         # Best matches first (CodeMirror also lists fuzzy ones, c-o-r anywhere, further down).
         check(shown is not None and len(offered) >= 3 and all(o.startswith("cor") for o in offered[:3])
               and offered[0].startswith("corduroy") and "ribs across the stroke" in offered[0],

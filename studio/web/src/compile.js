@@ -15,8 +15,14 @@ export function compileNow() {
   // Remembered, so that opening another file waits for it: posted after the open, it would become
   // the other file's text.
   state.sentText = text;
+  // One compile on the wire at a time, in the order typed: two requests in flight can reach the
+  // studio in either order, and an older text landing last would become the studio's text (and,
+  // followed back, replace what was typed since).
+  const before = state.compiling;
   const sent = (async () => {
     try {
+      await before;
+      if (editor.state.doc.toString() !== text) return;  // typed on meanwhile: the later compile sends it
       const r = await api("POST", "/api/material", text, false);
       if (editor.state.doc.toString() !== text) return;  // typed on meanwhile: the next compile answers
       state.lastCompileMs = performance.now() - t0;

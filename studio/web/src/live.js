@@ -24,8 +24,13 @@ async function followDocument(d) {
   if (!behind || state.compileTimer || state.opening || document.body.dataset.sliderBusy === "yes") return;
   following = true;
   try {
+    // What the page had sent when it set out: an edit typed (or a slider moved) while the studio's
+    // text was being fetched is newer than that text, and taking the fetched text would drop it.
+    const sentBefore = state.sentText, compilingBefore = state.compiling;
     await state.compiling;
     const cur = await api("GET", "/api/current");
+    if (state.sentText !== sentBefore || state.compiling !== compilingBefore || document.body.dataset.sliderBusy === "yes")
+      return;  // the page's own edit is on its way; its answer brings the studio's text and figures
     if (state.compileTimer || editor.state.doc.toString() !== state.sentText && cur.file === state.file) return;
     if (cur.file !== state.file) {
       await loadCurrent();
