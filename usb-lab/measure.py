@@ -23,6 +23,14 @@ Definitions (docs/USB_PID.md "In the lab"):
 - commanded_peak_N: the same mean over the host's commanded forces alone.
 - position_rate_hz: how often the host's position changed during the steady play: the rate its
   ticks read the grating at (the lab's bus is slower than a real one; docs/USB_PID.md).
+- command_rate_hz: how often new magnitudes reached the firmware's motor while the ticks commanded
+  a force on the scan axis: the reports of the steady play carrying a non-zero magnitude that the
+  firmware applied (not overwritten by the next before its update), per second of ticks whose
+  command was not zero. The driver sends an axis only when its magnitude changed, and corduroy's
+  force is zero between ridges, so the mean over the whole play would count the flats; the lab's
+  reports arrive in bursts, and the firmware applies only the last of a burst.
+- hand_speed_m_s: the hand's speed as the ticks saw it on the guest's clock, the median over 50 ms
+  windows of the steady play.
 - unmatched_reports[axis]: Set Constant Force reports during play whose magnitude no tick of the
   200 before its arrival computed (through the device file's scale): a mis-scaled, corrupted or
   stale report. 0 when the firmware receives what the ticks computed.
@@ -218,6 +226,9 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
     arrivals = [t for t, _ in per_axis_reports[scan_axis] if steady_start <= t <= play_end]
     gaps = [b - a for a, b in zip(arrivals, arrivals[1:])]
     command_gap_ns = percentile(gaps, 0.5)
+    forcing_ns = sum(b[0] - a[0] for a, b in zip(ticks, ticks[1:])
+                     if a[0] >= steady_start and command(scan_axis, a[1][scan_axis]) != 0)
+    forcing_applied = 0  # of those, the ones the firmware applied before the next overwrote them
     for axis in (0, 1):
         # Reports from play start to the end: the shutdown's zero force comes after the last tick.
         rs = [r for r in per_axis_reports[axis] if play_start <= r[0] <= play_end]
@@ -239,6 +250,8 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
             if u >= len(updates) or (next_report is not None and updates[u] >= next_report):
                 continue  # overwritten before the firmware's next update used it
             applied[axis] += 1
+            if axis == scan_axis and t_r >= steady_start and magnitude != 0:
+                forcing_applied += 1
             if source is not None:
                 latencies.append((updates[u] - ticks[source][0]) * 1e-6)
 
@@ -284,7 +297,8 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
         "ridges": len(ridges),
         "commanded_peak_N": mean_ridge_peak([f[scan_axis] for _, f in steady_ticks]),
         "position_rate_hz": changes / steady_s if steady_s > 0 else None,
-        "command_rate_hz": 1e9 / command_gap_ns if command_gap_ns else None,
+        "command_rate_hz": forcing_applied / (forcing_ns * 1e-9) if forcing_ns > 0 else None,
+        "command_median_gap_ms": command_gap_ns * 1e-6 if command_gap_ns else None,
         "hand_speed_m_s": percentile(speeds, 0.5),
         "firmware_max_N": max((abs(f) for f in firmware_forces), default=0.0),
         "rms_error_N": math.sqrt(sum(e * e for e in errors) / len(errors)) if errors else None,
@@ -292,14 +306,28 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
     }
 
 
+def rates_on_the_firmwares_clock(m: dict, speed_mm_s: float) -> tuple:
+    """(position_rate_hz, command_rate_hz) of measure()'s result `m`, per second of the firmware's
+    clock. The lab's hand moves one FFB period per control step (OpenFFBoardFirmware::move_stick),
+    so at the nominal speed on the firmware's clock; a guest that runs fewer steps than periods moves
+    it slower on the guest's clock, where the ticks and the bus count. explain reads the grating
+    at its nominal speed, so the rates go to the same clock: times nominal / measured speed."""
+    hand = m.get("hand_speed_m_s")
+    scale = speed_mm_s * 1e-3 / hand if hand else 1.0
+    return tuple(m[k] * scale if m.get(k) else None for k in ("position_rate_hz", "command_rate_hz"))
+
+
 def predicted_device_peak(sandpaper: Path, material: Path, device: str, speed_mm_s: float,
-                          position_rate_hz: float | None) -> dict:
+                          position_rate_hz: float | None, command_rate_hz: float | None = None) -> dict:
     """explain's prediction of what `device` outputs as a hand scans `material` at `speed_mm_s`,
-    the ticks reading the grating at `position_rate_hz` (None: the servo rate): the entry of
+    the ticks reading the grating at `position_rate_hz` (None: the servo rate) and new commands
+    reaching the firmware at `command_rate_hz` (None: the device file's bus interval): the entry of
     `sandpaper explain --json`'s device_output_at_speed for that speed (docs/USB_PID.md)."""
     cmd = [str(sandpaper), "explain", str(material), "--device", device, "--json", "--design-speed", str(speed_mm_s)]
     if position_rate_hz:
         cmd += ["--position-rate", str(position_rate_hz)]
+    if command_rate_hz:
+        cmd += ["--command-rate", str(command_rate_hz)]
     out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
     for entry in json.loads(out).get("device_output_at_speed", []):
         if abs(entry["speed_mm_s"] - speed_mm_s) < 1e-9:

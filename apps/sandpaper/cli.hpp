@@ -33,6 +33,7 @@ struct CommonOptions {
   bool json = false;
   bool compact = false;    // compile: height-field grids as binary16 where forces stay within 0.1 %
   double position_rate_hz = 0;   // explain: how often new positions reach the servo, Hz (0: the servo rate)
+  double command_rate_hz = 0;    // explain: how often new commands reach the device per axis, Hz (0: its bus interval)
   double design_speed_mm_s = 0;  // explain: the hand speed the material is designed for, mm/s (0: none)
 };
 

@@ -61,14 +61,16 @@ int cmd_compile(const CommonOptions& o, const std::string& output, bool explain)
     auto j = compiler::compile_json(*in->compile, out_path.empty() ? std::nullopt : std::optional<std::string>(out_path));
     if (explain) {
       j.erase("output");
-      j.update(compiler::explain_json(*in->compile->material, prog, c, o.design_speed_mm_s * 1e-3, o.position_rate_hz));
+      j.update(compiler::explain_json(*in->compile->material, prog, c, o.design_speed_mm_s * 1e-3,
+                                              {0, o.position_rate_hz, o.command_rate_hz}));
     }
     std::cout << schema::json_text(j, 2) << "\n";
   } else if (explain) {
     // Library files where the user can open them, as `library check` and `library show` print them.
     const compiler::DisplayPaths shown(c.library());
     std::cout << shown.in_text(compiler::explain_text(*in->compile->material, prog, c.calibration(), c.device(),
-                                                      o.design_speed_mm_s * 1e-3, o.position_rate_hz) +
+                                                      o.design_speed_mm_s * 1e-3,
+                                                      {0, o.position_rate_hz, o.command_rate_hz}) +
                                compiler::sources_text(*in->compile->material, c.library()));
   } else {
     std::cout << prog.name << ": ";

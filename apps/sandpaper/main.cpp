@@ -68,6 +68,11 @@ int main(int argc, char** argv) {
                       "how often new handle positions reach the servo, Hz, when slower than the servo (a loaded bus): "
                       "the device's output at speed is read at it")
       ->check(CLI::Range(1.0, 100000.0));
+  explain->add_option("--command-rate", o.command_rate_hz,
+                      "how often new force commands reach the device per axis, Hz (default: one per bus interval, the "
+                      "device file's [usb] out_interval, shared by the axes a grating drives): the device's output at "
+                      "speed is read at it")
+      ->check(CLI::Range(1.0, 100000.0));
   auto* run = app.add_subcommand("run", "play a material or patch program on a device");
   add_common(run, o, true);
   PlayRequest play_request;

@@ -206,6 +206,7 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
   }
   d.usb_vendor_id = static_cast<int>(c["usb"]["vendor_id"].value_or(std::int64_t{-1}));
   if (const auto* idle = c["usb"]["idle_report_period"].node()) d.usb_idle_report_period_s = detail::quantity_si(*idle);
+  if (const auto* out = c["usb"]["out_interval"].node()) d.usb_out_interval_s = detail::quantity_si(*out);
   d.usb_product_id = static_cast<int>(c["usb"]["product_id"].value_or(std::int64_t{-1}));
   if (c["firmware"].is_table()) {
     d.firmware.update_rate_hz = c["firmware"]["update_rate_hz"].value_or(0.0);

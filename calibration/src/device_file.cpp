@@ -129,7 +129,10 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   copy_table(out, base, "position");
   copy_table(out, base, "workspace");
   copy_table(out, base, "usb");
+  // What the firmware does to a command is in command units, which a gauge fit does not change.
+  copy_table(out, base, "firmware");
   copy_table(out, base, "emulation");
+  copy_table(out, base, "maps");
   copy_table(out, base, "servo_rate_hz");
   out += "\n[calibration]\nstatus = \"calibrated\"\n";
   std::string method = "least-squares line force = gain x command + offset fitted to force-gauge readings, per axis";

@@ -13,7 +13,7 @@ using namespace sandpaper::calibration;
 
 namespace {
 
-// A base in the format of calibration/devices/openffboard-2axis.toml (uncalibrated, 10000 command
+// A base in the format of calibration/devices/openffboard-2axis.toml (uncalibrated, 32767 command
 // units assumed to give 10 N).
 toml::table openffboard_base() {
   return toml::parse(R"toml(schema = "sandpaper-device/1"
@@ -22,12 +22,12 @@ description = "OpenFFBoard 2-axis force-feedback joystick over USB HID PID (unca
 command_unit = "HID PID constant-force magnitude"
 [force]
 max_continuous = "10 N"
-command_max = 10000
+command_max = 32767
 [force.x]
-newtons_per_command_unit = 0.001
+newtons_per_command_unit = 0.0003051850947599719
 command_sense = -1
 [force.y]
-newtons_per_command_unit = 0.001
+newtons_per_command_unit = 0.0003051850947599719
 command_sense = -1
 [position]
 resolution = "0.01 mm"
@@ -39,6 +39,14 @@ height = "100 mm"
 vendor_id = 0x1209
 product_id = 0xFFB0
 idle_report_period = "101 ms"
+out_interval = "1 ms"
+[firmware]
+update_rate_hz = 999.0
+constant_force_filter = "none"
+fade_in = "2 s"
+damping_command_s_per_m = 37059
+[maps]
+roughness = "lab-roughness"
 [servo_rate_hz]
 min = 900
 max = 1000
@@ -100,14 +108,20 @@ TEST(DeviceFit, DeviceFileKeepsTheBaseAndStoresTheGain) {
   EXPECT_EQ(doc["description"].value_or(std::string()).find("uncalibrated"), std::string::npos);
   EXPECT_NEAR(doc["force"]["x"]["newtons_per_command_unit"].value_or(0.0), f.axes[0].gain_N_per_unit, 1e-8 * f.axes[0].gain_N_per_unit);
   EXPECT_NEAR(doc["force"]["y"]["newtons_per_command_unit"].value_or(0.0), f.axes[1].gain_N_per_unit, 1e-8 * f.axes[1].gain_N_per_unit);
-  EXPECT_EQ(doc["force"]["command_max"].value_or(0), 10000);
+  EXPECT_EQ(doc["force"]["command_max"].value_or(0), 32767);
   // Gauge readings measure how hard, not which way: the base's sense stays.
   EXPECT_EQ(doc["force"]["x"]["command_sense"].value_or(0), -1);
   EXPECT_EQ(doc["force"]["y"]["command_sense"].value_or(0), -1);
   EXPECT_EQ(doc["usb"]["idle_report_period"].value_or(std::string()), "101 ms");
-  // 10000 x 0.00085 N is about 8.4 N < the base's assumed 10 N: max_continuous comes down to it.
+  EXPECT_EQ(doc["usb"]["out_interval"].value_or(std::string()), "1 ms");
+  // The firmware's chain is in command units: a gauge fit keeps it, and the map the base names.
+  EXPECT_EQ(doc["firmware"]["update_rate_hz"].value_or(0.0), 999.0);
+  EXPECT_EQ(doc["firmware"]["damping_command_s_per_m"].value_or(0), 37059);
+  EXPECT_EQ(doc["firmware"]["fade_in"].value_or(std::string()), "2 s");
+  EXPECT_EQ(doc["maps"]["roughness"].value_or(std::string()), "lab-roughness");
+  // 32767 x 0.00026 N is about 8.5 N < the base's assumed 10 N: max_continuous comes down to it.
   const auto max = doc["force"]["max_continuous"].value_or(std::string());
-  EXPECT_NEAR(std::stod(max), f.axes[0].gain_N_per_unit * 10000, 0.01) << max;
+  EXPECT_NEAR(std::stod(max), f.axes[0].gain_N_per_unit * 32767, 0.01) << max;
   EXPECT_EQ(doc["workspace"]["shape"].value_or(std::string()), "rectangle");
   EXPECT_EQ(doc["workspace"]["width"].value_or(std::string()), "100 mm");
   EXPECT_EQ(doc["servo_rate_hz"]["min"].value_or(0), 900);

@@ -24,9 +24,9 @@ std::string openffboard_readings_example() {
   const auto d = simulate_gauge(o);
   const std::string comment =
       "# SYNTHETIC force-gauge readings, NOT MEASURED: made by tests/calibration/examples.cpp (seed 2024) to show\n"
-      "# `sandpaper calibrate device`. A 2-axis joystick commanded 0..10000 (HID PID constant-force magnitude) in\n"
-      "# 10 steps, twice per axis; true gains 0.00085 N (x) and 0.00092 N (y) per command unit, a 0.02 N gauge zero\n"
-      "# error, 2 % saturation at full command (quadratic), N(0, 0.015 N) noise, read to 0.01 N.\n"
+      "# `sandpaper calibrate device`. A 2-axis joystick commanded 0..32767 (HID PID constant-force magnitude) in\n"
+      "# 10 steps of whole units, twice per axis; true gains 0.00026 N (x) and 0.00028 N (y) per command unit, a 0.02 N\n"
+      "# gauge zero error, 2 % saturation at full command (quadratic), N(0, 0.015 N) noise, read to 0.01 N.\n"
       "# Regenerate: cmake --build <build> --target update-calibration-examples\n";
   return readings_csv(d, comment);
 }

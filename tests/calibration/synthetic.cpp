@@ -120,7 +120,7 @@ DeviceReadings simulate_gauge(const GaugeOptions& o) {
   for (char axis : {'x', 'y'})
     for (int rep = 0; rep < o.repeats; ++rep)
       for (int k = 0; k <= o.steps; ++k) {
-        const double c = static_cast<double>(o.command_max) * k / o.steps;
+        const double c = std::round(static_cast<double>(o.command_max) * k / o.steps);
         const double u = c / o.command_max;
         const double gain = axis == 'x' ? o.gain_x : o.gain_y;
         double f = gain * c * (1 - o.saturation * u * u) + o.offset_N + o.noise_N * rng.normal();

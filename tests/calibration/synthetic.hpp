@@ -71,12 +71,12 @@ std::vector<int> experiment_runs(const ExperimentOptions& o);
 
 struct GaugeOptions {
   std::uint64_t seed = 2024;
-  double gain_x = 0.00085, gain_y = 0.00092;  // N per command unit
+  double gain_x = 0.00026, gain_y = 0.00028;  // N per command unit
   double offset_N = 0.02;                     // gauge zero error
   double saturation = 0.02;                   // force falls short by this fraction at full command, quadratically
   double noise_N = 0.015;
   double resolution_N = 0.01;                 // gauge display
-  int command_max = 10000, steps = 10, repeats = 2;
+  int command_max = 32767, steps = 10, repeats = 2;  // commands rounded to whole units
 };
 DeviceReadings simulate_gauge(const GaugeOptions& o);
 std::string readings_csv(const DeviceReadings& d, const std::string& comment);

@@ -342,7 +342,16 @@ done
 has "$tmp/cal/devices/openffboard-2axis.toml" '^status = "calibrated"$' "device file is calibrated"
 has "$tmp/cal/devices/openffboard-2axis.toml" '^product_id = (65456|0xFFB0)$' "device file keeps the [usb] IDs"
 expect_exit 0 "compile for the calibrated device" -- "$sp" explain -e corduroy --device openffboard-2axis --calibration "$tmp/cal"
-has "$tmp/out" 'openffboard-2axis \(cal/devices/openffboard-2axis.toml\): maximum force 8\.333 N, .*calibrated$' "the calibrated device's reach"
+has "$tmp/out" 'openffboard-2axis \(cal/devices/openffboard-2axis.toml\): maximum force 8\.349 N, .*calibrated$' "the calibrated device's reach"
+has "$tmp/out" 'commands on the bus at 1000 Hz' "explain reads commands once per bus interval (the device file's out_interval)"
+cp "$tmp/out" "$tmp/explain-bus"
+expect_exit 0 "explain with a slower bus" -- "$sp" explain -e corduroy --device openffboard-2axis --calibration "$tmp/cal" --command-rate 150
+has "$tmp/out" 'commands on the bus at 150 Hz' "explain takes the command rate it is given"
+# Corduroy at 50 mm/s: a 150 Hz bus passes on less of the ridges' peaks than a 1000 Hz one.
+at50() { sed -n 's/^  50 mm\/s  \([0-9.]*\) N .*/\1/p' "$1"; }
+awk -v slow="$(at50 "$tmp/out")" -v fast="$(at50 "$tmp/explain-bus")" 'BEGIN { exit !(slow > 0 && slow < 0.97 * fast) }' \
+  && ok || bad "a slower bus lowers the device's output at 50 mm/s ($(at50 "$tmp/out") vs $(at50 "$tmp/explain-bus") N)"
+expect_exit 2 "a command rate out of range" -- "$sp" explain -e corduroy --device openffboard-2axis --command-rate 0
 expect_exit 0 "calibrate device, text" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv
 has "$tmp/out" 'largest residual [0-9.]+ N = [0-9.]+ % of full scale' "device linearity"
 expect_exit 2 "calibrate device -o needs --base" -- "$sp" calibrate device examples/calibration/openffboard-readings.csv -o "$tmp/d.toml"

@@ -147,11 +147,11 @@ TEST(CalibrationFiles, DeviceFilesInSIUnits) {
   EXPECT_FALSE(usb->workspace_circle);
   EXPECT_EQ(usb->file, "calibration/devices/openffboard-2axis.toml");
   // [firmware]: the OpenFFBoard's chain (usb-lab/firmware/README.md): 1001 us updates, a 2 s fade,
-  // its damper 9000 deg/m x 30 x 28 / 204 command units per m/s, at 1 mN per unit.
+  // its damper 9000 deg/m x 30 x 28 / 204 command units per m/s, at 10 N over 32767 units.
   ASSERT_TRUE(usb->has_firmware());
   EXPECT_NEAR(usb->firmware.update_rate_hz, 1e6 / 1001, 0.1);
   EXPECT_DOUBLE_EQ(usb->firmware.fade_in_s, 2.0);
-  EXPECT_NEAR(usb->firmware_damping_N(0, 0.1), 9000.0 * 30 * 28 / 204 * 0.1 * 0.001, 1e-3);
+  EXPECT_NEAR(usb->firmware_damping_N(0, 0.1), 9000.0 * 30 * 28 / 204 * 0.1 * 10 / 32767, 1e-3);
   EXPECT_NEAR(usb->firmware_damping_N(1, -0.1), usb->firmware_damping_N(1, 0.1), 1e-12);
   EXPECT_FALSE(cal.find_device("sandpaper-1995")->has_firmware());
   const auto* sim = cal.find_device("sim");
@@ -215,7 +215,7 @@ TEST(CalibrationFiles, WrongDimensionAndTyposAreReportedWithPositions) {
 TEST(CalibrationFiles, ProblemsInSeveralFilesComeInOneReport) {
   auto dir = copy_of_shipped("cal-several");
   auto dev = dir / "devices/openffboard-2axis.toml";
-  write(dev, replace(read(dev), "[force.x]\nnewtons_per_command_unit = 0.001", "[force.x]"));
+  write(dev, replace(read(dev), "[force.x]\nnewtons_per_command_unit = 0.0003051850947599719   # 10 N / 32767", "[force.x]"));
   auto map = dir / "maps/minsky1995-fig19.toml";
   write(map, replace(read(map), "status = \"measured\"", "status = \"guessed\""));
   auto err = load_error(dir);
@@ -268,7 +268,7 @@ TEST(CalibrationFiles, ConsistencyRulesBeyondTheSchema) {
     // A force table that falls.
     auto dir = copy_of_shipped("cal-table");
     auto f = dir / "devices/openffboard-2axis.toml";
-    write(f, replace(read(f), "[force.y]\nnewtons_per_command_unit = 0.001",
+    write(f, replace(read(f), "[force.y]\nnewtons_per_command_unit = 0.0003051850947599719   # 10 N / 32767",
                      "[force.y]\ntable = [{command = 0, force = \"0 N\"}, {command = 5000, force = \"6 N\"}, "
                      "{command = 10000, force = \"5 N\"}]"));
     EXPECT_NE(load_error(dir).find("force.y.table must rise"), std::string::npos);

@@ -61,15 +61,15 @@ TEST(DeviceCompile, SameNewtonsDifferentCommandUnitsOnTheThesisAndUsbJoysticks) 
     EXPECT_NEAR(na / nb, 1.0, 0.01) << material << ": " << na << " N vs " << nb << " N";
     EXPECT_NEAR(na / pa.max_lateral_force_N, 1.0, 0.01) << material;
     // Command units: ju on the thesis joystick, PID magnitude on the USB joystick, in the ratio of
-    // their scales (0.001 / 0.004814 = 0.2077).
+    // their scales (10/32767 / 0.004814 = 0.0634).
     double ua = pa.max_lateral_force_N / pa.command.newtons_per_command_unit[0];
     double ub = pb.max_lateral_force_N / pb.command.newtons_per_command_unit[0];
     EXPECT_NE(std::round(ua), std::round(ub)) << material;
-    EXPECT_NEAR(ub / ua, 0.00481417274 / 0.001, 1e-9) << material;
+    EXPECT_NEAR(ub / ua, 0.00481417274 / (10.0 / 32767), 1e-9) << material;
     EXPECT_EQ(pa.command.command_unit, "ju");
     EXPECT_EQ(pb.command.command_unit, "PID magnitude");
     EXPECT_EQ(pa.command.command_max, 2048);
-    EXPECT_EQ(pb.command.command_max, 10000);
+    EXPECT_EQ(pb.command.command_max, 32767);
   }
 }
 

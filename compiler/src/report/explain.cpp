@@ -27,7 +27,7 @@ std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s 
 
 std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& p,
                          const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device,
-                         double design_speed_m_s, double position_rate_hz) {
+                         double design_speed_m_s, const DeviceRates& rates) {
   const auto& map = cal.roughness_map();
   std::ostringstream os;
   os << std::setprecision(4);
@@ -123,10 +123,11 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
     }
   }
   const std::vector<double> out_speeds = device_output_speeds(design_speed_m_s);
-  if (const auto out = device_output_at_speed(p, device, out_speeds,
-                                                   position_rate_hz > 0 ? std::min(rate, position_rate_hz) : rate);
-      !out.empty()) {
-    os << "\nout of " << device.name << " (through its firmware: forces read at " << std::lround(out.front().rate_hz)
+  if (const auto out = device_output_at_speed(p, device, out_speeds, rates); !out.empty()) {
+    const auto& chain = out.front();
+    os << "\nout of " << device.name << " (positions to the servo at " << std::lround(chain.position_rate_hz)
+       << " Hz, ticks at " << std::lround(chain.servo_rate_hz) << " Hz, commands on the bus at "
+       << std::lround(chain.command_rate_hz) << " Hz, the firmware's updates at " << std::lround(chain.update_rate_hz)
        << " Hz, its damper against the motion; mean peak per ridge, both ways; docs/USB_PID.md)\n";
     for (const auto& o : out)
       os << "  " << o.speed_m_s * 1e3 << " mm/s  " << o.peak_N << " N  (" << o.commanded_peak_N << " N commanded, "

@@ -12,7 +12,7 @@
 namespace sandpaper::compiler {
 
 nlohmann::json explain_json(const ResolvedMaterial& material, const schema::PatchProgram& prog, const Compiler& c,
-                            double design_speed_m_s, double position_rate_hz) {
+                            double design_speed_m_s, const DeviceRates& rates) {
   nlohmann::json j = nlohmann::json::object();
   j["knowledge"] = compiler::knowledge_json(compiler::assess_knowledge(material, prog, c.calibration()),
                                             c.calibration());
@@ -29,9 +29,10 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
   // Through the device's own firmware ([firmware] in its calibration file): empty without one.
   nlohmann::json out = nlohmann::json::array();
   const std::vector<double> out_speeds = compiler::device_output_speeds(design_speed_m_s);
-  for (const auto& o : compiler::device_output_at_speed(prog, c.device(), out_speeds,
-                                                             position_rate_hz > 0 ? std::min(rate, position_rate_hz) : rate))
-    out.push_back({{"speed_mm_s", o.speed_m_s * 1e3}, {"rate_hz", o.rate_hz}, {"commanded_peak_N", o.commanded_peak_N},
+  for (const auto& o : compiler::device_output_at_speed(prog, c.device(), out_speeds, rates))
+    out.push_back({{"speed_mm_s", o.speed_m_s * 1e3}, {"rate_hz", o.rate_hz}, {"servo_rate_hz", o.servo_rate_hz},
+                   {"position_rate_hz", o.position_rate_hz}, {"command_rate_hz", o.command_rate_hz},
+                   {"update_rate_hz", o.update_rate_hz}, {"commanded_peak_N", o.commanded_peak_N},
                    {"damping_N", o.damping_N}, {"device_peak_N", o.peak_N}});
   j["device_output_at_speed"] = out;
   // The remedies at each common hand speed (W0350), measured: a faster servo, or wider walls.

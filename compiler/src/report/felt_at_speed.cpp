@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <sstream>
+#include <utility>
 
 #include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/compiler/textures.hpp"
@@ -65,11 +66,86 @@ const schema::GratingTerm* first_grating(const schema::PatchProgram& p) {
   return g;
 }
 
-// Mean over ridges and first-tick phases of what a hand meets at speed v, rate `rate`, with a
-// damper of `damping_N(v)` against the motion (0: the ticks' reads alone).
+// The position the last of a chain of sample-and-holds carries at its sample y (table samples):
+// each stage holds the latest sample of the stage before it.
+double carried(double y, const std::vector<double>& step, const std::vector<double>& phase) {
+  double x = y;
+  for (std::size_t i = step.size() - 1; i-- > 0;) x = phase[i] + std::floor((x - phase[i]) / step[i]) * step[i];
+  return x;
+}
+
+// The largest sign * read(x) a chain of sample-and-holds passes on with a ridge between lo and hi
+// (table samples). Stage i samples the stage before it at phase[i] + k step[i] (stage 0 samples the
+// hand's position); what the last stage holds reaches the motor. Each of the last stage's samples
+// is traced back through the stages to the position it carries: a value a faster stage held for
+// less than a slower one's step may never reach the motor, and one held long may reach it late.
+double best_through_chain(const std::vector<float>& t, double sign, double lo, double hi, const std::vector<double>& step,
+                          const std::vector<double>& phase) {
+  const std::size_t last = step.size() - 1;
+  double lag = 0;
+  for (std::size_t i = 0; i < last; ++i) lag += step[i];
+  const double first = phase[last] + std::ceil((lo - phase[last]) / step[last]) * step[last];
+  double best = 0;
+  for (double k = 0;; ++k) {
+    const double y = first + k * step[last];
+    if (y > hi + lag) break;
+    const double x = carried(y, step, phase);
+    if (x >= lo && x <= hi) best = std::max(best, sign * read(t, x));
+  }
+  return best;
+}
+
+// The last stage's samples best_through_chain walks per ridge at most; past it (stages far finer
+// than the table's samples, or a very wide ridge) the slowest stage alone stands for the chain.
+constexpr double kMaxChainWalk = 1 << 16;
+
+// Phases for `stages` independent clocks, each in [0, 1): the R_d low-discrepancy sequence
+// (Roberts 2018), so a few hundred tuples cover the stages' joint phases evenly.
+std::vector<double> phase_tuple(int k, std::size_t stages) {
+  double phi = 2;
+  for (int i = 0; i < 64; ++i) phi = std::pow(1 + phi, 1.0 / static_cast<double>(stages + 1));
+  std::vector<double> u(stages);
+  double alpha = 1;
+  for (std::size_t i = 0; i < stages; ++i) {
+    alpha /= phi;
+    const double v = 0.5 + (k + 1) * alpha;
+    u[i] = v - std::floor(v);
+  }
+  return u;
+}
+
+// A hand moving toward +x over `periods` periods of table `t` with a damper of `damping_N` against
+// it, the force reaching the motor through the chain: the sum and count of the runs' peaks, where a
+// run is what the motor applies from the first value of one sign to the first of the other (zeros
+// do not end it) and its peak the largest |F - damping_N| in it, as the lab measures the firmware
+// (usb-lab/measure.py, device_ridge_peaks). The first run and those past the last whole period's
+// worth of `ridges` runs are left out: the walk cuts them, and ridges of either sign must count alike.
+// The ridges' edges, where the damper alone acts, count only where a sample lands on them.
+std::pair<double, int> run_peaks(const std::vector<float>& t, double damping_N, int periods, std::size_t ridges,
+                                 const std::vector<double>& step, const std::vector<double>& phase) {
+  const double end = static_cast<double>(periods) * static_cast<double>(t.size());
+  std::vector<double> peaks;
+  int sign = 0;
+  for (double k = 0;; ++k) {
+    const double y = phase.back() + k * step.back();
+    if (y > end) break;
+    const double f = read(t, carried(y, step, phase));
+    const int s = f > 0 ? 1 : f < 0 ? -1 : 0;
+    if (s != 0 && s != sign) peaks.push_back(0), sign = s;
+    if (!peaks.empty()) peaks.back() = std::max(peaks.back(), std::abs(f - damping_N));
+  }
+  const std::size_t whole = peaks.size() < 2 ? 0 : (peaks.size() - 2) / ridges * ridges;
+  double sum = 0;
+  for (std::size_t i = 1; i <= whole; ++i) sum += peaks[i];
+  return {sum, static_cast<int>(whole)};
+}
+
+// Mean over ridges and phases of what a hand meets at speed v with the grating read through
+// sample-and-holds at `chain_hz` (hand side first), with a damper of `damping_N(v)` against the
+// motion (0: the reads alone).
 template <class Damping>
 std::vector<FeltAtSpeed> felt_with(const schema::GratingTerm& g, const std::vector<double>& speeds_m_s,
-                                   const std::vector<double>& rates_hz, Damping damping_N) {
+                                   const std::vector<double>& chain_hz, Damping damping_N) {
   std::vector<FeltAtSpeed> out;
   const auto& table = g.force_N;
   const auto n = static_cast<double>(table.size());
@@ -78,22 +154,60 @@ std::vector<FeltAtSpeed> felt_with(const schema::GratingTerm& g, const std::vect
   for (const auto& r : ridges) continuous += r.peak;
   continuous = ridges.empty() ? 0 : continuous / static_cast<double>(ridges.size());
   constexpr int kPhases = 512;
-  for (double rate : rates_hz)
-    for (double v : speeds_m_s) {
-      FeltAtSpeed f{v, rate, 0, 0};
-      const double step = v / rate / g.period_m * n;  // one tick's travel, in samples
-      const double d = damping_N(v);
-      double sum = 0;
-      for (const auto& r : ridges) {
-        // The ridge's force lives between the zero-or-opposite samples on either side of it.
-        const double lo = r.first - 1, hi = r.last + 1;
-        for (int k = 0; k < kPhases; ++k)
-          sum += with_damper(best_on_lattice(table, r.sign, lo + step * (k + 0.5) / kPhases, step, hi), d);
+  const double slowest_hz = *std::min_element(chain_hz.begin(), chain_hz.end());
+  for (double v : speeds_m_s) {
+    FeltAtSpeed f{v, slowest_hz, 0, 0};
+    std::vector<double> step;  // each stage's travel between samples, in table samples
+    for (double rate : chain_hz) step.push_back(v / rate / g.period_m * n);
+    const double d = damping_N(v);
+    double sum = 0;
+    // With a damper, which value reaches the motor decides whether a ridge's edge, where the damper
+    // acts alone, is met at all: walk the runs both ways, unless even the slowest stage reads
+    // finer than the table's samples (then every edge is met, and with_damper is exact).
+    const double slow = *std::max_element(step.begin(), step.end());
+    const int periods = 2 + static_cast<int>(std::ceil(8.0 / std::max(1.0, static_cast<double>(ridges.size()))));
+    if (d > 0 && !ridges.empty() && slow >= 1 && periods * n / step.back() <= kMaxChainWalk) {
+      // Scanning toward -x is scanning toward +x over the mirrored table, its force negated.
+      std::vector<float> mirrored(table.size());
+      for (std::size_t i = 0; i < table.size(); ++i) mirrored[i] = -table[(table.size() - i) % table.size()];
+      const std::vector<float>* both_ways[] = {&table, &mirrored};
+      std::vector<double> phase(step.size());
+      double runs_sum = 0;
+      int runs = 0;
+      for (int k = 0; k < kPhases; ++k) {
+        const auto u = phase_tuple(k, step.size());
+        for (std::size_t i = 0; i < step.size(); ++i) phase[i] = u[i] * step[i];
+        for (const auto* t : both_ways) {
+          const auto [ps, pc] = run_peaks(*t, d, periods, ridges.size(), step, phase);
+          runs_sum += ps, runs += pc;
+        }
       }
-      f.peak_N = ridges.empty() ? 0 : sum / (kPhases * static_cast<double>(ridges.size()));
+      f.peak_N = runs > 0 ? runs_sum / runs : 0;
       f.fraction = continuous > 0 ? f.peak_N / continuous : 0;
       out.push_back(f);
+      continue;
     }
+    for (const auto& r : ridges) {
+      // The ridge's force lives between the zero-or-opposite samples on either side of it.
+      const double lo = r.first - 1, hi = r.last + 1;
+      double lag = 0;
+      for (double s : step) lag += s;
+      if (step.size() == 1 || (hi - lo + lag) / step.back() > kMaxChainWalk) {
+        for (int k = 0; k < kPhases; ++k)
+          sum += with_damper(best_on_lattice(table, r.sign, lo + slow * (k + 0.5) / kPhases, slow, hi), d);
+        continue;
+      }
+      std::vector<double> phase(step.size());
+      for (int k = 0; k < kPhases; ++k) {
+        const auto u = phase_tuple(k, step.size());
+        for (std::size_t i = 0; i < step.size(); ++i) phase[i] = u[i] * step[i];
+        sum += with_damper(best_through_chain(table, r.sign, lo, hi, step, phase), d);
+      }
+    }
+    f.peak_N = ridges.empty() ? 0 : sum / (kPhases * static_cast<double>(ridges.size()));
+    f.fraction = continuous > 0 ? f.peak_N / continuous : 0;
+    out.push_back(f);
+  }
   return out;
 }
 
@@ -103,27 +217,51 @@ std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std:
                                        const std::vector<double>& rates_hz) {
   const auto* g = first_grating(p);
   if (!g) return {};
-  return felt_with(*g, speeds_m_s, rates_hz, [](double) { return 0.0; });
+  std::vector<FeltAtSpeed> out;
+  for (double rate : rates_hz)
+    for (const auto& f : felt_with(*g, speeds_m_s, {rate}, [](double) { return 0.0; })) out.push_back(f);
+  return out;
 }
 
 std::vector<DeviceOutputAtSpeed> device_output_at_speed(const schema::PatchProgram& p,
                                                         const calibration::DeviceCalibration& device,
-                                                        const std::vector<double>& speeds_m_s, double servo_rate_hz) {
+                                                        const std::vector<double>& speeds_m_s, const DeviceRates& rates) {
   std::vector<DeviceOutputAtSpeed> out;
   const auto* g = first_grating(p);
   if (!g || !device.has_firmware()) return out;
-  // The firmware applies the latest command at each of its updates: the force reaches the motor
-  // at the slower of the two rates.
-  const double rate = std::min(servo_rate_hz, device.firmware.update_rate_hz);
   // The hand moves along the grating's normal; each axis's damper acts on its part of the speed.
   const double nx = std::cos(g->orientation_rad), ny = std::sin(g->orientation_rad);
   const auto damping = [&](double v) {
     return device.firmware_damping_N(0, v * nx) * std::abs(nx) + device.firmware_damping_N(1, v * ny) * std::abs(ny);
   };
-  const auto commanded = felt_with(*g, speeds_m_s, {rate}, [](double) { return 0.0; });
-  const auto output = felt_with(*g, speeds_m_s, {rate}, damping);
-  for (std::size_t i = 0; i < speeds_m_s.size(); ++i)
-    out.push_back({speeds_m_s[i], rate, commanded[i].peak_N, damping(speeds_m_s[i]), output[i].peak_N});
+  const double servo = rates.servo_hz > 0 ? rates.servo_hz : default_servo_rate_hz(device);
+  // A grating along an axis changes that axis's force alone; at an angle both change, and the
+  // driver sends each axis that changed in its own transfer, one per bus interval.
+  const int axes_driven = (std::abs(nx) > 1e-9 ? 1 : 0) + (std::abs(ny) > 1e-9 ? 1 : 0);
+  const double command = rates.command_hz > 0               ? rates.command_hz
+                         : device.usb_out_interval_s > 0 ? 1 / device.usb_out_interval_s / std::max(1, axes_driven)
+                                                          : 0;
+  std::vector<double> ticks;
+  if (rates.position_hz > 0) ticks.push_back(rates.position_hz);
+  ticks.push_back(servo);
+  std::vector<double> chain = ticks;
+  if (command > 0) chain.push_back(command);
+  chain.push_back(device.firmware.update_rate_hz);
+  const auto commanded = felt_with(*g, speeds_m_s, ticks, [](double) { return 0.0; });
+  const auto output = felt_with(*g, speeds_m_s, chain, damping);
+  for (std::size_t i = 0; i < speeds_m_s.size(); ++i) {
+    DeviceOutputAtSpeed o;
+    o.speed_m_s = speeds_m_s[i];
+    o.rate_hz = *std::min_element(chain.begin(), chain.end());
+    o.servo_rate_hz = servo;
+    o.position_rate_hz = rates.position_hz > 0 ? rates.position_hz : servo;
+    o.command_rate_hz = command > 0 ? command : servo;
+    o.update_rate_hz = device.firmware.update_rate_hz;
+    o.commanded_peak_N = commanded[i].peak_N;
+    o.damping_N = damping(speeds_m_s[i]);
+    o.peak_N = output[i].peak_N;
+    out.push_back(o);
+  }
   return out;
 }
 

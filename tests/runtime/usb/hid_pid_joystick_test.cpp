@@ -97,8 +97,8 @@ TEST(HidPidJoystick, EachTickSendsSetConstantForcePerAxisScaledSignedAndClamped)
   auto t = testing::primed_transport();
   HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
   const std::size_t start = t->log().size();
-  // 1 mN per command unit and command_sense -1 on both axes (openffboard-2axis.toml: a positive
-  // magnitude pushes the OpenFFBoard's handle toward -x): 1.5 N -> -1500 = 0xFA24;
+  // 1 mN per command unit (testing::openffboard()) and command_sense -1 on both axes (as
+  // openffboard-2axis.toml: a positive magnitude pushes the OpenFFBoard's handle toward -x): 1.5 N -> -1500 = 0xFA24;
   // -2.25 N -> 2250 = 0x08CA.
   ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
   // Beyond the Magnitude field's logical range -10000..10000: clamped, sign kept.

@@ -63,7 +63,7 @@ double axis_factor(const Bytes& set_effect, int axis) {
 
 TEST(OpenFFBoardFirmware, TheDriverOpensTheRealDescriptor) {
   auto t = openffboard_transport();
-  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+  HidPidJoystick joystick(*t, testing::shipped_openffboard(), testing::synchronous());
   EXPECT_EQ(joystick.effect_block_index(0), 1);
   EXPECT_EQ(joystick.effect_block_index(1), 2);
   glm::dvec2 p{0, 0};
@@ -77,7 +77,7 @@ TEST(OpenFFBoardFirmware, TheDriverOpensTheRealDescriptor) {
 TEST(OpenFFBoardFirmware, DeviceControlIsTheFirmwaresBitmask) {
   auto t = openffboard_transport();
   {
-    HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+    HidPidJoystick joystick(*t, testing::shipped_openffboard(), testing::synchronous());
   }
   // HID_ID_CTRLREP 0x0C (ffb_defs.h:56); ffb_control(report[1]) reads bits: 0x01 enable, 0x02
   // disable, 0x04 stop all, 0x08 reset (HidFFB.cpp:97-99, 205-224). Open: reset, enable; close:
@@ -92,7 +92,7 @@ TEST(OpenFFBoardFirmware, DeviceControlIsTheFirmwaresBitmask) {
 
 TEST(OpenFFBoardFirmware, EffectsAreConstantForcesOnOneAxisEachWithTheSameSense) {
   auto t = openffboard_transport();
-  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+  HidPidJoystick joystick(*t, testing::shipped_openffboard(), testing::synchronous());
   // Create New Effect, feature 0x11 (ffb_defs.h:60, :197-199): type at byte 1, FFB_EFFECT_CONSTANT = 1 (ffb_defs.h:73).
   const auto created = outputs_with_id(*t, 0x11, Op::SetFeature);
   ASSERT_EQ(created.size(), 2u);
@@ -129,18 +129,19 @@ TEST(OpenFFBoardFirmware, EffectsAreConstantForcesOnOneAxisEachWithTheSameSense)
 
 TEST(OpenFFBoardFirmware, SetConstantForceCarriesTheSignedMagnitude) {
   auto t = openffboard_transport();
-  HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+  HidPidJoystick joystick(*t, testing::shipped_openffboard(), testing::synchronous());
   t->clear_log();
   ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
   // FFB_SetConstantForce_Data_t (ffb_defs.h:302-304), HID_ID_CONSTREP 0x05: block index, int16
-  // magnitude taken raw (HidFFB.cpp:228-234). 1 mN per unit (openffboard-2axis.toml, uncalibrated),
-  // command_sense -1: the firmware pushes the handle toward -x for a positive magnitude.
+  // magnitude taken raw (HidFFB.cpp:228-234). 10 N over the Magnitude's 32767 (openffboard-2axis.toml,
+  // uncalibrated): 1.5 N is 4915.05 units, 2.25 N 7372.575, rounded half away from zero; command_sense
+  // -1: the firmware pushes the handle toward -x for a positive magnitude.
   const auto forces = outputs_with_id(*t, 0x05);
   ASSERT_EQ(forces.size(), 2u);
   EXPECT_EQ(forces[0][1], 1);
-  EXPECT_EQ(i16(forces[0], 2), -1500);
+  EXPECT_EQ(i16(forces[0], 2), -4915);
   EXPECT_EQ(forces[1][1], 2);
-  EXPECT_EQ(i16(forces[1], 2), 2250);
+  EXPECT_EQ(i16(forces[1], 2), 7373);
 }
 
 TEST(OpenFFBoardFirmware, TheOneAxisWheelIsRefusedAsAJoystick) {
@@ -150,7 +151,7 @@ TEST(OpenFFBoardFirmware, TheOneAxisWheelIsRefusedAsAJoystick) {
   t->add_feature_reply(0x13, {0x13, 0x00, 0x10, 40, 0x01});
   t->add_input({UsbStatus::Ok, position_report(0, 0)});
   try {
-    HidPidJoystick joystick(*t, testing::openffboard(), testing::synchronous());
+    HidPidJoystick joystick(*t, testing::shipped_openffboard(), testing::synchronous());
     ADD_FAILURE() << "the 1-axis wheel opened as a 2-axis joystick";
   } catch (const HidPidError& e) {
     EXPECT_NE(std::string(e.what()).find("usage 0x0031"), std::string::npos) << e.what();  // Y

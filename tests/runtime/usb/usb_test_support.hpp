@@ -1,6 +1,7 @@
 #pragma once
 // The hand-written OpenFFBoard-like descriptor (data/openffboard_like_2axis.hex), the shipped
-// openffboard-2axis calibration, and a fake transport primed with that device's replies.
+// openffboard-2axis calibration and a 1 mN copy of it for that descriptor, and a fake transport
+// primed with that device's replies.
 #include <memory>
 
 #include "fake_transport.hpp"
@@ -13,9 +14,23 @@ inline std::vector<std::uint8_t> test_descriptor() {
   return read_hex_file(std::filesystem::path(SANDPAPER_SOURCE_DIR) / "tests/runtime/usb/data/openffboard_like_2axis.hex");
 }
 
-inline const calibration::DeviceCalibration& openffboard() {
+// The shipped openffboard-2axis calibration.
+inline const calibration::DeviceCalibration& shipped_openffboard() {
   static const auto set = calibration::CalibrationSet::load(std::filesystem::path(SANDPAPER_SOURCE_DIR) / "calibration");
   return *set.find_device("openffboard-2axis");
+}
+
+// The shipped calibration on the hand-written descriptor's Magnitude range, -10000..10000, at 1 mN
+// per command unit: the driver's arithmetic in round numbers. The shipped scale (10 N over the
+// firmware's 32767) is tested against the real descriptor (openffboard_firmware_test.cpp).
+inline const calibration::DeviceCalibration& openffboard() {
+  static const auto like = [] {
+    auto d = shipped_openffboard();
+    d.command_max = 10000;
+    for (auto& a : d.axis) a.newtons_per_command_unit = 0.001;
+    return d;
+  }();
+  return like;
 }
 
 // Options for the driver making its transfers on the calling thread, so that a test sees the

@@ -126,6 +126,10 @@ struct DeviceCalibration {
   // [usb] idle_report_period: how often the device resends an unchanged input report, s (0: it
   // reports every poll); the driver's stale-position watchdog waits at least twice this long.
   double usb_idle_report_period_s = 0;
+  // [usb] out_interval: the interrupt OUT endpoint's polling interval (bInterval frames), s (0: not
+  // stated). One force report crosses the bus per interval; the driver sends each changed axis in
+  // its own, so a force changing on both axes reaches each at half that rate (USB 2.0 5.7.4).
+  double usb_out_interval_s = 0;
   // [firmware]: what the device's own firmware does to a command on its way to the motor
   // (docs/USB_PID.md "The device's chain"); update_rate_hz 0 when the file has no [firmware].
   struct Firmware {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/compiler/felt_at_speed.hpp"
 #include "sandpaper/compiler/resolved.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
@@ -13,10 +14,11 @@ namespace sandpaper::compiler {
 
 // `design_speed_m_s` > 0: the hand speed (m/s) the designer states the material is for (`explain
 // --design-speed`); a grating's remedies (felt_at_speed.hpp) are then measured at it, whatever it loses.
-// `position_rate_hz` > 0: how often new handle positions reach the servo when that is slower than
-// the servo (`explain --position-rate`); the device's output at speed is read at it.
+// `rates`: how often new positions reach the servo and new commands reach the device (`explain
+// --position-rate`, `--command-rate`; 0: the defaults of DeviceRates); the device's output at
+// speed is read through them.
 std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& p,
                          const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device,
-                         double design_speed_m_s = 0, double position_rate_hz = 0);
+                         double design_speed_m_s = 0, const DeviceRates& rates = {});
 
 }  // namespace sandpaper::compiler

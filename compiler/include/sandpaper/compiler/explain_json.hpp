@@ -7,12 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/compiler/felt_at_speed.hpp"
 
 namespace sandpaper::compiler {
 
 // `design_speed_m_s` > 0: the hand speed (m/s) the material is designed for, added to the remedies.
-// `position_rate_hz` > 0: how often new handle positions reach the servo (explain.hpp).
+// `rates`: the rates a force passes on its way to the motor (felt_at_speed.hpp; explain.hpp).
 nlohmann::json explain_json(const ResolvedMaterial& material, const schema::PatchProgram& program, const Compiler& compiler,
-                            double design_speed_m_s, double position_rate_hz = 0);
+                            double design_speed_m_s, const DeviceRates& rates = {});
 
 }  // namespace sandpaper::compiler

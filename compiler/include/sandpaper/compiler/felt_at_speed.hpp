@@ -27,21 +27,33 @@ struct FeltAtSpeed {
 std::vector<FeltAtSpeed> felt_at_speed(const schema::PatchProgram& p, const std::vector<double>& speeds_m_s,
                                        const std::vector<double>& rates_hz);
 
+// The rates a force passes through between the hand's position and the motor, Hz. Each is a
+// sample-and-hold of the one before it, running on its own clock: positions reach the ticks, a tick
+// computes the force at the latest position, a command carries the latest tick's force to the device,
+// and the firmware applies the latest command at its updates (docs/USB_PID.md "The device's chain").
+struct DeviceRates {
+  double servo_hz = 0;     // the servo's ticks (0: default_servo_rate_hz)
+  double position_hz = 0;  // new positions reaching the ticks (0: a new one every tick)
+  double command_hz = 0;   // new commands reaching the firmware, per axis (0: the device's [usb] out_interval
+                           // shared by the axes the grating drives; every tick without one)
+};
+
 // The force a device with its own firmware chain ([firmware] in its calibration file) outputs as a
-// hand scans the first grating of `p` at each speed: the ticks' reads at the slower of the servo
-// rate and the firmware's update rate, plus the firmware's always-on damper against the motion,
-// in the same measure as FeltAtSpeed (mean over ridges of each ridge's largest |F|, both scan
-// directions, docs/USB_PID.md "The device's chain"). Empty without a grating or without [firmware].
+// hand scans the first grating of `p` at each speed: the grating read through the chain of
+// sample-and-holds of `rates`, plus the firmware's always-on damper against the motion, in the
+// same measure as FeltAtSpeed (mean over ridges of each ridge's largest |F|, both scan
+// directions, averaged over the stages' phases). Empty without a grating or without [firmware].
 struct DeviceOutputAtSpeed {
   double speed_m_s = 0;
-  double rate_hz = 0;           // the rate the force reaches the motor at, Hz
-  double commanded_peak_N = 0;  // felt_at_speed at that rate: what the ticks command, N
+  double rate_hz = 0;           // the slowest of the rates below, Hz
+  double servo_rate_hz = 0, position_rate_hz = 0, command_rate_hz = 0, update_rate_hz = 0;  // the chain's stages, Hz
+  double commanded_peak_N = 0;  // what the ticks command (positions and ticks alone), N
   double damping_N = 0;         // the firmware's damper at this speed, N, against the motion
   double peak_N = 0;            // what the device outputs, N
 };
 std::vector<DeviceOutputAtSpeed> device_output_at_speed(const schema::PatchProgram& p,
                                                         const calibration::DeviceCalibration& device,
-                                                        const std::vector<double>& speeds_m_s, double servo_rate_hz);
+                                                        const std::vector<double>& speeds_m_s, const DeviceRates& rates);
 
 // The speeds explain reports the device output at: 20, 50, 100 and 200 mm/s, and `design_speed_m_s`
 // when positive and not one of them, m/s.
