@@ -165,7 +165,10 @@ std::vector<FeltAtSpeed> felt_with(const schema::GratingTerm& g, const std::vect
     // acts alone, is met at all: walk the runs both ways, unless even the slowest stage reads
     // finer than the table's samples (then every edge is met, and with_damper is exact).
     const double slow = *std::max_element(step.begin(), step.end());
-    const int periods = 2 + static_cast<int>(std::ceil(8.0 / std::max(1.0, static_cast<double>(ridges.size()))));
+    // Enough periods for 8 whole runs past the first, and for 64 of the slowest stage's samples: a
+    // stage far slower than the ridges aliases them, and its runs are then long.
+    const int periods = std::max(2 + static_cast<int>(std::ceil(8.0 / std::max(1.0, static_cast<double>(ridges.size())))),
+                                 static_cast<int>(std::min(1e6, std::ceil(64 * slow / n))));
     if (d > 0 && !ridges.empty() && slow >= 1 && periods * n / step.back() <= kMaxChainWalk) {
       // Scanning toward -x is scanning toward +x over the mirrored table, its force negated.
       std::vector<float> mirrored(table.size());
@@ -182,10 +185,12 @@ std::vector<FeltAtSpeed> felt_with(const schema::GratingTerm& g, const std::vect
           runs_sum += ps, runs += pc;
         }
       }
-      f.peak_N = runs > 0 ? runs_sum / runs : 0;
-      f.fraction = continuous > 0 ? f.peak_N / continuous : 0;
-      out.push_back(f);
-      continue;
+      if (runs > 0) {
+        f.peak_N = runs_sum / runs;
+        f.fraction = continuous > 0 ? f.peak_N / continuous : 0;
+        out.push_back(f);
+        continue;
+      }
     }
     for (const auto& r : ridges) {
       // The ridge's force lives between the zero-or-opposite samples on either side of it.
