@@ -330,12 +330,12 @@ TEST(DeviceOutputAtSpeed, TheBusCarriesOneReportPerIntervalSharedByTheAxesTheGra
     EXPECT_DOUBLE_EQ(out.at(0).update_rate_hz, 999);
     EXPECT_DOUBLE_EQ(compiler::device_output_at_speed(p, d, {0.05}, {0, 0, 200}).at(0).command_rate_hz, 200);
   }
-  // A bus far slower than the ridges (30 reports a second, 1.7 mm apart on a 2 mm grating) aliases
-  // them: what reaches the motor is still a force, at least the damper on the ridges against the
-  // motion, never nothing.
+  // A bus far slower than the ridges (30 reports a second, 1.7 mm apart on a 0.7 mm grating)
+  // aliases them: what reaches the motor is still a force, at least the damper on the ridges
+  // against the motion, never nothing.
   schema::PatchProgram p;
   schema::GratingTerm g;
-  g.period_m = 2e-3;
+  g.period_m = 0.7e-3;
   for (int i = 0; i < 256; ++i) g.force_N.push_back(static_cast<float>(std::sin(2 * M_PI * i / 256)));
   p.terms.emplace_back(g);
   d.firmware.damping_command_s_per_m = 0.5 / 0.001 / 0.05;
