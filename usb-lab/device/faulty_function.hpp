@@ -1,8 +1,9 @@
 #pragma once
 // A UsbFunction that passes everything to the function behind it except the faults the lab injects:
-// a control request it refuses (STALL), as a device with a broken Feature report does, and input
-// reports it stops sending, as a device whose sensor or firmware hangs does. The stall is set before
-// the device starts; the silence can be switched on from another thread while it runs.
+// a control request it refuses (STALL), as a device with a broken Feature report does; a GET_REPORT
+// it answers late, as a device busy elsewhere does; and input reports it stops sending, as a device
+// whose sensor or firmware hangs does. The stall and the delay are set before the device starts; the
+// silence can be switched on from another thread while it runs.
 #include <atomic>
 #include <optional>
 #include <thread>
@@ -28,6 +29,12 @@ class FaultyFunction final : public ForwardingFunction {
 
   // Every GET_REPORT and SET_REPORT of this report is refused from now on.
   void stall(StalledReport r) { stalled_ = r; }
+  // Every GET_REPORT of this report is answered `delay` after the host asked (on ep0's thread, the
+  // emulated core free meanwhile).
+  void answer_late(StalledReport r, std::chrono::milliseconds delay) {
+    late_ = r;
+    delay_ = delay;
+  }
   // From now on no input report reaches the host (the firmware's are dropped unsent).
   void silence_input() noexcept { silent_.store(true, std::memory_order_relaxed); }
   bool input_silenced() const noexcept { return silent_.load(std::memory_order_relaxed); }
@@ -35,6 +42,7 @@ class FaultyFunction final : public ForwardingFunction {
   bool accepts(const SetupPacket& setup) const override { return !(stalled_ && stalled_->matches(setup)) && inner_.accepts(setup); }
   ControlReply control(const SetupPacket& setup, std::span<const std::uint8_t> out_data) override {
     if (stalled_ && stalled_->matches(setup)) return ControlReply{true, {}};
+    if (late_ && late_->matches(setup) && setup.bRequest == 0x01) std::this_thread::sleep_for(delay_);
     return inner_.control(setup, out_data);
   }
   bool next_interrupt_in(std::vector<std::uint8_t>& report, std::chrono::microseconds wait) override {
@@ -44,7 +52,8 @@ class FaultyFunction final : public ForwardingFunction {
   }
 
  private:
-  std::optional<StalledReport> stalled_;
+  std::optional<StalledReport> stalled_, late_;
+  std::chrono::milliseconds delay_{0};
   std::atomic<bool> silent_{false};
 };
 

@@ -87,6 +87,13 @@ int main(int argc, char** argv) {
   app.add_option("--stall-feature", stall_feature,
                  "refuse (STALL) every GET_REPORT and SET_REPORT of this Feature report ID, as a broken device does")
       ->check(CLI::Range(1, 255));
+  int late_feature = -1;
+  app.add_option("--late-feature", late_feature,
+                 "answer every GET_REPORT of this Feature report ID late (--late-ms), as a device busy elsewhere does")
+      ->check(CLI::Range(1, 255));
+  int late_ms = 2000;
+  app.add_option("--late-ms", late_ms, "how late --late-feature's answers are, ms")->check(CLI::Range(0, 60000))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   if (!identity && ffs.empty()) {
     std::cerr << "sandpaper-lab-device: --ffs is required (or --identity)\n";
@@ -134,6 +141,8 @@ int main(int argc, char** argv) {
     });
     FaultyFunction faulty(*firmware);
     if (stall_feature > 0) faulty.stall(StalledReport{3, static_cast<std::uint8_t>(stall_feature)});
+    if (late_feature > 0)
+      faulty.answer_late(StalledReport{3, static_cast<std::uint8_t>(late_feature)}, std::chrono::milliseconds(late_ms));
     LoggedFunction logged(faulty, reports);
     FunctionFsDevice device(ffs, logged);
     device.start();

@@ -8,12 +8,16 @@
 #   sigint  Ctrl-C to the run
 #   stall   no play: the device refuses (STALLs) Feature report STALL_REPORT_ID from the start, so
 #           the run's open sequence fails
+#   late    the device answers each GET_REPORT of Feature report STALL_REPORT_ID LATE_MS late, as
+#           a busy device or a starved guest does; within the driver's control timeout the run
+#           must open and play to its end
 # Writes /out/run.json, /out/run.err, the device's logs and /out/fault.json: the run's exit status,
 # the guest-clock time from the fault to the run's exit (centiseconds), and the kernel driver on
 # the joystick's interface before, during and after.
 . /lab/ffboard.sh
 stall=
 [ "$FAULT" = stall ] && stall="--stall-feature $STALL_REPORT_ID"
+[ "$FAULT" = late ] && stall="--late-feature $STALL_REPORT_ID --late-ms $LATE_MS"
 # shellcheck disable=SC2086
 ffboard_plug --hand "$HAND" --at "$AT_X_MM" "$AT_Y_MM" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" $stall || exit 1
 driver_before=$(ffboard_interface_driver)
@@ -23,7 +27,9 @@ driver_before=$(ffboard_interface_driver)
 run_pid=$!
 driver_during=
 fault_at=
-if [ "$FAULT" != stall ]; then
+if [ "$FAULT" = late ]; then
+  ffboard_wait_claimed "the run" && driver_during=$DRIVER_DURING
+elif [ "$FAULT" != stall ]; then
   if lab_wait_line "$FFB_DEVICE_LOG" "streaming" 60; then
     driver_during=$(ffboard_interface_driver)
     lab_now

@@ -19,7 +19,12 @@
 namespace sandpaper::runtime::usb {
 namespace {
 
-constexpr unsigned kControlTimeoutMs = 1000;
+// A control request (report descriptor, Feature reports) may take this long: the 5 s USB 2.0
+// section 9.2.6.4 allows a request to complete, and Linux's own USB_CTRL_GET_TIMEOUT and
+// USB_CTRL_SET_TIMEOUT (include/linux/usb.h), which usbhid waits for the same reports. Only the open
+// sequence makes them; a device busy elsewhere (or a starved emulated one) answers a Block Load
+// later than 1 s and would otherwise fail an open that a moment's patience completes.
+constexpr unsigned kControlTimeoutMs = 5000;
 // An output report waits this long for the device to take it. A timed-out interrupt OUT transfer is
 // cancelled and its report lost; with a short timeout, a device that re-arms its OUT endpoint more
 // slowly than that after each report (the lab's firmware under load: 10-40 ms) NAKs the X report
