@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <sstream>
 #include <utility>
+#include <vector>
 
 #include "sandpaper/compiler/patterns.hpp"
 #include "sandpaper/compiler/textures.hpp"
@@ -99,20 +101,28 @@ double best_through_chain(const std::vector<float>& t, double sign, double lo, d
 // than the table's samples, or a very wide ridge) the slowest stage alone stands for the chain.
 constexpr double kMaxChainWalk = 1 << 16;
 
-// Phases for `stages` independent clocks, each in [0, 1): the R_d low-discrepancy sequence
-// (Roberts 2018), so a few hundred tuples cover the stages' joint phases evenly.
-std::vector<double> phase_tuple(int k, std::size_t stages) {
-  double phi = 2;
-  for (int i = 0; i < 64; ++i) phi = std::pow(1 + phi, 1.0 / static_cast<double>(stages + 1));
-  std::vector<double> u(stages);
-  double alpha = 1;
-  for (std::size_t i = 0; i < stages; ++i) {
-    alpha /= phi;
-    const double v = 0.5 + (k + 1) * alpha;
-    u[i] = v - std::floor(v);
+// Phases for independent clocks, each in [0, 1): the R_d low-discrepancy sequence (Roberts 2018),
+// so a few hundred tuples cover the stages' joint phases evenly.
+class PhaseTuples {
+ public:
+  explicit PhaseTuples(std::size_t stages) : alpha_(stages) {
+    double phi = 2;  // the generalised golden ratio: phi^(d+1) = phi + 1, by fixed-point iteration
+    for (int i = 0; i < 64; ++i) phi = std::pow(1 + phi, 1.0 / static_cast<double>(stages + 1));
+    double a = 1;
+    for (auto& x : alpha_) x = (a /= phi);
   }
-  return u;
-}
+  // Tuple k scaled to each stage's step: where each stage's first sample falls (table samples).
+  void phases(int k, const std::vector<double>& step, std::vector<double>& phase) const {
+    phase.resize(alpha_.size());
+    for (std::size_t i = 0; i < alpha_.size(); ++i) {
+      const double v = 0.5 + (k + 1) * alpha_[i];
+      phase[i] = (v - std::floor(v)) * step[i];
+    }
+  }
+
+ private:
+  std::vector<double> alpha_;
+};
 
 // A hand moving toward +x over `periods` periods of table `t` with a damper of `damping_N` against
 // it, the force reaching the motor through the chain: the sum and count of the runs' peaks, where a
@@ -140,6 +150,56 @@ std::pair<double, int> run_peaks(const std::vector<float>& t, double damping_N, 
   return {sum, static_cast<int>(whole)};
 }
 
+constexpr int kPhases = 512;
+
+// With a damper: the mean run peak over phases and both directions (run_peaks), or nothing when the
+// walk finds no whole run.
+std::optional<double> mean_run_peak(const std::vector<float>& table, std::size_t ridges, double damping_N, int periods,
+                                    const std::vector<double>& step, const PhaseTuples& tuples) {
+  // Scanning toward -x is scanning toward +x over the mirrored table, its force negated.
+  std::vector<float> mirrored(table.size());
+  for (std::size_t i = 0; i < table.size(); ++i) mirrored[i] = -table[(table.size() - i) % table.size()];
+  const std::vector<float>* both_ways[] = {&table, &mirrored};
+  std::vector<double> phase;
+  double sum = 0;
+  int runs = 0;
+  for (int k = 0; k < kPhases; ++k) {
+    tuples.phases(k, step, phase);
+    for (const auto* t : both_ways) {
+      const auto [ps, pc] = run_peaks(*t, damping_N, periods, ridges, step, phase);
+      sum += ps, runs += pc;
+    }
+  }
+  if (runs == 0) return std::nullopt;
+  return sum / runs;
+}
+
+// The mean over ridges and phases of each ridge's best value through the chain, the damper taken
+// off it (with_damper).
+double mean_ridge_peak(const std::vector<float>& table, const std::vector<schema::GratingRidge>& ridges, double damping_N,
+                       const std::vector<double>& step, const PhaseTuples& tuples) {
+  if (ridges.empty()) return 0;
+  const double slow = *std::max_element(step.begin(), step.end());
+  double lag = 0;
+  for (double s : step) lag += s;
+  std::vector<double> phase;
+  double sum = 0;
+  for (const auto& r : ridges) {
+    // The ridge's force lives between the zero-or-opposite samples on either side of it.
+    const double lo = r.first - 1, hi = r.last + 1;
+    if (step.size() == 1 || (hi - lo + lag) / step.back() > kMaxChainWalk) {
+      for (int k = 0; k < kPhases; ++k)
+        sum += with_damper(best_on_lattice(table, r.sign, lo + slow * (k + 0.5) / kPhases, slow, hi), damping_N);
+      continue;
+    }
+    for (int k = 0; k < kPhases; ++k) {
+      tuples.phases(k, step, phase);
+      sum += with_damper(best_through_chain(table, r.sign, lo, hi, step, phase), damping_N);
+    }
+  }
+  return sum / (kPhases * static_cast<double>(ridges.size()));
+}
+
 // Mean over ridges and phases of what a hand meets at speed v with the grating read through
 // sample-and-holds at `chain_hz` (hand side first), with a damper of `damping_N(v)` against the
 // motion (0: the reads alone).
@@ -153,14 +213,13 @@ std::vector<FeltAtSpeed> felt_with(const schema::GratingTerm& g, const std::vect
   double continuous = 0;
   for (const auto& r : ridges) continuous += r.peak;
   continuous = ridges.empty() ? 0 : continuous / static_cast<double>(ridges.size());
-  constexpr int kPhases = 512;
   const double slowest_hz = *std::min_element(chain_hz.begin(), chain_hz.end());
+  const PhaseTuples tuples(chain_hz.size());
   for (double v : speeds_m_s) {
     FeltAtSpeed f{v, slowest_hz, 0, 0};
     std::vector<double> step;  // each stage's travel between samples, in table samples
     for (double rate : chain_hz) step.push_back(v / rate / g.period_m * n);
     const double d = damping_N(v);
-    double sum = 0;
     // With a damper, which value reaches the motor decides whether a ridge's edge, where the damper
     // acts alone, is met at all: walk the runs both ways, unless even the slowest stage reads
     // finer than the table's samples (then every edge is met, and with_damper is exact).
@@ -169,47 +228,10 @@ std::vector<FeltAtSpeed> felt_with(const schema::GratingTerm& g, const std::vect
     // stage far slower than the ridges aliases them, and its runs are then long.
     const int periods = std::max(2 + static_cast<int>(std::ceil(8.0 / std::max(1.0, static_cast<double>(ridges.size())))),
                                  static_cast<int>(std::min(1e6, std::ceil(64 * slow / n))));
-    if (d > 0 && !ridges.empty() && slow >= 1 && periods * n / step.back() <= kMaxChainWalk) {
-      // Scanning toward -x is scanning toward +x over the mirrored table, its force negated.
-      std::vector<float> mirrored(table.size());
-      for (std::size_t i = 0; i < table.size(); ++i) mirrored[i] = -table[(table.size() - i) % table.size()];
-      const std::vector<float>* both_ways[] = {&table, &mirrored};
-      std::vector<double> phase(step.size());
-      double runs_sum = 0;
-      int runs = 0;
-      for (int k = 0; k < kPhases; ++k) {
-        const auto u = phase_tuple(k, step.size());
-        for (std::size_t i = 0; i < step.size(); ++i) phase[i] = u[i] * step[i];
-        for (const auto* t : both_ways) {
-          const auto [ps, pc] = run_peaks(*t, d, periods, ridges.size(), step, phase);
-          runs_sum += ps, runs += pc;
-        }
-      }
-      if (runs > 0) {
-        f.peak_N = runs_sum / runs;
-        f.fraction = continuous > 0 ? f.peak_N / continuous : 0;
-        out.push_back(f);
-        continue;
-      }
-    }
-    for (const auto& r : ridges) {
-      // The ridge's force lives between the zero-or-opposite samples on either side of it.
-      const double lo = r.first - 1, hi = r.last + 1;
-      double lag = 0;
-      for (double s : step) lag += s;
-      if (step.size() == 1 || (hi - lo + lag) / step.back() > kMaxChainWalk) {
-        for (int k = 0; k < kPhases; ++k)
-          sum += with_damper(best_on_lattice(table, r.sign, lo + slow * (k + 0.5) / kPhases, slow, hi), d);
-        continue;
-      }
-      std::vector<double> phase(step.size());
-      for (int k = 0; k < kPhases; ++k) {
-        const auto u = phase_tuple(k, step.size());
-        for (std::size_t i = 0; i < step.size(); ++i) phase[i] = u[i] * step[i];
-        sum += with_damper(best_through_chain(table, r.sign, lo, hi, step, phase), d);
-      }
-    }
-    f.peak_N = ridges.empty() ? 0 : sum / (kPhases * static_cast<double>(ridges.size()));
+    std::optional<double> runs;
+    if (d > 0 && !ridges.empty() && slow >= 1 && periods * n / step.back() <= kMaxChainWalk)
+      runs = mean_run_peak(table, ridges.size(), d, periods, step, tuples);
+    f.peak_N = runs ? *runs : mean_ridge_peak(table, ridges, d, step, tuples);
     f.fraction = continuous > 0 ? f.peak_N / continuous : 0;
     out.push_back(f);
   }
