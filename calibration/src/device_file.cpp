@@ -116,8 +116,12 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   out += "command_unit = " + toml_string(base["command_unit"].value_or(std::string("command unit"))) + "\n";
   out += "\n[force]\n";
   std::string max_text = fmt::format("{:.4g}", *max_continuous);
-  if (max_rounded_down && std::stod(max_text) > *max_continuous)  // never claim more than command_max gives
-    max_text = fmt::format("{:.4g}", *max_continuous * (1 - 5e-4));
+  // Never claim more than command_max gives: a value that rounded up comes down one unit in its
+  // fourth significant digit (8.3527 N is written 8.352 N, not 8.353).
+  if (max_rounded_down && std::stod(max_text) > *max_continuous) {
+    const double unit = std::pow(10.0, std::floor(std::log10(*max_continuous)) - 3);
+    max_text = fmt::format("{:.4g}", std::stod(max_text) - unit);
+  }
   out += "max_continuous = " + toml_string(max_text + " N") + max_note + "\n";
   if (command_max) out += fmt::format("command_max = {}\n", *command_max);
   if (auto bits = base["force"]["resolution_bits"].value<std::int64_t>()) out += fmt::format("resolution_bits = {}\n", *bits);

@@ -1,6 +1,7 @@
 // Device calibration from force-gauge readings: the gain is recovered, linearity is reported, and
 // the written device file holds the fit and the base's other fields.
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
@@ -99,6 +100,18 @@ TEST(DeviceFit, RecoversGainsPerAxis) {
   }
 }
 
+// A lowered max_continuous is written to four significant digits and never above the reach:
+// 32767 units at 8.3527/32767 N each reach 8.3527 N, which "%.4g" would round up to 8.353.
+TEST(DeviceFit, ALoweredMaximumIsTruncatedNotRoundedUp) {
+  for (const auto& [reach, written] : {std::pair{8.3527, "8.352 N"}, std::pair{8.3521, "8.352 N"},
+                                       std::pair{9.99996, "9.999 N"}, std::pair{0.123456, "0.1234 N"}}) {
+    auto f = fit_device(synthetic::simulate_gauge({}));
+    for (auto& a : f.axes) a.gain_N_per_unit = reach / 32767;
+    const auto doc = toml::parse(device_file_text(f, openffboard_base(), {"", "base.toml", "2026-11-21"}));
+    EXPECT_EQ(doc["force"]["max_continuous"].value_or(std::string()), written) << "reach " << reach << " N";
+  }
+}
+
 TEST(DeviceFit, DeviceFileKeepsTheBaseAndStoresTheGain) {
   const auto f = fit_device(synthetic::simulate_gauge({}));
   const auto text = device_file_text(f, openffboard_base(), {"", "calibration/devices/openffboard-2axis.toml", "2026-11-21"});
@@ -121,7 +134,10 @@ TEST(DeviceFit, DeviceFileKeepsTheBaseAndStoresTheGain) {
   EXPECT_EQ(doc["maps"]["roughness"].value_or(std::string()), "lab-roughness");
   // 32767 x 0.00026 N is about 8.5 N < the base's assumed 10 N: max_continuous comes down to it.
   const auto max = doc["force"]["max_continuous"].value_or(std::string());
-  EXPECT_NEAR(std::stod(max), f.axes[0].gain_N_per_unit * 32767, 0.01) << max;
+  // Four significant digits, never above what the weaker axis reaches: truncated, not rounded.
+  const double reach = std::min(f.axes[0].gain_N_per_unit, f.axes[1].gain_N_per_unit) * 32767;
+  EXPECT_LE(std::stod(max), reach) << max;
+  EXPECT_GT(std::stod(max), reach - 0.001) << max << " for a reach of " << reach;
   EXPECT_EQ(doc["workspace"]["shape"].value_or(std::string()), "rectangle");
   EXPECT_EQ(doc["workspace"]["width"].value_or(std::string()), "100 mm");
   EXPECT_EQ(doc["servo_rate_hz"]["min"].value_or(0), 900);
