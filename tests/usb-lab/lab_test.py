@@ -163,8 +163,8 @@ def contains_run(seq: list[str], run: list[str]) -> bool:
     return any(seq[i:i + len(run)] == run for i in range(len(seq) - len(run) + 1))
 
 
-# The late fault's delay: longer than a starved guest has been seen to take (over the 1 s the
-# driver once waited), shorter than the driver's control timeout (runtime/src/usb/libusb_transport.cpp).
+# The late fault's delay: longer than a starved guest has been seen to take (over 1 s), shorter than
+# the driver's control timeout (runtime/src/usb/libusb_transport.cpp). LAB_LATE_MS tries others.
 LATE_MS = int(os.environ.get("LAB_LATE_MS", "2000"))
 
 FAULT_CAUSE = {"unplug": "device_unplugged", "reset": "device_unplugged", "stale": "device_read_timeout",

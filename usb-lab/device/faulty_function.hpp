@@ -14,7 +14,7 @@ namespace sandpaper::usb_lab {
 
 // HID 1.11 section 7.2: class requests GET_REPORT (0x01) and SET_REPORT (0x09), wValue = report
 // type (3: Feature) << 8 | report ID.
-struct StalledReport {
+struct ClassReport {
   std::uint8_t report_type = 3;
   std::uint8_t report_id = 0;
   bool matches(const SetupPacket& s) const {
@@ -28,10 +28,10 @@ class FaultyFunction final : public ForwardingFunction {
   explicit FaultyFunction(UsbFunction& inner) : ForwardingFunction(inner) {}
 
   // Every GET_REPORT and SET_REPORT of this report is refused from now on.
-  void stall(StalledReport r) { stalled_ = r; }
+  void stall(ClassReport r) { stalled_ = r; }
   // Every GET_REPORT of this report is answered `delay` after the host asked (on ep0's thread, the
   // emulated core free meanwhile).
-  void answer_late(StalledReport r, std::chrono::milliseconds delay) {
+  void answer_late(ClassReport r, std::chrono::milliseconds delay) {
     late_ = r;
     delay_ = delay;
   }
@@ -52,7 +52,7 @@ class FaultyFunction final : public ForwardingFunction {
   }
 
  private:
-  std::optional<StalledReport> stalled_, late_;
+  std::optional<ClassReport> stalled_, late_;
   std::chrono::milliseconds delay_{0};
   std::atomic<bool> silent_{false};
 };

@@ -140,9 +140,9 @@ int main(int argc, char** argv) {
       torques.append(TorqueRecord{t, u.axis, u.torque});
     });
     FaultyFunction faulty(*firmware);
-    if (stall_feature > 0) faulty.stall(StalledReport{3, static_cast<std::uint8_t>(stall_feature)});
+    if (stall_feature > 0) faulty.stall(ClassReport{3, static_cast<std::uint8_t>(stall_feature)});
     if (late_feature > 0)
-      faulty.answer_late(StalledReport{3, static_cast<std::uint8_t>(late_feature)}, std::chrono::milliseconds(late_ms));
+      faulty.answer_late(ClassReport{3, static_cast<std::uint8_t>(late_feature)}, std::chrono::milliseconds(late_ms));
     LoggedFunction logged(faulty, reports);
     FunctionFsDevice device(ffs, logged);
     device.start();
