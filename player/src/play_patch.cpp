@@ -1,5 +1,6 @@
 #include "sandpaper/player/play_patch.hpp"
 
+#include <CLI/CLI.hpp>
 #include <unistd.h>
 
 #include <algorithm>

@@ -1,5 +1,6 @@
 #include "sandpaper/player/play_workspace.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
 #include <iostream>

@@ -1,6 +1,7 @@
 #include "sandpaper/player/run_device.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <fstream>

@@ -1,5 +1,7 @@
 #include "sandpaper/player/safety_guards.hpp"
 
+#include <CLI/CLI.hpp>
+
 namespace sandpaper::cli {
 
 void add_guard_options(CLI::App* command, SafetyGuards& g) {

@@ -5,7 +5,9 @@
 #include <functional>
 #include <string>
 
-#include <CLI/CLI.hpp>
+namespace CLI {
+class App;  // not <CLI/CLI.hpp>: that header-only library costs every includer seconds to compile
+}
 
 #include "sandpaper/player/run_device.hpp"
 #include "sandpaper/player/safety_guards.hpp"

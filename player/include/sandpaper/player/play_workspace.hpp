@@ -4,7 +4,9 @@
 #include <optional>
 #include <string>
 
-#include <CLI/CLI.hpp>
+namespace CLI {
+class App;  // not <CLI/CLI.hpp>: that header-only library costs every includer seconds to compile
+}
 
 #include "sandpaper/player/play_patch.hpp"
 #include "sandpaper/runtime/device.hpp"

@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
+namespace CLI {
+class App;  // not <CLI/CLI.hpp>: that header-only library costs every includer seconds to compile
+}
 
 #include "sandpaper/runtime/dynamic_hand.hpp"
 

@@ -1,7 +1,9 @@
 #pragma once
 // The servo loop's safety stops as command-line options, the same for every command that plays a
 // device (`run`, `studio`, `experiment run`, `sandpaper-play`): docs/RUNTIME.md "Stop causes".
-#include <CLI/CLI.hpp>
+namespace CLI {
+class App;  // not <CLI/CLI.hpp>: that header-only library costs every includer seconds to compile
+}
 
 #include "sandpaper/runtime/servo_loop.hpp"
 
