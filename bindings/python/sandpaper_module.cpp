@@ -355,7 +355,7 @@ PYBIND11_MODULE(sandpaper, m) {
           names.push_back(l->name);
           known |= l->name == level;
         }
-        if (!known) throw sp::UnknownLevel(level, names, percept, lib.compiler->calibration().level_percepts());
+        if (!known) throw sp::UnknownLevel(level, names, percept, sp::percepts_with_levels(lib.compiler->calibration()));
         py::gil_scoped_release release;
         return compile(lib, percept + " " + level);
       }, py::arg("percept"), py::arg("level"),

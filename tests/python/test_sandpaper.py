@@ -66,6 +66,19 @@ def test_an_unknown_level_names_the_known_ones(lib):
     assert 'did you mean "coarse"' in str(info.value)
 
 
+def test_an_unknown_percept_is_named_with_the_percepts_that_have_levels(lib):
+    # The percepts with levels, read from calibration/levels/'s files.
+    percepts = [re.search(r'^percept = "([a-z]+)"', p.read_text(), re.M).group(1)
+                for p in sorted(pathlib.Path(lib.calibration_dir, "levels").glob("*.toml"))]
+    assert "softness" in percepts and len(percepts) >= 4
+    with pytest.raises(sandpaper.UnknownLevel) as info:
+        lib.level("bogus", "soft")
+    message = str(info.value)
+    assert 'unknown percept "bogus"' in message and "known levels: none" not in message
+    assert all(p in message for p in percepts), message
+    assert info.value.known == []
+
+
 def test_missing_data_directories_are_all_named():
     with pytest.raises(sandpaper.Error) as info:
         sandpaper.Library(library_dir="/nonexistent/lib", calibration_dir="/nonexistent/cal")
