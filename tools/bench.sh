@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the benchmarks and writes bench/results/<YYYY-MM-DD>.json (Google Benchmark's JSON),
 # bench/results/<YYYY-MM-DD>-loop.json (the servo loop's timing: 1 kHz once, 10 kHz three times)
-# and bench/results/<YYYY-MM-DD>-player.json (sandpaper-play's start-up and memory).
+# bench/results/<YYYY-MM-DD>-player.json (sandpaper-play's start-up and memory) and
+# bench/results/<YYYY-MM-DD>-overruns.json (the player's late ticks beside a bare clock_nanosleep loop).
 #   tools/bench.sh [BIN_DIR] [LOOP_SECONDS]      (default /tmp/build/bin, 60 s)
 # Timing on a shared machine is noisy: run it when nothing else is building.
 set -euo pipefail
@@ -27,4 +28,5 @@ for f in sys.argv[2:]:
     if os.path.exists(f): os.remove(f)
 PY
 python3 "$root/bench/player_bench.py" "$bin" --seconds "$seconds" --json-out "$out/$day-player.json"
-echo "wrote $out/$day.json, $out/$day-loop.json and $out/$day-player.json"
+"$bin/sandpaper_bench_overruns" --rate 10000 --seconds "$seconds" --json-out "$out/$day-overruns.json"
+echo "wrote $out/$day.json, $out/$day-loop.json, $out/$day-player.json and $out/$day-overruns.json"

@@ -12,9 +12,10 @@ namespace sandpaper {
 namespace {
 
 // A missing data directory would otherwise show up later as "unknown material" or a list of
-// unreadable calibration files; name every missing one at once, with what chose it.
+// unreadable calibration files; name every missing one at once, with what chose it (in words a C or
+// Python caller knows too: no C++ names).
 compiler::DataDirChoice given_or_found(const std::filesystem::path& given, compiler::DataDirChoice found) {
-  return given.empty() ? found : compiler::DataDirChoice{given, "LibraryOptions"};
+  return given.empty() ? found : compiler::DataDirChoice{given, "the caller: the folder given when opening the library"};
 }
 
 }  // namespace
@@ -88,7 +89,7 @@ std::vector<std::string> Library::levels(const std::string& percept) const {
 double Library::level_value(const std::string& percept, const std::string& level) const {
   for (const auto* l : impl_->compiler->calibration().levels(percept))
     if (l->name == level) return l->value;
-  throw UnknownLevel(level, levels(percept), percept);
+  throw UnknownLevel(level, levels(percept), percept, percepts_with_levels(impl_->compiler->calibration()));
 }
 
 const std::filesystem::path& Library::library_dir() const noexcept { return impl_->library_dir; }

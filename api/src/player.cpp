@@ -64,7 +64,7 @@ void Player::load(const Material& material) {
   if (!impl_->device_calibration.empty() && material.program().device != impl_->device_calibration)
     throw DeviceError("the material '" + material.name() + "' was compiled for device '" + material.program().device +
                 "', but this player's joystick is '" + impl_->device_calibration +
-                "'; compile it with Library(LibraryOptions{.device = \"" + impl_->device_calibration + "\"})");
+                "'; open the library for device '" + impl_->device_calibration + "' and compile it there");
   auto next = std::make_unique<ProgramSource>(material.shared_program());
   if (impl_->thread) {
     impl_->source->offer_nonrt(std::move(next));

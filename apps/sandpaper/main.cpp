@@ -1,6 +1,8 @@
 // sandpaper: compile, explain, run and inspect haptic materials; write Sandpaper's array files.
 // `sandpaper --help` lists the commands; schema/LANGUAGE.md describes material files.
 #include <unistd.h>
+
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -33,6 +35,18 @@ void add_common(CLI::App* sub, sandpaper::cli::CommonOptions& o, bool input) {
   sub->add_flag("--json", o.json, "print one JSON object instead of text");
 }
 
+// A finite number above 0: CLI::PositiveNumber lets NaN and infinity through, and a negative
+// number's message names no unit.
+CLI::Validator finite_positive(const std::string& what) {
+  return CLI::Validator(
+      [what](std::string& text) -> std::string {
+        double v = 0;
+        if (CLI::detail::lexical_cast(text, v) && std::isfinite(v) && v > 0) return {};
+        return "must be " + what + ", not " + text;
+      },
+      "> 0");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -63,7 +77,7 @@ int main(int argc, char** argv) {
   explain->add_option("--design-speed", o.design_speed_mm_s,
                       "hand speed the material is designed for, mm/s: a grating's remedies (faster servo, smoothing) "
                       "are measured at it (docs/TEXTURES.md, \"The force a hand really feels\")")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive("a finite hand speed above 0 mm/s"));
   explain->add_option("--position-rate", o.position_rate_hz,
                       "how often new handle positions reach the servo, Hz, when slower than the servo (a loaded bus): "
                       "the device's output at speed is read at it")

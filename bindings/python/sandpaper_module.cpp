@@ -312,13 +312,17 @@ PYBIND11_MODULE(sandpaper, m) {
         return std::vector<double>{x.material.program().size_m[0], x.material.program().size_m[1]};
       }, "patch width and height, m")
       .def_property_readonly("warnings", [](const PyMaterial& x) { return x.material.warnings(); })
-      .def("explain", [](const PyMaterial& x, double design_speed_m_s) {
+      .def("explain", [](const PyMaterial& x, std::optional<double> design_speed_m_s) {
+        if (design_speed_m_s && !(std::isfinite(*design_speed_m_s) && *design_speed_m_s > 0))
+          throw py::value_error("design_speed_m_s must be a finite hand speed above 0 m/s (None: no design speed), not " +
+                                std::string(py::str(py::float_(*design_speed_m_s))));
         auto j = sp::compiler::compile_json(*x.result, std::nullopt);
         j.erase("output");
-        j.update(sp::compiler::explain_json(*x.result->material, *x.result->program, *x.compiler, design_speed_m_s));
+        j.update(sp::compiler::explain_json(*x.result->material, *x.result->program, *x.compiler, design_speed_m_s.value_or(0.0)));
         return to_python(j);
-      }, py::arg("design_speed_m_s") = 0.0,
-         "what the compiler decided, as `sandpaper explain --json` prints it: a dict")
+      }, py::arg("design_speed_m_s") = py::none(),
+         "what the compiler decided, as `sandpaper explain --json` prints it: a dict. design_speed_m_s: the hand "
+         "speed the material is designed for, m/s, finite and above 0 (else ValueError), or None")
       .def("height_field", &height_field,
            "the heights the texture is the gradient of (F = -k_N grad h): {kind, x_m, y_m, h_m (ny, nx), k_N, nominal, "
            "repeat[, period_m, orientation_rad]}; a grating is one period along its force direction (ny = 1); "
@@ -351,7 +355,7 @@ PYBIND11_MODULE(sandpaper, m) {
           names.push_back(l->name);
           known |= l->name == level;
         }
-        if (!known) throw sp::UnknownLevel(level, names, percept);
+        if (!known) throw sp::UnknownLevel(level, names, percept, sp::percepts_with_levels(lib.compiler->calibration()));
         py::gil_scoped_release release;
         return compile(lib, percept + " " + level);
       }, py::arg("percept"), py::arg("level"),

@@ -73,7 +73,12 @@ TEST(Api, EveryCalibratedDimensionHasNamedLevels) {
     shipped().level("bumpiness", "big");
     FAIL() << "no exception";
   } catch (const UnknownLevel& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown bumpiness level \"big\"; known levels: none"), std::string::npos) << e.what();
+    // The percept is what is unknown; the ones with levels are calibration/levels/'s four files.
+    EXPECT_NE(std::string(e.what()).find("unknown percept \"bumpiness\": no levels are named for it; percepts with levels: "
+                                         "roughness, slipperiness, softness, viscosity"),
+              std::string::npos)
+        << e.what();
+    EXPECT_TRUE(e.known().empty());
   }
   EXPECT_THROW(shipped().level("softness", "soft; spring 100 N/m"), UnknownLevel);
 }

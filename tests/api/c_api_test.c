@@ -50,6 +50,12 @@ int main(void) {
         "a softness level names its map: %s", sp_material_warnings(soft));
   CHECK(sp_library_level(lib, "slipperiness", "slipery", &untouched) == SP_ERROR_UNKNOWN_LEVEL, "%s", sp_last_error());
   CHECK(contains(sp_last_error(), "did you mean \"slippery\""), "%s", sp_last_error());
+  /* A percept with no levels is the unknown part; the percepts with levels are calibration/levels/'s four files. */
+  CHECK(sp_library_level(lib, "softnes", "soft", &untouched) == SP_ERROR_UNKNOWN_LEVEL, "%s", sp_last_error());
+  CHECK(contains(sp_last_error(), "unknown percept \"softnes\"") && contains(sp_last_error(), "roughness") &&
+            contains(sp_last_error(), "slipperiness") && contains(sp_last_error(), "softness") &&
+            contains(sp_last_error(), "viscosity") && contains(sp_last_error(), "did you mean \"softness\""),
+        "the unknown percept not named with the ones that have levels: %s", sp_last_error());
 
   /* Errors: a status, a message that says how to fix it, and out-parameters untouched. */
   CHECK(sp_library_compile(lib, "grating period 2.5 parsecs", &untouched) == SP_ERROR_COMPILE, "%s", sp_last_error());
@@ -65,6 +71,9 @@ int main(void) {
   CHECK(contains(sp_last_error(), "/nonexistent/sandpaper-library") &&
             contains(sp_last_error(), "/nonexistent/sandpaper-calibration"),
         "not every missing directory named: %s", sp_last_error());
+  /* A C caller never wrote a C++ type: the message names none (no `Options`, no `::`, no `{`). */
+  CHECK(!contains(sp_last_error(), "Options") && !contains(sp_last_error(), "::") && !contains(sp_last_error(), "{"),
+        "the message names C++: %s", sp_last_error());
   CHECK(sp_library_open(NULL, NULL, "no-such-device", (sp_library**)&untouched) == SP_ERROR_DATA, "unknown device accepted");
 
   /* Playing: state errors, then a timed run and a run stopped from here. */

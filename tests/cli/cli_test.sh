@@ -102,6 +102,13 @@ has "$tmp/out" 'remedies at 200 mm/s \(the design speed' "explain measures the r
 has "$tmp/out" 'smoothing [0-9.]+ mm on the grating: [0-9.]+ N, roughness' "explain offers smoothing for the design speed"
 expect_exit 0 "explain --design-speed --json" -- "$sp" explain -e "roughness 0.6; grating period 2.5 mm" --design-speed 200 --json
 has "$tmp/out" '"design_speed": true' "explain --json marks the design speed's remedies"
+# A design speed that is no hand speed is a usage error naming the unit, not ignored and not a
+# range whose limit prints with 309 digits (DBL_MAX in full).
+for bad_speed in -1 0 nan inf; do
+  expect_exit 2 "explain --design-speed $bad_speed" -- "$sp" explain -e "roughness 0.6; grating period 2.5 mm" --design-speed "$bad_speed"
+  has "$tmp/err" "--design-speed: must be a finite hand speed above 0 mm/s, not $bad_speed" "explain --design-speed $bad_speed says what a design speed is"
+  if grep -Eq '[0-9]{20}' "$tmp/err"; then bad "explain --design-speed $bad_speed prints a 20-digit number"; cat "$tmp/err"; else ok; fi
+done
 expect_exit 0 "explain a spring" -- "$sp" explain -e "spring 100 N/m"
 if grep -q '^maps' "$tmp/out"; then bad "explain of a material without texture prints the roughness maps"; else ok; fi
 expect_exit 0 "Appendix B's Bowl by name" -- "$sp" run -e Bowl --device sim --virtual-clock --duration 0.2 --hand circle

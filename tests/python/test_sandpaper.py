@@ -2,6 +2,7 @@
 and by text, errors carrying diagnostics, explain as a dict, the force field and a run's trace as
 numpy arrays, and playing while Python goes on. Run by ctest (python.module) with PYTHONPATH set to
 the build's python/ folder."""
+import pathlib
 import re
 import threading
 import time
@@ -65,6 +66,19 @@ def test_an_unknown_level_names_the_known_ones(lib):
     assert 'did you mean "coarse"' in str(info.value)
 
 
+def test_an_unknown_percept_is_named_with_the_percepts_that_have_levels(lib):
+    # The percepts with levels, read from calibration/levels/'s files.
+    percepts = [re.search(r'^percept = "([a-z]+)"', p.read_text(), re.M).group(1)
+                for p in sorted(pathlib.Path(lib.calibration_dir, "levels").glob("*.toml"))]
+    assert "softness" in percepts and len(percepts) >= 4
+    with pytest.raises(sandpaper.UnknownLevel) as info:
+        lib.level("bogus", "soft")
+    message = str(info.value)
+    assert 'unknown percept "bogus"' in message and "known levels: none" not in message
+    assert all(p in message for p in percepts), message
+    assert info.value.known == []
+
+
 def test_missing_data_directories_are_all_named():
     with pytest.raises(sandpaper.Error) as info:
         sandpaper.Library(library_dir="/nonexistent/lib", calibration_dir="/nonexistent/cal")
@@ -78,6 +92,21 @@ def test_explain_is_a_dict_of_what_the_compiler_decided(lib):
     assert e["material"] == "corduroy" and e["provenance"]
     assert {"knowledge", "maps", "felt_at_speed", "terms", "diagnostics"} <= set(e)
     assert all(f["speed_mm_s"] > 0 for f in e["felt_at_speed"])
+
+
+@pytest.mark.parametrize("speed", [float("nan"), -1.0, float("inf"), 0.0])
+def test_a_design_speed_that_is_no_hand_speed_is_refused(lib, speed):
+    m = lib.compile("roughness 0.6; grating period 2.5 mm")
+    with pytest.raises(ValueError, match="design_speed_m_s must be a finite hand speed above 0 m/s"):
+        m.explain(design_speed_m_s=speed)
+
+
+def test_a_design_speed_adds_its_remedies_at_that_speed(lib):
+    e = lib.compile("roughness 0.6; grating period 2.5 mm").explain(design_speed_m_s=0.2)
+    design = [r for r in e["felt_remedies"] if r["design_speed"]]
+    assert len(design) == 1 and design[0]["speed_mm_s"] == pytest.approx(200.0)
+    assert design[0]["felt_peak_N"] > 0
+    assert not any(r["design_speed"] for r in lib.compile("roughness 0.6; grating period 2.5 mm").explain()["felt_remedies"])
 
 
 def test_the_lateral_force_field_is_a_numpy_array_within_the_compiled_maximum(lib):

@@ -54,10 +54,12 @@ class CompileError : public Error {
 };
 
 // A level name that calibration/levels/ does not define for its percept (or a percept with no
-// levels); what() lists the known ones.
+// levels); what() lists the known ones (for a percept with no levels: the percepts that have some).
 class UnknownLevel : public Error {
  public:
-  UnknownLevel(std::string name, std::vector<std::string> known, const std::string& percept = "roughness");
+  // `level_percepts`: the percepts that have levels, named when `percept` has none (percepts_with_levels).
+  UnknownLevel(std::string name, std::vector<std::string> known, const std::string& percept = "roughness",
+               const std::vector<std::string>& level_percepts = {});
   const std::string& name() const noexcept { return name_; }
   const std::vector<std::string>& known() const noexcept { return known_; }
 
@@ -65,6 +67,10 @@ class UnknownLevel : public Error {
   std::string name_;
   std::vector<std::string> known_;
 };
+
+// The percepts that have named levels in `calibration` (calibration/levels/), sorted: what an
+// UnknownLevel for a percept without levels lists.
+std::vector<std::string> percepts_with_levels(const calibration::CalibrationSet& calibration);
 
 // No force-feedback device to play on: none plugged in, none the calibration knows, or one that
 // cannot be opened (what() says which, and for a permission problem the udev rule to add).

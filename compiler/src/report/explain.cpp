@@ -28,6 +28,7 @@ std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s 
 std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& p,
                          const calibration::CalibrationSet& cal, const calibration::DeviceCalibration& device,
                          double design_speed_m_s, const DeviceRates& rates) {
+  check_design_speed(design_speed_m_s);
   const auto& map = cal.roughness_map();
   std::ostringstream os;
   os << std::setprecision(4);

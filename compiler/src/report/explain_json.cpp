@@ -13,6 +13,7 @@ namespace sandpaper::compiler {
 
 nlohmann::json explain_json(const ResolvedMaterial& material, const schema::PatchProgram& prog, const Compiler& c,
                             double design_speed_m_s, const DeviceRates& rates) {
+  check_design_speed(design_speed_m_s);
   nlohmann::json j = nlohmann::json::object();
   j["knowledge"] = compiler::knowledge_json(compiler::assess_knowledge(material, prog, c.calibration()),
                                             c.calibration());

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -384,6 +385,12 @@ std::vector<FeltAtSpeed> felt_at_explain_speeds(const schema::PatchProgram& p, d
   std::vector<double> rates{device_rate_hz};
   if (device_rate_hz != 10000) rates.push_back(10000);
   return felt_at_speed(p, {0.02, 0.05, 0.1, 0.2}, rates);
+}
+
+void check_design_speed(double design_speed_m_s) {
+  if (!(std::isfinite(design_speed_m_s) && design_speed_m_s >= 0))
+    throw std::invalid_argument("a design speed must be a finite hand speed above 0 m/s (0: none), not " +
+                                std::to_string(design_speed_m_s));
 }
 
 }  // namespace sandpaper::compiler

@@ -14,6 +14,7 @@ namespace sandpaper::compiler {
 
 // `design_speed_m_s` > 0: the hand speed (m/s) the designer states the material is for (`explain
 // --design-speed`); a grating's remedies (felt_at_speed.hpp) are then measured at it, whatever it loses.
+// 0: none; a negative, NaN or infinite one throws std::invalid_argument.
 // `rates`: how often new positions reach the servo and new commands reach the device (`explain
 // --position-rate`, `--command-rate`; 0: the defaults of DeviceRates); the device's output at
 // speed is read through them.

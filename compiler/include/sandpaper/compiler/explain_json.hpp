@@ -11,7 +11,8 @@
 
 namespace sandpaper::compiler {
 
-// `design_speed_m_s` > 0: the hand speed (m/s) the material is designed for, added to the remedies.
+// `design_speed_m_s` > 0: the hand speed (m/s) the material is designed for, added to the remedies;
+// 0 for none. Throws std::invalid_argument for a negative, NaN or infinite one.
 // `rates`: the rates a force passes on its way to the motor (felt_at_speed.hpp; explain.hpp).
 nlohmann::json explain_json(const ResolvedMaterial& material, const schema::PatchProgram& program, const Compiler& compiler,
                             double design_speed_m_s, const DeviceRates& rates = {});

@@ -55,6 +55,10 @@ std::vector<DeviceOutputAtSpeed> device_output_at_speed(const schema::PatchProgr
                                                         const calibration::DeviceCalibration& device,
                                                         const std::vector<double>& speeds_m_s, const DeviceRates& rates);
 
+// A design speed is 0 (none) or a finite speed above 0, m/s; anything else (negative, NaN, infinite)
+// throws std::invalid_argument saying so. explain_text and explain_json check theirs with it.
+void check_design_speed(double design_speed_m_s);
+
 // The speeds explain reports the device output at: 20, 50, 100 and 200 mm/s, and `design_speed_m_s`
 // when positive and not one of them, m/s.
 inline std::vector<double> device_output_speeds(double design_speed_m_s) {
