@@ -149,13 +149,15 @@ TEST(Lsp, DiagnosticsAsYouTypeWithCodeRangeAndDocLink) {
 }
 
 TEST(Lsp, CompletesKeywordsLibraryNamesLevelsAndUnits) {
-  const std::string text = "\n  like \n  roughness \n  grating period 3 \n  # like \n";
+  const std::string text = "\n  like \n  roughness \n  grating period 3 \n  # like \n  grating amplitude 2 \n  roughness 0.5 \n";
   const Session s = run(frame(request(1, "initialize")) + frame(notification("textDocument/didOpen", doc(text))) +
                         frame(request(2, "textDocument/completion", at(0, 0))) +
                         frame(request(3, "textDocument/completion", at(1, 7))) +
                         frame(request(4, "textDocument/completion", at(2, 12))) +
                         frame(request(5, "textDocument/completion", at(3, 19))) +
-                        frame(request(6, "textDocument/completion", at(4, 9))) + frame(request(7, "shutdown")) +
+                        frame(request(6, "textDocument/completion", at(4, 9))) +
+                        frame(request(8, "textDocument/completion", at(5, 22))) +
+                        frame(request(9, "textDocument/completion", at(6, 16))) + frame(request(7, "shutdown")) +
                         frame(notification("exit")));
   const auto keywords = labels(s.response(2)["result"]);
   EXPECT_TRUE(has(keywords, "grating") && has(keywords, "like") && has(keywords, "roughness")) << s.response(2).dump();
@@ -165,7 +167,14 @@ TEST(Lsp, CompletesKeywordsLibraryNamesLevelsAndUnits) {
   const auto levels = labels(s.response(4)["result"]);
   EXPECT_TRUE(has(levels, "coarse") && has(levels, "very-fine")) << s.response(4).dump();
   const auto units = labels(s.response(5)["result"]);
-  EXPECT_TRUE(has(units, "mm") && has(units, "in") && has(units, "N")) << s.response(5).dump();
+  // The units the place takes (schema/LANGUAGE.md): a period is a length, an amplitude a force,
+  // roughness a plain ratio-scale number.
+  EXPECT_TRUE(has(units, "mm") && has(units, "in")) << s.response(5).dump();
+  EXPECT_FALSE(has(units, "N") || has(units, "N/m") || has(units, "%")) << s.response(5).dump();
+  const auto forces = labels(s.response(8)["result"]);
+  EXPECT_TRUE(has(forces, "N") && has(forces, "gf")) << s.response(8).dump();
+  EXPECT_FALSE(has(forces, "mm")) << s.response(8).dump();
+  EXPECT_TRUE(s.response(9)["result"].empty()) << "roughness takes no unit: " << s.response(9).dump();
   EXPECT_TRUE(s.response(6)["result"].empty()) << "nothing to complete in a comment";
 }
 

@@ -97,6 +97,25 @@ struct FieldSampler {
   double limit_N;
 };
 
+// The strongest force on a (2k+1) x (2k+1) grid of `step` (m) around `p`, `p` itself included: a
+// sample grid's best point refined toward the peak it lies beside, since a grating's wall (a Gaussian of
+// sigma = period x 6/256) is narrower than the grids a picture or a page's arrows can afford.
+struct Strongest {
+  glm::dvec2 at{0, 0}, f{0, 0};
+  double mag = 0;
+};
+Strongest strongest_near(FieldSampler& field, glm::dvec2 p, double step, int k) {
+  Strongest best;
+  for (int j = -k; j <= k; ++j)
+    for (int i = -k; i <= k; ++i) {
+      const glm::dvec2 q = p + glm::dvec2{i * step, j * step};
+      const glm::dvec2 f = field.at(q);
+      const double mag = std::hypot(f.x, f.y);
+      if (mag > best.mag || (i == 0 && j == 0 && best.mag == 0)) best = {q, f, mag};
+    }
+  return best;
+}
+
 // The catalog's plot styles (assets/catalog.css), inside the file so that scan.svg stands alone.
 constexpr const char* kStandalonePlotStyle =
     "<style>svg.force-plot{background:#fff}svg.force-plot text{font:13px system-ui,'DejaVu Sans',sans-serif;fill:#222}"
@@ -165,6 +184,16 @@ Image render_force_field(const schema::PatchProgram& program, const Picture& lik
       f[static_cast<std::size_t>(row) * im.nx + col] = v;
       max_force_N = std::max(max_force_N, std::hypot(v.x, v.y));
     }
+  // The brightest pixel may sit beside a wall's peak rather than on it: the scale is the peak's.
+  if (max_force_N > 0) {
+    std::size_t top = 0;
+    for (std::size_t i = 1; i < n; ++i)
+      if (std::hypot(f[i].x, f[i].y) > std::hypot(f[top].x, f[top].y)) top = i;
+    const int row = static_cast<int>(top / im.nx), col = static_cast<int>(top % im.nx);
+    const glm::dvec2 p{like.centre_m[0] - 0.5 * im.window_m[0] + (col + 0.5) * im.pixel_m,
+                       like.centre_m[1] + 0.5 * im.window_m[1] - (row + 0.5) * im.pixel_m};
+    max_force_N = std::max(max_force_N, strongest_near(field, p, im.pixel_m / 8, 8).mag);
+  }
   im.pixels.assign(n * 3, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const double mag = std::hypot(f[i].x, f[i].y);
@@ -221,24 +250,41 @@ void write_image_png(const std::filesystem::path& file, const Image& image) {
 
 nlohmann::json force_field_json(const schema::PatchProgram& program, const Picture& like, int n) {
   nlohmann::json j{{"window_mm", {like.window_m[0] * 1e3, like.window_m[1] * 1e3}}, {"n", n}};
-  if (like.empty() || n < 1) {
-    j["max_N"] = 0;
-    j["fx_N"] = nlohmann::json::array();
-    j["fy_N"] = nlohmann::json::array();
-    return j;
-  }
-  FieldSampler field(program);
-  std::vector<double> fx, fy;
+  std::vector<double> x, y, fx, fy;
   double max_n = 0;
-  for (int row = 0; row < n; ++row)
-    for (int col = 0; col < n; ++col) {
-      const glm::dvec2 p{(-0.5 + (col + 0.5) / n) * like.window_m[0], (0.5 - (row + 0.5) / n) * like.window_m[1]};
-      const glm::dvec2 v = field.at(p);
-      fx.push_back(v.x);
-      fy.push_back(v.y);
-      max_n = std::max(max_n, std::hypot(v.x, v.y));
-    }
+  if (!like.empty() && n >= 1) {
+    FieldSampler field(program);
+    // Each cell is searched on a grid as fine as the picture's pixels, then about its best point.
+    const int sub = std::max(2, (std::max(like.nx, like.ny) + n - 1) / n);
+    const double cw = like.window_m[0] / n, ch = like.window_m[1] / n;
+    for (int row = 0; row < n; ++row)
+      for (int col = 0; col < n; ++col) {
+        const double x0 = like.centre_m[0] - 0.5 * like.window_m[0] + col * cw;
+        const double y0 = like.centre_m[1] + 0.5 * like.window_m[1] - row * ch;
+        Strongest best;
+        for (int b = 0; b < sub; ++b)
+          for (int a = 0; a < sub; ++a) {
+            const glm::dvec2 p{x0 + (a + 0.5) * cw / sub, y0 - (b + 0.5) * ch / sub};
+            const glm::dvec2 f = field.at(p);
+            const double mag = std::hypot(f.x, f.y);
+            if (mag > best.mag || (a == 0 && b == 0)) best = {p, f, mag};
+          }
+        if (best.mag > 0) {
+          const Strongest fine = strongest_near(field, best.at, std::min(cw, ch) / sub / 4, 4);
+          // The refined point stays in its cell, so that each cell's arrow is its own.
+          if (fine.at.x >= x0 && fine.at.x <= x0 + cw && fine.at.y <= y0 && fine.at.y >= y0 - ch) best = fine;
+        }
+        x.push_back(best.at.x * 1e3);
+        y.push_back(best.at.y * 1e3);
+        fx.push_back(best.f.x);
+        fy.push_back(best.f.y);
+        max_n = std::max(max_n, best.mag);
+      }
+  }
+  j["cell_mm"] = {n >= 1 ? like.window_m[0] * 1e3 / n : 0.0, n >= 1 ? like.window_m[1] * 1e3 / n : 0.0};
   j["max_N"] = max_n;
+  j["x_mm"] = x;
+  j["y_mm"] = y;
   j["fx_N"] = fx;
   j["fy_N"] = fy;
   return j;

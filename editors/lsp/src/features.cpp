@@ -7,6 +7,7 @@
 
 #include "sandpaper/compiler/lexer.hpp"
 #include "sandpaper/compiler/parser.hpp"
+#include "sandpaper/compiler/workspace_parser.hpp"
 #include "sandpaper/lsp/text_positions.hpp"
 #include "sandpaper/schema/patch_json.hpp"
 #include "sandpaper/schema/units.hpp"
@@ -92,6 +93,41 @@ bool is_number_text(const std::string& w) {
   return used == w.size();
 }
 
+// The dimensions the parser takes for a unit at the cursor: the document with the word being typed
+// replaced by one unit of each dimension, parsed, and the dimensions whose unit draws no unit error
+// (E0204, E0205) there kept. The parser's own rules, so that the offer never drifts from what compiles.
+std::vector<schema::Dimension> dimensions_at(const Document& d, Cursor c, std::size_t word_start) {
+  const std::string& text = d.source->text;
+  std::size_t line_start = 0;
+  for (int l = 1; l < c.line && line_start != std::string::npos; ++l) {
+    line_start = text.find('\n', line_start);
+    if (line_start != std::string::npos) ++line_start;
+  }
+  if (line_start == std::string::npos) return {};
+  const std::size_t from = line_start + word_start, to = std::min(line_start + c.byte, text.size());
+  std::size_t end = to;
+  while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '/' ||
+                               text[end] == '*' || text[end] == '%'))
+    ++end;
+  std::vector<schema::Dimension> kept, tried;
+  for (const auto& u : schema::all_units()) {
+    if (std::find(tried.begin(), tried.end(), u.dimension) != tried.end()) continue;
+    tried.push_back(u.dimension);
+    const std::string trial = text.substr(0, from) + std::string(u.name) + text.substr(end);
+    const auto file = std::make_shared<const compiler::SourceFile>(d.name, trial);
+    compiler::Diagnostics diags;
+    const auto tokens = compiler::lex(file, diags, {.commas = d.workspace});
+    if (d.workspace) (void)compiler::parse_workspace(tokens, file, diags);
+    else (void)compiler::parse(tokens, file, diags);
+    const bool refused = std::any_of(diags.all().begin(), diags.all().end(), [&](const compiler::Diagnostic& x) {
+      return (x.code == "E0204" || x.code == "E0205") && x.location.line == c.line &&
+             static_cast<std::size_t>(x.location.column - 1) == word_start;
+    });
+    if (!refused) kept.push_back(u.dimension);
+  }
+  return kept;
+}
+
 }  // namespace
 
 json completion(const Document& d, const json& position, const compiler::Compiler& c) {
@@ -132,8 +168,13 @@ json completion(const Document& d, const json& position, const compiler::Compile
       items.push_back(item(l.name, kKindValue, detail.str()));
     }
   } else if (is_number_text(words.back())) {
+    // Only the units the place takes (a length after `period 3.2`; none after `roughness 0.5`).
+    std::size_t word_start = std::min(cur.byte, line.size());
+    while (word_start > 0 && !std::isspace(static_cast<unsigned char>(line[word_start - 1]))) --word_start;
+    const auto dims = dimensions_at(d, cur, word_start);
     for (const auto& u : schema::all_units())
-      items.push_back(item(std::string(u.name), kKindUnit, std::string(schema::dimension_name(u.dimension))));
+      if (std::find(dims.begin(), dims.end(), u.dimension) != dims.end())
+        items.push_back(item(std::string(u.name), kKindUnit, std::string(schema::dimension_name(u.dimension))));
   }
   return items;
 }

@@ -42,7 +42,7 @@ export function applyCompile(r) {
     ? `the last good picture (v${r.version}, still playing): this text does not compile`
     : "nothing has compiled yet: this text does not compile";
   $("#compile-state").title = $("#compile-state").textContent = r.ok
-    ? `compiled: ${r.material || r.workspace?.name || ""}` +
+    ? `compiled: ${r.material || workspaceSummary(r.workspace)}` +
       (r.compiled_max_lateral_force_N !== undefined ? ` · ${r.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${roughnessText(r.compiled_roughness)}` : "")
     : "does not compile: the last good program keeps playing";
   $("#saved").textContent = r.saved ? "saved" : "unsaved";
@@ -52,6 +52,14 @@ export function applyCompile(r) {
   if (r.text_version !== undefined) state.textVersion = Math.max(state.textVersion || 0, r.text_version);
   renderSliders(r.parameters || []);
   if (r.ok) refreshPreview();
+}
+
+// A workspace's compile (schema::to_json of the program): its name, patches and size.
+function workspaceSummary(ws) {
+  if (!ws) return "";
+  const n = ws.patch_count ?? ws.patches?.length ?? 0;
+  const size = ws.size_m ? ` on ${(ws.size_m[0] * 1e3).toFixed(1)} × ${(ws.size_m[1] * 1e3).toFixed(1)} mm` : "";
+  return `${ws.workspace || "workspace"} · ${n} patch${n === 1 ? "" : "es"}${size}`;
 }
 
 export async function flushCompile() {

@@ -25,7 +25,8 @@ export async function open(file) {
   } finally {
     state.opening = false;
   }
-  if (r.restored_unsaved) setStatus(`${file}: your unsaved edits, as you left them`);
+  // Every open says which file it opened: a word about the file left must not stay beside this one.
+  setStatus(r.restored_unsaved ? `${file}: your unsaved edits, as you left them` : `opened ${file}`);
   return r;
 }
 

@@ -2,6 +2,7 @@
 import { hoverTooltip } from "@codemirror/view";
 import { api } from "./api.js";
 import { hooks } from "./hooks.js";
+import { markdownToNodes } from "./markdown.js";
 import { setStatus } from "./page.js";
 import { state } from "./state.js";
 
@@ -47,10 +48,13 @@ export const lspHover = hoverTooltip(async (view, pos) => {
   }
   const value = r?.contents?.value ?? (typeof r?.contents === "string" ? r.contents : "");
   if (!value) return null;
+  // A `like` name's entry comes as Markdown prose; explain's line as a ```text block, kept verbatim.
+  const prose = r.contents.kind === "markdown" && !value.startsWith("```");
   return {
     pos,
     above: true,
     create() {
+      if (prose) return { dom: markdownToNodes(value) };
       const dom = document.createElement("pre");
       dom.className = "hover";
       dom.textContent = value.replace(/^```text\n/, "").replace(/\n?```\s*$/, "");

@@ -13,18 +13,28 @@ export function drawOverlay() {
   }
   const g = canvas.getContext("2d");
   g.clearRect(0, 0, canvas.width, canvas.height);
-  // Field arrows (materials): where and which way a slow hand is pushed.
+  // Field arrows (materials): each cell's strongest push on a slow hand, drawn from where it is, its
+  // length |F| on the one scale the legend gives in newtons.
   const f = state.field;
-  if (state.kind === "material" && !state.zoom && f && f.n && f.max_N > 0 && $("#arrows").checked) {
-    g.strokeStyle = "rgba(30, 90, 200, 0.7)";
-    g.lineWidth = 1;
-    const cell = canvas.width / f.n;
-    for (let row = 0; row < f.n; row++) for (let col = 0; col < f.n; col++) {
-      const i = row * f.n + col;
-      const fx = f.fx_N[i] / f.max_N, fy = f.fy_N[i] / f.max_N;
-      const cx = (col + 0.5) * cell, cy = (row + 0.5) * (canvas.height / f.n);
-      arrow(g, cx, cy, cx + fx * cell * 0.45, cy - fy * cell * 0.45, 3);
+  delete stage.dataset.arrowScaleN;
+  if (state.kind === "material" && !state.zoom && f && f.n && f.max_N > 0 && f.x_mm && $("#arrows").checked) {
+    const full = 0.9 * Math.min(canvas.width / f.n, canvas.height / f.n);  // the strongest arrow, px
+    g.lineWidth = 1.5;
+    for (let i = 0; i < f.fx_N.length; i++) {
+      const mag = Math.hypot(f.fx_N[i], f.fy_N[i]);
+      if (mag < 0.02 * f.max_N) continue;  // under a pixel or two: a dot would only add noise
+      const [x0, y0] = toPx(f.x_mm[i], f.y_mm[i], r);
+      const k = full / f.max_N;
+      // A pale halo first, so that the arrow reads on the grey height field and the dark field alike.
+      g.lineWidth = 4;
+      g.strokeStyle = g.fillStyle = "rgba(255, 255, 255, 0.75)";
+      arrow(g, x0, y0, x0 + f.fx_N[i] * k, y0 - f.fy_N[i] * k, 6);
+      g.lineWidth = 1.5;
+      g.strokeStyle = g.fillStyle = "rgba(20, 70, 190, 0.95)";
+      arrow(g, x0, y0, x0 + f.fx_N[i] * k, y0 - f.fy_N[i] * k, 4);
     }
+    legend(g, canvas.width, full, f.max_N);
+    stage.dataset.arrowScaleN = String(f.max_N);
   }
   const live = state.live;
   if (!live) return;
@@ -47,6 +57,22 @@ export function drawOverlay() {
   stage.dataset.force = `${live.force_N[0].toFixed(4)},${live.force_N[1].toFixed(4)}`;
   stage.dataset.handPx = `${hx.toFixed(1)},${hy.toFixed(1)}`;
   stage.dataset.arrowPx = `${(hx + fx).toFixed(1)},${(hy - fy).toFixed(1)}`;
+}
+
+// The arrows' scale, top right: the longest arrow and the force it stands for.
+function legend(g, width, full, maxN) {
+  const text = `= ${maxN.toPrecision(3)} N`;
+  g.font = "12px system-ui, 'DejaVu Sans', sans-serif";
+  const w = full + 10 + g.measureText(text).width + 12;
+  const x = width - w - 6, y = 6;
+  g.fillStyle = "rgba(255, 255, 255, 0.9)";
+  g.fillRect(x, y, w, 20);
+  g.strokeStyle = g.fillStyle = "rgba(20, 70, 190, 0.9)";
+  g.lineWidth = 1.5;
+  arrow(g, x + 6, y + 10, x + 6 + full, y + 10, 4);
+  g.fillStyle = "#222";
+  g.textBaseline = "middle";
+  g.fillText(text, x + full + 14, y + 10.5);
 }
 
 function arrow(g, x0, y0, x1, y1, head) {

@@ -76,6 +76,21 @@ async function showZoomed(v) {
     " · wheel or +/− to zoom, Shift-drag to pan";
 }
 
+// The preview's window may be a part of the patch (as much as its pixels resolve): said, with the way to all of it.
+function partOfPatch(w) {
+  const p = state.patchMm;
+  if (!p || (w[0] >= p[0] - 0.05 && w[1] >= p[1] - 0.05)) return "";
+  return ` of the ${p[0].toFixed(1)} × ${p[1].toFixed(1)} mm patch (the part its pixels resolve; "whole patch" shows all of it)`;
+}
+
+// What the arrows stand for, in newtons (they are drawn in the preview's own window).
+function arrowsCaption() {
+  const f = state.field;
+  if (!$("#arrows").checked || !f?.x_mm || !(f.max_N > 0)) return "";
+  return ` · arrows: the strongest force at rest in each ${f.cell_mm[0].toPrecision(2)} mm cell, drawn from where it is;` +
+    ` the longest is ${f.max_N.toPrecision(3)} N`;
+}
+
 async function showPreviewWindow(v, preview) {
   delete $("#stage").dataset.zoom;
   $("#picture").style.transform = "";
@@ -86,13 +101,14 @@ async function showPreviewWindow(v, preview) {
     img.hidden = false;
     await img.decode().catch(() => {});
     $("#picture-caption").textContent = `${preview.window_mm[0].toFixed(1)} × ${preview.window_mm[1].toFixed(1)} mm` +
-      ` · scale bar ${preview.scale_bar_mm} mm · ` + (state.view === "field"
+      partOfPatch(preview.window_mm) + ` · scale bar ${preview.scale_bar_mm} mm · ` + (state.view === "field"
         ? `force field at rest: hue = direction, brightness = |F| up to ${preview.field_max_N.toFixed(3)} N` +
           (preview.field_limit_N > 0 && preview.field_max_N >= preview.field_limit_N * (1 - 1e-9)
             ? ` (the device's limit)` : "") +
           (preview.field_left_out?.length ? ` · not drawn: ${preview.field_left_out.join("; ")}` : "")
         : "height field, lit from the upper left" +
-          (preview.left_out?.length ? ` · not drawn: ${preview.left_out.join("; ")}` : ""));
+          (preview.left_out?.length ? ` · not drawn: ${preview.left_out.join("; ")}` : "")) +
+      arrowsCaption();
   } else {
     img.hidden = true;
     $("#picture-caption").textContent = "No picture: no force depends on position alone." +

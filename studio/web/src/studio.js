@@ -37,7 +37,7 @@ async function init() {
   setupLibrary();
   document.querySelectorAll("input[name=view]").forEach((r) => r.addEventListener("change", () => { state.view = r.value; refreshPreview(); }));
   document.querySelectorAll("input[name=mode]").forEach((r) => r.addEventListener("change", () => { state.mode = r.value; drawWorkspace(); }));
-  $("#arrows").addEventListener("change", () => (state.zoom ? refreshPreview() : drawOverlay()));
+  $("#arrows").addEventListener("change", () => refreshPreview());  // the caption says what the arrows stand for
   setupStage();
   setupZoom();
   // Started on a folder, nothing plays until a file is chosen.

@@ -41,9 +41,10 @@ double draw_scale_bar(Image& image);
 // Throws std::runtime_error when it cannot be written.
 void write_image_png(const std::filesystem::path& file, const Image& image);
 
-// The force field of render_force_field sampled on a grid of `n` x `n` points over `like`'s window, for
-// arrows drawn by a page: {"window_mm": [w, h], "n": n, "max_N": m, "fx_N": [...], "fy_N": [...]}
-// (row 0 at the top).
+// The force field of render_force_field as `n` x `n` arrows over `like`'s window, for a page to draw:
+// each cell's strongest force (N) and where in the cell it is (mm, patch coordinates), so that a wall
+// narrower than the cell is found, not stepped over. {"window_mm": [w, h], "n": n, "cell_mm": [w, h],
+// "max_N": the largest |F| (the arrows' scale), "x_mm", "y_mm", "fx_N", "fy_N": [...] (row 0 at the top)}.
 nlohmann::json force_field_json(const schema::PatchProgram& program, const Picture& like, int n);
 
 // force_plot_svg with the catalog's styles inside it, for an .svg file or page of its own.
