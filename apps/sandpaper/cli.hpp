@@ -66,6 +66,8 @@ int cmd_run(const CommonOptions& o, PlayRequest r, bool watch = false);
 // followed `run`); returns -1, after a note, when it cannot, and the caller plays in-process.
 int exec_player(int argc, char** argv);
 int cmd_inspect(const std::string& file, bool json, bool tables);
+// What `inspect` prints of a program, below its heading: name, device, size, force, terms, provenance.
+void print_patch_program(const schema::PatchProgram& p);
 // USB HID PID joysticks plugged in (cmd_devices.cpp, docs/USB_PID.md).
 int cmd_devices(const CommonOptions& o);
 int cmd_library(const CommonOptions& o);
@@ -114,6 +116,9 @@ int cmd_preview(const CommonOptions& o, const std::string& out_dir, int side);
 // (cmd_import.cpp): a .patch, or a workspace program.
 int cmd_export(const CommonOptions& o, const std::string& format, const std::string& output);
 int cmd_compile_gltf(const CommonOptions& o, const std::string& output);
+// `sandpaper explain ASSET.gltf|.glb`: what the asset holds, read back for the device: each patch's
+// program (as `inspect` shows it) and place; the material's layers are not in an asset.
+int cmd_explain_gltf(const CommonOptions& o);
 inline bool is_gltf_input(const CommonOptions& o) { return o.expression.empty() && compiler::is_gltf_path(o.file); }
 // `sandpaper lsp`: the language server on stdin/stdout (editors/lsp, docs/EDITORS.md) until the
 // client's `exit`; 0 after a clean shutdown, 1 otherwise.

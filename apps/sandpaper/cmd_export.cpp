@@ -1,4 +1,4 @@
-// `sandpaper export FILE --format gltf -o OUT.gltf`: a material or workspace as a glTF 2.0 asset with
+// `sandpaper export FILE --format gltf|glb -o OUT.gltf|OUT.glb`: a material or workspace as a glTF 2.0 asset with
 // the MPEG_haptic_material extension (compiler/gltf_export.hpp, docs/GLTF.md).
 #include <iostream>
 #include <map>
@@ -55,12 +55,19 @@ int export_workspace(const CommonOptions& o, const compiler::Compiler& c, compil
 }  // namespace
 
 int cmd_export(const CommonOptions& o, const std::string& format, const std::string& out) {
-  if (format != "gltf") {
-    std::cerr << "sandpaper export: --format must be gltf (the only format so far)\n";
+  if (format != "gltf" && format != "glb") {
+    std::cerr << "sandpaper export: --format must be gltf or glb (binary glTF)\n";
     return kExitUsage;
   }
   if (out.empty()) {
     std::cerr << "sandpaper export: give the file to write with -o FILE.gltf (or FILE.glb, binary)\n";
+    return kExitUsage;
+  }
+  // FILE.glb: the binary form, images and geometry in its BIN chunk; else JSON with data URIs.
+  const bool binary = std::filesystem::path(out).extension() == ".glb";
+  if (format == "glb" && !binary) {
+    // A binary asset named .gltf would be taken for JSON by the tools that go by the name.
+    std::cerr << "sandpaper export: --format glb writes binary glTF; name the output FILE.glb\n";
     return kExitUsage;
   }
   auto c = make_compiler(o);
@@ -78,8 +85,6 @@ int cmd_export(const CommonOptions& o, const std::string& format, const std::str
     asset = compiler::export_gltf({p}, std::nullopt, o.expression.empty() ? o.file : "<-e>", diags);
   }
   if (!report(o, diags) || !asset) return kExitBadInput;
-  // FILE.glb: the binary form, images and geometry in its BIN chunk; else JSON with data URIs.
-  const bool binary = std::filesystem::path(out).extension() == ".glb";
   schema::write_file_atomically(out, binary ? compiler::gltf_to_glb(*asset) : asset->dump() + "\n");
   const auto& materials = (*asset)["extensions"]["MPEG_haptic_material"]["materials"];
   if (o.json) {

@@ -49,4 +49,46 @@ int cmd_compile_gltf(const CommonOptions& o, const std::string& output) {
   return kExitOk;
 }
 
+int cmd_explain_gltf(const CommonOptions& o) {
+  auto c = make_compiler(o);
+  auto r = compiler::import_gltf_file(c, o.file);
+  std::cerr << compiler::format_diagnostics(r.diagnostics);
+  if (!r.ok()) {
+    if (o.json)
+      std::cout << schema::json_text(nlohmann::json{{"ok", false}, {"diagnostics", diagnostics_json(r.diagnostics)}}, 2)
+                << "\n";
+    return kExitBadInput;
+  }
+  // The asset holds compiled textures with their calibrated numbers, not the material's layers.
+  const std::string layers = "the material's layers are not in a glTF asset; `sandpaper explain` its source for how each resolved";
+  if (o.json) {
+    nlohmann::json j{{"ok", true}, {"diagnostics", diagnostics_json(r.diagnostics)}, {"asset", o.file}, {"note", layers}};
+    if (r.program) {
+      j["kind"] = "patch";
+      j["program"] = schema::to_json(*r.program, false);
+    } else {
+      j["kind"] = "workspace";
+      j["workspace"] = schema::to_json(*r.workspace);
+    }
+    std::cout << schema::json_text(j, 2) << "\n";
+    return kExitOk;
+  }
+  if (r.program) {
+    std::cout << o.file << ": glTF 2.0 asset (MPEG_haptic_material), one patch, read for device " << r.program->device << "\n";
+    print_patch_program(*r.program);
+  } else {
+    const auto& w = *r.workspace;
+    std::cout << o.file << ": glTF 2.0 asset (MPEG_haptic_material), workspace '" << w.name << "' of " << w.size_m[0] * 1e3 << " mm x "
+              << w.size_m[1] * 1e3 << " mm, " << w.patches.size() << " patch(es)\n";
+    for (std::size_t i = 0; i < w.patches.size(); ++i) {
+      const auto& p = w.patches[i];
+      std::cout << "patch " << i + 1 << ": " << p.source << ", centre (" << p.centre_m[0] * 1e3 << " mm, " << p.centre_m[1] * 1e3
+                << " mm), " << p.size_m[0] * 1e3 << " mm x " << p.size_m[1] * 1e3 << " mm\n";
+      print_patch_program(*p.program);
+    }
+  }
+  std::cout << "note: " << layers << "\n";
+  return kExitOk;
+}
+
 }  // namespace sandpaper::cli

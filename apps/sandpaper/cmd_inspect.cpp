@@ -7,14 +7,8 @@
 
 namespace sandpaper::cli {
 
-int cmd_inspect(const std::string& file, bool json, bool tables) {
-  auto p = schema::read_patch_file(file);
-  auto j = schema::to_json(p, tables);
-  if (json) {
-    std::cout << schema::json_text(j, 2) << "\n";
-    return kExitOk;
-  }
-  std::cout << file << ": Sandpaper patch program, format version " << schema::kPatchFormatVersion << "\n";
+void print_patch_program(const schema::PatchProgram& p) {
+  const auto j = schema::to_json(p, false);
   std::cout << "  material   " << p.name << "\n";
   if (!p.describes.empty()) std::cout << "  describes  \"" << p.describes << "\"\n";
   std::cout << "  device     " << p.device << "\n";
@@ -34,6 +28,16 @@ int cmd_inspect(const std::string& file, bool json, bool tables) {
               << (pv.si_unit.empty() ? pv.stated : schema::display_value(pv.value_si, pv.si_unit)) << "  [" << pv.layer
               << "; " << pv.source << "]\n";
   for (const auto& w : p.warnings) std::cout << "  warning " << w.code << ": " << w.message << "\n";
+}
+
+int cmd_inspect(const std::string& file, bool json, bool tables) {
+  auto p = schema::read_patch_file(file);
+  if (json) {
+    std::cout << schema::json_text(schema::to_json(p, tables), 2) << "\n";
+    return kExitOk;
+  }
+  std::cout << file << ": Sandpaper patch program, format version " << schema::kPatchFormatVersion << "\n";
+  print_patch_program(p);
   return kExitOk;
 }
 

@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
   auto* export_cmd = app.add_subcommand("export", "write a material or workspace as a glTF 2.0 asset with the MPEG_haptic_material extension (docs/GLTF.md)");
   add_common(export_cmd, o, true);
   std::string export_format, export_output;
-  export_cmd->add_option("--format", export_format, "gltf (glTF 2.0: -o FILE.gltf, one self-contained JSON file; -o FILE.glb, binary)")->required();
+  export_cmd->add_option("--format", export_format, "gltf (glTF 2.0: -o FILE.gltf, one self-contained JSON file; -o FILE.glb, binary) or glb (binary glTF, -o FILE.glb)")->required();
   export_cmd->add_option("-o,--output", export_output, "file to write, e.g. out.gltf")->required();
 #else
   add_unbuilt_command(app, "export", kGltf);
@@ -239,6 +239,14 @@ int main(int argc, char** argv) {
     }
     if (explain->parsed()) {
       if (!needs_input(explain)) return kExitUsage;
+      if (is_gltf_input(o)) {
+#if SANDPAPER_WITH_GLTF
+        return cmd_explain_gltf(o);
+#else
+        say_unbuilt("sandpaper explain " + o.file, kGltf);
+        return kExitUsage;
+#endif
+      }
       return is_workspace_input(o) ? cmd_workspace_compile(o, "", true) : cmd_compile(o, "", true);
     }
     if (run->parsed()) {

@@ -3,12 +3,14 @@
 // extension it does not know is not written), and the haptic textures, which no visual material
 // uses, are pruned. Registered, a haptic material keeps its name, extras (Sandpaper's
 // `extras.sandpaper`: the force rule and its numbers, docs/GLTF.md) and every field as written; its
-// textures are held as Texture references, so they survive dedup, prune and resampling, and are
-// written back wherever the pipeline puts images (embedded, beside the asset, in a .glb).
+// textures are held as Texture references, so they survive dedup and prune, and are written back
+// wherever the pipeline puts images (embedded, beside the asset, in a .glb). A haptic texture is
+// heights, not colours: a transform that re-encodes or resizes it (optimize, png, webp, resize, ...)
+// would lose them, so while this extension is registered its image stays as read (with a warning).
 //
 //   import { MPEGHapticMaterial } from "sandpaper-gltf-transform-mpeg-haptic-material";
 //   const io = new NodeIO().registerExtensions([MPEGHapticMaterial]);
-import { Extension, ExtensionProperty, PropertyType, RefList, TextureInfo } from "@gltf-transform/core";
+import { Extension, ExtensionProperty, PropertyType, RefList, TextureChannel, TextureInfo } from "@gltf-transform/core";
 
 const NAME = "MPEG_haptic_material";
 
@@ -31,7 +33,8 @@ export class HapticTexture extends ExtensionProperty {
   getFields() { return this.get("fields"); }
   setFields(fields) { return this.set("fields", fields); }
   getTexture() { return this.getRef("texture"); }
-  setTexture(texture) { return this.setRef("texture", texture); }
+  // Heights in one channel: glTF-Transform's texture functions ask each texture's edge which it uses.
+  setTexture(texture) { return this.setRef("texture", texture, { channels: TextureChannel.R }); }
   // The sampling (wrap, filters, texCoord), as for any glTF texture.
   getTextureInfo() { return this.getRef("textureInfo"); }
 }
@@ -90,6 +93,7 @@ export class MPEGHapticMaterial extends Extension {
             if (source !== undefined) {
               t.setTexture(context.textures[source]);
               context.setTextureInfo(t.getTextureInfo(), info);
+              this._keepAsRead(context.textures[source]);
             }
             m.addTexture(t);
           }
@@ -100,6 +104,29 @@ export class MPEGHapticMaterial extends Extension {
       return m.setFields(fields);
     });
     return this;
+  }
+
+  // Puts back a haptic texture's image, type and name whenever a transform changes them: the
+  // texture's bytes are 16-bit heights whose every bit the force rule reads (docs/GLTF.md).
+  _keepAsRead(texture) {
+    if (!texture || (this._kept ||= new Set()).has(texture)) return;
+    this._kept.add(texture);
+    const image = texture.getImage(), mimeType = texture.getMimeType(), uri = texture.getURI();
+    let warned = false, restoring = false;
+    texture.addEventListener("change", ({ attribute }) => {
+      if (restoring) return;
+      const now = { image: texture.getImage(), mimeType: texture.getMimeType(), uri: texture.getURI() };
+      if (now.image === image && now.mimeType === mimeType && (now.uri === uri || !/\.(webp|jpe?g|avif|ktx2)$/i.test(now.uri))) return;
+      if (!warned) {
+        warned = true;
+        this.document.getLogger().warn(
+          `${NAME}: haptic texture "${uri || texture.getName() || "(embedded)"}" kept as read (${mimeType}): ` +
+          `it holds heights, and re-encoding or resizing it (${attribute} changed) would lose them.`);
+      }
+      restoring = true;
+      texture.set("image", image).set("mimeType", mimeType).set("uri", uri);
+      restoring = false;
+    });
   }
 
   // Meshes are read after prereading: each names its haptic material by index.

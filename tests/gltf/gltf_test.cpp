@@ -1,6 +1,7 @@
 // glTF export and import (docs/GLTF.md, issue 17): a material exported and read back plays the same
 // forces within 0.5 % of its maximum lateral force, both evaluated by the runtime; hostile assets are
 // refused with their diagnostic code, never a crash.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -478,8 +479,11 @@ TEST(GltfHostile, ForcesBeyondTheDevice) {
 
 TEST(GltfHostile, TransformedNode) {
   json a = good_asset();
-  a["nodes"][0]["rotation"] = {0, 0, 0, 1};
+  a["nodes"][0]["rotation"] = {0, 0.7071068, 0, 0.7071068};  // a quarter turn about +Y
   EXPECT_EQ(only_error(import(a)).substr(0, 5), "E0712");
+  json s = good_asset();  // twice the patch's size: not the patch the extras describe
+  s["nodes"][0]["scale"] = {2, 2, 2};
+  EXPECT_EQ(only_error(import(s)).substr(0, 5), "E0712");
   json b = good_asset();
   b["nodes"][0]["mesh"] = 99;
   EXPECT_EQ(only_error(import(b)).substr(0, 5), "E0712");
@@ -624,4 +628,77 @@ TEST(GltfGlb, BrokenBinaryFilesAreRefused) {
   EXPECT_EQ(code(import(no_bin)), "E0715");
 }
 
+namespace {
+// ---- what glTF pipelines make of an asset (docs/GLTF.md, "What glTF-Transform's commands do") ----
+
+// A PNG header of another kind than the 16-bit greyscale the heights are written in.
+std::vector<unsigned char> png_header_of(int depth, int colour) {
+  std::vector<unsigned char> b = png_header(64, 1);
+  b[24] = static_cast<unsigned char>(depth);
+  b[25] = static_cast<unsigned char>(colour);
+  const uLong crc = crc32(0, b.data() + 12, 17);
+  for (int i = 0; i < 4; ++i) b[29 + static_cast<std::size_t>(i)] = static_cast<unsigned char>(crc >> (24 - 8 * i));
+  return b;
+}
+
+TEST(GltfPipelines, ReencodedHapticTexturesAreRefusedSayingWhatTheyBecame) {
+  const std::pair<std::vector<unsigned char>, std::string> cases[] = {
+      {png_header_of(8, 2), "an 8-bit RGB PNG"},
+      {png_header_of(8, 0), "an 8-bit greyscale PNG"},
+      {{'R', 'I', 'F', 'F', 40, 0, 0, 0, 'W', 'E', 'B', 'P', 'V', 'P', '8', ' '}, "a WebP image"},
+      {{0xff, 0xd8, 0xff, 0xe0, 0, 16, 'J', 'F', 'I', 'F'}, "a JPEG image"},
+  };
+  for (const auto& [bytes, said] : cases) {
+    SCOPED_TRACE(said);
+    json a = good_asset();
+    a["images"][0]["uri"] = "data:image/png;base64," + base64(bytes);
+    const std::string error = only_error(import(a));
+    EXPECT_EQ(error.substr(0, 5), "E0720") << error;
+    EXPECT_NE(error.find(said), std::string::npos) << error;
+  }
+  json w = good_asset();  // EXT_texture_webp: the texture names its WebP image in the extension only
+  w["textures"][0] = {{"extensions", {{"EXT_texture_webp", {{"source", 0}}}}}};
+  const std::string error = only_error(import(w));
+  EXPECT_EQ(error.substr(0, 5), "E0720") << error;
+  EXPECT_NE(error.find("WebP"), std::string::npos) << error;
+}
+
+TEST(GltfPipelines, AQuantizedMeshWithItsCompensatingScaleIsThePatch) {
+  // KHR_mesh_quantization as glTF-Transform's quantize writes it: positions as normalized shorts
+  // over the mesh's largest half-extent, and the node scaled by that half-extent to undo it.
+  const json a = good_asset();
+  auto plain = import(a);
+  ASSERT_TRUE(plain.ok() && plain.program) << compiler::format_diagnostics(plain.diagnostics);
+  const double w = plain.program->size_m[0], h = plain.program->size_m[1], half = std::max(w, h) / 2;
+  json q = a;
+  json& position = q["accessors"][q["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<std::size_t>()];
+  position["componentType"] = 5122;
+  position["normalized"] = true;
+  position["min"] = {-std::round(w / 2 / half * 32767), 0, -std::round(h / 2 / half * 32767)};
+  position["max"] = {std::round(w / 2 / half * 32767), 0, std::round(h / 2 / half * 32767)};
+  q["nodes"][0]["scale"] = {half, half, half};
+  auto back = import(q);
+  ASSERT_TRUE(back.ok() && back.program) << compiler::format_diagnostics(back.diagnostics);
+  EXPECT_EQ(compare(*plain.program, *back.program).worst_N, 0.0);
+  json twice = q;  // the same positions under twice the scale: a patch twice the extras' size
+  twice["nodes"][0]["scale"] = {2 * half, 2 * half, 2 * half};
+  EXPECT_EQ(only_error(import(twice)).substr(0, 5), "E0712");
+}
+
+TEST(GltfPipelines, PatchesAPipelineMergedAwayAreRefusedNotDropped) {
+  json a = good_asset();  // a second haptic material whose mesh is gone
+  auto& materials = a["extensions"]["MPEG_haptic_material"]["materials"];
+  materials.push_back(materials[0]);
+  const std::string error = only_error(import(a));
+  EXPECT_EQ(error.substr(0, 5), "E0721") << error;
+  EXPECT_NE(error.find("materials[1]"), std::string::npos) << error;
+  json w = good_asset();  // a workspace written with two patches, of which one mesh is left
+  w["extras"] = {{"sandpaper", {{"version", 2}, {"workspace", {{"name", "two"}, {"size_m", {0.2, 0.2}}, {"patches", 2}}}}}};
+  EXPECT_EQ(only_error(import(w)).substr(0, 5), "E0721");
+  w["extras"]["sandpaper"]["workspace"]["patches"] = 1;
+  auto one = import(w);
+  EXPECT_TRUE(one.ok() && one.workspace && one.workspace->patches.size() == 1) << compiler::format_diagnostics(one.diagnostics);
+}
+
+}  // namespace
 }  // namespace sandpaper

@@ -343,7 +343,8 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
   if (workspace)
     asset["extras"] = {{gltf::kExtrasKey,
                         {{"version", gltf::kExtrasVersion},
-                         {"workspace", {{"name", workspace->name}, {"size_m", {workspace->size_m[0], workspace->size_m[1]}}}}}}};
+                         {"workspace", {{"name", workspace->name}, {"size_m", {workspace->size_m[0], workspace->size_m[1]}},
+                                        {"patches", patches.size()}}}}}};
   return asset;
 }
 

@@ -3,10 +3,14 @@
 // trusted before it is checked against a limit.
 #include "sandpaper/compiler/gltf_import.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <sstream>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -131,6 +135,31 @@ struct Extras {
     return v.get<bool>();
   }
 };
+
+constexpr const char* kReencodedFix =
+    "export it again from Sandpaper; in glTF-Transform register the MPEG_haptic_material extension "
+    "(interop/gltf-transform, docs/GLTF.md), which keeps haptic textures as written";
+
+// What a pipeline made of a haptic texture, from its first bytes: "an 8-bit RGB PNG", "a WebP image";
+// nullopt for a 16-bit greyscale PNG and for bytes no pipeline writes (those are E0716's).
+std::optional<std::string> reencoded(const std::vector<unsigned char>& b) {
+  auto starts = [&](std::size_t at, std::string_view magic) {
+    return b.size() >= at + magic.size() && std::equal(magic.begin(), magic.end(), b.begin() + static_cast<std::ptrdiff_t>(at),
+                                                        [](char m, unsigned char c) { return static_cast<unsigned char>(m) == c; });
+  };
+  if (starts(0, "\x89PNG\r\n\x1a\n") && starts(12, "IHDR") && b.size() >= 26) {
+    const int depth = b[24], colour = b[25];
+    if (depth == 16 && colour == 0) return std::nullopt;
+    const char* kind = colour == 0 ? "greyscale" : colour == 2 ? "RGB" : colour == 3 ? "palette" : colour == 4 ? "greyscale-alpha"
+                                                 : colour == 6 ? "RGBA" : "unknown-colour";
+    return std::string(depth == 8 ? "an " : "a ") + std::to_string(depth) + "-bit " + kind + " PNG";
+  }
+  if (starts(0, "RIFF") && starts(8, "WEBP")) return "a WebP image";
+  if (starts(0, "\xff\xd8\xff")) return "a JPEG image";
+  if (starts(4, "ftypavif") || starts(4, "ftypavis")) return "an AVIF image";
+  if (starts(0, "\xabKTX 20\xbb")) return "a KTX2 image";
+  return std::nullopt;
+}
 
 class Reader {
  public:
@@ -273,6 +302,14 @@ class Reader {
                                       where + ".vibrotactileTexture[0].texture.index", "E0715");
     const std::string tw = "textures[" + std::to_string(ti) + "]";
     const json& images = member(root_, "images", "the asset", "E0715");
+    if (!optional_member(textures[ti], "source"))
+      if (const json* e = optional_member(textures[ti], "extensions"); e && e->is_object())
+        for (const auto& [name, format] : std::initializer_list<std::pair<const char*, const char*>>{
+                 {"EXT_texture_webp", "WebP"}, {"EXT_texture_avif", "AVIF"}, {"KHR_texture_basisu", "KTX2"}})
+          if (e->contains(name))
+            refuse("E0720", "the haptic texture of " + where + " (" + tw + ") is a " + format + " image (" + name +
+                                "), not the 16-bit greyscale PNG its heights were written as: a pipeline re-encoded it and the heights are lost",
+                   kReencodedFix);
     const std::size_t ii = index_into(member(textures[ti], "source", tw, "E0715"), images, tw + ".source", "E0715");
     const std::string iw = "images[" + std::to_string(ii) + "]";
     const json* uri = optional_member(images[ii], "uri");
@@ -288,6 +325,10 @@ class Reader {
     } else {
       bytes = image_file(u, iw);
     }
+    if (const auto what = reencoded(*bytes))
+      refuse("E0720", "the haptic texture of " + where + " (" + iw + ") is " + *what +
+                          ", not the 16-bit greyscale PNG its heights were written as: a pipeline re-encoded it and the heights are lost",
+             kReencodedFix);
     std::string why;
     const long long budget = kMaxGltfTexels - texels_;
     const long long limit = std::min<long long>(kind == "grating" ? 65536 : kMaxImagePixels, budget);
@@ -414,9 +455,9 @@ std::vector<std::pair<std::size_t, std::size_t>> haptic_nodes(const json& root, 
     const json* ext = optional_member((*meshes)[mi], "extensions");
     const json* hm = ext ? optional_member(*ext, gltf::kExtension) : nullptr;
     if (!hm) continue;  // a mesh without haptics is scenery, not a patch
-    for (const char* k : {"rotation", "scale", "matrix", "children"})
+    for (const char* k : {"matrix", "children"})
       if (optional_member(node, k))
-        refuse("E0712", nw + " has a \"" + k + "\": Sandpaper reads patches placed by translation alone, on the ground plane",
+        refuse("E0712", nw + " has a \"" + k + "\": Sandpaper reads patches placed by translation and scale alone, on the ground plane",
                "export the asset again from Sandpaper, or remove the transform");
     if (materials == 0) refuse("E0713", "the asset has no MPEG_haptic_material materials for meshes[" + std::to_string(mi) + "] to name");
     const std::string where = "meshes[" + std::to_string(mi) + "].extensions.MPEG_haptic_material.hapticMaterialIndex";
@@ -430,22 +471,100 @@ std::vector<std::pair<std::size_t, std::size_t>> haptic_nodes(const json& root, 
   return out;
 }
 
-// The node's place on the workspace: glTF (x, 0, z) is patch (x, -z).
-void centre_of(const json& node, std::size_t n, double centre[2]) {
-  centre[0] = centre[1] = 0;
-  const json* t = optional_member(node, "translation");
-  if (!t) return;
-  const std::string w = "nodes[" + std::to_string(n) + "].translation";
-  if (!t->is_array() || t->size() != 3) refuse("E0712", w + " is not three numbers");
-  double v[3];
-  for (std::size_t i = 0; i < 3; ++i) {
-    if (!(*t)[i].is_number()) refuse("E0712", w + " is not three numbers");
+// A node's numbers: `count` finite numbers within `bound`, or `fallback` when absent.
+std::array<double, 4> numbers(const json& node, const char* key, std::size_t n, std::size_t count, double bound,
+                              std::array<double, 4> fallback) {
+  const json* t = optional_member(node, key);
+  if (!t) return fallback;
+  const std::string w = "nodes[" + std::to_string(n) + "]." + key;
+  if (!t->is_array() || t->size() != count) refuse("E0712", w + " is not " + std::to_string(count) + " numbers");
+  std::array<double, 4> v{};
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!(*t)[i].is_number()) refuse("E0712", w + " is not " + std::to_string(count) + " numbers");
     v[i] = (*t)[i].get<double>();
-    if (!std::isfinite(v[i]) || std::abs(v[i]) > 10) refuse("E0712", w + "[" + std::to_string(i) + "] is not within 10 m");
+    if (!std::isfinite(v[i]) || std::abs(v[i]) > bound) refuse("E0712", w + "[" + std::to_string(i) + "] is not within " + num(bound));
   }
-  if (v[1] != 0) refuse("E0712", w + " lifts the patch off the ground plane (y = " + num(v[1]) + " m)");
-  centre[0] = v[0];
-  centre[1] = v[2] == 0 ? 0 : -v[2];
+  return v;
+}
+
+// An accessor bound as a number: KHR_mesh_quantization's normalized integers are read as glTF 2.0
+// section 3.11 maps them to [-1, 1] or [0, 1]; other values are as written.
+double dequantized(double v, const json& accessor) {
+  const json* normalized = optional_member(accessor, "normalized");
+  if (!normalized || !normalized->is_boolean() || !normalized->get<bool>()) return v;
+  const json* type = optional_member(accessor, "componentType");
+  const int t = type && type->is_number_integer() ? type->get<int>() : 0;
+  switch (t) {
+    case 5120: return std::max(v / 127.0, -1.0);    // BYTE
+    case 5121: return v / 255.0;                    // UNSIGNED_BYTE
+    case 5122: return std::max(v / 32767.0, -1.0);  // SHORT
+    case 5123: return v / 65535.0;                  // UNSIGNED_SHORT
+    default: refuse("E0712", "a POSITION accessor is normalized but of component type " + std::to_string(t));
+  }
+}
+
+// The box of mesh `mi`'s POSITION bounds over its primitives (accessor min and max, which glTF
+// requires of POSITION), in the mesh's own frame; nullopt if a primitive has none.
+std::optional<std::array<double, 6>> mesh_bounds(const json& root, std::size_t mi) {
+  const json& mesh = root["meshes"][mi];
+  const json* prims = optional_member(mesh, "primitives");
+  const json* accessors = optional_member(root, "accessors");
+  if (!prims || !prims->is_array() || prims->empty() || !accessors) return std::nullopt;
+  std::array<double, 6> box{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+  for (std::size_t p = 0; p < prims->size(); ++p) {
+    const std::string pw = "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(p) + "]";
+    const json* attributes = optional_member((*prims)[p], "attributes");
+    const json* position = attributes ? optional_member(*attributes, "POSITION") : nullptr;
+    if (!position) return std::nullopt;
+    const json& a = (*accessors)[index_into(*position, *accessors, pw + ".attributes.POSITION", "E0712")];
+    const json* lo = optional_member(a, "min");
+    const json* hi = optional_member(a, "max");
+    if (!lo || !hi || !lo->is_array() || !hi->is_array() || lo->size() != 3 || hi->size() != 3) return std::nullopt;
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!(*lo)[i].is_number() || !(*hi)[i].is_number()) refuse("E0712", pw + "'s POSITION min or max is not three numbers");
+      const double l = dequantized((*lo)[i].get<double>(), a), h = dequantized((*hi)[i].get<double>(), a);
+      if (!std::isfinite(l) || !std::isfinite(h) || l > h) refuse("E0712", pw + "'s POSITION min and max are not a box");
+      box[i] = std::min(box[i], l);
+      box[3 + i] = std::max(box[3 + i], h);
+    }
+  }
+  return box;
+}
+
+// The patch's place on the workspace, the centre of its mesh's box in the scene: glTF (x, 0, z) is
+// patch (x, -z). A node may scale its mesh (glTF pipelines' quantization does, to undo the integer
+// positions' scale) but not rotate it, and the mesh must span the patch's size on the ground plane.
+void centre_of(const json& root, const json& node, std::size_t n, const double size_m[2], double centre[2]) {
+  const std::string nw = "nodes[" + std::to_string(n) + "]";
+  const auto t = numbers(node, "translation", n, 3, 10, {0, 0, 0, 0});
+  const auto s = numbers(node, "scale", n, 3, 1e6, {1, 1, 1, 0});
+  const auto q = numbers(node, "rotation", n, 4, 1, {0, 0, 0, 1});
+  if (std::abs(q[0]) > 1e-6 || std::abs(q[1]) > 1e-6 || std::abs(q[2]) > 1e-6)
+    refuse("E0712", nw + " is rotated: Sandpaper reads patches lying on the ground plane as exported",
+           "export the asset again from Sandpaper, or remove the rotation");
+  for (int i = 0; i < 3; ++i)
+    if (!(s[i] > 0)) refuse("E0712", nw + ".scale[" + std::to_string(i) + "] is " + num(s[i]) + ": a patch is scaled by positive numbers only");
+  const auto mesh = static_cast<std::size_t>(node["mesh"].get<std::uint64_t>());
+  double c[3] = {t[0], t[1], t[2]};
+  if (const auto box = mesh_bounds(root, mesh)) {
+    double span[3];
+    for (int i = 0; i < 3; ++i) {
+      c[i] = t[i] + s[i] * ((*box)[i] + (*box)[3 + i]) / 2;
+      span[i] = s[i] * ((*box)[3 + i] - (*box)[i]);
+    }
+    // 1e-3 of the size: float positions and 14-bit quantized ones both hold it with room to spare.
+    if (std::abs(span[0] - size_m[0]) > 1e-3 * size_m[0] || std::abs(span[2] - size_m[1]) > 1e-3 * size_m[1] || span[1] > 1e-6)
+      refuse("E0712", nw + "'s mesh spans " + num(span[0] * 1e3) + " mm x " + num(span[2] * 1e3) + " mm (and " + num(span[1] * 1e3) +
+                          " mm up) in the scene, but its patch is " + num(size_m[0] * 1e3) + " mm x " + num(size_m[1] * 1e3) +
+                          " mm flat: the node or its mesh was scaled or reshaped",
+             "export the asset again from Sandpaper");
+  } else if (s[0] != 1 || s[1] != 1 || s[2] != 1) {
+    refuse("E0712", nw + " is scaled, and its mesh has no POSITION min and max to say where its patch lies");
+  }
+  if (std::abs(c[1]) > 1e-6) refuse("E0712", nw + " lifts the patch off the ground plane (y = " + num(c[1]) + " m)");
+  if (std::abs(c[0]) > 10 || std::abs(c[2]) > 10) refuse("E0712", nw + " places its patch more than 10 m from the origin");
+  centre[0] = c[0];
+  centre[1] = c[2] == 0 ? 0 : -c[2];
 }
 
 std::uint32_t u32_at(const std::string& b, std::size_t at) {
@@ -510,6 +629,25 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
     refuse("E0713", "extensions.MPEG_haptic_material.materials is not a non-empty array");
   const auto placed = haptic_nodes(root, materials.size());
   if (placed.empty()) refuse("E0713", "no mesh in the scene names a haptic material (meshes[].extensions.MPEG_haptic_material)");
+  // Sandpaper writes one haptic material per distinct material and a mesh for every patch: a
+  // material no mesh names, or fewer meshes than the patches written, is a patch a pipeline lost.
+  std::vector<bool> named(materials.size(), false);
+  for (const auto& [n, mi] : placed) named[mi] = true;
+  if (const json* meshes = optional_member(root, "meshes"); meshes && meshes->is_array())
+    for (const auto& mesh : *meshes) {  // a mesh of another scene still holds its patch
+      const json* e = optional_member(mesh, "extensions");
+      const json* hm = e ? optional_member(*e, gltf::kExtension) : nullptr;
+      const json* index = hm ? optional_member(*hm, "hapticMaterialIndex") : nullptr;
+      if (index && index->is_number_unsigned() && index->get<std::uint64_t>() < materials.size())
+        named[static_cast<std::size_t>(index->get<std::uint64_t>())] = true;
+    }
+  if (const auto lost = static_cast<std::size_t>(std::count(named.begin(), named.end(), false)); lost > 0)
+    refuse("E0721",
+           std::to_string(lost) + " of the " + std::to_string(materials.size()) +
+               " haptic materials are named by no mesh (first: extensions.MPEG_haptic_material.materials[" +
+               std::to_string(std::find(named.begin(), named.end(), false) - named.begin()) +
+               "]): their patches' meshes were merged into others or removed, as glTF-Transform's join (and optimize, which joins) does",
+           "export the asset again from Sandpaper, or join with meshes kept apart (gltf-transform optimize --join false)");
   Reader reader(c, root, shown, folder, glb && glb->has_bin ? &glb->bin : nullptr, r.diagnostics);
   reader.set_materials(materials);
   const json* extras = optional_member(root, "extras");
@@ -520,6 +658,8 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
       refuse("E0713", std::to_string(placed.size()) + " meshes carry haptic materials, but the asset is not a workspace (no extras.sandpaper.workspace)",
              "export a workspace (.hws) to get an asset of several patches");
     r.program = *reader.program(placed.front().second);
+    double centre[2];  // a lone patch has no place, but its mesh must still be the patch, on the ground
+    centre_of(root, root["nodes"][placed.front().first], placed.front().first, r.program->size_m, centre);
     return;
   }
   if (!ws->is_object()) refuse("E0714", "extras.sandpaper.workspace is not a JSON object");
@@ -527,11 +667,19 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
   schema::WorkspaceProgram w;
   w.name = x.text("name");
   x.pair("size_m", 1e-6, 10, w.size_m);
+  if (ws->contains("patches")) {  // an asset that does not say how many it was written with is not checked
+    const double written = x.number("patches", 1, static_cast<double>(schema::limits::kMaxWorkspacePatches));
+    if (static_cast<double>(placed.size()) != written)
+      refuse("E0721",
+             "the workspace was written with " + num(written) + " patches, but " + std::to_string(placed.size()) +
+                 " meshes in the scene carry haptic materials: a pipeline merged or removed the others (glTF-Transform's join, optimize)",
+             "export the asset again from Sandpaper, or join with meshes kept apart (gltf-transform optimize --join false)");
+  }
   const json& nodes = root["nodes"];
   for (const auto& [n, mi] : placed) {
-    double centre[2];
-    centre_of(nodes[n], n, centre);
     auto program = reader.program(mi);
+    double centre[2];
+    centre_of(root, nodes[n], n, program->size_m, centre);
     const json& name = materials[mi]["extras"][gltf::kExtrasKey]["source"];
     w.patches.push_back(schema::place_shared_patch(program, centre, name.get<std::string>()));
   }

@@ -3,7 +3,7 @@
 // mesh's MPEG_haptic_material (ISO/IEC 23090-14; Khronos glTF extensions/2.0/Vendor/
 // MPEG_haptic_material) with Sandpaper's `extras` becomes a patch program whose forces are the
 // heights' F = -k grad h, compiled for the compiler's device. The file is outside input: every
-// problem is a diagnostic (E0710-E0719), and sizes are limited before anything is allocated.
+// problem is a diagnostic (E0710-E0721), and sizes are limited before anything is allocated.
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -38,7 +38,9 @@ inline bool is_gltf_path(const std::filesystem::path& path) { return path.extens
 // missing or of the wrong type or range, E0715 a haptic texture that cannot be found, is neither an
 // embedded PNG (data:image/png;base64) nor a PNG file inside the asset's own folder (symbolic links
 // followed, nothing outside it read), E0716 a PNG that does not decode, E0717 texture sizes out of limits or not matching
-// the extras, E0718 forces the device cannot play. Warning W0703: parts the asset says it left out.
+// the extras, E0718 forces the device cannot play, E0720 a haptic texture a pipeline re-encoded
+// (8-bit, colour, WebP, ...), E0721 patches' meshes merged or removed. Warning W0703: parts the asset
+// says it left out.
 GltfImportResult import_gltf_file(const Compiler& compiler, const std::filesystem::path& path);
 // The same for the file's bytes; `folder` is where its image files are read from (none: embedded
 // images only, as for an asset that came without its folder).
