@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "sandpaper/catalog/preview.hpp"
+#include "sandpaper/compiler/brought_in.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/lsp/features.hpp"
@@ -46,6 +47,23 @@ nlohmann::json parameter_json(const compiler::Parameter& p) {
 
 // The compiler's limit on a source file (schema/input_limits.hpp), as a person reads it: "4 MiB".
 std::string source_limit_text() { return std::to_string(schema::limits::kMaxSourceBytes >> 20) + " MiB"; }
+
+// A diagnostic from another file (a library entry the text builds on) keeps its own place ("location",
+// "line", "column": in that file) and says where it came into the open text: "file" (its file),
+// "brought_in" ({line, column, length}: the `like` or the patch) and "entry" (the library entry).
+void mark_brought_in(nlohmann::json& diagnostics, const compiler::Diagnostics& ds, const std::string& name,
+                     const std::string& text, const compiler::Library& library) {
+  const auto file = std::make_shared<const compiler::SourceFile>(name, text);
+  const auto& all = ds.all();
+  for (std::size_t i = 0; i < all.size() && i < diagnostics.size(); ++i) {
+    const auto b = compiler::brought_in(all[i], file, library);
+    if (!b) continue;
+    auto& j = diagnostics[i];
+    j["file"] = all[i].location.file->name;
+    j["brought_in"] = {{"line", b->at.line}, {"column", b->at.column}, {"length", b->at.length}};
+    j["entry"] = b->entry.empty() ? nlohmann::json(nullptr) : nlohmann::json(b->entry);
+  }
+}
 
 std::string read_text(const fs::path& path) {
   std::error_code ec;
@@ -205,6 +223,7 @@ nlohmann::json Session::update_locked(const std::string& text) {
     const auto base = (root_ / file_).parent_path();
     auto r = compiler::compile_workspace_text(compiler_, text, file_, base);
     j = {{"ok", r.ok()}, {"diagnostics", compiler::diagnostics_json(r.diagnostics)}};
+    mark_brought_in(j["diagnostics"], r.diagnostics, file_, text, compiler_.library());
     if (r.ok()) {
       auto ws = std::make_shared<const schema::WorkspaceProgram>(std::move(*r.program));
       j["workspace"] = schema::to_json(*ws);
@@ -224,6 +243,7 @@ nlohmann::json Session::update_locked(const std::string& text) {
     } else {
       j = compiler::compile_json(r, std::nullopt);
     }
+    mark_brought_in(j["diagnostics"], r.diagnostics, file_, text, compiler_.library());
   }
   text_compiles_ = j["ok"].get<bool>();
   if (text_compiles_) to_render_.notify_all();
