@@ -157,6 +157,17 @@ nlohmann::json Session::open(const std::string& relative) {
   } else {
     // Read before the open file is left, so that a refusal (404, 413) changes nothing.
     text = saved = read_text(full);
+    const fs::path copy = recovery_path(full);
+    std::error_code ec;
+    if (fs::is_regular_file(copy, ec) && fs::file_size(copy, ec) <= schema::limits::kMaxSourceBytes) {
+      std::string kept = read_text(copy);
+      if (kept != saved) {
+        text = std::move(kept);
+        recovered_[name] = fs::relative(copy, root_).string();
+      } else {
+        fs::remove(copy, ec);  // nothing in it that the file does not hold
+      }
+    }
   }
   if (!file_.empty() && file_ != name && text_ != saved_text_) drafts_[file_] = {text_, saved_text_};
   if (draft != drafts_.end()) drafts_.erase(draft);
@@ -166,12 +177,17 @@ nlohmann::json Session::open(const std::string& relative) {
   nlohmann::json j = update_locked(text);
   j["file"] = file_;
   j["restored_unsaved"] = restored;
+  if (const auto r = recovered_.find(file_); r != recovered_.end() && text_ != saved_text_) j["recovered"] = r->second;
   return j;
 }
 
 nlohmann::json Session::current() const {
   std::lock_guard lock(mutex_);
+  nlohmann::json recovered;
+  if (const auto r = recovered_.find(file_); r != recovered_.end() && text_ != saved_text_)
+    recovered = {{"copy", r->second}, {"saved_text", saved_text_}};
   return {{"file", file_},
+          {"recovered", recovered},
           {"kind", is_workspace_ ? "workspace" : "material"},
           {"text", text_},
           {"text_version", text_version_},
@@ -289,7 +305,42 @@ nlohmann::json Session::save() {
     throw RequestError(500, std::string("could not save: ") + e.what());
   }
   saved_text_ = text_;
+  // The recovered text is in the file now.
+  if (recovered_.erase(file_)) {
+    std::error_code ec;
+    fs::remove(recovery_path(full), ec);
+  }
   return {{"saved", true}, {"file", file_}, {"bytes", text_.size()}};
+}
+
+fs::path Session::recovery_path(const fs::path& file) {
+  return file.parent_path() / ("." + file.filename().string() + ".recovered");
+}
+
+std::vector<Session::Unsaved> Session::keep_unsaved() {
+  std::lock_guard lock(mutex_);
+  std::map<std::string, std::string> unsaved;  // by file: the edited text
+  for (const auto& [file, draft] : drafts_) unsaved[file] = draft.text;
+  if (!file_.empty() && text_ != saved_text_) unsaved[file_] = text_;
+  std::vector<Unsaved> kept;
+  for (const auto& [file, text] : unsaved) {
+    Unsaved u{file, {}, {}, text};
+    try {
+      const fs::path copy = recovery_path(http::confined_path(root_, file));
+      schema::write_file_atomically(copy, text);
+      u.copy = fs::relative(copy, root_).string();
+    } catch (const std::exception& e) {
+      u.error = e.what();
+    }
+    kept.push_back(std::move(u));
+  }
+  // A copy offered this session whose text was since saved or undone would offer it again.
+  for (const auto& [file, copy] : recovered_)
+    if (!unsaved.contains(file)) {
+      std::error_code ec;
+      fs::remove(root_ / copy, ec);
+    }
+  return kept;
 }
 
 fs::path Session::new_file_path(const std::string& relative) const {

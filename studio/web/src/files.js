@@ -36,7 +36,9 @@ export async function loadCurrent() {
   fileStates.delete(cur.file);
   if (state.file !== cur.file) {
     state.remote = true;
-    editor.setState(kept && kept.doc.toString() === cur.text ? kept : EditorState.create({ doc: cur.text, extensions: editorExtensions }));
+    // A recovery copy's text starts from the file's, so that undo goes back to what is on disk.
+    const start = cur.recovered ? cur.recovered.saved_text : cur.text;
+    editor.setState(kept && kept.doc.toString() === cur.text ? kept : EditorState.create({ doc: start, extensions: editorExtensions }));
     state.remote = false;
   }
   state.file = cur.file;
@@ -46,6 +48,8 @@ export async function loadCurrent() {
   setText(cur.text);
   state.textVersion = cur.text_version;
   applyCompile({ ...cur.compile, parameters: cur.parameters, version: cur.version, saved: cur.saved });
+  if (cur.recovered)
+    setStatus(`${cur.file}: the unsaved edits a stopped studio kept in ${cur.recovered.copy}; Ctrl-S saves them, Ctrl-Z goes back to the file`);
 }
 
 export async function save() {
