@@ -10,6 +10,8 @@
 - "insert like NAME" puts the line inside the `material { }` block when the cursor is on the comment
   line above it, replaces a `like` that is there (one entry to start from), and in a workspace says
   why not and changes nothing.
+- A studio stopped with those edits unsaved keeps them; started again on plain.hmat, the page holds
+  the kept text, says where it came from, and Ctrl-Z goes back to the file's text.
 
 Exit 0 pass, 1 fail (including: Chromium missing), 77 skipped (SANDPAPER_SKIP_BROWSER_TESTS=1).
 Prints 'N passed, N failed'."""
@@ -159,9 +161,30 @@ def main():
         errors = b.evaluate("window.pageErrors")
         check(errors == [], f"no exception in the page: {errors}")
     finally:
-        b.close()
+        b.close()  # (a page with unsaved edits asks before it is left: a new browser for the next start)
         code, printed, err = studio.stop()
     check(code == 0, f"the studio stops on Ctrl-C (exit {code})")
+    check(".plain.hmat.recovered" in err, f"keeping plain.hmat's unsaved edits: {err!r}")
+
+    # 5. The next start offers the kept text; Ctrl-Z goes back to the file's.
+    again = Studio(os.path.abspath(args.sandpaper), folder / "plain.hmat")
+    b = Browser(chromium, width=1400, height=1150)
+    try:
+        b.navigate(again.url)
+        check(wait(b, "document.body.dataset.ready === 'yes'", "the page to load", 30), "started again, the page loads")
+        inserted = '# a plain swatch\nmaterial "plain" {\n  like corduroy\n  roughness 0.4\n}\n'
+        check(b.evaluate("window.studio.text()") == inserted and b.evaluate("document.querySelector('#saved').textContent") == "unsaved",
+              "with the kept text, unsaved")
+        status_line = b.evaluate("document.querySelector('#status').textContent")
+        check(".plain.hmat.recovered" in status_line, f"the status line says where it came from: {status_line!r}")
+        cursor_on_line(b, 1)
+        for kind in ("rawKeyDown", "keyUp"):
+            b.send("Input.dispatchKeyEvent", {"type": kind, "key": "z", "code": "KeyZ", "modifiers": 2, "windowsVirtualKeyCode": 90})
+        check(wait(b, "window.studio.text() === %s && document.querySelector('#saved').textContent === 'saved'" % json.dumps(plain),
+                   "the undo"), "Ctrl-Z goes back to the file's text, which is saved")
+    finally:
+        b.close()
+        again.stop()
     shutil.rmtree(tmp, ignore_errors=True)
     return checks.finish()
 
