@@ -136,10 +136,21 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
   const auto st = loop->state_nonrt();
   std::cout << "studio: stopped (" << (sig == SIGINT ? "Ctrl-C" : "SIGTERM") << ") after " << st.ticks
             << " ticks; force at zero" << std::endl;
-  // The page asks before it closes with edits unsaved; the studio itself can only say what it drops.
-  for (const auto& file : session.files()["unsaved"])
-    std::cerr << "studio: " << file.get<std::string>() << " had unsaved edits; they were not saved\n";
-  return kExitOk;
+  // The page asks before it closes with edits unsaved; a studio stopped with some keeps each beside
+  // its file, and says where. Written nowhere, the text goes to stderr rather than be lost.
+  bool all_kept = true;
+  for (const auto& u : session.keep_unsaved()) {
+    if (u.error.empty()) {
+      std::cerr << "studio: " << u.file << " has unsaved edits: not saved to it, kept in " << u.copy
+                << " (the studio offers them when it opens " << u.file << " again)\n";
+      continue;
+    }
+    all_kept = false;
+    std::cerr << "studio: " << u.file << " has unsaved edits that could not be kept beside it (" << u.error
+              << "); its text follows, between the lines of dashes\n-----\n"
+              << u.text << (u.text.ends_with('\n') ? "" : "\n") << "-----\n";
+  }
+  return all_kept ? kExitOk : kExitUsage;
 }
 
 }  // namespace sandpaper::cli

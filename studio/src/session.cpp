@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "sandpaper/catalog/preview.hpp"
+#include "sandpaper/compiler/brought_in.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/lsp/features.hpp"
@@ -46,6 +47,23 @@ nlohmann::json parameter_json(const compiler::Parameter& p) {
 
 // The compiler's limit on a source file (schema/input_limits.hpp), as a person reads it: "4 MiB".
 std::string source_limit_text() { return std::to_string(schema::limits::kMaxSourceBytes >> 20) + " MiB"; }
+
+// A diagnostic from another file (a library entry the text builds on) keeps its own place ("location",
+// "line", "column": in that file) and says where it came into the open text: "file" (its file),
+// "brought_in" ({line, column, length}: the `like` or the patch) and "entry" (the library entry).
+void mark_brought_in(nlohmann::json& diagnostics, const compiler::Diagnostics& ds, const std::string& name,
+                     const std::string& text, const compiler::Library& library) {
+  const auto file = std::make_shared<const compiler::SourceFile>(name, text);
+  const auto& all = ds.all();
+  for (std::size_t i = 0; i < all.size() && i < diagnostics.size(); ++i) {
+    const auto b = compiler::brought_in(all[i], file, library);
+    if (!b) continue;
+    auto& j = diagnostics[i];
+    j["file"] = all[i].location.file->name;
+    j["brought_in"] = {{"line", b->at.line}, {"column", b->at.column}, {"length", b->at.length}};
+    j["entry"] = b->entry.empty() ? nlohmann::json(nullptr) : nlohmann::json(b->entry);
+  }
+}
 
 std::string read_text(const fs::path& path) {
   std::error_code ec;
@@ -139,6 +157,17 @@ nlohmann::json Session::open(const std::string& relative) {
   } else {
     // Read before the open file is left, so that a refusal (404, 413) changes nothing.
     text = saved = read_text(full);
+    const fs::path copy = recovery_path(full);
+    std::error_code ec;
+    if (fs::is_regular_file(copy, ec) && fs::file_size(copy, ec) <= schema::limits::kMaxSourceBytes) {
+      std::string kept = read_text(copy);
+      if (kept != saved) {
+        text = std::move(kept);
+        recovered_[name] = fs::relative(copy, root_).string();
+      } else {
+        fs::remove(copy, ec);  // nothing in it that the file does not hold
+      }
+    }
   }
   if (!file_.empty() && file_ != name && text_ != saved_text_) drafts_[file_] = {text_, saved_text_};
   if (draft != drafts_.end()) drafts_.erase(draft);
@@ -148,12 +177,17 @@ nlohmann::json Session::open(const std::string& relative) {
   nlohmann::json j = update_locked(text);
   j["file"] = file_;
   j["restored_unsaved"] = restored;
+  if (const auto r = recovered_.find(file_); r != recovered_.end() && text_ != saved_text_) j["recovered"] = r->second;
   return j;
 }
 
 nlohmann::json Session::current() const {
   std::lock_guard lock(mutex_);
+  nlohmann::json recovered;
+  if (const auto r = recovered_.find(file_); r != recovered_.end() && text_ != saved_text_)
+    recovered = {{"copy", r->second}, {"saved_text", saved_text_}};
   return {{"file", file_},
+          {"recovered", recovered},
           {"kind", is_workspace_ ? "workspace" : "material"},
           {"text", text_},
           {"text_version", text_version_},
@@ -205,6 +239,7 @@ nlohmann::json Session::update_locked(const std::string& text) {
     const auto base = (root_ / file_).parent_path();
     auto r = compiler::compile_workspace_text(compiler_, text, file_, base);
     j = {{"ok", r.ok()}, {"diagnostics", compiler::diagnostics_json(r.diagnostics)}};
+    mark_brought_in(j["diagnostics"], r.diagnostics, file_, text, compiler_.library());
     if (r.ok()) {
       auto ws = std::make_shared<const schema::WorkspaceProgram>(std::move(*r.program));
       j["workspace"] = schema::to_json(*ws);
@@ -224,6 +259,7 @@ nlohmann::json Session::update_locked(const std::string& text) {
     } else {
       j = compiler::compile_json(r, std::nullopt);
     }
+    mark_brought_in(j["diagnostics"], r.diagnostics, file_, text, compiler_.library());
   }
   text_compiles_ = j["ok"].get<bool>();
   if (text_compiles_) to_render_.notify_all();
@@ -269,7 +305,42 @@ nlohmann::json Session::save() {
     throw RequestError(500, std::string("could not save: ") + e.what());
   }
   saved_text_ = text_;
+  // The recovered text is in the file now.
+  if (recovered_.erase(file_)) {
+    std::error_code ec;
+    fs::remove(recovery_path(full), ec);
+  }
   return {{"saved", true}, {"file", file_}, {"bytes", text_.size()}};
+}
+
+fs::path Session::recovery_path(const fs::path& file) {
+  return file.parent_path() / ("." + file.filename().string() + ".recovered");
+}
+
+std::vector<Session::Unsaved> Session::keep_unsaved() {
+  std::lock_guard lock(mutex_);
+  std::map<std::string, std::string> unsaved;  // by file: the edited text
+  for (const auto& [file, draft] : drafts_) unsaved[file] = draft.text;
+  if (!file_.empty() && text_ != saved_text_) unsaved[file_] = text_;
+  std::vector<Unsaved> kept;
+  for (const auto& [file, text] : unsaved) {
+    Unsaved u{file, {}, {}, text};
+    try {
+      const fs::path copy = recovery_path(http::confined_path(root_, file));
+      schema::write_file_atomically(copy, text);
+      u.copy = fs::relative(copy, root_).string();
+    } catch (const std::exception& e) {
+      u.error = e.what();
+    }
+    kept.push_back(std::move(u));
+  }
+  // A copy offered this session whose text was since saved or undone would offer it again.
+  for (const auto& [file, copy] : recovered_)
+    if (!unsaved.contains(file)) {
+      std::error_code ec;
+      fs::remove(root_ / copy, ec);
+    }
+  return kept;
 }
 
 fs::path Session::new_file_path(const std::string& relative) const {

@@ -1,20 +1,28 @@
-// The compiler's diagnostics, shown twice: marked in the editor and listed under it.
+// The compiler's diagnostics, shown twice: marked in the editor and listed under it. One from a
+// library entry's file (`file`) is marked where the open text brought it in (`brought_in`: the
+// `like`, or the workspace's patch) and opens the entry's file when clicked.
 import { setDiagnostics } from "@codemirror/lint";
 import { editor } from "./editor.js";
+import { showEntryFile } from "./library.js";
 import { $ } from "./page.js";
+
+// The place in the open text: its own line and column, or where a diagnostic from another file came in.
+const place = (d) => d.brought_in || d;
 
 function toEditorDiagnostics(list) {
   const doc = editor.state.doc;
   const out = [];
   for (const d of list) {
-    if (!d.line || d.line > doc.lines) continue;
-    const line = doc.line(d.line);
-    const from = Math.min(line.from + Math.max(0, d.column - 1), line.to);
+    const p = place(d);
+    if (!p.line || p.line > doc.lines) continue;
+    const line = doc.line(p.line);
+    const from = Math.min(line.from + Math.max(0, p.column - 1), line.to);
     let to = from;
-    while (to < line.to && !/\s/.test(doc.sliceString(to, to + 1))) to++;
+    if (d.brought_in) to = Math.min(from + Math.max(1, p.length || 1), line.to);
+    else while (to < line.to && !/\s/.test(doc.sliceString(to, to + 1))) to++;
     if (to === from) to = Math.min(from + 1, doc.length);
     out.push({ from, to, severity: d.severity === "error" ? "error" : "warning",
-               message: `${d.code}: ${d.message}` + (d.suggestion ? `\nhelp: ${d.suggestion}` : "") });
+               message: (d.file ? `${d.location}: ` : "") + `${d.code}: ${d.message}` + (d.suggestion ? `\nhelp: ${d.suggestion}` : "") });
   }
   return out;
 }
@@ -29,7 +37,9 @@ export function showDiagnostics(list) {
     li.dataset.line = d.line;
     li.dataset.column = d.column;
     li.dataset.code = d.code;
-    li.innerHTML = `<b>${d.line}:${d.column}</b> <span class="code">${d.code}</span> `;
+    if (d.file) li.dataset.file = d.file;
+    li.innerHTML = `<b></b> <span class="code">${d.code}</span> `;
+    li.querySelector("b").textContent = d.file ? d.location : `${d.line}:${d.column}`;
     li.append(document.createTextNode(d.message));
     if (d.suggestion) {
       const help = document.createElement("div");
@@ -38,9 +48,11 @@ export function showDiagnostics(list) {
       li.append(help);
     }
     li.addEventListener("click", () => {
-      const line = editor.state.doc.line(Math.min(d.line, editor.state.doc.lines));
-      editor.dispatch({ selection: { anchor: line.from + Math.max(0, d.column - 1) }, scrollIntoView: true });
-      editor.focus();
+      const p = place(d);
+      const line = editor.state.doc.line(Math.min(Math.max(1, p.line), editor.state.doc.lines));
+      editor.dispatch({ selection: { anchor: Math.min(line.from + Math.max(0, p.column - 1), line.to) }, scrollIntoView: true });
+      if (d.entry) showEntryFile(d.entry, d.line);
+      else editor.focus();
     });
     ul.append(li);
   }

@@ -20,13 +20,14 @@ export async function open(file) {
   state.patchMm = null;
   try {
     var r = await api("POST", "/api/open", { file });
-    await loadCurrent();
+    var cur = await loadCurrent();
     if ($("#file").options[0]?.value === "") await refreshFileList();  // the "choose a file" entry goes
   } finally {
     state.opening = false;
   }
   // Every open says which file it opened: a word about the file left must not stay beside this one.
-  setStatus(r.restored_unsaved ? `${file}: your unsaved edits, as you left them` : `opened ${file}`);
+  // A recovery copy's offer (loadCurrent) is that word.
+  if (!cur.recovered) setStatus(r.restored_unsaved ? `${file}: your unsaved edits, as you left them` : `opened ${file}`);
   return r;
 }
 
@@ -37,7 +38,9 @@ export async function loadCurrent() {
   fileStates.delete(cur.file);
   if (state.file !== cur.file) {
     state.remote = true;
-    editor.setState(kept && kept.doc.toString() === cur.text ? kept : EditorState.create({ doc: cur.text, extensions: editorExtensions }));
+    // A recovery copy's text starts from the file's, so that undo goes back to what is on disk.
+    const start = cur.recovered ? cur.recovered.saved_text : cur.text;
+    editor.setState(kept && kept.doc.toString() === cur.text ? kept : EditorState.create({ doc: start, extensions: editorExtensions }));
     state.remote = false;
   }
   state.file = cur.file;
@@ -47,6 +50,9 @@ export async function loadCurrent() {
   setText(cur.text);
   state.textVersion = cur.text_version;
   applyCompile({ ...cur.compile, parameters: cur.parameters, version: cur.version, saved: cur.saved });
+  if (cur.recovered)
+    setStatus(`${cur.file}: the unsaved edits a stopped studio kept in ${cur.recovered.copy}; Ctrl-S saves them, Ctrl-Z goes back to the file`);
+  return cur;
 }
 
 export async function save() {

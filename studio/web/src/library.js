@@ -3,7 +3,9 @@
 // it is the library's).
 import { api } from "./api.js";
 import { editor } from "./editor.js";
+import { likeEdit } from "./insert-like.js";
 import { $, roughnessText, setStatus } from "./page.js";
+import { state } from "./state.js";
 
 let librarySearchTimer = 0;
 async function searchLibrary() {
@@ -46,15 +48,34 @@ async function showLibraryEntry(name) {
   $("#library-numbers").textContent = `${e.name} (${e.family}): ${e.describes}. ${figures}. ${e.file}`;
   $("#library-insert").textContent = `insert like ${e.name}`;
   $("#library-text").textContent = e.text;
+  $("#library-text").dataset.shown = e.name;
   $("#library-text").hidden = true;
+}
+
+// An entry's file, read-only, with the line at `line` (1-based) marked: where a diagnostic from it points.
+export async function showEntryFile(name, line) {
+  await showLibraryEntry(name);
+  const pre = $("#library-text");
+  if ($("#library-entry").dataset.name !== pre.dataset.shown) return;
+  pre.hidden = false;
+  const lines = pre.textContent.split("\n");
+  if (line >= 1 && line <= lines.length) {
+    const mark = document.createElement("mark");
+    mark.textContent = lines[line - 1];
+    pre.replaceChildren(lines.slice(0, line - 1).map((l) => l + "\n").join(""), mark, "\n" + lines.slice(line).join("\n"));
+    mark.scrollIntoView({ block: "center" });
+  } else {
+    pre.scrollIntoView({ block: "nearest" });
+  }
 }
 
 function insertLike() {
   const name = $("#library-entry").dataset.name;
   if (!name) return;
-  const line = editor.state.doc.lineAt(editor.state.selection.main.head);
-  const text = `\n  like ${name}`;
-  editor.dispatch({ changes: { from: line.to, insert: text }, selection: { anchor: line.to + text.length }, scrollIntoView: true });
+  const e = likeEdit(editor.state.doc.toString(), editor.state.selection.main.head, name, state.kind);
+  if (e.why) { setStatus(`like ${name} not inserted: ${e.why}`, true); return; }
+  editor.dispatch({ changes: { from: e.from, to: e.to, insert: e.insert }, selection: { anchor: e.cursor }, scrollIntoView: true });
+  setStatus(e.message);
   editor.focus();
 }
 

@@ -94,5 +94,6 @@ export function connectEvents() {
   const es = new EventSource("/api/events");
   es.onmessage = (e) => onState(JSON.parse(e.data));
   es.onerror = () => setStatus("lost the studio's event stream; retrying", true);
-  es.onopen = () => setStatus("connected");
+  // Said over nothing or over the lost stream's message, not over a message the page has to tell.
+  es.onopen = () => { if (!$("#status").textContent || $("#status").classList.contains("bad")) setStatus("connected"); };
 }

@@ -43,11 +43,13 @@ class Session {
   nlohmann::json files() const;
   // Opens `relative` (confined to the folder), compiles and plays it. The file left keeps its unsaved
   // edits here, and opening it again brings them back ("restored_unsaved": true) rather than the
-  // disk's text: switching files never drops a designer's text. RequestError 403 outside the
+  // disk's text: switching files never drops a designer's text. So does a recovery copy that a
+  // stopped studio left beside the file, when it differs from the file ("recovered": its name). RequestError 403 outside the
   // folder, 404 missing, 413 too large, 400 not a .hmat or .hws.
   nlohmann::json open(const std::string& relative);
   // The open file: {"file", "kind": "material"|"workspace", "text", "text_version", "saved": bool,
-  // "version", ...}.
+  // "version", ...}, and "recovered": {"copy", "saved_text"} while its text is a recovery copy's
+  // (keep_unsaved()) not yet saved, "saved_text" being the file's text on disk.
   nlohmann::json current() const;
   // What every page is told with each state event, so that a change made anywhere (this page, another
   // tab, the HTTP API) reaches them all: {"file", "text_version" (rises with every change of the
@@ -78,6 +80,18 @@ class Session {
   // "hover" or "definition", by the language server's own functions (editors/lsp/include/sandpaper/lsp/features.hpp), as
   // LSP JSON. RequestError 400 for another feature or a position outside the text.
   nlohmann::json language(const std::string& feature, int line, int character) const;
+
+  // When the studio stops (no request may run any more): every file with unsaved edits, the open one
+  // and those left, has its text written beside it as recovery_path(file), atomically, for open() to
+  // offer next time; a recovery copy offered and since saved or undone is removed. One entry a file
+  // with unsaved edits: its name, the copy's name (relative to the folder) or why it could not be
+  // written, and the text.
+  struct Unsaved {
+    std::string file, copy, error, text;
+  };
+  std::vector<Unsaved> keep_unsaved();
+  // ".NAME.recovered" beside `file` (hidden, and not a .hmat or .hws, so never listed or compiled).
+  static std::filesystem::path recovery_path(const std::filesystem::path& file);
 
   // Workspaces: the canvas' view ({"name", "size_mm", "patches": [{index, source, name, centre_mm,
   // size_mm, compiled_max_lateral_force_N, compiled_roughness}]}), and moving or resizing patch `index` (mm), which
@@ -131,6 +145,8 @@ class Session {
     std::string text, saved_text;
   };
   std::map<std::string, Draft> drafts_;
+  // Files whose text came from a recovery copy this session, by relative path: the copy's name.
+  std::map<std::string, std::string> recovered_;
   bool text_compiles_ = false;
   std::uint64_t version_ = 0;  // of the playing program (LiveLoop's load version)
   std::uint64_t text_version_ = 0;  // every change of text_ (or of the open file) raises it
