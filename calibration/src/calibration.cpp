@@ -366,11 +366,18 @@ CalibrationSet CalibrationSet::load(const std::filesystem::path& dir, ParsedFile
   CalibrationSet s;
   s.dir_ = dir;
   Problems problems;
-  // Paths as users see them: relative to the calibration directory's parent ("calibration/maps/x.toml").
+  // Paths as users see them: relative to the calibration directory's parent ("calibration/maps/x.toml")
+  // when that names the file from the current folder too, else absolute: a path shown must open.
+  std::error_code cwd_error;
+  const auto cwd = std::filesystem::current_path(cwd_error);
   const auto shown = [&](const std::filesystem::path& p) {
     auto parent = dir.lexically_normal().parent_path();
     auto rel = p.lexically_normal().lexically_relative(parent.empty() ? "." : parent);
-    return rel.empty() ? p.string() : rel.string();
+    if (rel.empty()) return p.string();
+    std::error_code ec;
+    if (!cwd_error && std::filesystem::equivalent(cwd / rel, p, ec)) return rel.string();
+    const auto abs = std::filesystem::absolute(p, ec);
+    return ec ? rel.string() : abs.lexically_normal().string();
   };
   std::map<std::string, std::string> map_ids;  // id -> file
   for (const auto& p : toml_files(dir / "maps")) {
