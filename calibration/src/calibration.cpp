@@ -76,7 +76,7 @@ void read_stimulus_range(const Toml& f, const Predictor& rp, PsychophysicalMap& 
                  "the domain's range is what compiles; stimuli is the part of it the fit saw");
     return;
   }
-  m.stimuli = r;
+  m.stimulus_range = r;
 }
 
 PsychophysicalMap read_map(const Toml& f, Problems& problems) {
