@@ -343,7 +343,7 @@ done
 has "$tmp/cal/devices/openffboard-2axis.toml" '^status = "calibrated"$' "device file is calibrated"
 has "$tmp/cal/devices/openffboard-2axis.toml" '^product_id = (65456|0xFFB0)$' "device file keeps the [usb] IDs"
 expect_exit 0 "compile for the calibrated device" -- "$sp" explain -e corduroy --device openffboard-2axis --calibration "$tmp/cal"
-has "$tmp/out" 'openffboard-2axis \(cal/devices/openffboard-2axis.toml\): maximum force 8\.352 N, .*calibrated$' "the calibrated device's reach"
+has "$tmp/out" "openffboard-2axis \\($tmp/cal/devices/openffboard-2axis.toml\\): maximum force 8\\.352 N, .*calibrated\$" "the calibrated device's reach"
 has "$tmp/out" 'commands on the bus at 1000 Hz' "explain reads commands once per bus interval (the device file's out_interval)"
 cp "$tmp/out" "$tmp/explain-bus"
 expect_exit 0 "explain with a slower bus" -- "$sp" explain -e corduroy --device openffboard-2axis --calibration "$tmp/cal" --command-rate 150
