@@ -166,6 +166,7 @@ struct ExperimentOptions {
   std::string listen = "127.0.0.1:4781";  // --observer page
   bool virtual_clock = false;
   std::string map_out, map_id, pictures;  // analyse
+  std::string map_domain = "levels";       // analyse --map-domain: levels | stimuli
   bool allow_mixed_designs = false;
   bool include_incomplete = false; // analyse: pool subjects who did not answer every trial
   SafetyGuards guards;             // run: the live loop's safety stops

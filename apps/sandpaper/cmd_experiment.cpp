@@ -3,6 +3,7 @@
 // 1995 chapters 4-6.
 #include <csignal>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <iostream>
@@ -17,6 +18,7 @@
 #include "sandpaper/calibration/fit_error.hpp"
 #include "sandpaper/experiment/analysis.hpp"
 #include "sandpaper/experiment/design.hpp"
+#include "sandpaper/experiment/map_install.hpp"
 #include "sandpaper/experiment/observer.hpp"
 #include "sandpaper/experiment/presenter.hpp"
 #include "sandpaper/experiment/results.hpp"
@@ -233,6 +235,9 @@ int run_or_resume(const ExperimentOptions& eo, bool resume) {
   return report_outcome(out, dir, eo.common.json);
 }
 
+// Set by analyse for print_analysis: the changes a written map makes, one line each.
+std::string map_changes_text_;
+
 void print_analysis(const ex::Analysis& a) {
   const auto& j = a.report;
   std::cout << fmt::format("{}: {} subjects, {} runs pooled, {} answers ({} to practice trials, {} to recorded trials), "
@@ -248,6 +253,11 @@ void print_analysis(const ex::Analysis& a) {
                                                          : "left out (finish it with `experiment resume`, or pass --include-incomplete)");
   if (a.magnitude) {
     const auto& m = j["magnitude_estimation"];
+    std::cout << (m["felt_vs_compiled_max_rel_diff"].is_null()
+                      ? "  felt against compiled force: " + m["felt_vs_compiled"].get<std::string>() + "\n"
+                      : fmt::format("  felt against compiled force: largest difference {:.1f} % ({})\n",
+                                    100 * m["felt_vs_compiled_max_rel_diff"].get<double>(),
+                                    m["felt_vs_compiled"].get<std::string>()));
     const auto& fp = a.magnitude->predictor;
     std::cout << fmt::format("log {} = {:.4f} log {} {} {:.4f}  ({})\n", m.value("percept", std::string("roughness")),
                              m["slope"].get<double>(), fp.name, m["intercept"].get<double>() < 0 ? "-" : "+",
@@ -291,7 +301,16 @@ void print_analysis(const ex::Analysis& a) {
                                s["force_N"].get<double>(), s["period_mm"].get<double>(), s["mean_confidence"].get<double>(),
                                s["n"].get<int>());
   for (const auto& p : a.pictures) std::cout << "picture: " << p.string() << "\n";
-  if (j.contains("map")) std::cout << "map: " << j["map"]["file"].get<std::string>() << " (" << j["map"]["id"].get<std::string>() << ")\n";
+  if (j.contains("map")) {
+    const auto& m = j["map"];
+    std::cout << "map: " << m["file"].get<std::string>() << " (" << m["id"].get<std::string>() << ")\n";
+    std::cout << fmt::format("  written to {}; compile reads maps from {}{}\n", m["absolute_file"].get<std::string>(),
+                             m["maps_read_from"].get<std::string>(),
+                             m["read_by_compile"].get<bool>() ? "" : ": NOT read there (see the warning)");
+    if (map_changes_text_.empty())
+      std::cout << "  changes nothing that compiled before (named levels and library entries of its percept)\n";
+    else std::cout << "  what it changes for device " << m["device"].get<std::string>() << ":\n" << map_changes_text_;
+  }
 }
 
 // Writing into a calibration folder's maps/ must leave it loadable: a second roughness map for the
@@ -323,12 +342,28 @@ void refuse_second_device_map(const std::filesystem::path& out, const std::strin
   }
 }
 
+// The map text checked as the compiler will read it (shown as `out`), from a temporary file beside it.
+calibration::PsychophysicalMap calibration_parse_check(const std::string& text, const std::filesystem::path& out) {
+  const auto check = out.parent_path() / (out.filename().string() + ".check.tmp");
+  schema::write_file_atomically(check, text);
+  try {
+    auto m = calibration::load_map_file(check, out.string());
+    std::filesystem::remove(check);
+    return m;
+  } catch (...) {
+    std::filesystem::remove(check);
+    throw;
+  }
+}
+
 int analyse(const ExperimentOptions& eo) {
   ex::AnalyseOptions ao;
   ao.allow_mixed_designs = eo.allow_mixed_designs;
   ao.include_incomplete = eo.include_incomplete;
   ao.pictures_dir = eo.pictures;
   auto a = ex::analyse(eo.target, ao);
+  for (const auto& w : a.report["warnings"])
+    std::cerr << "sandpaper experiment analyse: warning: " << w.get<std::string>() << "\n";
   if (!eo.map_out.empty()) {
     if (!a.magnitude) throw ex::DesignError("--map-out: only a magnitude-estimation study fits a map (this one is " + a.task + ")");
     const std::string percept = a.runs.front().header.percept;
@@ -363,20 +398,51 @@ int analyse(const ExperimentOptions& eo) {
                                 ex::utc_now_iso(), subjects.size(), fmt::join(subjects, ", "), a.magnitude->answered,
                                 run0.header.design_path, run0.header.design_checksum, run0.header.observer);
     mo.citation = "magnitude-estimation study in " + eo.target + " (sandpaper experiment run)";
-    const std::string text = calibration::map_file_text(*a.magnitude, mo);
-    // Checked as the compiler will read it before it replaces anything.
-    const auto check = out.parent_path() / (out.filename().string() + ".check.tmp");
-    schema::write_file_atomically(check, text);
-    try {
-      calibration::load_map_file(check, out.string());
-    } catch (...) {
-      std::filesystem::remove(check);
-      throw;
+    // Subjects at a joystick; the Weber fraction of the quantity is not what magnitude estimation
+    // measures, so the default map's is carried over, saying so.
+    mo.apparatus = "joystick";
+    if (base && base->weber_fraction && base->ratio_predictor == x.name) {
+      mo.weber_fraction = *base->weber_fraction;
+      mo.jnd_source = "not measured by this study; carried over from the default map " + base->id + ": " + base->jnd_source;
     }
+    if (eo.map_domain == "levels") {
+      // The named levels of the percept keep compiling: the domain is widened to their values through
+      // this map, and the map says which part its stimuli covered (W0322 beyond them).
+      const auto bare = calibration_parse_check(calibration::map_file_text(*a.magnitude, mo), out);
+      mo.widen_domain_to = ex::level_values(compiler.calibration(), bare);
+    }
+    const std::string text = calibration::map_file_text(*a.magnitude, mo);
+    const auto written = calibration_parse_check(text, out);
+    // What the map changes, compiled for the device with the calibration compile reads, before and after.
+    const auto cal_dir = compiler.calibration().directory();
+    compiler::CompileOptions co = compiler.options();
+    co.device = mo.device;
+    auto installed = ex::calibration_with_map(cal_dir, out.filename().string(), text, written);
+    const compiler::Compiler after(co, std::make_shared<const compiler::Library>(compiler.library()), std::move(installed));
+    const auto changes = ex::map_changes(compiler, after, percept);
+    std::filesystem::path check = out.parent_path() / (out.filename().string() + ".check.tmp");
+    schema::write_file_atomically(check, text);
     std::filesystem::rename(check, out);
+    std::error_code ec;
+    const auto maps_dir = std::filesystem::weakly_canonical(std::filesystem::absolute(cal_dir) / "maps", ec);
+    const auto out_dir = std::filesystem::weakly_canonical(std::filesystem::absolute(out).parent_path(), ec);
+    const bool read = out_dir == maps_dir;
     a.report["map"] = {{"file", out.string()}, {"id", mo.id}, {"device", mo.device}, {"percept", percept},
-                       {"predictor", x.name}, {"reference", mo.reference_N}, {"reference_unit", x.unit}};
+                       {"predictor", x.name}, {"reference", mo.reference_N}, {"reference_unit", x.unit},
+                       {"absolute_file", std::filesystem::absolute(out).lexically_normal().string()},
+                       {"maps_read_from", maps_dir.string()}, {"read_by_compile", read},
+                       {"domain", eo.map_domain}, {"changes", ex::map_changes_json(changes)}};
     if (x.name == "force") a.report["map"]["reference_N"] = mo.reference_N;
+    if (!read)
+      std::cerr << fmt::format("sandpaper experiment analyse: warning: the map was written to {}, but compile reads maps "
+                               "from {} (the calibration folder: --calibration, $SANDPAPER_CALIBRATION, "
+                               "$SANDPAPER_DATA_DIR/calibration, else the shipped one); `compile --device {}` will not use "
+                               "it. Write it into that folder, or compile with --calibration naming the folder it is in\n",
+                               std::filesystem::absolute(out).lexically_normal().string(), maps_dir.string(), mo.device);
+    map_changes_text_ = ex::map_changes_text(changes);
+    if (std::any_of(changes.begin(), changes.end(), [](const ex::MapChange& c) { return c.breaks(); }))
+      std::cerr << "sandpaper experiment analyse: warning: installing this map breaks what compiled before (listed "
+                   "under the map); --map-domain levels keeps the named levels compiling\n";
   }
   if (eo.common.json)
     std::cout << schema::json_text(a.report, 2) << "\n";
@@ -417,6 +483,8 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
   eo.analyse->add_option("results", eo.target, "a results folder, or a folder of them")->required();
   eo.analyse->add_option("--map-out", eo.map_out, "magnitude estimation: write the fitted map of the design's percept for the runs' device (calibration/maps/<device>-<percept>.toml)");
   eo.analyse->add_option("--map-id", eo.map_id, "the map's id (default: the file's stem)");
+  eo.analyse->add_option("--map-domain", eo.map_domain, "levels: the map's domain is its stimuli widened to the named levels' values, which compile with W0322 beyond the stimuli; stimuli: the stimuli's range only (levels outside it break, as listed)")
+      ->check(CLI::IsMember({"levels", "stimuli"}))->capture_default_str();
   eo.analyse->add_option("--pictures", eo.pictures, "folder for the pictures (default: <results>/analysis)");
   eo.analyse->add_flag("--allow-mixed-designs", eo.allow_mixed_designs, "pool runs of different designs");
   eo.analyse->add_flag("--include-incomplete", eo.include_incomplete, "pool subjects who did not answer every trial (left out by default)");

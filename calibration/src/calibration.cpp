@@ -41,6 +41,44 @@ std::optional<T> optional_value(const toml::node_view<const toml::node>& v) {
   return std::nullopt;
 }
 
+// The domain's range of a predictor; nullptr when the map has none.
+const std::optional<Range>* domain_of(const PsychophysicalMap& m, const std::string& name) {
+  if (name == "force") return &m.force;
+  if (name == "period") return &m.period;
+  if (name == "feature") return &m.feature;
+  if (name == "damping") return &m.damping;
+  if (name == "stiffness") return &m.stiffness;
+  if (name == "friction") return &m.friction;
+  return nullptr;
+}
+
+// [domain] stimuli: the ratio predictor's range the fit saw, inside its (wider) domain range.
+void read_stimulus_range(const Toml& f, const Predictor& rp, PsychophysicalMap& m, Problems& problems) {
+  const auto* a = f.doc["domain"]["stimuli"].as_array();
+  if (!a) return;
+  Range r;
+  if (rp.unit == "1") r = Range{bare_number(*a->get(0)), bare_number(*a->get(1))};
+  else {
+    const auto lo = schema::parse_quantity(a->get(0)->value<std::string>().value_or(""));
+    const auto hi = schema::parse_quantity(a->get(1)->value<std::string>().value_or(""));
+    const auto u = schema::find_unit(rp.unit);
+    if (!lo || !hi || !u || lo->unit.dimension != u->dimension || hi->unit.dimension != u->dimension) {
+      problems.add(f, *a, "[domain] stimuli is a range of the ratio predictor `" + rp.name + "`, in a unit of `" + rp.unit + "`",
+                   "e.g. stimuli = [\"0.4 " + rp.unit + "\", \"6.4 " + rp.unit + "\"]");
+      return;
+    }
+    r = Range{lo->si(), hi->si()};
+  }
+  const auto* d = domain_of(m, rp.name);
+  if (!(r.min > 0 && r.min <= r.max && std::isfinite(r.max)) || !d || !*d ||
+      r.min < (*d)->min * (1 - 1e-9) || r.max > (*d)->max * (1 + 1e-9)) {
+    problems.add(f, *a, "[domain] stimuli must be a positive range [low, high] inside the domain's " + rp.name + " range",
+                 "the domain's range is what compiles; stimuli is the part of it the fit saw");
+    return;
+  }
+  m.stimulus_range = r;
+}
+
 PsychophysicalMap read_map(const Toml& f, Problems& problems) {
   const toml::table& c = f.doc;
   PsychophysicalMap m;
@@ -138,6 +176,7 @@ PsychophysicalMap read_map(const Toml& f, Problems& problems) {
                                     rp->unit + "`", "");
     else m.reference_si = q->si();
     if (m.slope == 0) problems.add(f, *c["predictor"].node(), "a compile map's slope must not be zero", "");
+    read_stimulus_range(f, *rp, m, problems);
   }
   return m;
 }
@@ -327,11 +366,18 @@ CalibrationSet CalibrationSet::load(const std::filesystem::path& dir, ParsedFile
   CalibrationSet s;
   s.dir_ = dir;
   Problems problems;
-  // Paths as users see them: relative to the calibration directory's parent ("calibration/maps/x.toml").
+  // Paths as users see them: relative to the calibration directory's parent ("calibration/maps/x.toml")
+  // when that names the file from the current folder too, else absolute: a path shown must open.
+  std::error_code cwd_error;
+  const auto cwd = std::filesystem::current_path(cwd_error);
   const auto shown = [&](const std::filesystem::path& p) {
     auto parent = dir.lexically_normal().parent_path();
     auto rel = p.lexically_normal().lexically_relative(parent.empty() ? "." : parent);
-    return rel.empty() ? p.string() : rel.string();
+    if (rel.empty()) return p.string();
+    std::error_code ec;
+    if (!cwd_error && std::filesystem::equivalent(cwd / rel, p, ec)) return rel.string();
+    const auto abs = std::filesystem::absolute(p, ec);
+    return ec ? rel.string() : abs.lexically_normal().string();
   };
   std::map<std::string, std::string> map_ids;  // id -> file
   for (const auto& p : toml_files(dir / "maps")) {

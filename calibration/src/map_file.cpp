@@ -125,12 +125,33 @@ std::string map_file_text(const MagnitudeEstimationFit& fit, const MapFileOption
     out += "predictor = " + toml_string(x.name) + "\nreference = " +
            toml_string(slope.value > 0 ? bound_text(fmax, x.unit, true) : bound_text(fmin, x.unit, false)) + "\n";
   }
-  out += "\n[domain]                     # the stimuli the fit saw\n";
-  out += x.name + " = [" + toml_string(bound_text(fmin, x.unit, false)) + ", " + toml_string(bound_text(fmax, x.unit, true)) + "]\n";
+  double dmin = fmin, dmax = fmax;
+  for (double v : o.widen_domain_to)
+    if (v > 0 && std::isfinite(v)) {
+      dmin = std::min(dmin, v);
+      dmax = std::max(dmax, v);
+    }
+  const auto range = [&](double lo, double hi) {
+    return "[" + toml_string(bound_text(lo, x.unit, false)) + ", " + toml_string(bound_text(hi, x.unit, true)) + "]";
+  };
+  if (dmin < fmin || dmax > fmax) {
+    out += "\n[domain]                     # the stimuli the fit saw, widened to the named levels' values\n";
+    out += x.name + " = " + range(dmin, dmax) + "\n";
+    out += "stimuli = " + range(fmin, fmax) + "     # the fit's stimuli; beyond them the map extrapolates (W0322)\n";
+  } else {
+    out += "\n[domain]                     # the stimuli the fit saw\n";
+    out += x.name + " = " + range(fmin, fmax) + "\n";
+  }
   if (pmin > 0)
     out += "period = [" + toml_string(bound_text(pmin * 1e3, "mm", false)) + ", " +
            toml_string(bound_text(pmax * 1e3, "mm", true)) + "]\n";
   if (!o.device.empty()) out += "device = " + toml_string(o.device) + "\n";
+  if (!o.apparatus.empty()) out += "apparatus = " + toml_string(o.apparatus) + "\n";
+  if (o.weber_fraction > 0) {
+    out += "\n[jnd]\n";
+    out += "weber_fraction = " + toml_float(o.weber_fraction) + "\n";
+    out += "source = " + toml_string(o.jnd_source) + "\n";
+  }
   out += "\n[source]\n";
   out += "citation = " + toml_string(o.citation.empty() ? "magnitude-estimation data in " + fit.path : o.citation) + "\n";
   out += "where = " + toml_string(o.provenance.empty()

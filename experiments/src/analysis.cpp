@@ -79,12 +79,22 @@ json magnitude(Analysis& a, const std::filesystem::path& pictures) {
   json j = calibration::fit_json(fit);
   j["n_trials"] = fit.answered;
   // Felt against compiled force: how faithfully the device produced what was asked.
+  // A stimulus that compiles no texture force (a damper, a spring) has nothing to compare: then the
+  // difference is null and `felt_vs_compiled` says "not compared", never a reassuring 0.
   double worst = 0;
+  int compared = 0;
   for (const auto* ans : analysed(a)) {
     const double c = ans->compiled_force_N.at(0), f = ans->felt_force_N.at(0);
-    if (c > 0) worst = std::max(worst, std::abs(f / c - 1));
+    if (c > 0) {
+      worst = std::max(worst, std::abs(f / c - 1));
+      ++compared;
+    }
   }
-  j["felt_vs_compiled_max_rel_diff"] = worst;
+  j["felt_vs_compiled_max_rel_diff"] = compared > 0 ? json(worst) : json(nullptr);
+  j["felt_vs_compiled_trials"] = compared;
+  j["felt_vs_compiled"] = compared > 0 ? fmt::format("compared on {} trials", compared)
+                                       : std::string("not compared: no trial's stimulus compiles a force to compare "
+                                                     "the felt force with");
   // The per-trial normalised estimates for the picture (each subject's / their geometric mean x the grand one).
   std::map<std::string, double> gm;
   for (const auto& s : fit.subjects) gm[s.subject] = s.geometric_mean;
@@ -297,6 +307,17 @@ Analysis analyse(const std::filesystem::path& dir, const AnalyseOptions& options
                                   "--include-incomplete to pool them anyway",
                                   dir.string()));
   a.runs = std::move(kept);
+  // One subject in two folders (a run copied, or an id reused) would count twice in every mean.
+  std::map<std::string, std::vector<std::string>> folders_of;
+  for (const auto& r : a.runs) folders_of[r.header.subject].push_back(r.dir.string());
+  json warnings = json::array(), duplicates = json::array();
+  for (const auto& [subject, where] : folders_of)
+    if (where.size() > 1) {
+      duplicates.push_back({{"subject", subject}, {"folders", where}});
+      warnings.push_back(fmt::format("subject {} is in {} results folders ({}): pooled, their answers count {} times; "
+                                     "remove the copies, or give each person their own --subject",
+                                     subject, where.size(), fmt::join(where, ", "), where.size()));
+    }
   std::set<std::string> subjects;
   int trials = 0, answered = 0, interrupted = 0, answered_practice = 0;
   for (const auto& r : a.runs) {
@@ -327,7 +348,9 @@ Analysis analyse(const std::filesystem::path& dir, const AnalyseOptions& options
                  for (const auto& p : a.left_out) l.push_back(p.string());
                  return l;
                }()},
-              {"interruptions", interrupted}};
+              {"interruptions", interrupted},
+              {"duplicate_subjects", duplicates},
+              {"warnings", warnings}};
   if (a.task == "magnitude-estimation") {
     json m = magnitude(a, pictures);
     a.report["magnitude_estimation"] = m;

@@ -91,7 +91,7 @@ std::string magnitude_plot_svg(const calibration::MagnitudeEstimationFit& fit, c
   std::string out = open_svg(title);
   out += axes(f, "log10 " + xp.quantity + (xp.unit == "1" ? "" : " (" + xp.unit + ")"), "log10 normalised estimate");
   for (const auto& p : trials)
-    out += fmt::format("<circle class=\"trial\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2\" fill=\"#9ab\" fill-opacity=\"0.5\"/>\n",
+    out += fmt::format("<circle class=\"trial\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2\" fill=\"#2a6fdb\" fill-opacity=\"0.7\"/>\n",
                        f.px(std::log10(p.x)), f.py(std::log10(p.estimate)));
   for (const auto& s : fit.stimuli)
     out += fmt::format("<circle class=\"mean\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4.5\" fill=\"#c33\"><title>{}: {:.4g}{}, "

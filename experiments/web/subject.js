@@ -6,6 +6,7 @@
 
 const main = document.getElementById("screen");
 let seq = -1;
+let seenSession = false;  // a session has served a screen to this page
 
 function el(tag, attrs = {}, ...children) {
   const e = document.createElement(tag);
@@ -240,13 +241,18 @@ async function poll() {
       const r = await fetch(`/api/screen?after=${seq}`, { cache: "no-store" });
       const s = await r.json();
       if (s.seq !== seq) { seq = s.seq; render(s); }
+      seenSession = true;
     } catch (e) {
       // The session has ended (its last screen stays up), or is not running yet: try again, and
-      // start from the first screen when a resumed session answers.
+      // start from the first screen when a resumed session answers. A session that goes away in
+      // the middle (killed, the power gone) could not send "paused": the page says it itself.
       const kind = document.body.dataset.screen;
       if (kind !== "done" && kind !== "paused") {
-        document.body.dataset.screen = "offline";
-        main.replaceChildren(el("p", { class: "big" }, "Waiting for the experiment\u2026"));
+        if (seenSession) render({ kind: "paused", seq: -1 });
+        else {
+          document.body.dataset.screen = "offline";
+          main.replaceChildren(el("p", { class: "big" }, "Waiting for the experiment\u2026"));
+        }
       }
       seq = -1;
       await new Promise((ok) => setTimeout(ok, 1000));

@@ -395,3 +395,52 @@ TEST_F(PerceptCalibration, AMeasuredMapDoesNotWarn) {
   EXPECT_EQ(count(test::codes(v, Severity::Warning), "W0321"), 0u);
   EXPECT_EQ(count(test::codes(test::shipped_compiler().compile_text("viscosity 0.4"), Severity::Warning), "W0321"), 1u);
 }
+
+// [domain] stimuli narrower than the domain (a device map widened to its named levels): inside the
+// domain but outside the stimuli compiles with W0322; inside the stimuli, silently. On the shipped
+// map b = 10 N*s/m * v^(1/0.42): v = 1 is 10 N*s/m, v = 0.5 is 1.92 N*s/m, very-thin 0.05 N*s/m.
+TEST_F(PerceptCalibration, BeyondTheStimuliInsideTheDomainWarnsW0322) {
+  auto cal = copy_calibration();
+  const std::string map = cal + "/maps/stevens-guirao1964.toml";
+  const auto with_stimuli = [&](const std::string& range) {
+    std::ifstream in(map);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    const std::string key = "damping = [\"0.05 N*s/m\", \"10 N*s/m\"]\n";
+    const auto at = s.find(key);
+    if (at == std::string::npos) return false;
+    s.insert(at + key.size(), "stimuli = " + range + "\n");
+    std::ofstream(map) << s;
+    return true;
+  };
+  ASSERT_TRUE(with_stimuli("[\"0.4 N*s/m\", \"6.4 N*s/m\"]"));
+  auto c = compiler_on(cal);
+  for (const char* text : {"viscosity 1", "viscosity very-thin"}) {
+    auto r = c.compile_text(text);
+    ASSERT_TRUE(r.ok()) << text << compiler::format_diagnostics(r.diagnostics);
+    EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0322"), 1u) << text;
+    EXPECT_EQ(count(test::codes(r, Severity::Warning), "W0301"), 0u) << text;
+  }
+  auto inside = c.compile_text("viscosity 0.5");
+  ASSERT_TRUE(inside.ok());
+  EXPECT_EQ(count(test::codes(inside, Severity::Warning), "W0322"), 0u);
+  auto above = c.compile_text("viscosity 1.2");
+  EXPECT_EQ(test::codes(above), std::vector<std::string>{"E0303"});  // the domain's top still holds
+
+  // Stimuli outside the domain, or in another dimension's unit, are refused by the loader.
+  for (const char* bad : {"[\"0.4 N*s/m\", \"20 N*s/m\"]", "[\"0.4 mm\", \"6.4 mm\"]"}) {
+    auto other = copy_calibration();
+    const std::string other_map = other + "/maps/stevens-guirao1964.toml";
+    fs::copy_file(std::string(SANDPAPER_SOURCE_DIR) + "/calibration/maps/stevens-guirao1964.toml", other_map,
+                  fs::copy_options::overwrite_existing);
+    std::ifstream in(other_map);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    const std::string key = "damping = [\"0.05 N*s/m\", \"10 N*s/m\"]\n";
+    s.insert(s.find(key) + key.size(), std::string("stimuli = ") + bad + "\n");
+    std::ofstream(other_map) << s;
+    EXPECT_THROW(compiler_on(other), calibration::CalibrationError) << bad;
+  }
+}

@@ -3,7 +3,7 @@
 `sandpaper experiment run --observer page` on the simulated joystick: a magnitude-estimation session
 answered at the keyboard (a bad answer refused at the page and at the server), a rest break, the
 two-interval keys, and a sorting session whose patches are dragged and tapped into piles; what the
-page sent is what results.jsonl holds. The Host guard refuses a foreign name. Screenshots in <out>.
+page sent is what results.jsonl holds. A session killed mid-way leaves the page saying "Paused". The Host guard refuses a foreign name. Screenshots in <out>.
 
 Exit 0 pass, 1 fail (including: Chromium missing), 77 skipped (SANDPAPER_SKIP_BROWSER_TESTS=1)."""
 import argparse
@@ -185,6 +185,21 @@ def main():
         rc, stdout = s.finish()
         got = [a["response"] for a in answers(tmp / "me")]
         c.check(rc == 0 and got == [4, 7.5, 12, 2], f"results.jsonl holds what was typed: {got} (exit {rc})")
+
+        # A session killed with SIGKILL cannot send its last screen: the page says "Paused" itself,
+        # as docs/EXPERIMENTS.md promises, not "Waiting for the experiment".
+        s, ok = begin(b, sp, tmp, "killed", ME)
+        ok = ok and screen(b, "estimate")
+        s.proc.kill()
+        s.proc.wait()
+        try:
+            b.wait_for("document.body.dataset.screen === 'paused' && document.body.innerText.includes('Paused')",
+                       "paused", 30)
+            paused = True
+        except Exception:
+            paused = False
+        shown = b.evaluate("document.body.innerText")
+        c.check(ok and paused, f"after kill -9 mid-session the page says Paused ({shown.strip()!r})")
 
         # Two intervals: the number keys.
         s, ok = begin(b, sp, tmp, "two", TWO)

@@ -21,6 +21,23 @@
 
 namespace sandpaper::compiler::resolve_detail {
 
+namespace {
+
+bool outside(const calibration::Range& r, double x) { return x < r.min * (1 - 1e-9) || x > r.max * (1 + 1e-9); }
+
+}  // namespace
+
+// A value the map's (widened) domain admits but its fit never saw: it compiles, and says so.
+void Resolver::warn_beyond_stimuli(const calibration::PsychophysicalMap& map, const SourceLocation& at,
+                                   const std::string& stated, double si, const char* si_unit) {
+  const auto shown = [&](double v) { return schema::display_value(v, si_unit); };
+  diags_.warning("W0322", at,
+                 stated + " (" + shown(si) + ") is outside the stimuli the " + map.id + " map was fitted on (" +
+                     shown(map.stimulus_range->min) + " to " + shown(map.stimulus_range->max) +
+                     "); its domain was widened to keep the named levels compiling, and the map extrapolates here",
+                 "the prediction is less certain here; a design with stimuli out to this value measures it");
+}
+
 void Resolver::roughness(const RoughnessStmt& r, ResolvedMaterial& m) {
   const auto& map = ctx_.calibration.roughness_map();
   double value = 0;
@@ -62,6 +79,8 @@ void Resolver::roughness(const RoughnessStmt& r, ResolvedMaterial& m) {
   if (value > 1.0)
     diags_.warning("W0303", r.value_location,
                    "roughness " + fmt_num(value) + " extrapolates the " + map.id + " map beyond its strongest stimulus (" + fmt_num(map.reference_si) + " N)");
+  else if (value > 0 && map.stimulus_range && outside(*map.stimulus_range, force) && !(map.force && force < map.force->min * (1 - 1e-9)))
+    warn_beyond_stimuli(map, r.value_location, stated, force, "N");
   else if (value > 0 && map.force && force < map.force->min * (1 - 1e-9))
     diags_.warning("W0301", r.value_location,
                    "roughness " + fmt_num(value) + " is below the weakest calibrated stimulus (roughness " +
@@ -133,6 +152,8 @@ void Resolver::percept(const PerceptStmt& s, const Statement& st, ResolvedMateri
     diags_.warning("W0303", s.value_location,
                    s.word + " " + fmt_num(value) + " (" + shown(p.si) + ") extrapolates the " + map->id +
                        " map beyond the top of its domain (" + shown(map->value_for(top)) + ")");
+  else if (value > 0 && value >= bottom * (1 - 1e-9) && map->stimulus_range && outside(*map->stimulus_range, p.si))
+    warn_beyond_stimuli(*map, s.value_location, stated, p.si, w->si_unit);
   else if (value > 0 && value < bottom * (1 - 1e-9))
     diags_.warning("W0301", s.value_location,
                    s.word + " " + fmt_num(value) + " (" + shown(p.si) + ") is below the bottom of the " + map->id +

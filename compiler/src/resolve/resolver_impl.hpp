@@ -50,8 +50,12 @@ class Resolver {
   // A perceptual word through its percept's compile map (compiler/percepts.hpp): the ratio-scale
   // value, checked against the map's domain, becomes the SI parameter the word sets. Range rules as
   // for roughness: negative is E0304, above the top of the map's domain E0303 unless `extrapolate`
-  // (then W0303), below its bottom W0301.
+  // (then W0303), below its bottom W0301; inside a domain widened beyond the map's stimuli W0322.
   void percept(const PerceptStmt& s, const Statement& st, ResolvedMaterial& m);
+
+  // W0322 at `at`: `si` (in `si_unit`) is inside the map's domain but outside its [domain] stimuli.
+  void warn_beyond_stimuli(const calibration::PsychophysicalMap& map, const SourceLocation& at, const std::string& stated,
+                           double si, const char* si_unit);
 
   // Forgets the perceptual targets that set `parameter`, when something else now sets it.
   static void drop_targets(ResolvedMaterial& m, const std::string& parameter);

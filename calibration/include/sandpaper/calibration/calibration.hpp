@@ -59,6 +59,9 @@ struct PsychophysicalMap {
   double reference_si = 0;
   // Measured domain, SI; absent quantities were not reported. friction: the coefficient (no unit).
   std::optional<Range> force, period, feature, damping, stiffness, friction;
+  // [domain] stimuli: the ratio predictor's range the fit saw (SI), when the domain above was widened
+  // beyond it to the named levels; between the two the map extrapolates (W0322). nullopt: the same.
+  std::optional<Range> stimulus_range;
   std::string domain_texture, domain_device, effector;
   // What the source's subjects touched ([domain] apparatus): "joystick", "manipulandum" (another
   // force-feedback device), "real material" (specimens felt directly: a joystick extrapolates,

@@ -118,6 +118,13 @@ struct MapFileOptions {
                             // 0: the most intense stimulus
   std::string provenance;   // "# " lines written first, and the [source] where; empty: calibrate fit's
   std::string citation;     // [source] citation; empty: "magnitude-estimation data in <csv>"
+  // The predictor's [domain] range to write (SI), when wider than the stimuli: it then also writes
+  // [domain] stimuli with the stimuli's range. Empty: the stimuli's range (rounded outward).
+  std::vector<double> widen_domain_to;
+  std::string apparatus;    // [domain] apparatus ("joystick"); empty: not written
+  // [jnd]: the predictor's Weber fraction and its source; not written when 0.
+  double weber_fraction = 0;
+  std::string jnd_source;
 };
 
 // Options for a default roughness compile map with id `id` (what `calibrate fit -o` writes).

@@ -137,6 +137,7 @@ inline constexpr std::array kDiagnosticCodes = {
     DiagnosticCode{"W0311", table::W, "the device's force step is coarser than one force JND at the material's force; says the least roughness it resolves", table::kLang},
     DiagnosticCode{"W0320", table::W, "provisional: the material compiles through a map designed with no published or measured source (names the map and its file)", table::kLang},
     DiagnosticCode{"W0321", table::W, "the map's source felt real materials, not a force-feedback device: on a joystick the percept extrapolates (names the map)", table::kLang},
+    DiagnosticCode{"W0322", table::W, "inside its map's domain but outside the stimuli the map was fitted on: a device map's domain widened to keep the named levels compiling extrapolates there (names the map and the stimuli's range)", table::kLang},
     DiagnosticCode{"W0330", table::W, "a grating or grid in Ch. 4's low-confidence region: maximum lateral force below 30 pu and period above 9.25 mm (calibration/knowledge/believability.toml)", table::kLang},
     DiagnosticCode{"W0331", table::W, "the device is uncalibrated (its command scale is assumed); says how to calibrate it", table::kLang},
     DiagnosticCode{"W0340", table::W, "`like` a deprecated library entry; names its replacement", table::kLang},
