@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
+#include <system_error>
 
 #include <CLI/CLI.hpp>
 
@@ -15,6 +17,7 @@
 #include "sandpaper/compiler/display_paths.hpp"
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/layers.hpp"
+#include "sandpaper/curation/library_here.hpp"
 #include "sandpaper/curation/review.hpp"
 
 namespace sandpaper::cli {
@@ -145,7 +148,7 @@ std::vector<std::filesystem::path> changed_files(const std::vector<std::string>&
 
 void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.check = library.add_subcommand("check", "validate every entry: metadata, sources, names, cycles, compiles on every device, JND collisions");
-  add_paths(o.check, o, false);
+  add_paths(o.check, o, false, true);
   o.check->add_option("--device", o.devices, "check only these devices (default: every device of the calibration)");
   o.check->add_flag("--json", o.json, "print one JSON object with the diagnostics");
   o.check->add_flag("--quiet", o.quiet, "no progress on stderr");
@@ -155,7 +158,7 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.review = library.add_subcommand("review",
                                     "review a change to a library in git: check what changed since --base (and what is built on it) on "
                                     "every device; fail on errors and on new warnings not accepted; list what a person must look at");
-  add_paths(o.review, o, false);
+  add_paths(o.review, o, false, true);
   o.review->add_option("--base", o.base, "the commit to compare with: a branch, tag or hash (for a pull request, its target branch)")
       ->capture_default_str();
   o.review->add_option("--device", o.devices, "review on these devices only (default: every device of the calibration)");
@@ -203,6 +206,24 @@ int cmd_library_sub(const CommonOptions& common, LibraryCommandOptions o) {
                    o.review->parsed();
   if (!any) return -1;
   o.json = o.json || common.json;
+  // check and review judge the files a curator edits: the library of the folder they run in, never
+  // the one this program was built with, which would pass whatever the curator changed.
+  if ((o.check->parsed() || o.review->parsed()) && o.library_dir.empty() && common.library_dir.empty()) {
+    const char* who = o.check->parsed() ? "library check" : "library review";
+    std::error_code ec;
+    const auto cwd = std::filesystem::current_path(ec);
+    std::optional<std::filesystem::path> here;
+    if (!ec) here = cur::library_around(cwd);
+    if (!here) {
+      std::cerr << "sandpaper " << who << ": no library here: no folder from " << (ec ? std::string(".") : cwd.string())
+                << " up holds library.toml, and the top of its git work tree has no library/library.toml. Pass --library DIR "
+                << "(the folder holding library.toml), or cd into the library. (" << who
+                << " does not take $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY or the library Sandpaper was built with: "
+                << "it judges the files you are changing.)\n";
+      return kExitUsage;
+    }
+    o.library_dir = here->string();
+  }
   try {
     const auto p = paths_of(common, o);
     if (o.check->parsed()) return run_check(p, o);

@@ -18,6 +18,7 @@
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/percepts.hpp"
 #include "entry_checker.hpp"
+#include "first_added.hpp"
 #include "sqlite_util.hpp"
 
 namespace sandpaper::curation {
@@ -131,6 +132,10 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
   for (const auto& e : lib.entries()) result.entries += e.root == 0;
   Checker ck{lib, disp, out};
   ck.indexed_files = established ? *established : indexed_files(roots);
+  // Not told which files were there before (a review is): git's history says which came first, so a
+  // fresh clone, which has no index, blames the newcomer as the curator's machine does.
+  if (!established)
+    ck.history = [root = roots.front()](const std::vector<std::string>& files) { return first_added(root, files); };
 
   // The manifest and the entries' syntax (E0601, the compiler's E01xx/E02xx): the front root's.
   {

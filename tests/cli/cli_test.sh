@@ -472,7 +472,7 @@ has "$tmp/err" 'woods/cork\.hmat:[0-9]+:[0-9]+: warning\[W0304\]' "check shows W
 has "$tmp/err" 'textiles/velvet\.hmat:[0-9]+:[0-9]+: warning\[W0350\]: .*servo on sandpaper-1995' "check shows W0350 on the 1995 joystick"
 has "$tmp/err" 'textiles/velvet\.hmat:[0-9]+:[0-9]+: warning\[W0350\]: .*servo on sim' "check shows W0350 on sim"
 # As shipped, every warning is accepted in its entry with a reason, and counted so.
-expect_exit 0 "library check --werror on the shipped library" -- "$sp" library check --werror
+expect_exit 0 "library check --werror on the shipped library" -- "$sp" library check --library library --werror
 has "$tmp/err" ' 0 warnings, [0-9]+ accepted' "the shipped library's warnings are all accepted"
 expect_exit 0 "untextured entries say so" -- "$sp" library search window glass --index "$tmp/shipped.sqlite"
 has "$tmp/out" '^window-glass +glass +untextured ' "window-glass is listed as untextured, not roughness 0.00"
