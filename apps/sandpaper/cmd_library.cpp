@@ -25,15 +25,11 @@ namespace sandpaper::cli {
 namespace library_cmd {
 
 int run_check(const Paths& p, const LibraryCommandOptions& o) {
-  const compiler::Library scan(p.roots);
-  std::size_t total = 0;
-  for (std::size_t i = 0; i < scan.roots().size(); ++i)
-    if (o.root.empty() || scan.roots()[i].id == o.root)
-      for (const auto& e : scan.entries()) total += e.root == i;
-  auto progress = cur::Progress::on_stderr("checking", total, o.quiet);
+  auto progress = cur::Progress::on_stderr("checking", 0, o.quiet);  // check_library counts the entries
   cur::CheckOptions co{p.library, p.calibration, o.devices, p.roots, o.root};
   const auto r = cur::check_library(co, progress);
   const bool failed = r.errors() > 0 || (o.werror && r.warnings() > 0);
+  progress.clear();
   if (o.json) {
     std::cout << schema::json_text(nlohmann::json{{"ok", !failed},
                                                   {"entries", r.entries},
@@ -57,12 +53,15 @@ int run_review(const Paths& p, const LibraryCommandOptions& o) {
     std::cerr << "sandpaper library review: review one library root (--library ROOT): a pull request changes one repository\n";
     return kExitUsage;
   }
-  auto progress = cur::Progress::on_stderr("checking", 0, o.quiet);
+  auto progress = cur::Progress::on_stderr("checking", 0, o.quiet);  // check_library counts the entries
   const auto r = cur::review_library({p.library, p.calibration, o.devices, o.base}, progress);
-  if (!r.error.empty()) {
+  progress.clear();
+  if (!r.error.empty()) {  // not a work tree, a base git does not have: what to review is not known
     std::cerr << "sandpaper library review: " << r.error << "\n";
-    return kExitBadInput;
+    return kExitUsage;
   }
+  progress.finish("checked " + entries_text(progress.done()) + " on " + std::to_string(r.devices) + " device" +
+                  (r.devices == 1 ? "" : "s"));
   const auto summary = std::to_string(r.changed_files.size()) + " changed file" + (r.changed_files.size() == 1 ? "" : "s") + ", " +
                        std::to_string(r.entries.size()) + (r.entries.size() == 1 ? " entry" : " entries") + " touched, checked on " +
                        std::to_string(r.devices) + " devices: " + std::to_string(r.failing.all().size()) + " to fix, " +
@@ -88,7 +87,6 @@ int run_review(const Paths& p, const LibraryCommandOptions& o) {
     }
     std::cout << (r.ok() ? "review passed\n" : "review FAILED: fix what is above, or accept a warning the entry means (accept CODE \"reason\")\n");
   }
-  progress.finish("");
   return r.ok() ? kExitOk : kExitBadInput;
 }
 

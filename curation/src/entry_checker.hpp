@@ -199,9 +199,9 @@ struct Checker {
     top.line = 1;
     top.column = 1;
     if (side->licence.empty())
-      out.error("E0615", top, "image " + quoted(h.path) + "'s licence file has no SPDX-License-Identifier", "add a line:\n" + form.substr(0, form.find('\n')));
+      out.error("E0615", top, "the licence file of image " + quoted(h.path) + " has no SPDX-License-Identifier", "add a line:\n" + form.substr(0, form.find('\n')));
     if (side->credit.empty())
-      out.error("E0615", top, "image " + quoted(h.path) + "'s licence file has no SPDX-FileCopyrightText (the credit)",
+      out.error("E0615", top, "the licence file of image " + quoted(h.path) + " has no SPDX-FileCopyrightText (the credit)",
                 "add a line: SPDX-FileCopyrightText: who made the image, and where it is from");
     if (!side->licence.empty()) {
       SourceLocation l;
@@ -233,7 +233,8 @@ struct Checker {
       const std::filesystem::path p(h->path);
       const auto inside = (std::filesystem::path(e.relative_path).parent_path() / p).lexically_normal();
       std::string why;
-      if (p.is_absolute() || inside.empty() || *inside.begin() == "..") {
+      const bool named_inside = !(p.is_absolute() || inside.empty() || *inside.begin() == "..");
+      if (!named_inside) {
         why = "is outside the library";
       } else {
         try {
@@ -246,8 +247,9 @@ struct Checker {
         out.error("E0612", at(h->path_location), "image " + quoted(h->path) + " " + why,
                   "copy the image into the library (library/images/) and name it relative to the entry's folder, "
                   "e.g. \"../images/NAME.png\"");
-      else
-        image_licence(e, *h, inside);
+      // A link that leads out is named inside: its licence file belongs beside it there, whether or
+      // not the image is copied in, so both are said in one round.
+      if (named_inside) image_licence(e, *h, inside);
     }
   }
 

@@ -105,5 +105,25 @@ mkdir -p "$tmp/withlib" && cp -r "$mini" "$tmp/withlib/library" && (cd "$tmp/wit
 grep -q "^review of $tmp/withlib/library against main: 0 changed files" "$tmp/withlib.out" && ok \
   || bad "review at the top of a repository with library/: $(cat "$tmp/withlib.out")"
 
+# Progress on a terminal: the counter counts to the number of entries (not "6/0") and is cleared
+# before the review's summary, which starts a line of its own.
+if command -v script >/dev/null; then
+  script -qec "$(printf '%q ' "$sp" library review --library "$tmp/clone" --base main)" /dev/null </dev/null >"$tmp/tty.raw" 2>&1
+  python3 - "$tmp/tty.raw" "$(ls "$tmp"/clone/*/*.hmat | wc -l)" >"$tmp/tty.check" <<'PY'
+import re, sys
+text = open(sys.argv[1], encoding="utf-8", errors="replace").read()
+entries = sys.argv[2]
+lines = [l.rstrip("\r").split("\r")[-1] for l in text.split("\n")]  # what a terminal leaves on each line
+problems = []
+if re.search(r"checking \d+/0\b", text): problems.append("a counter out of 0: " + repr(re.search(r"checking \d+/0\b[^\r\n]*", text).group(0)))
+if "checking %s/%s " % (entries, entries) not in text: problems.append("the counter does not reach %s/%s" % (entries, entries))
+if not any(l.startswith("review of ") for l in lines): problems.append("the summary does not start a line: " + repr([l for l in lines if "review of" in l]))
+print("\n".join(problems) if problems else "ok")
+PY
+  [ "$(cat "$tmp/tty.check")" = ok ] && ok || bad "progress on a terminal: $(cat "$tmp/tty.check")"
+else
+  echo "SKIP: no script(1) for a terminal"
+fi
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
