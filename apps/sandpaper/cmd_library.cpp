@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
+#include <system_error>
 
 #include <CLI/CLI.hpp>
 
@@ -15,6 +17,7 @@
 #include "sandpaper/compiler/display_paths.hpp"
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/layers.hpp"
+#include "sandpaper/curation/library_here.hpp"
 #include "sandpaper/curation/review.hpp"
 
 namespace sandpaper::cli {
@@ -22,15 +25,11 @@ namespace sandpaper::cli {
 namespace library_cmd {
 
 int run_check(const Paths& p, const LibraryCommandOptions& o) {
-  const compiler::Library scan(p.roots);
-  std::size_t total = 0;
-  for (std::size_t i = 0; i < scan.roots().size(); ++i)
-    if (o.root.empty() || scan.roots()[i].id == o.root)
-      for (const auto& e : scan.entries()) total += e.root == i;
-  auto progress = cur::Progress::on_stderr("checking", total, o.quiet);
+  auto progress = cur::Progress::on_stderr("checking", 0, o.quiet);  // check_library counts the entries
   cur::CheckOptions co{p.library, p.calibration, o.devices, p.roots, o.root};
   const auto r = cur::check_library(co, progress);
   const bool failed = r.errors() > 0 || (o.werror && r.warnings() > 0);
+  progress.clear();
   if (o.json) {
     std::cout << schema::json_text(nlohmann::json{{"ok", !failed},
                                                   {"entries", r.entries},
@@ -54,12 +53,15 @@ int run_review(const Paths& p, const LibraryCommandOptions& o) {
     std::cerr << "sandpaper library review: review one library root (--library ROOT): a pull request changes one repository\n";
     return kExitUsage;
   }
-  auto progress = cur::Progress::on_stderr("checking", 0, o.quiet);
+  auto progress = cur::Progress::on_stderr("checking", 0, o.quiet);  // check_library counts the entries
   const auto r = cur::review_library({p.library, p.calibration, o.devices, o.base}, progress);
-  if (!r.error.empty()) {
+  progress.clear();
+  if (!r.error.empty()) {  // not a work tree, a base git does not have: what to review is not known
     std::cerr << "sandpaper library review: " << r.error << "\n";
-    return kExitBadInput;
+    return kExitUsage;
   }
+  progress.finish("checked " + entries_text(progress.done()) + " on " + std::to_string(r.devices) + " device" +
+                  (r.devices == 1 ? "" : "s"));
   const auto summary = std::to_string(r.changed_files.size()) + " changed file" + (r.changed_files.size() == 1 ? "" : "s") + ", " +
                        std::to_string(r.entries.size()) + (r.entries.size() == 1 ? " entry" : " entries") + " touched, checked on " +
                        std::to_string(r.devices) + " devices: " + std::to_string(r.failing.all().size()) + " to fix, " +
@@ -85,7 +87,6 @@ int run_review(const Paths& p, const LibraryCommandOptions& o) {
     }
     std::cout << (r.ok() ? "review passed\n" : "review FAILED: fix what is above, or accept a warning the entry means (accept CODE \"reason\")\n");
   }
-  progress.finish("");
   return r.ok() ? kExitOk : kExitBadInput;
 }
 
@@ -145,7 +146,7 @@ std::vector<std::filesystem::path> changed_files(const std::vector<std::string>&
 
 void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.check = library.add_subcommand("check", "validate every entry: metadata, sources, names, cycles, compiles on every device, JND collisions");
-  add_paths(o.check, o, false);
+  add_paths(o.check, o, false, true);
   o.check->add_option("--device", o.devices, "check only these devices (default: every device of the calibration)");
   o.check->add_flag("--json", o.json, "print one JSON object with the diagnostics");
   o.check->add_flag("--quiet", o.quiet, "no progress on stderr");
@@ -155,7 +156,7 @@ void add_library_commands(CLI::App& library, LibraryCommandOptions& o) {
   o.review = library.add_subcommand("review",
                                     "review a change to a library in git: check what changed since --base (and what is built on it) on "
                                     "every device; fail on errors and on new warnings not accepted; list what a person must look at");
-  add_paths(o.review, o, false);
+  add_paths(o.review, o, false, true);
   o.review->add_option("--base", o.base, "the commit to compare with: a branch, tag or hash (for a pull request, its target branch)")
       ->capture_default_str();
   o.review->add_option("--device", o.devices, "review on these devices only (default: every device of the calibration)");
@@ -203,6 +204,24 @@ int cmd_library_sub(const CommonOptions& common, LibraryCommandOptions o) {
                    o.review->parsed();
   if (!any) return -1;
   o.json = o.json || common.json;
+  // check and review judge the files a curator edits: the library of the folder they run in, never
+  // the one this program was built with, which would pass whatever the curator changed.
+  if ((o.check->parsed() || o.review->parsed()) && o.library_dir.empty() && common.library_dir.empty()) {
+    const char* who = o.check->parsed() ? "library check" : "library review";
+    std::error_code ec;
+    const auto cwd = std::filesystem::current_path(ec);
+    std::optional<std::filesystem::path> here;
+    if (!ec) here = cur::library_around(cwd);
+    if (!here) {
+      std::cerr << "sandpaper " << who << ": no library here: no folder from " << (ec ? std::string(".") : cwd.string())
+                << " up holds library.toml, and the top of its git work tree has no library/library.toml. Pass --library DIR "
+                << "(the folder holding library.toml), or cd into the library. (" << who
+                << " does not take $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY or the library Sandpaper was built with: "
+                << "it judges the files you are changing.)\n";
+      return kExitUsage;
+    }
+    o.library_dir = here->string();
+  }
   try {
     const auto p = paths_of(common, o);
     if (o.check->parsed()) return run_check(p, o);

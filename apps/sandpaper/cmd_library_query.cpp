@@ -165,12 +165,16 @@ int run_show(const Paths& p, const LibraryCommandOptions& o) {
   std::vector<std::pair<std::string, std::filesystem::path>> ids;
   for (std::size_t i = 0; i < p.roots.size(); ++i) ids.emplace_back(layers.id(i), p.roots[i]);
   const compiler::DisplayPaths every_root(ids);
-  std::size_t wp = 0;
-  for (const auto& r : prov) wp = std::max(wp, r.parameter.size());
+  // As explain shows them (95 mm, 0 deg), not in raw SI: the JSON keeps value_si and si_unit.
+  const auto value_of = [](const cur::IndexedProvenance& r) {
+    return r.si_unit.empty() ? r.stated : schema::display_value(r.value_si, r.si_unit);
+  };
+  // Each column as wide as its widest cell ("representative" is a layer too), so the columns line up.
+  std::size_t wp = 0, wv = 0, wl = 0;
+  for (const auto& r : prov)
+    wp = std::max(wp, r.parameter.size()), wv = std::max(wv, value_of(r).size()), wl = std::max(wl, r.layer.size());
   for (const auto& r : prov) {
-    // As explain shows them (95 mm, 0 deg), not in raw SI: the JSON keeps value_si and si_unit.
-    const std::string value = r.si_unit.empty() ? r.stated : schema::display_value(r.value_si, r.si_unit);
-    std::cout << "  " << pad(r.parameter, wp) << "  " << pad(value, 12) << "  " << pad(r.layer, 10) << "  "
+    std::cout << "  " << pad(r.parameter, wp) << "  " << pad(value_of(r), wv) << "  " << pad(r.layer, wl) << "  "
               << every_root.in_text(r.source) << "\n";
     for (const auto& [k, t] : r.notes) std::cout << "      source " << k << " \"" << t << "\"\n";
   }

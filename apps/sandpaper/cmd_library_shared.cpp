@@ -22,8 +22,12 @@ std::string num(double v, int digits) {
 
 std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : s + std::string(w - s.size(), ' '); }
 
-void add_paths(CLI::App* sub, LibraryCommandOptions& o, bool index) {
-  sub->add_option("--library", o.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
+void add_paths(CLI::App* sub, LibraryCommandOptions& o, bool index, bool here) {
+  sub->add_option("--library", o.library_dir,
+                  here ? "library folder, or folders front first as LAB:WORLD (default: the library of the working directory: the "
+                         "nearest folder above holding library.toml, or library/ at the top of its git work tree)"
+                       : "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, "
+                         "$SANDPAPER_DATA_DIR/library, or the shipped library)");
   sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   if (index)
     sub->add_option("--index", o.index, "SQLite index file (default: $SANDPAPER_LIBRARY_INDEX or <library>/.index/library.sqlite)");

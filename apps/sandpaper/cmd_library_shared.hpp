@@ -24,7 +24,9 @@ std::string entries_text(std::size_t n);
 std::string num(double v, int digits = 3);
 // `s` padded with spaces to `w` characters.
 std::string pad(const std::string& s, std::size_t w);
-void add_paths(CLI::App* sub, LibraryCommandOptions& o, bool index);
+// --library and --calibration (and --index when `index`); `here`: the default library is the working
+// directory's (check, review), not the shipped one.
+void add_paths(CLI::App* sub, LibraryCommandOptions& o, bool index, bool here = false);
 
 struct Paths {
   std::filesystem::path library, calibration, index;  // library: the front root; index: its index

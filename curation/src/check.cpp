@@ -18,6 +18,7 @@
 #include "sandpaper/curation/index.hpp"
 #include "sandpaper/curation/percepts.hpp"
 #include "entry_checker.hpp"
+#include "first_added.hpp"
 #include "sqlite_util.hpp"
 
 namespace sandpaper::curation {
@@ -131,6 +132,10 @@ void check_front_root(const std::vector<std::filesystem::path>& roots, const std
   for (const auto& e : lib.entries()) result.entries += e.root == 0;
   Checker ck{lib, disp, out};
   ck.indexed_files = established ? *established : indexed_files(roots);
+  // Not told which files were there before (a review is): git's history says which came first, so a
+  // fresh clone, which has no index, blames the newcomer as the curator's machine does.
+  if (!established)
+    ck.history = [root = roots.front()](const std::vector<std::string>& files) { return first_added(root, files); };
 
   // The manifest and the entries' syntax (E0601, the compiler's E01xx/E02xx): the front root's.
   {
@@ -374,7 +379,17 @@ CheckResult check_library(const CheckOptions& options, Progress& progress) {
                                "give one of them another id in its library.toml (id = \"lab\"); `like ID:NAME` names a root by it");
     }
   }
-  if (!root_found) throw std::invalid_argument("no root named '" + options.root + "' in the library path");
+  if (!root_found) {
+    std::string listed;
+    for (const auto& r : whole.roots()) listed += (listed.empty() ? "'" : ", '") + r.id + "'";
+    throw std::invalid_argument("no root named '" + options.root + "' in the library path: its roots are " + listed +
+                                " (a root's id is `id` in its library.toml, else its folder's name)");
+  }
+  // How many entries the check goes through, for the progress counter.
+  std::size_t total = 0;
+  for (const auto& e : whole.entries())
+    if (options.root.empty() || whole.roots()[e.root].id == options.root) total += 1;
+  progress.set_total(total);
   for (std::size_t i = 0; i < roots.size(); ++i)
     if (options.root.empty() || whole.roots()[i].id == options.root)
       check_front_root(std::vector<std::filesystem::path>(roots.begin() + static_cast<std::ptrdiff_t>(i), roots.end()), cal_dir,

@@ -2,7 +2,10 @@
 // `library check`'s checks of one library (check.cpp runs them): each entry's metadata, licences,
 // sources and images, then names, deprecations and `like` cycles across the entries. Each check names
 // its code; docs/LIBRARY.md, "What check checks", lists them. Internal to the curation library.
+#include <algorithm>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -38,6 +41,9 @@ struct Checker {
   // The front root's files that its index (if it has one, of this folder) lists as owning their
   // names: in a clash of names these are the established entries, and the other file is the newcomer.
   std::set<std::string> indexed_files = {};
+  // When set: of the files in a clash of names (relative to the front root), the rank of the first
+  // commit that added each, oldest 0 (first_added.hpp); a file git knows came before one it does not.
+  std::function<std::map<std::string, std::size_t>(const std::vector<std::string>&)> history = nullptr;
   std::set<std::string> images_seen = {};  // images whose licence is checked
 
   // Whether `name` is taken in the front root, as a name or an alias.
@@ -193,9 +199,9 @@ struct Checker {
     top.line = 1;
     top.column = 1;
     if (side->licence.empty())
-      out.error("E0615", top, "image " + quoted(h.path) + "'s licence file has no SPDX-License-Identifier", "add a line:\n" + form.substr(0, form.find('\n')));
+      out.error("E0615", top, "the licence file of image " + quoted(h.path) + " has no SPDX-License-Identifier", "add a line:\n" + form.substr(0, form.find('\n')));
     if (side->credit.empty())
-      out.error("E0615", top, "image " + quoted(h.path) + "'s licence file has no SPDX-FileCopyrightText (the credit)",
+      out.error("E0615", top, "the licence file of image " + quoted(h.path) + " has no SPDX-FileCopyrightText (the credit)",
                 "add a line: SPDX-FileCopyrightText: who made the image, and where it is from");
     if (!side->licence.empty()) {
       SourceLocation l;
@@ -227,7 +233,8 @@ struct Checker {
       const std::filesystem::path p(h->path);
       const auto inside = (std::filesystem::path(e.relative_path).parent_path() / p).lexically_normal();
       std::string why;
-      if (p.is_absolute() || inside.empty() || *inside.begin() == "..") {
+      const bool named_inside = !(p.is_absolute() || inside.empty() || *inside.begin() == "..");
+      if (!named_inside) {
         why = "is outside the library";
       } else {
         try {
@@ -240,8 +247,9 @@ struct Checker {
         out.error("E0612", at(h->path_location), "image " + quoted(h->path) + " " + why,
                   "copy the image into the library (library/images/) and name it relative to the entry's folder, "
                   "e.g. \"../images/NAME.png\"");
-      else
-        image_licence(e, *h, inside);
+      // A link that leads out is named inside: its licence file belongs beside it there, whether or
+      // not the image is copied in, so both are said in one round.
+      if (named_inside) image_licence(e, *h, inside);
     }
   }
 
@@ -258,18 +266,38 @@ struct Checker {
       SourceLocation loc;
       bool alias;
     };
+    // Which file came first, for the files in a clash: git's history, when it knows.
+    std::map<std::string, std::size_t> added;
+    if (history) {
+      std::map<std::string, std::set<const LibraryEntry*>> claimants;
+      for (const auto& e : lib.entries()) {
+        if (e.root != 0) continue;
+        claimants[e.name].insert(&e);
+        for (const auto& a : e.aliases) claimants[a].insert(&e);
+      }
+      std::set<std::string> contested;
+      for (const auto& [token, es] : claimants)
+        if (es.size() > 1)
+          for (const auto* e : es) contested.insert(e->relative_path);
+      if (!contested.empty()) added = history({contested.begin(), contested.end()});
+    }
+    const auto rank = [&](const LibraryEntry& e) {
+      const auto it = added.find(e.relative_path);
+      return it == added.end() ? std::numeric_limits<std::size_t>::max() : it->second;
+    };
     std::map<std::string, First> seen;
     auto claim = [&](const std::string& token, const LibraryEntry& e, const SourceLocation& loc, bool alias) {
       auto [it, fresh] = seen.emplace(token, First{&e, loc, alias});
       if (fresh || it->second.entry == &e) return;
       const auto& f = it->second;
       const std::string first_as = f.alias ? "an alias of " + quoted(f.entry->name) : "the name of " + f.entry->relative_path;
-      const bool indexed = indexed_files.count(f.entry->relative_path) > 0;
+      const bool by_git = rank(*f.entry) < rank(e);
+      const bool indexed = !by_git && indexed_files.count(f.entry->relative_path) > 0;
       const auto free = free_name(token);
       const auto dir = std::filesystem::path(e.relative_path).parent_path().string();
       auto& d = out.error("E0607", at(loc),
                           std::string(alias ? "alias " : "name ") + quoted(token) + " is already " + first_as +
-                              (indexed ? " (in the library's index)" : ""),
+                              (by_git ? " (committed to git before this file)" : indexed ? " (in the library's index)" : ""),
                           alias ? "names and aliases are unique across the whole library: remove this alias, or say one that is free (" +
                                       quoted(free) + " is)"
                                 : "names are unique across the whole library (not per family): rename this file and its material "
@@ -277,13 +305,16 @@ struct Checker {
                                       (dir.empty() ? "" : dir + "/") + free + ".hmat with material \"" + free + "\"");
       d.notes.push_back({at(f.loc), f.alias ? "the alias of " + quoted(f.entry->name) : "the other entry named " + quoted(token)});
     };
-    // The established entries (those the index has) claim first, then the others in path order:
-    // the error lands on the newcomer, the file a reviewer is looking at.
+    // The established entries claim first: those git committed first (in the order of their first
+    // commits), then those the index has, then the others, each in path order: the error lands on the
+    // newcomer, the file a reviewer is looking at.
     std::vector<const LibraryEntry*> order;
     for (const auto& e : lib.entries())
-      if (e.root == 0 && indexed_files.count(e.relative_path)) order.push_back(&e);
-    for (const auto& e : lib.entries())
-      if (e.root == 0 && !indexed_files.count(e.relative_path)) order.push_back(&e);
+      if (e.root == 0) order.push_back(&e);
+    std::stable_sort(order.begin(), order.end(), [&](const LibraryEntry* a, const LibraryEntry* b) {
+      return std::make_pair(rank(*a), indexed_files.count(a->relative_path) == 0) <
+             std::make_pair(rank(*b), indexed_files.count(b->relative_path) == 0);
+    });
     // Names first (they win over aliases when `like` looks a word up), then aliases.
     for (const auto* e : order) claim(e->name, *e, entry_loc(*e), false);
     for (const auto* e : order)

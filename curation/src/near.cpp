@@ -30,8 +30,12 @@ Neighbour distance_between(const IndexedEntry& a, const IndexedEntry& b, const W
   if (ta && tb) {
     n.force_steps = std::log(b.max_lateral_force_N / a.max_lateral_force_N) / std::log1p(weber);
     d2 += n.force_steps * n.force_steps;
-    if (explain) why.push_back(num(std::abs(n.force_steps), 2) + " JND " + (n.force_steps >= 0 ? "stronger" : "weaker") + " (" +
-                  num(b.max_lateral_force_N) + " vs " + num(a.max_lateral_force_N) + " N)");
+    // Under 0.005 JND reads "0.00": the same force, not a stronger one.
+    if (explain)
+      why.push_back(std::abs(n.force_steps) < 0.005
+                        ? "same force (" + num(b.max_lateral_force_N) + " N)"
+                        : num(std::abs(n.force_steps), 2) + " JND " + (n.force_steps >= 0 ? "stronger" : "weaker") + " (" +
+                              num(b.max_lateral_force_N) + " vs " + num(a.max_lateral_force_N) + " N)");
     if (a.period_m > 0 && b.period_m > 0) {
       n.period_doublings = std::log2(b.period_m / a.period_m);
       const double p = kJndPerPeriodDoubling * n.period_doublings;

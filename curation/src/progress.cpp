@@ -26,11 +26,16 @@ void Progress::step(const std::string& name) {
   }
 }
 
+void Progress::clear() {
+  if (quiet_) return;
+  if (terminal_ && last_width_ > 0) *out_ << '\r' << std::string(last_width_, ' ') << '\r' << std::flush;
+  last_width_ = 0;
+}
+
 void Progress::finish(const std::string& summary) {
   if (quiet_) return;
-  if (terminal_ && last_width_ > 0) *out_ << '\r' << std::string(last_width_, ' ') << '\r';
+  clear();
   *out_ << summary << "\n" << std::flush;
-  last_width_ = 0;
 }
 
 }  // namespace sandpaper::curation

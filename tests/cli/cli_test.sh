@@ -480,7 +480,7 @@ has "$tmp/err" 'woods/cork\.hmat:[0-9]+:[0-9]+: warning\[W0304\]' "check shows W
 has "$tmp/err" 'textiles/velvet\.hmat:[0-9]+:[0-9]+: warning\[W0350\]: .*servo on sandpaper-1995' "check shows W0350 on the 1995 joystick"
 has "$tmp/err" 'textiles/velvet\.hmat:[0-9]+:[0-9]+: warning\[W0350\]: .*servo on sim' "check shows W0350 on sim"
 # As shipped, every warning is accepted in its entry with a reason, and counted so.
-expect_exit 0 "library check --werror on the shipped library" -- "$sp" library check --werror
+expect_exit 0 "library check --werror on the shipped library" -- "$sp" library check --library library --werror
 has "$tmp/err" ' 0 warnings, [0-9]+ accepted' "the shipped library's warnings are all accepted"
 expect_exit 0 "untextured entries say so" -- "$sp" library search window glass --index "$tmp/shipped.sqlite"
 has "$tmp/out" '^window-glass +glass +untextured ' "window-glass is listed as untextured, not roughness 0.00"
@@ -492,6 +492,22 @@ if grep -Eq '0\.095 m|[0-9] rad' "$tmp/out"; then bad "library show prints raw S
 has "$tmp/out" '^ribbed-cloth  \(alias rib-cloth\)' "show names the entry"
 has "$tmp/out" 'source derived "8 ribs per inch: 25.4 mm / 8"' "show prints the sources"
 has "$tmp/out" 'maximum lateral force  1\.3[0-9]* N' "show prints the force"
+# The resolution's columns (parameter, value, layer, where) line up on every row, whatever the
+# widest cell: fine-rib's rows have layers 'representative' (inherited from rib-cloth) and 'physical'.
+expect_exit 0 "show an entry built on another" -- "$sp" library show fine-rib "${L[@]}" "${I[@]}"
+python3 - "$tmp/out" >"$tmp/columns" <<'PY'
+import re, sys
+rows, on = [], False
+for line in open(sys.argv[1]):
+    line = line.rstrip("\n")
+    if line.startswith("resolution"): on = True; continue
+    if on and line.startswith("  ") and not line.startswith("      source"):
+        rows.append([m.start() for m in re.finditer(r"\S+(?: \S+)*", line)])
+layers = {len(r) for r in rows}
+starts = {tuple(r[:4]) for r in rows}
+print("ok" if len(rows) > 3 and layers == {4} and len(starts) == 1 else "misaligned: %r" % sorted(starts))
+PY
+has "$tmp/columns" '^ok$' "show's resolution columns line up"
 expect_exit 1 "show an unknown name" -- "$sp" library show ribbed-clth "${L[@]}" "${I[@]}"
 has "$tmp/err" "did you mean 'ribbed-cloth'" "show suggests a name"
 expect_exit 0 "near" -- "$sp" library near ribbed-cloth --limit 2 "${L[@]}" "${I[@]}"
@@ -524,6 +540,14 @@ has "$tmp/err" 'is stale .* building it' "search says it rebuilds"
 expect_exit 2 "a missing root of a layered library path" -- "$sp" compile --library /no/such/lab:library -e "like corduroy" -o "$tmp/missing-root.patch"
 has "$tmp/err" 'no library folder at /no/such/lab' "the missing root is named"
 [ ! -e "$tmp/missing-root.patch" ] && ok || bad "a compile with a missing library root wrote a patch"
+# The shipped library is root `world` in a layered path (its library.toml's id), as docs/LIBRARY.md
+# writes it, whatever its folder is called; a root id the path does not have lists the ones it has.
+expect_exit 0 "like world:corduroy under the example lab" -- "$sp" compile --library examples/lab-library:library -e "like world:corduroy" -o "$tmp/world.patch"
+expect_exit 1 "like ROOT:NAME with an unknown root" -- "$sp" compile --library examples/lab-library:library -e "like wrld:corduroy" -o "$tmp/wrld.patch"
+has "$tmp/err" "no library root 'wrld' \(in 'wrld:corduroy'\): the library path's roots are 'lab', 'world'" "the unknown root's error lists the roots"
+has "$tmp/err" 'did you mean `world:corduroy`' "the unknown root's error names the nearest"
+expect_exit 2 "check --root with an unknown id" -- "$sp" library check --library examples/lab-library:library --root wrld --quiet
+has "$tmp/err" "no root named 'wrld' in the library path: its roots are 'lab', 'world'" "check --root lists the roots"
 expect_exit 0 "library with no subcommand still lists" -- "$sp" library
 has "$tmp/out" 'roughness' "library lists entries"
 

@@ -271,6 +271,10 @@ TEST(LibraryCheck, AnImageWithoutItsLicenceAndCreditIsAnError) {
   r = check(lib);
   const auto& credit = only(r, "E0615", "images/gravel.png.license:1:1");
   EXPECT_NE(credit.message.find("no SPDX-FileCopyrightText"), std::string::npos) << credit.message;
+  // The image's path in quotes, then words: not '../images/gravel.png''s.
+  EXPECT_NE(credit.message.find("the licence file of image '../images/gravel.png' has no SPDX-FileCopyrightText"), std::string::npos)
+      << credit.message;
+  EXPECT_EQ(credit.message.find("''s"), std::string::npos) << credit.message;
   const auto& guess = only(r, "W0603", "images/gravel.png.license:1:26");
   EXPECT_NE(guess.suggestion.find("did you mean \"CC0-1.0\"?"), std::string::npos) << guess.suggestion;
 
@@ -278,6 +282,44 @@ TEST(LibraryCheck, AnImageWithoutItsLicenceAndCreditIsAnError) {
   r = check(lib);
   EXPECT_TRUE(with_code(r.diagnostics, "E0615").empty()) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_TRUE(with_code(r.diagnostics, "W0603").empty()) << compiler::format_diagnostics(r.diagnostics);
+}
+
+// An image named inside the library that is a link leading out (E0612) needs its licence file beside
+// the link all the same: both are said in one round, so a curator does not fix one to meet the other.
+TEST(LibraryCheck, AnImageLinkLeadingOutIsToldItsMissingLicenceInTheSameRound) {
+  const auto lib = mini_library_copy("check-image-link");
+  const auto outside = lib.parent_path() / (lib.filename().string() + "-outside");
+  std::filesystem::create_directories(outside);
+  std::filesystem::create_directories(lib / "images");
+  std::filesystem::copy_file(std::filesystem::path(SANDPAPER_SOURCE_DIR) / "library/images/gravel.png", outside / "gravel.png",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::create_symlink(outside / "gravel.png", lib / "images/gravel.png");
+  write(lib / "abrasives/gravel-grit.hmat",
+        "material \"gravel-grit\" {\n  describes \"grit\"\n  family abrasives\n  licence \"CC0-1.0\"\n"
+        "  heightmap \"../images/gravel.png\" size 6 mm\n  source by-ear \"x\"\n  roughness 0.6\n  source by-ear \"x\"\n"
+        "  accept W0304 \"a photograph\"\n}\n");
+  auto r = check(lib);
+  const auto& link = only(r, "E0612", "abrasives/gravel-grit.hmat:5:13");
+  EXPECT_NE(link.message.find("symbolic link"), std::string::npos) << link.message;
+  const auto& none = only(r, "E0615", "abrasives/gravel-grit.hmat:5:13");
+  EXPECT_NE(none.message.find("image '../images/gravel.png' has no licence"), std::string::npos) << none.message;
+  // With the licence file beside the link, only the link is left to fix.
+  write(lib / "images/gravel.png.license", "SPDX-FileCopyrightText: scikit-image sample data\nSPDX-License-Identifier: CC0-1.0\n");
+  r = check(lib);
+  EXPECT_TRUE(with_code(r.diagnostics, "E0615").empty()) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(with_code(r.diagnostics, "E0612").size(), 1u) << compiler::format_diagnostics(r.diagnostics);
+  std::filesystem::remove_all(outside);
+}
+
+// check_library counts the entries it goes through, so a caller's counter that did not know the
+// total (review's) reads 5/5 on the five-entry mini library, not 5/0.
+TEST(LibraryCheck, TheProgressCounterCountsToTheNumberOfEntries) {
+  const auto lib = mini_library_copy("check-progress");
+  std::ostringstream out;
+  curation::Progress counter("checking", 0, false, out, false, 1);
+  (void)curation::check_library({lib, {}, {}, {}, {}}, counter);
+  EXPECT_NE(out.str().find("checking 5/5\n"), std::string::npos) << out.str();
+  EXPECT_EQ(out.str().find("/0\n"), std::string::npos) << out.str();
 }
 
 TEST(LibraryCheck, DeprecationMustPointAtALiveEntry) {

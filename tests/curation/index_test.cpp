@@ -838,6 +838,25 @@ TEST(LibraryNear, ForceLawsAreApartInTheirOwnPerceptsJnds) {
   std::filesystem::remove_all(dir);
 }
 
+// Two gratings of one force (1.5 N) a period doubling apart: 0 force JNDs, so the why says the force
+// is the same, not "0 JND stronger", and the distance is the period's alone (4 JND a doubling).
+TEST(LibraryNear, EqualForcesAreTheSameForceNotZeroJndStronger) {
+  IndexedEntry a, b;
+  a.name = "a", b.name = "b";
+  a.texture_kind = b.texture_kind = "grating";
+  a.max_lateral_force_N = b.max_lateral_force_N = 1.5;
+  a.period_m = 0.002, b.period_m = 0.004;
+  const auto n = distance_between(a, b, WeberFractions(0.125));
+  EXPECT_EQ(n.force_steps, 0.0);
+  EXPECT_DOUBLE_EQ(n.distance, kJndPerPeriodDoubling);
+  EXPECT_EQ(n.why.find("0 JND"), std::string::npos) << n.why;
+  EXPECT_NE(n.why.find("same force (1.5 N)"), std::string::npos) << n.why;
+  // One JND apart (1.5 N x 1.125) still reads as a difference.
+  b.max_lateral_force_N = 1.5 * 1.125;
+  EXPECT_NE(distance_between(a, b, WeberFractions(0.125)).why.find("1 JND stronger (1.69 vs 1.5 N)"), std::string::npos)
+      << distance_between(a, b, WeberFractions(0.125)).why;
+}
+
 TEST(LibraryNear, NearestByForceJndsPeriodAndKind) {
   const auto b = built("index-near");
   const Index idx(b.index);

@@ -3,7 +3,8 @@
 # request"): a branch that adds a good entry passes; branches that add each defect the curator's desk
 # fixed fail with its code: a name taken (E0607), an image leaving the library through a link
 # (E0612), an image without its licence (E0615), a licence that is not SPDX (E0605), a new warning
-# not accepted (W0350); what a person must judge (a measurement, an image) is listed.
+# not accepted (W0350); what a person must judge (a measurement, an image) is listed; an unknown
+# --base is a usage error (exit 2).
 #   review_test.sh SANDPAPER MINI_LIBRARY SHIPPED_LIBRARY
 set -uo pipefail
 sp=$1 mini=$2 shipped=$3
@@ -72,6 +73,8 @@ change_link() {
   sed -i 's|  grating period 6 mm hill 50%|  heightmap "../images/x.pgm" size 10 mm|' "$tmp/repo/lib/textiles/wide-rib.hmat"
 }
 branch link 1 E0612
+# The link has no licence file beside it either: said in the same round, not after the image is copied in.
+grep -q "\[E0615\]: image '../images/x.pgm' has no licence" "$tmp/link.err" && ok || bad "link: no E0615 with the E0612: $(grep -E 'E06' "$tmp/link.err")"
 
 change_unlicensed() {
   good
@@ -93,9 +96,9 @@ change_accepted() { change_warning; sed -i 's/  licence "CC-BY-SA-4.0 AND CC0-1.
 branch accepted 0 ""
 grep -q "accepted" "$tmp/accepted.out" && ok || bad "accepted: $(cat "$tmp/accepted.out")"
 
-# An unknown base is a clear error.
+# An unknown base is a clear error, of usage (exit 2): nothing was reviewed.
 "$sp" library review --library "$tmp/repo/lib" --base no-such-branch --quiet >/dev/null 2>"$tmp/base.err"
-[ $? -eq 1 ] && grep -q "no commit 'no-such-branch'" "$tmp/base.err" && ok || bad "unknown base: $(cat "$tmp/base.err")"
+[ $? -eq 2 ] && grep -q "no commit 'no-such-branch'" "$tmp/base.err" && ok || bad "unknown base: $(cat "$tmp/base.err")"
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -28,6 +28,22 @@ ResolvedMaterial Resolver::from_library(const LikeStmt& like, bool reference) {
   ThesisLookup generated;
   if (!path) generated = find_thesis_stimulus(like.name, ctx_.library.thesis_directory());
   if (!path && !generated.stimulus) {
+    // ROOT:NAME with a ROOT the path does not have: say which roots it has.
+    if (const auto colon = like.name.find(':'); colon != std::string::npos) {
+      const auto id = like.name.substr(0, colon);
+      std::vector<std::string> ids;
+      std::string listed;
+      for (const auto& r : ctx_.library.roots()) ids.push_back(r.id), listed += (listed.empty() ? "'" : ", '") + r.id + "'";
+      if (std::find(ids.begin(), ids.end(), id) == ids.end()) {
+        const auto guess = closest_match(id, ids);
+        diags_.error("E0301", like.name_location,
+                     "no library root '" + id + "' (in '" + like.name + "'): the library path's root" + (ids.size() == 1 ? " is " : "s are ") +
+                         listed,
+                     (guess.empty() ? std::string() : "did you mean `" + guess + like.name.substr(colon) + "`? ") +
+                         "A root's id is `id` in its library.toml, else its folder's name; NAME alone takes the first root that has it");
+        return base;
+      }
+    }
     std::string guess = closest_match(like.name, ctx_.library.names());
     diags_.error("E0301", like.name_location,
                  "no library entry named '" + like.name + "'" +

@@ -26,7 +26,8 @@ struct CheckOptions {
   std::string root;                        // check only the root with this id (empty: every root)
   // The front root's entry files (relative to it) that were there before the change being checked
   // (library review: the base commit's). In a clash of names (E0607) these are established and the
-  // other file is the newcomer. Unset: the files the root's index lists.
+  // other file is the newcomer. Unset: the file git committed first (when the root is in a git work
+  // tree), else the one the root's index lists, else the first in path order.
   std::optional<std::set<std::string>> established = std::nullopt;
 };
 

@@ -17,6 +17,8 @@ class Progress {
   void set_total(std::size_t total) { total_ = total; }
   // One more entry done; `name` is shown on a terminal.
   void step(const std::string& name);
+  // Takes a terminal's counter off its line, so that what is printed next starts a line of its own.
+  void clear();
   // Ends the counter and prints `summary` on its own line (unless quiet).
   void finish(const std::string& summary);
   std::size_t done() const { return done_; }
