@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::curation {
 
@@ -33,6 +34,13 @@ RoughnessRange parse_roughness_range(const std::string& text) {
   if (r.min && r.max && *r.min > *r.max)
     throw std::invalid_argument("bad roughness range '" + text + "': the low end is above the high end; write A..B with A <= B");
   return r;
+}
+
+bool RoughnessRange::contains(double r) const {
+  const auto within = [this](double v) {
+    return (!min || v >= *min - kRoughnessTolerance) && (!max || v <= *max + kRoughnessTolerance);
+  };
+  return within(r) || within(std::strtod(schema::roughness_text(r).c_str(), nullptr));
 }
 
 bool search_before(const SearchHit& a, const SearchHit& b) {

@@ -131,6 +131,9 @@
     return p.toString();
   }
 
+  function shownRoughness(r) { return Number(r.toPrecision(3)); }
+  function within(r, f) { return (f.min === null || r >= f.min) && (f.max === null || r <= f.max); }
+
   // The indices of the entries that pass the filters, in the library's order or by roughness (the
   // entries without one, having no texture, last; equal ones by name). An entry without a roughness
   // passes only while no roughness bound is set. A source kind keeps the entries with a `source`
@@ -150,7 +153,9 @@
       if (f.source === 'none' ? data.sources[i] !== 0 : bit !== 0 && !(data.sources[i] & bit)) continue;
       if (ranged) {
         var r = data.roughness[i];
-        if (r === null || (f.min !== null && r < f.min) || (f.max !== null && r > f.max)) continue;
+        // In when the roughness kept or the one shown (3 significant digits) is, as `library search
+        // --roughness` takes it: an entry shown as 0.0982 is within ..0.0982 whatever digits follow.
+        if (r === null || !(within(r, f) || within(shownRoughness(r), f))) continue;
       }
       if (f.words.length) {
         var h = haystack(i), ok = true;
@@ -219,7 +224,7 @@
     tr.appendChild(fam);
 
     var r = data.roughness[i];
-    tr.appendChild(element('td', {'class': 'num'}, r === null ? '\u2014' : String(Number(r.toPrecision(3)))));
+    tr.appendChild(element('td', {'class': 'num'}, r === null ? '\u2014' : String(shownRoughness(r))));
     tr.appendChild(element('td', {}, data.describes[i]));
     return tr;
   }

@@ -12,12 +12,12 @@ namespace sandpaper::curation {
 // A stored roughness is what the map's round trip gives back for the value written (`roughness
 // 0.22` is held as 0.21999999999999997), so the bounds take in values within kRoughnessTolerance of
 // them: the value written is in, and no two values a file can write (6 significant digits) are merged.
+// A roughness is also in when the value shown for it (3 significant digits, schema::roughness_text,
+// as the catalog's page shows it) is: an entry shown as 0.0982 (stored 0.09822) is in ..0.0982.
 struct RoughnessRange {
   static constexpr double kRoughnessTolerance = 1e-9;
   std::optional<double> min, max;
-  bool contains(double r) const {
-    return (!min || r >= *min - kRoughnessTolerance) && (!max || r <= *max + kRoughnessTolerance);
-  }
+  bool contains(double r) const;
 };
 // Throws std::invalid_argument with a message that gives the form, for anything else.
 RoughnessRange parse_roughness_range(const std::string& text);
