@@ -86,27 +86,44 @@
   // the field's words; every query word must match; an entry scores, for each query word, the best
   // field it matches: name 8, alias 4, describes 2, family (id or title) 1.
   var NAME_WORD = 8, ALIAS_WORD = 4, DESCRIBES_WORD = 2, FAMILY_WORD = 1;
+  function lower(c) { return c.toLowerCase(); }
+  function asciiLower(text) { return /[A-Z]/.test(text) ? text.replace(/[A-Z]+/g, lower) : text; }
   function searchTokens(text) {
-    return text.replace(/[A-Z]/g, function (c) { return c.toLowerCase(); })
-      .split(/[^a-z0-9\u0080-\uffff]+/).filter(function (w) { return w !== ''; });
+    return asciiLower(text).split(/[^a-z0-9\u0080-\uffff]+/).filter(function (w) { return w !== ''; });
   }
-  // An entry's fields as words: [name, aliases, describes, family id and title], made at the first word search.
+  // An entry's fields as one lower-case text, made at the first word search: a word that begins a
+  // word of a field is in it, so only the entries that hold every query word are split into words.
   function haystack(i) {
-    if (haystacks === null) haystacks = new Array(total);
-    if (haystacks[i] === undefined) {
-      var f = data.families[data.family[i]];
-      haystacks[i] = [searchTokens(data.name[i]), searchTokens(aliasesOf(i).join(' ')), searchTokens(data.describes[i]),
-                      searchTokens(f ? f.id + ' ' + f.title : '')];
+    if (haystacks === null) {
+      haystacks = new Array(total);
+      var familyText = data.families.map(function (f) { return ' ' + asciiLower(f.id + ' ' + f.title); });
+      for (var k = 0; k < total; k++) {
+        var a = data.aliases[k];
+        haystacks[k] = asciiLower(a ? data.name[k] + ' ' + a.join(' ') + ' ' + data.describes[k] : data.name[k] + ' ' + data.describes[k]) +
+                       (familyText[data.family[k]] || '');
+      }
     }
     return haystacks[i];
+  }
+  // An entry's fields as words: [name, aliases, describes, family id and title].
+  var fieldWords = Object.create(null);
+  function fields(i) {
+    if (!(i in fieldWords)) {
+      var f = data.families[data.family[i]];
+      fieldWords[i] = [searchTokens(data.name[i]), searchTokens(aliasesOf(i).join(' ')), searchTokens(data.describes[i]),
+                       searchTokens(f ? f.id + ' ' + f.title : '')];
+    }
+    return fieldWords[i];
   }
   function begins(word, fieldWords) {
     for (var k = 0; k < fieldWords.length; k++) if (fieldWords[k].lastIndexOf(word, 0) === 0) return true;
     return false;
   }
   function wordScore(words, i) {
-    var h = haystack(i), score = 0;
-    for (var w = 0; w < words.length; w++) {
+    var text = haystack(i);
+    for (var w = 0; w < words.length; w++) if (text.indexOf(words[w]) < 0) return 0;
+    var h = fields(i), score = 0;
+    for (w = 0; w < words.length; w++) {
       var best = begins(words[w], h[0]) ? NAME_WORD : begins(words[w], h[1]) ? ALIAS_WORD :
                  begins(words[w], h[2]) ? DESCRIBES_WORD : begins(words[w], h[3]) ? FAMILY_WORD : 0;
       if (best === 0) return 0;
