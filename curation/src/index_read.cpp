@@ -309,13 +309,13 @@ std::vector<WordFields> Index::word_candidates(const std::vector<std::string>& w
   // The search table's text holds every field (the family's with its title and describes), so a
   // substring test in SQLite narrows the rows before word_score() reads them; lower() folds ASCII,
   // as search_tokens() does.
-  std::string sql =
+  std::string text =
       "SELECT e.name, s.aliases, e.describes, e.family, COALESCE(f.title, '') FROM search s JOIN entries e ON e.rowid = s.rowid "
       "LEFT JOIN families f ON f.id = e.family WHERE 1";
   for (std::size_t i = 0; i < words.size(); ++i)
-    sql += " AND instr(lower(s.name || ' ' || s.aliases || ' ' || s.describes || ' ' || s.family), ?" + std::to_string(i + 1) + ") > 0";
-  sql += " ORDER BY e.name";
-  sql::Stmt s(db_, sql);
+    text += " AND instr(lower(s.name || ' ' || s.aliases || ' ' || s.describes || ' ' || s.family), ?" + std::to_string(i + 1) + ") > 0";
+  text += " ORDER BY e.name";
+  sql::Stmt s(db_, text);
   for (std::size_t i = 0; i < words.size(); ++i) s.bind(static_cast<int>(i + 1), words[i]);
   std::vector<WordFields> out;
   while (s.step()) {

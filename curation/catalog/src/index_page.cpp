@@ -33,7 +33,7 @@ std::vector<FamilyCount> families_of(const compiler::LibraryManifest& manifest, 
     listed.insert(f.id);
   }
   for (const auto& [id, n] : count)
-    if (!id.empty() && listed.insert(id).second) out.push_back({id, id, "", n});
+    if (!id.empty() && listed.insert(id).second) out.push_back({id, id, "", n, false});
   return out;
 }
 
