@@ -305,6 +305,27 @@ std::vector<std::pair<std::string, double>> Index::full_text(const std::string& 
   return out;
 }
 
+std::vector<WordFields> Index::word_candidates(const std::vector<std::string>& words) const {
+  // The search table's text holds every field (the family's with its title and describes), so a
+  // substring test in SQLite narrows the rows before word_score() reads them; lower() folds ASCII,
+  // as search_tokens() does.
+  std::string text =
+      "SELECT e.name, s.aliases, e.describes, e.family, COALESCE(f.title, '') FROM search s JOIN entries e ON e.rowid = s.rowid "
+      "LEFT JOIN families f ON f.id = e.family WHERE 1";
+  for (std::size_t i = 0; i < words.size(); ++i)
+    text += " AND instr(lower(s.name || ' ' || s.aliases || ' ' || s.describes || ' ' || s.family), ?" + std::to_string(i + 1) + ") > 0";
+  text += " ORDER BY e.name";
+  sql::Stmt s(db_, text);
+  for (std::size_t i = 0; i < words.size(); ++i) s.bind(static_cast<int>(i + 1), words[i]);
+  std::vector<WordFields> out;
+  while (s.step()) {
+    WordFields f{s.text(0), {}, s.text(2), s.text(3), s.text(4)};
+    for (auto& a : search_tokens(s.text(1))) f.aliases.push_back(std::move(a));
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 std::vector<std::filesystem::path> edited_inputs(const Index& index, const std::filesystem::path& library_dir,
                                                  const std::vector<std::string>& names) {
   // The entries compiling them reads, then the library files each of those records.

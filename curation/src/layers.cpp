@@ -99,6 +99,8 @@ std::vector<SearchHit> LayeredIndex::search(const SearchQuery& q) const {
   std::stable_sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
     if (search_before(a.second, b.second)) return true;
     if (search_before(b.second, a.second)) return false;
+    // Equal ranks in name order, as within one root; the same name, front root first.
+    if (a.second.entry.name != b.second.entry.name) return a.second.entry.name < b.second.entry.name;
     return a.first < b.first;
   });
   std::vector<SearchHit> out;

@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "sandpaper/compiler/diagnostic.hpp"
+#include "sandpaper/curation/word_rank.hpp"
+#include "sandpaper/schema/patch_json.hpp"
 
 namespace sandpaper::curation {
 
@@ -33,6 +35,13 @@ RoughnessRange parse_roughness_range(const std::string& text) {
   if (r.min && r.max && *r.min > *r.max)
     throw std::invalid_argument("bad roughness range '" + text + "': the low end is above the high end; write A..B with A <= B");
   return r;
+}
+
+bool RoughnessRange::contains(double r) const {
+  const auto within = [this](double v) {
+    return (!min || v >= *min - kRoughnessTolerance) && (!max || v <= *max + kRoughnessTolerance);
+  };
+  return within(r) || within(std::strtod(schema::roughness_text(r).c_str(), nullptr));
 }
 
 bool search_before(const SearchHit& a, const SearchHit& b) {
@@ -134,7 +143,14 @@ std::vector<SearchHit> search(const Index& index, const SearchQuery& query) {
       if (index.entry(c)) add(c, "name", "", 0);
     for (const auto& c : candidates)
       if (auto name = index.resolve(c); name && *name != c) add(*name, "alias", c, 0);
-    for (const auto& [name, rank] : index.full_text(fts_query(q.words))) add(name, "words", "", rank);
+    // Every word begins a word of the entry's fields: ranked by word_score (word_rank.hpp), the
+    // catalog's rule too; equal scores in name order (the candidates come so).
+    std::vector<std::string> words;
+    for (const auto& w : q.words)
+      for (auto& t : search_tokens(w)) words.push_back(std::move(t));
+    if (!words.empty())
+      for (const auto& f : index.word_candidates(words))
+        if (const int score = word_score(words, f); score > 0) add(f.name, "words", "", -score);
   }
   // A rough or smooth query: the matches by roughness, roughest (smoothest) first, ranked so.
   if (feel != 0)

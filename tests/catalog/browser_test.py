@@ -187,6 +187,47 @@ def visible_names(b):
     return set(names)
 
 
+def shown_roughness(r):
+    """The roughness as the index shows it: 3 significant digits."""
+    return float("%.3g" % r)
+
+
+def shown_bound(b, textured):
+    """A roughness shown as 0.0982 used as a bound keeps that entry: silk-satin and sandpaper-p400 state
+    `roughness very-fine`, 0.09822 (calibration/levels/roughness-levels.toml), shown as 0.0982; the
+    library check's `library search --roughness` takes the same bounds (library.roughness_shown_bound)."""
+    very_fine = {n for n in ("silk-satin", "sandpaper-p400") if n in textured}
+    if not check(len(very_fine) == 2, f"the library has the entries stated very-fine ({sorted(very_fine)})"):
+        return
+    b.type_into("#rmax", "0.0982")
+    got = visible_names(b)
+    check(very_fine <= got, f"..0.0982 keeps the entries shown as 0.0982 ({sorted(very_fine)}; got {sorted(got)})")
+    b.type_into("#rmin", "0.0982")
+    got = visible_names(b)
+    check(very_fine <= got and all(shown_roughness(textured[n]) == 0.0982 for n in got),
+          f"0.0982..0.0982 keeps exactly the entries shown as 0.0982 ({sorted(got)})")
+    b.type_into("#rmin", "0.0983")
+    b.evaluate("(() => { const e = document.getElementById('rmax'); e.value = '';"
+               " e.dispatchEvent(new Event('input', {bubbles: true})); })()")
+    check(not (very_fine & visible_names(b)), "0.0983.. leaves them out")
+    b.click("#clear")
+
+
+def ranking(b, source):
+    """The shared table of word searches (tests/curation/data/search_ranking.json): the first three rows
+    in the default order are the expected top three, the count line the number of matches when fewer."""
+    table = json.loads((source / "tests" / "curation" / "data" / "search_ranking.json").read_text())
+    for case in table["queries"]:
+        if case["library"] != "world":
+            continue  # a layered path: CLI only (library.search_ranking)
+        b.type_into("#q", case["q"])
+        got = page_names(b)[:3]
+        n = b.evaluate("document.querySelectorAll('#entries tbody tr').length")
+        check(got == case["top"] and (len(case["top"]) == 3 or n == len(case["top"])),
+              f"search {case['q']!r}: first rows {case['top']} (got {got}, {n} rows): {case['why']}")
+    b.click("#clear")
+
+
 def pick_bounds(values):
     """A roughness range that keeps some entries and drops some at both ends, its bounds between values."""
     v = sorted(set(values))
@@ -201,6 +242,8 @@ def main():
     ap.add_argument("--sandpaper", required=True)
     ap.add_argument("--library", required=True, type=pathlib.Path)
     ap.add_argument("--out", required=True, type=pathlib.Path)
+    ap.add_argument("--source", type=pathlib.Path, default=pathlib.Path(__file__).resolve().parents[2],
+                    help="the repository, for tests/curation/data/search_ranking.json")
     args = ap.parse_args()
 
     chromium, status = chromium_for_test("the catalog's browser test")
@@ -265,7 +308,8 @@ def main():
         lo, hi = pick_bounds(list(textured.values()))
         b.type_into("#rmin", str(lo))
         b.type_into("#rmax", str(hi))
-        want = {n for n, rough in textured.items() if lo <= rough <= hi}
+        # In when the roughness or the one shown (3 significant digits) is within the bounds.
+        want = {n for n, rough in textured.items() if lo <= rough <= hi or lo <= shown_roughness(rough) <= hi}
         got = visible_names(b)
         check(got == want, f"roughness {lo}..{hi}: shows exactly {sorted(want)}, got {sorted(got)}")
         check(0 < len(want) < len(names), f"the range keeps some entries and drops others ({len(want)} of {len(names)})")
@@ -275,6 +319,8 @@ def main():
         check(h.get("rmin") == [str(lo)] and h.get("rmax") == [str(hi)], f"the range is kept in the URL hash ({h})")
         b.screenshot(str(args.out / "index-filtered.png"))
         b.click("#clear")
+        shown_bound(b, textured)
+        ranking(b, args.source)
         order_licence_and_sources(b, expected, names)
 
         # The hash restores the filter on a fresh load (from another page: a hash change alone loads nothing).

@@ -20,6 +20,7 @@ import json
 import math
 import os
 import pathlib
+import re
 import subprocess
 import sys
 import time
@@ -76,21 +77,38 @@ def entry(i):
     }
 
 
+def tokens(text):
+    """A text's words as docs/LIBRARY.md ("search") defines them: runs of ASCII letters and digits (and
+    of other characters), ASCII lower-cased."""
+    return [w for w in re.split(r"[^a-z0-9\u0080-\uffff]+", re.sub(r"[A-Z]", lambda m: m.group(0).lower(), text)) if w]
+
+
 def matching(entries, family=None, rmin=None, rmax=None, words=""):
-    """The names the index should keep, by the rules docs/CATALOG.md gives for its filters."""
-    words = words.lower().split()
-    out = []
+    """The names the index should keep, in the order it shows them, by the rules docs/CATALOG.md and
+    docs/LIBRARY.md give: every word begins a word of the name (8 points), an alias (4), describes (2)
+    or the family's id or title (1); with words, higher scores first, equal ones in the data's order.
+    (No query here is an entry's exact name or alias.)"""
+    words = tokens(words)
+    scored = []
     for e in entries:
         if family is not None and e["family"] != family:
             continue
         if rmin is not None or rmax is not None:
             r = e["roughness"]
-            if r is None or (rmin is not None and r < rmin) or (rmax is not None and r > rmax):
+            if r is None or not any((rmin is None or v >= rmin) and (rmax is None or v <= rmax)
+                                    for v in (r, float("%.3g" % r))):
                 continue
-        hay = " ".join([e["name"], " ".join(e["aliases"]), e["describes"], e["family"], e["family_title"]]).lower()
-        if all(w in hay for w in words):
-            out.append(e["name"])
-    return out
+        fields = [(8, tokens(e["name"])), (4, tokens(" ".join(e["aliases"]))), (2, tokens(e["describes"])),
+                  (1, tokens(e["family"] + " " + e["family_title"]))]
+        score = 0
+        for w in words:
+            best = next((points for points, field in fields if any(t.startswith(w) for t in field)), 0)
+            if best == 0:
+                break
+            score += best
+        else:
+            scored.append((-score, len(scored), e["name"]))
+    return [name for _, _, name in sorted(scored)]
 
 
 def rows(b):
@@ -199,7 +217,7 @@ def main():
         b.wait_for("document.body.dataset.page === '2'", "page 2 by keyboard", deadline_s=WAIT_S)
         check(rows(b) == names[PAGE:2 * PAGE], "Enter on the focused 'next' button turns the page")
 
-        # Words: every word somewhere in the name, an alias, describes or the family.
+        # Words: every word begins a word of the name, an alias, describes or the family; ranked.
         for words in ("corduroy", "Ribbed OAK"):
             want = matching(entries, words=words)
             b.type_into("#q", words)

@@ -708,16 +708,16 @@ TEST(LibrarySearch, WordsMatchDescriptionsAndFamiliesNotCitationsAndStimuliComeA
     q.limit = 500;
     return search(idx, q);
   };
-  // "cloth": the textiles, by their family's description ("... cloths"), whatever their own says.
-  const auto cloth = query({"cloth"});
+  // "textiles": the textiles, by their family's id, whatever their own words say.
+  const auto cloth = query({"textiles"});
   std::set<std::string> textiles;
   for (const auto& e : all)
     if (e.family == "textiles") textiles.insert(e.name);
   std::set<std::string> got;
   for (const auto& h : cloth) got.insert(h.entry.name);
   EXPECT_EQ(got, textiles);
-  // "rough cloth": the textiles at or above the library's median roughness, roughest first.
-  const auto rough = query({"rough", "cloth"});
+  // "rough textiles": the textiles at or above the library's median roughness, roughest first.
+  const auto rough = query({"rough", "textiles"});
   std::vector<std::string> want;
   for (const auto& e : all)
     if (e.family == "textiles" && e.max_lateral_force_N > 0 && e.roughness >= median) want.push_back(e.name);

@@ -80,16 +80,73 @@
 
   function aliasesOf(i) { return data.aliases[i] || []; }
 
+  // The word ranking of `sandpaper library search` (curation/word_rank.hpp; docs/LIBRARY.md, "search"),
+  // the same rule here: a text's words are its runs of ASCII letters and digits and of other
+  // characters above U+007F, ASCII lower-cased; a query word matches a field when it begins one of
+  // the field's words; every query word must match; an entry scores, for each query word, the best
+  // field it matches: name 8, alias 4, describes 2, family (id or title) 1.
+  var NAME_WORD = 8, ALIAS_WORD = 4, DESCRIBES_WORD = 2, FAMILY_WORD = 1;
+  function lower(c) { return c.toLowerCase(); }
+  function asciiLower(text) { return /[A-Z]/.test(text) ? text.replace(/[A-Z]+/g, lower) : text; }
+  function searchTokens(text) {
+    return asciiLower(text).split(/[^a-z0-9\u0080-\uffff]+/).filter(function (w) { return w !== ''; });
+  }
+  // An entry's fields as one lower-case text, made at the first word search: a word that begins a
+  // word of a field is in it, so only the entries that hold every query word are split into words.
   function haystack(i) {
     if (haystacks === null) {
       haystacks = new Array(total);
+      var familyText = data.families.map(function (f) { return ' ' + asciiLower(f.id + ' ' + f.title); });
       for (var k = 0; k < total; k++) {
-        var f = data.families[data.family[k]];
-        haystacks[k] = [data.name[k], aliasesOf(k).join(' '), data.describes[k], f ? f.id : '', f ? f.title : '']
-                           .join(' ').toLowerCase();
+        var a = data.aliases[k];
+        haystacks[k] = asciiLower(a ? data.name[k] + ' ' + a.join(' ') + ' ' + data.describes[k] : data.name[k] + ' ' + data.describes[k]) +
+                       (familyText[data.family[k]] || '');
       }
     }
     return haystacks[i];
+  }
+  // An entry's fields as words: [name, aliases, describes, family id and title].
+  var fieldWords = Object.create(null);
+  function fields(i) {
+    if (!(i in fieldWords)) {
+      var f = data.families[data.family[i]];
+      fieldWords[i] = [searchTokens(data.name[i]), searchTokens(aliasesOf(i).join(' ')), searchTokens(data.describes[i]),
+                       searchTokens(f ? f.id + ' ' + f.title : '')];
+    }
+    return fieldWords[i];
+  }
+  function begins(word, fieldWords) {
+    for (var k = 0; k < fieldWords.length; k++) if (fieldWords[k].lastIndexOf(word, 0) === 0) return true;
+    return false;
+  }
+  function wordScore(words, i) {
+    var text = haystack(i);
+    for (var w = 0; w < words.length; w++) if (text.indexOf(words[w]) < 0) return 0;
+    var h = fields(i), score = 0;
+    for (w = 0; w < words.length; w++) {
+      var best = begins(words[w], h[0]) ? NAME_WORD : begins(words[w], h[1]) ? ALIAS_WORD :
+                 begins(words[w], h[2]) ? DESCRIBES_WORD : begins(words[w], h[3]) ? FAMILY_WORD : 0;
+      if (best === 0) return 0;
+      score += best;
+    }
+    return score;
+  }
+  // The query's exact names and aliases, as `library search` takes them: the whole query with its
+  // words joined by '-' or by spaces, and each word. rank 0 for a name, 1 for an alias.
+  var aliasOwner = null;
+  function exactRanks(typed) {
+    var out = Object.create(null);
+    if (!typed.length) return out;
+    if (aliasOwner === null) {
+      aliasOwner = Object.create(null);
+      Object.keys(data.aliases).forEach(function (i) {
+        data.aliases[i].forEach(function (a) { if (!(a in aliasOwner)) aliasOwner[a] = Number(i); });
+      });
+    }
+    var candidates = [typed.join(' '), typed.join('-')].concat(typed);
+    candidates.forEach(function (c) { if (c in indexOfName && !(indexOfName[c] in out)) out[indexOfName[c]] = 0; });
+    candidates.forEach(function (c) { if (c in aliasOwner && !(aliasOwner[c] in out)) out[aliasOwner[c]] = 1; });
+    return out;
   }
 
   function number(text) {
@@ -113,7 +170,8 @@
     };
     f.min = number(f.rmin);
     f.max = number(f.rmax);
-    f.words = f.q.toLowerCase().split(/\s+/).filter(function (w) { return w !== ''; });
+    f.typed = f.q.split(/\s+/).filter(function (w) { return w !== ''; });
+    f.words = searchTokens(f.q);
     return f;
   }
 
@@ -131,18 +189,24 @@
     return p.toString();
   }
 
+  function shownRoughness(r) { return Number(r.toPrecision(3)); }
+  function within(r, f) { return (f.min === null || r >= f.min) && (f.max === null || r <= f.max); }
+
   // The indices of the entries that pass the filters, in the library's order or by roughness (the
   // entries without one, having no texture, last; equal ones by name). An entry without a roughness
   // passes only while no roughness bound is set. A source kind keeps the entries with a `source`
   // note of that kind; "none", those with no note at all.
   var last = {key: null, shown: null};
   function filtered(f) {
-    var key = JSON.stringify([f.family, f.min, f.max, f.words, f.licence, f.source, f.order]);
+    var key = JSON.stringify([f.family, f.min, f.max, f.typed, f.licence, f.source, f.order]);
     if (key === last.key) return last.shown;
     var fam = f.family === '' ? null : f.family === '(none)' ? -1 : familyOf[f.family];
     var lic = f.licence === '' ? null : f.licence === '(none)' ? '' : f.licence;
     var bit = f.source === '' || f.source === 'none' ? 0 : SOURCE_BITS[f.source] || -1;
     var ranged = f.min !== null || f.max !== null;
+    var exact = exactRanks(f.typed);
+    var rank = f.words.length || f.typed.length ? new Float64Array(total) : null;  // lower first
+    var stimulus = data.families.map(function (x) { return !!x.stimulus; });
     var shown = [];
     for (var i = 0; i < total; i++) {
       if (fam !== null && data.family[i] !== fam) continue;
@@ -150,15 +214,23 @@
       if (f.source === 'none' ? data.sources[i] !== 0 : bit !== 0 && !(data.sources[i] & bit)) continue;
       if (ranged) {
         var r = data.roughness[i];
-        if (r === null || (f.min !== null && r < f.min) || (f.max !== null && r > f.max)) continue;
+        // In when the roughness kept or the one shown (3 significant digits) is, as `library search
+        // --roughness` takes it: an entry shown as 0.0982 is within ..0.0982 whatever digits follow.
+        if (r === null || !(within(r, f) || within(shownRoughness(r), f))) continue;
       }
-      if (f.words.length) {
-        var h = haystack(i), ok = true;
-        for (var w = 0; w < f.words.length && ok; w++) ok = h.indexOf(f.words[w]) >= 0;
-        if (!ok) continue;
+      if (rank) {
+        // Exact names, then exact aliases, then word matches by score; a published stimulus set's
+        // word matches after the materials unless the family filter names theirs.
+        if (i in exact) rank[i] = exact[i];
+        else {
+          var score = f.words.length ? wordScore(f.words, i) : 0;
+          if (score === 0) continue;
+          rank[i] = (fam === null && stimulus[data.family[i]] ? 3 : 2) - score / 1e6;
+        }
       }
       shown.push(i);
     }
+    if (rank && !f.order) shown.sort(function (a, b) { return rank[a] - rank[b] || a - b; });
     if (f.order === 'roughness' || f.order === '-roughness') {
       var sign = f.order === 'roughness' ? 1 : -1;
       shown.sort(function (a, b) {
@@ -219,7 +291,7 @@
     tr.appendChild(fam);
 
     var r = data.roughness[i];
-    tr.appendChild(element('td', {'class': 'num'}, r === null ? '\u2014' : String(Number(r.toPrecision(3)))));
+    tr.appendChild(element('td', {'class': 'num'}, r === null ? '\u2014' : String(shownRoughness(r))));
     tr.appendChild(element('td', {}, data.describes[i]));
     return tr;
   }

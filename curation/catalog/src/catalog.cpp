@@ -141,8 +141,11 @@ constexpr std::size_t kInPlaceLimit = 256;
 // The catalog's files as this version writes them: a record of another version draws everything again.
 constexpr int kCatalogFormat = 3;
 
+// How pictures are lit (render.hpp, light_azimuth_deg): a catalog drawn with another light is drawn again.
+constexpr const char* kLighting = "across the ridges";
+
 std::string settings_of(const CatalogOptions& o) {
-  return nlohmann::json{{"format", kCatalogFormat}, {"picture_side", o.picture_side}, {"thumbnail_side", o.thumbnail_side},
+  return nlohmann::json{{"format", kCatalogFormat}, {"lighting", kLighting}, {"picture_side", o.picture_side}, {"thumbnail_side", o.thumbnail_side},
                         {"thumbnail_window_m", o.thumbnail_window_m}, {"arrays", o.arrays}}
       .dump();
 }

@@ -29,11 +29,11 @@ std::vector<FamilyCount> families_of(const compiler::LibraryManifest& manifest, 
   std::vector<FamilyCount> out;
   std::set<std::string> listed;
   for (const auto& f : manifest.families) {
-    out.push_back({f.id, f.title, f.describes, count[f.id]});
+    out.push_back({f.id, f.title, f.describes, count[f.id], f.stimulus_set});
     listed.insert(f.id);
   }
   for (const auto& [id, n] : count)
-    if (!id.empty() && listed.insert(id).second) out.push_back({id, id, "", n});
+    if (!id.empty() && listed.insert(id).second) out.push_back({id, id, "", n, false});
   return out;
 }
 
@@ -47,6 +47,7 @@ nlohmann::json index_data(const compiler::LibraryManifest& manifest, const std::
   std::map<std::string, std::string> titles;
   for (const auto& f : families_of(manifest, rows)) {
     families.push_back({{"id", f.id}, {"title", f.title}, {"describes", f.describes}, {"count", f.count}});
+    if (f.stimulus) families.back()["stimulus"] = true;
     titles[f.id] = f.title;
   }
   json entries = json::array();
@@ -252,7 +253,8 @@ std::string head_script(const Head& h) {
   std::string j = "{\"entries\":" + std::to_string(h.entries) + ",\"families\":[";
   for (std::size_t k = 0; k < h.families.size(); ++k)
     j += std::string(k ? "," : "") + "{\"count\":" + std::to_string(h.families[k].count) +
-         ",\"id\":" + json_string(h.families[k].id) + ",\"title\":" + json_string(h.families[k].title) + "}";
+         ",\"id\":" + json_string(h.families[k].id) + (h.families[k].stimulus ? ",\"stimulus\":true" : "") +
+         ",\"title\":" + json_string(h.families[k].title) + "}";
   j += "],\"format\":3,\"library\":{\"name\":" + json_string(h.library_name) + ",\"version\":" + json_string(h.version) +
        "},\"part_rows\":" + std::to_string(kIndexPartRows) + ",\"parts\":[";
   for (std::size_t k = 0; k < h.parts.size(); ++k)
@@ -304,7 +306,8 @@ std::vector<IndexRow> rows_of(const nlohmann::json& data) {
 std::vector<FamilyCount> families_of(const nlohmann::json& data) {
   std::vector<FamilyCount> out;
   for (const auto& f : data["families"])
-    out.push_back({f["id"].get<std::string>(), f["title"].get<std::string>(), f["describes"].get<std::string>(), f["count"].get<int>()});
+    out.push_back({f["id"].get<std::string>(), f["title"].get<std::string>(), f["describes"].get<std::string>(), f["count"].get<int>(),
+                   f.value("stimulus", false)});
   return out;
 }
 

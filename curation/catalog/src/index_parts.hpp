@@ -17,6 +17,7 @@ namespace sandpaper::catalog::index_parts {
 struct FamilyCount {
   std::string id, title, describes;
   int count = 0;
+  bool stimulus = false;  // a published stimulus set (library.toml `stimulus-set`): ranked after the materials
 };
 
 // The data files' statements around their JSON (json_statement, html.hpp).

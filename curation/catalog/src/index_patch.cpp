@@ -170,7 +170,8 @@ Head parse_head(const std::string& script) {
   h.library_name = j.at("library").at("name").get<std::string>();
   h.version = j.at("library").at("version").get<std::string>();
   for (const auto& f : j.at("families"))
-    h.families.push_back({f.at("id").get<std::string>(), f.at("title").get<std::string>(), "", count_at(f.at("count"))});
+    h.families.push_back({f.at("id").get<std::string>(), f.at("title").get<std::string>(), "", count_at(f.at("count")),
+                          f.contains("stimulus") && f.at("stimulus").get<bool>()});
   h.entries = static_cast<std::size_t>(count_at(j.at("entries")));
   const auto unfiled = static_cast<std::size_t>(count_at(j.at("unfiled")));
   h.sorted = j.at("sorted").get<bool>();
@@ -210,7 +211,9 @@ std::optional<IndexFiles> patch_index(const ReadIndexFile& read, const compiler:
     if (h.library_name != manifest.name || h.version != manifest.version || h.families.size() < manifest.families.size())
       return std::nullopt;
     for (std::size_t f = 0; f < manifest.families.size(); ++f)
-      if (h.families[f].id != manifest.families[f].id || h.families[f].title != manifest.families[f].title) return std::nullopt;
+      if (h.families[f].id != manifest.families[f].id || h.families[f].title != manifest.families[f].title ||
+          h.families[f].stimulus != manifest.families[f].stimulus_set)
+        return std::nullopt;
     const auto family_index = index_of(h.families);
     if (family_index.size() != h.families.size()) return std::nullopt;
 

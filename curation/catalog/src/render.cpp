@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "png_file.hpp"
@@ -101,6 +102,66 @@ std::string why_not_pictured(const schema::Term& term) {
 
 namespace {
 
+// The directions, rad, across which the program's ridges rise and fall: a grating's normal, a ridge
+// term's x, a periodic term's x and y. Height fields and potentials have none.
+std::vector<double> ridge_normals(const schema::PatchProgram& drawn) {
+  std::vector<double> out;
+  for (const auto& t : drawn.terms) {
+    if (const auto* g = std::get_if<schema::GratingTerm>(&t)) out.push_back(g->orientation_rad);
+    else if (std::holds_alternative<schema::RidgeTerm>(t)) out.push_back(0);
+    else if (const auto* p = std::get_if<schema::PeriodicTerm>(&t)) {
+      if (p->on_x) out.push_back(0);
+      if (p->on_y) out.push_back(std::numbers::pi / 2);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+double light_azimuth_deg(const schema::PatchProgram& program) {
+  // Lambertian shading tells a ridge's two walls apart by the light's component along the ridge
+  // normal; a light along the ridges shades both walls alike, and the picture shows twice the
+  // ridges' frequency. So: the whole degree nearest the thesis' 135 deg (upper left) within 45 deg
+  // of every ridge normal (either sense); if none is, the one whose worst ridge is lit most
+  // across. Equally near: the one nearer straight up (90 deg).
+  const auto normals = ridge_normals(program);
+  const auto worst = [&](int az) {
+    double w = 1;
+    for (const double n : normals) w = std::min(w, std::abs(std::cos(az * std::numbers::pi / 180 - n)));
+    return w;
+  };
+  constexpr double across = 0.70710678118654752 - 1e-9;  // cos 45 deg, less rounding
+  int best = 135;
+  double best_worst = worst(135);
+  if (best_worst >= across) return best;
+  for (int d = 1; d <= 180; ++d)
+    for (const int az : {135 - d, 135 + d}) {
+      const double w = worst(az);
+      if (w >= across) return (az + 360) % 360;
+      if (w > best_worst + 1e-12) best = az, best_worst = w;
+    }
+  return (best + 360) % 360;
+}
+
+namespace {
+
+// Shades slopes as compiler::shade_slopes does, with the light at `azimuth_deg` instead of its fixed
+// 135 deg: Lambertian shading depends only on the slope's size and its angle to the light, so
+// turning every slope by (135 deg - azimuth) about the vertical is the same picture.
+schema::ArrayFile shade_lit(const Picture& pic, std::vector<double>& sx, std::vector<double>& sy, double azimuth_deg,
+                            std::optional<double> height_per_unit) {
+  if (azimuth_deg != 135) {
+    const double turn = (135 - azimuth_deg) * std::numbers::pi / 180, c = std::cos(turn), s = std::sin(turn);
+    for (std::size_t i = 0; i < sx.size(); ++i) {
+      const double x = sx[i], y = sy[i];
+      sx[i] = c * x - s * y;
+      sy[i] = s * x + c * y;
+    }
+  }
+  return compiler::shade_slopes(pic.nx, pic.ny, sx, sy, height_per_unit);
+}
+
 // Shades `drawn` (only terms with a surface) over pic's window at pic's pixel size.
 void shade_window(const schema::PatchProgram& drawn, Picture& pic) {
   const double ps = pic.pixel_m;
@@ -118,7 +179,8 @@ void shade_window(const schema::PatchProgram& drawn, Picture& pic) {
       sx[i] = -f.x;  // F = -grad U: the surface rises against the force
       sy[i] = -f.y;
     }
-  pic.shade = compiler::shade_slopes(pic.nx, pic.ny, sx, sy, std::nullopt);
+  pic.light_azimuth_deg = light_azimuth_deg(drawn);
+  pic.shade = shade_lit(pic, sx, sy, pic.light_azimuth_deg, std::nullopt);
 }
 
 // Shades `drawn` over pic's window from its height field low-pass filtered at the pixel's scale, for
@@ -204,7 +266,8 @@ void shade_window_filtered(const schema::PatchProgram& drawn, double finest_m, P
   double steepest = 0;
   for (std::size_t i = 0; i < n; ++i) steepest = std::max(steepest, std::hypot(sx[i], sy[i]));
   const double reference = std::max(steepest, 0.25 * peak);
-  pic.shade = compiler::shade_slopes(pic.nx, pic.ny, sx, sy, reference > 0 ? std::optional<double>(1 / reference) : std::nullopt);
+  pic.light_azimuth_deg = light_azimuth_deg(drawn);
+  pic.shade = shade_lit(pic, sx, sy, pic.light_azimuth_deg, reference > 0 ? std::optional<double>(1 / reference) : std::nullopt);
 }
 
 // The program with only the terms that have a surface; the others' reasons appended to `left_out`.
@@ -272,8 +335,10 @@ Picture render_picture(const schema::PatchProgram& program, int max_side) {
                      ? " (the patch is " + mm(pw) + " \xC3\x97 " + mm(ph) + ")"
                      : "") +
                 ". Slopes are the program's force field as the runtime evaluates it (F = -k grad h), shaded as "
-                "Sandpaper's .shade pictures: Lambertian, lit from the upper left (azimuth 135\xC2\xB0, elevation "
-                "45\xC2\xB0), the steepest slope drawn at 45\xC2\xB0.";
+                "Sandpaper's .shade pictures: Lambertian, lit " +
+                (pic.light_azimuth_deg == 135 ? std::string("from the upper left (azimuth 135\xC2\xB0")
+                                              : "across the ridges (azimuth " + std::to_string(static_cast<int>(pic.light_azimuth_deg)) + "\xC2\xB0") +
+                ", elevation 45\xC2\xB0), the steepest slope drawn at 45\xC2\xB0.";
   return pic;
 }
 

@@ -17,6 +17,7 @@
 #include "sandpaper/compiler/library.hpp"
 #include "sandpaper/curation/progress.hpp"
 #include "sandpaper/curation/weber_fractions.hpp"
+#include "sandpaper/curation/word_rank.hpp"
 
 struct sqlite3;
 
@@ -163,6 +164,10 @@ class Index {
   // FTS5 match (Porter stems) over name, aliases, describes and the family's id, title and describes;
   // not the `source` notes, whose citations name other materials: (name, bm25 rank; lower is better).
   std::vector<std::pair<std::string, double>> full_text(const std::string& fts_query) const;
+  // The entries each of whose `words` (lower-case) is in the text of its name, aliases, describes or
+  // family as a substring, with those fields, by name: the candidates word_score() ranks (a word
+  // beginning one of a field's words is in it). Aliases and family title as word_rank.hpp's WordFields.
+  std::vector<WordFields> word_candidates(const std::vector<std::string>& words) const;
   // Every entry's input hash (table `inputs`), by name: what `library catalog` compares with the
   // hashes its pages were drawn from.
   std::vector<std::pair<std::string, std::string>> input_hashes() const;

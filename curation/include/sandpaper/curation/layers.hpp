@@ -58,9 +58,9 @@ class LayeredIndex {
   // Whether entry `name` of root `layer` was compiled over the path by see_through_path().
   bool through_path(std::size_t layer, const std::string& name) const { return through_.count({layer, name}) > 0; }
 
-  // search() over every root: exact names first, then aliases, then word matches by bm25 (without
-  // words: by roughness); ties front root first; hidden entries left out. Throws
-  // std::invalid_argument for a family no root has.
+  // search() over every root: exact names first, then aliases, then word matches by word_score
+  // (without words: by roughness); ties by name, then front root first; hidden entries left out.
+  // Throws std::invalid_argument for a family no root has.
   std::vector<SearchHit> search(const SearchQuery& q) const;
   // The `limit` perceptually nearest entries, of any root, to `name` of root `layer`.
   // Of family `family` only, unless it is empty.

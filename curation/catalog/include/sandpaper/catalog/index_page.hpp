@@ -41,7 +41,7 @@ inline constexpr std::size_t kIndexPartRows = 2048;
 // "catalog-data/part-00007.js" for part 7.
 std::string index_part_file(std::size_t part);
 
-// Every row as JSON: {"library": {name, version}, "families": [{id, title, describes, count}],
+// Every row as JSON: {"library": {name, version}, "families": [{id, title, describes, count, stimulus (if true)}],
 // "entries": [{name, family, family_title, aliases, describes, roughness|null, max_lateral_force_N,
 // period_m, kind, source_kinds, root, licence, deprecated_by, page, thumbnail}]}, families in the manifest's order (then any an entry
 // names that the manifest lacks), entries in the order given. What the index's files are made from.
@@ -54,7 +54,7 @@ nlohmann::json index_data(const compiler::LibraryManifest& manifest, const std::
 //   without JavaScript. It loads kIndexDataFile, then every part, by plain <script src> (browsers
 //   refuse fetch() of a file:// URL), then assets/index.js.
 // - kIndexDataFile: `window.sandpaperCatalog = JSON.parse('...');` with
-//   {"entries": N, "families": [{"count", "id", "title"}], "format": 3, "library": {name, version},
+//   {"entries": N, "families": [{"count", "id", "stimulus" (true, only for a stimulus set), "title"}], "format": 3, "library": {name, version},
 //    "part_rows": kIndexPartRows, "parts": [{"families": [rows of the part in each family], "first": name,
 //    "last": name, "rows": n, "unfiled": rows of the part without a family}],
 //    "sorted": whether the names are in strictly increasing byte order, "unfiled": entries without a family}

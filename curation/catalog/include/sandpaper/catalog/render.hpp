@@ -32,10 +32,17 @@ struct Picture {
   double window_m[2] = {0, 0};         // width, height shown, m
   double centre_m[2] = {0, 0};         // the window's centre in patch coordinates, m (0, 0: the patch centre)
   bool finer_than_pixel = false;       // a texture's finest scale is under one pixel: the shading aliases
+  double light_azimuth_deg = 135;      // where the light comes from, deg counter-clockwise from +x (light_azimuth_deg())
   std::string caption;                 // what the picture is, in words (plain text)
   std::vector<std::string> left_out;   // terms not drawn, each with its reason
   bool empty() const { return nx == 0; }
 };
+
+// The light's azimuth for a picture of `program`, whole degrees counter-clockwise from +x (135: the
+// thesis' upper left): the one nearest 135 within 45 deg of every ridge normal (gratings, ridges,
+// periodic terms), so that each ridge's two walls shade apart and no ridge is drawn at twice its
+// frequency; if none is, the one lighting the worst ridge most across; ties toward 90 deg.
+double light_azimuth_deg(const schema::PatchProgram& program);
 
 // Shades the field of the program's Height and Potential terms over a window centred on the patch:
 // the whole patch, or a smaller window when the texture's finest scale (a grating period over 64, a
