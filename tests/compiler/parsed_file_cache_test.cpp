@@ -131,12 +131,19 @@ TEST(ParsedFileCache, AFileChangedSinceItWasKeptIsReadAgain) {
   EXPECT_EQ(cache.hits() - before, toml_files_in(dir));
 }
 
-// The path shown is kept with the file: the folder named with a trailing '/' reads the same files
-// but shows them as "maps/x.toml" rather than "calibration/maps/x.toml", so nothing is served, and
-// nothing is counted as served.
+// The path shown is kept with the file. Run from the folder above the calibration, the folder shows
+// its files as "calibration/maps/x.toml" (a path that opens from there); named with a trailing '/'
+// it reads the same files but shows them by their absolute paths ("maps/x.toml" would not open), so
+// nothing is served, and nothing is counted as served.
 TEST(ParsedFileCache, AFileShownUnderAnotherNameIsReadAgain) {
   const auto dir = copy_of_shipped("cache-shown");
   const fs::path slashed = dir.string() + "/";
+  const auto cwd = fs::current_path();
+  fs::current_path(dir.parent_path());
+  struct Back {
+    fs::path to;
+    ~Back() { fs::current_path(to); }
+  } back{cwd};
   calibration::ParsedFileCache cache;
   const auto kept = calibration::CalibrationSet::load(dir, &cache);
   cache.set_learning(false);
