@@ -9,6 +9,7 @@ import argparse
 import json
 import os
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -74,6 +75,18 @@ def main():
                              cwd=folder, capture_output=True, text=True)
         expected = json.loads(cli.stdout)
         expected["output"] = None
+        # A calibration file is shown by a path that opens from the process's own folder (relative
+        # there, else absolute); the studio runs from this test's folder, the CLI from the material's.
+        def opened_from(j, base):
+            if isinstance(j, dict):
+                return {k: opened_from(v, base) for k, v in j.items()}
+            if isinstance(j, list):
+                return [opened_from(v, base) for v in j]
+            if isinstance(j, str):
+                return re.sub(r"(?<![\w/.])calibration/[\w./-]+\.toml", lambda m: os.path.join(base, m.group(0)), j)
+            return j
+        compiled = opened_from(compiled, os.getcwd())
+        expected = opened_from(expected, str(folder))
         check(status == 200 and compiled == expected,
               "POST /api/compile equals `sandpaper compile --json` (but for the patch written)")
         status, bad = studio.post("/api/compile", text.replace("period 3.2 mm", "period 3.2 mn"), content_type="text/plain")
