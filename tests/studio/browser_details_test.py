@@ -20,6 +20,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, here)
@@ -180,25 +181,30 @@ def main():
         click_at_text(b, "hill 50%")
         key(b, "End", 35)
         b.send("Input.insertText", {"text": "\n  size 40 "})
-        listed = "document.querySelectorAll('.cm-tooltip-autocomplete li').length > 0"
-        shown = wait(b, listed, "the completion list")
-        if not shown:  # a compile's answer may close a list typing opened; Ctrl-Space asks again, as a user would
-            for kind in ("rawKeyDown", "keyUp"):
-                b.send("Input.dispatchKeyEvent", {"type": kind, "key": " ", "code": "Space", "modifiers": 2,
-                                                  "windowsVirtualKeyCode": 32})
-            shown = wait(b, listed, "the completion list, asked for")
-        labels = "[...document.querySelectorAll('.cm-tooltip-autocomplete li .cm-completionLabel')].map(e => e.textContent)"
-        offered = b.evaluate(labels) or []
-        for _ in range(3):  # a compile's answer landing between the wait and the read closes the list: ask again
-            if offered:
-                break
-            for kind in ("rawKeyDown", "keyUp"):
-                b.send("Input.dispatchKeyEvent", {"type": kind, "key": " ", "code": "Space", "modifiers": 2,
-                                                  "windowsVirtualKeyCode": 32})
-            shown = wait(b, listed, "the completion list, asked again")
-            offered = b.evaluate(labels) or []
+        # The list is read in the same evaluation that finds it open: a compile's answer can close a list
+        # that typing opened, between one look and the next. Closed, it is asked for again with
+        # Ctrl-Space, as a user would, until it is read or 60 s have passed. Each ask waits 10 s: asking
+        # again cancels the question on its way, which on a loaded machine takes seconds (the typed text is
+        # compiled first).
+        labels = """(() => { const li = [...document.querySelectorAll('.cm-tooltip-autocomplete li .cm-completionLabel')];
+            return li.length ? li.map(e => e.textContent) : null; })()"""
+        offered, asked = None, 0
+        deadline = time.monotonic() + 60
+        while offered is None and time.monotonic() < deadline:
+            try:
+                b.wait_for("document.querySelectorAll('.cm-tooltip-autocomplete li .cm-completionLabel').length > 0",
+                           "the completion list", 10)
+            except Exception:
+                asked += 1
+                for kind in ("rawKeyDown", "keyUp"):
+                    b.send("Input.dispatchKeyEvent", {"type": kind, "key": " ", "code": "Space", "modifiers": 2,
+                                                      "windowsVirtualKeyCode": 32})
+                continue
+            offered = b.evaluate(labels)
+        shown = offered is not None
+        offered = offered or []
         check(shown and LENGTHS <= set(offered) and not (NOT_LENGTHS & set(offered)),
-              f"after `size 40` the units offered are lengths only: {offered}")
+              f"after `size 40` the units offered are lengths only: {offered} (asked again {asked} times)")
         key(b, "Escape", 27)
     finally:
         b.close()

@@ -263,8 +263,12 @@ def main():
         # A workspace on the canvas, in the thesis' three display modes.
         b.evaluate("(() => { const s = document.querySelector('#file'); s.value = 'workspace/sampler.hws';"
                    " s.dispatchEvent(new Event('change')); })()")
-        check(wait(b, "document.querySelectorAll('#patches .patch').length === 7", "the workspace's patches") is not None,
-              "the workspace's 7 patches are on the canvas")
+        shown = wait(b, "document.querySelectorAll('#patches .patch').length === 7", "the workspace's patches") is not None
+        check(shown, "the workspace's 7 patches are on the canvas" + ("" if shown else ": " + json.dumps(b.evaluate(
+            "({file: window.studio.state.file, kind: window.studio.state.kind, patches: document.querySelectorAll('#patches .patch').length,"
+            " status: document.querySelector('#status').textContent, compiles: document.body.dataset.compiles})"))))
+        if not shown:
+            return checks.finish()
         check(b.evaluate("getComputedStyle(document.querySelector('#patches .patch')).backgroundImage").startswith("url("),
               "Normal mode shows each patch's picture")
         b.screenshot(str(out / "studio-workspace.png"), full_page=False)

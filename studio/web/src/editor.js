@@ -12,6 +12,7 @@ export const editorExtensions = [
   basicSetup, hmatLanguage, lintGutter(),
   EditorView.updateListener.of((u) => {
     if (!u.docChanged || state.remote) return;
+    state.edits++;
     clearTimeout(state.compileTimer);
     // Short enough that diagnostics follow typing within 150 ms, long enough to skip keystrokes
     // typed in one burst.

@@ -32,7 +32,11 @@ export async function open(file) {
 }
 
 export async function loadCurrent() {
+  const editsAsked = state.edits;
   const cur = await api("GET", "/api/current");
+  // Two loads can overlap (an open, and the state events following a change made elsewhere): one
+  // answered after an edit typed in this file is older than the edit, and would drop it.
+  if (state.file === cur.file && state.edits !== editsAsked) return cur;
   if (state.file && state.file !== cur.file) fileStates.set(state.file, editor.state);
   const kept = fileStates.get(cur.file);
   fileStates.delete(cur.file);

@@ -31,6 +31,8 @@ async function followDocument(d) {
     const cur = await api("GET", "/api/current");
     if (state.sentText !== sentBefore || state.compiling !== compilingBefore || document.body.dataset.sliderBusy === "yes")
       return;  // the page's own edit is on its way; its answer brings the studio's text and figures
+    // An open begun meanwhile loads the file itself; a second load beside it could land after an edit.
+    if (state.opening) return;
     if (state.compileTimer || editor.state.doc.toString() !== state.sentText && cur.file === state.file) return;
     if (cur.file !== state.file) {
       await loadCurrent();

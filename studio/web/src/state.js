@@ -4,6 +4,7 @@ export const state = {
   file: "", kind: "material", version: 0, parameters: [], preview: null, field: null, workspace: null,
   live: null, strip: [], selected: -1, mode: "normal", view: "height", remote: false, compileTimer: 0,
   lastCompileMs: 0,
+  edits: 0,         // edits typed here (not the studio's text set in): a fetch asked before one is older than it
   zoom: null,       // null: the preview's own window; else {cx, cy, w, h}, mm, a window over the patch
   patchMm: null,    // the playing material's patch [width, height], mm
 };
