@@ -66,14 +66,17 @@ function isTextureEntry(v) {
 export class MPEGHapticMaterial extends Extension {
   extensionName = NAME;
   static EXTENSION_NAME = NAME;
-  prereadTypes = [PropertyType.MESH];
+  // Read before the visual materials, which use the same textures as their colour: a texture written
+  // as a file is named by its first user, and as a haptic texture it takes the asset's name
+  // (corduroy.png), where as a base colour it would be baseColor.png in every asset of a folder.
+  prereadTypes = [PropertyType.MATERIAL];
   prewriteTypes = [PropertyType.MESH];
 
   createHapticMaterial(name = "") { return new HapticMaterial(this.document.getGraph(), name); }
   createHapticTexture() { return new HapticTexture(this.document.getGraph()); }
   listHapticMaterials() { return Array.from(this.properties).filter((p) => p instanceof HapticMaterial); }
 
-  // Before the meshes are read, with the textures already read: the haptic materials.
+  // Before the visual materials and meshes are read, with the textures already read: the haptic materials.
   preread(context) {
     const json = context.jsonDoc.json;
     const defs = json.extensions?.[NAME]?.materials || [];

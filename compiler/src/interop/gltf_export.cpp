@@ -227,6 +227,8 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
                  accessors = nlohmann::json::array(), views = nlohmann::json::array();
   std::map<const schema::PatchProgram*, std::size_t> material_of;
   std::vector<Texture> made;
+  std::vector<std::optional<std::size_t>> texture_of;  // per haptic material, its height texture
+  nlohmann::json visual_materials = nlohmann::json::array();
   Bytes buffer;
   bool failed = false;
 
@@ -243,6 +245,7 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
                     "export a material with a grating or a height-map image (docs/GLTF.md, \"What is exported\")");
         failed = true;
         made.push_back(t);
+        texture_of.emplace_back();
         continue;
       }
       if (t.kind == "none" && !workspace) {
@@ -262,6 +265,7 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
                           " % of its maximum lateral force, more than " + num(kGltfForceTolerance * 100) + " %",
                       "the texture's slope is small against its height range; add smoothing or use a smaller image");
       nlohmann::json hm = {{"name", p.name}};
+      texture_of.emplace_back();
       if (t.kind != "none") {
         const std::size_t image = images.size();
         images.push_back({{"name", p.name + " heights"}, {"mimeType", "image/png"},
@@ -270,6 +274,7 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
         samplers.push_back({{"magFilter", kLinear}, {"minFilter", kLinear}, {"wrapS", wrap}, {"wrapT", wrap}});
         textures.push_back({{"sampler", samplers.size() - 1}, {"source", image}});
         hm["vibrotactileTexture"] = {{{"texture", {{"index", textures.size() - 1}}}, {"type", "High_Resolution"}}};
+        texture_of.back() = textures.size() - 1;
       }
       hm["extras"] = {{gltf::kExtrasKey, sandpaper_extras(p, t, patch.source)}};
       haptic_materials.push_back(hm);
@@ -309,9 +314,18 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
     accessors.push_back({{"bufferView", first_view + 3}, {"componentType", kUnsignedShort}, {"count", 6}, {"type", "SCALAR"}});
     const std::size_t a = accessors.size() - 4;
     const std::string name = workspace ? "patch " + std::to_string(pi + 1) + ": " + patch.source : p.name;
+    // Each patch's primitive gets a visual material of its own, its heights as the colour, marked with
+    // its haptic material: pipelines merge primitives that share a visual material (glTF-Transform's
+    // join) and fold untextured materials together (palette), and a merged mesh's primitives keep
+    // their haptic materials only through their own materials (docs/GLTF.md, "What is exported").
+    nlohmann::json visual = {{"name", name},
+                             {"pbrMetallicRoughness", {{"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
+                             {"extras", {{gltf::kExtrasKey, {{"hapticMaterialIndex", it->second}, {"patch", pi}}}}}};
+    if (texture_of[it->second]) visual["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", *texture_of[it->second]}};
+    visual_materials.push_back(visual);
     meshes.push_back({{"name", name},
                       {"primitives", {{{"attributes", {{"POSITION", a}, {"NORMAL", a + 1}, {"TEXCOORD_0", a + 2}}},
-                                       {"indices", a + 3}, {"mode", 4}}}},
+                                       {"indices", a + 3}, {"material", visual_materials.size() - 1}, {"mode", 4}}}},
                       {"extensions", {{gltf::kExtension, {{"hapticMaterialIndex", it->second}}}}}});
     nlohmann::json node = {{"name", name}, {"mesh", meshes.size() - 1}};
     if (patch.centre_m[0] != 0 || patch.centre_m[1] != 0) node["translation"] = {patch.centre_m[0], 0.0, -patch.centre_m[1]};
@@ -330,6 +344,7 @@ std::optional<nlohmann::json> export_gltf(const std::vector<GltfPatch>& patches,
       {"scenes", {{{"name", scene_name}, {"nodes", scene_nodes}}}},
       {"nodes", nodes},
       {"meshes", meshes},
+      {"materials", visual_materials},
       {"accessors", accessors},
       {"bufferViews", views},
       {"buffers", {{{"byteLength", buffer.data.size()},

@@ -9,8 +9,10 @@
 #include <initializer_list>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -424,8 +426,45 @@ class Reader {
   long long texels_ = 0;
 };
 
-// The scene's nodes that carry a haptic material: (node index, haptic material index).
-std::vector<std::pair<std::size_t, std::size_t>> haptic_nodes(const json& root, std::size_t materials) {
+// One patch in the scene: node `node`'s mesh `mesh`, its primitives `prims` (those of one visual
+// material that marks a haptic material, or those the mesh's own haptic material covers), and that
+// haptic material's index.
+struct Piece {
+  std::size_t node = 0, mesh = 0;
+  std::vector<std::size_t> prims;
+  std::size_t haptic = 0;
+  std::optional<std::size_t> marked_by;  // the visual material whose extras name the haptic material
+};
+
+// A primitive's haptic material: the one its visual material marks (`extras.sandpaper.hapticMaterialIndex`,
+// which Sandpaper writes on each patch's own material, so that a mesh merged from several patches
+// keeps each), else the one its mesh names (MPEG_haptic_material's `hapticMaterialIndex`), else none.
+std::optional<std::size_t> primitive_haptic(const json& root, const json& prim, const json* mesh_index, std::size_t materials,
+                                            const std::string& pw, std::optional<std::size_t>* marked_by = nullptr) {
+  const json* material = prim.is_object() ? optional_member(prim, "material") : nullptr;
+  if (material) {
+    const json* visuals = optional_member(root, "materials");
+    if (!visuals || !visuals->is_array()) refuse("E0712", pw + ".material names a material, but the asset has no materials");
+    const json& visual = (*visuals)[index_into(*material, *visuals, pw + ".material", "E0712")];
+    const json* extras = visual.is_object() ? optional_member(visual, "extras") : nullptr;
+    const json* ours = extras && extras->is_object() ? optional_member(*extras, gltf::kExtrasKey) : nullptr;
+    const json* mark = ours && ours->is_object() ? optional_member(*ours, "hapticMaterialIndex") : nullptr;
+    if (mark) {
+      if (!mark->is_number_unsigned() || mark->get<std::uint64_t>() >= materials)
+        refuse("E0713", "materials[" + std::to_string(material->get<std::uint64_t>()) + "].extras.sandpaper.hapticMaterialIndex (of " + pw +
+                            ") is not an index into the " + std::to_string(materials) + " haptic materials");
+      if (marked_by) *marked_by = static_cast<std::size_t>(material->get<std::uint64_t>());
+      return static_cast<std::size_t>(mark->get<std::uint64_t>());
+    }
+  }
+  if (!mesh_index) return std::nullopt;
+  return static_cast<std::size_t>(mesh_index->get<std::uint64_t>());
+}
+
+// The scene's patches: each node's mesh's primitives grouped by the visual material that marks their
+// haptic material (unmarked ones by the mesh's), in the order first met. A node whose mesh has none
+// is scenery.
+std::vector<Piece> haptic_pieces(const json& root, std::size_t materials) {
   const json* nodes = optional_member(root, "nodes");
   if (!nodes || !nodes->is_array()) refuse("E0713", "the asset has no nodes, so no mesh carries a haptic material");
   std::vector<std::size_t> order;
@@ -443,7 +482,7 @@ std::vector<std::pair<std::size_t, std::size_t>> haptic_nodes(const json& root, 
     for (std::size_t i = 0; i < nodes->size(); ++i) order.push_back(i);
   }
   const json* meshes = optional_member(root, "meshes");
-  std::vector<std::pair<std::size_t, std::size_t>> out;
+  std::vector<Piece> out;
   for (std::size_t n : order) {
     const std::string nw = "nodes[" + std::to_string(n) + "]";
     const json& node = (*nodes)[n];
@@ -452,19 +491,36 @@ std::vector<std::pair<std::size_t, std::size_t>> haptic_nodes(const json& root, 
     if (!mesh) continue;
     if (!meshes) refuse("E0712", nw + ".mesh names a mesh, but the asset has no meshes");
     const std::size_t mi = index_into(*mesh, *meshes, nw + ".mesh", "E0712");
+    const std::string mw = "meshes[" + std::to_string(mi) + "]";
     const json* ext = optional_member((*meshes)[mi], "extensions");
     const json* hm = ext ? optional_member(*ext, gltf::kExtension) : nullptr;
-    if (!hm) continue;  // a mesh without haptics is scenery, not a patch
+    const json* mesh_index = nullptr;
+    if (hm) {
+      if (materials == 0) refuse("E0713", "the asset has no MPEG_haptic_material materials for " + mw + " to name");
+      mesh_index = &member(*hm, "hapticMaterialIndex", mw + ".extensions.MPEG_haptic_material", "E0713");
+      if (!mesh_index->is_number_unsigned() || mesh_index->get<std::uint64_t>() >= materials)
+        refuse("E0713", mw + ".extensions.MPEG_haptic_material.hapticMaterialIndex is not an index into the " +
+                            std::to_string(materials) + " haptic materials");
+    }
+    const json* prims = optional_member((*meshes)[mi], "primitives");
+    std::vector<Piece> found;
+    if (prims && prims->is_array())
+      for (std::size_t p = 0; p < prims->size(); ++p) {
+        std::optional<std::size_t> marked_by;
+        const auto h = primitive_haptic(root, (*prims)[p], mesh_index, materials, mw + ".primitives[" + std::to_string(p) + "]", &marked_by);
+        if (!h) continue;  // a primitive without haptics is scenery
+        // Sandpaper marks each patch's own visual material, so primitives of one marked material are
+        // one patch (a mesh merged from several keeps them apart); the unmarked ones are the mesh's.
+        auto same = std::find_if(found.begin(), found.end(), [&](const Piece& x) { return x.marked_by == marked_by; });
+        if (same == found.end()) found.push_back(Piece{n, mi, {p}, *h, marked_by});
+        else same->prims.push_back(p);
+      }
+    if (found.empty()) continue;  // a mesh without haptics is scenery, not a patch
     for (const char* k : {"matrix", "children"})
       if (optional_member(node, k))
         refuse("E0712", nw + " has a \"" + k + "\": Sandpaper reads patches placed by translation and scale alone, on the ground plane",
                "export the asset again from Sandpaper, or remove the transform");
-    if (materials == 0) refuse("E0713", "the asset has no MPEG_haptic_material materials for meshes[" + std::to_string(mi) + "] to name");
-    const std::string where = "meshes[" + std::to_string(mi) + "].extensions.MPEG_haptic_material.hapticMaterialIndex";
-    const json& index = member(*hm, "hapticMaterialIndex", "meshes[" + std::to_string(mi) + "].extensions.MPEG_haptic_material", "E0713");
-    if (!index.is_number_unsigned() || index.get<std::uint64_t>() >= materials)
-      refuse("E0713", where + " is not an index into the " + std::to_string(materials) + " haptic materials");
-    out.emplace_back(n, static_cast<std::size_t>(index.get<std::uint64_t>()));
+    out.insert(out.end(), found.begin(), found.end());
     if (out.size() > schema::limits::kMaxWorkspacePatches)
       refuse("E0719", "the asset has more than " + std::to_string(schema::limits::kMaxWorkspacePatches) + " haptic meshes");
   }
@@ -503,15 +559,16 @@ double dequantized(double v, const json& accessor) {
   }
 }
 
-// The box of mesh `mi`'s POSITION bounds over its primitives (accessor min and max, which glTF
+// The box of the piece's POSITION bounds over its primitives (accessor min and max, which glTF
 // requires of POSITION), in the mesh's own frame; nullopt if a primitive has none.
-std::optional<std::array<double, 6>> mesh_bounds(const json& root, std::size_t mi) {
+std::optional<std::array<double, 6>> mesh_bounds(const json& root, const Piece& piece) {
+  const std::size_t mi = piece.mesh;
   const json& mesh = root["meshes"][mi];
   const json* prims = optional_member(mesh, "primitives");
   const json* accessors = optional_member(root, "accessors");
   if (!prims || !prims->is_array() || prims->empty() || !accessors) return std::nullopt;
   std::array<double, 6> box{1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
-  for (std::size_t p = 0; p < prims->size(); ++p) {
+  for (std::size_t p : piece.prims) {
     const std::string pw = "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(p) + "]";
     const json* attributes = optional_member((*prims)[p], "attributes");
     const json* position = attributes ? optional_member(*attributes, "POSITION") : nullptr;
@@ -534,7 +591,9 @@ std::optional<std::array<double, 6>> mesh_bounds(const json& root, std::size_t m
 // The patch's place on the workspace, the centre of its mesh's box in the scene: glTF (x, 0, z) is
 // patch (x, -z). A node may scale its mesh (glTF pipelines' quantization does, to undo the integer
 // positions' scale) but not rotate it, and the mesh must span the patch's size on the ground plane.
-void centre_of(const json& root, const json& node, std::size_t n, const double size_m[2], double centre[2]) {
+void centre_of(const json& root, const Piece& piece, const double size_m[2], double centre[2]) {
+  const std::size_t n = piece.node;
+  const json& node = root["nodes"][n];
   const std::string nw = "nodes[" + std::to_string(n) + "]";
   const auto t = numbers(node, "translation", n, 3, 10, {0, 0, 0, 0});
   const auto s = numbers(node, "scale", n, 3, 1e6, {1, 1, 1, 0});
@@ -544,9 +603,8 @@ void centre_of(const json& root, const json& node, std::size_t n, const double s
            "export the asset again from Sandpaper, or remove the rotation");
   for (int i = 0; i < 3; ++i)
     if (!(s[i] > 0)) refuse("E0712", nw + ".scale[" + std::to_string(i) + "] is " + num(s[i]) + ": a patch is scaled by positive numbers only");
-  const auto mesh = static_cast<std::size_t>(node["mesh"].get<std::uint64_t>());
   double c[3] = {t[0], t[1], t[2]};
-  if (const auto box = mesh_bounds(root, mesh)) {
+  if (const auto box = mesh_bounds(root, piece)) {
     double span[3];
     for (int i = 0; i < 3; ++i) {
       c[i] = t[i] + s[i] * ((*box)[i] + (*box)[3 + i]) / 2;
@@ -563,8 +621,12 @@ void centre_of(const json& root, const json& node, std::size_t n, const double s
   }
   if (std::abs(c[1]) > 1e-6) refuse("E0712", nw + " lifts the patch off the ground plane (y = " + num(c[1]) + " m)");
   if (std::abs(c[0]) > 10 || std::abs(c[2]) > 10) refuse("E0712", nw + " places its patch more than 10 m from the origin");
-  centre[0] = c[0];
-  centre[1] = c[2] == 0 ? 0 : -c[2];
+  // Read to the micrometre: a place carried in float positions (a pipeline that moved the patches
+  // into their vertices, a merged mesh) is off by up to 1e-8 m at 10 cm, and no device resolves a
+  // micrometre, so the place a translation gives and the one the same vertices give read the same.
+  const auto micrometre = [](double v) { return std::round(v * 1e6) / 1e6 + 0.0; };  // + 0.0: no -0
+  centre[0] = micrometre(c[0]);
+  centre[1] = micrometre(-c[2]);
 }
 
 std::uint32_t u32_at(const std::string& b, std::size_t at) {
@@ -627,19 +689,26 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
   const json& materials = member(*top, "materials", "extensions.MPEG_haptic_material", "E0713");
   if (!materials.is_array() || materials.empty())
     refuse("E0713", "extensions.MPEG_haptic_material.materials is not a non-empty array");
-  const auto placed = haptic_nodes(root, materials.size());
+  const auto placed = haptic_pieces(root, materials.size());
   if (placed.empty()) refuse("E0713", "no mesh in the scene names a haptic material (meshes[].extensions.MPEG_haptic_material)");
   // Sandpaper writes one haptic material per distinct material and a mesh for every patch: a
   // material no mesh names, or fewer meshes than the patches written, is a patch a pipeline lost.
   std::vector<bool> named(materials.size(), false);
-  for (const auto& [n, mi] : placed) named[mi] = true;
+  for (const auto& piece : placed) named[piece.haptic] = true;
   if (const json* meshes = optional_member(root, "meshes"); meshes && meshes->is_array())
-    for (const auto& mesh : *meshes) {  // a mesh of another scene still holds its patch
+    for (std::size_t mi = 0; mi < meshes->size(); ++mi) {  // a mesh of another scene still holds its patch
+      const json& mesh = (*meshes)[mi];
+      if (!mesh.is_object()) continue;
       const json* e = optional_member(mesh, "extensions");
       const json* hm = e ? optional_member(*e, gltf::kExtension) : nullptr;
       const json* index = hm ? optional_member(*hm, "hapticMaterialIndex") : nullptr;
-      if (index && index->is_number_unsigned() && index->get<std::uint64_t>() < materials.size())
-        named[static_cast<std::size_t>(index->get<std::uint64_t>())] = true;
+      if (index && !(index->is_number_unsigned() && index->get<std::uint64_t>() < materials.size())) index = nullptr;
+      const json* prims = optional_member(mesh, "primitives");
+      if (!prims || !prims->is_array()) continue;
+      for (std::size_t p = 0; p < prims->size(); ++p)
+        if (const auto h = primitive_haptic(root, (*prims)[p], index, materials.size(),
+                                            "meshes[" + std::to_string(mi) + "].primitives[" + std::to_string(p) + "]"))
+          named[*h] = true;
     }
   if (const auto lost = static_cast<std::size_t>(std::count(named.begin(), named.end(), false)); lost > 0)
     refuse("E0721",
@@ -647,7 +716,8 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
                " haptic materials are named by no mesh (first: extensions.MPEG_haptic_material.materials[" +
                std::to_string(std::find(named.begin(), named.end(), false) - named.begin()) +
                "]): their patches' meshes were merged into others or removed, as glTF-Transform's join (and optimize, which joins) does",
-           "export the asset again from Sandpaper, or join with meshes kept apart (gltf-transform optimize --join false)");
+           "export the asset again from Sandpaper (its patches now have visual materials of their own, which join keeps apart), "
+             "or join with meshes kept apart (gltf-transform optimize --join false)");
   Reader reader(c, root, shown, folder, glb && glb->has_bin ? &glb->bin : nullptr, r.diagnostics);
   reader.set_materials(materials);
   const json* extras = optional_member(root, "extras");
@@ -657,9 +727,9 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
     if (placed.size() != 1)
       refuse("E0713", std::to_string(placed.size()) + " meshes carry haptic materials, but the asset is not a workspace (no extras.sandpaper.workspace)",
              "export a workspace (.hws) to get an asset of several patches");
-    r.program = *reader.program(placed.front().second);
+    r.program = *reader.program(placed.front().haptic);
     double centre[2];  // a lone patch has no place, but its mesh must still be the patch, on the ground
-    centre_of(root, root["nodes"][placed.front().first], placed.front().first, r.program->size_m, centre);
+    centre_of(root, placed.front(), r.program->size_m, centre);
     return;
   }
   if (!ws->is_object()) refuse("E0714", "extras.sandpaper.workspace is not a JSON object");
@@ -673,14 +743,14 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
       refuse("E0721",
              "the workspace was written with " + num(written) + " patches, but " + std::to_string(placed.size()) +
                  " meshes in the scene carry haptic materials: a pipeline merged or removed the others (glTF-Transform's join, optimize)",
-             "export the asset again from Sandpaper, or join with meshes kept apart (gltf-transform optimize --join false)");
+             "export the asset again from Sandpaper (its patches now have visual materials of their own, which join keeps apart), "
+             "or join with meshes kept apart (gltf-transform optimize --join false)");
   }
-  const json& nodes = root["nodes"];
-  for (const auto& [n, mi] : placed) {
-    auto program = reader.program(mi);
+  for (const auto& piece : placed) {
+    auto program = reader.program(piece.haptic);
     double centre[2];
-    centre_of(root, nodes[n], n, program->size_m, centre);
-    const json& name = materials[mi]["extras"][gltf::kExtrasKey]["source"];
+    centre_of(root, piece, program->size_m, centre);
+    const json& name = materials[piece.haptic]["extras"][gltf::kExtrasKey]["source"];
     w.patches.push_back(schema::place_shared_patch(program, centre, name.get<std::string>()));
   }
   r.workspace = std::move(w);
