@@ -182,25 +182,32 @@ def main():
         key(b, "End", 35)
         b.send("Input.insertText", {"text": "\n  size 40 "})
         # The list is read in the same evaluation that finds it open: a compile's answer can close a list
-        # that typing opened, between one look and the next. Closed, it is asked for again with
-        # Ctrl-Space, as a user would, until it is read or 60 s have passed. Each ask waits 10 s: asking
-        # again cancels the question on its way, which on a loaded machine takes seconds (the typed text is
-        # compiled first).
+        # that typing opened, between one look and the next. Closed with no question to the language
+        # server in flight, it is asked for again with Ctrl-Space, as a user would; never while one is
+        # on its way, which asking again would cancel (on a loaded machine the studio compiles the typed
+        # text first, and an answer takes seconds). Up to 120 s in all.
         labels = """(() => { const li = [...document.querySelectorAll('.cm-tooltip-autocomplete li .cm-completionLabel')];
             return li.length ? li.map(e => e.textContent) : null; })()"""
+        settled = ("document.querySelectorAll('.cm-tooltip-autocomplete li .cm-completionLabel').length > 0"
+                   " || window.studio.state.languageAsked === 0")
         offered, asked = None, 0
-        deadline = time.monotonic() + 60
+        deadline = time.monotonic() + 120
         while offered is None and time.monotonic() < deadline:
             try:
-                b.wait_for("document.querySelectorAll('.cm-tooltip-autocomplete li .cm-completionLabel').length > 0",
-                           "the completion list", 10)
+                b.wait_for(settled, "the completion list, or no question in flight", max(1, deadline - time.monotonic()))
             except Exception:
+                break
+            offered = b.evaluate(labels)
+            if offered is None and b.evaluate("window.studio.state.languageAsked") == 0:
                 asked += 1
                 for kind in ("rawKeyDown", "keyUp"):
                     b.send("Input.dispatchKeyEvent", {"type": kind, "key": " ", "code": "Space", "modifiers": 2,
                                                       "windowsVirtualKeyCode": 32})
-                continue
-            offered = b.evaluate(labels)
+                try:  # the question Ctrl-Space sent, on its way or already answered
+                    b.wait_for("window.studio.state.languageAsked > 0 || document.querySelectorAll("
+                               "'.cm-tooltip-autocomplete li .cm-completionLabel').length > 0", "the question", 5)
+                except Exception:
+                    pass
         shown = offered is not None
         offered = offered or []
         check(shown and LENGTHS <= set(offered) and not (NOT_LENGTHS & set(offered)),

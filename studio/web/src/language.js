@@ -9,10 +9,15 @@ import { state } from "./state.js";
 // What `sandpaper lsp` gives an editor, asked of the studio (POST /api/language), which answers with
 // the language server's own code for the text it holds: so first the typed text reaches it.
 async function language(feature, doc, pos) {
-  await hooks.flushCompile();
-  await state.compiling;
-  const line = doc.lineAt(pos);
-  return api("POST", "/api/language", { feature, line: line.number - 1, character: pos - line.from });
+  state.languageAsked++;  // in flight (shown to tests: asking again would cancel the question on its way)
+  try {
+    await hooks.flushCompile();
+    await state.compiling;
+    const line = doc.lineAt(pos);
+    return await api("POST", "/api/language", { feature, line: line.number - 1, character: pos - line.from });
+  } finally {
+    state.languageAsked--;
+  }
 }
 
 const completionTypes = { 14: "keyword", 12: "constant", 11: "unit", 9: "namespace" };

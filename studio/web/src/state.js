@@ -5,6 +5,7 @@ export const state = {
   live: null, strip: [], selected: -1, mode: "normal", view: "height", remote: false, compileTimer: 0,
   lastCompileMs: 0,
   edits: 0,         // edits typed here (not the studio's text set in): a fetch asked before one is older than it
+  languageAsked: 0, // questions to the language server (completion, hover, F12) not yet answered
   zoom: null,       // null: the preview's own window; else {cx, cy, w, h}, mm, a window over the patch
   patchMm: null,    // the playing material's patch [width, height], mm
 };
