@@ -41,6 +41,12 @@ lab_now() {
   LAB_NOW=$(( ${up%.*} * 100 + 1${up#*.} - 100 ))
 }
 
+# A line on the console with the guest's uptime: where a scenario stood when it stopped speaking.
+lab_step() {
+  lab_now
+  printf 'lab: [%d.%02d s] %s\n' $(( LAB_NOW / 100 )) $(( LAB_NOW % 100 )) "$*"
+}
+
 lab_poll() {
   local secs="$1" what="$2" deadline
   shift 2

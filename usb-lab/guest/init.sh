@@ -28,11 +28,46 @@ case " $cmdline " in *" lab.in=1 "*)
     || echo "lab: the input folder did not mount";;
 esac
 
+# What every process is doing, printed when the scenario outlives the host's patience: the host
+# only sees the console, and a guest killed at its timeout would otherwise say nothing about where
+# it stood. The kernel stack (wchan, /proc/PID/stack) names a wait in a driver; the log's tail
+# names what the kernel said at debug level meanwhile.
+lab_hang_report() {
+  local p t name state user
+  echo "lab: the scenario has run $1 s of guest time; what each process is doing:"
+  for p in /proc/[0-9]*; do
+    # Kernel threads (no command line) only when they wait uninterruptibly (D): a stuck driver.
+    user=$(head -c 1 "$p/cmdline" 2>/dev/null | wc -c)
+    for t in "$p"/task/[0-9]*; do
+      read -r name < "$t/comm" 2>/dev/null || continue
+      state=$(sed -n 's/^State:[[:space:]]*//p' "$t/status" 2>/dev/null)
+      [ "$user" -gt 0 ] || [ "${state%% *}" = D ] || continue
+      echo "lab: pid ${p##*/} task ${t##*/} $name [$state] in $(cat "$t/wchan" 2>/dev/null)"
+      sed 's/^/lab:     /' "$t/stack" 2>/dev/null | head -n 12
+    done
+  done
+  echo "lab: the kernel log's last lines:"
+  dmesg | tail -n 40 | sed 's/^/lab: kernel: /'
+}
+report_after=
+for word in $cmdline; do
+  case $word in lab.report_after=*) report_after=${word#lab.report_after=} ;; esac
+done
+
 export LAB_OUT=/out LAB_IN=/in LAB_GADGET=/lab/gadget.sh
 read -r uptime _ < /proc/uptime
 echo "LAB-SCENARIO-START uptime=$uptime"
-cd /lab && sh /lab/scenario.sh
+cd /lab && sh /lab/scenario.sh &
+scenario=$!
+reporter=
+if [ -n "$report_after" ]; then
+  # A timer, not a wait for an event: it only speaks if the scenario is still running.
+  ( sleep "$report_after" && kill -0 "$scenario" 2>/dev/null && lab_hang_report "$report_after" ) &
+  reporter=$!
+fi
+wait "$scenario"
 status=$?
+[ -n "$reporter" ] && kill "$reporter" 2>/dev/null
 sync
 umount /out 2>/dev/null
 echo "LAB-EXIT-STATUS $status"

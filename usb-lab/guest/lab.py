@@ -135,6 +135,10 @@ def boot(machine: Machine, initrd: Path, *, out_dir: Path | None = None, in_dir:
         args += ["-virtfs", f"local,path={Path(path).absolute()},mount_tag={tag},"
                             f"security_model=none{',readonly=on' if readonly else ''}"]
         cmdline.append(flag)
+    # The guest prints what each process is doing shortly before the host gives up on it (init.sh);
+    # guest time runs at host time under TCG, and the margin covers the boot and the report.
+    if timeout > 60:
+        cmdline.append(f"lab.report_after={int(timeout - 40)}")
     if append:
         cmdline.append(append)
     args += ["-append", " ".join(cmdline)]

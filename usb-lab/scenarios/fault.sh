@@ -34,6 +34,7 @@ elif [ "$FAULT" != stall ]; then
     driver_during=$(ffboard_interface_driver)
     lab_now
     fault_at=$LAB_NOW
+    lab_step "fault: $FAULT"
     case $FAULT in
       unplug) gadget_unbind ffboard ;;
       reset) gadget_unbind ffboard && gadget_bind ffboard "$FFB_UDC" ;;
@@ -46,7 +47,7 @@ elif [ "$FAULT" != stall ]; then
 fi
 wait "$run_pid"
 run_status=$?
-lab_now
+lab_step "the run exited with status $run_status"
 exit_after_cs=
 [ -n "$fault_at" ] && exit_after_cs=$((LAB_NOW - fault_at))
 
@@ -55,19 +56,24 @@ replug_devices_status=
 replay_status=
 if [ "$FAULT" = unplug ]; then
   lab_wait_usb_gone "$FFB_VID" "$FFB_PID" 10
+  lab_step "plugging in again"
   gadget_bind ffboard "$FFB_UDC" && lab_wait_usb_device "$FFB_VID" "$FFB_PID" 60 && FFB_USB_DEV=$LAB_USB_DEV &&
     lab_wait_hidraw "$FFB_USB_DEV" 60
+  lab_step "plugged in; devices"
   "$SANDPAPER" devices > /out/devices.txt 2>&1
   replug_devices_status=$?
+  lab_step "devices exited with status $replug_devices_status; a second run"
   sed 's/^/devices: /' /out/devices.txt
   "$SANDPAPER" run "$MATERIAL" --device usb --duration "$REPLAY_SECONDS" $LAB_RUN_GUARDS --json \
     > /out/replay.json 2> /out/replay.err
   replay_status=$?
+  lab_step "the second run exited with status $replay_status"
   sed 's/^/replay: /' /out/replay.err
 elif [ "$FAULT" = reset ]; then
   lab_wait_usb_device "$FFB_VID" "$FFB_PID" 60 && FFB_USB_DEV=$LAB_USB_DEV && lab_wait_hidraw "$FFB_USB_DEV" 60
 fi
 ffboard_given_back
+lab_step "stopping the device"
 ffboard_stop
 sed 's/^/run: /' /out/run.err
 cat > /out/fault.json <<JSON
