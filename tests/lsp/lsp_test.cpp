@@ -236,6 +236,29 @@ TEST(Lsp, ProtocolErrorsAreAnsweredNotFatal) {
   EXPECT_EQ(s.status, 1) << "exit without shutdown";
 }
 
+TEST(Lsp, AProblemInALibraryEntryIsMarkedOnTheLikeThatBroughtItInAndLinksToTheEntry) {
+  // silk-satin's fine grating loses more than a force JND on sim's 1000 Hz servo: its warning lies
+  // in the entry's file, not in the open text, which has three lines.
+  const std::string text = "material \"sheen\" {\n  like silk-satin\n}\n";
+  const Session s = run(frame(request(1, "initialize")) + frame(notification("textDocument/didOpen", doc(text))) +
+                        frame(request(2, "shutdown")) + frame(notification("exit")));
+  const auto published = s.diagnostics_published();
+  ASSERT_EQ(published.size(), 1u);
+  const std::string entry_file = std::string(SANDPAPER_SOURCE_DIR) + "/library/textiles/silk-satin.hmat";
+  json from_entry;
+  for (const auto& d : published[0]["diagnostics"])
+    if (d.contains("relatedInformation") && d["relatedInformation"][0]["location"]["uri"] == lsp::uri_of_path(entry_file))
+      from_entry = d;
+  ASSERT_TRUE(from_entry.is_object()) << "no diagnostic links to the entry's file: " << published[0].dump(2);
+  // Marked on `silk-satin` in `  like silk-satin` (line 1, characters 7-17), not on a line the text lacks.
+  EXPECT_EQ(from_entry["range"]["start"], (json{{"line", 1}, {"character", 7}})) << from_entry.dump(2);
+  EXPECT_EQ(from_entry["range"]["end"], (json{{"line", 1}, {"character", 17}})) << from_entry.dump(2);
+  EXPECT_NE(from_entry["message"].get<std::string>().find("silk-satin.hmat:"), std::string::npos) << from_entry["message"];
+  const json where = from_entry["relatedInformation"][0];
+  EXPECT_GT(where["location"]["range"]["start"]["line"].get<int>(), 0) << "the entry's own line, not its start";
+  EXPECT_NE(where["message"].get<std::string>().find("silk-satin"), std::string::npos) << where.dump();
+}
+
 TEST(Lsp, WorkspaceFilesGetTheWorkspaceCompilersDiagnostics) {
   const std::string uri = lsp::uri_of_path(std::string(SANDPAPER_SOURCE_DIR) + "/examples/workspace/lsp.hws");
   const std::string text = "workspace \"w\" {\n  patch \"roughness 0.4; grating period 2 mm\" at 0 mm, 0 mm size 400 mm\n}\n";

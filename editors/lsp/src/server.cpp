@@ -4,6 +4,7 @@
 #include <istream>
 #include <ostream>
 
+#include "sandpaper/compiler/brought_in.hpp"
 #include "sandpaper/compiler/workspace.hpp"
 #include "sandpaper/lsp/features.hpp"
 #include "sandpaper/lsp/jsonrpc.hpp"
@@ -152,11 +153,21 @@ json LanguageServer::diagnostics_of(const Document& d, const compiler::Diagnosti
   for (const auto& x : ds.all()) {
     const bool here = x.location.file && x.location.file->name == d.name && x.location.line > 0;
     std::string message = x.message;
-    // Problems in another file (a library entry this one builds on) are shown at the document's
-    // start, saying where they are.
-    if (!here && x.location.file) message = x.location.str() + ": " + message;
+    // A problem in another file (a library entry this one builds on) is marked where this text
+    // brought the entry in (its `like`, or the workspace patch), says where it lies, and links
+    // there as related information, which editors open on click.
+    json range = range_of(x.location, *d.source);
+    json related = json::array();
+    if (!here && x.location.file) {
+      message = x.location.str() + ": " + message;
+      const auto b = compiler::brought_in(x, d.source, compiler_.library());
+      if (b) range = range_of(b->at, *d.source);
+      related.push_back({{"location", {{"uri", uri_of_path(std::filesystem::absolute(x.location.file->name).string())},
+                                       {"range", range_of(x.location, *x.location.file)}}},
+                         {"message", b && !b->entry.empty() ? "in library entry " + b->entry : "here"}});
+    }
     if (!x.suggestion.empty()) message += "\nhelp: " + x.suggestion;
-    json item = {{"range", range_of(x.location, *d.source)},
+    json item = {{"range", std::move(range)},
                  {"severity", x.severity == compiler::Severity::Error ? 1 : x.severity == compiler::Severity::Warning ? 2 : 3},
                  {"code", x.code},
                  {"source", "sandpaper"},
@@ -166,7 +177,6 @@ json LanguageServer::diagnostics_of(const Document& d, const compiler::Diagnosti
       const auto hash = link.find('#');
       item["codeDescription"] = {{"href", uri_of_path(docs + "/" + link.substr(0, hash)) + link.substr(hash)}};
     }
-    json related = json::array();
     for (const auto& n : x.notes) {
       if (!n.location.file) continue;
       const std::string name = n.location.file->name;
