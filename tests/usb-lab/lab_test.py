@@ -210,6 +210,13 @@ def test_fault(fault: str, build: Path, out: Path) -> None:
     if fault in ("sigint", "stale"):
         check(contains_run(interrupt_out_reports(out / "reports.csv"), SHUTDOWN),
               "the firmware received the shutdown sequence: zero force, effects stopped and freed, actuators disabled")
+    if fault in ("unplug", "reset"):
+        # Linux 6.1's f_fs holds ffs->mutex while a read of ep0 waits for events, and unbinding
+        # takes it after queueing UNBIND: a reader that comes back to wait first blocks the unbind
+        # for good (CI saw `echo "" > UDC` hang). The lab device waits in poll() instead.
+        check(facts["ep0_read_waiters"] == 0,
+              f"no device thread was asleep in FunctionFS's ep0 read when the gadget was unbound "
+              f"({facts['ep0_read_waiters']} were)")
     if fault == "unplug":
         devices = (out / "devices.txt").read_text()
         check(facts["replug_devices_status"] == 0 and "1209:ffb0" in devices, "plugged in again, `devices` finds it")

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <linux/usb/functionfs.h>
+#include <poll.h>
 #include <pthread.h>
 #include <unistd.h>
 
@@ -158,12 +159,24 @@ void FunctionFsDevice::close_endpoints() {
   }
 }
 
+// Events are read only once poll() says some are queued. A read of ep0 that waits for events
+// sleeps holding FunctionFS's ffs->mutex (Linux 6.1 f_fs.c, ffs_ep0_read), and unbinding the
+// gadget takes that mutex after queueing UNBIND (functionfs_unbind). A reader that took UNBIND
+// and came back to wait before the unbinder reached the mutex held it against the unbinder for
+// good: `echo "" > UDC` never returned (usb-lab.fault-unplug, once, on a loaded CI machine).
+// poll() takes the mutex only for a moment.
 void FunctionFsDevice::ep0_loop() {
   usb_functionfs_event events[4];
   while (!stopping_.load()) {
+    pollfd ready{ep0_, POLLIN, 0};
+    const int polled = ::poll(&ready, 1, 100);
+    if (polled < 0 && errno != EINTR) return;
+    if (polled <= 0 || !(ready.revents & POLLIN)) continue;
     const ssize_t n = ::read(ep0_, events, sizeof events);
     if (n < 0) {
-      if (errno == EINTR || errno == EAGAIN) continue;
+      // EIDRM: the host began another control transfer (or left) before this one was answered;
+      // FunctionFS dropped it, and the next read gives the events that followed.
+      if (errno == EINTR || errno == EAGAIN || errno == EIDRM) continue;
       return;
     }
     for (ssize_t i = 0; i < n / static_cast<ssize_t>(sizeof events[0]); ++i) {
