@@ -163,8 +163,8 @@ void FunctionFsDevice::close_endpoints() {
 // sleeps holding FunctionFS's ffs->mutex (Linux 6.1 f_fs.c, ffs_ep0_read), and unbinding the
 // gadget takes that mutex after queueing UNBIND (functionfs_unbind). A reader that took UNBIND
 // and came back to wait before the unbinder reached the mutex held it against the unbinder for
-// good: `echo "" > UDC` never returned (usb-lab.fault-unplug, once, on a loaded CI machine).
-// poll() takes the mutex only for a moment.
+// good: `echo "" > UDC` never returned (docs/USB_PID.md, item 18). poll() takes the mutex only
+// for a moment.
 void FunctionFsDevice::ep0_loop() {
   usb_functionfs_event events[4];
   while (!stopping_.load()) {

@@ -36,7 +36,13 @@ elif [ "$FAULT" != stall ]; then
     fault_at=$LAB_NOW
     # A device thread asleep in FunctionFS's ep0 read holds the function's mutex, which the unbind
     # below must take: the kernel stacks say whether one is (functionfs_device.cpp, ep0_loop).
-    ep0_read_waiters=$(grep -l ffs_ep0_read /proc/"$FFB_DEVICE_PID"/task/*/stack 2>/dev/null | wc -l)
+    # They also show that the stacks were read at all: the ep0 thread waits in poll(), and a few
+    # looks catch it there even if one came while it was between two polls.
+    for _ in 1 2 3 4 5; do
+      ep0_read_waiters=$(grep -l ffs_ep0_read /proc/"$FFB_DEVICE_PID"/task/*/stack 2>/dev/null | wc -l)
+      poll_waiters=$(grep -l do_sys_poll /proc/"$FFB_DEVICE_PID"/task/*/stack 2>/dev/null | wc -l)
+      [ "$poll_waiters" -ge 1 ] && break
+    done
     lab_step "fault: $FAULT"
     case $FAULT in
       unplug) gadget_unbind ffboard ;;
@@ -83,7 +89,7 @@ cat > /out/fault.json <<JSON
 {"fault": "$FAULT", "run_status": $run_status, "exit_after_cs": ${exit_after_cs:-null},
  "driver_before": "$driver_before", "driver_during": "$driver_during", "driver_after": "$DRIVER_AFTER",
  "input_after": "$INPUT_AFTER", "replug_devices_status": ${replug_devices_status:-null},
- "ep0_read_waiters": ${ep0_read_waiters:-null},
+ "ep0_read_waiters": ${ep0_read_waiters:-null}, "poll_waiters": ${poll_waiters:-null},
  "replay_status": ${replay_status:-null}}
 JSON
 cat /out/fault.json
