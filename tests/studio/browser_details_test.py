@@ -29,6 +29,7 @@ sys.path.insert(0, os.path.join(here, "..", "catalog"))
 from cdp import Browser, chromium_for_test  # noqa: E402
 from studio_process import Studio  # noqa: E402
 from checklist import Checklist  # noqa: E402
+from editor_keys import new_line  # noqa: E402
 
 checks = Checklist()
 check = checks.check
@@ -180,7 +181,9 @@ def main():
         check(switch_to(b, "corduroy.hmat"), "(corduroy again)")
         click_at_text(b, "hill 50%")
         key(b, "End", 35)
-        b.send("Input.insertText", {"text": "\n  size 40 "})
+        typed, moved = new_line(b, "size 40 ")
+        check(typed is not None and typed[2] == "  size 40 ", f"Enter and `size 40 ` open an indented line: {typed}"
+              + (" (the caret stayed before the typed words; End put it after them)" if moved else ""))
         # The list is read in the same evaluation that finds it open: a compile's answer can close a list
         # that typing opened, between one look and the next. Closed with no question to the language
         # server in flight, it is asked for again with Ctrl-Space, as a user would; never while one is
