@@ -1,5 +1,8 @@
 // `sandpaper devices`: the USB HID PID force-feedback joysticks plugged in (docs/USB_PID.md), each
-// with the device calibration that knows its VID:PID, as the device factory would match them.
+// with the device calibration that knows its VID:PID, as the device factory would match them, and
+// the paths it can be played through (docs/DEVICES.md).
+#include <unistd.h>
+
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -8,6 +11,7 @@
 
 #include "cli.hpp"
 #include "sandpaper/runtime/devices/open_device.hpp"
+#include "sandpaper/runtime/usb/hidraw_transport.hpp"
 
 namespace sandpaper::cli {
 
@@ -41,16 +45,32 @@ int cmd_devices(const CommonOptions& o) {
     return kExitUsage;
   }
   bool denied = false;
+  const auto hidraw = runtime::usb::list_hidraw_nodes();
   for (const auto& f : search.found) {
     std::cout << fmt::format("{} bus {} address {}{}: {}; {}\n", runtime::usb_ids(f.info.vendor_id, f.info.product_id),
                              f.info.bus, f.info.address, f.info.product.empty() ? "" : " \"" + f.info.product + "\"",
                              descriptor_summary(f.info),
                              f.calibration ? "calibration " + f.calibration->name + " (" + f.calibration->file + ")"
                                            : std::string("no device calibration: cannot be played yet"));
-    if (f.info.open_status == UsbStatus::AccessDenied) {
-      denied = true;
-      std::cout << runtime::udev_help(f.info.vendor_id, f.info.product_id);
+    const bool usb_denied = f.info.open_status == UsbStatus::AccessDenied;
+    std::cout << "  through libusb: --device usb (usbhid detached while it plays)\n";
+    bool hidraw_usable = false, hidraw_denied = false;
+    for (const auto& n : hidraw)
+      if (n.usb && n.vendor_id == f.info.vendor_id && n.product_id == f.info.product_id) {
+        const bool may = ::access(n.path.c_str(), R_OK | W_OK) == 0;
+        (may ? hidraw_usable : hidraw_denied) = true;
+        std::cout << "  through hidraw: --device hidraw:" << n.path << " (the kernel's driver stays bound)\n";
+      }
+    // A path this user may not take is named with the rule that allows it; only a device that no
+    // path can reach makes the listing fail.
+    if (usb_denied || hidraw_denied) {
+      std::cout << "  this user may not play it through " << (usb_denied && hidraw_denied ? "libusb or hidraw" : usb_denied ? "libusb" : "hidraw")
+                << "; the line(s) for /etc/udev/rules.d/70-sandpaper.rules (docs/DEVICES.md):\n";
+      if (usb_denied) std::cout << "    " << runtime::udev_rule(f.info.vendor_id, f.info.product_id) << "\n";
+      if (hidraw_denied) std::cout << "    " << runtime::hidraw_udev_rule(f.info.vendor_id, f.info.product_id) << "\n";
+      std::cout << "  then run `sudo udevadm control --reload` and unplug and replug the device\n";
     }
+    if (usb_denied && !hidraw_usable) denied = true;
   }
   return denied ? kExitUsage : kExitOk;
 }

@@ -239,8 +239,11 @@ int prepare_play_device(const calibration::CalibrationSet& set, const std::strin
     if (const int rc = load_replay(r.device, r.rate_hz, positions, replay_duration); rc != kExitOk) return rc;
     r.duration_s = replay_duration;
   }
-  // Again, now that an emulated device's rate and a replay's length are known.
+  // Again, now that an emulated device's rate and a replay's length are known; a joystick found on
+  // the bus keeps the path it was asked through.
+  const std::string through = std::string(choice.family) == "hidraw" ? (spec.through.empty() ? device : spec.through) : "";
   spec = device_spec_of(r, choice.calibration);
+  spec.through = through;
   spec.replay_positions_m = std::move(positions);
   if (choice.real) {
     // A real joystick: its servo rates are checked as the loop starts.
@@ -386,7 +389,8 @@ int play_on_usb(const schema::PatchProgram& program, runtime::OpenedDevice& open
     runtime::PatchEvaluator evaluator(program);
     const std::string usb_ids = runtime::usb_ids(info.vendor_id, info.product_id);
     if (!r.json)
-      std::cout << fmt::format("playing {} on {} ({}): {:g} Hz {}\n", program.name, device_name, usb_ids, r.rate_hz,
+      std::cout << fmt::format("playing {} on {} ({}{}): {:g} Hz {}\n", program.name, device_name, usb_ids,
+                               opened.node.empty() ? std::string() : " through " + opened.node, r.rate_hz,
                                r.duration_s == 0 ? std::string("until Ctrl-C") : fmt::format("for {:g} s", r.duration_s))
                 << std::flush;
     const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
@@ -410,7 +414,9 @@ int play_on_usb(const schema::PatchProgram& program, runtime::OpenedDevice& open
     if (r.json) {
       nlohmann::json j{{"material", program.name},
                        {"device", device_name},
-                       {"usb", {{"id", usb_ids}, {"bus", info.bus}, {"address", info.address}}},
+                       {"usb", opened.node.empty()
+                                   ? nlohmann::json{{"id", usb_ids}, {"bus", info.bus}, {"address", info.address}, {"transport", "libusb"}}
+                                   : nlohmann::json{{"id", usb_ids}, {"node", opened.node}, {"transport", "hidraw"}}},
                        {"ticks", rep.ticks},
                        {"rate_hz", rep.rate_hz},
                        {"rate_hz_target", r.rate_hz},

@@ -384,6 +384,14 @@ expect_exit 2 "run --device usb --hand-model dynamic" -- "$sp" run -e corduroy -
 has "$tmp/err" 'a USB joystick is moved by the hand holding it' "a USB run refuses a simulated hand"
 expect_exit 2 "run on a device named by its USB calibration, none present" -- "$sp" run -e corduroy --device openffboard-2axis --duration 0.1
 has "$tmp/err" 'no USB force-feedback device found' "a device with a [usb] table is looked for on USB"
+# hidraw (docs/DEVICES.md): found among /sys/class/hidraw, a node named by path refused by name.
+expect_exit 2 "run --device hidraw, none present" -- "$sp" run -e corduroy --device hidraw --duration 0.1
+has "$tmp/err" 'run --device hidraw: no hidraw node of a known force-feedback device' "run --device hidraw says why"
+has "$tmp/err" 'known devices: openffboard-2axis \(1209:ffb0\)' "and names the known IDs"
+expect_exit 2 "run --device hidraw:PATH, no such node" -- "$sp" run -e corduroy --device hidraw:/dev/hidraw-none --duration 0.1
+has "$tmp/err" 'no hidraw node /dev/hidraw-none' "a hidraw path that is no node is named"
+expect_exit 2 "run --device hidraw --virtual-clock" -- "$sp" run -e corduroy --device hidraw --virtual-clock --duration 0.1
+has "$tmp/err" '--virtual-clock plays the simulated joystick' "a hidraw run runs in real time"
 # Stopping: SIGINT to a running real-time run stops it within a tick, exit 0, the cause reported.
 # The signal goes once the process has its handlers (SigCgt in /proc, SIGINT and SIGTERM bits), not
 # after a guessed sleep: under load start-up alone can take longer than any sleep.

@@ -171,9 +171,11 @@ FAULT_CAUSE = {"unplug": "device_unplugged", "reset": "device_unplugged", "stale
                "sigint": "stop_requested"}
 
 
-def test_fault(fault: str, build: Path, out: Path) -> None:
+def test_fault(fault: str, build: Path, out: Path, device: str = "usb") -> None:
+    """A fault while a run plays through `device`: usb (libusb, usbhid detached) or hidraw (usbhid
+    left bound). The same stop cause, zero force, no hang and the device back on either path."""
     r = scenario.run("fault", build, out, params={
-        "FAULT": fault, "MATERIAL": str(REPO / "examples/corduroy.hmat"), "HAND": "scan",
+        "RUN_DEVICE": device, "FAULT": fault, "MATERIAL": str(REPO / "examples/corduroy.hmat"), "HAND": "scan",
         "AT_X_MM": "0", "AT_Y_MM": "0", "SPEED_MM_S": "10", "EXTENT_MM": "40", "REPLAY_SECONDS": "1",
         "SECONDS": "2" if fault == "late" else "30",
         "STALL_REPORT_ID": "18" if fault == "late" else "17", "LATE_MS": str(LATE_MS)})
@@ -193,7 +195,11 @@ def test_fault(fault: str, build: Path, out: Path) -> None:
         return
     text = (out / "run.json").read_text()
     run = json.loads(text) if text.strip() else {}  # empty when the run could not open
-    check(facts["driver_during"] == "usbfs", f"the run had detached usbhid (during: {facts['driver_during']!r})")
+    if device == "usb":
+        check(facts["driver_during"] == "usbfs", f"the run had detached usbhid (during: {facts['driver_during']!r})")
+    else:
+        check(facts["driver_during"] == "usbhid" and run.get("usb", {}).get("transport") == "hidraw",
+              f"the run played through hidraw with usbhid bound (during: {facts['driver_during']!r}, {run.get('usb')})")
     if fault == "late":
         check(facts["run_status"] == 0 and run["stop_cause"] == "completed",
               f"a Block Load answered {LATE_MS} ms late still opens, and the run plays to its end "
@@ -243,42 +249,80 @@ def test_play(build: Path, out: Path) -> None:
               and play["input_after"] != "",
               f"{speed} mm/s: usbhid detached for the run and attached again, input device back "
               f"({play['driver_before']} -> {play['driver_during']} -> {play['driver_after']}, {play['input_after']!r})")
-        m = measure.measure(run, measure.read_trace(where / "trace.csv"), measure.read_reports(where / "reports.csv"),
-                            measure.read_torques(where / "torque.csv"), command=COMMAND, torque_N=HANDLE_FORCE_N,
-                            fade_in_s=FADE_IN_S)
-        position_hz, command_hz = measure.rates_on_the_firmwares_clock(m, speed)
-        predicted = measure.predicted_device_peak(build / "bin/sandpaper", REPO / "examples/corduroy.hmat",
-                                                  "openffboard-2axis", speed, position_hz, command_hz)
-        missed, dropped = steps_missed(where), timer_dropped(where)
-        print(f"{speed} mm/s: " + json.dumps({**{k: m[k] for k in (
-            "received_hz", "updates_hz", "latency_ms", "firmware_peak_N", "ridges", "commanded_peak_N",
-            "position_rate_hz", "command_rate_hz", "command_median_gap_ms", "rms_error_N", "unmatched_reports", "hand_speed_m_s")},
-            "timer_dropped": dropped, "steps_missed": missed,
-            "predicted": predicted}), flush=True)
-        # The "make it good" figure: explain's prediction through the device's chain (positions to
-        # the ticks, commands over the bus at the rates this run measured, on the firmware's clock;
-        # the firmware's update rate and damper from the device file's [firmware]).
-        # A mean over fewer than 20 ridges is not a measurement, and a starved guest's is of the host's
-        # load (in one CI run: positions at 115-121 Hz, not ~750, and 11 % off at 50 mm/s).
-        if dropped > STARVED_TIMER_DROPPED or missed > STARVED_STEPS_MISSED or m["ridges"] < 20:
-            print(f"{speed} mm/s: NOT COMPARED: the guest was starved (the firmware's timer dropped "
-                  f"{100 * dropped:.1f} % of its updates, {100 * missed:.1f} % of its periods ran no control step; "
-                  f"positions at {m['position_rate_hz']:.0f} Hz; "
-                  f"{m['ridges']} ridges in the steady play)", flush=True)
-        else:
-            check(m["firmware_peak_N"] is not None
-                  and abs(m["firmware_peak_N"] - predicted["device_peak_N"]) <= 0.10 * predicted["device_peak_N"],
-                  f"{speed} mm/s: the firmware's force, {m['firmware_peak_N']} N over {m['ridges']} ridges, is within "
-                  f"10 % of explain's prediction for the device, {predicted['device_peak_N']:.4g} N")
-        check(m["received_hz"][0] > 0 and m["updates_hz"][0] > 0,
-              f"{speed} mm/s: the firmware received the x forces and applied them")
-        # A grating along x has no y force: an axis whose command never changes takes no frames.
-        y_constant = len({COMMAND(1, f[4]) for f in measure.read_trace(where / "trace.csv")}) == 1
-        if y_constant:
-            check(m["received_hz"][1] == 0, f"{speed} mm/s: y, whose command never changed, was not sent again")
-        check(m["unmatched_reports"] == [0, 0],
-              f"{speed} mm/s: every magnitude the firmware received is one a tick computed through the device "
-              f"file's scale (unmatched: {m['unmatched_reports']})")
+        check_measured(build, where, speed, run)
+
+
+def check_measured(build: Path, where: Path, speed: int, run: dict) -> None:
+    """What every play in the lab must show, whichever path it took: the firmware's force against
+    explain's prediction for the device (unless the guest was starved), and every magnitude the
+    firmware received one a tick computed."""
+    m = measure.measure(run, measure.read_trace(where / "trace.csv"), measure.read_reports(where / "reports.csv"),
+                        measure.read_torques(where / "torque.csv"), command=COMMAND, torque_N=HANDLE_FORCE_N,
+                        fade_in_s=FADE_IN_S)
+    position_hz, command_hz = measure.rates_on_the_firmwares_clock(m, speed)
+    predicted = measure.predicted_device_peak(build / "bin/sandpaper", REPO / "examples/corduroy.hmat",
+                                              "openffboard-2axis", speed, position_hz, command_hz)
+    missed, dropped = steps_missed(where), timer_dropped(where)
+    print(f"{speed} mm/s: " + json.dumps({**{k: m[k] for k in (
+        "received_hz", "updates_hz", "latency_ms", "firmware_peak_N", "ridges", "commanded_peak_N",
+        "position_rate_hz", "command_rate_hz", "command_median_gap_ms", "rms_error_N", "unmatched_reports", "hand_speed_m_s")},
+        "timer_dropped": dropped, "steps_missed": missed,
+        "predicted": predicted}), flush=True)
+    # The "make it good" figure: explain's prediction through the device's chain (positions to
+    # the ticks, commands over the bus at the rates this run measured, on the firmware's clock;
+    # the firmware's update rate and damper from the device file's [firmware]).
+    # A mean over fewer than 20 ridges is not a measurement, and a starved guest's is of the host's
+    # load (in one CI run: positions at 115-121 Hz, not ~750, and 11 % off at 50 mm/s).
+    if dropped > STARVED_TIMER_DROPPED or missed > STARVED_STEPS_MISSED or m["ridges"] < 20:
+        print(f"{speed} mm/s: NOT COMPARED: the guest was starved (the firmware's timer dropped "
+              f"{100 * dropped:.1f} % of its updates, {100 * missed:.1f} % of its periods ran no control step; "
+              f"positions at {m['position_rate_hz']:.0f} Hz; "
+              f"{m['ridges']} ridges in the steady play)", flush=True)
+    else:
+        check(m["firmware_peak_N"] is not None
+              and abs(m["firmware_peak_N"] - predicted["device_peak_N"]) <= 0.10 * predicted["device_peak_N"],
+              f"{speed} mm/s: the firmware's force, {m['firmware_peak_N']} N over {m['ridges']} ridges, is within "
+              f"10 % of explain's prediction for the device, {predicted['device_peak_N']:.4g} N")
+    check(m["received_hz"][0] > 0 and m["updates_hz"][0] > 0,
+          f"{speed} mm/s: the firmware received the x forces and applied them")
+    # A grating along x has no y force: an axis whose command never changes takes no frames.
+    y_constant = len({COMMAND(1, f[4]) for f in measure.read_trace(where / "trace.csv")}) == 1
+    if y_constant:
+        check(m["received_hz"][1] == 0, f"{speed} mm/s: y, whose command never changed, was not sent again")
+    check(m["unmatched_reports"] == [0, 0],
+          f"{speed} mm/s: every magnitude the firmware received is one a tick computed through the device "
+          f"file's scale (unmatched: {m['unmatched_reports']})")
+
+
+def test_hidraw(build: Path, out: Path) -> None:
+    """The hidraw path (docs/DEVICES.md): corduroy played through `--device hidraw:NODE` by a user
+    without root, at 50 and 100 mm/s. usbhid stays bound and the joystick's input device stays there
+    while Sandpaper plays; the firmware's force is explain's, as on the libusb path."""
+    for speed in (50, 100):
+        where = out / f"{speed}mm_s"
+        r = scenario.run("hidraw", build, where, params={
+            "MATERIAL": str(REPO / "examples/corduroy.hmat"), "SECONDS": "5", "HAND": "scan",
+            "SPEED_MM_S": str(speed), "EXTENT_MM": "40"})
+        check(r.status == 0, f"{speed} mm/s: the scenario ran to its end (status {r.status})")
+        if r.status != 0:
+            continue
+        h = json.loads((where / "hidraw.json").read_text())
+        listed = (where / "devices.txt").read_text()
+        check(f"through hidraw: --device hidraw:{h['node']}" in listed and h["devices_status"] == 0
+              and "may not play it through libusb;" in listed,
+              f"{speed} mm/s: `sandpaper devices`, run by the same user, names the hidraw path, says libusb needs "
+              f"a rule this user lacks, and succeeds (status {h['devices_status']}): {listed.strip()!r}")
+        run = json.loads((where / "run.json").read_text())
+        check(h["run_status"] == 0 and run["stop_cause"] == "completed",
+              f"{speed} mm/s: played to its end as uid 1000 (status {h['run_status']}, stop cause {run['stop_cause']})")
+        check(run["usb"].get("transport") == "hidraw" and run["usb"].get("node") == h["node"],
+              f"{speed} mm/s: through {h['node']}: {run['usb']}")
+        check((h["driver_before"], h["driver_during"], h["driver_after"]) == ("usbhid", "usbhid", "usbhid")
+              and h["input_during"] != "" and h["input_during"] == h["input_before"],
+              f"{speed} mm/s: usbhid stayed bound and the input device stayed ({h['driver_before']} -> "
+              f"{h['driver_during']} -> {h['driver_after']}; {h['input_before']!r} -> {h['input_during']!r}); "
+              f"hid-pidff bound: {h['pidff_bound']}")
+        check_measured(build, where, speed, run)
 
 
 def test_studio(build: Path, out: Path) -> None:
@@ -377,10 +421,13 @@ def test_experiment(build: Path, out: Path) -> None:
           f"strongest stimulus {strongest:.2f} N)")
 
 
-TESTS = {"enumerate": test_enumerate, "direction": test_direction, "play": test_play, "studio": test_studio,
+TESTS = {"enumerate": test_enumerate, "direction": test_direction, "play": test_play, "hidraw": test_hidraw,
+         "studio": test_studio,
          "experiment": test_experiment}
 for _fault in ("unplug", "reset", "stale", "sigint", "stall", "late"):
     TESTS[f"fault-{_fault}"] = (lambda f: lambda build, out: test_fault(f, build, out))(_fault)
+for _fault in ("unplug", "reset", "stale", "sigint"):
+    TESTS[f"hidraw-{_fault}"] = (lambda f: lambda build, out: test_fault(f, build, out, "hidraw"))(_fault)
 
 
 def main() -> int:

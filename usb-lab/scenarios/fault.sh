@@ -1,4 +1,5 @@
-# Plays MATERIAL on the emulated OpenFFBoard with `sandpaper run --device usb` (scripted hand: HAND
+# Plays MATERIAL on the emulated OpenFFBoard with `sandpaper run --device RUN_DEVICE` (usb, the
+# default, or hidraw: usbhid stays bound) (scripted hand: HAND
 # at AT_X_MM AT_Y_MM, SPEED_MM_S, EXTENT_MM) and injects FAULT once the run streams its forces (the
 # device's "streaming" line):
 #   unplug  the gadget leaves the bus (UDC unbound), then is plugged in again: `devices` must find
@@ -22,7 +23,8 @@ stall=
 ffboard_plug --hand "$HAND" --at "$AT_X_MM" "$AT_Y_MM" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" $stall || exit 1
 driver_before=$(ffboard_interface_driver)
 
-"$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" $LAB_RUN_GUARDS --json \
+RUN_DEVICE=${RUN_DEVICE:-usb}
+"$SANDPAPER" run "$MATERIAL" --device "$RUN_DEVICE" --duration "$SECONDS" $LAB_RUN_GUARDS --json \
   > /out/run.json 2> /out/run.err &
 run_pid=$!
 driver_during=
@@ -73,7 +75,7 @@ if [ "$FAULT" = unplug ]; then
   replug_devices_status=$?
   lab_step "devices exited with status $replug_devices_status; a second run"
   sed 's/^/devices: /' /out/devices.txt
-  "$SANDPAPER" run "$MATERIAL" --device usb --duration "$REPLAY_SECONDS" $LAB_RUN_GUARDS --json \
+  "$SANDPAPER" run "$MATERIAL" --device "$RUN_DEVICE" --duration "$REPLAY_SECONDS" $LAB_RUN_GUARDS --json \
     > /out/replay.json 2> /out/replay.err
   replay_status=$?
   lab_step "the second run exited with status $replay_status"
@@ -86,7 +88,7 @@ lab_step "stopping the device"
 ffboard_stop
 sed 's/^/run: /' /out/run.err
 cat > /out/fault.json <<JSON
-{"fault": "$FAULT", "run_status": $run_status, "exit_after_cs": ${exit_after_cs:-null},
+{"fault": "$FAULT", "device": "$RUN_DEVICE", "run_status": $run_status, "exit_after_cs": ${exit_after_cs:-null},
  "driver_before": "$driver_before", "driver_during": "$driver_during", "driver_after": "$DRIVER_AFTER",
  "input_after": "$INPUT_AFTER", "replug_devices_status": ${replug_devices_status:-null},
  "ep0_read_waiters": ${ep0_read_waiters:-null}, "poll_waiters": ${poll_waiters:-null},

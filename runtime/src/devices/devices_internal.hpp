@@ -15,4 +15,14 @@ OpenedDevice open_usb(const calibration::CalibrationSet& set, DeviceSpec& spec, 
 std::string usb_calibration(const calibration::CalibrationSet& set, const DeviceSpec& spec,
                             const calibration::DeviceCalibration* cal);
 
+// A device a person moves refuses the simulated hands (a replay, the dynamic hand) and the virtual clock.
+void refuse_simulated_hands(const DeviceSpec& spec);
+
+// HID PID joysticks through hidraw, the kernel's driver left bound: `hidraw` or `hidraw:PATH`.
+bool is_hidraw_device(const std::string& device);
+bool serves_hidraw(const DeviceSpec& spec, const calibration::DeviceCalibration* cal);
+OpenedDevice open_hidraw(const calibration::CalibrationSet& set, DeviceSpec& spec, const calibration::DeviceCalibration* cal);
+std::string hidraw_calibration(const calibration::CalibrationSet& set, const DeviceSpec& spec,
+                               const calibration::DeviceCalibration* cal);
+
 }  // namespace sandpaper::runtime

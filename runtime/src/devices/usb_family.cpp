@@ -89,6 +89,9 @@ UsbCandidate choose_usb(const calibration::CalibrationSet& set, const DeviceCali
                                           "known ID)" + (bus.empty() ? "" : "\n  " + bus) + "\n  " + known);
 }
 
+
+}  // namespace
+
 void refuse_simulated_hands(const DeviceSpec& spec) {
   if (spec.virtual_clock)
     throw DeviceOpenError(Cause::WrongOptions, "--virtual-clock plays the simulated joystick; a USB joystick runs in real time");
@@ -96,8 +99,6 @@ void refuse_simulated_hands(const DeviceSpec& spec) {
     throw DeviceOpenError(Cause::WrongOptions,
                           "--replay and --hand-model move the simulated joystick; a USB joystick is moved by the hand holding it");
 }
-
-}  // namespace
 
 std::string usb_calibration(const calibration::CalibrationSet& set, const DeviceSpec& spec, const DeviceCalibration* wanted) {
   refuse_simulated_hands(spec);

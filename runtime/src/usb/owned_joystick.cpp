@@ -2,7 +2,7 @@
 
 namespace sandpaper::runtime::usb {
 
-OwnedHidPidJoystick::OwnedHidPidJoystick(std::unique_ptr<LibusbTransport> transport,
+OwnedHidPidJoystick::OwnedHidPidJoystick(std::unique_ptr<UsbTransport> transport,
                                          const calibration::DeviceCalibration& calibration,
                                          const HidPidOptions& options)
     : transport_(std::move(transport)), joystick_(*transport_, calibration, options) {}

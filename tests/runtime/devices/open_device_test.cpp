@@ -212,11 +212,28 @@ TEST(OpenDevice, UsbOpensAKnownJoystickOrNamesTheKnownOnes) {
   }
 }
 
+TEST(OpenDevice, HidrawIsFoundOnTheBusAndRefusesSimulatedHands) {
+  DeviceSpec clock = spec_for("hidraw");
+  clock.virtual_clock = true;
+  std::string message;
+  EXPECT_EQ(refusal(shipped(), clock, &message), Cause::WrongOptions);
+  EXPECT_NE(message.find("real time"), std::string::npos) << message;
+  DeviceSpec dynamic = spec_for("hidraw:/dev/hidraw0");
+  dynamic.hand = SimulatedHand::Dynamic;
+  EXPECT_EQ(refusal(shipped(), dynamic), Cause::WrongOptions);
+  // A path that is no hidraw node is named, not taken for a calibration's name.
+  EXPECT_EQ(refusal(shipped(), spec_for("hidraw:/nonexistent/hidraw99"), &message), Cause::NoUsb);
+  EXPECT_NE(message.find("no hidraw node /nonexistent/hidraw99"), std::string::npos) << message;
+}
+
 TEST(OpenDevice, TheUdevRuleNamesTheDeviceInLowerCaseHex) {
   EXPECT_EQ(usb_ids(0x1209, 0xFFB0), "1209:ffb0");
   EXPECT_EQ(udev_rule(0x1209, 0xFFB0),
             "SUBSYSTEM==\"usb\", ATTR{idVendor}==\"1209\", ATTR{idProduct}==\"ffb0\", MODE=\"0660\", TAG+=\"uaccess\"");
   EXPECT_NE(udev_help(0x1209, 0xFFB0).find("/etc/udev/rules.d/70-sandpaper.rules"), std::string::npos);
+  // hidraw: the node of any interface of the USB device (ATTRS walks up to it), for the seat's user.
+  EXPECT_EQ(hidraw_udev_rule(0x1209, 0xFFB0),
+            "KERNEL==\"hidraw*\", ATTRS{idVendor}==\"1209\", ATTRS{idProduct}==\"ffb0\", TAG+=\"uaccess\"");
   EXPECT_EQ(known_usb_devices(shipped()), "openffboard-2axis (1209:ffb0)");
 }
 

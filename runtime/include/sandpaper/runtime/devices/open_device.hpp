@@ -39,8 +39,9 @@ enum class SimulatedHand {
 
 // Units: SI.
 struct DeviceSpec {
-  // A device calibration's name ("sim", "sandpaper-1995", "openffboard-2axis"), or "usb": the first
-  // USB joystick plugged in whose calibration is known.
+  // A device calibration's name ("sim", "sandpaper-1995", "openffboard-2axis"); "usb": the first
+  // USB joystick plugged in whose calibration is known, through libusb (usbhid detached while it plays);
+  // "hidraw" or "hidraw:PATH": the first such joystick's hidraw node, or that node, the kernel's driver left bound.
   std::string device = "sim";
   // Play the named calibration's device on the simulated joystick (its limits), not through its driver.
   bool simulate = false;
@@ -53,6 +54,9 @@ struct DeviceSpec {
   std::size_t record_ticks = 0;                // ticks a simulated device keeps for records()
   double watchdog_s = 0;    // a real device: no position, or no force taken, this long stops the loop (0: its file's)
   bool virtual_clock = false;  // the run will be on simulated time: only simulated devices can follow it
+  // How a calibrated joystick named by `device` is reached: "" (libusb), "hidraw" or "hidraw:PATH".
+  // Set when `device` was "hidraw..." and has been resolved to the calibration it found.
+  std::string through;
 };
 
 // A historical device's quantisation and table sampling ([emulation] in its calibration file).
@@ -63,13 +67,14 @@ struct Emulation {
 
 struct OpenedDevice {
   std::unique_ptr<Device> device;
-  const char* family = "";            // "simulated", "emulated" or "usb": the factory entry that opened it
+  const char* family = "";            // "simulated", "emulated", "usb" or "hidraw": the factory entry that opened it
   std::string calibration;            // the device calibration programs must be compiled for
   std::string description;            // "position-controlled hand", "openffboard-2axis (1209:ffb0) on USB bus 1 address 3"
   RecordingDevice* recording = nullptr;  // simulated and emulated devices: their tick records
   DummyJoystick* pointer = nullptr;      // SimulatedHand::Pointer: where the page moves the handle
   std::optional<Emulation> emulation;    // an emulated device's quantisation
   std::optional<usb::UsbHidDeviceInfo> usb;  // a USB device: where it is
+  std::string node;                   // a device played through hidraw: its node ("/dev/hidraw0"); else empty
   usb::HidPidJoystick* usb_joystick = nullptr;  // ... and its driver, for fault_status() after a run
   bool real = false;                  // a device a person moves (USB), not a simulated one
 };
@@ -128,8 +133,10 @@ UsbSearch find_usb_devices(const calibration::CalibrationSet& set);
 std::string usb_ids(int vendor, int product);
 // "openffboard-2axis (1209:ffb0)", comma-separated, or "none": the USB devices `set` knows.
 std::string known_usb_devices(const calibration::CalibrationSet& set);
-// The udev rule line that gives the logged-in user the device.
+// The udev rule line that gives the logged-in user the device (through libusb).
 std::string udev_rule(int vendor, int product);
+// The udev rule line that gives the logged-in user the device's hidraw nodes.
+std::string hidraw_udev_rule(int vendor, int product);
 // What to do about a device this user may not open: the rule, where it goes, how to load it (lines).
 std::string udev_help(int vendor, int product);
 // Why none was found, when this system has no USB bus at all (a container or a VM without passthrough); else "".

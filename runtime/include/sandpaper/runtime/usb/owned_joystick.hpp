@@ -1,7 +1,7 @@
 #pragma once
-// A USB HID PID joystick together with the libusb transport it talks through, as one Device for
+// A USB HID PID joystick together with the transport it talks through (libusb or hidraw), as one Device for
 // callers that keep a device for as long as they like (the studio, sandpaper::Player::usb): the
-// joystick is given back (zero force, effects freed, kernel driver reattached) before libusb closes.
+// joystick is given back (zero force, effects freed, kernel driver reattached) before the transport closes.
 #include <memory>
 
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
@@ -12,7 +12,7 @@ namespace sandpaper::runtime::usb {
 class OwnedHidPidJoystick final : public Device {
  public:
   // Opens the joystick on `transport` (HidPidJoystick's constructor: throws HidPidError).
-  OwnedHidPidJoystick(std::unique_ptr<LibusbTransport> transport, const calibration::DeviceCalibration& calibration,
+  OwnedHidPidJoystick(std::unique_ptr<UsbTransport> transport, const calibration::DeviceCalibration& calibration,
                       const HidPidOptions& options = {});
   ~OwnedHidPidJoystick() override;
 
@@ -28,7 +28,7 @@ class OwnedHidPidJoystick final : public Device {
   HidPidJoystick& joystick() noexcept { return joystick_; }
 
  private:
-  std::unique_ptr<LibusbTransport> transport_;  // declared first: outlives the joystick
+  std::unique_ptr<UsbTransport> transport_;  // declared first: outlives the joystick
   HidPidJoystick joystick_;
 };
 
