@@ -231,16 +231,21 @@ def test_fault(fault: str, build: Path, out: Path, device: str = "usb") -> None:
               f"and a new run plays to its end (stop cause {replay['stop_cause']})")
 
 
+def scan_corduroy(name: str, build: Path, where: Path, speed: int) -> bool:
+    """Scenario `name` playing corduroy for 5 s with a hand scanning 40 mm at `speed` mm/s; whether it ran."""
+    r = scenario.run(name, build, where, params={
+        "MATERIAL": str(REPO / "examples/corduroy.hmat"), "SECONDS": "5", "HAND": "scan",
+        "SPEED_MM_S": str(speed), "EXTENT_MM": "40"})
+    check(r.status == 0, f"{speed} mm/s: the scenario ran to its end (status {r.status})")
+    return r.status == 0
+
+
 def test_play(build: Path, out: Path) -> None:
     """Lab test 3 (and 2): corduroy played for 5 s at 20, 50, 100 and 200 mm/s with a scanning
     hand. Checks what can be wrong, prints what is measured (docs/USB_PID.md "In the lab")."""
     for speed in (20, 50, 100, 200):
         where = out / f"{speed}mm_s"
-        r = scenario.run("play", build, where, params={
-            "MATERIAL": str(REPO / "examples/corduroy.hmat"), "SECONDS": "5", "HAND": "scan",
-            "SPEED_MM_S": str(speed), "EXTENT_MM": "40"})
-        check(r.status == 0, f"{speed} mm/s: the scenario ran to its end (status {r.status})")
-        if r.status != 0:
+        if not scan_corduroy("play", build, where, speed):
             continue
         run = json.loads((where / "run.json").read_text())
         play = json.loads((where / "play.json").read_text())
@@ -300,11 +305,7 @@ def test_hidraw(build: Path, out: Path) -> None:
     while Sandpaper plays; the firmware's force is explain's, as on the libusb path."""
     for speed in (50, 100):
         where = out / f"{speed}mm_s"
-        r = scenario.run("hidraw", build, where, params={
-            "MATERIAL": str(REPO / "examples/corduroy.hmat"), "SECONDS": "5", "HAND": "scan",
-            "SPEED_MM_S": str(speed), "EXTENT_MM": "40"})
-        check(r.status == 0, f"{speed} mm/s: the scenario ran to its end (status {r.status})")
-        if r.status != 0:
+        if not scan_corduroy("hidraw", build, where, speed):
             continue
         h = json.loads((where / "hidraw.json").read_text())
         listed = (where / "devices.txt").read_text()

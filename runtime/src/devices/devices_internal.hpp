@@ -1,6 +1,10 @@
 #pragma once
 // The factory entries that live in files of their own.
+#include <memory>
+#include <string>
+
 #include "sandpaper/runtime/devices/open_device.hpp"
+#include "sandpaper/runtime/usb/transport.hpp"
 
 namespace sandpaper::runtime {
 
@@ -14,6 +18,11 @@ OpenedDevice open_usb(const calibration::CalibrationSet& set, DeviceSpec& spec, 
 // The calibration of the joystick open_usb would open (searching USB, opening nothing).
 std::string usb_calibration(const calibration::CalibrationSet& set, const DeviceSpec& spec,
                             const calibration::DeviceCalibration* cal);
+
+// The HID PID driver opened on `transport` for `cal`, as the usb and hidraw entries open it: `what`
+// names the device in an error ("1209:ffb0 (openffboard-2axis)"), `access_help` follows an access error.
+OpenedDevice open_hid_pid(std::unique_ptr<usb::UsbTransport> transport, const calibration::DeviceCalibration& cal,
+                          const DeviceSpec& spec, const std::string& what, const std::string& access_help);
 
 // A device a person moves refuses the simulated hands (a replay, the dynamic hand) and the virtual clock.
 void refuse_simulated_hands(const DeviceSpec& spec);

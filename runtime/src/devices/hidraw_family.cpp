@@ -5,7 +5,6 @@
 
 #include "devices_internal.hpp"
 #include "sandpaper/runtime/usb/hidraw_transport.hpp"
-#include "sandpaper/runtime/usb/owned_joystick.hpp"
 
 namespace sandpaper::runtime {
 
@@ -109,19 +108,7 @@ OpenedDevice open_hidraw(const calibration::CalibrationSet& set, DeviceSpec& spe
     throw DeviceOpenError(opened == UsbStatus::AccessDenied ? Cause::AccessDenied : Cause::NoUsb,
                           "cannot open " + node.path + " (" + found.name + ", " + ids + "): " + message,
                           opened == UsbStatus::AccessDenied ? help : "");
-  usb::HidPidOptions options;
-  options.stale_limit_s = spec.watchdog_s;
-  OpenedDevice out;
-  try {
-    auto joystick = std::make_unique<usb::OwnedHidPidJoystick>(std::move(transport), found, options);
-    out.usb_joystick = &joystick->joystick();
-    out.device = std::move(joystick);
-  } catch (const usb::HidPidError& e) {
-    throw DeviceOpenError(e.status == UsbStatus::AccessDenied ? Cause::AccessDenied : Cause::Refused,
-                          "cannot play on " + node.path + " (" + found.name + ", " + ids + "): " + e.what(),
-                          e.status == UsbStatus::AccessDenied ? help : "");
-  }
-  out.calibration = found.name;
+  OpenedDevice out = open_hid_pid(std::move(transport), found, spec, node.path + " (" + found.name + ", " + ids + ")", help);
   out.description = found.name + " (" + ids + ") through " + node.path + ", the kernel's driver left bound";
   usb::UsbHidDeviceInfo info;
   info.vendor_id = node.vendor_id;

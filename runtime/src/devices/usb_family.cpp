@@ -100,6 +100,23 @@ void refuse_simulated_hands(const DeviceSpec& spec) {
                           "--replay and --hand-model move the simulated joystick; a USB joystick is moved by the hand holding it");
 }
 
+OpenedDevice open_hid_pid(std::unique_ptr<usb::UsbTransport> transport, const DeviceCalibration& cal, const DeviceSpec& spec,
+                          const std::string& what, const std::string& access_help) {
+  usb::HidPidOptions options;
+  options.stale_limit_s = spec.watchdog_s;
+  OpenedDevice out;
+  try {
+    auto joystick = std::make_unique<usb::OwnedHidPidJoystick>(std::move(transport), cal, options);
+    out.usb_joystick = &joystick->joystick();
+    out.device = std::move(joystick);
+  } catch (const usb::HidPidError& e) {
+    throw DeviceOpenError(e.status == UsbStatus::AccessDenied ? Cause::AccessDenied : Cause::Refused,
+                          "cannot play on " + what + ": " + e.what(), e.status == UsbStatus::AccessDenied ? access_help : "");
+  }
+  out.calibration = cal.name;
+  return out;
+}
+
 std::string usb_calibration(const calibration::CalibrationSet& set, const DeviceSpec& spec, const DeviceCalibration* wanted) {
   refuse_simulated_hands(spec);
   return choose_usb(set, wanted).calibration->name;
@@ -118,19 +135,8 @@ OpenedDevice open_usb(const calibration::CalibrationSet& set, DeviceSpec& spec, 
     throw DeviceOpenError(opened == UsbStatus::AccessDenied ? Cause::AccessDenied : Cause::NoUsb,
                           "cannot open " + ids + " (" + cal.name + "): " + message,
                           opened == UsbStatus::AccessDenied ? udev_help(info.vendor_id, info.product_id) : "");
-  usb::HidPidOptions options;
-  options.stale_limit_s = spec.watchdog_s;
-  OpenedDevice out;
-  try {
-    auto joystick = std::make_unique<usb::OwnedHidPidJoystick>(std::move(transport), cal, options);
-    out.usb_joystick = &joystick->joystick();
-    out.device = std::move(joystick);
-  } catch (const usb::HidPidError& e) {
-    throw DeviceOpenError(e.status == UsbStatus::AccessDenied ? Cause::AccessDenied : Cause::Refused,
-                          "cannot play on " + ids + " (" + cal.name + "): " + e.what(),
-                          e.status == UsbStatus::AccessDenied ? udev_help(info.vendor_id, info.product_id) : "");
-  }
-  out.calibration = cal.name;
+  OpenedDevice out = open_hid_pid(std::move(transport), cal, spec, ids + " (" + cal.name + ")",
+                                  udev_help(info.vendor_id, info.product_id));
   out.description = cal.name + " (" + ids + ") on USB bus " + std::to_string(info.bus) + " address " + std::to_string(info.address);
   out.usb = info;
   return out;
