@@ -159,6 +159,16 @@ sp_status sp_player_open_usb(const sp_library* library, sp_player** out) {
   });
 }
 
+sp_status sp_player_open_device(const sp_library* library, const char* device, sp_player** out) {
+  if (!library) return null_argument("sp_player_open_device", "library");
+  if (!device) return null_argument("sp_player_open_device", "device");
+  if (!out) return null_argument("sp_player_open_device", "out");
+  return guarded([&] {
+    *out = new sp_player{sandpaper::Player::open(library->library, device)};
+    return SP_OK;
+  });
+}
+
 const char* sp_player_device_calibration(const sp_player* player) {
   return player ? player->player.device_calibration().c_str() : "";
 }

@@ -1,5 +1,5 @@
-// sandpaper::Player::usb: the first calibrated USB HID PID joystick plugged in (docs/USB_PID.md),
-// opened through the device factory as `sandpaper run --device usb` opens it.
+// sandpaper::Player::usb and Player::open: a calibrated joystick found on the bus (docs/DEVICES.md),
+// opened through the device factory as `sandpaper run --device usb|hidraw[:PATH]` opens it.
 #include <string>
 
 #include "sandpaper/calibration/calibration.hpp"
@@ -26,13 +26,24 @@ std::string one_line(const std::string& text) {
 
 }  // namespace
 
-Player Player::usb(const Library& library) { return usb(library.compiler().calibration()); }
+Player Player::usb(const Library& library) { return open(library.compiler().calibration(), "usb"); }
 
-Player Player::usb(const calibration::CalibrationSet& set) {
+Player Player::usb(const calibration::CalibrationSet& set) { return open(set, "usb"); }
+
+Player Player::open(const Library& library, const std::string& device) {
+  return open(library.compiler().calibration(), device);
+}
+
+Player Player::open(const calibration::CalibrationSet& set, const std::string& device) {
   runtime::DeviceSpec spec;
-  spec.device = "usb";
+  spec.device = device;
   runtime::OpenedDevice opened;
   try {
+    // Only a joystick on the bus: the simulated ones are moved by a hand Player::simulated scripts.
+    if (!runtime::choose_device(set, spec).real)
+      throw DeviceError("a player opened on a device plays a joystick found on the bus (usb, hidraw, hidraw:PATH), not '" + device +
+                        "'; the simulated joystick has a player of its own (Player::simulated, sp_player_open_simulated, "
+                        "sandpaper.Player.simulated)");
     opened = runtime::open_device(set, std::move(spec));
   } catch (const runtime::DeviceOpenError& e) {
     throw DeviceError(one_line(std::string(e.what()) + (e.help.empty() ? "" : "\n" + e.help)));

@@ -160,7 +160,7 @@ struct ExperimentOptions {
   CommonOptions common;            // --library, --calibration, --json
   std::string target;              // run: the design; resume and analyse: the results folder
   std::string subject, output;     // run
-  std::string device = "sim";      // sim or usb
+  std::string device = "sim";      // sim, usb, hidraw or hidraw:PATH
   std::string observer;            // terminal, page or simulated:...; empty: terminal (run), the recorded one (resume)
   bool switch_observer = false;    // resume: answer with --observer, not the recorded observer
   std::string listen = "127.0.0.1:4781";  // --observer page

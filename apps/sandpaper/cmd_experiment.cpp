@@ -91,13 +91,15 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   hand.speed_m_s = d.hand_speed_m_s;
   hand.amplitude_m = d.hand_amplitude_m;
   // --device sim plays the design's device on the simulated joystick (an emulated one with its
-  // quantisation); usb, the joystick plugged in, which must be the design's device.
-  if (eo.device != "sim" && eo.device != "usb") {
-    std::cerr << "sandpaper experiment: --device is sim or usb (the design's `device` names the calibration)\n";
+  // quantisation); usb, the joystick plugged in, which must be the design's device; hidraw and
+  // hidraw:PATH, the design's device through its hidraw node (docs/DEVICES.md).
+  const bool hidraw = eo.device == "hidraw" || eo.device.rfind("hidraw:", 0) == 0;
+  if (eo.device != "sim" && eo.device != "usb" && !hidraw) {
+    std::cerr << "sandpaper experiment: --device is sim, usb, hidraw or hidraw:PATH (the design's `device` names the calibration)\n";
     return nullptr;
   }
   runtime::DeviceSpec spec;
-  spec.device = eo.device == "usb" ? eo.device : d.device;
+  spec.device = eo.device == "usb" || hidraw ? eo.device : d.device;
   spec.simulate = eo.device == "sim";
   spec.script = hand;
   spec.watchdog_s = eo.guards.watchdog_ms * 1e-3;
@@ -125,7 +127,7 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
                              "set device = \"{}\" in the design\n", d.device, opened->calibration, opened->calibration);
     return nullptr;
   }
-  device_used = opened->real ? opened->calibration + " (USB)"
+  device_used = opened->real ? opened->calibration + (opened->node.empty() ? " (USB)" : " (USB, through " + opened->node + ")")
                              : fmt::format("{} simulated in real time, hand scanning at {:g} mm/s{}", d.device,
                                            hand.speed_m_s * 1e3, opened->emulation ? ", with its quantisation" : "");
   return std::make_unique<ex::LivePresenter>(std::move(opened->device), device_used, po);
@@ -461,7 +463,7 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
     sub->add_flag("--json", eo.common.json, "print one JSON object instead of text");
   };
   auto playing = [&](CLI::App* sub) {
-    sub->add_option("--device", eo.device, "sim (the simulated joystick) or usb (the first HID PID joystick); the design names the calibration")->capture_default_str();
+    sub->add_option("--device", eo.device, "sim (the simulated joystick), usb (the first HID PID joystick, through libusb) or hidraw[:PATH] (through its hidraw node; docs/DEVICES.md); the design names the calibration")->capture_default_str();
     sub->add_option("--observer", eo.observer, "terminal (a person types the answers; run's default), page (the subject's full-screen page) or simulated:exponent=0.76,noise=0.15,seed=3; resume: default the observer the results record");
     sub->add_option("--listen", eo.listen, "--observer page: ADDR:PORT to serve the page on (port 0: any free port)")->capture_default_str();
     sub->add_flag("--virtual-clock", eo.virtual_clock, "simulated joystick only: each stimulus plays on simulated time, at once (simulated observers, tests)");

@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
   auto* studio = app.add_subcommand("studio", "serve Sandpaper Studio: edit, see and feel a material while it plays (docs/STUDIO.md)");
   StudioOptions studio_opts;
   studio->add_option("path", studio_opts.path, "a material (.hmat), a workspace (.hws) or a folder; the studio works inside its folder")->capture_default_str();
-  studio->add_option("--device", o.device, "sim (Dummy mode: the mouse moves the hand) or usb (the first HID PID joystick)")->capture_default_str();
+  studio->add_option("--device", o.device, "sim (Dummy mode: the mouse moves the hand), usb (the first HID PID joystick, through libusb) or hidraw[:PATH] (through its hidraw node, the kernel's driver left bound; docs/DEVICES.md)")->capture_default_str();
   studio->add_option("--listen", studio_opts.listen, "ADDR:PORT to serve on (port 0: any free port); a non-loopback address is warned about")->capture_default_str();
   studio->add_option("--rate", studio_opts.rate_hz, "servo rate, Hz")->capture_default_str();
   add_guard_options(studio, studio_opts.guards);

@@ -420,6 +420,12 @@ PYBIND11_MODULE(sandpaper, m) {
          "the first USB HID PID force-feedback joystick plugged in that the library's calibration knows "
          "(docs/USB_PID.md); compile its materials with Library(device=player.device_calibration). "
          "Raises DeviceError when there is none or it cannot be opened")
+      .def_static("open", [](const PyLibrary& lib, const std::string& device) {
+        return std::make_unique<PyPlayer>(PyPlayer{sp::Player::open(lib.compiler->calibration(), device), nullptr, std::nullopt});
+      }, py::arg("library"), py::arg("device"),
+         "a calibrated joystick found along the path `device` names (docs/DEVICES.md): 'usb' (as usb()), "
+         "'hidraw' (its hidraw node, the kernel's driver left bound, no root) or 'hidraw:/dev/hidrawN'. "
+         "Raises DeviceError when there is none, it cannot be opened, or the device is not on the bus")
       .def_property_readonly("device_calibration", [](const PyPlayer& p) { return p.player.device_calibration(); },
          "the device calibration materials must be compiled for (usb); empty for the simulated joystick")
       .def("load", [](PyPlayer& p, const PyMaterial& x) { p.player.load(x.material); }, py::arg("material"),

@@ -228,4 +228,21 @@ TEST(Api, UsbPlayerOpensACalibratedJoystickOrSaysWhichItKnows) {
   }
 }
 
+// Player::open takes the factory's paths to a joystick on the bus; a node that is not there, or a
+// device that is not on the bus, is a DeviceError that says so.
+TEST(Api, OpenPlaysAJoystickAlongTheNamedPathOnly) {
+  try {
+    Player player = Player::open(shipped(), "hidraw:/nonexistent/hidraw9");
+    ADD_FAILURE() << "opened a node that does not exist";
+  } catch (const sandpaper::DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("no hidraw node /nonexistent/hidraw9"), std::string::npos) << e.what();
+  }
+  try {
+    Player player = Player::open(shipped(), "sim");
+    ADD_FAILURE() << "Player::open took the simulated joystick";
+  } catch (const sandpaper::DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("the simulated joystick has a player of its own"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace

@@ -94,6 +94,11 @@ int main(void) {
       CHECK(usb == (sp_player*)&checks, "out-parameter changed by a failed open");
     }
     CHECK(sp_player_open_usb(NULL, &usb) == SP_ERROR_ARGUMENT, "NULL library accepted");
+    /* Along a named path: a hidraw node that is not there is named in the error. */
+    CHECK(sp_player_open_device(lib, "hidraw:/nonexistent/hidraw9", &usb) == SP_ERROR_DEVICE, "a missing node opened");
+    CHECK(contains(sp_last_error(), "no hidraw node /nonexistent/hidraw9"), "%s", sp_last_error());
+    CHECK(usb == (sp_player*)&checks, "out-parameter changed by a failed open");
+    CHECK(sp_player_open_device(lib, NULL, &usb) == SP_ERROR_ARGUMENT, "NULL device accepted");
   }
   CHECK(sp_player_start(player, 1000.0, 0.3) == SP_ERROR_STATE, "start with nothing loaded");
   CHECK(sp_player_wait(player, &report) == SP_ERROR_STATE, "wait before start");

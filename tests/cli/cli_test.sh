@@ -566,6 +566,13 @@ expect_exit 2 "experiment run: --watchdog is a USB option" -- "$sp" experiment r
   --subject S --observer simulated:exponent=0.76 --watchdog 500 -o "$tmp/exp-watchdog"
 has "$tmp/err" '--watchdog applies to --device usb' "experiment says why --watchdog is refused"
 [ -e "$tmp/exp-watchdog" ] && bad "a refused experiment made its results folder" || ok
+# hidraw in the studio and in live experiments: through the factory, no node here (docs/DEVICES.md).
+expect_exit 2 "studio --device hidraw:PATH, no such node" -- "$sp" studio examples/corduroy.hmat --device hidraw:/dev/hidraw-none --listen 127.0.0.1:0
+has "$tmp/err" 'studio --device hidraw:/dev/hidraw-none: no hidraw node /dev/hidraw-none' "the studio names the node"
+expect_exit 2 "experiment run --device hidraw, none present" -- "$sp" experiment run examples/experiments/force-jnd.toml \
+  --subject S --observer simulated:exponent=0.76 --device hidraw -o "$tmp/exp-hidraw"
+has "$tmp/err" 'experiment --device hidraw: no hidraw node of a known force-feedback device' "an experiment looks for the hidraw node"
+[ -e "$tmp/exp-hidraw" ] && bad "an experiment without its joystick made its results folder" || ok
 expect_exit 2 "studio: a velocity limit out of range" -- "$sp" studio examples/corduroy.hmat --velocity-limit 0
 
 echo "$pass passed, $fail failed"

@@ -230,6 +230,13 @@ def test_usb_opens_a_calibrated_joystick_or_raises_device_error(lib):
         assert p.device_calibration != ""
 
 
+def test_open_names_a_hidraw_node_that_is_not_there(lib):
+    with pytest.raises(sandpaper.DeviceError, match="no hidraw node /nonexistent/hidraw9"):
+        sandpaper.Player.open(lib, "hidraw:/nonexistent/hidraw9")
+    with pytest.raises(sandpaper.DeviceError, match="the simulated joystick has a player of its own"):
+        sandpaper.Player.open(lib, "sim")
+
+
 def test_the_height_field_is_what_the_forces_are_the_gradient_of(lib):
     # A grating: one period, worked back from the force table; k * steepest slope = the peak force.
     g = lib.compile("grating period 2.5 mm hill 50% amplitude 0.8 N").height_field()

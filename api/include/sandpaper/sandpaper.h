@@ -98,6 +98,11 @@ sp_status sp_player_open_simulated(sp_player** out);
  * device: sp_player_device_calibration() names it. SP_ERROR_DEVICE when there is none or it cannot
  * be opened (sp_last_error() says why: for a permission problem, the udev rule to add). */
 sp_status sp_player_open_usb(const sp_library* library, sp_player** out);
+/* A player on a calibrated joystick found along the path `device` names (docs/DEVICES.md): "usb" (as
+ * sp_player_open_usb), "hidraw" (its hidraw node, the kernel's driver left bound, no root needed) or
+ * "hidraw:/dev/hidrawN". SP_ERROR_DEVICE as sp_player_open_usb, and for a device not on the bus;
+ * SP_ERROR_ARGUMENT for a NULL argument. */
+sp_status sp_player_open_device(const sp_library* library, const char* device, sp_player** out);
 /* The device calibration the player's materials must be compiled for ("openffboard-2axis"), or ""
  * for the simulated player (any material plays there). Owned by the player. */
 const char* sp_player_device_calibration(const sp_player* player);
