@@ -135,15 +135,29 @@ UsbStatus HidrawTransport::report_descriptor(std::vector<std::uint8_t>& descript
   return UsbStatus::Ok;
 }
 
+UsbStatus HidrawTransport::failed(int error) noexcept {
+  const UsbStatus s = named(error);
+  if (s != UsbStatus::Other) return s;
+  // A device that leaves the bus fails the transfer in flight with an I/O error (EPROTO, EILSEQ:
+  // no answer; Linux's Documentation/driver-api/usb/error-codes.rst) before hidraw learns it is
+  // gone; once it has, poll() says so on this descriptor (POLLHUP), even if the device is already
+  // back under a new node. A device that stays had a transfer fail. The hub notices a port change
+  // on its own schedule: in the USB lab's guest a reset took longer than 100 ms to reach hidraw,
+  // so this waits up to a second, on the driver's I/O thread, only after such an error. (The
+  // libusb transport asks the device for its status instead: hidraw cannot.)
+  pollfd p{fd_, 0, 0};
+  return ::poll(&p, 1, 1000) > 0 && (p.revents & (POLLHUP | POLLERR | POLLNVAL)) != 0 ? UsbStatus::NoDevice : s;
+}
+
 UsbStatus HidrawTransport::read_input(std::span<std::uint8_t> buffer, std::size_t& length, unsigned timeout_ms) noexcept {
   length = 0;
   pollfd p{fd_, POLLIN, 0};
   const int n = ::poll(&p, 1, static_cast<int>(std::min<unsigned>(timeout_ms, 60'000)));
-  if (n < 0) return errno == EINTR ? UsbStatus::Timeout : named(errno);
+  if (n < 0) return errno == EINTR ? UsbStatus::Timeout : failed(errno);
   if (n == 0) return UsbStatus::Timeout;
   if (p.revents & (POLLHUP | POLLERR | POLLNVAL)) return UsbStatus::NoDevice;
   const ssize_t got = ::read(fd_, buffer.data(), buffer.size());
-  if (got < 0) return errno == EIO ? UsbStatus::NoDevice : named(errno);
+  if (got < 0) return errno == EIO ? UsbStatus::NoDevice : failed(errno);
   length = static_cast<std::size_t>(got);
   return UsbStatus::Ok;
 }
@@ -159,7 +173,7 @@ UsbStatus HidrawTransport::write_output(std::span<const std::uint8_t> report) no
     ++size;
   }
   const ssize_t put = ::write(fd_, data, size);
-  if (put < 0) return named(errno);
+  if (put < 0) return failed(errno);
   return static_cast<std::size_t>(put) == size ? UsbStatus::Ok : UsbStatus::Other;
 }
 
@@ -167,7 +181,7 @@ UsbStatus HidrawTransport::set_feature(std::span<const std::uint8_t> report) {
   std::vector<std::uint8_t> framed;
   if (!numbered_) framed.push_back(0);
   framed.insert(framed.end(), report.begin(), report.end());
-  if (::ioctl(fd_, HIDIOCSFEATURE(framed.size()), framed.data()) < 0) return named(errno);
+  if (::ioctl(fd_, HIDIOCSFEATURE(framed.size()), framed.data()) < 0) return failed(errno);
   return UsbStatus::Ok;
 }
 
@@ -177,7 +191,7 @@ UsbStatus HidrawTransport::get_feature(std::uint8_t report_id, std::span<std::ui
   if (framed.empty()) return UsbStatus::Other;
   framed[0] = numbered_ ? report_id : 0;
   const int got = ::ioctl(fd_, HIDIOCGFEATURE(framed.size()), framed.data());
-  if (got < 0) return named(errno);
+  if (got < 0) return failed(errno);
   const std::size_t skip = numbered_ ? 0 : 1;  // hidraw's report-number byte, not on the wire
   length = std::min(buffer.size(), static_cast<std::size_t>(got) > skip ? static_cast<std::size_t>(got) - skip : 0);
   std::copy_n(framed.begin() + static_cast<std::ptrdiff_t>(skip), length, buffer.begin());

@@ -55,6 +55,8 @@ class HidrawTransport final : public UsbTransport {
 
  private:
   HidrawTransport() = default;
+  // The status of a failed call's errno; an I/O error from a device that has gone is NoDevice.
+  UsbStatus failed(int error) noexcept;
   int fd_ = -1;
   std::string path_;
   bool numbered_ = true;  // the descriptor uses report IDs (found when it is read)
