@@ -169,8 +169,12 @@ def main():
         check(switch_to(b, "board.hmat"), "a photograph opens")
         caption = "document.querySelector('#picture-caption').textContent"
         height = 60 * 340 / 512  # mm: the picture's shape kept (schema/LANGUAGE.md, `heightmap ... size W`)
+        # The caption is drawn once the picture decodes, after the preview's state is set: wait for the
+        # photo's own caption. (Beside stress-ng an older preview, decoded last, once left its
+        # '60.0 × 60.0 mm' caption here; preview.js now lets only the latest write it.)
         check(wait(b, caption + ".includes('scale bar') && Math.abs(window.studio.state.preview?.window_mm[1] - %f) < 0.05"
-                   % height, "its caption"), "(its picture)")
+                   " && %s.includes(%s)" % (height, caption, json.dumps(f"of the 60.0 × {height:.1f} mm patch")),
+                   "its caption"), "(its picture)")
         window_mm = b.evaluate("window.studio.state.preview.window_mm")
         text = b.evaluate(caption)
         check(window_mm[0] < 59 and f"of the 60.0 × {height:.1f} mm patch" in text and "whole patch" in text,

@@ -91,7 +91,10 @@ function arrowsCaption() {
     ` the longest is ${f.max_N.toPrecision(3)} N`;
 }
 
+// The latest call: a picture that decodes after a newer one was asked for must not write its caption.
+let previewShown = 0;
 async function showPreviewWindow(v, preview) {
+  const mine = ++previewShown;
   delete $("#stage").dataset.zoom;
   $("#picture").style.transform = "";
   fitStage();
@@ -100,6 +103,7 @@ async function showPreviewWindow(v, preview) {
     img.src = `/api/preview/${state.view === "field" ? "field" : "height"}.png?v=${v}`;
     img.hidden = false;
     await img.decode().catch(() => {});
+    if (mine !== previewShown) return;
     $("#picture-caption").textContent = `${preview.window_mm[0].toFixed(1)} × ${preview.window_mm[1].toFixed(1)} mm` +
       partOfPatch(preview.window_mm) + ` · scale bar ${preview.scale_bar_mm} mm · ` + (state.view === "field"
         ? `force field at rest: hue = direction, brightness = |F| up to ${preview.field_max_N.toFixed(3)} N` +
