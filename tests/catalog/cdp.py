@@ -159,14 +159,34 @@ class Browser:
             time.sleep(0.05)
         raise CdpError("timed out waiting for " + what)
 
+    # Where a click lands: the element's centre once it has stayed put for two animation frames and
+    # is the topmost thing there (a person clicks what they see). On a loaded machine a page still
+    # laying out after an answer (a list above the button growing or shrinking) moves the button
+    # between measuring it and the press, and the press lands beside it.
+    _CLICK_POINT = """(async () => {
+        const e = document.querySelector(%s); if (!e) return null;
+        e.scrollIntoView({block: 'center'});
+        const frame = () => new Promise((r) => requestAnimationFrame(() => r()));
+        const centre = () => { const r = e.getBoundingClientRect(); return [r.left + r.width / 2, r.top + r.height / 2]; };
+        let last = centre(), why = '';
+        for (let i = 0; i < 100; i++) {
+          await frame(); await frame();
+          const now = centre();
+          const top = document.elementFromPoint(now[0], now[1]);
+          if (now[0] === last[0] && now[1] === last[1] && top && (top === e || e.contains(top))) return now;
+          why = top && top !== e && !e.contains(top) ? 'covered by ' + (top.id || top.tagName) : 'still moving';
+          last = now;
+        }
+        return why;
+      })()"""
+
     def click(self, selector):
-        """A real mouse click at the centre of the element (scrolled into view first)."""
-        box = self.evaluate(
-            "(() => { const e = document.querySelector(%s); if (!e) return null; e.scrollIntoView({block: 'center'});"
-            " const r = e.getBoundingClientRect(); return [r.left + r.width / 2, r.top + r.height / 2]; })()"
-            % json.dumps(selector))
+        """A real mouse click at the centre of the element (scrolled into view, standing still, on top)."""
+        box = self.evaluate(self._CLICK_POINT % json.dumps(selector))
         if box is None:
             raise CdpError("nothing matches " + selector)
+        if isinstance(box, str):
+            raise CdpError(f"cannot click {selector}: {box}")
         for kind in ("mouseMoved", "mousePressed", "mouseReleased"):
             self.send("Input.dispatchMouseEvent", {"type": kind, "x": box[0], "y": box[1], "button": "left",
                                                    "clickCount": 1})
