@@ -184,6 +184,7 @@ def test_fault(fault: str, build: Path, out: Path, device: str = "usb") -> None:
         return
     facts = json.loads((out / "fault.json").read_text())
     print(json.dumps(facts), flush=True)
+    check(not facts["problem"], f"the scenario names no problem: {facts['problem']!r}")
     check(facts["driver_before"] == "usbhid", "usbhid had the joystick before the run")
     check(facts["driver_after"] == "usbhid", f"usbhid has it again afterwards (got {facts['driver_after']!r})")
     check(facts["input_after"] != "", "the kernel's input device for the joystick exists again")

@@ -29,6 +29,7 @@ RUN_DEVICE=${RUN_DEVICE:-usb}
 run_pid=$!
 driver_during=
 fault_at=
+problem=
 if [ "$FAULT" = late ]; then
   ffboard_wait_claimed "the run" && driver_during=$DRIVER_DURING
 elif [ "$FAULT" != stall ]; then
@@ -53,7 +54,8 @@ elif [ "$FAULT" != stall ]; then
       sigint) kill -INT "$run_pid" ;;
     esac
   else
-    echo "lab: the firmware never started playing" >&2
+    problem="the firmware never started playing within 60 s, so no $FAULT was made"
+    echo "lab: $problem" >&2
   fi
 fi
 wait "$run_pid"
@@ -92,6 +94,6 @@ cat > /out/fault.json <<JSON
  "driver_before": "$driver_before", "driver_during": "$driver_during", "driver_after": "$DRIVER_AFTER",
  "input_after": "$INPUT_AFTER", "replug_devices_status": ${replug_devices_status:-null},
  "ep0_read_waiters": ${ep0_read_waiters:-null}, "poll_waiters": ${poll_waiters:-null},
- "replay_status": ${replay_status:-null}}
+ "replay_status": ${replay_status:-null}, "problem": "${problem:-}"}
 JSON
 cat /out/fault.json
