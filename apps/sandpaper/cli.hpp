@@ -70,6 +70,8 @@ int cmd_inspect(const std::string& file, bool json, bool tables);
 void print_patch_program(const schema::PatchProgram& p);
 // USB HID PID joysticks plugged in (cmd_devices.cpp, docs/USB_PID.md).
 int cmd_devices(const CommonOptions& o);
+// `sandpaper devices --udev-rules`: the udev rules file for the devices the calibration files name.
+int cmd_devices_udev_rules(const CommonOptions& o);
 int cmd_library(const CommonOptions& o);
 // Opens the device `spec` names through the device factory (runtime/devices/open_device.hpp) with
 // the calibration `o` selects; nullopt after printing "sandpaper COMMAND: why" (and the udev help).

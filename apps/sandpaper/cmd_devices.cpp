@@ -75,6 +75,13 @@ int cmd_devices(const CommonOptions& o) {
   return denied ? kExitUsage : kExitOk;
 }
 
+int cmd_devices_udev_rules(const CommonOptions& o) {
+  CommonOptions base = o;
+  base.device = "sim";
+  std::cout << runtime::udev_rules_file(make_compiler(base).calibration());
+  return kExitOk;
+}
+
 std::optional<runtime::OpenedDevice> open_device_for(const CommonOptions& o, runtime::DeviceSpec spec,
                                                      const std::string& command) {
   try {

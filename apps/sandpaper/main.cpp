@@ -137,6 +137,8 @@ int main(int argc, char** argv) {
 
   auto* devices = app.add_subcommand("devices", "list the USB force-feedback (HID PID) joysticks present");
   devices->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
+  bool udev_rules = false;
+  devices->add_flag("--udev-rules", udev_rules, "print the udev rules that let the logged-in user play, without root, every device the calibration files name (the package installs them as /usr/lib/udev/rules.d/70-sandpaper.rules)");
 
 #if SANDPAPER_WITH_CURATION
   auto* preview = app.add_subcommand("preview", "write a material's preview pictures: shaded height field, force field, force along a scan line");
@@ -299,7 +301,7 @@ int main(int argc, char** argv) {
       return cmd_studio(o, studio_opts);
     }
 #endif
-    if (devices->parsed()) return cmd_devices(o);
+    if (devices->parsed()) return udev_rules ? cmd_devices_udev_rules(o) : cmd_devices(o);
 #if SANDPAPER_WITH_LSP
     if (lsp->parsed()) return cmd_lsp(o);
 #endif

@@ -93,6 +93,7 @@ has '/usr/lib(/[^/]+)?/libsandpaper_api\.a'
 has '/usr/lib(/[^/]+)?/cmake/Sandpaper/SandpaperConfig\.cmake'
 has '/usr/lib(/[^/]+)?/cmake/Sandpaper/SandpaperTargets\.cmake'
 has '/usr/lib(/[^/]+)?/pkgconfig/sandpaper\.pc'
+has '/usr/lib/udev/rules\.d/70-sandpaper\.rules'
 if [[ -n $python ]]; then
   has '/usr/lib/python3/dist-packages/sandpaper\..*\.so'
   grep -q -E '^/usr/lib/python3\.[0-9]+/' "$work/paths.txt" && fail "a file under /usr/lib/python3.X, not Debian's /usr/lib/python3/dist-packages"
@@ -118,6 +119,12 @@ for exe in "$root/usr/bin/sandpaper" "$root/usr/bin/sandpaper-play" $(find "$roo
     if LC_ALL=C grep -a -q -P "\\Q$src/$d\\E\\x00" "$exe"; then fail "$exe has the source tree's $d path compiled in"; fi
   done
 done
+
+# The udev rules that let the seat's user play without root (docs/DEVICES.md "No root"): udev syntax,
+# a hidraw rule for each USB device the packaged calibration names, one for force-feedback event devices.
+out=$(python3 "$src/tests/runtime/devices/udev_rules_test.py" "$root/usr/lib/udev/rules.d/70-sandpaper.rules" \
+  "$data/calibration" 2>&1) || fail "the packaged udev rules: $out"
+echo "udev rules: $(tail -1 <<<"$out")"
 
 # Run from elsewhere, so that nothing is found relative to the working directory.
 cd "$work"

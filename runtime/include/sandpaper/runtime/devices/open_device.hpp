@@ -137,6 +137,9 @@ std::string known_usb_devices(const calibration::CalibrationSet& set);
 std::string udev_rule(int vendor, int product);
 // The udev rule line that gives the logged-in user the device's hidraw nodes.
 std::string hidraw_udev_rule(int vendor, int product);
+// The rules file for /usr/lib/udev/rules.d/70-sandpaper.rules: uaccess for the hidraw nodes of the
+// USB devices `set` names and for input event devices with force feedback (lines of udev syntax).
+std::string udev_rules_file(const calibration::CalibrationSet& set);
 // What to do about a device this user may not open: the rule, where it goes, how to load it (lines).
 std::string udev_help(int vendor, int product);
 // Why none was found, when this system has no USB bus at all (a container or a VM without passthrough); else "".
