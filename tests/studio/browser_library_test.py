@@ -138,8 +138,10 @@ def main():
         cursor_on_line(b, 1)
         b.click("#library-insert")
         want = '# a plain swatch\nmaterial "plain" {\n  like corduroy\n  roughness 0.4\n}\n'
-        check(wait(b, "window.studio.text() === %s" % json.dumps(want), "the inserted like"),
-              f"`insert like corduroy` goes inside the block: {b.evaluate('window.studio.text()')!r}")
+        inserted_ok = wait(b, "window.studio.text() === %s" % json.dumps(want), "the inserted like")
+        status_now = b.evaluate("document.querySelector('#status').textContent")
+        check(inserted_ok, f"`insert like corduroy` goes inside the block: {b.evaluate('window.studio.text()')!r}"
+                           f" (status line: {status_now!r})")
         check(wait(b, "document.body.dataset.compiles === 'yes' && window.studio.state.file === 'plain.hmat'", "the compile"),
               "and the text compiles")
 
