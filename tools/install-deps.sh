@@ -22,6 +22,7 @@ pkgs=(
   dpkg-dev file                             # the Debian package: cpack -G DEB's dpkg-shlibdeps (cmake/Packaging.cmake)
   qemu-system-x86                           # the USB lab's guest: docs/USB_PID.md "In the lab" (usb-lab/guest/lab.py)
   linux-image-amd64 kmod                    # the USB lab's guest kernel and its modules (dummy_hcd, usb_f_fs, usbhid)
+  linux-source-6.1 linux-headers-amd64      # the lab's own dummy_hcd with 1 ms frames (usb-lab/bus/)
   busybox-static                            # the USB lab's guest userland (its initramfs: usb-lab/guest/initramfs.py)
 )
 missing=()

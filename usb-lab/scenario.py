@@ -1,9 +1,10 @@
 """Runs one of the lab's scenarios (usb-lab/scenarios/NAME.sh) in the guest, with the build's
-programs (sandpaper, sandpaper-play, sandpaper-lab-device, sandpaper-lab-post) and the source tree's data (the build
+programs (sandpaper, sandpaper-play, sandpaper-lab-device, sandpaper-lab-post, sandpaper-lab-writes) and the source tree's data (the build
 tree's programs read calibration/ and library/ from the source tree, so they sit at the same paths
 in the guest). Used by tools/usb-lab/run and tests/usb-lab/lab_test.py."""
 from __future__ import annotations
 
+import os
 import shlex
 import sys
 from pathlib import Path
@@ -14,7 +15,7 @@ sys.path.insert(0, str(HERE / "guest"))
 import lab  # noqa: E402
 from initramfs import LabError, Unavailable  # noqa: E402,F401  (re-exported for callers)
 
-PROGRAMS = ("sandpaper", "sandpaper-play", "sandpaper-lab-device", "sandpaper-lab-post")
+PROGRAMS = ("sandpaper", "sandpaper-play", "sandpaper-lab-device", "sandpaper-lab-post", "sandpaper-lab-writes")
 DATA_DIRS = ("calibration", "library", "examples")
 
 
@@ -37,11 +38,16 @@ def data_files() -> dict[str, Path]:
 
 
 def run(name: str, build: Path, out_dir: Path, params: dict[str, str] | None = None,
-        files: dict[str, Path | bytes] | None = None, timeout: float = 240, echo=None) -> lab.Result:
-    """Boots the guest on scenario `name` with `params` exported to it; its /out is `out_dir`."""
+        files: dict[str, Path | bytes] | None = None, timeout: float = 240, echo=None,
+        bus: str | None = None) -> lab.Result:
+    """Boots the guest on scenario `name` with `params` exported to it; its /out is `out_dir`; the
+    USB bus is `bus` (lab.BUSES; default $SANDPAPER_LAB_BUS, else stock; the guest's /lab/bus says
+    which it got)."""
+    bus = bus or os.environ.get("SANDPAPER_LAB_BUS") or "stock"
     progs = programs(build)
     env = {"SANDPAPER": str(progs["sandpaper"]), "SANDPAPER_PLAY": str(progs["sandpaper-play"]),
            "LAB_DEVICE": str(progs["sandpaper-lab-device"]), "LAB_POST": str(progs["sandpaper-lab-post"]),
+           "LAB_WRITES": str(progs["sandpaper-lab-writes"]),
            "REPO": str(REPO)}
     env.update(params or {})
     all_files: dict[str, Path | bytes] = data_files()
@@ -52,4 +58,4 @@ def run(name: str, build: Path, out_dir: Path, params: dict[str, str] | None = N
     script = (HERE / "scenarios" / f"{name}.sh").read_bytes()
     out_dir.mkdir(parents=True, exist_ok=True)
     return lab.run(script, binaries=list(progs.values()), files=all_files, out_dir=out_dir,
-                   timeout=timeout, cache_dir=build / "usb-lab", echo=echo)
+                   timeout=timeout, cache_dir=build / "usb-lab", echo=echo, bus=bus)

@@ -423,7 +423,42 @@ def test_experiment(build: Path, out: Path) -> None:
           f"strongest stimulus {strongest:.2f} N)")
 
 
-TESTS = {"enumerate": test_enumerate, "direction": test_direction, "play": test_play, "hidraw": test_hidraw,
+def test_bus(build: Path, out: Path) -> None:
+    """The lab's own bus (usb-lab/bus/): the guest gets the patched dummy_hcd, whose frames start at
+    least 1 ms apart at full speed (a real bus's 1 ms frames, USB 2.0 section 5.7.4; the stock module
+    runs one every 125 us), and a host that keeps an interrupt OUT endpoint at bInterval 1 busy gets
+    at most one transaction per frame. (Counting frames per second alone cannot tell the two: a TCG
+    guest runs even 125 us frames only about 900 times a second.) The floor (a real bus gives such a host 1000 a second)
+    is printed, not judged: a TCG guest spends about 1.7 ms of CPU on each transfer (docs/USB_PID.md)."""
+    writes = 1500
+    r = scenario.run("busrate", build, out, params={"WRITES": str(writes), "BUS_DEVICE": "hid"}, bus="1ms")
+    check(r.status == 0, f"the scenario ran to its end (status {r.status})")
+    if r.status != 0:
+        return
+    facts = json.loads((out / "busrate.json").read_text())
+    print(json.dumps(facts), flush=True)
+    check(facts["bus"] == "1ms", f"the guest ran the lab's own dummy_hcd (/lab/bus: {facts['bus']!r})")
+    check("O" in facts["dummy_hcd_taint"], f"an out-of-tree dummy_hcd was loaded (taint {facts['dummy_hcd_taint']!r})")
+    check(facts["out_binterval"] == "01", f"the HID function's OUT endpoint has bInterval 1 ({facts['out_binterval']!r})")
+    check(facts["status"] == 0 and facts["writes"] == writes, f"{facts['writes']} of {writes} writes went out")
+    frames, window_s = facts["frames"], facts["frames_window_cs"] / 100
+    if frames is None or window_s <= 0:
+        check(False, "the module counted its frames (usb_lab_frames)")
+        return
+    # The frame rule itself, which a starved guest cannot hide: a late timer only lengthens a gap.
+    gap = facts["min_frame_gap_ns"]
+    check(gap is not None and gap >= 1_000_000,
+          f"no frame started less than 1 ms after the one before (shortest: {gap} ns)")
+    # /proc/uptime's 10 ms steps at either end of the window.
+    ceiling = 1000 * (window_s + 0.02)
+    check(frames <= ceiling, f"at most one frame a millisecond: {frames} frames in {window_s:.2f} s "
+                             f"({frames / window_s:.0f} a second)")
+    check(facts["writes"] <= frames, f"at most one OUT transaction a frame: {facts['writes']} writes, {frames} frames")
+    print(f"figure (not judged): {(facts['writes'] - 1) / facts['seconds']:.0f} transactions a second "
+          f"(a real full-speed bus: 1000), {frames / window_s:.0f} frames a second", flush=True)
+
+
+TESTS = {"enumerate": test_enumerate, "bus": test_bus, "direction": test_direction, "play": test_play, "hidraw": test_hidraw,
          "studio": test_studio,
          "experiment": test_experiment}
 for _fault in ("unplug", "reset", "stale", "sigint", "stall", "late"):

@@ -112,6 +112,8 @@ class Spec:
     binaries: list[Path] = field(default_factory=list)
     files: dict[str, Path | bytes] = field(default_factory=dict)
     modules: list[tuple[str, str]] = field(default_factory=lambda: list(MODULES))
+    # A module loaded from this file instead of the kernel's own (name -> .ko): the lab's dummy_hcd.
+    module_files: dict[str, Path] = field(default_factory=dict)
     # The binaries' DWARF goes (objcopy --strip-debug; code and symbols stay): a -g build of
     # sandpaper is 214 MB, 7 MB without, and every MB costs boot time under TCG.
     strip_debug: bool = True
@@ -279,7 +281,7 @@ def _plan(spec: Spec) -> tuple[_Tree, list[str]]:
     mod_base = Path("/lib/modules") / spec.kernel_version
     for rel, params in module_order(spec.kernel_version, spec.modules):
         guest = re.sub(r"\.(xz|zst|gz)$", "", f"/lib/modules/{spec.kernel_version}/{rel}")
-        tree.add(guest, ("module", mod_base / rel))
+        tree.add(guest, ("module", spec.module_files.get(_modname(rel), mod_base / rel)))
         modules.append(f"{guest} {params}".rstrip())
     return tree, modules
 

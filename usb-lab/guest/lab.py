@@ -38,6 +38,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import initramfs  # noqa: E402  (beside this file)
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "bus"))
+import dummy_hcd_module  # noqa: E402  (usb-lab/bus/)
 import kernel  # noqa: E402
 from initramfs import LabError, Spec, Unavailable  # noqa: E402
 
@@ -215,13 +217,38 @@ def boot(machine: Machine, initrd: Path, *, out_dir: Path | None = None, in_dir:
     return result
 
 
+# The lab's buses: "stock", the guest kernel's own dummy_hcd (Debian 6.1.192: 125 us frames at every
+# speed, bInterval not honoured); "1ms", the lab's build of it with a real bus's frames
+# (usb-lab/bus/: 1 ms at full speed, an interrupt endpoint held to its bInterval).
+BUSES = ("stock", "1ms")
+
+
+def bus_module(machine: Machine, bus: str, cache_dir: Path) -> tuple[dict[str, Path], str]:
+    """The module files for `bus` and what the guest is told of it (/lab/bus): "1ms", or "stock",
+    or "stock: WHY" when the 1 ms bus was asked for and could not be built."""
+    if bus not in BUSES:
+        raise LabError(f"unknown bus {bus!r} (one of {', '.join(BUSES)})")
+    if bus == "stock":
+        return {}, "stock"
+    module, why = dummy_hcd_module.build(machine.kernel_version, Path(cache_dir))
+    if module is None:
+        print(f"lab: the 1 ms bus cannot be built, so the guest runs the stock dummy_hcd: {why}",
+              file=sys.stderr, flush=True)
+        return {}, "stock: " + why.replace("\n", " ").replace('"', "'")
+    return {"dummy_hcd": module}, "1ms"
+
+
 def run(script: bytes, *, binaries: list[Path] = (), files: dict[str, Path | bytes] | None = None,
         out_dir: Path | None = None, in_dir: Path | None = None, timeout: float = 300,
-        cache_dir: Path = DEFAULT_CACHE, strip_debug: bool = True, **boot_args) -> Result:
-    """Builds (or reuses) the initramfs and boots it with the scenario; raises LabError when the
-    lab cannot run here."""
+        cache_dir: Path = DEFAULT_CACHE, strip_debug: bool = True, bus: str = "stock", **boot_args) -> Result:
+    """Builds (or reuses) the initramfs and boots it with the scenario on `bus` (BUSES); raises
+    LabError when the lab cannot run here. The guest finds which bus it has in /lab/bus."""
     machine = find_machine()
+    module_files, bus_line = bus_module(machine, bus, Path(cache_dir))
+    files = dict(files or {})
+    files["/lab/bus"] = (bus_line + "\n").encode()
     spec = image_spec(machine, script, binaries, files, strip_debug)
+    spec.module_files = module_files
     initrd, built, secs = initramfs.build(spec, Path(cache_dir))
     size = initrd.stat().st_size / (1 << 20)
     print(f"lab: initramfs {initrd.name}, {size:.0f} MB, "
