@@ -41,9 +41,9 @@ def run(name: str, build: Path, out_dir: Path, params: dict[str, str] | None = N
         files: dict[str, Path | bytes] | None = None, timeout: float = 240, echo=None,
         bus: str | None = None) -> lab.Result:
     """Boots the guest on scenario `name` with `params` exported to it; its /out is `out_dir`; the
-    USB bus is `bus` (lab.BUSES; default $SANDPAPER_LAB_BUS, else stock; the guest's /lab/bus says
-    which it got)."""
-    bus = bus or os.environ.get("SANDPAPER_LAB_BUS") or "stock"
+    USB bus is `bus` (lab.BUSES; default $SANDPAPER_LAB_BUS, else the lab's 1 ms bus; the guest's
+    /lab/bus says which it got)."""
+    bus = bus or os.environ.get("SANDPAPER_LAB_BUS") or "1ms"
     progs = programs(build)
     env = {"SANDPAPER": str(progs["sandpaper"]), "SANDPAPER_PLAY": str(progs["sandpaper-play"]),
            "LAB_DEVICE": str(progs["sandpaper-lab-device"]), "LAB_POST": str(progs["sandpaper-lab-post"]),

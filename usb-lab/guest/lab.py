@@ -104,6 +104,7 @@ class Result:
     boot: float | None = None        # seconds from starting QEMU to the scenario's first line
     guest_uptime: float | None = None  # the guest's own uptime at that moment
     console: list[str] = field(default_factory=list)
+    bus: str = "stock"               # the bus the guest had: "1ms", "stock", or "stock: why not 1ms"
 
 
 def boot(machine: Machine, initrd: Path, *, out_dir: Path | None = None, in_dir: Path | None = None,
@@ -240,7 +241,7 @@ def bus_module(machine: Machine, bus: str, cache_dir: Path) -> tuple[dict[str, P
 
 def run(script: bytes, *, binaries: list[Path] = (), files: dict[str, Path | bytes] | None = None,
         out_dir: Path | None = None, in_dir: Path | None = None, timeout: float = 300,
-        cache_dir: Path = DEFAULT_CACHE, strip_debug: bool = True, bus: str = "stock", **boot_args) -> Result:
+        cache_dir: Path = DEFAULT_CACHE, strip_debug: bool = True, bus: str = "1ms", **boot_args) -> Result:
     """Builds (or reuses) the initramfs and boots it with the scenario on `bus` (BUSES); raises
     LabError when the lab cannot run here. The guest finds which bus it has in /lab/bus."""
     machine = find_machine()
@@ -257,6 +258,7 @@ def run(script: bytes, *, binaries: list[Path] = (), files: dict[str, Path | byt
     vmlinux = kernel.bootable(machine.kernel, Path(cache_dir))
     result = boot(machine, initrd, out_dir=out_dir, in_dir=in_dir, timeout=timeout,
                   kernel_path=vmlinux, **boot_args)
+    result.bus = bus_line
     if out_dir is not None:
         (Path(out_dir) / "console.log").write_text("\n".join(result.console) + "\n")
     print(f"lab: scenario exit status {result.status}; QEMU ran {result.wall:.1f} s",
