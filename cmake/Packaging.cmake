@@ -45,7 +45,7 @@ if(SANDPAPER_PYTHON AND SANDPAPER_PYTHON_VERSION)
 endif()
 list(JOIN _sandpaper_deb_depends ", " CPACK_DEBIAN_PACKAGE_DEPENDS)  # dpkg-shlibdeps' list is added to it
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS
-  "cmake, pkg-config, nlohmann-json3-dev, libtomlplusplus-dev, libglm-dev, zlib1g-dev, libopenimageio-dev, libusb-1.0-0-dev")
+  "cmake, pkg-config, nlohmann-json3-dev, libtomlplusplus-dev, libglm-dev, zlib1g-dev, libopenimageio-dev, libusb-1.0-0-dev, libevdev-dev")
 
 # The library index `sandpaper library search` reads is built where the library lies, which only
 # root may write under /usr: the postinst builds it, the prerm removes it (cmake/deb/).

@@ -7,16 +7,17 @@ include(CMakePackageConfigHelpers)
 
 set(SANDPAPER_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/Sandpaper)
 # Exported as Sandpaper::<name>: the API and what it is built from, among them the device factory
-# (sandpaper_devices) and the USB HID PID driver (sandpaper_usb) that Player::usb opens joysticks
-# with, so an application links libusb.
+# (sandpaper_devices), the USB HID PID driver (sandpaper_usb) and the input event driver
+# (sandpaper_evdev) that Player::usb opens joysticks with, so an application links libusb and libevdev.
 set_target_properties(sandpaper_schema PROPERTIES EXPORT_NAME schema)
 set_target_properties(sandpaper_calibration PROPERTIES EXPORT_NAME calibration)
 set_target_properties(sandpaper_compiler PROPERTIES EXPORT_NAME compiler)
 set_target_properties(sandpaper_runtime PROPERTIES EXPORT_NAME runtime)
 set_target_properties(sandpaper_usb PROPERTIES EXPORT_NAME usb)
+set_target_properties(sandpaper_evdev PROPERTIES EXPORT_NAME evdev)
 set_target_properties(sandpaper_devices PROPERTIES EXPORT_NAME devices)
 install(TARGETS sandpaper_api sandpaper_compiler sandpaper_image_io sandpaper_data_dirs_installed sandpaper_calibration
-                sandpaper_runtime sandpaper_usb sandpaper_devices sandpaper_schema
+                sandpaper_runtime sandpaper_usb sandpaper_evdev sandpaper_devices sandpaper_schema
   EXPORT SandpaperTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

@@ -7,6 +7,7 @@ pkgs=(
   libopenimageio-dev openimageio-tools      # images as height maps (OpenImageIOConfig.cmake checks its tools exist)
   libglm-dev                                # 2-vectors in the runtime
   libusb-1.0-0-dev                          # USB force-feedback devices (runtime issue)
+  libevdev-dev                              # force feedback through the kernel's input event nodes (docs/DEVICES.md)
   libcli11-dev libfmt-dev                   # command line, formatting
   nlohmann-json3-dev libtomlplusplus-dev    # JSON output, TOML calibration files
   zlib1g-dev                                # CRC-32 of patch programs

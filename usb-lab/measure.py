@@ -116,12 +116,22 @@ def int16(lo, hi):
 
 
 def effect_axes(reports):
-    """Effect block index -> axis (0 X, 1 Y), from the Set Effect reports' Axes Enable bits (byte 13)."""
+    """Effect block index -> axis (0 X, 1 Y), from the Set Effect reports: the Axes Enable bits of
+    byte 13, or with its Direction Enable bit (0x04, as Linux's hid-pidff sends every effect) the
+    direction in bytes 14-15, hundredths of a degree, which the firmware applies as sin() to X and
+    -cos() to Y (HidFFB.cpp, 160af91): 90 degrees is X alone and 180 degrees Y alone, each with
+    factor +1 (other directions would scale or invert the magnitude, and are not counted)."""
     axes = {}
     for _, _, _, b in reports:
         if len(b) >= 14 and b[0] == SET_EFFECT:
             enable = b[13]
-            if enable & 1:
+            if enable & 4 and len(b) >= 16:
+                direction = b[14] | (b[15] << 8)
+                if direction == 9000:
+                    axes[b[1]] = 0
+                elif direction == 18000:
+                    axes[b[1]] = 1
+            elif enable & 1:
                 axes[b[1]] = 0
             elif enable & 2:
                 axes[b[1]] = 1

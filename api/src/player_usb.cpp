@@ -41,7 +41,7 @@ Player Player::open(const calibration::CalibrationSet& set, const std::string& d
   try {
     // Only a joystick on the bus: the simulated ones are moved by a hand Player::simulated scripts.
     if (!runtime::choose_device(set, spec).real)
-      throw DeviceError("a player opened on a device plays a joystick found on the bus (usb, hidraw, hidraw:PATH), not '" + device +
+      throw DeviceError("a player opened on a device plays a joystick found on the bus (usb, hidraw[:PATH], evdev[:PATH]), not '" + device +
                         "'; the simulated joystick has a player of its own (Player::simulated, sp_player_open_simulated, "
                         "sandpaper.Player.simulated)");
     opened = runtime::open_device(set, std::move(spec));

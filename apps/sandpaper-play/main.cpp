@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
   cli::PlayRequest r;
   double crossfade_ms = 2;
   app.add_option("file", file, "patch program (.patch) or workspace program (.wsp) to play")->required();
-  app.add_option("--device", device, "device the patch was compiled for (sim), or usb: the first HID PID joystick found (through libusb), or hidraw[:PATH]: the same through its hidraw node (docs/DEVICES.md)")
+  app.add_option("--device", device, "device the patch was compiled for (sim), or usb: the first HID PID joystick found (through libusb), or hidraw[:PATH]: the same through its hidraw node, or evdev[:PATH]: through its input event node (docs/DEVICES.md)")
       ->capture_default_str();
   app.add_option("--calibration", calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   app.add_option("--library", library_dir, "accepted as `sandpaper run` does; a compiled patch needs no library");

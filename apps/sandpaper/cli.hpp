@@ -28,6 +28,7 @@ struct CommonOptions {
   std::string file;        // material file or patch program
   std::string expression;  // -e text
   std::string device = "sim";
+  bool device_given = false;  // --device was on the command line (run chooses a device otherwise)
   std::string library_dir;
   std::string calibration_dir;
   bool json = false;
@@ -162,7 +163,7 @@ struct ExperimentOptions {
   CommonOptions common;            // --library, --calibration, --json
   std::string target;              // run: the design; resume and analyse: the results folder
   std::string subject, output;     // run
-  std::string device = "sim";      // sim, usb, hidraw or hidraw:PATH
+  std::string device = "sim";      // sim, usb, hidraw[:PATH] or evdev[:PATH]
   std::string observer;            // terminal, page or simulated:...; empty: terminal (run), the recorded one (resume)
   bool switch_observer = false;    // resume: answer with --observer, not the recorded observer
   std::string listen = "127.0.0.1:4781";  // --observer page

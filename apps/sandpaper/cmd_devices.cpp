@@ -11,6 +11,7 @@
 
 #include "cli.hpp"
 #include "sandpaper/runtime/devices/open_device.hpp"
+#include "sandpaper/runtime/evdev/evdev_node.hpp"
 #include "sandpaper/runtime/usb/hidraw_transport.hpp"
 
 namespace sandpaper::cli {
@@ -24,6 +25,14 @@ std::string descriptor_summary(const runtime::usb::UsbHidDeviceInfo& info) {
   if (info.descriptor_read) return info.has_pid ? "HID PID force feedback" : "no PID usage in its descriptor";
   if (!info.descriptor_error.empty()) return "report descriptor refused (" + info.descriptor_error + ")";
   return "descriptor not read";
+}
+
+// What the kernel's force feedback offers on an event node, for the listing.
+std::string evdev_summary(const runtime::evdev::EvdevNode& n) {
+  if (!n.constant_force) return "no constant-force effect (FF_CONSTANT): cannot be played";
+  if (n.axes == 0) return "no ABS_X or ABS_WHEEL axis: cannot be played";
+  return fmt::format("the kernel's force feedback, {} {}{}", n.axes, n.axes == 1 ? "axis" : "axes",
+                     n.report_descriptor.empty() ? "; not a HID device, so the level per newton is unknown" : "");
 }
 }  // namespace
 
@@ -46,6 +55,7 @@ int cmd_devices(const CommonOptions& o) {
   }
   bool denied = false;
   const auto hidraw = runtime::usb::list_hidraw_nodes();
+  const auto events = runtime::evdev::list_force_feedback_nodes();
   for (const auto& f : search.found) {
     std::cout << fmt::format("{} bus {} address {}{}: {}; {}\n", runtime::usb_ids(f.info.vendor_id, f.info.product_id),
                              f.info.bus, f.info.address, f.info.product.empty() ? "" : " \"" + f.info.product + "\"",
@@ -61,6 +71,16 @@ int cmd_devices(const CommonOptions& o) {
         (may ? hidraw_usable : hidraw_denied) = true;
         std::cout << "  through hidraw: --device hidraw:" << n.path << " (the kernel's driver stays bound)\n";
       }
+    bool evdev_usable = false, evdev_denied = false;
+    for (const auto& n : events)
+      if (n.usb() && n.vendor_id == f.info.vendor_id && n.product_id == f.info.product_id) {
+        const bool may = ::access(n.path.c_str(), R_OK | W_OK) == 0;
+        (may ? evdev_usable : evdev_denied) = true;
+        std::cout << "  through evdev: --device evdev:" << n.path << " (" << evdev_summary(n) << ")\n";
+      }
+    if (evdev_denied)
+      std::cout << "  this user may not open its input event node; the .deb's rules give force-feedback event devices to "
+                   "the person at the seat (`sandpaper devices --udev-rules`)\n";
     // A path this user may not take is named with the rule that allows it; only a device that no
     // path can reach makes the listing fail.
     if (usb_denied || hidraw_denied) {
@@ -70,7 +90,16 @@ int cmd_devices(const CommonOptions& o) {
       if (hidraw_denied) std::cout << "    " << runtime::hidraw_udev_rule(f.info.vendor_id, f.info.product_id) << "\n";
       std::cout << "  then run `sudo udevadm control --reload` and unplug and replug the device\n";
     }
-    if (usb_denied && !hidraw_usable) denied = true;
+    if (usb_denied && !hidraw_usable && !evdev_usable) denied = true;
+  }
+  // Force-feedback input devices that are not USB HID PID joysticks (a wheel with a vendor driver,
+  // a device on Bluetooth): the kernel plays them, and only through evdev.
+  for (const auto& n : events) {
+    bool listed = false;
+    for (const auto& f : search.found) listed = listed || (n.usb() && n.vendor_id == f.info.vendor_id && n.product_id == f.info.product_id);
+    if (listed) continue;
+    std::cout << fmt::format("{} \"{}\": {}; no device calibration: cannot be played yet\n  through evdev: --device evdev:{}\n",
+                             runtime::usb_ids(n.vendor_id, n.product_id), n.name, evdev_summary(n), n.path);
   }
   return denied ? kExitUsage : kExitOk;
 }

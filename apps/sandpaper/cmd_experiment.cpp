@@ -91,11 +91,12 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   hand.speed_m_s = d.hand_speed_m_s;
   hand.amplitude_m = d.hand_amplitude_m;
   // --device sim plays the design's device on the simulated joystick (an emulated one with its
-  // quantisation); usb, the joystick plugged in, which must be the design's device; hidraw and
-  // hidraw:PATH, the design's device through its hidraw node (docs/DEVICES.md).
-  const bool hidraw = eo.device == "hidraw" || eo.device.rfind("hidraw:", 0) == 0;
+  // quantisation); usb, the joystick plugged in, which must be the design's device; hidraw[:PATH]
+  // and evdev[:PATH], the design's device through its hidraw or input event node (docs/DEVICES.md).
+  const bool hidraw = eo.device == "hidraw" || eo.device.rfind("hidraw:", 0) == 0 || eo.device == "evdev" ||
+                      eo.device.rfind("evdev:", 0) == 0;
   if (eo.device != "sim" && eo.device != "usb" && !hidraw) {
-    std::cerr << "sandpaper experiment: --device is sim, usb, hidraw or hidraw:PATH (the design's `device` names the calibration)\n";
+    std::cerr << "sandpaper experiment: --device is sim, usb, hidraw[:PATH] or evdev[:PATH] (the design's `device` names the calibration)\n";
     return nullptr;
   }
   runtime::DeviceSpec spec;

@@ -46,7 +46,21 @@ int exec_player(int argc, char** argv) {
   return -1;
 }
 
-int cmd_run(const CommonOptions& o, PlayRequest r, bool watch) {
+// Without --device, a calibrated joystick that is plugged in plays (through hidraw, else evdev);
+// a request only the simulator can follow (a replay, the dynamic hand, the virtual clock, --watch)
+// keeps the simulated joystick, as does a machine with no such joystick.
+CommonOptions with_default_device(CommonOptions o, const PlayRequest& r, bool watch) {
+  if (o.device_given || watch || r.virtual_clock || !r.device.replay.empty() || r.device.hand_model != "position") return o;
+  const auto chosen = runtime::default_play_device(load_calibration_set(o));
+  if (chosen.device == "sim") return o;
+  o.device = chosen.device;
+  std::cerr << "sandpaper run: no --device given: playing on " << chosen.found << " (--device " << chosen.device
+            << "; --device sim for the simulated joystick)\n";
+  return o;
+}
+
+int cmd_run(const CommonOptions& given, PlayRequest r, bool watch) {
+  const CommonOptions o = with_default_device(given, r, watch);
   r.json = o.json;  // --json is one of the options every command shares
   const std::string command = "run --device " + o.device;
   if (watch && (o.file.empty() || r.virtual_clock || !r.device.replay.empty() || !r.trace.empty())) {

@@ -29,7 +29,7 @@ void add_common(CLI::App* sub, sandpaper::cli::CommonOptions& o, bool input) {
     sub->add_option("file", o.file, "material file (.hmat) or workspace (.hws)");
     sub->add_option("-e,--expression", o.expression, "material as one line: statements separated by ';', or a library name");
   }
-  sub->add_option("--device", o.device, "device calibration to compile for (calibration/devices/); run also takes usb (the first HID PID joystick found, through libusb) and hidraw or hidraw:PATH (through the kernel's hidraw node, its driver left bound)")->capture_default_str();
+  sub->add_option("--device", o.device, "device calibration to compile for (calibration/devices/); run also takes usb (the first HID PID joystick found, through libusb) hidraw or hidraw:PATH (through the kernel's hidraw node, its driver left bound) and evdev or evdev:PATH (the kernel's own force feedback through the input event node)")->capture_default_str();
   sub->add_option("--library", o.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   sub->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");
   sub->add_flag("--json", o.json, "print one JSON object instead of text");
@@ -270,6 +270,7 @@ int main(int argc, char** argv) {
         exec_player(argc, argv);
       if (watch && !run->count("--duration")) play_request.duration_s = 0;
       play_request.live = play_request.live || isatty(STDERR_FILENO);
+      o.device_given = run->count("--device") > 0;
       return cmd_run(o, play_request, watch);
     }
     if (shuffle->parsed()) return cmd_movie_shuffle(shuffle_opts, o.json);

@@ -424,7 +424,8 @@ PYBIND11_MODULE(sandpaper, m) {
         return std::make_unique<PyPlayer>(PyPlayer{sp::Player::open(lib.compiler->calibration(), device), nullptr, std::nullopt});
       }, py::arg("library"), py::arg("device"),
          "a calibrated joystick found along the path `device` names (docs/DEVICES.md): 'usb' (as usb()), "
-         "'hidraw' (its hidraw node, the kernel's driver left bound, no root) or 'hidraw:/dev/hidrawN'. "
+         "'hidraw' (its hidraw node, the kernel's driver left bound, no root), 'hidraw:/dev/hidrawN', "
+         "'evdev' or 'evdev:/dev/input/eventN' (the kernel's own force feedback, no root). "
          "Raises DeviceError when there is none, it cannot be opened, or the device is not on the bus")
       .def_property_readonly("device_calibration", [](const PyPlayer& p) { return p.player.device_calibration(); },
          "the device calibration materials must be compiled for (usb); empty for the simulated joystick")

@@ -241,7 +241,8 @@ int prepare_play_device(const calibration::CalibrationSet& set, const std::strin
   }
   // Again, now that an emulated device's rate and a replay's length are known; a joystick found on
   // the bus keeps the path it was asked through.
-  const std::string through = std::string(choice.family) == "hidraw" ? (spec.through.empty() ? device : spec.through) : "";
+  const std::string family = choice.family;
+  const std::string through = family == "hidraw" || family == "evdev" ? (spec.through.empty() ? device : spec.through) : "";
   spec = device_spec_of(r, choice.calibration);
   spec.through = through;
   spec.replay_positions_m = std::move(positions);
@@ -379,12 +380,14 @@ int play_on_sim(const schema::PatchProgram& prog, runtime::OpenedDevice& opened,
   return exit_status_of(rep);
 }
 
-int play_on_usb(const schema::PatchProgram& program, runtime::OpenedDevice& opened, const PlayRequest& r) {
+// A device a person holds (USB HID PID through libusb or hidraw, an input event node): played, given
+// back, then reported.
+int play_on_held(const schema::PatchProgram& program, runtime::OpenedDevice& opened, const PlayRequest& r) {
   const runtime::ServoConfig cfg = servo_config_of(r);
   const auto& info = *opened.usb;
   const std::string& device_name = opened.calibration;
   try {
-    runtime::usb::HidPidJoystick& joystick = *opened.usb_joystick;
+    runtime::HeldDevice& joystick = *opened.held;
     runtime::validate_config(cfg, joystick.limits());
     runtime::PatchEvaluator evaluator(program);
     const std::string usb_ids = runtime::usb_ids(info.vendor_id, info.product_id);
@@ -397,7 +400,7 @@ int play_on_usb(const schema::PatchProgram& program, runtime::OpenedDevice& open
     // Through play(): Ctrl-C / SIGTERM stop the loop with zero force, and the device is given back below.
     const Played played = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, keep, &program);
     const runtime::ServoReport& rep = played.report;
-    joystick.close();
+    joystick.close_nonrt();
     if (!r.trace.empty()) {
       // What the tick published (position read, force commanded); the device's own record of what
       // reached it is the device's to keep.
@@ -406,17 +409,16 @@ int play_on_usb(const schema::PatchProgram& program, runtime::OpenedDevice& open
       for (const auto& t : played.records) published.push_back({t.t_s, t.position_m, t.force_N});
       schema::write_file_atomically(r.trace, runtime::format_trace_csv(published));
     }
-    // The transport's cause of a device fault (timed out, no device, stalled, ...), empty if none.
-    const std::string usb_error = joystick.fault() == runtime::DeviceFault::None ? std::string()
-                                                                                  : runtime::usb::to_string(joystick.fault_status());
+    // The transport's cause of a device fault (timed out, no device, stalled, ENODEV, ...), empty if none.
+    const std::string usb_error = joystick.fault_detail_nonrt();
     const std::string stop = std::string(rep.stop_reason) + " [" + runtime::stop_cause_name(rep.stop_cause) + "]" +
-                             (usb_error.empty() ? std::string() : " (USB: " + usb_error + ")");
+                             (usb_error.empty() ? std::string() : " (" + opened.transport + ": " + usb_error + ")");
     if (r.json) {
       nlohmann::json j{{"material", program.name},
                        {"device", device_name},
                        {"usb", opened.node.empty()
-                                   ? nlohmann::json{{"id", usb_ids}, {"bus", info.bus}, {"address", info.address}, {"transport", "libusb"}}
-                                   : nlohmann::json{{"id", usb_ids}, {"node", opened.node}, {"transport", "hidraw"}}},
+                                   ? nlohmann::json{{"id", usb_ids}, {"bus", info.bus}, {"address", info.address}, {"transport", opened.transport}}
+                                   : nlohmann::json{{"id", usb_ids}, {"node", opened.node}, {"transport", opened.transport}}},
                        {"ticks", rep.ticks},
                        {"rate_hz", rep.rate_hz},
                        {"rate_hz_target", r.rate_hz},
@@ -471,7 +473,7 @@ int play_patch(const schema::PatchProgram& program, runtime::OpenedDevice& devic
               << "'; recompile it with --device " << device.calibration << "\n";
     return kExitUsage;
   }
-  if (device.real) return play_on_usb(program, device, r);
+  if (device.held != nullptr) return play_on_held(program, device, r);
   return play_on_sim(program, device, roughness_map, r, playing, poll);
 }
 

@@ -1,5 +1,5 @@
 # Plays MATERIAL on the emulated OpenFFBoard with `sandpaper run --device RUN_DEVICE` (usb, the
-# default, or hidraw: usbhid stays bound) (scripted hand: HAND
+# default, or hidraw or evdev: usbhid stays bound) (scripted hand: HAND
 # at AT_X_MM AT_Y_MM, SPEED_MM_S, EXTENT_MM) and injects FAULT once the run streams its forces (the
 # device's "streaming" line):
 #   unplug  the gadget leaves the bus (UDC unbound), then is plugged in again: `devices` must find
@@ -71,7 +71,7 @@ if [ "$FAULT" = unplug ]; then
   lab_wait_usb_gone "$FFB_VID" "$FFB_PID" 10
   lab_step "plugging in again"
   gadget_bind ffboard "$FFB_UDC" && lab_wait_usb_device "$FFB_VID" "$FFB_PID" 60 && FFB_USB_DEV=$LAB_USB_DEV &&
-    lab_wait_hidraw "$FFB_USB_DEV" 60
+    lab_wait_hidraw "$FFB_USB_DEV" 60 && lab_wait_input "$FFB_USB_DEV" 60
   lab_step "plugged in; devices"
   "$SANDPAPER" devices > /out/devices.txt 2>&1
   replug_devices_status=$?

@@ -180,7 +180,8 @@ class Player {
   static Player usb(const calibration::CalibrationSet& set);
   // A calibrated joystick found along the path `device` names (docs/DEVICES.md): "usb" (as usb()),
   // "hidraw" (the first such joystick's hidraw node, the kernel's driver left bound, no root) or
-  // "hidraw:PATH" (that node). Throws DeviceError as usb() does, and for a device that is not on the bus.
+  // "hidraw:PATH" (that node), "evdev" or "evdev:PATH" (its input event node: the kernel's own force
+  // feedback, no root). Throws DeviceError as usb() does, and for a device that is not on the bus.
   static Player open(const Library& library, const std::string& device);
   static Player open(const calibration::CalibrationSet& set, const std::string& device);
   // Any device (a USB HID PID joystick, a replay, your own runtime::Device); the player owns it.

@@ -1,5 +1,6 @@
 #pragma once
 // The factory entries that live in files of their own.
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -24,6 +25,10 @@ std::string usb_calibration(const calibration::CalibrationSet& set, const Device
 OpenedDevice open_hid_pid(std::unique_ptr<usb::UsbTransport> transport, const calibration::DeviceCalibration& cal,
                           const DeviceSpec& spec, const std::string& what, const std::string& access_help);
 
+// A joystick reached through a node of the kernel's (hidraw, an input event node): where it is.
+void set_node(OpenedDevice& out, std::uint16_t vendor, std::uint16_t product, const std::string& name, const std::string& path,
+              const char* transport);
+
 // A device a person moves refuses the simulated hands (a replay, the dynamic hand) and the virtual clock.
 void refuse_simulated_hands(const DeviceSpec& spec);
 
@@ -33,5 +38,12 @@ bool serves_hidraw(const DeviceSpec& spec, const calibration::DeviceCalibration*
 OpenedDevice open_hidraw(const calibration::CalibrationSet& set, DeviceSpec& spec, const calibration::DeviceCalibration* cal);
 std::string hidraw_calibration(const calibration::CalibrationSet& set, const DeviceSpec& spec,
                                const calibration::DeviceCalibration* cal);
+
+// Force-feedback input event devices, the kernel's driver doing the force feedback: `evdev` or `evdev:PATH`.
+bool is_evdev_device(const std::string& device);
+bool serves_evdev(const DeviceSpec& spec, const calibration::DeviceCalibration* cal);
+OpenedDevice open_evdev(const calibration::CalibrationSet& set, DeviceSpec& spec, const calibration::DeviceCalibration* cal);
+std::string evdev_calibration(const calibration::CalibrationSet& set, const DeviceSpec& spec,
+                              const calibration::DeviceCalibration* cal);
 
 }  // namespace sandpaper::runtime

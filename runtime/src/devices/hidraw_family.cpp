@@ -26,8 +26,9 @@ const DeviceCalibration* calibration_of(const calibration::CalibrationSet& set, 
 }
 
 // "hidraw" or "hidraw:PATH", from `device` itself or, once resolved to a calibration, `through`.
-const std::string& hidraw_request(const DeviceSpec& spec) {
-  return is_hidraw_device(spec.device) ? spec.device : spec.through;
+std::string hidraw_request(const DeviceSpec& spec) {
+  if (is_hidraw_device(spec.device)) return spec.device;
+  return is_hidraw_device(spec.through) ? spec.through : std::string();
 }
 
 std::string hidraw_path(const std::string& request) {
@@ -82,6 +83,17 @@ std::string hidraw_udev_rule(int vendor, int product) {
          "\", TAG+=\"uaccess\"";
 }
 
+void set_node(OpenedDevice& out, std::uint16_t vendor, std::uint16_t product, const std::string& name, const std::string& path,
+              const char* transport) {
+  usb::UsbHidDeviceInfo info;
+  info.vendor_id = vendor;
+  info.product_id = product;
+  info.product = name;
+  out.usb = info;
+  out.node = path;
+  out.transport = transport;
+}
+
 bool serves_hidraw(const DeviceSpec& spec, const DeviceCalibration*) { return !hidraw_request(spec).empty(); }
 
 bool is_hidraw_device(const std::string& device) { return device == "hidraw" || device.rfind("hidraw:", 0) == 0; }
@@ -110,12 +122,7 @@ OpenedDevice open_hidraw(const calibration::CalibrationSet& set, DeviceSpec& spe
                           opened == UsbStatus::AccessDenied ? help : "");
   OpenedDevice out = open_hid_pid(std::move(transport), found, spec, node.path + " (" + found.name + ", " + ids + ")", help);
   out.description = found.name + " (" + ids + ") through " + node.path + ", the kernel's driver left bound";
-  usb::UsbHidDeviceInfo info;
-  info.vendor_id = node.vendor_id;
-  info.product_id = node.product_id;
-  info.product = node.name;
-  out.usb = info;
-  out.node = node.path;
+  set_node(out, node.vendor_id, node.product_id, node.name, node.path, "hidraw");
   return out;
 }
 

@@ -109,16 +109,17 @@ constexpr Family kFamilies[] = {
     {"emulated", false, serves_emulated, open_emulated, emulated_calibration},
     {"simulated", false, serves_simulated, open_simulated, simulated_calibration},
     {"hidraw", true, serves_hidraw, open_hidraw, hidraw_calibration},
+    {"evdev", true, serves_evdev, open_evdev, evdev_calibration},
     {"usb", true, serves_usb, open_usb, usb_calibration},
 };
 
 const Family& family_for(const calibration::CalibrationSet& set, const DeviceSpec& spec, const DeviceCalibration*& cal) {
-  const bool searched = spec.device == "usb" || is_hidraw_device(spec.device);  // found on the bus, not named
+  const bool searched = spec.device == "usb" || is_hidraw_device(spec.device) || is_evdev_device(spec.device);  // found on the bus, not named
   cal = searched ? nullptr : set.find_device(spec.device);
   if (!searched && cal == nullptr) {
     std::string names;
     for (const auto& d : set.devices()) names += (names.empty() ? "" : ", ") + d.name;
-    throw DeviceOpenError(Cause::UnknownDevice, "no device calibration named '" + spec.device + "' (devices: " + names + ", or usb, hidraw, hidraw:PATH)");
+    throw DeviceOpenError(Cause::UnknownDevice, "no device calibration named '" + spec.device + "' (devices: " + names + ", or usb, hidraw, hidraw:PATH, evdev, evdev:PATH)");
   }
   for (const Family& family : kFamilies)
     if (family.serves(spec, cal)) return family;

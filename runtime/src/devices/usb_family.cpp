@@ -108,6 +108,7 @@ OpenedDevice open_hid_pid(std::unique_ptr<usb::UsbTransport> transport, const De
   try {
     auto joystick = std::make_unique<usb::OwnedHidPidJoystick>(std::move(transport), cal, options);
     out.usb_joystick = &joystick->joystick();
+    out.held = joystick.get();
     out.device = std::move(joystick);
   } catch (const usb::HidPidError& e) {
     throw DeviceOpenError(e.status == UsbStatus::AccessDenied ? Cause::AccessDenied : Cause::Refused,
@@ -139,6 +140,7 @@ OpenedDevice open_usb(const calibration::CalibrationSet& set, DeviceSpec& spec, 
                                   udev_help(info.vendor_id, info.product_id));
   out.description = cal.name + " (" + ids + ") on USB bus " + std::to_string(info.bus) + " address " + std::to_string(info.address);
   out.usb = info;
+  out.transport = "libusb";
   return out;
 }
 

@@ -59,6 +59,9 @@ HidPidJoystick::HidPidJoystick(UsbTransport& transport, const calibration::Devic
 HidPidJoystick::~HidPidJoystick() { close(); }
 
 DeviceFault HidPidJoystick::last_fault_rt() const noexcept { return fault_.load(std::memory_order_acquire); }
+std::string HidPidJoystick::fault_detail_nonrt() const {
+  return fault() == DeviceFault::None ? std::string() : std::string(to_string(fault_status()));
+}
 UsbStatus HidPidJoystick::fault_status() const noexcept { return fault_status_.load(std::memory_order_acquire); }
 std::array<std::int32_t, 2> HidPidJoystick::last_command() const noexcept {
   return {last_command_[0].load(std::memory_order_relaxed), last_command_[1].load(std::memory_order_relaxed)};

@@ -226,6 +226,26 @@ TEST(OpenDevice, HidrawIsFoundOnTheBusAndRefusesSimulatedHands) {
   EXPECT_NE(message.find("no hidraw node /nonexistent/hidraw99"), std::string::npos) << message;
 }
 
+TEST(OpenDevice, EvdevIsFoundOnTheBusAndRefusesSimulatedHands) {
+  DeviceSpec clock = spec_for("evdev");
+  clock.virtual_clock = true;
+  std::string message;
+  EXPECT_EQ(refusal(shipped(), clock, &message), Cause::WrongOptions);
+  EXPECT_NE(message.find("real time"), std::string::npos) << message;
+  DeviceSpec replay = spec_for("evdev:/dev/input/event0");
+  replay.hand = SimulatedHand::Replay;
+  EXPECT_EQ(refusal(shipped(), replay), Cause::WrongOptions);
+  // A path that is no force-feedback event node is named, not taken for a calibration's name nor
+  // handed to the hidraw entry.
+  EXPECT_EQ(refusal(shipped(), spec_for("evdev:/nonexistent/event99"), &message), Cause::NoUsb);
+  EXPECT_NE(message.find("no input event node with force feedback at /nonexistent/event99"), std::string::npos) << message;
+  // Resolved to its calibration, the path asked for still decides the family.
+  DeviceSpec through = spec_for("openffboard-2axis");
+  through.through = "evdev:/nonexistent/event99";
+  EXPECT_EQ(refusal(shipped(), through, &message), Cause::NoUsb);
+  EXPECT_NE(message.find("input event node"), std::string::npos) << message;
+}
+
 TEST(OpenDevice, TheUdevRuleNamesTheDeviceInLowerCaseHex) {
   EXPECT_EQ(usb_ids(0x1209, 0xFFB0), "1209:ffb0");
   EXPECT_EQ(udev_rule(0x1209, 0xFFB0),

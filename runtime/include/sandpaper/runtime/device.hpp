@@ -44,4 +44,16 @@ class Device {
   virtual DeviceFault last_fault_rt() const noexcept { return DeviceFault::None; }
 };
 
+// A device a person holds, reached through a driver that must give it back: a USB HID PID joystick
+// (libusb or hidraw), an input event device. Whoever opened it closes it before reporting a run.
+class HeldDevice : public Device {
+ public:
+  // Zero force, effects freed, the device given back as it was found (kernel driver reattached,
+  // gain and autocenter restored). Best effort and idempotent; not on the servo thread.
+  virtual void close_nonrt() noexcept = 0;
+  // The transport's own words for the fault last_fault_rt() names ("no device", "ENODEV: No such
+  // device"), or "" when there was none.
+  virtual std::string fault_detail_nonrt() const = 0;
+};
+
 }  // namespace sandpaper::runtime

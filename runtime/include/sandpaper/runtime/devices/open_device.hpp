@@ -41,7 +41,8 @@ enum class SimulatedHand {
 struct DeviceSpec {
   // A device calibration's name ("sim", "sandpaper-1995", "openffboard-2axis"); "usb": the first
   // USB joystick plugged in whose calibration is known, through libusb (usbhid detached while it plays);
-  // "hidraw" or "hidraw:PATH": the first such joystick's hidraw node, or that node, the kernel's driver left bound.
+  // "hidraw" or "hidraw:PATH": the first such joystick's hidraw node, or that node, the kernel's driver left bound;
+  // "evdev" or "evdev:PATH": the first force-feedback input event node a calibration names, or that node.
   std::string device = "sim";
   // Play the named calibration's device on the simulated joystick (its limits), not through its driver.
   bool simulate = false;
@@ -54,8 +55,8 @@ struct DeviceSpec {
   std::size_t record_ticks = 0;                // ticks a simulated device keeps for records()
   double watchdog_s = 0;    // a real device: no position, or no force taken, this long stops the loop (0: its file's)
   bool virtual_clock = false;  // the run will be on simulated time: only simulated devices can follow it
-  // How a calibrated joystick named by `device` is reached: "" (libusb), "hidraw" or "hidraw:PATH".
-  // Set when `device` was "hidraw..." and has been resolved to the calibration it found.
+  // How a calibrated joystick named by `device` is reached: "" (libusb), "hidraw[:PATH]" or "evdev[:PATH]".
+  // Set when `device` was "hidraw..." or "evdev..." and has been resolved to the calibration it found.
   std::string through;
 };
 
@@ -67,7 +68,7 @@ struct Emulation {
 
 struct OpenedDevice {
   std::unique_ptr<Device> device;
-  const char* family = "";            // "simulated", "emulated", "usb" or "hidraw": the factory entry that opened it
+  const char* family = "";            // "simulated", "emulated", "usb", "hidraw" or "evdev": the factory entry that opened it
   std::string calibration;            // the device calibration programs must be compiled for
   std::string description;            // "position-controlled hand", "openffboard-2axis (1209:ffb0) on USB bus 1 address 3"
   RecordingDevice* recording = nullptr;  // simulated and emulated devices: their tick records
@@ -76,6 +77,8 @@ struct OpenedDevice {
   std::optional<usb::UsbHidDeviceInfo> usb;  // a USB device: where it is
   std::string node;                   // a device played through hidraw: its node ("/dev/hidraw0"); else empty
   usb::HidPidJoystick* usb_joystick = nullptr;  // ... and its driver, for fault_status() after a run
+  HeldDevice* held = nullptr;         // a device a person holds: closed (given back) before the run is reported
+  std::string transport;              // a held device: "libusb", "hidraw" or "evdev"
   bool real = false;                  // a device a person moves (USB), not a simulated one
 };
 
@@ -111,6 +114,16 @@ struct DeviceChoice {
   bool real = false;  // a device a person moves (USB), not a simulated one
 };
 DeviceChoice choose_device(const calibration::CalibrationSet& set, const DeviceSpec& spec);
+
+// What `run` plays on when no device is named: the hidraw node of a calibrated HID PID joystick
+// plugged in ("hidraw:/dev/hidraw0"), else its input event node ("evdev:/dev/input/event3"),
+// preferring a node this user may open; else "sim". `found` describes the joystick ("" for sim).
+// Opens nothing; never throws. libusb is only ever taken when asked for (--device usb).
+struct DefaultDevice {
+  std::string device;
+  std::string found;
+};
+DefaultDevice default_play_device(const calibration::CalibrationSet& set);
 
 // The quantisation and table sampling of a calibration with [emulation]; nullopt for others.
 std::optional<Emulation> emulation_of(const calibration::DeviceCalibration& device);

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "sandpaper/calibration/calibration.hpp"
@@ -60,7 +61,7 @@ struct HidPidError : std::runtime_error {
   UsbStatus status;
 };
 
-class HidPidJoystick final : public Device {
+class HidPidJoystick final : public HeldDevice {
  public:
   // Opens the device on `transport` (which must outlive this object) and creates the effects
   // (sequence in docs/USB_PID.md). Newtons become command units through `calibration`'s axis
@@ -94,6 +95,9 @@ class HidPidJoystick final : public Device {
   // The shutdown sequence (zero force, stop, free, stop all, disable actuators, release, reattach);
   // best effort, each step tried whatever the previous returned. Idempotent; the destructor calls it.
   void close() noexcept;
+  void close_nonrt() noexcept override { close(); }
+  // to_string(fault_status()) after a fault, else "".
+  std::string fault_detail_nonrt() const override;
 
   DeviceFault fault() const noexcept { return last_fault_rt(); }
   DeviceFault last_fault_rt() const noexcept override;

@@ -9,7 +9,7 @@
 
 namespace sandpaper::runtime::usb {
 
-class OwnedHidPidJoystick final : public Device {
+class OwnedHidPidJoystick final : public HeldDevice {
  public:
   // Opens the joystick on `transport` (HidPidJoystick's constructor: throws HidPidError).
   OwnedHidPidJoystick(std::unique_ptr<UsbTransport> transport, const calibration::DeviceCalibration& calibration,
@@ -23,6 +23,8 @@ class OwnedHidPidJoystick final : public Device {
   bool position_fresh_rt() const noexcept override { return joystick_.position_fresh_rt(); }
   bool write_force_rt(glm::dvec2 force_N) noexcept override { return joystick_.write_force_rt(force_N); }
   DeviceFault last_fault_rt() const noexcept override { return joystick_.last_fault_rt(); }
+  void close_nonrt() noexcept override { joystick_.close(); }
+  std::string fault_detail_nonrt() const override { return joystick_.fault_detail_nonrt(); }
 
   // The driver itself: its fault_status() after a run, or close() before the report is printed.
   HidPidJoystick& joystick() noexcept { return joystick_; }

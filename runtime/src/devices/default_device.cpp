@@ -1,0 +1,40 @@
+// The path `run` takes when no --device is given (docs/DEVICES.md, "Without --device"): a calibrated
+// joystick plugged in, through a path that leaves the kernel's driver bound, else the simulator.
+#include <unistd.h>
+
+#include "devices_internal.hpp"
+#include "sandpaper/runtime/evdev/evdev_node.hpp"
+#include "sandpaper/runtime/usb/hidraw_transport.hpp"
+
+namespace sandpaper::runtime {
+
+namespace {
+bool may_open(const std::string& path) { return ::access(path.c_str(), R_OK | W_OK) == 0; }
+
+const calibration::DeviceCalibration* known(const calibration::CalibrationSet& set, bool usb, int vendor, int product) {
+  for (const auto& d : set.devices())
+    if (usb && d.usb_vendor_id == vendor && d.usb_product_id == product) return &d;
+  return nullptr;
+}
+}  // namespace
+
+DefaultDevice default_play_device(const calibration::CalibrationSet& set) {
+  // hidraw first: Sandpaper's own HID PID driver, whose device model explain predicts; evdev for a
+  // calibrated device this user may open only there. A node nobody here may open is still named,
+  // so that the open error gives the rule that opens it.
+  std::string denied;
+  for (const auto& n : usb::list_hidraw_nodes())
+    if (const auto* cal = known(set, n.usb, n.vendor_id, n.product_id)) {
+      if (may_open(n.path)) return {"hidraw:" + n.path, cal->name + " (" + usb_ids(n.vendor_id, n.product_id) + ") through " + n.path};
+      if (denied.empty()) denied = "hidraw:" + n.path;
+    }
+  for (const auto& n : evdev::list_force_feedback_nodes())
+    if (const auto* cal = known(set, n.usb(), n.vendor_id, n.product_id); cal != nullptr && n.constant_force) {
+      if (may_open(n.path)) return {"evdev:" + n.path, cal->name + " (" + usb_ids(n.vendor_id, n.product_id) + ") through " + n.path};
+      if (denied.empty()) denied = "evdev:" + n.path;
+    }
+  if (!denied.empty()) return {denied, "a calibrated joystick this user may not open yet"};
+  return {"sim", ""};
+}
+
+}  // namespace sandpaper::runtime

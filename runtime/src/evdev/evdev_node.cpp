@@ -1,0 +1,89 @@
+#include "sandpaper/runtime/evdev/evdev_node.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace sandpaper::runtime::evdev {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string first_line(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+std::uint16_t hex16(const fs::path& p) {
+  const std::string s = first_line(p);
+  char* end = nullptr;
+  const unsigned long v = std::strtoul(s.c_str(), &end, 16);
+  return end == s.c_str() || v > 0xFFFF ? 0 : static_cast<std::uint16_t>(v);
+}
+
+int node_number(const std::string& name) { return std::atoi(name.c_str() + 5); }  // "event12" -> 12
+
+constexpr unsigned kEvFf = 0x15;  // EV_FF
+
+}  // namespace
+
+bool sysfs_bit(const std::string& bitmap, unsigned bit, unsigned word_bits) noexcept {
+  std::vector<std::string> words;
+  std::istringstream in(bitmap);
+  for (std::string w; in >> w;) words.push_back(w);
+  const std::size_t index = bit / word_bits;  // counted from the last word
+  if (words.empty() || index >= words.size()) return false;
+  const std::string& w = words[words.size() - 1 - index];
+  if (w.size() > word_bits / 4 || w.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) return false;
+  const unsigned shift = bit % word_bits;
+  const std::size_t digit = shift / 4;  // from the right
+  if (digit >= w.size()) return false;
+  const char c = w[w.size() - 1 - digit];
+  const int value = c <= '9' ? c - '0' : (c | 0x20) - 'a' + 10;
+  return (value >> (shift % 4)) & 1;
+}
+
+std::vector<EvdevNode> list_force_feedback_nodes(const std::string& sysfs_root) {
+  std::vector<std::pair<int, EvdevNode>> found;
+  std::error_code ec;
+  for (fs::directory_iterator it(fs::path(sysfs_root) / "class/input", ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("event", 0) != 0 || name.size() == 5) continue;
+    const fs::path input = it->path() / "device";  // the input device (inputN) the node belongs to
+    const std::string ev = first_line(input / "capabilities/ev");
+    if (!sysfs_bit(ev, kEvFf)) continue;
+    EvdevNode n;
+    n.path = "/dev/input/" + name;
+    n.name = first_line(input / "name");
+    n.bustype = hex16(input / "id/bustype");
+    n.vendor_id = hex16(input / "id/vendor");
+    n.product_id = hex16(input / "id/product");
+    const std::string ff = first_line(input / "capabilities/ff");
+    n.constant_force = sysfs_bit(ff, kFfConstant);
+    n.gain = sysfs_bit(ff, kFfGain);
+    n.autocenter = sysfs_bit(ff, kFfAutocenter);
+    const std::string abs = first_line(input / "capabilities/abs");
+    n.axes = sysfs_bit(abs, kAbsX) ? (sysfs_bit(abs, kAbsY) ? 2 : 1) : sysfs_bit(abs, kAbsWheel) ? 1 : 0;
+    if (const fs::path d = input / "device/report_descriptor"; fs::exists(d, ec)) n.report_descriptor = d.string();
+    found.emplace_back(node_number(name), std::move(n));
+  }
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<EvdevNode> out;
+  for (auto& f : found) out.push_back(std::move(f.second));
+  return out;
+}
+
+const EvdevNode* find_node(const std::vector<EvdevNode>& nodes, const std::string& path) {
+  std::error_code ec;
+  const fs::path real = fs::canonical(path, ec);
+  const std::string wanted = ec ? path : real.string();
+  for (const auto& n : nodes)
+    if (n.path == wanted) return &n;
+  return nullptr;
+}
+
+}  // namespace sandpaper::runtime::evdev
