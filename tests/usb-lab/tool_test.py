@@ -62,8 +62,11 @@ def main() -> int:
         check(r.returncode == 2 and "no such material file" in r.stderr, f"a missing file is a usage error: {r.returncode} {r.stderr.strip()!r}")
         r, _ = tool(build, "--material", str(REPO / "examples/corduroy.hmat"), "--speed", "0")
         check(r.returncode == 2 and "must be positive" in r.stderr, f"a speed of 0 is a usage error: {r.returncode} {r.stderr.strip()!r}")
-        r, _ = tool(build, "--material", str(bad), "--device", "evdev")
+        r, _ = tool(build, "--material", str(bad), "--device", "bluetooth")
         check(r.returncode == 2 and "invalid choice" in r.stderr, f"an unknown path is a usage error: {r.returncode}")
+        r, _ = tool(build, "--material", str(REPO / "examples/corduroy.hmat"), "--fault", "stale", "--device", "evdev")
+        check(r.returncode == 2 and "cannot be seen" in r.stderr,
+              f"a stale device through evdev is refused, saying why: {r.returncode} {r.stderr.strip()[-160:]!r}")
 
         os.unlink(build / "bin" / "sandpaper")
         r, _ = tool(build, "--material", str(bad))
