@@ -11,11 +11,6 @@ namespace sandpaper::runtime {
 namespace {
 bool may_open(const std::string& path) { return ::access(path.c_str(), R_OK | W_OK) == 0; }
 
-const calibration::DeviceCalibration* known(const calibration::CalibrationSet& set, bool usb, int vendor, int product) {
-  for (const auto& d : set.devices())
-    if (usb && d.usb_vendor_id == vendor && d.usb_product_id == product) return &d;
-  return nullptr;
-}
 }  // namespace
 
 DefaultDevice default_play_device(const calibration::CalibrationSet& set) {
@@ -24,12 +19,12 @@ DefaultDevice default_play_device(const calibration::CalibrationSet& set) {
   // so that the open error gives the rule that opens it.
   std::string denied;
   for (const auto& n : usb::list_hidraw_nodes())
-    if (const auto* cal = known(set, n.usb, n.vendor_id, n.product_id)) {
+    if (const auto* cal = usb_calibration_of(set, n.usb, n.vendor_id, n.product_id)) {
       if (may_open(n.path)) return {"hidraw:" + n.path, cal->name + " (" + usb_ids(n.vendor_id, n.product_id) + ") through " + n.path};
       if (denied.empty()) denied = "hidraw:" + n.path;
     }
   for (const auto& n : evdev::list_force_feedback_nodes())
-    if (const auto* cal = known(set, n.usb(), n.vendor_id, n.product_id); cal != nullptr && n.constant_force) {
+    if (const auto* cal = usb_calibration_of(set, n.usb(), n.vendor_id, n.product_id); cal != nullptr && n.constant_force) {
       if (may_open(n.path)) return {"evdev:" + n.path, cal->name + " (" + usb_ids(n.vendor_id, n.product_id) + ") through " + n.path};
       if (denied.empty()) denied = "evdev:" + n.path;
     }

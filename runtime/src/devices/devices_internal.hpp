@@ -25,6 +25,10 @@ std::string usb_calibration(const calibration::CalibrationSet& set, const Device
 OpenedDevice open_hid_pid(std::unique_ptr<usb::UsbTransport> transport, const calibration::DeviceCalibration& cal,
                           const DeviceSpec& spec, const std::string& what, const std::string& access_help);
 
+// The calibration whose [usb] table names this USB device, or nullptr (also for a device not on USB).
+const calibration::DeviceCalibration* usb_calibration_of(const calibration::CalibrationSet& set, bool on_usb,
+                                                         int vendor, int product);
+
 // A joystick reached through a node of the kernel's (hidraw, an input event node): where it is.
 void set_node(OpenedDevice& out, std::uint16_t vendor, std::uint16_t product, const std::string& name, const std::string& path,
               const char* transport);

@@ -19,9 +19,7 @@ struct EvdevChoice {
 };
 
 const DeviceCalibration* calibration_of(const calibration::CalibrationSet& set, const evdev::EvdevNode& node) {
-  for (const auto& d : set.devices())
-    if (node.usb() && d.usb_vendor_id == node.vendor_id && d.usb_product_id == node.product_id) return &d;
-  return nullptr;
+  return usb_calibration_of(set, node.usb(), node.vendor_id, node.product_id);
 }
 
 // "evdev" or "evdev:PATH", from `device` itself or, once resolved to a calibration, `through`.

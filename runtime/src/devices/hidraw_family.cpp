@@ -20,9 +20,7 @@ struct HidrawChoice {
 };
 
 const DeviceCalibration* calibration_of(const calibration::CalibrationSet& set, const usb::HidrawNode& node) {
-  for (const auto& d : set.devices())
-    if (node.usb && d.usb_vendor_id == node.vendor_id && d.usb_product_id == node.product_id) return &d;
-  return nullptr;
+  return usb_calibration_of(set, node.usb, node.vendor_id, node.product_id);
 }
 
 // "hidraw" or "hidraw:PATH", from `device` itself or, once resolved to a calibration, `through`.
@@ -81,6 +79,12 @@ std::string hidraw_udev_rule(int vendor, int product) {
   const std::string ids = usb_ids(vendor, product);
   return "KERNEL==\"hidraw*\", ATTRS{idVendor}==\"" + ids.substr(0, 4) + "\", ATTRS{idProduct}==\"" + ids.substr(5) +
          "\", TAG+=\"uaccess\"";
+}
+
+const DeviceCalibration* usb_calibration_of(const calibration::CalibrationSet& set, bool on_usb, int vendor, int product) {
+  for (const auto& d : set.devices())
+    if (on_usb && d.usb_vendor_id == vendor && d.usb_product_id == product) return &d;
+  return nullptr;
 }
 
 void set_node(OpenedDevice& out, std::uint16_t vendor, std::uint16_t product, const std::string& name, const std::string& path,
