@@ -1,11 +1,14 @@
 // What the evdev device family reads of an input device from sysfs (sysfs_bit on capabilities/ev,
-// ff and abs): the kernel writes the bitmaps, but a reader must not trust a file it did not write.
+// ff and abs; sysfs_interval_s on an endpoint's interval): the kernel writes these files, but a
+// reader must not trust a file it did not write.
 //
 // Checked: for text the kernel could have written (hex words of at most 16 digits, one space
 // between them), every bit agrees with a decoder that reads each word with strtoull; for any text,
-// no crash and no bit past the words given.
+// no crash and no bit past the words given. An interval is 0 or a finite time of at most 1000 s,
+// and the kernel's own form (digits then "ms" or "us") reads as its value.
 #include <algorithm>
 #include <cstdint>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <string>
@@ -32,6 +35,7 @@ bool kernel_like(const std::string& text, std::vector<std::uint64_t>& words) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using sandpaper::fuzz::check;
   using sandpaper::runtime::evdev::sysfs_bit;
+  using sandpaper::runtime::evdev::sysfs_interval_s;
   const std::string text(reinterpret_cast<const char*>(data), size);
   std::vector<std::uint64_t> words;
   const bool wellformed = kernel_like(text, words);
@@ -42,6 +46,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::size_t index = bit / 64;
     const bool want = index < words.size() && ((words[words.size() - 1 - index] >> (bit % 64)) & 1);
     check(got == want, "bit " + std::to_string(bit) + " of '" + text + "' read as " + (got ? "set" : "clear"));
+  }
+  const double interval = sysfs_interval_s(text);
+  check(interval == 0 || (std::isfinite(interval) && interval > 0 && interval <= 1000), "interval of '" + text + "' out of range");
+  const std::size_t digits = text.find_first_not_of("0123456789");
+  if (digits > 0 && digits != std::string::npos && digits <= 6 && text.size() == digits + 2 && text[digits + 1] == 's' &&
+      (text[digits] == 'm' || text[digits] == 'u')) {
+    const double value = std::strtod(text.c_str(), nullptr) * (text[digits] == 'm' ? 1e-3 : 1e-6);
+    check(interval == value, "interval '" + text + "' read as " + std::to_string(interval));
   }
   return 0;
 }

@@ -32,8 +32,12 @@ std::string evdev_summary(const runtime::evdev::EvdevNode& n) {
   if (!n.constant_force) return "no constant-force effect (FF_CONSTANT): cannot be played";
   if (n.axes == 0) return "no ABS_X or ABS_WHEEL axis: cannot be played";
   return fmt::format("the kernel's force feedback, {} {}{}", n.axes, n.axes == 1 ? "axis" : "axes",
-                     n.report_descriptor.empty() ? "; not a HID device, so the level per newton is unknown" : "");
+                     n.report_descriptor.empty() ? "; not a HID device: a calibration file for it counts FF_CONSTANT levels" : "");
 }
+// A device no calibration file names plays only through a usable event node, and only when asked.
+bool playable_uncalibrated(const runtime::evdev::EvdevNode& n) { return n.constant_force && n.axes > 0; }
+constexpr const char* kUncalibrated = "no device calibration: uncalibrated, plays only with --uncalibrated (docs/DEVICES.md)";
+constexpr const char* kUnplayable = "no device calibration: cannot be played yet";
 }  // namespace
 
 int cmd_devices(const CommonOptions& o) {
@@ -57,11 +61,15 @@ int cmd_devices(const CommonOptions& o) {
   const auto hidraw = runtime::usb::list_hidraw_nodes();
   const auto events = runtime::evdev::list_force_feedback_nodes();
   for (const auto& f : search.found) {
+    bool evdev_playable = false;
+    for (const auto& n : events)
+      evdev_playable = evdev_playable || (n.usb() && n.vendor_id == f.info.vendor_id && n.product_id == f.info.product_id &&
+                                          playable_uncalibrated(n));
     std::cout << fmt::format("{} bus {} address {}{}: {}; {}\n", runtime::usb_ids(f.info.vendor_id, f.info.product_id),
                              f.info.bus, f.info.address, f.info.product.empty() ? "" : " \"" + f.info.product + "\"",
                              descriptor_summary(f.info),
                              f.calibration ? "calibration " + f.calibration->name + " (" + f.calibration->file + ")"
-                                           : std::string("no device calibration: cannot be played yet"));
+                                           : std::string(evdev_playable ? kUncalibrated : kUnplayable));
     const bool usb_denied = f.info.open_status == UsbStatus::AccessDenied;
     std::cout << "  through libusb: --device usb (usbhid detached while it plays)\n";
     bool hidraw_usable = false, hidraw_denied = false;
@@ -76,7 +84,8 @@ int cmd_devices(const CommonOptions& o) {
       if (n.usb() && n.vendor_id == f.info.vendor_id && n.product_id == f.info.product_id) {
         const bool may = ::access(n.path.c_str(), R_OK | W_OK) == 0;
         (may ? evdev_usable : evdev_denied) = true;
-        std::cout << "  through evdev: --device evdev:" << n.path << " (" << evdev_summary(n) << ")\n";
+        std::cout << "  through evdev: --device evdev:" << n.path << (f.calibration ? "" : " --uncalibrated") << " ("
+                  << evdev_summary(n) << ")\n";
       }
     if (evdev_denied)
       std::cout << "  this user may not open its input event node; the .deb's rules give force-feedback event devices to "
@@ -98,8 +107,10 @@ int cmd_devices(const CommonOptions& o) {
     bool listed = false;
     for (const auto& f : search.found) listed = listed || (n.usb() && n.vendor_id == f.info.vendor_id && n.product_id == f.info.product_id);
     if (listed) continue;
-    std::cout << fmt::format("{} \"{}\": {}; no device calibration: cannot be played yet\n  through evdev: --device evdev:{}\n",
-                             runtime::usb_ids(n.vendor_id, n.product_id), n.name, evdev_summary(n), n.path);
+    const bool playable = playable_uncalibrated(n);
+    std::cout << fmt::format("{} \"{}\": {}; {}\n  through evdev: --device evdev:{}{}\n", runtime::usb_ids(n.vendor_id, n.product_id),
+                             n.name, evdev_summary(n), playable ? kUncalibrated : kUnplayable, n.path,
+                             playable ? " --uncalibrated" : "");
   }
   return denied ? kExitUsage : kExitOk;
 }

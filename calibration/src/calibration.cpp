@@ -418,16 +418,21 @@ CalibrationSet CalibrationSet::load(const std::filesystem::path& dir, ParsedFile
     }
   }
 
+  // Devices, then profiles (what a device with no file of its own is played with when the user
+  // accepts that): one schema, and one name space, since both are found by name.
   std::set<std::string> device_names;
-  for (const auto& p : toml_files(dir / "devices")) {
-    auto f = detail::read_validated(p, shown(p), "device", problems, cache);
-    if (!f) continue;
-    auto d = read_device(*f, problems);
-    if (!device_names.insert(d.name).second)
-      problems.add(*f, *f->doc["name"].node(), "device name `" + d.name + "` is used by two files", "");
-    s.devices_.push_back(std::move(d));
-  }
+  const auto read_devices = [&](const char* folder, std::vector<DeviceCalibration>& into, const std::string& taken) {
+    for (const auto& p : toml_files(dir / folder)) {
+      auto f = detail::read_validated(p, shown(p), "device", problems, cache);
+      if (!f) continue;
+      auto d = read_device(*f, problems);
+      if (!device_names.insert(d.name).second) problems.add(*f, *f->doc["name"].node(), "`" + d.name + "` " + taken, "");
+      into.push_back(std::move(d));
+    }
+  };
+  read_devices("devices", s.devices_, "is a device name used by two files");
   if (s.devices_.empty() && !problems.any()) problems.add_plain(shown(dir / "devices") + ": no device calibrations");
+  read_devices("profiles", s.profiles_, "is a profile name that is also a device's or another profile's");
 
   // Device maps: the device file's [maps] entry, else the one use = "device" map naming the device.
   for (std::size_t i = 0; i < s.maps_.size(); ++i) {
@@ -500,6 +505,8 @@ const Level* CalibrationSet::find_level(const std::string& name) const {
 
 const DeviceCalibration* CalibrationSet::find_device(const std::string& name) const {
   for (const auto& d : devices_)
+    if (d.name == name) return &d;
+  for (const auto& d : profiles_)
     if (d.name == name) return &d;
   return nullptr;
 }

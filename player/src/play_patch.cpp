@@ -212,6 +212,7 @@ runtime::DeviceSpec device_spec_of(const PlayRequest& r, const std::string& devi
   spec.replay_name = r.device.replay;
   spec.watchdog_s = r.guards.watchdog_ms * 1e-3;
   spec.virtual_clock = r.virtual_clock;
+  spec.uncalibrated = r.device.uncalibrated;
   // The simulated device records the first second, for the force strip (the rest of the report
   // comes from the telemetry, so a long run does not grow the process).
   const auto first_second = static_cast<std::size_t>(kRecordedSeconds * r.rate_hz);
@@ -232,6 +233,12 @@ int prepare_play_device(const calibration::CalibrationSet& set, const std::strin
   }
   if (real) *real = choice.real;
   const calibration::DeviceCalibration& cal = *set.find_device(choice.calibration);
+  const auto& profiles = set.profiles();
+  if (std::any_of(profiles.begin(), profiles.end(), [&](const auto& p) { return &p == &cal; }))
+    std::cerr << "sandpaper " << command << ": warning: no calibration file names this device: playing it with the profile "
+              << cal.file << ", whose scale, travel and directions are assumptions; forces stop at "
+              << fmt::format("{:g} N as it reckons them ({} {} at most)", cal.max_force_N, cal.command_max, cal.command_unit)
+              << "; measure the device with `sandpaper calibrate device` (docs/CALIBRATION.md)\n";
   apply_emulation(cal, r);
   std::vector<glm::dvec2> positions;
   if (spec.hand == runtime::SimulatedHand::Replay) {

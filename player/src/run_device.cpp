@@ -30,6 +30,10 @@ void add_run_device_options(CLI::App* run, RunDeviceOptions& d) {
   run->add_option("--replay", d.replay,
                   "play the handle positions of a trace written by --trace, one per tick, instead of a scripted hand "
                   "(plays the whole trace; --duration and the hand options do not apply)");
+  run->add_flag("--uncalibrated", d.uncalibrated,
+                "with --device evdev[:PATH]: play a force-feedback input device that no calibration file names, with the "
+                "uncalibrated-evdev profile (at most a quarter of its strongest force; newtons, travel and directions "
+                "assumed; docs/DEVICES.md)");
 }
 
 int load_replay(const RunDeviceOptions& d, double rate_hz, std::vector<glm::dvec2>& positions, double& duration_s) {

@@ -60,9 +60,13 @@ TEST(CalibrationFiles, EveryShippedFileNamesItsSchemaAndLoads) {
   auto cal = calibration::CalibrationSet::load(kShipped);
   EXPECT_GE(cal.maps().size(), 3u);
   EXPECT_EQ(cal.devices().size(), 3u);
+  ASSERT_EQ(cal.profiles().size(), 1u);
+  EXPECT_EQ(cal.find_device("uncalibrated-evdev"), &cal.profiles()[0]) << "a profile is found by name, apart from the devices";
   // Each file's `schema` key names a shipped schema whose const it satisfies.
-  std::map<std::string, std::string> folder_schema = {
-      {"maps", "sandpaper-map/1"}, {"devices", "sandpaper-device/1"}, {"levels", "sandpaper-levels/1"}};
+  std::map<std::string, std::string> folder_schema = {{"maps", "sandpaper-map/1"},
+                                                      {"devices", "sandpaper-device/1"},
+                                                      {"profiles", "sandpaper-device/1"},
+                                                      {"levels", "sandpaper-levels/1"}};
   for (const auto& [folder, tag] : folder_schema)
     for (const auto& e : fs::directory_iterator(kShipped / folder)) {
       if (e.path().extension() != ".toml") continue;
@@ -235,6 +239,14 @@ TEST(CalibrationFiles, ConsistencyRulesBeyondTheSchema) {
     auto err = load_error(dir);
     EXPECT_NE(err.find("a compile map has exactly one predictor"), std::string::npos) << err;
     EXPECT_NE(err.find("2 maps have percept = \"roughness\" and use = \"compile\""), std::string::npos) << err;
+  }
+  {
+    // A profile named as a device: `--device sim` would mean two files.
+    auto dir = copy_of_shipped("cal-profile-name");
+    auto f = dir / "profiles/uncalibrated-evdev.toml";
+    write(f, replace(read(f), "name = \"uncalibrated-evdev\"", "name = \"sim\""));
+    auto err = load_error(dir);
+    EXPECT_NE(err.find("`sim` is a profile name that is also a device's"), std::string::npos) << err;
   }
   {
     // Levels on a map that does not exist.

@@ -99,8 +99,9 @@ def test_enumerate(build: Path, out: Path) -> None:
     stranger_lines = [l for l in devices.splitlines() if l.startswith("1d6b:0104")]
     check(len(stranger_lines) == 1, "devices lists the unknown force-feedback gadget (1d6b:0104)")
     if stranger_lines:
-        check("no device calibration: cannot be played yet" in stranger_lines[0],
-              "the unknown one is listed as unknown: " + stranger_lines[0])
+        check("no device calibration: cannot be played yet" in stranger_lines[0]
+              or "no device calibration: uncalibrated, plays only with --uncalibrated" in stranger_lines[0],
+              "the unknown one is listed as uncalibrated: " + stranger_lines[0])
     check(facts["stranger_hidraw_before"] != "" and facts["stranger_hidraw_after"] == facts["stranger_hidraw_before"],
           "the unknown device was not opened: its kernel driver stayed bound "
           f"({facts['stranger_hidraw_before']} -> {facts['stranger_hidraw_after']})")
@@ -348,6 +349,43 @@ def test_kernel_path(through: str, build: Path, out: Path) -> None:
         check_measured(build, where, speed, run)
 
 
+def test_uncalibrated(build: Path, out: Path) -> None:
+    """A force-feedback device no calibration file names, through evdev (docs/DEVICES.md, "A device
+    without a calibration file"): the user's calibration folder lacks the OpenFFBoard's file. A run
+    without --uncalibrated is refused and says how to play it; with it, the run plays with the
+    uncalibrated-evdev profile and warns, and a spring asking 20 N reaches the firmware as at most a
+    quarter of the level range: FF_CONSTANT level 8192, which hid-pidff rescales to the firmware's
+    Magnitude of -32767..32767 as 8192 (and -8192 as -8191)."""
+    material = REPO / "tests/usb-lab/data/stiff-spring.hmat"
+    r = scenario.run("kernel", build, out, params={
+        "MATERIAL": str(material), "SECONDS": "3", "HAND": "scan",
+        "SPEED_MM_S": "50", "EXTENT_MM": "40", "THROUGH": "evdev", "UNCALIBRATED": "1",
+        "CALIBRATION_SRC": str(REPO / "calibration")}, files={str(material): material})
+    check(r.status == 0, f"the scenario ran to its end (status {r.status})")
+    if r.status != 0:
+        return
+    h = json.loads((out / "path.json").read_text())
+    refused = (out / "refused.err").read_text()
+    check(h["refused_status"] == 2 and "--uncalibrated" in refused and "no device calibration" in refused,
+          f"without --uncalibrated the run is refused (status {h['refused_status']}) and says how to play it: {refused.strip()!r}")
+    run = json.loads((out / "run.json").read_text()) if (out / "run.json").stat().st_size else {}
+    err = (out / "run.err").read_text()
+    check(h["run_status"] == 0 and run.get("stop_cause") == "completed",
+          f"with --uncalibrated it played to its end as uid 1000 (status {h['run_status']}, stop cause "
+          f"{run.get('stop_cause')}): {err.strip()!r}")
+    check(run.get("device") == "uncalibrated-evdev" and run.get("usb", {}).get("transport") == "evdev",
+          f"with the uncalibrated-evdev profile, through evdev ({run.get('device')}, {run.get('usb')})")
+    check("warning: no calibration file names this device" in err, f"and warned so: {err.strip()!r}")
+    check(h["output_queue_full"] == 0, f"usbhid dropped no output report ({h['output_queue_full']} \"output queue full\")")
+    reports = measure.read_reports(out / "reports.csv")
+    x = [m for _, m in measure.force_reports(reports, measure.effect_axes(reports))[0]]
+    largest = max((abs(m) for m in x), default=0)
+    print(f"figure: {len(x)} Set Constant Force reports on x, largest |magnitude| {largest}", flush=True)
+    check(len(x) > 100 and 8191 <= largest <= 8192,
+          f"the firmware's largest |magnitude| is a quarter of the range, 8191 or 8192 ({largest}, {len(x)} reports): "
+          f"the 20 N asked was held to the profile's limit, and reached it")
+
+
 def test_studio(build: Path, out: Path) -> None:
     """Lab test 6, the studio: a slider move (POST /api/parameter, as the page sends it) reaches the
     firmware's torque within 50 ms. A spring held at (+10, -5) mm commands -2 N on x at 200 N/m and
@@ -481,6 +519,7 @@ def test_bus(build: Path, out: Path) -> None:
 
 TESTS = {"enumerate": test_enumerate, "bus": test_bus, "direction": test_direction, "play": test_play, "hidraw": lambda build, out: test_kernel_path("hidraw", build, out),
          "evdev": lambda build, out: test_kernel_path("evdev", build, out),
+         "evdev-uncalibrated": test_uncalibrated,
          "studio": test_studio,
          "experiment": test_experiment}
 for _fault in ("unplug", "reset", "stale", "sigint", "stall", "late"):

@@ -18,9 +18,15 @@ struct EvdevChoice {
   const DeviceCalibration* calibration = nullptr;
 };
 
-const DeviceCalibration* calibration_of(const calibration::CalibrationSet& set, const evdev::EvdevNode& node) {
-  return usb_calibration_of(set, node.usb(), node.vendor_id, node.product_id);
+// The node's own calibration file; else, when the user accepted it (--uncalibrated), the profile.
+const DeviceCalibration* calibration_of(const calibration::CalibrationSet& set, const DeviceSpec& spec, const evdev::EvdevNode& node) {
+  if (const DeviceCalibration* own = usb_calibration_of(set, node.usb(), node.vendor_id, node.product_id)) return own;
+  return spec.uncalibrated ? set.find_device(evdev::kUncalibratedProfile) : nullptr;
 }
+
+const char* const kUncalibratedHelp =
+    "play it with --uncalibrated (the uncalibrated-evdev profile: at most a quarter of its strongest force, newtons and "
+    "directions assumed), or measure it and write its calibration file (docs/CALIBRATION.md)";
 
 // "evdev" or "evdev:PATH", from `device` itself or, once resolved to a calibration, `through`.
 std::string evdev_request(const DeviceSpec& spec) {
@@ -37,25 +43,36 @@ EvdevChoice choose_evdev(const calibration::CalibrationSet& set, const DeviceSpe
   const std::string wanted = request.size() > 6 ? request.substr(6) : std::string();  // "evdev:/dev/input/event3"
   const auto nodes = evdev::list_force_feedback_nodes();
   const std::string known = "known devices: " + known_usb_devices(set);
+  if (spec.uncalibrated && set.find_device(evdev::kUncalibratedProfile) == nullptr)
+    throw DeviceOpenError(Cause::NoCalibration, std::string("--uncalibrated plays with the profile ") + evdev::kUncalibratedProfile +
+                                                    ", which " + set.directory().string() + "/profiles/ lacks");
   if (!wanted.empty()) {
     const evdev::EvdevNode* n = evdev::find_node(nodes, wanted);
     if (n == nullptr)
       throw DeviceOpenError(Cause::NoUsb, "no input event node with force feedback at " + wanted + " (" +
                                               std::to_string(nodes.size()) + " such node(s) in /sys/class/input)");
-    const DeviceCalibration* found = calibration_of(set, *n);
-    if (found == nullptr || (cal != nullptr && found != cal))
-      throw DeviceOpenError(Cause::NoCalibration, wanted + " is " + describe(*n) + ", which " +
-                                                      (cal ? "is not " + cal->name : "no device calibration with a [usb] table names") +
+    const DeviceCalibration* found = calibration_of(set, spec, *n);
+    if (found == nullptr)
+      throw DeviceOpenError(Cause::NoCalibration, wanted + " is " + describe(*n) +
+                                                      ", which no device calibration with a [usb] table names: " + kUncalibratedHelp +
+                                                      "\n  " + known);
+    if (cal != nullptr && found != cal)
+      throw DeviceOpenError(Cause::NoCalibration, wanted + " is " + describe(*n) + ", which is not " + cal->name +
                                                       " (docs/CALIBRATION.md)\n  " + known);
     return {*n, found};
   }
+  // A device with its own file first, with or without --uncalibrated.
   for (const auto& n : nodes)
-    if (const DeviceCalibration* found = calibration_of(set, n); found != nullptr && (cal == nullptr || found == cal))
+    if (const DeviceCalibration* own = usb_calibration_of(set, n.usb(), n.vendor_id, n.product_id);
+        own != nullptr && (cal == nullptr || own == cal))
+      return {n, own};
+  for (const auto& n : nodes)
+    if (const DeviceCalibration* found = calibration_of(set, spec, n); found != nullptr && (cal == nullptr || found == cal))
       return {n, found};
   if (!nodes.empty())
     throw DeviceOpenError(Cause::NoCalibration, "force-feedback input devices are present (" + describe(nodes.front()) +
-                                                    (nodes.size() > 1 ? ", ..." : "") +
-                                                    ") but none has a device calibration (docs/CALIBRATION.md)\n  " + known);
+                                                    (nodes.size() > 1 ? ", ..." : "") + ") but none has a device calibration: " +
+                                                    kUncalibratedHelp + "\n  " + known);
   throw DeviceOpenError(Cause::NoUsb, "no input event node with force feedback (/sys/class/input)\n  " + known);
 }
 
@@ -91,7 +108,8 @@ OpenedDevice open_evdev(const calibration::CalibrationSet& set, DeviceSpec& spec
                                  : "");
   }
   out.calibration = found.name;
-  out.description = found.name + " (" + ids + ") through " + node.path + ", the kernel's force feedback";
+  out.description = found.name + " (" + ids + ") through " + node.path + ", the kernel's force feedback" +
+                    (found.name == evdev::kUncalibratedProfile ? std::string(", no calibration file: assumed scale, a quarter of its force") : "");
   set_node(out, node.vendor_id, node.product_id, node.name, node.path, "evdev");
   return out;
 }

@@ -113,6 +113,12 @@ constexpr Family kFamilies[] = {
     {"usb", true, serves_usb, open_usb, usb_calibration},
 };
 
+bool is_profile(const calibration::CalibrationSet& set, const DeviceCalibration* cal) {
+  for (const auto& p : set.profiles())
+    if (&p == cal) return true;
+  return false;
+}
+
 const Family& family_for(const calibration::CalibrationSet& set, const DeviceSpec& spec, const DeviceCalibration*& cal) {
   const bool searched = spec.device == "usb" || is_hidraw_device(spec.device) || is_evdev_device(spec.device);  // found on the bus, not named
   cal = searched ? nullptr : set.find_device(spec.device);
@@ -121,6 +127,12 @@ const Family& family_for(const calibration::CalibrationSet& set, const DeviceSpe
     for (const auto& d : set.devices()) names += (names.empty() ? "" : ", ") + d.name;
     throw DeviceOpenError(Cause::UnknownDevice, "no device calibration named '" + spec.device + "' (devices: " + names + ", or usb, hidraw, hidraw:PATH, evdev, evdev:PATH)");
   }
+  if (is_profile(set, cal) && !is_evdev_device(spec.through))
+    throw DeviceOpenError(Cause::WrongOptions, "'" + spec.device + "' is a profile for devices without a calibration file, not a device: play "
+                                               "such a device with --device evdev (or evdev:PATH) --uncalibrated");
+  if (spec.uncalibrated && !is_evdev_device(spec.device) && !is_evdev_device(spec.through))
+    throw DeviceOpenError(Cause::WrongOptions, "--uncalibrated plays an input event node that no calibration file names: "
+                                               "give it with --device evdev or evdev:PATH");
   for (const Family& family : kFamilies)
     if (family.serves(spec, cal)) return family;
   throw DeviceOpenError(Cause::NoDriver, "device '" + spec.device +

@@ -105,11 +105,16 @@ std::int32_t command_for_level(std::int16_t level, std::int32_t logical_min, std
 
 EvdevJoystick::EvdevJoystick(const EvdevNode& node, const calibration::DeviceCalibration& calibration)
     : node_(node), calibration_(calibration), limits_(limits_of(calibration)) {
-  if (calibration.usb_out_interval_s > 0) out_interval_ns_ = static_cast<std::int64_t>(calibration.usb_out_interval_s * 1e9);
+  if (const double interval_s = std::max(calibration.usb_out_interval_s, node.out_interval_s); interval_s > 0)
+    out_interval_ns_ = static_cast<std::int64_t>(interval_s * 1e9);
+  levels_ = calibration.command_unit == kLevelUnit;
   std::string why;
-  if (node.report_descriptor.empty() || !magnitude_range(node.report_descriptor, magnitude_min_, magnitude_max_, why))
-    fail(0, node.report_descriptor.empty() ? "its driver is not HID (no report descriptor in sysfs): the level per "
-                                             "newton is unknown"
+  if (levels_) {
+    magnitude_min_ = -0x7fff;  // levels as they are: struct ff_constant_effect's range, symmetric
+    magnitude_max_ = 0x7fff;
+  } else if (node.report_descriptor.empty() || !magnitude_range(node.report_descriptor, magnitude_min_, magnitude_max_, why))
+    fail(0, node.report_descriptor.empty() ? "its driver is not HID (no report descriptor in sysfs): its calibration "
+                                             "file must count levels (command_unit = \"FF_CONSTANT level\")"
                                            : why);
   fd_ = ::open(node.path.c_str(), O_RDWR | O_NONBLOCK | O_CLOEXEC);
   if (fd_ < 0) fail(errno, "cannot open it");
@@ -286,17 +291,28 @@ void EvdevJoystick::io_thread_body() noexcept {
   }
 }
 
-std::int16_t EvdevJoystick::level_of(int axis, double force_N) const noexcept {
-  const auto& scale = calibration_.axis_scale(axis);
+std::int16_t level_for_force(const calibration::DeviceCalibration& calibration, int axis, double force_N,
+                             std::int32_t magnitude_min, std::int32_t magnitude_max) noexcept {
+  const bool levels = calibration.command_unit == kLevelUnit;
+  if (levels) {
+    magnitude_min = -0x7fff;
+    magnitude_max = 0x7fff;
+  }
+  const auto& scale = calibration.axis_scale(axis);
   double units = scale.command_sense * scale.command(force_N);
   if (!std::isfinite(units)) units = 0;
-  double lowest = magnitude_min_, highest = magnitude_max_;
-  if (calibration_.command_max > 0) {
-    lowest = std::max(lowest, -static_cast<double>(calibration_.command_max));
-    highest = std::min(highest, static_cast<double>(calibration_.command_max));
+  double lowest = magnitude_min, highest = magnitude_max;
+  if (calibration.command_max > 0) {
+    lowest = std::max(lowest, -static_cast<double>(calibration.command_max));
+    highest = std::min(highest, static_cast<double>(calibration.command_max));
   }
-  return level_for_command(static_cast<std::int32_t>(std::clamp(std::round(units), lowest, highest)), magnitude_min_,
-                           magnitude_max_);
+  const auto command = static_cast<std::int32_t>(std::clamp(std::round(units), lowest, highest));
+  if (levels) return static_cast<std::int16_t>(command);
+  return level_for_command(command, magnitude_min, magnitude_max);
+}
+
+std::int16_t EvdevJoystick::level_of(int axis, double force_N) const noexcept {
+  return level_for_force(calibration_, axis, force_N, magnitude_min_, magnitude_max_);
 }
 
 bool EvdevJoystick::write_force_rt(glm::dvec2 force_N) noexcept {

@@ -29,7 +29,30 @@ int node_number(const std::string& name) { return std::atoi(name.c_str() + 5); }
 
 constexpr unsigned kEvFf = 0x15;  // EV_FF
 
+// The interrupt OUT endpoint of the USB interface a HID device hangs from: usbhid sends output
+// reports one at a time on it, one per interval (Linux drivers/usb/core/endpoint.c prints the
+// interval; ep_XX folders sit in the interface's folder, the HID device's parent).
+double out_interval_of(const fs::path& hid_device) {
+  std::error_code ec;
+  const fs::path interface = fs::canonical(hid_device, ec).parent_path();
+  if (ec) return 0;
+  for (fs::directory_iterator it(interface, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().filename().string().rfind("ep_", 0) != 0) continue;
+    if (first_line(it->path() / "direction") != "out" || first_line(it->path() / "type") != "Interrupt") continue;
+    return sysfs_interval_s(first_line(it->path() / "interval"));
+  }
+  return 0;
+}
+
 }  // namespace
+
+double sysfs_interval_s(const std::string& text) noexcept {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || !(v > 0) || v > 1e6) return 0;
+  const std::string unit(end);
+  return unit == "ms" ? v * 1e-3 : unit == "us" ? v * 1e-6 : 0;
+}
 
 bool sysfs_bit(const std::string& bitmap, unsigned bit, unsigned word_bits) noexcept {
   std::vector<std::string> words;
@@ -69,6 +92,7 @@ std::vector<EvdevNode> list_force_feedback_nodes(const std::string& sysfs_root) 
     const std::string abs = first_line(input / "capabilities/abs");
     n.axes = sysfs_bit(abs, kAbsX) ? (sysfs_bit(abs, kAbsY) ? 2 : 1) : sysfs_bit(abs, kAbsWheel) ? 1 : 0;
     if (const fs::path d = input / "device/report_descriptor"; fs::exists(d, ec)) n.report_descriptor = d.string();
+    if (n.usb()) n.out_interval_s = out_interval_of(input / "device");
     found.emplace_back(node_number(name), std::move(n));
   }
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

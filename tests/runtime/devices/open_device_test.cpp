@@ -11,6 +11,7 @@
 
 #include "sandpaper/runtime/devices/open_device.hpp"
 #include "sandpaper/runtime/dummy_joystick.hpp"
+#include "sandpaper/runtime/evdev/evdev_joystick.hpp"
 #include "sandpaper/runtime/recording_device.hpp"
 
 namespace sandpaper::runtime {
@@ -244,6 +245,43 @@ TEST(OpenDevice, EvdevIsFoundOnTheBusAndRefusesSimulatedHands) {
   through.through = "evdev:/nonexistent/event99";
   EXPECT_EQ(refusal(shipped(), through, &message), Cause::NoUsb);
   EXPECT_NE(message.find("input event node"), std::string::npos) << message;
+}
+
+TEST(OpenDevice, TheUncalibratedProfileIsNoDeviceAndPlaysOnlyThroughEvdev) {
+  const auto& set = shipped();
+  const calibration::DeviceCalibration* profile = set.find_device(evdev::kUncalibratedProfile);
+  ASSERT_NE(profile, nullptr) << "calibration/profiles/uncalibrated-evdev.toml";
+  for (const auto& d : set.devices()) EXPECT_NE(d.name, profile->name) << "a profile is not listed among the devices";
+  EXPECT_FALSE(profile->calibrated());
+  EXPECT_EQ(profile->usb_vendor_id, -1) << "no [usb] table: no device is ever taken for it";
+  EXPECT_EQ(profile->command_unit, evdev::kLevelUnit);
+  // The conservative limit: a quarter of struct ff_constant_effect's level range (linux/input.h).
+  EXPECT_EQ(profile->command_max * 4, 32768);
+  EXPECT_NEAR(profile->max_force_N, 2.5, 1e-9);
+  // Levels go out as they are, whatever the device's report descriptor says, and stop at the quarter.
+  EXPECT_EQ(evdev::level_for_force(*profile, 0, 1.0, 0, 0), -3277) << "1 N at 10 N / 32767 a level, pushing as -1 says";
+  EXPECT_EQ(evdev::level_for_force(*profile, 1, -1.0, 0, 0), 3277);
+  EXPECT_EQ(evdev::level_for_force(*profile, 0, -10.0, 0, 0), 8192) << "10 N asked: a quarter of the range sent";
+  EXPECT_EQ(evdev::level_for_force(*profile, 0, 1e9, 0, 0), -8192);
+  // A device with a file of its own goes through hid-pidff's rescale of its Magnitude range
+  // (the OpenFFBoard's -10000..10000): its full 10 N is its full range.
+  const calibration::DeviceCalibration& own = *set.find_device("openffboard-2axis");
+  EXPECT_EQ(evdev::command_for_level(evdev::level_for_force(own, 0, -10.0, -10000, 10000), -10000, 10000), 10000);
+  // The profile is refused as a device, and --uncalibrated anywhere but evdev.
+  std::string message;
+  EXPECT_EQ(refusal(set, spec_for(evdev::kUncalibratedProfile), &message), Cause::WrongOptions);
+  EXPECT_NE(message.find("--device evdev (or evdev:PATH) --uncalibrated"), std::string::npos) << message;
+  DeviceSpec sim = spec_for("sim");
+  sim.uncalibrated = true;
+  EXPECT_EQ(refusal(set, sim, &message), Cause::WrongOptions);
+  EXPECT_NE(message.find("--uncalibrated plays an input event node"), std::string::npos) << message;
+  DeviceSpec hidraw = spec_for("hidraw");
+  hidraw.uncalibrated = true;
+  EXPECT_EQ(refusal(set, hidraw), Cause::WrongOptions);
+  // Through evdev, it is accepted as far as the bus (no such node here).
+  DeviceSpec missing = spec_for("evdev:/nonexistent/event99");
+  missing.uncalibrated = true;
+  EXPECT_EQ(refusal(set, missing, &message), Cause::NoUsb) << message;
 }
 
 TEST(OpenDevice, TheUdevRuleNamesTheDeviceInLowerCaseHex) {

@@ -68,6 +68,17 @@ TEST(EvdevSysfs, BitmapsAreReadAsTheKernelPrintsThem) {
   EXPECT_TRUE(sysfs_bit("ff", 7, 32));
 }
 
+TEST(EvdevSysfs, EndpointIntervalsAreReadAsTheKernelPrintsThem) {
+  EXPECT_DOUBLE_EQ(sysfs_interval_s("1ms"), 0.001);
+  EXPECT_DOUBLE_EQ(sysfs_interval_s("10ms"), 0.010);
+  EXPECT_DOUBLE_EQ(sysfs_interval_s("125us"), 125e-6);  // a high-speed endpoint's microframe
+  EXPECT_EQ(sysfs_interval_s("0ms"), 0.0);
+  EXPECT_EQ(sysfs_interval_s("1s"), 0.0);
+  EXPECT_EQ(sysfs_interval_s("ms"), 0.0);
+  EXPECT_EQ(sysfs_interval_s(""), 0.0);
+  EXPECT_EQ(sysfs_interval_s("nan ms"), 0.0);
+}
+
 TEST(EvdevSysfs, ListsOnlyEventNodesWithForceFeedbackInNumberOrder) {
   const fs::path root = fs::temp_directory_path() / ("sandpaper-evdev-sysfs-" + std::to_string(::getpid()));
   fs::remove_all(root);
@@ -83,7 +94,17 @@ TEST(EvdevSysfs, ListsOnlyEventNodesWithForceFeedbackInNumberOrder) {
     write(in / "id/bustype", "0003");
     write(in / "id/vendor", "1209");
     write(in / "id/product", "ffb0");
-    if (hid) write(in / "device/report_descriptor", "x");
+    if (hid) {
+      write(in / "device/report_descriptor", "x");
+      // The USB interface (here the HID device's parent): an IN and an OUT interrupt endpoint, as
+      // drivers/usb/core/endpoint.c shows them; the OUT one every 4 ms.
+      write(in / "ep_81/direction", "in");
+      write(in / "ep_81/type", "Interrupt");
+      write(in / "ep_81/interval", "1ms");
+      write(in / "ep_01/direction", "out");
+      write(in / "ep_01/type", "Interrupt");
+      write(in / "ep_01/interval", "4ms");
+    }
     fs::create_directories(root / "class/input" / event);
     fs::create_directory_symlink(in, root / "class/input" / event / "device");
   };
@@ -105,6 +126,8 @@ TEST(EvdevSysfs, ListsOnlyEventNodesWithForceFeedbackInNumberOrder) {
   EXPECT_EQ(nodes[1].product_id, 0xffb0);
   EXPECT_TRUE(nodes[1].gain && nodes[1].autocenter);
   EXPECT_FALSE(nodes[1].report_descriptor.empty());
+  EXPECT_DOUBLE_EQ(nodes[1].out_interval_s, 0.004) << "the OUT endpoint's interval, not the IN one's";
+  EXPECT_EQ(nodes[0].out_interval_s, 0.0) << "no USB interface found: unknown";
   EXPECT_EQ(find_node(nodes, "/dev/input/event10"), &nodes[1]);
   EXPECT_EQ(find_node(nodes, "/dev/input/event4"), nullptr);
   fs::remove_all(root);

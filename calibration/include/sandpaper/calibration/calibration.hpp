@@ -228,8 +228,13 @@ class CalibrationSet {
   const Level* find_level(const std::string& name) const;
 
   // nullptr if no device calibration has that name.
+  // A device file (calibration/devices/) or a profile (calibration/profiles/) by name; nullptr if none.
   const DeviceCalibration* find_device(const std::string& name) const;
+  // The devices, without the profiles: what is plugged in is matched, listed and checked against these.
   const std::vector<DeviceCalibration>& devices() const { return devices_; }
+  // Profiles: device files of assumptions for a device that has no file of its own, played only
+  // when asked (uncalibrated-evdev: `run --device evdev --uncalibrated`, docs/DEVICES.md).
+  const std::vector<DeviceCalibration>& profiles() const { return profiles_; }
 
   const Knowledge& knowledge() const { return knowledge_; }
   const std::filesystem::path& directory() const { return dir_; }
@@ -240,6 +245,7 @@ class CalibrationSet {
   std::vector<std::pair<std::string, Level>> levels_;  // (percept, level)
   std::vector<Level> roughness_levels_;
   std::vector<DeviceCalibration> devices_;
+  std::vector<DeviceCalibration> profiles_;
   Knowledge knowledge_;
   // (device name, percept) -> index into maps_, filled by load(); selected_ picks the device.
   std::vector<std::pair<std::pair<std::string, std::string>, std::size_t>> device_maps_;

@@ -1,7 +1,8 @@
 #pragma once
 // `sandpaper run`'s options for what moves the simulated handle: the scripted hand (default), the
 // dynamic hand (--hand-model dynamic, with --hand-mass/--hand-stiffness/--hand-damping), or the
-// replay of a recorded trace (--replay trace.csv). docs/RUNTIME.md describes them; the device
+// replay of a recorded trace (--replay trace.csv); and --uncalibrated for a real device no
+// calibration file names. docs/RUNTIME.md describes them; the device
 // factory (runtime/devices/open_device.hpp) builds the device.
 #include <memory>
 #include <string>
@@ -19,6 +20,7 @@ struct RunDeviceOptions {
   std::string hand_model = "position";  // "position" or "dynamic"
   runtime::HandModel hand;              // SI; the CLI takes kg, N/m, N*s/m
   std::string replay;                   // trace CSV to play back instead of a scripted hand
+  bool uncalibrated = false;            // --uncalibrated: an evdev device without a calibration file may play
 };
 
 void add_run_device_options(CLI::App* run, RunDeviceOptions& d);

@@ -58,6 +58,9 @@ struct DeviceSpec {
   // How a calibrated joystick named by `device` is reached: "" (libusb), "hidraw[:PATH]" or "evdev[:PATH]".
   // Set when `device` was "hidraw..." or "evdev..." and has been resolved to the calibration it found.
   std::string through;
+  // An evdev device no calibration file names may play, with the uncalibrated-evdev profile
+  // (calibration/profiles/): its assumed scale and a quarter of the level range. Evdev only.
+  bool uncalibrated = false;
 };
 
 // A historical device's quantisation and table sampling ([emulation] in its calibration file).

@@ -25,6 +25,12 @@ struct EvdevError : std::runtime_error {
   int error;
 };
 
+// A calibration whose command unit is this counts FF_CONSTANT levels themselves (struct
+// ff_constant_effect, linux/input.h): levels go to the kernel as they are, whatever its driver.
+inline constexpr const char* kLevelUnit = "FF_CONSTANT level";
+// The profile (calibration/profiles/) a device without a calibration file plays with under --uncalibrated.
+inline constexpr const char* kUncalibratedProfile = "uncalibrated-evdev";
+
 // The FF_CONSTANT level (-0x8000..0x7fff) that Linux's hid-pidff turns into exactly `command` in a
 // Magnitude field of logical range [logical_min, logical_max] (pidff_rescale_signed, hid-pidff.c,
 // Linux 6.1: level * max / 0x7fff above zero, level * min / -0x8000 below, truncated). Requires
@@ -33,14 +39,22 @@ std::int16_t level_for_command(std::int32_t command, std::int32_t logical_min, s
 // What hid-pidff sends for `level` (the same formula), for tests and explain.
 std::int32_t command_for_level(std::int16_t level, std::int32_t logical_min, std::int32_t logical_max) noexcept;
 
+// The level the driver asks for so that `force_N` (N, along axis `axis`) reaches the device: command
+// units through the calibration's axis scale and sense, clamped to its command_max and to the
+// Magnitude range [magnitude_min, magnitude_max] of the device's Set Constant Force, then through
+// level_for_command; a calibration in kLevelUnit gives the level itself (the range is then the level's).
+std::int16_t level_for_force(const calibration::DeviceCalibration& calibration, int axis, double force_N,
+                             std::int32_t magnitude_min, std::int32_t magnitude_max) noexcept;
+
 class EvdevJoystick final : public HeldDevice {
  public:
   // Opens `node` (read-write), sets the device gain to full and autocenter off, the position axes'
   // fuzz to 0 (hid-input filters joystick axes by 1/256 of their range), and uploads and starts one
   // zero-level effect per axis. Newtons become command units through `calibration`'s axis scales and
-  // then levels through the Magnitude range of the HID device's report descriptor (sysfs). Updates
-  // go out from an I/O thread, at most one per `calibration.usb_out_interval_s` (1 ms if unset), the
-  // axes in turn, so usbhid's 64-report output queue never fills. Throws EvdevError.
+  // then levels through the Magnitude range of the HID device's report descriptor (sysfs), or are
+  // levels already (command unit kLevelUnit, any driver). Updates go out from an I/O thread, at most
+  // one per out interval (the longer of the calibration's and the node's endpoint's; 1 ms if neither
+  // is known), the axes in turn, so usbhid's 64-report output queue never fills. Throws EvdevError.
   EvdevJoystick(const EvdevNode& node, const calibration::DeviceCalibration& calibration);
   ~EvdevJoystick() override;
   EvdevJoystick(const EvdevJoystick&) = delete;
@@ -86,6 +100,7 @@ class EvdevJoystick final : public HeldDevice {
   unsigned abs_code_[2] = {0, 0};
   int abs_min_[2] = {0, 0}, abs_max_[2] = {0, 0}, abs_fuzz_[2] = {0, 0};
   std::int32_t magnitude_min_ = 0, magnitude_max_ = 0;
+  bool levels_ = false;  // commands are FF_CONSTANT levels (kLevelUnit)
   int effect_id_[2] = {-1, -1};
   std::int64_t out_interval_ns_ = 1'000'000;
   bool closed_ = false, gain_set_ = false, autocenter_set_ = false, fuzz_set_ = false;

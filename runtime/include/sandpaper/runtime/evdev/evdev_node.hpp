@@ -22,6 +22,7 @@ struct EvdevNode {
   bool gain = false, autocenter = false;  // FF_GAIN, FF_AUTOCENTER
   int axes = 0;                      // 2: ABS_X and ABS_Y; 1: ABS_X (or ABS_WHEEL) alone; 0: neither
   std::string report_descriptor;     // sysfs file of the HID device's report descriptor, "" when not HID
+  double out_interval_s = 0;         // its USB interface's interrupt OUT endpoint's interval, s (0: none found)
   bool usb() const noexcept { return bustype == 3; }
 };
 
@@ -29,6 +30,8 @@ struct EvdevNode {
 // unsigned long, most significant first, separated by spaces). False for malformed text.
 bool sysfs_bit(const std::string& bitmap, unsigned bit, unsigned word_bits = 64) noexcept;
 
+// An endpoint's `interval` as sysfs prints it ("1ms", "125us"), s; 0 for anything else.
+double sysfs_interval_s(const std::string& text) noexcept;
 // Every event node under `sysfs_root`/class/input whose device has EV_FF, sorted by number. Never throws.
 std::vector<EvdevNode> list_force_feedback_nodes(const std::string& sysfs_root = "/sys");
 
