@@ -291,9 +291,11 @@ void EvdevJoystick::io_thread_body() noexcept {
   }
 }
 
-std::int16_t level_for_force(const calibration::DeviceCalibration& calibration, int axis, double force_N,
-                             std::int32_t magnitude_min, std::int32_t magnitude_max) noexcept {
-  const bool levels = calibration.command_unit == kLevelUnit;
+namespace {
+// level_for_force once the unit is known: the tick passes what the constructor decided, so it does
+// no string comparison of its own.
+std::int16_t level_in(const calibration::DeviceCalibration& calibration, bool levels, int axis, double force_N,
+                      std::int32_t magnitude_min, std::int32_t magnitude_max) noexcept {
   if (levels) {
     magnitude_min = -0x7fff;
     magnitude_max = 0x7fff;
@@ -310,9 +312,15 @@ std::int16_t level_for_force(const calibration::DeviceCalibration& calibration, 
   if (levels) return static_cast<std::int16_t>(command);
   return level_for_command(command, magnitude_min, magnitude_max);
 }
+}  // namespace
+
+std::int16_t level_for_force(const calibration::DeviceCalibration& calibration, int axis, double force_N,
+                             std::int32_t magnitude_min, std::int32_t magnitude_max) noexcept {
+  return level_in(calibration, calibration.command_unit == kLevelUnit, axis, force_N, magnitude_min, magnitude_max);
+}
 
 std::int16_t EvdevJoystick::level_of(int axis, double force_N) const noexcept {
-  return level_for_force(calibration_, axis, force_N, magnitude_min_, magnitude_max_);
+  return level_in(calibration_, levels_, axis, force_N, magnitude_min_, magnitude_max_);
 }
 
 bool EvdevJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
