@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <filesystem>
 #include <iostream>
 
@@ -18,6 +19,7 @@
 #include "sandpaper/runtime/trace_csv.hpp"
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 #include "sandpaper/runtime/devices/open_device.hpp"
+#include "sandpaper/runtime/devices/usb_port.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/json_text.hpp"
@@ -387,6 +389,11 @@ int play_on_sim(const schema::PatchProgram& prog, runtime::OpenedDevice& opened,
   return exit_status_of(rep);
 }
 
+// How long a device that left the bus has to come back at its port for the fault to be named a
+// reset: far longer than a firmware's reboot and the kernel's enumeration take (docs/DEVICES.md,
+// "A reset, named", has the lab's figures); an unplugged device's run reports this much later.
+constexpr double kResetGraceS = 1.5;
+
 // A device a person holds (USB HID PID through libusb or hidraw, an input event node): played, given
 // back, then reported.
 int play_on_held(const schema::PatchProgram& program, runtime::OpenedDevice& opened, const PlayRequest& r) {
@@ -404,10 +411,18 @@ int play_on_held(const schema::PatchProgram& program, runtime::OpenedDevice& ope
                                r.duration_s == 0 ? std::string("until Ctrl-C") : fmt::format("for {:g} s", r.duration_s))
                 << std::flush;
     const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
+    // Where the device sits, read before it can go: a fault that ends in its port holding it again
+    // under a new address is a reset, not an unplug.
+    const std::optional<runtime::UsbPort> port = opened.node.empty() ? runtime::usb_port_of_address(info.bus, info.address)
+                                                                     : runtime::usb_port_of_node(opened.node);
     // Through play(): Ctrl-C / SIGTERM stop the loop with zero force, and the device is given back below.
-    const Played played = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, keep, &program);
-    const runtime::ServoReport& rep = played.report;
+    Played played = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, keep, &program);
+    runtime::ServoReport& rep = played.report;
     joystick.close_nonrt();
+    if (rep.stop_cause == runtime::StopCause::DeviceUnplugged && port && runtime::came_back_nonrt(*port, kResetGraceS)) {
+      rep.stop_cause = runtime::StopCause::DeviceReset;
+      rep.stop_reason = runtime::stop_cause_text(rep.stop_cause);
+    }
     if (!r.trace.empty()) {
       // What the tick published (position read, force commanded); the device's own record of what
       // reached it is the device's to keep.

@@ -115,6 +115,7 @@ const char* stop_cause_name(StopCause cause) noexcept {
     case StopCause::DeadlineMissed: return "deadline_missed";
     case StopCause::VelocityLimit: return "velocity_limit";
     case StopCause::StopRequested: return "stop_requested";
+    case StopCause::DeviceReset: return "device_reset";
   }
   return "completed";
 }
@@ -132,6 +133,7 @@ const char* stop_cause_text(StopCause cause) noexcept {
     case StopCause::DeadlineMissed: return "servo deadline missed";
     case StopCause::VelocityLimit: return "velocity limit exceeded";
     case StopCause::StopRequested: return "stopped by signal";
+    case StopCause::DeviceReset: return "device reset (it left the bus and came back)";
   }
   return "completed";
 }

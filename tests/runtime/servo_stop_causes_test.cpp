@@ -105,6 +105,8 @@ TEST(StopCauses, NamesAreStable) {
   EXPECT_STREQ(stop_cause_name(StopCause::StopRequested), "stop_requested");
   EXPECT_STREQ(stop_cause_text(StopCause::StopRequested), "stopped by signal");
   EXPECT_STREQ(stop_cause_text(StopCause::ForceNotFinite), "non-finite force");
+  EXPECT_STREQ(stop_cause_name(StopCause::DeviceReset), "device_reset");
+  EXPECT_STREQ(stop_cause_text(StopCause::DeviceReset), "device reset (it left the bus and came back)");
 }
 
 TEST(StopCauses, ReadFailedTimedOutAndUnpluggedAreTold) {

@@ -3,23 +3,18 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
+
+#include "sandpaper/runtime/usb/sysfs_attribute.hpp"
 
 namespace sandpaper::runtime::evdev {
 namespace fs = std::filesystem;
+using usb::sysfs_first_line;
 
 namespace {
 
-std::string first_line(const fs::path& p) {
-  std::ifstream in(p);
-  std::string line;
-  std::getline(in, line);
-  return line;
-}
-
 std::uint16_t hex16(const fs::path& p) {
-  const std::string s = first_line(p);
+  const std::string s = sysfs_first_line(p);
   char* end = nullptr;
   const unsigned long v = std::strtoul(s.c_str(), &end, 16);
   return end == s.c_str() || v > 0xFFFF ? 0 : static_cast<std::uint16_t>(v);
@@ -38,8 +33,8 @@ double out_interval_of(const fs::path& hid_device) {
   if (ec) return 0;
   for (fs::directory_iterator it(interface, ec), end; !ec && it != end; it.increment(ec)) {
     if (it->path().filename().string().rfind("ep_", 0) != 0) continue;
-    if (first_line(it->path() / "direction") != "out" || first_line(it->path() / "type") != "Interrupt") continue;
-    return sysfs_interval_s(first_line(it->path() / "interval"));
+    if (sysfs_first_line(it->path() / "direction") != "out" || sysfs_first_line(it->path() / "type") != "Interrupt") continue;
+    return sysfs_interval_s(sysfs_first_line(it->path() / "interval"));
   }
   return 0;
 }
@@ -77,19 +72,19 @@ std::vector<EvdevNode> list_force_feedback_nodes(const std::string& sysfs_root) 
     const std::string name = it->path().filename().string();
     if (name.rfind("event", 0) != 0 || name.size() == 5) continue;
     const fs::path input = it->path() / "device";  // the input device (inputN) the node belongs to
-    const std::string ev = first_line(input / "capabilities/ev");
+    const std::string ev = sysfs_first_line(input / "capabilities/ev");
     if (!sysfs_bit(ev, kEvFf)) continue;
     EvdevNode n;
     n.path = "/dev/input/" + name;
-    n.name = first_line(input / "name");
+    n.name = sysfs_first_line(input / "name");
     n.bustype = hex16(input / "id/bustype");
     n.vendor_id = hex16(input / "id/vendor");
     n.product_id = hex16(input / "id/product");
-    const std::string ff = first_line(input / "capabilities/ff");
+    const std::string ff = sysfs_first_line(input / "capabilities/ff");
     n.constant_force = sysfs_bit(ff, kFfConstant);
     n.gain = sysfs_bit(ff, kFfGain);
     n.autocenter = sysfs_bit(ff, kFfAutocenter);
-    const std::string abs = first_line(input / "capabilities/abs");
+    const std::string abs = sysfs_first_line(input / "capabilities/abs");
     n.axes = sysfs_bit(abs, kAbsX) ? (sysfs_bit(abs, kAbsY) ? 2 : 1) : sysfs_bit(abs, kAbsWheel) ? 1 : 0;
     if (const fs::path d = input / "device/report_descriptor"; fs::exists(d, ec)) n.report_descriptor = d.string();
     if (n.usb()) n.out_interval_s = out_interval_of(input / "device");

@@ -66,6 +66,9 @@ enum class StopCause {
   DeadlineMissed,     // "deadline_missed": a tick started more than the deadline guard after its deadline
   VelocityLimit,      // "velocity_limit": filtered hand speed above velocity_limit_m_s
   StopRequested,      // "stop_requested": stop_request was set (Ctrl-C, SIGTERM)
+  // "device_reset": the device left the bus and came back at the same port (a rebooted firmware).
+  // The loop itself sees only DeviceUnplugged; the player names a reset after it (usb_port.hpp).
+  DeviceReset,
 };
 // Stable snake_case name ("device_unplugged"); never changes once released.
 const char* stop_cause_name(StopCause cause) noexcept;
