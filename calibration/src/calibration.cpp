@@ -362,6 +362,15 @@ DeviceCalibration load_device_file(const std::filesystem::path& path, const std:
   return d;
 }
 
+DeviceCalibration parse_device_text(const std::string& text, const std::string& shown_as) {
+  Problems problems;
+  auto f = detail::parse_validated(text, shown_as, "device", problems);
+  DeviceCalibration d;
+  if (f) d = read_device(*f, problems);
+  problems.throw_if_any();
+  return d;
+}
+
 CalibrationSet CalibrationSet::load(const std::filesystem::path& dir, ParsedFileCache* cache) {
   CalibrationSet s;
   s.dir_ = dir;

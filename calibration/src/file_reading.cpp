@@ -40,9 +40,16 @@ std::shared_ptr<const Toml> read_validated(const std::filesystem::path& path, co
   // The path shown is part of what is kept: it is in every message the file's values give later.
   if (cache)
     if (auto kept = cache->find(schema_name, path, shown_as, text)) return kept;
+  auto f = parse_validated(text, shown_as, schema_name, problems);
+  if (f && cache && cache->learning()) cache->keep(schema_name, path, std::move(text), f);
+  return f;
+}
+
+std::shared_ptr<const Toml> parse_validated(const std::string& text, const std::string& shown_as,
+                                            const std::string& schema_name, Problems& problems) {
   auto f = std::make_shared<Toml>(Toml{shown_as, {}});
   try {
-    f->doc = toml::parse(text, path.string());
+    f->doc = toml::parse(text, shown_as);
   } catch (const toml::parse_error& e) {
     problems.add_at(shown_as, static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column),
                     "not valid TOML: " + std::string(e.description()));
@@ -53,7 +60,6 @@ std::shared_ptr<const Toml> read_validated(const std::filesystem::path& path, co
     problems.add_at(shown_as, v.line, v.column,
                     (v.key.empty() ? "" : "`" + v.key + "`: ") + v.message + " (schema/files/" + schema_name + ".schema.json)");
   if (!violations.empty()) return nullptr;
-  if (cache && cache->learning()) cache->keep(schema_name, path, std::move(text), f);
   return f;
 }
 

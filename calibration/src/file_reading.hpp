@@ -38,6 +38,10 @@ std::shared_ptr<const Toml> read_validated(const std::filesystem::path& path, co
                                            const std::string& schema_name, Problems& problems,
                                            ParsedFileCache* cache = nullptr);
 
+// The same for text already read: `shown_as` names it in messages.
+std::shared_ptr<const Toml> parse_validated(const std::string& text, const std::string& shown_as,
+                                            const std::string& schema_name, Problems& problems);
+
 // A validated quantity string ("382 gf") in SI.
 double quantity_si(const toml::node& n);
 

@@ -1,7 +1,11 @@
 #include "sandpaper/runtime/sim_joystick.hpp"
 
 #include <cmath>
+#include <string>
 #include <utility>
+
+#include "embedded_device_files.hpp"
+#include "sandpaper/runtime/device_limits.hpp"
 
 namespace sandpaper::runtime {
 namespace {
@@ -55,12 +59,10 @@ bool SimJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
 }
 
 DeviceLimits sim_device_limits() {
-  DeviceLimits limits;
-  limits.name = "sim";
-  limits.max_force_N = 10.0;
-  limits.min_rate_hz = 900.0;
-  limits.max_rate_hz = 10000.0;
-  limits.workspace_radius_m = 0.1143;
+  static const DeviceLimits limits = [] {
+    const auto& file = detail::embedded_device_files().front();
+    return limits_of(calibration::parse_device_text(std::string(file.text), std::string(file.shown_as)));
+  }();
   return limits;
 }
 

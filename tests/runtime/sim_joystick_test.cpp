@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include "sandpaper/calibration/calibration.hpp"
+#include "sandpaper/runtime/device_limits.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 namespace sandpaper::runtime {
 namespace {
@@ -106,7 +110,25 @@ TEST(SimJoystick, LimitsAreTheThesisJoysticks) {
   EXPECT_EQ(limits.max_force_N, 10.0);
   EXPECT_EQ(limits.min_rate_hz, 900.0);
   EXPECT_EQ(limits.max_rate_hz, 10000.0);
-  EXPECT_EQ(limits.workspace_radius_m, 0.1143);
+  EXPECT_NEAR(limits.workspace_radius_m, 4.5 * 0.0254, 1e-12);  // a 9 inch circle
+}
+
+// The limits come from sim.toml's text, compiled in and read as the calibration loader reads the file.
+TEST(SimJoystick, LimitsAreReadFromSimToml) {
+  const auto file = calibration::load_device_file(std::string(SANDPAPER_SOURCE_DIR) + "/calibration/devices/sim.toml");
+  const DeviceLimits from_file = limits_of(file), builtin = sim_device_limits();
+  EXPECT_EQ(builtin.name, from_file.name);
+  EXPECT_EQ(builtin.max_force_N, from_file.max_force_N);
+  EXPECT_EQ(builtin.min_rate_hz, from_file.min_rate_hz);
+  EXPECT_EQ(builtin.max_rate_hz, from_file.max_rate_hz);
+  EXPECT_EQ(builtin.workspace_radius_m, from_file.workspace_radius_m);
+  // The text reader validates as the file reader does, and names what it was given.
+  try {
+    (void)calibration::parse_device_text("schema = \"sandpaper-device/1\"\nname = \"sim\"\n", "embedded/sim.toml");
+    ADD_FAILURE() << "a device text without force or workspace was accepted";
+  } catch (const calibration::CalibrationError& e) {
+    EXPECT_NE(std::string(e.what()).find("embedded/sim.toml:"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -256,6 +256,9 @@ class CalibrationSet {
 // (default: the path itself). Throw CalibrationError. For tools (`sandpaper calibrate`) and tests.
 PsychophysicalMap load_map_file(const std::filesystem::path& path, const std::string& shown_as = {});
 DeviceCalibration load_device_file(const std::filesystem::path& path, const std::string& shown_as = {});
+// A device file's text (as an embedded copy of one), validated as load_device_file validates a file;
+// `shown_as` names it in messages. Throws CalibrationError.
+DeviceCalibration parse_device_text(const std::string& text, const std::string& shown_as);
 
 // The calibration directory: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, else the shipped
 // calibration/ (the source tree's in a build tree, the installed package's when installed); defined

@@ -46,8 +46,9 @@ class SimJoystick final : public RecordingDevice {
   HandScript script_;
 };
 
-// The sim device's limits (calibration/devices/sim.toml restates them): 10 N maximum force as the
-// thesis joystick (Table 2), 900 Hz - 10 kHz, 9-inch circular workspace.
+// The sim device's limits as calibration/devices/sim.toml states them (compiled in at build time):
+// 10 N maximum force as the thesis joystick (Minsky 1995, Table 2), 900 Hz - 10 kHz, a 9-inch
+// circular workspace. Throws calibration::CalibrationError only if the embedded file were invalid.
 DeviceLimits sim_device_limits();
 
 }  // namespace sandpaper::runtime
