@@ -20,6 +20,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -138,6 +139,7 @@ int main(int argc, char** argv) {
   cfg.spin_margin_s = spin_margin_us * 1e-6;
   cfg.cpu = cpu;
 
+  const auto program = std::make_shared<const schema::PatchProgram>(*r.program);
   std::map<std::string, Tally> total;
   for (int round = 0; round < rounds; ++round) {
     total["bare"].add(bare_loop(rate, each_s, cpu));
@@ -148,9 +150,8 @@ int main(int argc, char** argv) {
     }
     {
       auto opened = runtime::open_device(compiler.calibration(), runtime::DeviceSpec{});
-      runtime::PatchEvaluator evaluator(*r.program);
-      const auto played = cli::play(*opened.device, evaluator, cfg, /*virtual_clock=*/false, /*live=*/false,
-                                    /*keep_records=*/0, &*r.program);
+      const auto played = cli::play(*opened.device, runtime::patch_source_for(*opened.device, program), cfg,
+                                    /*virtual_clock=*/false, /*live=*/false, /*keep_records=*/0, &*r.program);
       total["player"].add(of(played.report));
     }
   }

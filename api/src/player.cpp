@@ -1,51 +1,26 @@
 // sandpaper::Player: a device, a hot-swappable force source and a servo thread, started and
 // stopped from the application's thread.
-#include <atomic>
-
-#include "sandpaper/runtime/owning_source.hpp"
-#include "sandpaper/runtime/patch_evaluator.hpp"
-#include "sandpaper/runtime/swappable_source.hpp"
+#include "sandpaper/runtime/devices/builtin_devices.hpp"
+#include "sandpaper/runtime/devices/open_device.hpp"
+#include "sandpaper/runtime/live_servo.hpp"
 #include "sandpaper/sandpaper.hpp"
 
 namespace sandpaper {
-namespace {
-
-// A patch evaluator that owns its program, so that a material swapped out on the servo thread
-// keeps its program until the application thread frees both together (collect_retired_nonrt).
-using ProgramSource = runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>;
-
-}  // namespace
 
 struct Player::Impl {
   std::unique_ptr<runtime::Device> device;
-  std::unique_ptr<runtime::SwappableSource> source;  // null until the first load
-  std::atomic<bool> stop_request{false};
-  runtime::ServoConfig config;
-  std::unique_ptr<runtime::ServoThread> thread;  // from start until joined
-  std::string device_calibration;                // usb(): the calibration the joystick takes forces in
+  std::unique_ptr<runtime::LiveServo> host;  // null until the first load
+  std::string device_calibration;            // usb(): the calibration the joystick takes forces in
 
-  // Stops a run still going (also when a moved-to Player drops this one), rather than wait for
-  // its whole duration as ServoThread's own destructor would.
-  ~Impl() {
-    if (!thread) return;
-    stop_request.store(true, std::memory_order_release);
-    try {
-      join();
-    } catch (...) {  // a destructor must not throw; the run is over either way
-    }
-  }
-
-  runtime::ServoReport join() {
-    runtime::ServoReport report = thread->join_nonrt();
-    thread.reset();
-    source->collect_retired_nonrt();
-    return report;
-  }
+  runtime::ServoReport join() { return host->join_nonrt(); }
 };
 
 Player Player::simulated(runtime::HandScript hand) {
+  // Through the device factory, as every caller: the simulated joystick of calibration/devices/sim.toml.
   // Records no ticks (capacity 0): the report carries what an application needs.
-  return Player(std::make_unique<runtime::SimJoystick>(runtime::sim_device_limits(), hand, 0));
+  runtime::DeviceSpec spec;
+  spec.script = hand;
+  return Player(runtime::open_device(runtime::builtin_devices(), std::move(spec)).device);
 }
 
 Player::Player(std::unique_ptr<runtime::Device> device) : impl_(std::make_unique<Impl>()) {
@@ -53,6 +28,8 @@ Player::Player(std::unique_ptr<runtime::Device> device) : impl_(std::make_unique
   impl_->device = std::move(device);
 }
 
+// The host goes first (its destructor stops a run still going, rather than wait for its whole
+// duration), then the device it played.
 Player::~Player() = default;
 
 Player::Player(Player&&) noexcept = default;
@@ -65,41 +42,40 @@ void Player::load(const Material& material) {
     throw DeviceError("the material '" + material.name() + "' was compiled for device '" + material.program().device +
                 "', but this player's joystick is '" + impl_->device_calibration +
                 "'; open the library for device '" + impl_->device_calibration + "' and compile it there");
-  auto next = std::make_unique<ProgramSource>(material.shared_program());
-  if (impl_->thread) {
-    impl_->source->offer_nonrt(std::move(next));
-    impl_->source->collect_retired_nonrt();
-  } else {
-    impl_->source = std::make_unique<runtime::SwappableSource>(std::move(next));
+  if (impl_->host) {
+    impl_->host->offer_nonrt(impl_->host->patch_source_nonrt(material.shared_program()));
+    return;
   }
+  // The first material plays from the first tick, without a blend from nothing. No telemetry: the
+  // report carries what an application needs.
+  runtime::LiveServo::Options options;
+  options.telemetry_records = 0;
+  impl_->host = std::make_unique<runtime::LiveServo>(
+      *impl_->device, runtime::patch_source_for(*impl_->device, material.shared_program()), options);
 }
 
 void Player::start(PlayOptions options) {
-  if (impl_->thread && !impl_->thread->finished()) throw Error("already playing; stop() first");
-  if (impl_->thread) impl_->join();  // a run that ended on its own and was not waited for
-  if (!impl_->source) throw Error("nothing to play; load() a material first");
-  impl_->config = runtime::ServoConfig{};
-  impl_->config.rate_hz = options.rate_hz;
-  impl_->config.duration_s = options.duration_s;  // 0: until stop(); the loop's memory is the same either way
-  impl_->stop_request.store(false, std::memory_order_release);
-  impl_->config.stop_request = &impl_->stop_request;
-  auto thread = std::make_unique<runtime::ServoThread>();
-  thread->start_nonrt(*impl_->device, *impl_->source, impl_->config);  // validates: may throw
-  impl_->thread = std::move(thread);
+  if (!impl_->host) throw Error("nothing to play; load() a material first");
+  if (impl_->host->running() && !impl_->host->finished()) throw Error("already playing; stop() first");
+  if (impl_->host->running()) impl_->join();  // a run that ended on its own and was not waited for
+  runtime::ServoConfig config;
+  config.rate_hz = options.rate_hz;
+  config.duration_s = options.duration_s;  // 0: until stop(); the loop's memory is the same either way
+  impl_->host->start_nonrt(config);        // validates: may throw
 }
 
 runtime::ServoReport Player::stop() {
-  if (!impl_->thread) throw Error("not playing; start() first");
-  impl_->stop_request.store(true, std::memory_order_release);
+  if (!impl_->host || !impl_->host->running()) throw Error("not playing; start() first");
+  impl_->host->request_stop_nonrt();
   return impl_->join();
 }
 
 runtime::ServoReport Player::wait() {
-  if (!impl_->thread) throw Error("not playing; start() first");
+  if (!impl_->host || !impl_->host->running()) throw Error("not playing; start() first");
   return impl_->join();
 }
 
-bool Player::playing() const noexcept { return impl_->thread && !impl_->thread->finished(); }
+bool Player::playing() const noexcept { return impl_->host && impl_->host->running() && !impl_->host->finished(); }
 
 runtime::Device& Player::device() noexcept { return *impl_->device; }
 

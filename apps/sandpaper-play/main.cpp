@@ -48,7 +48,7 @@ int play_file(const std::string& file, const std::string& device, const std::str
                   << "'; recompile it with --device " << device << "\n";
         return cli::kExitUsage;
       }
-    return cli::play_workspace_on_sim(ws, limits, ro);
+    return cli::play_workspace_on_sim(ws, set, ro);
   }
   const std::string command = "run --device " + device;
   runtime::DeviceSpec spec;

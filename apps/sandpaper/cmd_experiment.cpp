@@ -77,7 +77,7 @@ std::unique_ptr<ex::Observer> make_observer(const ExperimentOptions& eo, const s
 }
 
 // The presenter for `--device sim|usb`; nullptr (after printing why) when none can be made.
-std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const ex::Design& d, const compiler::Compiler& c,
+std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const ex::Design& d,
                                               std::string& device_used) {
   ex::PresentOptions po;
   po.rate_hz = d.rate_hz;
@@ -110,16 +110,22 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   o.library_dir = eo.common.library_dir;
   const std::string command = "experiment --device " + eo.device;
   if (eo.virtual_clock) {
-    // Each presentation is a run of its own on simulated time: the presenter builds the device.
+    // Each presentation is a run of its own on simulated time, on a device the factory opens for it:
+    // the design's device, emulated with all its settings where its calibration says so.
+    auto set = std::make_shared<const calibration::CalibrationSet>(load_calibration_set(o));
+    runtime::DeviceChoice choice;
     try {
-      (void)runtime::choose_device(load_calibration_set(o), spec);
+      choice = runtime::choose_device(*set, spec);
     } catch (const runtime::DeviceOpenError& e) {
       std::cerr << "sandpaper " << command << ": " << e.what() << "\n" << e.help;
       return nullptr;
     }
-    auto p = std::make_unique<ex::VirtualPresenter>(limits_of(c), hand, po);
-    device_used = p->describe();
-    return p;
+    const bool emulated = std::string(choice.family) == "emulated";
+    device_used = fmt::format("{} simulated on the virtual clock, hand scanning at {:g} mm/s over +-{:g} mm, {:g} Hz{}",
+                              choice.calibration, hand.speed_m_s * 1e3, hand.amplitude_m * 1e3, po.rate_hz,
+                              emulated ? ", with its quantisation and table sampling" : "");
+    auto open = [set, spec] { return runtime::open_device(*set, spec).device; };
+    return std::make_unique<ex::VirtualPresenter>(open, device_used, po);
   }
   auto opened = open_device_for(o, std::move(spec), command);
   if (!opened) return nullptr;
@@ -130,7 +136,7 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   }
   device_used = opened->real ? opened->calibration + (opened->node.empty() ? " (USB)" : " (USB, through " + opened->node + ")")
                              : fmt::format("{} simulated in real time, hand scanning at {:g} mm/s{}", d.device,
-                                           hand.speed_m_s * 1e3, opened->emulation ? ", with its quantisation" : "");
+                                           hand.speed_m_s * 1e3, opened->emulation ? ", with its quantisation and table sampling" : "");
   return std::make_unique<ex::LivePresenter>(std::move(opened->device), device_used, po);
 }
 
@@ -210,7 +216,7 @@ int run_or_resume(const ExperimentOptions& eo, bool resume) {
   install_stop_handlers();
   auto observer = make_observer(eo, observer_text, subject, design, compiler);
   std::string device_used;
-  auto presenter = make_presenter(eo, design, compiler, device_used);
+  auto presenter = make_presenter(eo, design, device_used);
   if (!presenter) return kExitUsage;
   std::optional<ex::ResultsWriter> writer;
   if (resume) {

@@ -14,9 +14,7 @@
 #include "cli.hpp"
 #include "sandpaper/player/play_patch.hpp"
 #include "sandpaper/compiler/source_watch.hpp"
-#include "sandpaper/runtime/owning_source.hpp"
-#include "sandpaper/runtime/patch_evaluator.hpp"
-#include "sandpaper/runtime/swappable_source.hpp"
+#include "sandpaper/runtime/live_servo.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 
 namespace sandpaper::cli {
@@ -99,19 +97,17 @@ int cmd_run(const CommonOptions& given, PlayRequest r, bool watch) {
   // --watch: the material plays through a hot-swappable source; on every save it is recompiled here,
   // off the servo thread, and handed over with a crossfade. A save that does not compile leaves the
   // last good program playing.
-  runtime::SwappableSource swappable(
-      std::make_unique<runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>>(
-          std::make_shared<const schema::PatchProgram>(prog)),
-      0.02);
   // Saves are noticed by their text, not the file's stamp alone (source_watch.hpp: an editor's
   // truncate-then-write can leave one stamp on both).
   compiler::SourceWatch saved(o.file);
   auto next_check = std::chrono::steady_clock::now();
-  const auto reload = [&] {
+  Swaps swaps;
+  swaps.crossfade_s = 0.02;
+  swaps.poll = [&](runtime::LiveServo& host) {
     const auto now = std::chrono::steady_clock::now();
     if (now < next_check) return;
     next_check = now + std::chrono::milliseconds(250);
-    swappable.collect_retired_nonrt();
+    host.collect_retired_nonrt();
     if (!saved.changed()) return;
     std::shared_ptr<const schema::PatchProgram> next;
     if (schema::looks_like_patch_file(o.file)) {
@@ -131,7 +127,7 @@ int cmd_run(const CommonOptions& given, PlayRequest r, bool watch) {
       next = std::make_shared<const schema::PatchProgram>(std::move(*compiled.program));
     }
     try {
-      swappable.offer_nonrt(std::make_unique<runtime::OwningSource<schema::PatchProgram, runtime::PatchEvaluator>>(next));
+      host.offer_nonrt(host.patch_source_nonrt(next));
       std::cerr << fmt::format("watch: reloaded {}: maximum lateral force {:.4g} N, roughness {:.3g}\n", next->name,
                                next->max_lateral_force_N, next->roughness);
     } catch (const std::invalid_argument& e) {
@@ -139,7 +135,7 @@ int cmd_run(const CommonOptions& given, PlayRequest r, bool watch) {
     }
   };
   std::cerr << "watch: playing " << prog.name << " until Ctrl-C; save " << o.file << " to hear and feel the change\n";
-  return play_patch(prog, device, map, r, &swappable, reload);
+  return play_patch(prog, device, map, r, swaps);
 }
 
 }  // namespace sandpaper::cli

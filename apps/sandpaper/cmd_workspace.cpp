@@ -119,7 +119,7 @@ int cmd_workspace_run(const CommonOptions& o, const WorkspaceRunOptions& ro) {
   compiler::Diagnostics diags;
   auto ws = load_workspace(o, c, diags);
   if (!ws) return kExitBadInput;
-  return play_workspace_on_sim(*ws, limits, ro);
+  return play_workspace_on_sim(*ws, c.calibration(), ro);
 }
 
 }  // namespace sandpaper::cli

@@ -24,6 +24,8 @@
 #include "sandpaper/compiler/explain_json.hpp"
 #include "sandpaper/compiler/recovered_height_field.hpp"
 #include "sandpaper/experiment/observer.hpp"
+#include "sandpaper/runtime/devices/builtin_devices.hpp"
+#include "sandpaper/runtime/devices/open_device.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 #include "sandpaper/runtime/recording_device.hpp"
 #include "sandpaper/sandpaper.h"
@@ -407,10 +409,13 @@ PYBIND11_MODULE(sandpaper, m) {
 
   py::class_<PyPlayer>(m, "Player", "Plays materials on a device on a servo thread of its own.")
       .def_static("simulated", [](std::size_t record_ticks, const std::string& hand, double speed_m_s, double amplitude_m) {
-        auto device = std::make_unique<sp::runtime::SimJoystick>(sp::runtime::sim_device_limits(),
-                                                                 hand_script(hand, speed_m_s, amplitude_m), record_ticks);
-        auto* recorder = device.get();
-        return std::make_unique<PyPlayer>(PyPlayer{sp::Player(std::move(device)), recorder, std::nullopt});
+        // Through the device factory, as every caller: the simulated joystick of sim.toml.
+        sp::runtime::DeviceSpec spec;
+        spec.script = hand_script(hand, speed_m_s, amplitude_m);
+        spec.record_ticks = record_ticks;
+        auto opened = sp::runtime::open_device(sp::runtime::builtin_devices(), std::move(spec));
+        auto* recorder = opened.recording;
+        return std::make_unique<PyPlayer>(PyPlayer{sp::Player(std::move(opened.device)), recorder, std::nullopt});
       }, py::arg("record_ticks") = 0, py::arg("hand") = "scan", py::arg("speed_m_s") = 0.05, py::arg("amplitude_m") = 0.03,
          "the simulated joystick (10 N, calibration/devices/sim.toml) with a scripted hand; keeps the first "
          "record_ticks ticks for trace()")

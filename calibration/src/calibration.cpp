@@ -371,6 +371,12 @@ DeviceCalibration parse_device_text(const std::string& text, const std::string& 
   return d;
 }
 
+CalibrationSet CalibrationSet::of_devices(std::vector<DeviceCalibration> devices) {
+  CalibrationSet set;
+  set.devices_ = std::move(devices);
+  return set;
+}
+
 CalibrationSet CalibrationSet::load(const std::filesystem::path& dir, ParsedFileCache* cache) {
   CalibrationSet s;
   s.dir_ = dir;

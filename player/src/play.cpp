@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "sandpaper/player/exit_codes.hpp"
+#include "sandpaper/runtime/live_servo.hpp"
 
 namespace sandpaper::cli {
 namespace {
@@ -65,37 +66,40 @@ void install_run_stop_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-Played play(runtime::Device& device, runtime::ForceSource& source, runtime::ServoConfig config, bool virtual_clock,
-            bool live, std::size_t keep_records, const schema::PatchProgram* felt_of,
-            const std::function<void()>& poll) {
+Played play(runtime::Device& device, std::unique_ptr<runtime::ForceSource> source, runtime::ServoConfig config,
+            bool virtual_clock, bool live, std::size_t keep_records, const schema::PatchProgram* felt_of,
+            const Swaps& swaps) {
   StopOnSignal signals;
-  config.stop_request = &stop_requested;
   // The virtual clock runs the loop on this thread as fast as it can, so nothing drains the ring
   // meanwhile: it must hold the whole run.
   const auto ticks = static_cast<std::size_t>(std::llround(config.duration_s * config.rate_hz));
-  runtime::TelemetryRing ring(virtual_clock && ticks > 0 ? ticks + 1 : kRealTimeRingRecords);
-  config.telemetry = &ring;
+  runtime::LiveServo::Options options;
+  options.telemetry_records = virtual_clock && ticks > 0 ? ticks + 1 : kRealTimeRingRecords;
+  options.crossfade_s = swaps.crossfade_s;
+  runtime::LiveServo host(device, std::move(source), options);
+  runtime::TelemetryRing& ring = *host.telemetry();
   runtime::TelemetryReader reader(ring, config.rate_hz, keep_records);
   if (felt_of != nullptr) reader.measure_felt_peak(*felt_of, config.ramp_s);
 
   Played played;
   if (virtual_clock) {
-    runtime::VirtualClock clock;
-    played.report = runtime::run_servo_loop(device, source, clock, config);
+    config.stop_request = &stop_requested;  // the loop runs on this thread: only the signal's flag can stop it
+    played.report = host.run_virtual_nonrt(config);
   } else {
-    runtime::ServoThread servo;
-    servo.start_nonrt(device, source, config);
+    host.start_nonrt(config);
     auto next_live = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-    while (!servo.finished()) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    while (!host.finished()) {
+      // A signal that came before the run began stops it at once, one after within this wait.
+      if (stop_requested.load(std::memory_order_relaxed)) host.request_stop_nonrt();
+      std::this_thread::sleep_for(std::chrono::milliseconds(stop_requested.load(std::memory_order_relaxed) ? 1 : 20));
       reader.drain_nonrt();
-      if (poll) poll();
+      if (swaps.poll) swaps.poll(host);
       if (live && std::chrono::steady_clock::now() >= next_live) {
         print_live(reader, ring.dropped());
         next_live += std::chrono::seconds(1);
       }
     }
-    played.report = servo.join_nonrt();
+    played.report = host.join_nonrt();
     if (!played.report.realtime_scheduling)
       std::cerr << "note: running without real-time priority (SCHED_FIFO refused: "
                 << std::strerror(played.report.realtime_error) << "); timing may jitter\n";

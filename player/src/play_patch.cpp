@@ -19,7 +19,6 @@
 #include "sandpaper/runtime/trace_csv.hpp"
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 #include "sandpaper/runtime/devices/open_device.hpp"
-#include "sandpaper/runtime/devices/usb_port.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/json_text.hpp"
@@ -75,6 +74,12 @@ std::string stalls_text(const runtime::ServoReport& rep) {
                      runtime::kStallPeriods, rep.longest_stall_us);
 }
 
+// The caller's program, for a source that outlives nothing it plays in: play() ends before the
+// program does, so no ownership is shared (an aliasing pointer with no owner).
+std::shared_ptr<const schema::PatchProgram> borrowed(const schema::PatchProgram& program) {
+  return {std::shared_ptr<const void>(), &program};
+}
+
 std::string describe_emulation(const PlayRequest& r) {
   const auto& q = r.quantization;
   return fmt::format("positions in {:.4g} mm steps, forces in {:.4g} mN steps up to {} units per axis, tables {}",
@@ -123,12 +128,8 @@ void apply_emulation(const calibration::DeviceCalibration& device, PlayRequest& 
 }
 
 runtime::ServoConfig servo_config_of(const PlayRequest& r) {
+  // An emulated device's command steps are its own (Device::command_quantum): the loop asks it.
   runtime::ServoConfig cfg;
-  if (r.emulated) {
-    cfg.command_step_N[0] = r.quantization.force_step_N[0];
-    cfg.command_step_N[1] = r.quantization.force_step_N[1];
-    cfg.command_max = r.quantization.command_max;
-  }
   cfg.rate_hz = r.rate_hz;
   cfg.duration_s = r.duration_s;
   cfg.spin_margin_s = r.spin_margin_us * 1e-6;
@@ -277,13 +278,13 @@ int open_play_device(const calibration::CalibrationSet& set, runtime::DeviceSpec
 namespace {
 
 int play_on_sim(const schema::PatchProgram& prog, runtime::OpenedDevice& opened, const calibration::PsychophysicalMap& map,
-                const PlayRequest& r, runtime::ForceSource* playing, const std::function<void()>& poll) {
+                const PlayRequest& r, const Swaps& swaps) {
   const runtime::DeviceLimits& limits = opened.device->limits();
   const bool until_stopped = r.duration_s == 0;
   const runtime::ServoConfig cfg = servo_config_of(r);
   runtime::RecordingDevice& joystick = *opened.recording;
-  runtime::PatchEvaluator evaluator(prog, r.tables);
-  runtime::ForceSource& source = playing != nullptr ? *playing : static_cast<runtime::ForceSource&>(evaluator);
+  // Built before anything is printed: a program the evaluator refuses is a usage error.
+  auto source = runtime::patch_source_for(joystick, borrowed(prog));
 
   if (!r.json) {
     const std::string how_long = until_stopped ? std::string("until Ctrl-C") : fmt::format("for {:g} s", cfg.duration_s);
@@ -295,7 +296,7 @@ int play_on_sim(const schema::PatchProgram& prog, runtime::OpenedDevice& opened,
     std::cout << std::flush;
   }
   const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
-  const Played played = play(joystick, source, cfg, r.virtual_clock, r.live, keep, &prog, poll);
+  const Played played = play(joystick, std::move(source), cfg, r.virtual_clock, r.live, keep, &prog, swaps);
   const runtime::ServoReport& rep = played.report;
   // Roughness is a property of textures (the map relates a texture's peak lateral force to it);
   // for springs and dampers alone it does not apply.
@@ -389,21 +390,17 @@ int play_on_sim(const schema::PatchProgram& prog, runtime::OpenedDevice& opened,
   return exit_status_of(rep);
 }
 
-// How long a device that left the bus has to come back at its port for the fault to be named a
-// reset: far longer than a firmware's reboot and the kernel's enumeration take (docs/DEVICES.md,
-// "A reset, named", has the lab's figures); an unplugged device's run reports this much later.
-constexpr double kResetGraceS = 1.5;
-
 // A device a person holds (USB HID PID through libusb or hidraw, an input event node): played, given
 // back, then reported.
-int play_on_held(const schema::PatchProgram& program, runtime::OpenedDevice& opened, const PlayRequest& r) {
+int play_on_held(const schema::PatchProgram& program, runtime::OpenedDevice& opened, const PlayRequest& r,
+                 const Swaps& swaps) {
   const runtime::ServoConfig cfg = servo_config_of(r);
   const auto& info = *opened.usb;
   const std::string& device_name = opened.calibration;
   try {
     runtime::HeldDevice& joystick = *opened.held;
     runtime::validate_config(cfg, joystick.limits());
-    runtime::PatchEvaluator evaluator(program);
+    auto source = runtime::patch_source_for(joystick, borrowed(program));
     const std::string usb_ids = runtime::usb_ids(info.vendor_id, info.product_id);
     if (!r.json)
       std::cout << fmt::format("playing {} on {} ({}{}): {:g} Hz {}\n", program.name, device_name, usb_ids,
@@ -411,18 +408,11 @@ int play_on_held(const schema::PatchProgram& program, runtime::OpenedDevice& ope
                                r.duration_s == 0 ? std::string("until Ctrl-C") : fmt::format("for {:g} s", r.duration_s))
                 << std::flush;
     const std::size_t keep = r.trace.empty() ? 0 : static_cast<std::size_t>(std::llround(cfg.duration_s * r.rate_hz));
-    // Where the device sits, read before it can go: a fault that ends in its port holding it again
-    // under a new address is a reset, not an unplug.
-    const std::optional<runtime::UsbPort> port = opened.node.empty() ? runtime::usb_port_of_address(info.bus, info.address)
-                                                                     : runtime::usb_port_of_node(opened.node);
     // Through play(): Ctrl-C / SIGTERM stop the loop with zero force, and the device is given back below.
-    Played played = play(joystick, evaluator, cfg, /*virtual_clock=*/false, /*live=*/r.live, keep, &program);
+    // A device lost and found back at its port is named a reset by the host (LiveServo::join_nonrt).
+    Played played = play(joystick, std::move(source), cfg, /*virtual_clock=*/false, /*live=*/r.live, keep, &program, swaps);
     runtime::ServoReport& rep = played.report;
     joystick.close_nonrt();
-    if (rep.stop_cause == runtime::StopCause::DeviceUnplugged && port && runtime::came_back_nonrt(*port, kResetGraceS)) {
-      rep.stop_cause = runtime::StopCause::DeviceReset;
-      rep.stop_reason = runtime::stop_cause_text(rep.stop_cause);
-    }
     if (!r.trace.empty()) {
       // What the tick published (position read, force commanded); the device's own record of what
       // reached it is the device's to keep.
@@ -486,8 +476,7 @@ int play_on_held(const schema::PatchProgram& program, runtime::OpenedDevice& ope
 }  // namespace
 
 int play_patch(const schema::PatchProgram& program, runtime::OpenedDevice& device,
-               const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r, runtime::ForceSource* playing,
-               const std::function<void()>& poll) {
+               const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r, const Swaps& swaps) {
   // Forces are compiled against a device's command scale (thesis 7.6.3): another device's program
   // would push with the wrong strength.
   if (program.device != device.calibration) {
@@ -495,8 +484,8 @@ int play_patch(const schema::PatchProgram& program, runtime::OpenedDevice& devic
               << "'; recompile it with --device " << device.calibration << "\n";
     return kExitUsage;
   }
-  if (device.held != nullptr) return play_on_held(program, device, r);
-  return play_on_sim(program, device, roughness_map, r, playing, poll);
+  if (device.held != nullptr) return play_on_held(program, device, r, swaps);
+  return play_on_sim(program, device, roughness_map, r, swaps);
 }
 
 }  // namespace sandpaper::cli

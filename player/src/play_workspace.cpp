@@ -11,7 +11,7 @@
 
 #include "sandpaper/player/exit_codes.hpp"
 #include "sandpaper/player/play.hpp"
-#include "sandpaper/runtime/sim_joystick.hpp"
+#include "sandpaper/runtime/devices/open_device.hpp"
 #include "sandpaper/runtime/workspace_evaluator.hpp"
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/json_text.hpp"
@@ -103,9 +103,17 @@ int check_workspace_request(const WorkspaceRunOptions& ro, const runtime::Device
   return check_trace_folder(ro.trace);
 }
 
-int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::DeviceLimits& limits,
+int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const calibration::CalibrationSet& set,
                           const WorkspaceRunOptions& ro) {
+  // This one finds the patch under a position (the scan's aim, each tick's patch afterwards); the
+  // run plays a copy of its own.
   runtime::WorkspaceEvaluator evaluator(ws, ro.crossfade_ms * 1e-3);
+  const calibration::DeviceCalibration* sim = set.find_device("sim");
+  if (sim == nullptr) {
+    std::cerr << "sandpaper: error: the calibration has no device 'sim' to play workspaces on\n";
+    return kExitUsage;
+  }
+  const runtime::DeviceLimits limits = runtime::limits_of(*sim);
 
   const std::string hand = ro.hand.value_or("scan");
   runtime::HandScript script;
@@ -132,14 +140,22 @@ int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::Dev
     return kExitUsage;
   }
   const auto ticks = static_cast<std::size_t>(std::llround(duration_s * ro.rate_hz));
-  runtime::SimJoystick joystick(limits, script, ticks);
+  // Through the device factory, as every run: the simulated joystick keeping a record of every tick.
+  runtime::DeviceSpec spec;
+  spec.device = "sim";
+  spec.script = script;
+  spec.record_ticks = ticks;
+  spec.virtual_clock = ro.virtual_clock;
+  runtime::OpenedDevice opened = runtime::open_device(set, std::move(spec));
+  runtime::RecordingDevice& joystick = *opened.recording;
   if (!ro.json)
     std::cout << fmt::format("playing workspace \"{}\" ({} patches) on {}: {:g} Hz for {:g} s, hand {}{} at {:g} mm/s, {} {:g} mm{}\n",
                              ws.name, ws.patches.size(), limits.name, ro.rate_hz, duration_s, hand,
                              script.path == runtime::HandPath::Scan ? fmt::format(" along {:g} deg", script.direction_rad * 180 / kPi) : "",
                              ro.speed_mm_s, script.path == runtime::HandPath::Circle ? "radius" : "turning at +-",
                              script.amplitude_m * 1e3, ro.virtual_clock ? " (virtual clock)" : "");
-  const Played played = play(joystick, evaluator, cfg, ro.virtual_clock, ro.live, ro.trace.empty() ? 0 : ticks, nullptr);
+  const Played played = play(joystick, std::make_unique<runtime::WorkspaceEvaluator>(ws, ro.crossfade_ms * 1e-3), cfg,
+                             ro.virtual_clock, ro.live, ro.trace.empty() ? 0 : ticks, nullptr);
   const runtime::ServoReport& rep = played.report;
 
   // Which patch each tick was over, found again from the recorded positions (off the servo thread).

@@ -65,17 +65,17 @@ class FilteredDerivative {
 
 // Holds the force magnitude to the device maximum without turning it.
 // Whole command steps per axis; toward zero where rounding would pass the maximum force.
-glm::dvec2 command_of(glm::dvec2 force, const ServoConfig& c, double max_force_N) noexcept {
+glm::dvec2 command_of(glm::dvec2 force, const CommandQuantum& c, double max_force_N) noexcept {
   glm::dvec2 out = force;
   for (int a = 0; a < 2; ++a) {
-    const double step = c.command_step_N[a];
+    const double step = c.step_N[a];
     if (!(step > 0)) continue;
-    const double cap = c.command_max > 0 ? static_cast<double>(c.command_max) : 1e15;
+    const double cap = c.max_steps > 0 ? static_cast<double>(c.max_steps) : 1e15;
     out[a] = std::clamp(std::round(force[a] / step), -cap, cap) * step;
   }
   if (std::hypot(out.x, out.y) > max_force_N)
     for (int a = 0; a < 2; ++a)
-      if (c.command_step_N[a] > 0) out[a] = std::trunc(force[a] / c.command_step_N[a]) * c.command_step_N[a];
+      if (c.step_N[a] > 0) out[a] = std::trunc(force[a] / c.step_N[a]) * c.step_N[a];
   return out;
 }
 
@@ -165,10 +165,6 @@ void validate_config(const ServoConfig& config, const DeviceLimits& limits) {
   if (!(config.spin_margin_s >= 0) || config.spin_margin_s > 1.0 / rate)
     throw std::invalid_argument("spin margin must be between 0 and one servo period (" +
                                 std::to_string(1e6 / rate) + " us at " + hz(rate) + ")");
-  for (double step : config.command_step_N)
-    if (!(step >= 0) || !std::isfinite(step))
-      throw std::invalid_argument("force command step must be a finite, non-negative force in newtons, 0 for continuous");
-  if (config.command_max < 0) throw std::invalid_argument("largest force command must not be negative");
   if (config.cpu < -1 || config.cpu >= CPU_SETSIZE)
     throw std::invalid_argument("CPU " + std::to_string(config.cpu) + " does not exist");
   if (config.cpu >= 0) {
@@ -211,7 +207,9 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
 
   const std::int64_t start = clock.now_ns();
   report.clock_start_ns = start;
-  const bool quantized = config.command_step_N[0] > 0 || config.command_step_N[1] > 0;
+  // The device's own commands (an emulated joystick's whole steps), asked once, before the first tick.
+  const CommandQuantum quantum = device.command_quantum();
+  const bool quantized = quantum.step_N[0] > 0 || quantum.step_N[1] > 0;
   for (std::uint64_t k = 0; k < ticks && stop == StopCause::Completed; ++k) {
     // Deadlines count from the start, not from the last tick, so a late tick never shifts the rest.
     const std::int64_t deadline = start + static_cast<std::int64_t>(std::llround(static_cast<double>(k) * period_ns));
@@ -280,7 +278,7 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
         bool clamped = false;
         force = limit_magnitude(force, limits.max_force_N, clamped);
         if (clamped) ++report.clamped_ticks;
-        if (quantized) force = command_of(force, config, limits.max_force_N);
+        if (quantized) force = command_of(force, quantum, limits.max_force_N);
         sent = force;
       }
     }

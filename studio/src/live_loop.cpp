@@ -18,18 +18,25 @@ constexpr std::size_t kRingRecords = 1 << 13;
 template <class Program, class Evaluator>
 using TrackedSource = runtime::OwningSource<Program, Evaluator>;
 
+runtime::LiveServo::Options host_options(const LoopOptions& options) {
+  runtime::LiveServo::Options o;
+  o.telemetry_records = kRingRecords;
+  o.crossfade_s = options.crossfade_s;
+  return o;
+}
+
 }  // namespace
 
 LiveLoop::LiveLoop(std::unique_ptr<runtime::Device> device, runtime::DummyJoystick* dummy, LoopOptions options)
     : device_(std::move(device)),
       dummy_(dummy),
       options_(options),
-      source_(nullptr, options.crossfade_s),
-      ring_(kRingRecords) {
+      host_(*device_, nullptr, host_options(options)) {
+  const std::atomic<bool> probe_stop{false};
   runtime::ServoConfig probe;
   probe.rate_hz = options_.rate_hz;
   probe.duration_s = 0;  // until stopped, as the loop will run
-  probe.stop_request = &stop_request_;
+  probe.stop_request = &probe_stop;
   runtime::validate_config(probe, device_->limits());
 }
 
@@ -44,7 +51,7 @@ void LiveLoop::start_nonrt() {
 void LiveLoop::stop_nonrt() {
   if (!started_) return;
   quitting_.store(true);
-  stop_request_.store(true, std::memory_order_release);
+  host_.request_stop_nonrt();  // the supervisor asks again, should a restart have begun meanwhile
   if (supervisor_.joinable()) supervisor_.join();
   started_ = false;
 }
@@ -52,7 +59,7 @@ void LiveLoop::stop_nonrt() {
 std::uint64_t LiveLoop::load_nonrt(std::shared_ptr<const schema::PatchProgram> program, double roughness) {
   auto playing = std::make_shared<std::atomic<bool>>(false);
   // Built here: the evaluator's allocations and checks happen on this thread (throws on a bad program).
-  auto source = std::make_unique<TrackedSource<schema::PatchProgram, runtime::PatchEvaluator>>(program, playing);
+  auto source = host_.patch_source_nonrt(program, playing);
   std::lock_guard offer_lock(offer_mutex_);
   std::uint64_t version;
   {
@@ -60,8 +67,7 @@ std::uint64_t LiveLoop::load_nonrt(std::shared_ptr<const schema::PatchProgram> p
     version = ++offered_;
     pending_.push_back({version, playing, program->name, program->max_lateral_force_N, roughness});
   }
-  source_.offer_nonrt(std::move(source));
-  source_.collect_retired_nonrt();
+  host_.offer_nonrt(std::move(source));
   return version;
 }
 
@@ -77,8 +83,7 @@ std::uint64_t LiveLoop::load_workspace_nonrt(std::shared_ptr<const schema::Works
     version = ++offered_;
     pending_.push_back({version, playing, workspace->name, force, 0});
   }
-  source_.offer_nonrt(std::move(source));
-  source_.collect_retired_nonrt();
+  host_.offer_nonrt(std::move(source));
   return version;
 }
 
@@ -121,28 +126,26 @@ void LiveLoop::supervise() {
     cfg.deadline_guard_periods = options_.deadline_guard_periods;
     cfg.velocity_limit_m_s = options_.velocity_limit_m_s;
     cfg.duration_s = 0;  // until stopped (the loop's memory does not grow with its length)
-    cfg.stop_request = &stop_request_;
-    cfg.telemetry = &ring_;
-    runtime::TelemetryReader reader(ring_, cfg.rate_hz);
-    runtime::ServoThread servo;
-    servo.start_nonrt(*device_, source_, cfg);
+    runtime::TelemetryRing& ring = *host_.telemetry();
+    host_.start_nonrt(cfg);
     {
       std::lock_guard lock(mutex_);
       state_.running = true;
     }
     runtime::TelemetryRecord record;
-    while (!servo.finished()) {
+    while (!host_.finished()) {
+      if (quitting_.load()) host_.request_stop_nonrt();
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
       double drain_max = 0;
       bool any = false;
-      while (ring_.pop_nonrt(record)) {
+      while (ring.pop_nonrt(record)) {
         any = true;
         drain_max = std::max(drain_max, std::hypot(record.force_N.x, record.force_N.y));
         if (record.overrun) ++overrun_base;
       }
       {
         std::lock_guard offer_lock(offer_mutex_);
-        source_.collect_retired_nonrt();
+        host_.collect_retired_nonrt();
       }
       std::lock_guard lock(mutex_);
       promote_locked();
@@ -150,7 +153,7 @@ void LiveLoop::supervise() {
       const double t = time_base + record.t_s;
       state_.ticks = tick_base + record.tick + 1;
       state_.overruns = overrun_base;
-      state_.telemetry_dropped = ring_.dropped();
+      state_.telemetry_dropped = ring.dropped();
       state_.hand_mm = record.position_m * 1e3;
       state_.force_N = record.force_N;
       rate_window.emplace_back(t, state_.ticks);
@@ -162,7 +165,11 @@ void LiveLoop::supervise() {
       state_.felt_max_lateral_force_N = 0;
       for (const auto& f : force_window) state_.felt_max_lateral_force_N = std::max(state_.felt_max_lateral_force_N, f.second);
     }
-    const runtime::ServoReport report = servo.join_nonrt();
+    runtime::ServoReport report;
+    {
+      std::lock_guard offer_lock(offer_mutex_);  // joining frees retired sources: one collector at a time
+      report = host_.join_nonrt();
+    }
     std::lock_guard lock(mutex_);
     state_.running = false;
     state_.realtime = report.realtime_scheduling;

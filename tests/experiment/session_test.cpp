@@ -24,7 +24,7 @@ const char* kDesign =
 class FaultyPresenter final : public Presenter {
  public:
   FaultyPresenter(int fail_at, PresentOptions o, std::string cause = "device_unplugged")
-      : inner_(runtime::sim_device_limits(), runtime::HandScript{runtime::HandPath::Scan, 0.03, 0.02, 0}, o),
+      : inner_(runtime::HandScript{runtime::HandPath::Scan, 0.03, 0.02, 0}, o),
         fail_at_(fail_at), cause_(std::move(cause)) {}
   Presentation present(std::shared_ptr<const schema::PatchProgram> program, double gain) override {
     if (count_++ == fail_at_) return {0, true, cause_};
@@ -71,7 +71,7 @@ TEST(Session, FaultMarksTheTrialInterruptedAndResumeContinuesThere) {
   EXPECT_NE(log.str().find("Fix the device, then"), std::string::npos) << log.str();
   {
     auto writer = ResultsWriter::reopen(dir);
-    VirtualPresenter presenter(runtime::sim_device_limits(), runtime::HandScript{runtime::HandPath::Scan, 0.03, 0.02, 0},
+    VirtualPresenter presenter(runtime::HandScript{runtime::HandPath::Scan, 0.03, 0.02, 0},
                                options(d));
     auto observer = make_simulated_observer(parse_simulated_observer("simulated:seed=1"), "S01");
     const auto out = run_session(d, stimuli, schedule, r.next_trial(), presenter, *observer, writer, log);
@@ -121,7 +121,7 @@ TEST(Session, TheSubjectCanStopAtTheTerminal) {
   h.subject = "S01";
   h.trials = 7;
   auto writer = ResultsWriter::create(dir, d, h);
-  VirtualPresenter presenter(runtime::sim_device_limits(), runtime::HandScript{}, options(d));
+  VirtualPresenter presenter(runtime::HandScript{}, options(d));
   std::istringstream answers("\n3\nrough\n5\nq\n");  // Enter for the instructions, a bad answer re-asked
   std::ostringstream prompts, log;
   auto observer = make_terminal_observer(answers, prompts);

@@ -38,7 +38,7 @@ std::filesystem::path study(const Design& d, const std::string& observer, int su
     h.percept = d.percept;
     h.trials = static_cast<int>(schedule.size());
     auto writer = ResultsWriter::create(dir / subject, d, h);
-    VirtualPresenter presenter(runtime::sim_device_limits(), hand, po);
+    VirtualPresenter presenter(hand, po);
     auto obs = make_simulated_observer(parse_simulated_observer(observer), subject);
     std::ostringstream log;
     const auto out = run_session(d, stimuli, schedule, 0, presenter, *obs, writer, log);

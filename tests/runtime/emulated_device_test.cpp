@@ -9,7 +9,7 @@
 
 #include "runtime_test_support.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
-#include "sandpaper/runtime/quantizing_joystick.hpp"
+#include "sandpaper/runtime/emulated_joystick.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 
@@ -95,14 +95,17 @@ TEST(EmulatedDevice, ScanShowsTheStaircase) {
   config.duration_s = 1.0;
   config.ramp_s = 0;
 
-  QuantizingJoystick emulated(std::make_unique<SimJoystick>(sim_device_limits(), script, 0), q, 1000);
-  PatchEvaluator held(program, TableSampling::Hold);
+  EmulatedJoystick emulated(std::make_unique<SimJoystick>(sim_device_limits(), script, 0), {q, TableSampling::Hold}, 1000);
+  // The device describes its emulation; the loop takes its command steps from it.
+  EXPECT_EQ(emulated.table_sampling(), TableSampling::Hold);
+  EXPECT_DOUBLE_EQ(emulated.command_quantum().step_N[1], q.force_step_N[1]);
+  EXPECT_EQ(emulated.command_quantum().max_steps, 2048);
+  PatchEvaluator held(program, emulated.table_sampling());
   VirtualClock clock;
+  TelemetryRing ring(1000);
   ServoConfig emulated_config = config;
-  emulated_config.command_step_N[0] = q.force_step_N[0];
-  emulated_config.command_step_N[1] = q.force_step_N[1];
-  emulated_config.command_max = q.command_max;
   emulated_config.ramp_s = 0.05;  // the loop rounds after its ramp: still whole units
+  emulated_config.telemetry = &ring;
   ASSERT_EQ(run_servo_loop(emulated, held, clock, emulated_config).stop_reason, "completed");
   std::set<double> forces;
   for (const auto& t : emulated.records()) {
@@ -110,6 +113,14 @@ TEST(EmulatedDevice, ScanShowsTheStaircase) {
     ASSERT_TRUE(on_step(t.force_N.x, q.force_step_N[0])) << t.force_N.x;
     if (t.t_s >= 0.05) forces.insert(t.force_N.x);
   }
+  // What the loop reports sending is what the device took: whole units, though nobody told the loop.
+  TelemetryRecord r;
+  std::size_t reported = 0;
+  while (ring.pop_nonrt(r)) {
+    ++reported;
+    ASSERT_TRUE(on_step(r.force_N.x, q.force_step_N[0])) << r.force_N.x;
+  }
+  EXPECT_GE(reported, 899u);
   ASSERT_GE(emulated.records().size(), 899u);
   EXPECT_LE(forces.size(), 17u);  // the table's 17 levels (-8 .. 8 x 0.2 N), no in-between values
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "devices_internal.hpp"
+#include "sandpaper/runtime/devices/usb_port.hpp"
 #include "sandpaper/runtime/dummy_joystick.hpp"
 #include "sandpaper/runtime/replay_joystick.hpp"
 
@@ -88,8 +89,8 @@ OpenedDevice open_emulated(const calibration::CalibrationSet& set, DeviceSpec& s
   out.description = describe_hand(spec);
   out.emulation = emulation_of(*cal);
   // The inner handle's own records are not used: the quantising device records what the tick saw.
-  auto device = std::make_unique<QuantizingJoystick>(simulated_handle(spec, limits_of(*cal), 0),
-                                                     out.emulation->quantization, spec.record_ticks);
+  auto device = std::make_unique<EmulatedJoystick>(simulated_handle(spec, limits_of(*cal), 0),
+                                                     *out.emulation, spec.record_ticks);
   out.recording = device.get();
   out.device = std::move(device);
   return out;
@@ -154,6 +155,14 @@ OpenedDevice open_device(const calibration::CalibrationSet& set, DeviceSpec spec
   OpenedDevice out = family.open(set, spec, cal);
   out.family = family.name;
   out.real = family.real;
+  // Where a held USB device sits, read now, before it can go: a run that loses it and finds it back
+  // at the same port under a new address names a reset (LiveServo::join_nonrt), whoever plays it.
+  if (out.held != nullptr) {
+    std::optional<UsbPort> port;
+    if (!out.node.empty()) port = usb_port_of_node(out.node);
+    else if (out.usb) port = usb_port_of_address(out.usb->bus, out.usb->address);
+    if (port) out.held->watch_for_return_nonrt([at = *port](double within_s) { return came_back_nonrt(at, within_s); });
+  }
   return out;
 }
 

@@ -206,6 +206,9 @@ class CalibrationSet {
   // problem found (file:line:col), so one run shows them all. With `cache`, a file whose bytes it
   // holds is not parsed again (ParsedFileCache); the result and every message are the same.
   static CalibrationSet load(const std::filesystem::path& dir, ParsedFileCache* cache = nullptr);
+  // A set of these devices only (no maps, levels, profiles or knowledge; roughness_map() must not be
+  // asked): for opening a device where no calibration folder is needed (runtime::builtin_devices).
+  static CalibrationSet of_devices(std::vector<DeviceCalibration> devices);
 
   const std::vector<PsychophysicalMap>& maps() const { return maps_; }
   // The map the compiler resolves `percept` through: the selected device's own map when it has one

@@ -6,14 +6,14 @@
 // simulated joystick's scripted hand (a simulated observer: a whole study in seconds).
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
 #include "sandpaper/runtime/device.hpp"
+#include "sandpaper/runtime/live_servo.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
-#include "sandpaper/runtime/swappable_source.hpp"
-#include "sandpaper/runtime/telemetry.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
 namespace sandpaper::experiment {
@@ -47,24 +47,32 @@ class Presenter {
   virtual std::string describe() const = 0;
 };
 
-// The simulated joystick on the virtual clock: each presentation is one run of the servo loop, the
-// scripted hand starting at the patch centre. Deterministic.
+// Opens a fresh device for one presentation on the virtual clock (through runtime::open_device,
+// with DeviceSpec::virtual_clock), its simulated hand at the start of its script.
+using DeviceOpener = std::function<std::unique_ptr<runtime::Device>()>;
+
+// A simulated device on the virtual clock: each presentation is one run of the servo loop through a
+// runtime::LiveServo host on a device of its own, so an emulated device (sandpaper-1995) plays with
+// its quantisation and its sample-and-hold tables, as it does on the live loop. Deterministic.
 class VirtualPresenter final : public Presenter {
  public:
-  // Throws std::invalid_argument for a rate or duration the device's limits refuse
-  // (runtime::validate_config).
-  VirtualPresenter(runtime::DeviceLimits limits, runtime::HandScript hand, PresentOptions options);
+  // `open` gives the device of each presentation; `description` is what describe() says. Throws
+  // std::invalid_argument for a rate or duration the device's limits refuse (runtime::validate_config)
+  // or a device that cannot follow the virtual clock.
+  VirtualPresenter(DeviceOpener open, std::string description, PresentOptions options);
+  // The simulated joystick (calibration/devices/sim.toml, through the device factory) moved by `hand`.
+  VirtualPresenter(runtime::HandScript hand, PresentOptions options);
   Presentation present(std::shared_ptr<const schema::PatchProgram> program, double gain) override;
-  std::string describe() const override;
+  std::string describe() const override { return description_; }
 
  private:
-  runtime::DeviceLimits limits_;
-  runtime::HandScript hand_;
+  DeviceOpener open_;
+  std::string description_;
   PresentOptions options_;
 };
 
-// A device played in real time by one continuously running servo thread; each presentation is
-// offered to it as a hot swap and measured from the telemetry ring.
+// A device played in real time by one continuously running servo thread (a runtime::LiveServo host);
+// each presentation is offered to it as a hot swap and measured from the telemetry ring.
 class LivePresenter final : public Presenter {
  public:
   // Starts the servo thread at once (zero force until the first trial). Throws std::invalid_argument
@@ -78,11 +86,7 @@ class LivePresenter final : public Presenter {
   std::unique_ptr<runtime::Device> device_;
   std::string description_;
   PresentOptions options_;
-  runtime::SwappableSource source_;
-  runtime::TelemetryRing ring_;
-  std::atomic<bool> stop_{false};  // set by the destructor, or mirrored from options_.stop
-  runtime::ServoConfig config_;
-  runtime::ServoThread thread_;
+  runtime::LiveServo host_;  // one run from construction until a stop cause or the destructor
   bool stopped_ = false;
   runtime::ServoReport report_;
 };

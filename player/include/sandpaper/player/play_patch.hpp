@@ -14,8 +14,9 @@ class App;  // not <CLI/CLI.hpp>: that header-only library costs every includer 
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/runtime/devices/open_device.hpp"
 #include "sandpaper/runtime/force_source.hpp"
+#include "sandpaper/player/play.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
-#include "sandpaper/runtime/quantizing_joystick.hpp"
+#include "sandpaper/runtime/emulated_joystick.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 
@@ -81,10 +82,8 @@ int open_play_device(const calibration::CalibrationSet& set, runtime::DeviceSpec
 
 // Plays `program` on `device` (from open_play_device; the program must be compiled for its
 // calibration) and reports. `roughness_map` predicts the felt roughness from the measured force.
-// `playing`: a source to play instead of `program`'s evaluator (run --watch's swappable one);
-// `poll` is called about every 20 ms while playing in real time.
+// `swaps`: run --watch's reloads, offered to the run's host while it plays (play.hpp).
 int play_patch(const schema::PatchProgram& program, runtime::OpenedDevice& device,
-               const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r,
-               runtime::ForceSource* playing = nullptr, const std::function<void()>& poll = {});
+               const calibration::PsychophysicalMap& roughness_map, const PlayRequest& r, const Swaps& swaps = {});
 
 }  // namespace sandpaper::cli

@@ -42,8 +42,9 @@ int check_workspace_request(const WorkspaceRunOptions& ro, const runtime::Device
 // "patch 1   \"corduroy\" at 0 mm, 0 mm  size 40 x 40 mm"
 std::string patch_line(const schema::WorkspaceProgram& ws, std::size_t i);
 
-// Plays `ws` on the simulated device `limits` and reports (text, or JSON with ro.json).
-int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const runtime::DeviceLimits& limits,
+// Plays `ws` on the device "sim" of `set` (opened through runtime::open_device) and reports (text,
+// or JSON with ro.json).
+int play_workspace_on_sim(const schema::WorkspaceProgram& ws, const calibration::CalibrationSet& set,
                           const WorkspaceRunOptions& ro);
 
 }  // namespace sandpaper::cli

@@ -9,6 +9,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "sandpaper/runtime/device.hpp"  // TableSampling
 #include "sandpaper/runtime/energy_tank.hpp"
 #include "sandpaper/runtime/force_source.hpp"
 #include "sandpaper/runtime/point_masses.hpp"
@@ -24,12 +25,6 @@ struct TermState {
   double time_s = 0;                // Attractor: time on the path, wrapped to [0, period)
   glm::dvec2 adhesion_m{0, 0};      // Friction: the adhesion point w (m, patch coordinates)
   bool sticking = true;             // Friction: stuck at w (else sliding)
-};
-
-// How force tables (gratings, height fields) are read between their samples.
-enum class TableSampling : std::uint8_t {
-  Interpolate,  // linear along a grating, bilinear over a height field (the default)
-  Hold,         // the nearest sample, held: the thesis' joystick (Appendix B 2.1), `--device sandpaper-1995`
 };
 
 class PatchEvaluator final : public ForceSource {

@@ -44,11 +44,6 @@ struct ServoConfig {
   const std::atomic<bool>* stop_request = nullptr;
   // Where each tick's record goes (never blocks: drops when full), or nullptr.
   TelemetryRing* telemetry = nullptr;
-  // An emulated device's force commands (quantizing_joystick.hpp; sandpaper-1995: 4.814 mN steps up to
-  // 2048 per axis): after the ramp and the clamp each axis is rounded to whole steps (toward zero where
-  // rounding would pass the maximum force), so the telemetry and traces show what was sent. 0: continuous.
-  double command_step_N[2] = {0, 0};
-  long command_max = 0;
 };
 
 // Why the loop stopped, with stable names (stop_cause_name) for reports and scripts, in the manner

@@ -1,7 +1,7 @@
 #pragma once
-// The studio's servo loop: one device (the Dummy-mode simulated joystick, or a USB joystick), a
-// hot-swappable force source, the servo thread, and a supervisor thread that drains the telemetry
-// ring into a snapshot the HTTP threads read. Nothing here runs on the servo thread but the loop
+// The studio's servo loop: one device (the Dummy-mode simulated joystick, or a USB joystick) played
+// through the runtime's one host (runtime::LiveServo: the servo thread, the hot-swappable source, the
+// telemetry ring), and a supervisor thread that drains the ring into a snapshot the HTTP threads read. Nothing here runs on the servo thread but the loop
 // itself; the HTTP server never touches it (docs/STUDIO.md, "Threads").
 #include <atomic>
 #include <cstdint>
@@ -15,9 +15,8 @@
 
 #include "sandpaper/runtime/device.hpp"
 #include "sandpaper/runtime/dummy_joystick.hpp"
+#include "sandpaper/runtime/live_servo.hpp"
 #include "sandpaper/runtime/servo_loop.hpp"
-#include "sandpaper/runtime/swappable_source.hpp"
-#include "sandpaper/runtime/telemetry.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 #include "sandpaper/schema/workspace_program.hpp"
 
@@ -87,16 +86,14 @@ class LiveLoop {
   std::unique_ptr<runtime::Device> device_;
   runtime::DummyJoystick* dummy_;
   LoopOptions options_;
-  runtime::SwappableSource source_;
-  runtime::TelemetryRing ring_;
-  std::atomic<bool> stop_request_{false};
+  runtime::LiveServo host_;
   std::atomic<bool> quitting_{false};
   std::thread supervisor_;
   bool started_ = false;
 
   mutable std::mutex mutex_;  // guards what follows (HTTP threads and the supervisor; never the servo thread)
   LoopState state_;
-  std::mutex offer_mutex_;  // one application thread at a time offers and collects (SwappableSource)
+  std::mutex offer_mutex_;  // one application thread at a time offers to and collects from host_
   std::uint64_t offered_ = 0;  // loads offered
   // Offered loads not yet seen playing, oldest first; `playing` is set by the servo thread when it
   // picks the source up (one relaxed atomic store).

@@ -16,7 +16,7 @@
 #include "sandpaper/runtime/device_limits.hpp"
 #include "sandpaper/runtime/dynamic_hand.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
-#include "sandpaper/runtime/quantizing_joystick.hpp"
+#include "sandpaper/runtime/emulated_joystick.hpp"
 #include "sandpaper/runtime/sim_joystick.hpp"
 #include "sandpaper/runtime/usb/libusb_transport.hpp"
 
@@ -61,12 +61,6 @@ struct DeviceSpec {
   // An evdev device no calibration file names may play, with the uncalibrated-evdev profile
   // (calibration/profiles/): its assumed scale and a quarter of the level range. Evdev only.
   bool uncalibrated = false;
-};
-
-// A historical device's quantisation and table sampling ([emulation] in its calibration file).
-struct Emulation {
-  DeviceQuantization quantization;
-  TableSampling tables = TableSampling::Interpolate;
 };
 
 struct OpenedDevice {

@@ -1,4 +1,4 @@
-#include "sandpaper/runtime/quantizing_joystick.hpp"
+#include "sandpaper/runtime/emulated_joystick.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,19 +23,27 @@ glm::dvec2 quantize_force(glm::dvec2 f, const DeviceQuantization& q) noexcept {
   return out;
 }
 
-QuantizingJoystick::QuantizingJoystick(std::unique_ptr<RecordingDevice> inner, DeviceQuantization q, std::size_t capacity_ticks)
-    : RecordingDevice(capacity_ticks), inner_(std::move(inner)), q_(q) {}
+EmulatedJoystick::EmulatedJoystick(std::unique_ptr<RecordingDevice> inner, Emulation emulation, std::size_t capacity_ticks)
+    : RecordingDevice(capacity_ticks), inner_(std::move(inner)), emulation_(emulation) {}
 
-bool QuantizingJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexcept {
+CommandQuantum EmulatedJoystick::command_quantum() const noexcept {
+  CommandQuantum c;
+  c.step_N[0] = emulation_.quantization.force_step_N[0];
+  c.step_N[1] = emulation_.quantization.force_step_N[1];
+  c.max_steps = emulation_.quantization.command_max;
+  return c;
+}
+
+bool EmulatedJoystick::read_position_rt(double t_s, glm::dvec2& position_m) noexcept {
   glm::dvec2 p{0, 0};
   if (!inner_->read_position_rt(t_s, p)) return false;
-  position_m = quantize_position(p, q_.position_step_m);
+  position_m = quantize_position(p, emulation_.quantization.position_step_m);
   note_read_rt(t_s, position_m);
   return true;
 }
 
-bool QuantizingJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
-  const glm::dvec2 sent = quantize_force(force_N, q_);
+bool EmulatedJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
+  const glm::dvec2 sent = quantize_force(force_N, emulation_.quantization);
   note_write_rt(sent);
   return inner_->write_force_rt(sent);
 }
