@@ -11,10 +11,13 @@
 #include <thread>
 
 #include "Axis.h"
+#include "ClassIDs.h"
 #include "CommandHandler.h"
 #include "EffectsCalculator.h"
 #include "FFBHIDMain.h"
 #include "RmdMotorCAN.h"
+#include "eeprom_addresses.h"
+#include "flash_helpers.h"
 #include "hal_timer.hpp"
 #include "lab_core.hpp"
 #include "lab_usbd.hpp"
@@ -76,8 +79,11 @@ std::int64_t axis_setting(CommandHandler* axis, Axis_commands command) {
 
 class Firmware final : public OpenFFBoardFirmware {
  public:
-  Firmware() {
+  explicit Firmware(MainClass main) : axes_(main == MainClass::Wheel ? 1 : 2) {
     (void)core::epoch();
+    // cppmain reads the main class from the flash (ADR_CURRENT_CONFIG), writing DEFAULTMAIN only
+    // when none is there: as a board that was switched to another class and restarted.
+    Flash_Write(ADR_CURRENT_CONFIG, main == MainClass::Wheel ? CLSID_MAIN_FFBWHEEL : CLSID_MAIN_FFBJOY);
     startup::start_default_task();
     const auto give_up = core::Clock::now() + std::chrono::seconds(10);
     while (!(startup::main_class_ready() && usbd::stack_initialized())) {
@@ -119,6 +125,7 @@ class Firmware final : public OpenFFBoardFirmware {
   }
 
   DeviceIdentity identity() const override { return identity_; }
+  int axes() const override { return axes_; }
   std::vector<std::uint8_t> function_descriptors() const override { return descriptors_; }
 
   // The firmware's string table (USBdevice::getUsbStringDesc through tud_descriptor_string_cb).
@@ -166,8 +173,9 @@ class Firmware final : public OpenFFBoardFirmware {
   // Encoder counts per fraction of the axis's reported range. Axis.cpp: angle = 360 deg * counts /
   // cpr * gear ratio, negated when inverted; reported fraction = angle / (degrees / 2). The axis's
   // range, inversion and gear ratio are read from the firmware. Call holding the core.
-  static double counts_per_fraction(int axis) {
-    if (axis < 0 || axis > 1) throw std::out_of_range("OpenFFBoardFirmware: axis must be 0 or 1");
+  double counts_per_fraction(int axis) const {
+    if (axis < 0 || axis >= axes_)
+      throw std::out_of_range("OpenFFBoardFirmware: axis " + std::to_string(axis) + " of " + std::to_string(axes_));
     CommandHandler* handler = CommandHandler::getHandlerFromClassName("axis", static_cast<std::uint8_t>(axis));
     if (handler == nullptr) throw std::runtime_error("OpenFFBoard firmware: no axis " + std::to_string(axis));
     const double degrees = static_cast<double>(axis_setting(handler, Axis_commands::degrees));
@@ -192,7 +200,9 @@ class Firmware final : public OpenFFBoardFirmware {
   void move_stick(StickPath path) override {
     core::Hold hold;
     stick_path_ = std::move(path);
-    stick_scale_ = stick_path_ ? std::array<double, 2>{counts_per_fraction(0), counts_per_fraction(1)} : std::array<double, 2>{};
+    stick_scale_ = {};
+    if (stick_path_)
+      for (int a = 0; a < axes_; ++a) stick_scale_[a] = counts_per_fraction(a);
     stick_t_s_ = 0;
   }
 
@@ -212,7 +222,8 @@ class Firmware final : public OpenFFBoardFirmware {
       s.torque[a] = stick_link::axis(a).torque.load();
       s.torque_updates[a] = stick_link::axis(a).torque_updates.load();
     }
-    s.actuators_enabled = stick_link::axis(0).driver_enabled.load() && stick_link::axis(1).driver_enabled.load();
+    s.actuators_enabled = true;
+    for (int a = 0; a < axes_; ++a) s.actuators_enabled = s.actuators_enabled && stick_link::axis(a).driver_enabled.load();
     const hal::TimerUpdateCounts ffb_timer = hal::timer_update_counts(TIM_FFB);
     s.ffb_timer_updates = ffb_timer.run;
     s.ffb_timer_updates_dropped = ffb_timer.dropped;
@@ -238,11 +249,12 @@ class Firmware final : public OpenFFBoardFirmware {
     control_steps_.fetch_add(1, std::memory_order_relaxed);
     if (!stick_path_) return;
     const std::array<double, 2> f = stick_path_(stick_t_s_);
-    for (int a = 0; a < 2; ++a)
+    for (int a = 0; a < axes_; ++a)
       stick_link::axis(a).encoder_counts = static_cast<std::int32_t>(std::round(f[a] * stick_scale_[a]));
     stick_t_s_ += 1.0 / hal::timer_update_rate_hz(TIM_FFB);
   }
 
+  const int axes_;
   std::atomic<std::uint64_t> control_steps_{0};
   StickPath stick_path_;  // the three stick_ members: read and written holding the core
   std::array<double, 2> stick_scale_{};
@@ -255,10 +267,10 @@ class Firmware final : public OpenFFBoardFirmware {
 
 }  // namespace
 
-std::unique_ptr<OpenFFBoardFirmware> OpenFFBoardFirmware::start() {
+std::unique_ptr<OpenFFBoardFirmware> OpenFFBoardFirmware::start(MainClass main) {
   static std::atomic<bool> started{false};
   if (started.exchange(true)) throw std::logic_error("OpenFFBoardFirmware::start: the firmware runs once per process");
-  return std::make_unique<Firmware>();
+  return std::make_unique<Firmware>(main);
 }
 
 }  // namespace sandpaper::usb_lab

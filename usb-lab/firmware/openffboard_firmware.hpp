@@ -42,11 +42,18 @@ struct FirmwareState {
   std::uint64_t ffb_control_steps = 0;
 };
 
+// The firmware's main classes the lab runs (ClassIDs.h): the 2-axis joystick (FFBJoystick, class 2)
+// and the 1-axis wheel (FFBWheel, class 1, with its 1-axis HID descriptor).
+enum class MainClass { Joystick, Wheel };
+
 class OpenFFBoardFirmware : public UsbFunction {
  public:
-  // Constructs the firmware's main class as its startup code would and starts its threads. The
+  // Constructs the firmware's main class `main` as its startup code would (chosen as on the board:
+  // the flash's current config, written before the first start) and starts its threads. The
   // firmware keeps global state: one per process. Throws std::logic_error on a second call.
-  static std::unique_ptr<OpenFFBoardFirmware> start();
+  static std::unique_ptr<OpenFFBoardFirmware> start(MainClass main = MainClass::Joystick);
+  // The axes the main class drives (joystick 2, wheel 1); an `axis` argument is below this.
+  virtual int axes() const = 0;
 
   // The handle's position on `axis` (0 = X, 1 = Y) as the firmware's encoder for that axis reads
   // it, as a fraction of the axis's range: -1 and +1 are the ends the firmware reports as its

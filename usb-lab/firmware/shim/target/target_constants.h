@@ -3,7 +3,7 @@
  * shadowing Firmware/Targets/F407VG/Core/Inc/target_constants.h (found first by include order).
  *
  * It keeps the F407VG board's identity, timers and peripheral handles, and enables only what the
- * lab's 2-axis FFB joystick needs. Everything not listed here is left out because it needs
+ * lab's 2-axis FFB joystick and 1-axis FFB wheel need. Everything not listed here is left out because it needs
  * hardware the host does not have (SPI/I2C/CAN peripherals, ADC channels as inputs, UART consoles)
  * or is a different main class. The firmware's own constants.h derives the rest from these
  * (AXIS2_FFB_HID_DESC from FFBJOYSTICK, USE_EEPROM_EMULATION from EEPROM_START_ADDRESS).
@@ -23,6 +23,12 @@
 // default FFBWheel (1). Written to flash at first start as cppmain.cpp does with DEFAULTMAIN.
 #define DEFAULTMAIN 2
 #define FFBJOYSTICK
+// The second main class: the 1-axis wheel (CLSID_MAIN_FFBWHEEL, 1) with its own 1-axis HID
+// descriptor (usb_hid_1ffb_desc.c; the F407VG target ships the wheel with the 2-axis one). Which of
+// the two runs is the flash's current config, as on the board: OpenFFBoardFirmware::start writes it
+// before the first start.
+#define FFBWHEEL
+#define FFBWHEEL_USE_1AXIS_DESC
 
 // Motor drivers: the Axis chooser's RMD CAN motor slots (11 on X, 12 on Y) hold the lab's
 // simulated drivers (shim/drivers/RmdMotorCAN.h). Their real header is never included.
