@@ -575,7 +575,8 @@ std::optional<fs::path> Session::view_file(const std::string& name) const {
   return p;
 }
 
-std::optional<fs::path> Session::preview_file(const std::string& name, std::uint64_t min_version) const {
+std::optional<fs::path> Session::preview_file(const std::string& name, std::uint64_t min_version,
+                                              std::chrono::milliseconds wait) const {
   // Names are checked against a fixed pattern: nothing from the request reaches the file system as a path.
   const bool fixed = name == "height.png" || name == "field.png" || name == "scan.svg" || name == "preview.json" ||
                      name == "field.json";
@@ -583,7 +584,13 @@ std::optional<fs::path> Session::preview_file(const std::string& name, std::uint
   const bool patch = std::regex_match(name, patch_picture);
   if (!fixed && !patch) return std::nullopt;
   std::unique_lock lock(mutex_);
-  rendered_.wait_for(lock, std::chrono::seconds(10), [&] { return rendered_version_ >= std::min(min_version, version_); });
+  const auto drawn = [&] { return rendered_version_ >= std::min(min_version, version_); };
+  // An older load's picture under a newer load's name would be shown as this one's (a loaded machine
+  // draws a photograph for longer than the wait): the page is told to ask again instead.
+  if (!rendered_.wait_for(lock, wait, drawn))
+    throw RequestError(503, "the preview of load " + std::to_string(std::min(min_version, version_)) +
+                                " is still being drawn (load " + std::to_string(rendered_version_) +
+                                " is drawn): ask again");
   const fs::path p = preview_dir_ / "current" / name;
   std::error_code ec;
   if (!fs::is_regular_file(p, ec)) return std::nullopt;

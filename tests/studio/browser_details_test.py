@@ -12,6 +12,7 @@
 
 Exit 0 pass, 1 fail (including: Chromium missing), 77 skipped (SANDPAPER_SKIP_BROWSER_TESTS=1)."""
 import argparse
+import base64
 import json
 import os
 import pathlib
@@ -166,6 +167,25 @@ def main():
               f"its compile line names the workspace {ws_name!r}, its {ws_patches} patches and size: {compiled!r}")
 
         # The photograph's preview window is part of the patch, and says so.
+        # A preview asked for before the studio has drawn it is answered 503 (on a loaded machine a
+        # photograph takes longer than the studio waits); the page must ask again, not keep the last
+        # file's picture. Chromium's own request interception answers the first ask 503.
+        b.send("Fetch.enable", {"patterns": [{"urlPattern": "*/api/preview/preview.json*"}]})
+        b.evaluate("(() => { const s = document.querySelector('#file'); s.value = 'board.hmat';"
+                   " s.dispatchEvent(new Event('change')); })()")
+        first = b.wait_event("Fetch.requestPaused", 60)["params"]
+        b.send("Fetch.fulfillRequest", {"requestId": first["requestId"], "responseCode": 503,
+                                        "responseHeaders": [{"name": "Content-Type", "value": "application/json"}],
+                                        "body": base64.b64encode(b'{"error": "still being drawn"}').decode()})
+        try:
+            again = b.wait_event("Fetch.requestPaused", 30)["params"]
+            b.send("Fetch.continueRequest", {"requestId": again["requestId"]})
+        except Exception:
+            again = {"request": {"url": "(nothing within 30 s)"}}
+        b.send("Fetch.disable")
+        check(again["request"]["url"] == first["request"]["url"],
+              f"answered 503, the page asks again for the same load's preview: {first['request']['url']} then "
+              f"{again['request']['url']}")
         check(switch_to(b, "board.hmat"), "a photograph opens")
         caption = "document.querySelector('#picture-caption').textContent"
         height = 60 * 340 / 512  # mm: the picture's shape kept (schema/LANGUAGE.md, `heightmap ... size W`)

@@ -175,6 +175,37 @@ TEST(StudioSession, SavingRewritesTheFileWithItsCommentsAndNothingElse) {
     EXPECT_TRUE(e.path().filename() == "m.hmat" || e.path().filename() == ".previews") << e.path();
 }
 
+// The material a preview.json is of.
+std::string preview_of(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in).at("material").get<std::string>();
+}
+
+TEST(StudioSession, APreviewNotYetDrawnIsNeverAnOlderLoads) {
+  LiveSession live;
+  std::ofstream(live.root / "a.hmat") << "material \"a\" {\n  grating period 3 mm\n  roughness 0.4\n}\n";
+  std::ofstream(live.root / "b.hmat") << "material \"b\" {\n  grating period 4 mm\n  roughness 0.6\n}\n";
+  const auto va = live.session->open("a.hmat")["version"].get<std::uint64_t>();
+  const auto pa = live.session->preview_file("preview.json", va);
+  ASSERT_TRUE(pa) << "no preview of a";
+  EXPECT_EQ(preview_of(*pa), "a");
+
+  // Asked at once, with no wait: either b's preview or "not yet" (503), never a's under b's load.
+  const auto vb = live.session->open("b.hmat")["version"].get<std::uint64_t>();
+  ASSERT_GT(vb, va);
+  try {
+    const auto early = live.session->preview_file("preview.json", vb, std::chrono::milliseconds(0));
+    ASSERT_TRUE(early);
+    EXPECT_EQ(preview_of(*early), "b");
+  } catch (const studio::RequestError& e) {
+    EXPECT_EQ(e.status, 503) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ask again"), std::string::npos) << e.what();
+  }
+  const auto pb = live.session->preview_file("preview.json", vb);
+  ASSERT_TRUE(pb);
+  EXPECT_EQ(preview_of(*pb), "b");
+}
+
 TEST(StudioSession, RefusesFilesOutsideItsFolder) {
   LiveSession live;
   try {

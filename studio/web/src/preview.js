@@ -26,13 +26,17 @@ async function refreshPreviewNow() {
   const v = state.version;
   if (state.kind === "workspace") {
     state.workspace = await api("GET", "/api/workspace");
+    // Its patches' pictures are drawn with the load: wait for them rather than show the last load's.
+    if (state.workspace.patches?.length) await drawn(`/api/preview/patch-0.png?v=${v}`, v);
+    if (state.version !== v) return;
     drawWorkspace();
     return;
   }
   const [preview, field] = await Promise.all([
-    fetch(`/api/preview/preview.json?v=${v}`).then((r) => r.ok ? r.json() : null),
-    fetch(`/api/preview/field.json?v=${v}`).then((r) => r.ok ? r.json() : null),
+    drawn(`/api/preview/preview.json?v=${v}`, v).then((r) => r?.ok ? r.json() : null),
+    drawn(`/api/preview/field.json?v=${v}`, v).then((r) => r?.ok ? r.json() : null),
   ]);
+  if (state.version !== v) return;  // a newer load came meanwhile: refreshPreview asks again for it
   state.preview = preview;
   state.field = field;
   if (state.zoom) {
@@ -44,6 +48,18 @@ async function refreshPreviewNow() {
   $("#scan").innerHTML = svg;
   $("#stage").dataset.version = v;
   drawOverlay();
+}
+
+// A preview file of load `v`: the studio answers 503 while that load is still being drawn (its files
+// are then an older load's), and the page asks again until it is drawn or a newer load replaces it
+// (then null).
+async function drawn(url, v) {
+  for (;;) {
+    const r = await fetch(url);
+    if (r.status !== 503) return r;
+    if (state.version !== v) return null;
+    await new Promise((done) => setTimeout(done, 250));
+  }
 }
 
 // A window of the caller's choosing over the patch, drawn by the studio on request (/api/view).

@@ -4,6 +4,7 @@
 // from the HTTP threads and serialised by the session's own mutex; none touches the servo thread
 // except through LiveLoop's non-blocking hand-over (docs/STUDIO.md).
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <filesystem>
 #include <map>
@@ -101,8 +102,10 @@ class Session {
 
   // The preview file `name` (height.png, field.png, scan.svg, preview.json, field.json, or
   // patch-<i>.png / patch-<i>-field.png for a workspace's patch) of the playing program, or nullopt if
-  // there is none. Waits (up to 10 s) until the program of load `min_version` or a later one is drawn.
-  std::optional<std::filesystem::path> preview_file(const std::string& name, std::uint64_t min_version = 0) const;
+  // there is none. Waits (up to `wait`) until the program of load `min_version` or a later one is drawn;
+  // RequestError 503 if it is not drawn by then (the files there are an older load's).
+  std::optional<std::filesystem::path> preview_file(const std::string& name, std::uint64_t min_version = 0,
+                                                    std::chrono::milliseconds wait = std::chrono::seconds(10)) const;
 
   // Zoom and pan: the playing material's height field (`kind` "height") or force field at rest
   // ("field", as field.png draws it) over `window_mm` (width, height) centred on `centre_mm` (patch
