@@ -1,5 +1,6 @@
 #include "sandpaper/runtime/live_servo.hpp"
 
+#include <mutex>
 #include <stdexcept>
 
 #include "sandpaper/runtime/owning_source.hpp"
@@ -28,11 +29,15 @@ std::unique_ptr<ForceSource> patch_source_for(const Device& device, std::shared_
 }
 
 void LiveServo::offer_nonrt(std::unique_ptr<ForceSource> next) {
+  std::lock_guard lock(application_);
   source_.offer_nonrt(std::move(next));
   source_.collect_retired_nonrt();
 }
 
-std::size_t LiveServo::collect_retired_nonrt() { return source_.collect_retired_nonrt(); }
+std::size_t LiveServo::collect_retired_nonrt() {
+  std::lock_guard lock(application_);
+  return source_.collect_retired_nonrt();
+}
 
 void LiveServo::start_nonrt(ServoConfig config) {
   if (thread_) throw std::logic_error("the servo loop is already running; join it first");
@@ -52,7 +57,7 @@ ServoReport LiveServo::run_virtual_nonrt(ServoConfig config) {
   config.telemetry = ring_.get();
   VirtualClock clock;
   ServoReport report = run_servo_loop(device_, source_, clock, config);
-  source_.collect_retired_nonrt();
+  collect_retired_nonrt();
   return report;
 }
 
@@ -60,8 +65,9 @@ ServoReport LiveServo::join_nonrt() {
   if (!thread_) throw std::logic_error("no servo run to join; start one first");
   std::unique_ptr<ServoThread> thread = std::move(thread_);
   ServoReport report = thread->join_nonrt();
-  source_.collect_retired_nonrt();
-  // The loop sees only that the device is gone; whether it came back is the bus's to tell.
+  collect_retired_nonrt();
+  // The loop sees only that the device is gone; whether it came back is the bus's to tell. Offers
+  // from other threads go on meanwhile (they play on the next run).
   if (report.stop_cause == StopCause::DeviceUnplugged && device_.came_back_nonrt(kResetGraceS)) {
     report.stop_cause = StopCause::DeviceReset;
     report.stop_reason = stop_cause_text(report.stop_cause);

@@ -179,10 +179,28 @@ void validate_config(const ServoConfig& config, const DeviceLimits& limits) {
   }
 }
 
+namespace {
+// A step that is not a finite number of newtons would turn every command into NaN or infinity.
+void validate_quantum(const CommandQuantum& q, const DeviceLimits& limits) {
+  for (int a = 0; a < 2; ++a)
+    if (!std::isfinite(q.step_N[a]) || q.step_N[a] < 0)
+      throw std::invalid_argument("device \"" + limits.name + "\" gives a command step of " +
+                                  std::to_string(q.step_N[a]) + " N on axis " + (a == 0 ? "x" : "y") +
+                                  ": a step is a finite force of 0 N (continuous) or more; check its device file");
+  if (q.max_steps < 0)
+    throw std::invalid_argument("device \"" + limits.name + "\" gives a largest command of " +
+                                std::to_string(q.max_steps) + " steps: 0 (none) or more");
+}
+}  // namespace
+
 ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& clock,
                            const ServoConfig& config) {
   const DeviceLimits& limits = device.limits();
   validate_config(config, limits);
+  // The device's own commands (an emulated joystick's whole steps), asked once, before the first tick.
+  const CommandQuantum quantum = device.command_quantum();
+  validate_quantum(quantum, limits);
+  const bool quantized = quantum.step_N[0] > 0 || quantum.step_N[1] > 0;
   const std::uint64_t ticks = tick_count(config);
   const double period_ns = kNsPerS / config.rate_hz;
 
@@ -207,9 +225,6 @@ ServoReport run_servo_loop(Device& device, ForceSource& source, ServoClock& cloc
 
   const std::int64_t start = clock.now_ns();
   report.clock_start_ns = start;
-  // The device's own commands (an emulated joystick's whole steps), asked once, before the first tick.
-  const CommandQuantum quantum = device.command_quantum();
-  const bool quantized = quantum.step_N[0] > 0 || quantum.step_N[1] > 0;
   for (std::uint64_t k = 0; k < ticks && stop == StopCause::Completed; ++k) {
     // Deadlines count from the start, not from the last tick, so a late tick never shifts the rest.
     const std::int64_t deadline = start + static_cast<std::int64_t>(std::llround(static_cast<double>(k) * period_ns));

@@ -143,10 +143,7 @@ void LiveLoop::supervise() {
         drain_max = std::max(drain_max, std::hypot(record.force_N.x, record.force_N.y));
         if (record.overrun) ++overrun_base;
       }
-      {
-        std::lock_guard offer_lock(offer_mutex_);
-        host_.collect_retired_nonrt();
-      }
+      host_.collect_retired_nonrt();
       std::lock_guard lock(mutex_);
       promote_locked();
       if (!any) continue;
@@ -165,11 +162,8 @@ void LiveLoop::supervise() {
       state_.felt_max_lateral_force_N = 0;
       for (const auto& f : force_window) state_.felt_max_lateral_force_N = std::max(state_.felt_max_lateral_force_N, f.second);
     }
-    runtime::ServoReport report;
-    {
-      std::lock_guard offer_lock(offer_mutex_);  // joining frees retired sources: one collector at a time
-      report = host_.join_nonrt();
-    }
+    // Loads go on while it joins (and, after an unplug, waits to see whether the device comes back).
+    const runtime::ServoReport report = host_.join_nonrt();
     std::lock_guard lock(mutex_);
     state_.running = false;
     state_.realtime = report.realtime_scheduling;

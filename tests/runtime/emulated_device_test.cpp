@@ -132,3 +132,25 @@ TEST(EmulatedDevice, ScanShowsTheStaircase) {
   for (const auto& t : plain.records()) smooth_forces.insert(t.force_N.x);
   EXPECT_GT(smooth_forces.size(), forces.size() + 10);  // interpolation: values between the levels
 }
+
+TEST(EmulatedDevice, ACommandStepThatIsNotAForceIsRefusedBeforeTheFirstTick) {
+  const auto program = program_of({grating(0.0025, 0, std::vector<float>(256, 1.0f))});
+  ServoConfig config;
+  config.rate_hz = 900;
+  config.duration_s = 0.1;
+  for (const double bad : {std::nan(""), static_cast<double>(INFINITY), -0.01}) {
+    auto q = joystick_1995();
+    q.force_step_N[1] = bad;
+    EmulatedJoystick device(std::make_unique<SimJoystick>(sim_device_limits(), HandScript{}, 0), {q}, 100);
+    PatchEvaluator evaluator(program);
+    VirtualClock clock;
+    try {
+      run_servo_loop(device, evaluator, clock, config);
+      ADD_FAILURE() << "a command step of " << bad << " N played";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("command step"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("axis y"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(device.records().empty()) << "no tick ran";
+  }
+}

@@ -2,9 +2,12 @@
 // it hosts (its table sampling, its command steps, whether it can follow simulated time), and a run
 // on a thread of its own starts, stops and is joined once.
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <future>
 #include <memory>
 #include <stdexcept>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -175,4 +178,29 @@ TEST(LiveServo, AnUnpluggedDeviceFoundBackIsAReset) {
   LiveServo host(unwatched, patch_source_for(unwatched, kProgram), {});
   host.start_nonrt(short_run());
   EXPECT_EQ(host.join_nonrt().stop_cause, StopCause::DeviceUnplugged);
+}
+
+TEST(LiveServo, OffersGoOnWhileAnUnplugIsCheckedForAReset) {
+  // The check waits (as a real one waits for the bus) until the test has offered a source from
+  // another thread; an offer that waited for the check would leave it unanswered for 10 s.
+  VanishingDevice d(/*gone=*/true);
+  std::promise<void> checking, offered;
+  auto offered_done = offered.get_future();
+  bool offered_in_time = false;
+  d.watch_for_return_nonrt([&](double) {
+    checking.set_value();
+    offered_in_time = offered_done.wait_for(std::chrono::seconds(10)) == std::future_status::ready;
+    return true;
+  });
+  LiveServo host(d, patch_source_for(d, kProgram), {});
+  host.start_nonrt(short_run());
+  ServoReport report;
+  std::thread joiner([&] { report = host.join_nonrt(); });
+  checking.get_future().wait();
+  host.offer_nonrt(patch_source_for(d, kProgram));
+  host.collect_retired_nonrt();
+  offered.set_value();
+  joiner.join();
+  EXPECT_TRUE(offered_in_time);
+  EXPECT_EQ(report.stop_cause, StopCause::DeviceReset);
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <future>
 #include <sstream>
 #include <thread>
 
@@ -204,6 +205,54 @@ TEST(StudioSession, APreviewNotYetDrawnIsNeverAnOlderLoads) {
   const auto pb = live.session->preview_file("preview.json", vb);
   ASSERT_TRUE(pb);
   EXPECT_EQ(preview_of(*pb), "b");
+}
+
+// A held device gone at its first read, whose port check waits until `release` is ready.
+class UnpluggedDevice final : public runtime::HeldDevice {
+ public:
+  UnpluggedDevice() { limits_ = runtime::sim_device_limits(); }
+  const runtime::DeviceLimits& limits() const noexcept override { return limits_; }
+  bool read_position_rt(double, glm::dvec2& p) noexcept override {
+    p = {0, 0};
+    return false;
+  }
+  bool write_force_rt(glm::dvec2) noexcept override { return true; }
+  runtime::DeviceFault last_fault_rt() const noexcept override { return runtime::DeviceFault::Unplugged; }
+  void close_nonrt() noexcept override {}
+  std::string fault_detail_nonrt() const override { return "no device"; }
+
+ private:
+  runtime::DeviceLimits limits_;
+};
+
+TEST(StudioSession, AFileOpensWhileTheLoopWaitsToSeeIfItsDeviceComesBack) {
+  // After an unplug the loop waits up to runtime::kResetGraceS for the device at its port; a file
+  // opened meanwhile must not wait for that. The check here waits until the open has returned.
+  const fs::path root = test::temp_dir("studio-unplugged");
+  std::ofstream(root / "m.hmat") << "grating period 3 mm\nroughness 0.5\n";
+  auto device = std::make_unique<UnpluggedDevice>();
+  std::promise<void> checking, opened;
+  auto opened_done = opened.get_future();
+  bool opened_in_time = false;
+  device->watch_for_return_nonrt([&](double) {
+    checking.set_value();
+    opened_in_time = opened_done.wait_for(std::chrono::seconds(10)) == std::future_status::ready;
+    return false;
+  });
+  studio::LoopOptions options;
+  options.restart_after_fault = false;
+  studio::LiveLoop loop(std::move(device), nullptr, options);
+  studio::Session session(test::shipped_compiler(), loop, root, root / ".previews");
+  loop.start_nonrt();
+  checking.get_future().wait();
+  EXPECT_TRUE(session.open("m.hmat")["ok"].get<bool>());
+  opened.set_value();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (loop.state_nonrt().stop_cause.empty() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(loop.state_nonrt().stop_cause, "device_unplugged");  // not found back at its port
+  loop.stop_nonrt();
+  EXPECT_TRUE(opened_in_time);
 }
 
 TEST(StudioSession, RefusesFilesOutsideItsFolder) {

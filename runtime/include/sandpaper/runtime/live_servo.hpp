@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstddef>
 #include <memory>
+#include <mutex>
 
 #include "sandpaper/runtime/device.hpp"
 #include "sandpaper/runtime/force_source.hpp"
@@ -53,7 +54,8 @@ class LiveServo {
     return patch_source_for(device_, std::move(program), std::move(picked_up));
   }
   // Hands `next` to the servo thread (picked up at its next tick, or at the first of the next run)
-  // and frees the sources it has finished with. Never blocks.
+  // and frees the sources it has finished with. Never waits for the servo thread; any application
+  // thread may offer and collect while another joins.
   void offer_nonrt(std::unique_ptr<ForceSource> next);
   // Frees the sources the servo thread has finished with; returns how many.
   std::size_t collect_retired_nonrt();
@@ -91,6 +93,7 @@ class LiveServo {
   std::unique_ptr<TelemetryRing> ring_;
   std::atomic<bool> stop_{false};
   std::unique_ptr<ServoThread> thread_;
+  std::mutex application_;  // the swap slot's application side is one caller at a time
 };
 
 }  // namespace sandpaper::runtime

@@ -93,7 +93,7 @@ class LiveLoop {
 
   mutable std::mutex mutex_;  // guards what follows (HTTP threads and the supervisor; never the servo thread)
   LoopState state_;
-  std::mutex offer_mutex_;  // one application thread at a time offers to and collects from host_
+  std::mutex offer_mutex_;  // loads are numbered in the order they are offered to host_
   std::uint64_t offered_ = 0;  // loads offered
   // Offered loads not yet seen playing, oldest first; `playing` is set by the servo thread when it
   // picks the source up (one relaxed atomic store).
