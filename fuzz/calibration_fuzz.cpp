@@ -44,6 +44,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           const double d = device.firmware_damping_N(a, v);
           fuzz::check(std::isfinite(d) && d >= 0, "a firmware damper that is negative or not finite");
         }
+    // [wheel]: the schema keeps its radius and range positive.
+    if (device.wheel()) {
+      const double deg_per_mm = device.wheel_deg_per_mm();
+      fuzz::check(std::isfinite(deg_per_mm) && deg_per_mm > 0, "a wheel whose millimetres are no angle");
+    }
   } catch (const calibration::CalibrationError&) {
   }
   try {

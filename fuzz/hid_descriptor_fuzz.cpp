@@ -22,6 +22,7 @@
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/runtime/usb/hid_descriptor.hpp"
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
+#include "sandpaper/runtime/usb/libusb_transport.hpp"
 #include "sandpaper/runtime/usb/transport.hpp"
 
 namespace {
@@ -74,10 +75,12 @@ class ScriptedTransport final : public UsbTransport {
   volatile std::uint8_t sink_ = 0;
 };
 
-const sandpaper::calibration::DeviceCalibration& device() {
+// The shipped joystick's device file, or (wheel) the wheel's: one axis, y never sent.
+const sandpaper::calibration::DeviceCalibration& device(bool wheel) {
   static const auto set = sandpaper::calibration::CalibrationSet::load(sandpaper::fuzz::source_dir() / "calibration");
-  static const auto* d = set.find_device("openffboard-2axis");
-  sandpaper::fuzz::check(d != nullptr, "the shipped calibration has no openffboard-2axis");
+  const char* name = wheel ? "openffboard-wheel" : "openffboard-2axis";
+  const auto* d = set.find_device(name);
+  sandpaper::fuzz::check(d != nullptr, std::string("the shipped calibration has no ") + name);
   return *d;
 }
 
@@ -142,12 +145,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const HidDescriptorError&) {
     return 0;  // the driver refuses the device with this message (HidPidError)
   }
+  // What `sandpaper devices` reads of it, and the device file it would then pick.
+  sandpaper::runtime::usb::UsbHidDeviceInfo info;
+  sandpaper::runtime::usb::summarise_report_descriptor(descriptor, info);
+  sandpaper::fuzz::check(info.descriptor_read && info.force_axes >= 0 && info.force_axes <= 2,
+                         "a parsed descriptor summarised as unread or with " + std::to_string(info.force_axes) + " force axes");
+  // Opened as the file it would be matched with (a wheel's when its effects act on X alone).
   ScriptedTransport transport(std::move(descriptor), replies);
   HidPidOptions options;
   options.io = HidPidIo::CallingThread;
   options.open_read_timeout_ms = 1;
   try {
-    HidPidJoystick joystick(transport, device(), options);
+    HidPidJoystick joystick(transport, device(info.force_axes == 1), options);
     play(joystick);
   } catch (const HidPidError&) {
   }

@@ -27,11 +27,15 @@ std::string descriptor_summary(const runtime::usb::UsbHidDeviceInfo& info) {
   return "descriptor not read";
 }
 
-// What the kernel's force feedback offers on an event node, for the listing.
-std::string evdev_summary(const runtime::evdev::EvdevNode& n) {
+// What the kernel's force feedback offers on an event node, for the listing; a wheel's device file
+// (`cal`) plays its one axis though the node has more.
+std::string evdev_summary(const runtime::evdev::EvdevNode& n, const calibration::DeviceCalibration* cal = nullptr) {
   if (!n.constant_force) return "no constant-force effect (FF_CONSTANT): cannot be played";
   if (n.axes == 0) return "no ABS_X or ABS_WHEEL axis: cannot be played";
-  return fmt::format("the kernel's force feedback, {} {}{}", n.axes, n.axes == 1 ? "axis" : "axes",
+  const bool wheel = cal != nullptr && cal->wheel();
+  const int axes = wheel ? 1 : n.axes;
+  return fmt::format("the kernel's force feedback, {} {}{}{}", axes, axes == 1 ? "axis" : "axes",
+                     wheel ? " (a wheel: ABS_X along its rim)" : "",
                      n.report_descriptor.empty() ? "; not a HID device: a calibration file for it counts FF_CONSTANT levels" : "");
 }
 // A device no calibration file names plays only through a usable event node, and only when asked.
@@ -85,7 +89,7 @@ int cmd_devices(const CommonOptions& o) {
         const bool may = ::access(n.path.c_str(), R_OK | W_OK) == 0;
         (may ? evdev_usable : evdev_denied) = true;
         std::cout << "  through evdev: --device evdev:" << n.path << (f.calibration ? "" : " --uncalibrated") << " ("
-                  << evdev_summary(n) << ")\n";
+                  << evdev_summary(n, f.calibration) << ")\n";
       }
     if (evdev_denied)
       std::cout << "  this user may not open its input event node; the .deb's rules give force-feedback event devices to "

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <set>
@@ -217,6 +218,19 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
   d.resolution_bits = static_cast<int>(c["force"]["resolution_bits"].value_or(std::int64_t{0}));
   d.axis[0] = read_axis(c["force"]["x"]);
   d.axis[1] = read_axis(c["force"]["y"]);
+  if (c["wheel"].is_table()) {
+    d.axes = 1;
+    d.wheel_rim_radius_m = detail::quantity_si(*c["wheel"]["rim_radius"].node());
+    d.wheel_rotation_range_rad = detail::quantity_si(*c["wheel"]["rotation_range"].node());
+    // One axis: y takes no force, so its scale is x's (a force on y is never sent).
+    if (c["force"]["y"].is_table())
+      problems.add(f, *c["force"]["y"].node(), "a wheel ([wheel]) has one force axis: [force.x], at the rim",
+                   "remove [force.y]");
+    d.axis[1] = d.axis[0];
+  } else if (!c["force"]["y"].is_table()) {
+    problems.add(f, *c["force"].node(), "a two-axis device needs [force.y] as well as [force.x]",
+                 "add [force.y], or a [wheel] table for a one-axis device turned at its rim");
+  }
   for (int a = 0; a < 2; ++a) {
     const auto& t = d.axis_scale(a).table;
     const char* name = a == 0 ? "x" : "y";
@@ -242,6 +256,23 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
       d.workspace_size_m[1] = detail::quantity_si(*h);
       d.workspace_radius_m = std::min(d.workspace_size_m[0], d.workspace_size_m[1]) / 2;
     } else problems.add(f, *c["workspace"].node(), "a rectangular workspace needs `width` and `height`", "");
+  }
+  if (d.wheel()) {
+    // From a haptic knob to a large steering wheel; outside it, a unit slipped.
+    if (!(d.wheel_rim_radius_m >= 0.005 && d.wheel_rim_radius_m <= 1.0))
+      problems.add(f, *c["wheel"]["rim_radius"].node(), "a wheel's rim radius is between 5 mm and 1 m", "");
+    if (!(d.wheel_rotation_range_rad <= 20 * 3.14159265358979323846))
+      problems.add(f, *c["wheel"]["rotation_range"].node(), "a wheel's rotation range is at most 3600 deg (ten turns)", "");
+    // The rim's arc over the rotation range is the wheel's travel: the width says the same in mm.
+    const double arc_m = d.wheel_rim_radius_m * d.wheel_rotation_range_rad;
+    if (d.workspace_circle || !(std::abs(d.workspace_size_m[0] - arc_m) <= 1e-3 * arc_m)) {
+      char want[64];
+      std::snprintf(want, sizeof want, "%.1f mm", arc_m * 1e3);
+      problems.add(f, *c["workspace"].node(),
+                   std::string("a wheel's workspace is a rectangle whose width is its rim's arc over the rotation range, ") +
+                       want,
+                   std::string("shape = \"rectangle\", width = \"") + want + "\"");
+    }
   }
   d.usb_vendor_id = static_cast<int>(c["usb"]["vendor_id"].value_or(std::int64_t{-1}));
   if (const auto* idle = c["usb"]["idle_report_period"].node()) d.usb_idle_report_period_s = detail::quantity_si(*idle);
@@ -280,6 +311,11 @@ std::vector<std::filesystem::path> toml_files(const std::filesystem::path& dir) 
 }
 
 }  // namespace
+
+double DeviceCalibration::wheel_deg_per_mm() const {
+  if (!wheel() || !(wheel_rim_radius_m > 0)) return 0;
+  return 1e-3 / wheel_rim_radius_m * 180.0 / 3.14159265358979323846;
+}
 
 double PsychophysicalMap::percept_of(double x_si) const {
   if (!(x_si > 0) || !(reference_si > 0)) return 0;

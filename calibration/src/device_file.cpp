@@ -76,6 +76,8 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
     if (a.axis == 'x') ax = &a;
     if (a.axis == 'y') ay = &a;
   }
+  // A wheel ([wheel]) has one force axis, x along its rim: its readings need no y.
+  if (base["wheel"].is_table() && ay == nullptr) ay = ax;
   for (auto [a, name] : {std::pair{ax, 'x'}, std::pair{ay, 'y'}})
     if (!a)
       throw FitError(fit.path, 0,
@@ -126,10 +128,13 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   if (command_max) out += fmt::format("command_max = {}\n", *command_max);
   if (auto bits = base["force"]["resolution_bits"].value<std::int64_t>()) out += fmt::format("resolution_bits = {}\n", *bits);
   // The readings measure how hard a command pushes, not which way: the sense is the base's.
+  const bool wheel = base["wheel"].is_table();
   for (auto [a, axis] : {std::pair{ax, "x"}, std::pair{ay, "y"}}) {
+    if (wheel && axis[0] == 'y') continue;  // ay is ax there
     out += fmt::format("[force.{}]\nnewtons_per_command_unit = {}\n", axis, toml_float(a->gain_N_per_unit, 9));
     if (auto sense = base["force"][axis]["command_sense"].value<std::int64_t>()) out += fmt::format("command_sense = {}\n", *sense);
   }
+  copy_table(out, base, "wheel");
   copy_table(out, base, "position");
   copy_table(out, base, "workspace");
   copy_table(out, base, "usb");

@@ -155,18 +155,23 @@ class Validator {
       report(n, key, "must be at most " + m->dump() + ", found " + describe(n));
   }
 
+  // "a length", "an angle".
+  static std::string a(const std::string& noun) {
+    return (noun.find_first_of("aeiou") == 0 ? "an " : "a ") + noun;
+  }
+
   void quantity(const std::string& text, const json& s, const toml::node& n, const std::string& key) {
     const std::string& dim = get(s, "x-dimension")->get_ref<const std::string&>();
     auto want = dimension_named(dim);
     if (!want) throw std::logic_error("file schema: unknown x-dimension " + dim);
     auto q = parse_quantity(text);
     if (!q) {
-      report(n, key, "expected a " + dim + " with its unit, e.g. \"2.5 " + std::string(si_unit_name(*want)) +
+      report(n, key, "expected " + a(dim) + " with its unit, e.g. \"2.5 " + std::string(si_unit_name(*want)) +
                          "\" (units: " + units_of(*want) + "), found \"" + text + "\"");
       return;
     }
     if (q->unit.dimension != *want) {
-      report(n, key, "\"" + text + "\" is a " + std::string(dimension_name(q->unit.dimension)) + ", expected a " + dim +
+      report(n, key, "\"" + text + "\" is " + a(std::string(dimension_name(q->unit.dimension))) + ", expected " + a(dim) +
                          " (units: " + units_of(*want) + ")");
       return;
     }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
+#include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/calibration/device_fit.hpp"
 #include "sandpaper/calibration/fit_error.hpp"
 #include "synthetic.hpp"
@@ -172,4 +173,20 @@ TEST(DeviceFit, AxesTheFileNeeds) {
   } catch (const FitError& e) {
     EXPECT_NE(e.message.find("no rows for axis y"), std::string::npos) << e.what();
   }
+}
+
+// A wheel's file keeps its [wheel] table and its one axis: readings of x alone make it.
+TEST(DeviceFit, AWheelIsFittedOnItsOneAxis) {
+  const auto base = toml::parse_file(std::string(SANDPAPER_SOURCE_DIR) + "/calibration/devices/openffboard-wheel.toml");
+  const auto x_only =
+      fit_device(parse_device_readings_csv("command,force_N,axis\n0,0,x\n5000,1.6,x\n10000,3.1,x\n", "rim.csv"));
+  const std::string text = device_file_text(x_only, base, {"", "openffboard-wheel.toml", ""});
+  const auto doc = toml::parse(text);
+  EXPECT_FALSE(doc["force"]["y"].is_table()) << text;
+  EXPECT_NEAR(doc["force"]["x"]["newtons_per_command_unit"].value_or(0.0), 3.1 / 10000, 2e-5);
+  EXPECT_EQ(doc["wheel"]["rim_radius"].value_or(std::string()), "150 mm");
+  EXPECT_EQ(doc["wheel"]["rotation_range"].value_or(std::string()), "900 deg");
+  // And the written file loads as a wheel.
+  const auto d = parse_device_text(text, "fitted-wheel.toml");
+  EXPECT_TRUE(d.wheel());
 }

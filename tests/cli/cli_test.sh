@@ -94,6 +94,12 @@ expect_exit 0 "explain on sandpaper-1995" -- "$sp" explain -e a10p25 --device sa
 has "$tmp/out" 'position samples per period' "explain says what the emulated device's quantisation does"
 has "$tmp/out" 'distinct force levels sent' "explain counts the levels the emulated device sends"
 has "$tmp/out" 'felt at speed' "explain predicts the force felt at speed"
+# A wheel: the patch's millimetres along its rim, in degrees (openffboard-wheel.toml: a 150 mm rim,
+# so 180 / (150 pi) = 0.382 deg per mm, and 0.15 N*m per N).
+expect_exit 0 "explain on the wheel" -- "$sp" explain -e "grating period 2.5 mm; roughness 0.5" --device openffboard-wheel
+has "$tmp/out" 'wheel     one axis along the rim: 1 mm of rim turns the wheel 0\.382 deg \(rim radius 150 mm, 900 deg lock to lock\); 1 N at the rim is 0\.15 N\*m' "explain says how the wheel's millimetres are degrees"
+expect_exit 0 "explain --json on the wheel" -- "$sp" explain -e "grating period 2.5 mm; roughness 0.5" --device openffboard-wheel --json
+has "$tmp/out" '"deg_per_mm": 0\.3819718' "explain --json gives the wheel's degrees per mm"
 expect_exit 0 "explain --json felt_at_speed" -- "$sp" explain -e "grating period 0.7 mm; roughness 0.5" --json
 has "$tmp/out" '"felt_at_speed"' "explain --json has felt_at_speed"
 has "$tmp/out" '"speed_mm_s": 200' "felt_at_speed lists 200 mm/s"
@@ -457,7 +463,7 @@ cp -r tests/curation/data/mini "$tmp/lib"
 L=(--library "$tmp/lib")
 I=(--index "$tmp/idx/library.sqlite")
 expect_exit 0 "library check passes on the mini library" -- "$sp" library check "${L[@]}"
-has "$tmp/err" '^checked 5 entries on 3 devices \(uncalibrated, W0331: openffboard-2axis\): 0 errors, 0 warnings, 7 accepted$' "check prints its summary"
+has "$tmp/err" '^checked 5 entries on 4 devices \(uncalibrated, W0331: openffboard-2axis, openffboard-wheel\): 0 errors, 0 warnings, 9 accepted$' "check prints its summary"
 expect_exit 0 "library check --quiet" -- "$sp" library check "${L[@]}" --quiet
 [ -s "$tmp/err" ] && bad "check --quiet printed progress" || ok
 expect_exit 0 "library check --json" -- "$sp" library check "${L[@]}" --json --quiet
@@ -538,7 +544,7 @@ printf 'material "ribbed-twin" {\n  describes "x"\n  family textiles\n  licence 
 expect_exit 0 "a JND collision is a warning" -- "$sp" library check "${L[@]}" --quiet
 has "$tmp/err" 'warning\[W0601\]: .ribbed-twin. may feel the same as .ribbed-cloth.' "W0601 names both"
 expect_exit 1 "--werror makes warnings fail" -- "$sp" library check "${L[@]}" --werror
-has "$tmp/err" '1 warning, 7 accepted \(--werror: warnings fail\)' "werror said"
+has "$tmp/err" '1 warning, 9 accepted \(--werror: warnings fail\)' "werror said"
 rm "$tmp/lib/textiles/ribbed-twin.hmat"
 sed -i 's/^  source derived "8 ribs per inch: 25.4 mm \/ 8"$//' "$tmp/lib/textiles/ribbed-cloth.hmat"
 expect_exit 1 "library check fails on a missing source" -- "$sp" library check "${L[@]}" --quiet

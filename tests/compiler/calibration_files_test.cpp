@@ -59,7 +59,7 @@ std::string load_error(const fs::path& dir) {
 TEST(CalibrationFiles, EveryShippedFileNamesItsSchemaAndLoads) {
   auto cal = calibration::CalibrationSet::load(kShipped);
   EXPECT_GE(cal.maps().size(), 3u);
-  EXPECT_EQ(cal.devices().size(), 3u);
+  EXPECT_EQ(cal.devices().size(), 4u);
   ASSERT_EQ(cal.profiles().size(), 1u);
   EXPECT_EQ(cal.find_device("uncalibrated-evdev"), &cal.profiles()[0]) << "a profile is found by name, apart from the devices";
   // Each file's `schema` key names a shipped schema whose const it satisfies.
@@ -158,6 +158,23 @@ TEST(CalibrationFiles, DeviceFilesInSIUnits) {
   EXPECT_NEAR(usb->firmware_damping_N(0, 0.1), 9000.0 * 30 * 28 / 204 * 0.1 * 10 / 32767, 1e-3);
   EXPECT_NEAR(usb->firmware_damping_N(1, -0.1), usb->firmware_damping_N(1, 0.1), 1e-12);
   EXPECT_FALSE(cal.find_device("sandpaper-1995")->has_firmware());
+  EXPECT_EQ(usb->axes, 2);
+  EXPECT_EQ(usb->wheel_deg_per_mm(), 0.0);
+  // The wheel: one axis along a 150 mm rim over 900 degrees (openffboard-wheel.toml's assumptions):
+  // 1 mm of rim is 180 / (150 pi) = 0.38197 degrees, the rim's arc 2356.19 mm.
+  const auto* wheel = cal.find_device("openffboard-wheel");
+  ASSERT_NE(wheel, nullptr);
+  EXPECT_TRUE(wheel->wheel());
+  EXPECT_EQ(wheel->axes, 1);
+  EXPECT_NEAR(wheel->wheel_rim_radius_m, 0.150, 1e-12);
+  EXPECT_NEAR(wheel->wheel_rotation_range_rad, 900 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(wheel->wheel_deg_per_mm(), 180 / (150 * M_PI), 1e-9);
+  EXPECT_NEAR(wheel->workspace_size_m[0], 0.15 * 5 * M_PI, 1e-4);
+  EXPECT_EQ(wheel->usb_vendor_id, usb->usb_vendor_id);  // the same board: told apart by its effects' axes
+  EXPECT_EQ(wheel->usb_product_id, usb->usb_product_id);
+  EXPECT_DOUBLE_EQ(wheel->axis_scale(1).newtons_per_command_unit, wheel->axis_scale(0).newtons_per_command_unit);
+  // Its damper: 1 m/s of rim is 1000 / 150 rad/s = 381.97 deg/s, x 30 x 28 / 204 command units.
+  EXPECT_NEAR(wheel->firmware_damping_N(0, 0.1), 180 / (0.15 * M_PI) * 30 * 28 / 204 * 0.1 * 10 / 32767, 1e-4);
   const auto* sim = cal.find_device("sim");
   ASSERT_NE(sim, nullptr);
   EXPECT_FALSE(sim->quantized());
@@ -284,6 +301,53 @@ TEST(CalibrationFiles, ConsistencyRulesBeyondTheSchema) {
                      "[force.y]\ntable = [{command = 0, force = \"0 N\"}, {command = 5000, force = \"6 N\"}, "
                      "{command = 10000, force = \"5 N\"}]"));
     EXPECT_NE(load_error(dir).find("force.y.table must rise"), std::string::npos);
+  }
+}
+
+TEST(CalibrationFiles, AWheelsFileSaysOneAxisAndItsRim) {
+  {
+    // A width that is not the rim's arc over the rotation range.
+    auto dir = copy_of_shipped("cal-wheel-width");
+    auto f = dir / "devices/openffboard-wheel.toml";
+    write(f, replace(read(f), "width = \"2356.2 mm\"", "width = \"100 mm\""));
+    const auto err = load_error(dir);
+    EXPECT_NE(err.find("a wheel's workspace is a rectangle whose width is its rim's arc over the rotation range, 2356.2 mm"),
+              std::string::npos)
+        << err;
+  }
+  {
+    // A force.y on a wheel; then (the schema's refusals, before the file is read) a rotation range
+    // that is not an angle, and a rim without a radius.
+    auto dir = copy_of_shipped("cal-wheel-y");
+    auto f = dir / "devices/openffboard-wheel.toml";
+    const std::string shipped = read(f);
+    write(f, replace(shipped, "[wheel]", "[force.y]\nnewtons_per_command_unit = 0.001\n\n[wheel]"));
+    auto err = load_error(dir);
+    EXPECT_NE(err.find("a wheel ([wheel]) has one force axis"), std::string::npos) << err;
+    write(f, replace(shipped, "rotation_range = \"900 deg\"", "rotation_range = \"900 mm\""));
+    err = load_error(dir);
+    EXPECT_NE(err.find("\"900 mm\" is a length, expected an angle"), std::string::npos) << err;
+    write(f, replace(shipped, "rim_radius = \"150 mm\"\n", ""));
+    err = load_error(dir);
+    EXPECT_NE(err.find("rim_radius"), std::string::npos) << err;
+  }
+  {
+    // A rim radius in metres where millimetres were meant, and a range of eleven turns.
+    auto dir = copy_of_shipped("cal-wheel-rim");
+    auto f = dir / "devices/openffboard-wheel.toml";
+    write(f, replace(replace(read(f), "rim_radius = \"150 mm\"", "rim_radius = \"150 m\""),
+                     "rotation_range = \"900 deg\"", "rotation_range = \"3960 deg\""));
+    const auto err = load_error(dir);
+    EXPECT_NE(err.find("a wheel's rim radius is between 5 mm and 1 m"), std::string::npos) << err;
+    EXPECT_NE(err.find("a wheel's rotation range is at most 3600 deg"), std::string::npos) << err;
+  }
+  {
+    // A joystick without its y scale is not taken for a wheel.
+    auto dir = copy_of_shipped("cal-no-y");
+    auto f = dir / "devices/openffboard-2axis.toml";
+    write(f, replace(read(f), "[force.y]\nnewtons_per_command_unit = 0.0003051850947599719   # 10 N / 32767\ncommand_sense = -1\n", ""));
+    const auto err = load_error(dir);
+    EXPECT_NE(err.find("a two-axis device needs [force.y]"), std::string::npos) << err;
   }
 }
 

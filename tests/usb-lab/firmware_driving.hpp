@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <span>
 #include <sstream>
 #include <string>
@@ -20,8 +21,19 @@
 
 namespace sandpaper::usb_lab {
 
-// The process's firmware, started and configured by the host once.
+// The process's firmware, started and configured by the host once (each test program defines it,
+// with started_once and its main class).
 OpenFFBoardFirmware& firmware();
+
+// Main class `main` started and configured on the first call; the same firmware after (one per process).
+inline OpenFFBoardFirmware& started_once(MainClass main) {
+  static std::unique_ptr<OpenFFBoardFirmware> fw = [main] {
+    auto f = OpenFFBoardFirmware::start(main);
+    f->configured();
+    return f;
+  }();
+  return *fw;
+}
 
 using Bytes = std::vector<std::uint8_t>;
 using Clock = std::chrono::steady_clock;

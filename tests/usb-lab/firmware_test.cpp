@@ -23,14 +23,7 @@
 namespace sandpaper::usb_lab {
 
 // The process's firmware, configured by the host once.
-OpenFFBoardFirmware& firmware() {
-  static std::unique_ptr<OpenFFBoardFirmware> fw = [] {
-    auto f = OpenFFBoardFirmware::start();
-    f->configured();
-    return f;
-  }();
-  return *fw;
-}
+OpenFFBoardFirmware& firmware() { return started_once(MainClass::Joystick); }
 
 namespace {
 

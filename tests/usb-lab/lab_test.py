@@ -274,7 +274,7 @@ def test_play(build: Path, out: Path) -> None:
         check_measured(build, where, speed, run)
 
 
-def check_measured(build: Path, where: Path, speed: int, run: dict) -> None:
+def check_measured(build: Path, where: Path, speed: int, run: dict, device: str = "openffboard-2axis") -> None:
     """What every play in the lab must show, whichever path it took: the firmware's force against
     explain's prediction for the device (unless the guest was starved), and every magnitude the
     firmware received one a tick computed."""
@@ -283,7 +283,7 @@ def check_measured(build: Path, where: Path, speed: int, run: dict) -> None:
                         fade_in_s=FADE_IN_S)
     position_hz, command_hz = measure.rates_on_the_firmwares_clock(m, speed)
     predicted = measure.predicted_device_peak(build / "bin/sandpaper", REPO / "examples/corduroy.hmat",
-                                              "openffboard-2axis", speed, position_hz, command_hz)
+                                              device, speed, position_hz, command_hz)
     missed, dropped = steps_missed(where), timer_dropped(where)
     print(f"{speed} mm/s: " + json.dumps({**{k: m[k] for k in (
         "received_hz", "updates_hz", "latency_ms", "firmware_peak_N", "ridges", "commanded_peak_N",
@@ -352,6 +352,39 @@ def test_kernel_path(through: str, build: Path, out: Path) -> None:
               f"{h['driver_during']} -> {h['driver_after']}; {h['input_before']!r} -> {h['input_during']!r}); "
               f"hid-pidff bound: {h['pidff_bound']}")
         check_measured(build, where, speed, run)
+
+
+def test_wheel(build: Path, out: Path) -> None:
+    """The firmware's own 1-axis wheel (FFBWheel, its 1-axis descriptor) played through hidraw by a
+    user without root (docs/DEVICES.md "A wheel"): `devices` and `run` without --device take its own
+    file, openffboard-wheel, though the board's USB ID is the joystick's (its descriptor's effects act
+    on X alone); corduroy along the rim reaches its one motor as explain predicts for the wheel, and
+    no second motor is ever driven."""
+    wheel = "openffboard-wheel"
+    # The encoder's half range is half the rim's arc over the wheel's 900 degrees (openffboard-wheel.toml).
+    half_range_mm = 0.5 * 150 * 900 * math.pi / 180
+    for speed in (50,):
+        where = out / f"{speed}mm_s"
+        if not scan_corduroy("kernel", build, where, speed, {"THROUGH": "hidraw", "MAIN_CLASS": "wheel",
+                                                             "HALF_RANGE_MM": f"{half_range_mm:.3f}"}):
+            continue
+        h = json.loads((where / "path.json").read_text())
+        listed = (where / "devices.txt").read_text()
+        check(f"calibration {wheel}" in listed and "calibration openffboard-2axis" not in listed
+              and "the kernel's force feedback, 1 axis (a wheel" in listed,
+              f"`sandpaper devices` names the wheel's own file, not the joystick's, and its one axis: {listed.strip()!r}")
+        run = json.loads((where / "run.json").read_text()) if (where / "run.json").stat().st_size else {}
+        check(h["run_status"] == 0 and run.get("stop_cause") == "completed",
+              f"{speed} mm/s: played to its end as uid 1000 (status {h['run_status']}, stop cause {run.get('stop_cause')}): "
+              f"{(where / 'run.err').read_text().strip() if (where / 'run.err').exists() else ''}")
+        chosen = (where / "default.err").read_text()
+        check(h["default_status"] == 0 and f"playing on {wheel}" in chosen,
+              f"{speed} mm/s: without --device, run took the wheel's file (status {h['default_status']}): {chosen.strip()!r}")
+        state = json.loads((where / "state.json").read_text())
+        check(state["torque_updates"][1] == 0, f"{speed} mm/s: no second motor was driven ({state['torque_updates']})")
+        check(h["output_queue_full"] == 0, f"{speed} mm/s: usbhid dropped no output report")
+        if run:
+            check_measured(build, where, speed, run, wheel)
 
 
 def test_uncalibrated(build: Path, out: Path) -> None:
@@ -525,6 +558,7 @@ def test_bus(build: Path, out: Path) -> None:
 TESTS = {"enumerate": test_enumerate, "bus": test_bus, "direction": test_direction, "play": test_play, "hidraw": lambda build, out: test_kernel_path("hidraw", build, out),
          "evdev": lambda build, out: test_kernel_path("evdev", build, out),
          "evdev-uncalibrated": test_uncalibrated,
+         "wheel-hidraw": test_wheel,
          "studio": test_studio,
          "experiment": test_experiment}
 for _fault in ("unplug", "reset", "stale", "sigint", "stall", "late"):

@@ -12,14 +12,7 @@
 
 namespace sandpaper::usb_lab {
 
-OpenFFBoardFirmware& firmware() {
-  static std::unique_ptr<OpenFFBoardFirmware> fw = [] {
-    auto f = OpenFFBoardFirmware::start(MainClass::Wheel);
-    f->configured();
-    return f;
-  }();
-  return *fw;
-}
+OpenFFBoardFirmware& firmware() { return started_once(MainClass::Wheel); }
 
 namespace {
 

@@ -83,6 +83,12 @@ int main(int argc, char** argv) {
                  "the handle travel from centre to the end the firmware reports as full scale, mm "
                  "(the device calibration's workspace half-width)")->capture_default_str();
   app.add_option("--log", log_dir, "write reports.csv, torque.csv and state.json here at exit");
+  std::string main_class = "joystick";
+  app.add_option("--main-class", main_class,
+                 "the firmware's main class, as the board's flash chooses it: joystick (2 axes) or wheel (1 axis, "
+                 "FFBWheel with its 1-axis descriptor; the hand's y is not read)")
+      ->check(CLI::IsMember({"joystick", "wheel"}))
+      ->capture_default_str();
   int stall_feature = -1;
   app.add_option("--stall-feature", stall_feature,
                  "refuse (STALL) every GET_REPORT and SET_REPORT of this Feature report ID, as a broken device does")
@@ -123,7 +129,7 @@ int main(int argc, char** argv) {
   AppendLog<ReportRecord> reports(1 << 18);
   AppendLog<TorqueRecord> torques(1 << 19);
   try {
-    auto firmware = OpenFFBoardFirmware::start();
+    auto firmware = OpenFFBoardFirmware::start(main_class == "wheel" ? MainClass::Wheel : MainClass::Joystick);
     if (identity) {
       const DeviceIdentity id = firmware->identity();
       std::printf("vendor_id=0x%04x\nproduct_id=0x%04x\nbcd_device=0x%04x\nbcd_usb=0x%04x\ndevice_class=0x%02x\n"

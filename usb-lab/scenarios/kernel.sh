@@ -10,7 +10,9 @@
 # the OpenFFBoard's file, so the joystick is a device no calibration file names: a run without
 # --uncalibrated must be refused (/out/refused.err), and the run plays with --uncalibrated.
 . /lab/ffboard.sh
-ffboard_plug --hand "$HAND" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" || exit 1
+# MAIN_CLASS=wheel: the firmware's 1-axis wheel, its encoder's half range HALF_RANGE_MM of rim.
+ffboard_plug --hand "$HAND" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" --main-class "${MAIN_CLASS:-joystick}" \
+  --half-range "${HALF_RANGE_MM:-50}" || exit 1
 THROUGH=${THROUGH:-hidraw}
 driver_before=$(ffboard_interface_driver)
 lab_wait_input "$FFB_USB_DEV" 10

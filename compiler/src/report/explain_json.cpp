@@ -52,8 +52,13 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
                                                         : nlohmann::json(nullptr)}});
   }
   j["felt_remedies"] = remedies;
-  // An emulated device (sandpaper-1995): what its quantisation leaves of each force table.
   const auto& dev = c.device();
+  // A wheel: how the patch's millimetres along x map onto its rotation.
+  if (dev.wheel())
+    j["wheel"] = {{"device", dev.name}, {"rim_radius_mm", dev.wheel_rim_radius_m * 1e3},
+                  {"rotation_range_deg", dev.wheel_rotation_range_rad * 180 / 3.14159265358979323846},
+                  {"deg_per_mm", dev.wheel_deg_per_mm()}, {"torque_N_m_per_N", dev.wheel_rim_radius_m}};
+  // An emulated device (sandpaper-1995): what its quantisation leaves of each force table.
   if (dev.emulated && dev.position_resolution_m > 0) {
     const double step_N = dev.quantized() ? dev.force_step_N(0) : 0.0;
     nlohmann::json q = nlohmann::json::array();

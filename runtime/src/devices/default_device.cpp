@@ -19,12 +19,13 @@ DefaultDevice default_play_device(const calibration::CalibrationSet& set) {
   // so that the open error gives the rule that opens it.
   std::string denied;
   for (const auto& n : usb::list_hidraw_nodes())
-    if (const auto* cal = usb_calibration_of(set, n.usb, n.vendor_id, n.product_id)) {
+    if (const auto* cal = usb_calibration_of(set, n.usb, n.vendor_id, n.product_id, n.force_axes)) {
       if (may_open(n.path)) return {"hidraw:" + n.path, cal->name + " (" + usb_ids(n.vendor_id, n.product_id) + ") through " + n.path};
       if (denied.empty()) denied = "hidraw:" + n.path;
     }
   for (const auto& n : evdev::list_force_feedback_nodes())
-    if (const auto* cal = usb_calibration_of(set, n.usb(), n.vendor_id, n.product_id); cal != nullptr && n.constant_force) {
+    if (const auto* cal = usb_calibration_of(set, n.usb(), n.vendor_id, n.product_id, force_axes_of(n));
+        cal != nullptr && n.constant_force) {
       if (may_open(n.path)) return {"evdev:" + n.path, cal->name + " (" + usb_ids(n.vendor_id, n.product_id) + ") through " + n.path};
       if (denied.empty()) denied = "evdev:" + n.path;
     }

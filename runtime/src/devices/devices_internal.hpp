@@ -26,8 +26,18 @@ OpenedDevice open_hid_pid(std::unique_ptr<usb::UsbTransport> transport, const ca
                           const DeviceSpec& spec, const std::string& what, const std::string& access_help);
 
 // The calibration whose [usb] table names this USB device, or nullptr (also for a device not on USB).
+// Where several files name one ID (a board's joystick and wheel), the one whose force axes are
+// `force_axes` (read from the report descriptor: UsbHidDeviceInfo::force_axes; 0 when not read:
+// the first by file name).
 const calibration::DeviceCalibration* usb_calibration_of(const calibration::CalibrationSet& set, bool on_usb,
-                                                         int vendor, int product);
+                                                         int vendor, int product, int force_axes = 0);
+
+namespace evdev {
+struct EvdevNode;
+}
+// The axes an event node's force effects act on, from its HID device's report descriptor
+// (UsbHidDeviceInfo::force_axes); 0 when it is not a HID PID device or cannot be read.
+int force_axes_of(const evdev::EvdevNode& node);
 
 // A joystick reached through a node of the kernel's (hidraw, an input event node): where it is.
 void set_node(OpenedDevice& out, std::uint16_t vendor, std::uint16_t product, const std::string& name, const std::string& path,

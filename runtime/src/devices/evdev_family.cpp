@@ -3,13 +3,26 @@
 // taken from the kernel: the joystick stays a joystick for every other program while Sandpaper plays.
 #include "devices_internal.hpp"
 #include "sandpaper/runtime/evdev/evdev_joystick.hpp"
+#include "sandpaper/runtime/usb/libusb_transport.hpp"
 
 #include <cerrno>
+#include <fstream>
+#include <iterator>
+#include <vector>
 
 namespace sandpaper::runtime {
 
 using Cause = DeviceOpenError::Cause;
 using calibration::DeviceCalibration;
+
+int force_axes_of(const evdev::EvdevNode& node) {
+  if (node.report_descriptor.empty()) return 0;
+  std::ifstream in(node.report_descriptor, std::ios::binary);
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  usb::UsbHidDeviceInfo info;
+  usb::summarise_report_descriptor(bytes, info);
+  return info.force_axes;
+}
 
 namespace {
 
@@ -20,7 +33,8 @@ struct EvdevChoice {
 
 // The node's own calibration file; else, when the user accepted it (--uncalibrated), the profile.
 const DeviceCalibration* calibration_of(const calibration::CalibrationSet& set, const DeviceSpec& spec, const evdev::EvdevNode& node) {
-  if (const DeviceCalibration* own = usb_calibration_of(set, node.usb(), node.vendor_id, node.product_id)) return own;
+  if (const DeviceCalibration* own = usb_calibration_of(set, node.usb(), node.vendor_id, node.product_id, force_axes_of(node)))
+    return own;
   return spec.uncalibrated ? set.find_device(evdev::kUncalibratedProfile) : nullptr;
 }
 
@@ -63,7 +77,7 @@ EvdevChoice choose_evdev(const calibration::CalibrationSet& set, const DeviceSpe
   }
   // A device with its own file first, with or without --uncalibrated.
   for (const auto& n : nodes)
-    if (const DeviceCalibration* own = usb_calibration_of(set, n.usb(), n.vendor_id, n.product_id);
+    if (const DeviceCalibration* own = usb_calibration_of(set, n.usb(), n.vendor_id, n.product_id, force_axes_of(n));
         own != nullptr && (cal == nullptr || own == cal))
       return {n, own};
   for (const auto& n : nodes)

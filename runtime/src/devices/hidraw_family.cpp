@@ -20,7 +20,7 @@ struct HidrawChoice {
 };
 
 const DeviceCalibration* calibration_of(const calibration::CalibrationSet& set, const usb::HidrawNode& node) {
-  return usb_calibration_of(set, node.usb, node.vendor_id, node.product_id);
+  return usb_calibration_of(set, node.usb, node.vendor_id, node.product_id, node.force_axes);
 }
 
 // "hidraw" or "hidraw:PATH", from `device` itself or, once resolved to a calibration, `through`.
@@ -81,10 +81,16 @@ std::string hidraw_udev_rule(int vendor, int product) {
          "\", TAG+=\"uaccess\"";
 }
 
-const DeviceCalibration* usb_calibration_of(const calibration::CalibrationSet& set, bool on_usb, int vendor, int product) {
+const DeviceCalibration* usb_calibration_of(const calibration::CalibrationSet& set, bool on_usb, int vendor, int product,
+                                            int force_axes) {
+  const DeviceCalibration* first = nullptr;
   for (const auto& d : set.devices())
-    if (on_usb && d.usb_vendor_id == vendor && d.usb_product_id == product) return &d;
-  return nullptr;
+    if (on_usb && d.usb_vendor_id == vendor && d.usb_product_id == product) {
+      if (force_axes == 0 || d.axes == force_axes) return &d;
+      if (first == nullptr) first = &d;
+    }
+  // Only files for another number of axes: the driver refuses the mismatch, naming it.
+  return first;
 }
 
 void set_node(OpenedDevice& out, std::uint16_t vendor, std::uint16_t product, const std::string& name, const std::string& path,

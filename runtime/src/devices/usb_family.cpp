@@ -53,12 +53,7 @@ UsbSearch find_usb_devices(const calibration::CalibrationSet& set) {
   out.searched = true;
   out.hid_devices = e.devices.size();
   for (const auto& info : e.devices) {
-    const DeviceCalibration* cal = nullptr;
-    for (const auto& d : set.devices())
-      if (d.usb_vendor_id == info.vendor_id && d.usb_product_id == info.product_id) {
-        cal = &d;
-        break;
-      }
+    const DeviceCalibration* cal = usb_calibration_of(set, true, info.vendor_id, info.product_id, info.force_axes);
     if (cal || info.has_pid) out.found.push_back({info, cal});
   }
   return out;

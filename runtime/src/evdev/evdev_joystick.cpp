@@ -124,7 +124,8 @@ EvdevJoystick::EvdevJoystick(const EvdevNode& node, const calibration::DeviceCal
   if (!libevdev_has_event_code(dev_, EV_ABS, first)) fail(0, "it has no ABS_X (or ABS_WHEEL) axis");
   abs_code_[0] = first;
   axes_ = 1;
-  if (first == ABS_X && libevdev_has_event_code(dev_, EV_ABS, ABS_Y)) {
+  // A wheel's device file ([wheel]) plays one axis, though its gamepad report has a Y as well.
+  if (first == ABS_X && libevdev_has_event_code(dev_, EV_ABS, ABS_Y) && !calibration_.wheel()) {
     abs_code_[1] = ABS_Y;
     axes_ = 2;
   }

@@ -128,7 +128,7 @@ void HidPidJoystick::io_thread_body() noexcept {
       // per frame, so an axis held constant (Y while a texture is scanned along X) leaves every
       // frame to the other.
       bool all_sent = true;
-      for (int axis = 0; axis < 2; ++axis) {
+      for (int axis = 0; axis < axes_; ++axis) {
         const auto a = static_cast<std::size_t>(axis);
         if (want[a] == sent[a]) continue;
         const UsbStatus st = write_constant_force(axis, want[a]);
@@ -212,7 +212,7 @@ bool HidPidJoystick::write_force_rt(glm::dvec2 force_N) noexcept {
   }
   // Both axes are sent even if the first failed: the other may still carry the zero.
   const bool ok = send_constant_force(0, x);
-  return send_constant_force(1, y) && ok;
+  return (axes_ == 1 || send_constant_force(1, y)) && ok;
 }
 
 bool HidPidJoystick::decode_position(std::span<const std::uint8_t> report, glm::dvec2& position_m) const noexcept {
@@ -220,7 +220,8 @@ bool HidPidJoystick::decode_position(std::span<const std::uint8_t> report, glm::
   const std::size_t need = descriptor_.report_bytes(ReportType::Input, x_.report_id);
   if (report.size() < need) return false;
   const HidField* axes[2] = {&x_, &y_};
-  for (int a = 0; a < 2; ++a) {
+  position_m[1] = 0;  // a wheel's only axis is x
+  for (int a = 0; a < axes_; ++a) {
     const HidField& f = *axes[a];
     const double centre = 0.5 * (static_cast<double>(f.logical_min) + f.logical_max);
     const double half = 0.5 * (static_cast<double>(f.logical_max) - f.logical_min);

@@ -1,5 +1,5 @@
-// The HID PID driver's open sequence: the reports it reads and writes, in order, until both axes
-// hold a constant-force effect (docs/USB_PID.md, "Opening"); each failure names its step.
+// The HID PID driver's open sequence: the reports it reads and writes, in order, until each axis
+// (two, or a wheel's one) holds a constant-force effect (docs/USB_PID.md, "Opening"); each failure names its step.
 #include "sandpaper/runtime/usb/hid_pid_joystick.hpp"
 
 #include <algorithm>
@@ -93,17 +93,25 @@ void HidPidJoystick::open() {
                                       std::to_string(f->bit_size) + " bits wide; the driver reads and writes at most 32");
     return *f;
   };
+  axes_ = calibration_.wheel() ? 1 : 2;
   x_ = need(ReportType::Input, 0, kUsageX);
-  y_ = need(ReportType::Input, 0, kUsageY);
-  if (x_.report_id != y_.report_id) fail_open(UsbStatus::Other, "X and Y are in different input reports");
+  if (axes_ == 2) {
+    y_ = need(ReportType::Input, 0, kUsageY);
+    if (x_.report_id != y_.report_id) fail_open(UsbStatus::Other, "X and Y are in different input reports");
+  }
   magnitude_ = need(ReportType::Output, pid::kSetConstantForceReport, pid::kMagnitude);
   cf_block_ = need(ReportType::Output, pid::kSetConstantForceReport, pid::kEffectBlockIndex);
   need(ReportType::Output, pid::kSetEffectReport, pid::kEffectBlockIndex);
   need(ReportType::Output, pid::kSetEffectReport, pid::kEffectType);
   // One constant-force effect per axis, each enabled on its own axis: a device whose effects cannot
-  // act on Y (the OpenFFBoard's 1-axis wheel descriptor) is not a 2-axis joystick.
+  // act on Y (the OpenFFBoard's 1-axis wheel descriptor) is played only as a wheel, with a device
+  // file that says so.
   need(ReportType::Output, pid::kSetEffectReport, kUsageX);
-  need(ReportType::Output, pid::kSetEffectReport, kUsageY);
+  if (axes_ == 2 && !descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageY))
+    fail_open(UsbStatus::Other, "the HID report descriptor has no " + usage_name(kUsageY) + " in the report " +
+                                    usage_name(pid::kSetEffectReport) + ": its effects act on one axis, and device file '" +
+                                    calibration_.name + "' is for two; play it with a wheel's device file (one with a "
+                                    "[wheel] table, such as openffboard-wheel)");
   need(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex);
   need(ReportType::Output, pid::kEffectOperationReport, pid::kEffectOperation);
   if (!device_control_field(pid::kDcEnableActuators) || !device_control_field(pid::kDcDeviceReset))
@@ -124,7 +132,7 @@ void HidPidJoystick::open() {
                                       " bytes; the driver sends and reads reports of at most " +
                                       std::to_string(kMaxReport) + " (a full-speed interrupt packet)");
   };
-  fits(ReportType::Input, &x_, "position (X, Y)");
+  fits(ReportType::Input, &x_, axes_ == 2 ? "position (X, Y)" : "position (X)");
   fits(ReportType::Output, &magnitude_, "Set Constant Force");
   fits(ReportType::Output, descriptor_.find(ReportType::Output, pid::kSetEffectReport, pid::kEffectBlockIndex), "Set Effect");
   fits(ReportType::Output, descriptor_.find(ReportType::Output, pid::kEffectOperationReport, pid::kEffectBlockIndex),
@@ -144,28 +152,28 @@ void HidPidJoystick::open() {
                                     std::to_string(magnitude_.logical_min) + ".." + std::to_string(magnitude_.logical_max) +
                                     "; the driver needs one with negative and positive values (zero force inside it)");
   for (const HidField* axis : {&x_, &y_})
-    if (axis->logical_max <= axis->logical_min)
+    if (axis == &x_ || axes_ == 2)
+      if (axis->logical_max <= axis->logical_min)
       fail_open(UsbStatus::Other, "the HID report descriptor's " + usage_name(axis->usage) + " (position) has the logical range " +
                                       std::to_string(axis->logical_min) + ".." + std::to_string(axis->logical_max) +
                                       ", which carries no position");
 
-  // PID Pool: the device must hold two effects at once.
+  // PID Pool: the device must hold one effect per axis at once.
   if (const HidField* max_effects = descriptor_.find(ReportType::Feature, pid::kPoolReport, pid::kSimultaneousEffectsMax)) {
     Buffer pool{};
     std::size_t length = 0;
     s = transport_.get_feature(max_effects->report_id, pool, length);
     if (s != UsbStatus::Ok) fail_step(s, "PID Pool", ReportType::Feature, max_effects->report_id, pid::kPoolReport);
     const auto simultaneous = read_field({pool.data(), length}, ids_, *max_effects);
-    if (simultaneous < 2)
-      fail_open(UsbStatus::Other, "the device plays " + std::to_string(simultaneous) +
-                                      " effect(s) at once; the driver needs 2 (one constant force per axis)");
+    if (simultaneous < axes_)
+      fail_open(UsbStatus::Other, "the device plays " + std::to_string(simultaneous) + " effect(s) at once; the driver needs " +
+                                      std::to_string(axes_) + " (one constant force per axis)");
   }
 
   device_control(pid::kDcDeviceReset);
   device_control(pid::kDcEnableActuators);
   actuators_enabled_ = true;
-  create_effect(0);
-  create_effect(1);
+  for (int axis = 0; axis < axes_; ++axis) create_effect(axis);
 
   // The first position report may have waited in the device since before the claim (a kernel
   // driver that nobody had opened does not poll): the second one is where the handle is now.

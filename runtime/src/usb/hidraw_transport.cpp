@@ -85,6 +85,7 @@ std::vector<HidrawNode> list_hidraw_nodes() {
       summarise_report_descriptor(std::span(reinterpret_cast<const std::uint8_t*>(d.data()), d.size()), info);
       node.descriptor_read = info.descriptor_read;
       node.has_pid = info.has_pid;
+      node.force_axes = info.force_axes;
       node.descriptor_error = info.descriptor_error;
     }
     out.push_back(std::move(node));

@@ -127,9 +127,13 @@ UsbStatus usb_status_from_libusb(int code) noexcept {
 void summarise_report_descriptor(std::span<const std::uint8_t> descriptor, UsbHidDeviceInfo& info) {
   info.descriptor_read = false;
   info.has_pid = false;
+  info.force_axes = 0;
   info.descriptor_error.clear();
   try {
-    info.has_pid = parse_hid_report_descriptor(descriptor).has_pid_page();
+    const HidReportDescriptor d = parse_hid_report_descriptor(descriptor);
+    info.has_pid = d.has_pid_page();
+    if (d.find(ReportType::Output, pid::kSetEffectReport, kUsageX))
+      info.force_axes = d.find(ReportType::Output, pid::kSetEffectReport, kUsageY) ? 2 : 1;
     info.descriptor_read = true;
   } catch (const HidDescriptorError& e) {
     info.descriptor_error = e.what();

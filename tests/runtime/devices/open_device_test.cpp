@@ -292,7 +292,7 @@ TEST(OpenDevice, TheUdevRuleNamesTheDeviceInLowerCaseHex) {
   // hidraw: the node of any interface of the USB device (ATTRS walks up to it), for the seat's user.
   EXPECT_EQ(hidraw_udev_rule(0x1209, 0xFFB0),
             "KERNEL==\"hidraw*\", ATTRS{idVendor}==\"1209\", ATTRS{idProduct}==\"ffb0\", TAG+=\"uaccess\"");
-  EXPECT_EQ(known_usb_devices(shipped()), "openffboard-2axis (1209:ffb0)");
+  EXPECT_EQ(known_usb_devices(shipped()), "openffboard-2axis (1209:ffb0), openffboard-wheel (1209:ffb0)");
 }
 
 }  // namespace

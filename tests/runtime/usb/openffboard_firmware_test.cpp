@@ -144,19 +144,61 @@ TEST(OpenFFBoardFirmware, SetConstantForceCarriesTheSignedMagnitude) {
   EXPECT_EQ(i16(forces[1], 2), 7373);
 }
 
-TEST(OpenFFBoardFirmware, TheOneAxisWheelIsRefusedAsAJoystick) {
-  // hid_1ffb_desc: Set Effect's Axes Enable has X only, so a Y effect would do nothing.
+std::unique_ptr<FakeTransport> wheel_transport() {
   auto t = std::make_unique<FakeTransport>(
       testing::read_hex_file(std::filesystem::path(SANDPAPER_SOURCE_DIR) / "tests/runtime/usb/data/openffboard_1axis_wheel.hex"));
   t->add_feature_reply(0x13, {0x13, 0x00, 0x10, 40, 0x01});
+  t->add_feature_reply(0x12, {0x12, 0x01, 0x01, 0x00, 0x10});
   t->add_input({UsbStatus::Ok, position_report(0, 0)});
+  return t;
+}
+
+TEST(OpenFFBoardFirmware, TheOneAxisWheelIsRefusedAsAJoystick) {
+  // hid_1ffb_desc: Set Effect's Axes Enable has X only, so a Y effect would do nothing.
+  auto t = wheel_transport();
   try {
     HidPidJoystick joystick(*t, testing::shipped_openffboard(), testing::synchronous());
     ADD_FAILURE() << "the 1-axis wheel opened as a 2-axis joystick";
   } catch (const HidPidError& e) {
     EXPECT_NE(std::string(e.what()).find("usage 0x0031"), std::string::npos) << e.what();  // Y
+    EXPECT_NE(std::string(e.what()).find("openffboard-wheel"), std::string::npos) << e.what();  // what to play it with
   }
   EXPECT_TRUE(t->kernel_driver_attached());  // given back
+}
+
+TEST(OpenFFBoardFirmware, TheWheelPlaysItsOneAxisWithItsOwnDeviceFile) {
+  auto t = wheel_transport();
+  const auto& wheel = testing::shipped_openffboard_wheel();
+  ASSERT_TRUE(wheel.wheel());
+  {
+    HidPidJoystick joystick(*t, wheel, testing::synchronous());
+    // One effect, on X alone: Create New Effect once, Set Effect with Axes Enable X.
+    EXPECT_EQ(joystick.effect_block_index(0), 1);
+    EXPECT_EQ(joystick.effect_block_index(1), 0);
+    EXPECT_EQ(outputs_with_id(*t, 0x11, Op::SetFeature).size(), 1u);
+    const auto effects = outputs_with_id(*t, 0x01);
+    ASSERT_EQ(effects.size(), 1u);
+    EXPECT_EQ(effects[0][1], 1);
+    EXPECT_EQ(effects[0][13] & 0x01, 1);  // Axes Enable: X (the 1-axis Set Effect has no Y bit)
+    // Position: X along the rim over the file's 2356.2 mm (900 deg of a 150 mm rim); the gamepad's
+    // Y is not the wheel's and reads 0.
+    glm::dvec2 p{1, 1};
+    t->add_input({UsbStatus::Ok, position_report(16384, -32767)});
+    ASSERT_TRUE(joystick.read_position_rt(0.0, p));
+    EXPECT_NEAR(p.x, 16384.0 / 32767.0 * 2.3562 / 2, 1e-6);
+    EXPECT_EQ(p.y, 0.0);
+    // A force: X's Set Constant Force only; what was asked of y is not sent.
+    t->clear_log();
+    ASSERT_TRUE(joystick.write_force_rt({1.5, -2.25}));
+    const auto forces = outputs_with_id(*t, 0x05);
+    ASSERT_EQ(forces.size(), 1u);
+    EXPECT_EQ(forces[0][1], 1);
+    EXPECT_EQ(i16(forces[0], 2), -4915);  // 1.5 N at 10 N / 32767, command_sense -1 (as the joystick's X)
+    t->clear_log();
+  }
+  // Closed: one effect stopped and freed.
+  EXPECT_EQ(outputs_with_id(*t, 0x0A).size(), 1u);
+  EXPECT_TRUE(t->kernel_driver_attached());
 }
 
 }  // namespace

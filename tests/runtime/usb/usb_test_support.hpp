@@ -20,6 +20,12 @@ inline const calibration::DeviceCalibration& shipped_openffboard() {
   return *set.find_device("openffboard-2axis");
 }
 
+// The shipped openffboard-wheel calibration (one axis along the rim).
+inline const calibration::DeviceCalibration& shipped_openffboard_wheel() {
+  static const auto set = calibration::CalibrationSet::load(std::filesystem::path(SANDPAPER_SOURCE_DIR) / "calibration");
+  return *set.find_device("openffboard-wheel");
+}
+
 // The shipped calibration on the hand-written descriptor's Magnitude range, -10000..10000, at 1 mN
 // per command unit: the driver's arithmetic in round numbers. The shipped scale (10 N over the
 // firmware's 32767) is tested against the real descriptor (openffboard_firmware_test.cpp).

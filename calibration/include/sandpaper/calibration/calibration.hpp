@@ -125,6 +125,14 @@ struct DeviceCalibration {
   double workspace_radius_m = 0;     // circle: radius; rectangle: half the smaller side
   double workspace_size_m[2] = {0, 0};  // rectangle width, height (circle: the diameter twice)
   double min_rate_hz = 0, max_rate_hz = 0;
+  // [wheel]: a one-axis device turned at its rim. Its x is metres of rim arc from the centre, its
+  // force the force at the rim (N); y is always 0 and takes no force. axes 2 without [wheel].
+  int axes = 2;
+  double wheel_rim_radius_m = 0;        // 0: not a wheel
+  double wheel_rotation_range_rad = 0;  // lock to lock
+  bool wheel() const { return axes == 1; }
+  // Degrees the wheel turns for 1 mm along its rim (0 when not a wheel).
+  double wheel_deg_per_mm() const;
   int usb_vendor_id = -1, usb_product_id = -1;  // [usb] table of a USB HID PID device; -1: not a USB device
   // [usb] idle_report_period: how often the device resends an unchanged input report, s (0: it
   // reports every poll); the driver's stale-position watchdog waits at least twice this long.

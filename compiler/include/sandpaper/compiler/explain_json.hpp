@@ -3,7 +3,8 @@
 // shows it (the CLI, the Python module's Material.explain()): "knowledge" (what the psychophysics
 // says of this material, thesis 5.4), "maps" (the calibrated maps in use), "felt_at_speed" and
 // "felt_remedies" (the peak force felt at common hand speeds, mm/s, N) and, on an emulated device,
-// "device_quantization". Units are in the keys.
+// "device_quantization"; on a wheel, "wheel" (rim radius, rotation range, degrees per mm of rim).
+// Units are in the keys.
 #include <nlohmann/json.hpp>
 
 #include "sandpaper/compiler/compiler.hpp"

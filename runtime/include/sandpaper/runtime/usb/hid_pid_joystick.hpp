@@ -1,6 +1,7 @@
 #pragma once
-// A USB HID PID force-feedback joystick (USB HID PID 1.0) as a servo-loop Device: one constant-force
-// effect per axis, streamed with Set Constant Force every tick; position from the input reports.
+// A USB HID PID force-feedback joystick or wheel (USB HID PID 1.0) as a servo-loop Device: one
+// constant-force effect per axis (a wheel's device file, [wheel], has one: x along the rim),
+// streamed with Set Constant Force every tick; position from the input reports.
 // The reference device is the OpenFFBoard as a 2-axis joystick (calibration/devices/openffboard-2axis.toml).
 // Reports, order, rate and assumptions: docs/USB_PID.md.
 #include <algorithm>
@@ -141,6 +142,7 @@ class HidPidJoystick final : public HeldDevice {
   DeviceLimits limits_;
   HidReportDescriptor descriptor_;
   bool ids_ = false;
+  int axes_ = 2;  // force axes played: 2, or 1 for a wheel (calibration [wheel]); y is then always 0
 
   // Fields the driver uses, copied out of the descriptor at open.
   HidField x_, y_;                     // input

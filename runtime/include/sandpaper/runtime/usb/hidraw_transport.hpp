@@ -23,6 +23,7 @@ struct HidrawNode {
   std::string name;                 // HID_NAME, the device's own product name
   bool descriptor_read = false;     // its report descriptor was read (from sysfs, which needs no access)
   bool has_pid = false;             // ... and it has a Physical Interface Device (force-feedback) usage
+  int force_axes = 0;               // the axes its effects act on (UsbHidDeviceInfo::force_axes)
   std::string descriptor_error;     // not empty: the descriptor was read and refused, in the parser's words
 };
 

@@ -28,10 +28,13 @@ struct UsbHidDeviceInfo {
   UsbStatus open_status = UsbStatus::Ok;  // AccessDenied: the udev rule is missing
   bool descriptor_read = false; // the report descriptor was read (from sysfs, without detaching the kernel driver)
   bool has_pid = false;         // ... and it has a Physical Interface Device (force-feedback) usage
+  // The axes its effects can act on (Set Effect's Axes Enable: 1 for X, 2 for X and Y); 0: not read.
+  // Tells a board's wheel from its joystick where both have one USB ID (the OpenFFBoard's).
+  int force_axes = 0;
   std::string descriptor_error; // not empty: the descriptor was read and refused, in the parser's words
 };
 
-// Fills `descriptor_read`, `has_pid` and `descriptor_error` of `info` from a report descriptor as read
+// Fills `descriptor_read`, `has_pid`, `force_axes` and `descriptor_error` of `info` from a report descriptor as read
 // from the device. Never throws: a descriptor over the parser's limits (hid_descriptor.hpp) is kept
 // as its reason, so `sandpaper devices` can say why a device will not open.
 void summarise_report_descriptor(std::span<const std::uint8_t> descriptor, UsbHidDeviceInfo& info);
