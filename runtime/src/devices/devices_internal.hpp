@@ -28,7 +28,7 @@ OpenedDevice open_hid_pid(std::unique_ptr<usb::UsbTransport> transport, const ca
 // The calibration whose [usb] table names this USB device, or nullptr (also for a device not on USB).
 // Where several files name one ID (a board's joystick and wheel), the one whose force axes are
 // `force_axes` (read from the report descriptor: UsbHidDeviceInfo::force_axes; 0 when not read:
-// the first by file name).
+// the first by file name). A device whose axes no file for its ID has gets none.
 const calibration::DeviceCalibration* usb_calibration_of(const calibration::CalibrationSet& set, bool on_usb,
                                                          int vendor, int product, int force_axes = 0);
 

@@ -83,14 +83,12 @@ std::string hidraw_udev_rule(int vendor, int product) {
 
 const DeviceCalibration* usb_calibration_of(const calibration::CalibrationSet& set, bool on_usb, int vendor, int product,
                                             int force_axes) {
-  const DeviceCalibration* first = nullptr;
   for (const auto& d : set.devices())
-    if (on_usb && d.usb_vendor_id == vendor && d.usb_product_id == product) {
-      if (force_axes == 0 || d.axes == force_axes) return &d;
-      if (first == nullptr) first = &d;
-    }
-  // Only files for another number of axes: the driver refuses the mismatch, naming it.
-  return first;
+    if (on_usb && d.usb_vendor_id == vendor && d.usb_product_id == product && (force_axes == 0 || d.axes == force_axes))
+      return &d;
+  // Only files for another number of axes (a joystick whose own file is gone, and the wheel's is
+  // there): no file for this device; a wheel's file would play a joystick's one axis.
+  return nullptr;
 }
 
 void set_node(OpenedDevice& out, std::uint16_t vendor, std::uint16_t product, const std::string& name, const std::string& path,

@@ -35,6 +35,16 @@ TEST(CalibrationMatch, TheBoardsWheelAndJoystickAreToldApartByTheirEffectsAxes) 
   // Not read: the first file by name, which the driver then checks against the descriptor.
   EXPECT_EQ(usb_calibration_of(set, true, 0x1209, 0xFFB0, 0)->name, "openffboard-2axis");
   EXPECT_EQ(usb_calibration_of(set, false, 0x1209, 0xFFB0, 1), nullptr);  // not on USB
+  // A folder without the joystick's file (usb-lab.evdev-uncalibrated's): the joystick has no file,
+  // rather than the wheel's, which would play its one axis.
+  const fs::path without = fs::temp_directory_path() / ("sandpaper-match-cal-" + std::to_string(::getpid()));
+  fs::remove_all(without);
+  fs::copy(kSource / "calibration", without, fs::copy_options::recursive);
+  fs::remove(without / "devices/openffboard-2axis.toml");
+  const auto no_joystick = calibration::CalibrationSet::load(without);
+  EXPECT_EQ(usb_calibration_of(no_joystick, true, 0x1209, 0xFFB0, 2), nullptr);
+  EXPECT_EQ(usb_calibration_of(no_joystick, true, 0x1209, 0xFFB0, 1)->name, "openffboard-wheel");
+  fs::remove_all(without);
   EXPECT_EQ(usb_calibration_of(set, true, 0x1209, 0xFFB1, 1), nullptr);
 
   // An event node reads its HID device's descriptor from sysfs (EvdevNode::report_descriptor).
