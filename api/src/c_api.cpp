@@ -169,6 +169,18 @@ sp_status sp_player_open_device(const sp_library* library, const char* device, s
   });
 }
 
+sp_status sp_player_open_device_uncalibrated(const sp_library* library, const char* device, sp_player** out) {
+  if (!library) return null_argument("sp_player_open_device_uncalibrated", "library");
+  if (!device) return null_argument("sp_player_open_device_uncalibrated", "device");
+  if (!out) return null_argument("sp_player_open_device_uncalibrated", "out");
+  return guarded([&] {
+    *out = new sp_player{sandpaper::Player::open(library->library, device, {.uncalibrated = true})};
+    return SP_OK;
+  });
+}
+
+const char* sp_player_warning(const sp_player* player) { return player ? player->player.warning().c_str() : ""; }
+
 const char* sp_player_device_calibration(const sp_player* player) {
   return player ? player->player.device_calibration().c_str() : "";
 }

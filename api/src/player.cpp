@@ -11,6 +11,7 @@ struct Player::Impl {
   std::unique_ptr<runtime::Device> device;
   std::unique_ptr<runtime::LiveServo> host;  // null until the first load
   std::string device_calibration;            // usb(): the calibration the joystick takes forces in
+  std::string warning;                       // open(): what to tell a person first (Player::warning)
 
   runtime::ServoReport join() { return host->join_nonrt(); }
 };
@@ -80,6 +81,10 @@ bool Player::playing() const noexcept { return impl_->host && impl_->host->runni
 runtime::Device& Player::device() noexcept { return *impl_->device; }
 
 const std::string& Player::device_calibration() const noexcept { return impl_->device_calibration; }
+
+const std::string& Player::warning() const noexcept { return impl_->warning; }
+
+void Player::set_warning_nonrt(std::string text) { impl_->warning = std::move(text); }
 
 void Player::set_device_calibration_nonrt(std::string name) { impl_->device_calibration = std::move(name); }
 

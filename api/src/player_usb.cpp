@@ -30,13 +30,14 @@ Player Player::usb(const Library& library) { return open(library.compiler().cali
 
 Player Player::usb(const calibration::CalibrationSet& set) { return open(set, "usb"); }
 
-Player Player::open(const Library& library, const std::string& device) {
-  return open(library.compiler().calibration(), device);
+Player Player::open(const Library& library, const std::string& device, PlayerOpenOptions options) {
+  return open(library.compiler().calibration(), device, options);
 }
 
-Player Player::open(const calibration::CalibrationSet& set, const std::string& device) {
+Player Player::open(const calibration::CalibrationSet& set, const std::string& device, PlayerOpenOptions options) {
   runtime::DeviceSpec spec;
   spec.device = device;
+  spec.uncalibrated = options.uncalibrated;
   runtime::OpenedDevice opened;
   try {
     // Only a joystick on the bus: the simulated ones are moved by a hand Player::simulated scripts.
@@ -50,6 +51,7 @@ Player Player::open(const calibration::CalibrationSet& set, const std::string& d
   }
   Player p(std::move(opened.device));
   p.set_device_calibration_nonrt(opened.calibration);
+  p.set_warning_nonrt(opened.warning);
   return p;
 }
 

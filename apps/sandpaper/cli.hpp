@@ -85,6 +85,7 @@ struct StudioOptions {
   bool listen_given = false;
   double rate_hz = 1000;
   SafetyGuards guards;
+  bool uncalibrated = false;  // --uncalibrated: an evdev device no calibration file names may play
 };
 int cmd_studio(const CommonOptions& o, const StudioOptions& so);
 
@@ -168,6 +169,7 @@ struct ExperimentOptions {
   bool switch_observer = false;    // resume: answer with --observer, not the recorded observer
   std::string listen = "127.0.0.1:4781";  // --observer page
   bool virtual_clock = false;
+  bool uncalibrated = false;       // run: an evdev device no calibration file names may play
   std::string map_out, map_id, pictures;  // analyse
   std::string map_domain = "levels";       // analyse --map-domain: levels | stimuli
   bool allow_mixed_designs = false;

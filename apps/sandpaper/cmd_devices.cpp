@@ -129,7 +129,9 @@ int cmd_devices_udev_rules(const CommonOptions& o) {
 std::optional<runtime::OpenedDevice> open_device_for(const CommonOptions& o, runtime::DeviceSpec spec,
                                                      const std::string& command) {
   try {
-    return runtime::open_device(load_calibration_set(o), std::move(spec));
+    runtime::OpenedDevice opened = runtime::open_device(load_calibration_set(o), std::move(spec));
+    if (!opened.warning.empty()) std::cerr << "sandpaper " << command << ": warning: " << opened.warning << "\n";
+    return opened;
   } catch (const runtime::DeviceOpenError& e) {
     std::cerr << "sandpaper " << command << ": " << e.what() << "\n" << e.help;
     return std::nullopt;

@@ -105,6 +105,7 @@ std::unique_ptr<ex::Presenter> make_presenter(const ExperimentOptions& eo, const
   spec.script = hand;
   spec.watchdog_s = eo.guards.watchdog_ms * 1e-3;
   spec.virtual_clock = eo.virtual_clock;
+  spec.uncalibrated = eo.uncalibrated;
   CommonOptions o;
   o.calibration_dir = eo.common.calibration_dir;
   o.library_dir = eo.common.library_dir;
@@ -470,10 +471,11 @@ void add_experiment_command(CLI::App& app, ExperimentOptions& eo) {
     sub->add_flag("--json", eo.common.json, "print one JSON object instead of text");
   };
   auto playing = [&](CLI::App* sub) {
-    sub->add_option("--device", eo.device, "sim (the simulated joystick), usb (the first HID PID joystick, through libusb) or hidraw[:PATH] (through its hidraw node; docs/DEVICES.md); the design names the calibration")->capture_default_str();
+    sub->add_option("--device", eo.device, "sim (the simulated joystick), usb (the first HID PID joystick, through libusb), hidraw[:PATH] (through its hidraw node) or evdev[:PATH] (through its input event node; docs/DEVICES.md); the design names the calibration")->capture_default_str();
     sub->add_option("--observer", eo.observer, "terminal (a person types the answers; run's default), page (the subject's full-screen page) or simulated:exponent=0.76,noise=0.15,seed=3; resume: default the observer the results record");
     sub->add_option("--listen", eo.listen, "--observer page: ADDR:PORT to serve the page on (port 0: any free port)")->capture_default_str();
     sub->add_flag("--virtual-clock", eo.virtual_clock, "simulated joystick only: each stimulus plays on simulated time, at once (simulated observers, tests)");
+    sub->add_flag("--uncalibrated", eo.uncalibrated, "with --device evdev[:PATH]: a force-feedback input device no calibration file names, with the uncalibrated-evdev profile (the design's device must be uncalibrated-evdev; docs/DEVICES.md)");
   };
   eo.run = ex->add_subcommand("run", "run a design for one subject, appending every answer to the results folder");
   eo.run->add_option("design", eo.target, "experiment design (.toml)")->required();

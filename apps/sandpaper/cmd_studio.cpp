@@ -59,6 +59,7 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
   spec.device = o.device;
   spec.hand = runtime::SimulatedHand::Pointer;
   spec.watchdog_s = so.guards.watchdog_ms * 1e-3;
+  spec.uncalibrated = so.uncalibrated;
   auto joystick = open_device_for(o, std::move(spec), "studio --device " + o.device);
   if (!joystick) return kExitUsage;
   o.device = joystick->calibration;

@@ -165,9 +165,12 @@ int main(int argc, char** argv) {
   auto* studio = app.add_subcommand("studio", "serve Sandpaper Studio: edit, see and feel a material while it plays (docs/STUDIO.md)");
   StudioOptions studio_opts;
   studio->add_option("path", studio_opts.path, "a material (.hmat), a workspace (.hws) or a folder; the studio works inside its folder")->capture_default_str();
-  studio->add_option("--device", o.device, "sim (Dummy mode: the mouse moves the hand), usb (the first HID PID joystick, through libusb) or hidraw[:PATH] (through its hidraw node, the kernel's driver left bound; docs/DEVICES.md)")->capture_default_str();
+  studio->add_option("--device", o.device, "sim (Dummy mode: the mouse moves the hand), usb (the first HID PID joystick, through libusb), hidraw[:PATH] (through its hidraw node, the kernel's driver left bound) or evdev[:PATH] (the kernel's own force feedback through the input event node; docs/DEVICES.md)")->capture_default_str();
   studio->add_option("--listen", studio_opts.listen, "ADDR:PORT to serve on (port 0: any free port); a non-loopback address is warned about")->capture_default_str();
   studio->add_option("--rate", studio_opts.rate_hz, "servo rate, Hz")->capture_default_str();
+  studio->add_flag("--uncalibrated", studio_opts.uncalibrated,
+                   "with --device evdev[:PATH]: play a force-feedback input device no calibration file names, with the "
+                   "uncalibrated-evdev profile (at most a quarter of its strongest force; docs/DEVICES.md)");
   add_guard_options(studio, studio_opts.guards);
   studio->add_option("--library", o.library_dir, "library folder, or folders front first as LAB:WORLD (default: $SANDPAPER_LIBRARY_PATH, $SANDPAPER_LIBRARY, $SANDPAPER_DATA_DIR/library, or the shipped library)");
   studio->add_option("--calibration", o.calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");

@@ -425,13 +425,22 @@ PYBIND11_MODULE(sandpaper, m) {
          "the first USB HID PID force-feedback joystick plugged in that the library's calibration knows "
          "(docs/USB_PID.md); compile its materials with Library(device=player.device_calibration). "
          "Raises DeviceError when there is none or it cannot be opened")
-      .def_static("open", [](const PyLibrary& lib, const std::string& device) {
-        return std::make_unique<PyPlayer>(PyPlayer{sp::Player::open(lib.compiler->calibration(), device), nullptr, std::nullopt});
-      }, py::arg("library"), py::arg("device"),
+      .def_static("open", [](const PyLibrary& lib, const std::string& device, bool uncalibrated) {
+        auto p = std::make_unique<PyPlayer>(PyPlayer{
+            sp::Player::open(lib.compiler->calibration(), device, {.uncalibrated = uncalibrated}), nullptr, std::nullopt});
+        // A warnings filter set to "error" raises it, as Python's own warnings do.
+        if (!p->player.warning().empty() && PyErr_WarnEx(PyExc_RuntimeWarning, p->player.warning().c_str(), 1) < 0)
+          throw py::error_already_set();
+        return p;
+      }, py::arg("library"), py::arg("device"), py::kw_only(), py::arg("uncalibrated") = false,
          "a calibrated joystick found along the path `device` names (docs/DEVICES.md): 'usb' (as usb()), "
          "'hidraw' (its hidraw node, the kernel's driver left bound, no root), 'hidraw:/dev/hidrawN', "
          "'evdev' or 'evdev:/dev/input/eventN' (the kernel's own force feedback, no root). "
+         "uncalibrated=True: an evdev device no calibration file names, with the uncalibrated-evdev profile "
+         "(a RuntimeWarning and Player.warning say so). "
          "Raises DeviceError when there is none, it cannot be opened, or the device is not on the bus")
+      .def_property_readonly("warning", [](const PyPlayer& p) { return p.player.warning(); },
+         "what to tell a person before playing (a profile's assumed scale), or ''")
       .def_property_readonly("device_calibration", [](const PyPlayer& p) { return p.player.device_calibration(); },
          "the device calibration materials must be compiled for (usb); empty for the simulated joystick")
       .def("load", [](PyPlayer& p, const PyMaterial& x) { p.player.load(x.material); }, py::arg("material"),

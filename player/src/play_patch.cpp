@@ -236,12 +236,7 @@ int prepare_play_device(const calibration::CalibrationSet& set, const std::strin
   }
   if (real) *real = choice.real;
   const calibration::DeviceCalibration& cal = *set.find_device(choice.calibration);
-  const auto& profiles = set.profiles();
-  if (std::any_of(profiles.begin(), profiles.end(), [&](const auto& p) { return &p == &cal; }))
-    std::cerr << "sandpaper " << command << ": warning: no calibration file names this device: playing it with the profile "
-              << cal.file << ", whose scale, travel and directions are assumptions; forces stop at "
-              << fmt::format("{:g} N as it reckons them ({} {} at most)", cal.max_force_N, cal.command_max, cal.command_unit)
-              << "; measure the device with `sandpaper calibrate device` (docs/CALIBRATION.md)\n";
+  if (!choice.warning.empty()) std::cerr << "sandpaper " << command << ": warning: " << choice.warning << "\n";
   apply_emulation(cal, r);
   std::vector<glm::dvec2> positions;
   if (spec.hand == runtime::SimulatedHand::Replay) {

@@ -243,6 +243,20 @@ TEST(Api, OpenPlaysAJoystickAlongTheNamedPathOnly) {
   } catch (const sandpaper::DeviceError& e) {
     EXPECT_NE(std::string(e.what()).find("the simulated joystick has a player of its own"), std::string::npos) << e.what();
   }
+  // uncalibrated is for an input event node alone: asked along another path, it is refused, not ignored.
+  try {
+    Player player = Player::open(shipped(), "hidraw", {.uncalibrated = true});
+    ADD_FAILURE() << "uncalibrated taken through hidraw";
+  } catch (const sandpaper::DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("--uncalibrated plays an input event node"), std::string::npos) << e.what();
+  }
+  try {
+    Player player = Player::open(shipped(), "evdev:/nonexistent/event99", {.uncalibrated = true});
+    ADD_FAILURE() << "opened an event node that does not exist";
+  } catch (const sandpaper::DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/event99"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(Player::simulated().warning(), "");
 }
 
 }  // namespace

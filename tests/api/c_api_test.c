@@ -99,7 +99,17 @@ int main(void) {
     CHECK(contains(sp_last_error(), "no hidraw node /nonexistent/hidraw9"), "%s", sp_last_error());
     CHECK(usb == (sp_player*)&checks, "out-parameter changed by a failed open");
     CHECK(sp_player_open_device(lib, NULL, &usb) == SP_ERROR_ARGUMENT, "NULL device accepted");
+    /* Uncalibrated: an input event node alone; through hidraw it is refused, not ignored. */
+    CHECK(sp_player_open_device_uncalibrated(lib, "hidraw", &usb) == SP_ERROR_DEVICE, "uncalibrated taken through hidraw");
+    CHECK(contains(sp_last_error(), "--uncalibrated plays an input event node"), "%s", sp_last_error());
+    CHECK(sp_player_open_device_uncalibrated(lib, "evdev:/nonexistent/event99", &usb) == SP_ERROR_DEVICE,
+          "a missing event node opened");
+    CHECK(contains(sp_last_error(), "/nonexistent/event99"), "%s", sp_last_error());
+    CHECK(usb == (sp_player*)&checks, "out-parameter changed by a failed open");
+    CHECK(sp_player_open_device_uncalibrated(lib, NULL, &usb) == SP_ERROR_ARGUMENT, "NULL device accepted");
   }
+  CHECK(strcmp(sp_player_warning(player), "") == 0, "the simulated player warns: %s", sp_player_warning(player));
+  CHECK(strcmp(sp_player_warning(NULL), "") == 0, "a NULL player warns");
   CHECK(sp_player_start(player, 1000.0, 0.3) == SP_ERROR_STATE, "start with nothing loaded");
   CHECK(sp_player_wait(player, &report) == SP_ERROR_STATE, "wait before start");
   CHECK(sp_player_load(player, corduroy) == SP_OK, "%s", sp_last_error());

@@ -580,6 +580,15 @@ expect_exit 2 "experiment run --device hidraw, none present" -- "$sp" experiment
 has "$tmp/err" 'experiment --device hidraw: no hidraw node of a known force-feedback device' "an experiment looks for the hidraw node"
 [ -e "$tmp/exp-hidraw" ] && bad "an experiment without its joystick made its results folder" || ok
 expect_exit 2 "studio: a velocity limit out of range" -- "$sp" studio examples/corduroy.hmat --velocity-limit 0
+# --uncalibrated in the studio and live experiments: an input event node alone, through the factory.
+expect_exit 2 "studio --uncalibrated on the simulated joystick" -- "$sp" studio examples/corduroy.hmat --uncalibrated --listen 127.0.0.1:0
+has "$tmp/err" 'studio --device sim: --uncalibrated plays an input event node' "the studio says what --uncalibrated is for"
+expect_exit 2 "studio --uncalibrated, no such node" -- "$sp" studio examples/corduroy.hmat --device evdev:/dev/input/event-none --uncalibrated --listen 127.0.0.1:0
+has "$tmp/err" '/dev/input/event-none' "the studio names the event node"
+expect_exit 2 "experiment run --uncalibrated through hidraw" -- "$sp" experiment run examples/experiments/force-jnd.toml \
+  --subject S --observer simulated:exponent=0.76 --device hidraw --uncalibrated -o "$tmp/exp-uncal"
+has "$tmp/err" 'experiment --device hidraw: --uncalibrated plays an input event node' "an experiment says what --uncalibrated is for"
+[ -e "$tmp/exp-uncal" ] && bad "a refused experiment made its results folder" || ok
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -237,6 +237,17 @@ def test_open_names_a_hidraw_node_that_is_not_there(lib):
         sandpaper.Player.open(lib, "sim")
 
 
+def test_uncalibrated_is_for_an_input_event_node_alone(lib):
+    # Asked along another path it is refused, not ignored; along evdev it goes as far as the node.
+    with pytest.raises(sandpaper.DeviceError, match="--uncalibrated plays an input event node"):
+        sandpaper.Player.open(lib, "hidraw", uncalibrated=True)
+    with pytest.raises(sandpaper.DeviceError, match="/nonexistent/event99"):
+        sandpaper.Player.open(lib, "evdev:/nonexistent/event99", uncalibrated=True)
+    with pytest.raises(TypeError):
+        sandpaper.Player.open(lib, "evdev", True)  # keyword only: a bare True says nothing at the call
+    assert sandpaper.Player.simulated().warning == ""
+
+
 def test_the_height_field_is_what_the_forces_are_the_gradient_of(lib):
     # A grating: one period, worked back from the force table; k * steepest slope = the peak force.
     g = lib.compile("grating period 2.5 mm hill 50% amplitude 0.8 N").height_field()

@@ -103,6 +103,13 @@ sp_status sp_player_open_usb(const sp_library* library, sp_player** out);
  * "hidraw:/dev/hidrawN". SP_ERROR_DEVICE as sp_player_open_usb, and for a device not on the bus;
  * SP_ERROR_ARGUMENT for a NULL argument. */
 sp_status sp_player_open_device(const sp_library* library, const char* device, sp_player** out);
+/* The same for an input event node no calibration file names ("evdev" or "evdev:/dev/input/eventN"):
+ * it plays with the uncalibrated-evdev profile, its scale assumed and its force at most a quarter of
+ * the device's strongest (docs/DEVICES.md); open the library for device "uncalibrated-evdev".
+ * sp_player_warning() says so. SP_ERROR_DEVICE for any other path, and as sp_player_open_device. */
+sp_status sp_player_open_device_uncalibrated(const sp_library* library, const char* device, sp_player** out);
+/* What to tell a person before the player plays (a profile's assumed scale), or "". Owned by the player. */
+const char* sp_player_warning(const sp_player* player);
 /* The device calibration the player's materials must be compiled for ("openffboard-2axis"), or ""
  * for the simulated player (any material plays there). Owned by the player. */
 const char* sp_player_device_calibration(const sp_player* player);

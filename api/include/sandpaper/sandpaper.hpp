@@ -164,6 +164,11 @@ struct PlayOptions {
 
 // Plays materials on one device on a servo thread of its own (runtime::ServoThread). Loading while
 // playing swaps the material without a break (runtime::SwappableSource, 5 ms crossfade).
+// How Player::open may take a device.
+struct PlayerOpenOptions {
+  bool uncalibrated = false;  // an input event node no calibration file names may play (docs/DEVICES.md)
+};
+
 class Player {
  public:
   // The simulated joystick (runtime::SimJoystick, limits of calibration/devices/sim.toml): a
@@ -182,8 +187,10 @@ class Player {
   // "hidraw" (the first such joystick's hidraw node, the kernel's driver left bound, no root) or
   // "hidraw:PATH" (that node), "evdev" or "evdev:PATH" (its input event node: the kernel's own force
   // feedback, no root). Throws DeviceError as usb() does, and for a device that is not on the bus.
-  static Player open(const Library& library, const std::string& device);
-  static Player open(const calibration::CalibrationSet& set, const std::string& device);
+  // options.uncalibrated: an evdev device no calibration file names plays with the uncalibrated-evdev
+  // profile (at most a quarter of its strongest force); warning() then says so. Evdev only.
+  static Player open(const Library& library, const std::string& device, PlayerOpenOptions options = {});
+  static Player open(const calibration::CalibrationSet& set, const std::string& device, PlayerOpenOptions options = {});
   // Any device (a USB HID PID joystick, a replay, your own runtime::Device); the player owns it.
   explicit Player(std::unique_ptr<runtime::Device> device);
   ~Player();  // stops and joins if still playing
@@ -207,9 +214,13 @@ class Player {
   // The device calibration materials must be compiled for: the joystick's for usb(); empty for
   // simulated() and a Device given directly (any material plays there).
   const std::string& device_calibration() const noexcept;
+  // What a person should be told before the player plays (a device played with a profile's assumed
+  // scale: Player::open with uncalibrated); empty otherwise.
+  const std::string& warning() const noexcept;
 
  private:
   void set_device_calibration_nonrt(std::string name);
+  void set_warning_nonrt(std::string text);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -30,6 +30,12 @@ DefaultDevice default_play_device(const calibration::CalibrationSet& set) {
       if (denied.empty()) denied = "evdev:" + n.path;
     }
   if (!denied.empty()) return {denied, "a calibrated joystick this user may not open yet"};
+  // Any other force-feedback device this user may play: named rather than passed over for the
+  // simulator, so that the run says it plays only with --uncalibrated (or plays, given it).
+  for (const auto& n : evdev::list_force_feedback_nodes())
+    if (n.constant_force && n.axes > 0 && may_open(n.path))
+      return {"evdev:" + n.path, "'" + n.name + "' (" + usb_ids(n.vendor_id, n.product_id) + ") through " + n.path +
+                                     ", which no calibration file names"};
   return {"sim", ""};
 }
 

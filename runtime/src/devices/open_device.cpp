@@ -1,5 +1,6 @@
 #include "sandpaper/runtime/devices/open_device.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "devices_internal.hpp"
@@ -155,6 +156,7 @@ OpenedDevice open_device(const calibration::CalibrationSet& set, DeviceSpec spec
   OpenedDevice out = family.open(set, spec, cal);
   out.family = family.name;
   out.real = family.real;
+  out.warning = profile_warning(set, out.calibration);
   // Where a held USB device sits, read now, before it can go: a run that loses it and finds it back
   // at the same port under a new address names a reset (LiveServo::join_nonrt), whoever plays it.
   if (out.held != nullptr) {
@@ -169,7 +171,19 @@ OpenedDevice open_device(const calibration::CalibrationSet& set, DeviceSpec spec
 DeviceChoice choose_device(const calibration::CalibrationSet& set, const DeviceSpec& spec) {
   const DeviceCalibration* cal = nullptr;
   const Family& family = family_for(set, spec, cal);
-  return {family.calibration(set, spec, cal), family.name, family.real};
+  DeviceChoice choice{family.calibration(set, spec, cal), family.name, family.real, {}};
+  choice.warning = profile_warning(set, choice.calibration);
+  return choice;
+}
+
+std::string profile_warning(const calibration::CalibrationSet& set, const std::string& calibration) {
+  const auto& profiles = set.profiles();
+  const auto p = std::find_if(profiles.begin(), profiles.end(), [&](const DeviceCalibration& d) { return d.name == calibration; });
+  if (p == profiles.end()) return {};
+  return "no calibration file names this device: playing it with the profile " + p->file +
+         ", whose scale, travel and directions are assumptions; forces stop at " + g_text(p->max_force_N) +
+         " N as it reckons them (" + std::to_string(p->command_max) + " " + p->command_unit +
+         " at most); measure the device with `sandpaper calibrate device` (docs/CALIBRATION.md)";
 }
 
 std::optional<Emulation> emulation_of(const DeviceCalibration& device) {

@@ -282,6 +282,16 @@ TEST(OpenDevice, TheUncalibratedProfileIsNoDeviceAndPlaysOnlyThroughEvdev) {
   DeviceSpec missing = spec_for("evdev:/nonexistent/event99");
   missing.uncalibrated = true;
   EXPECT_EQ(refusal(set, missing, &message), Cause::NoUsb) << message;
+  // Every caller says the same before it plays with the profile (its own 2.5 N and quarter range,
+  // the file's figures above); a device's own file has nothing to say.
+  const std::string warning = profile_warning(set, evdev::kUncalibratedProfile);
+  EXPECT_NE(warning.find("no calibration file names this device"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("forces stop at 2.5 N"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("(8192 "), std::string::npos) << warning;
+  EXPECT_NE(warning.find("sandpaper calibrate device"), std::string::npos) << warning;
+  EXPECT_EQ(profile_warning(set, "openffboard-2axis"), "");
+  EXPECT_EQ(profile_warning(set, "sim"), "");
+  EXPECT_EQ(choose_device(set, spec_for("sim")).warning, "");
 }
 
 TEST(OpenDevice, TheUdevRuleNamesTheDeviceInLowerCaseHex) {

@@ -77,6 +77,7 @@ struct OpenedDevice {
   HeldDevice* held = nullptr;         // a device a person holds: closed (given back) before the run is reported
   std::string transport;              // a held device: "libusb", "hidraw" or "evdev"
   bool real = false;                  // a device a person moves (USB), not a simulated one
+  std::string warning;                // non-empty: say it before playing (profile_warning)
 };
 
 // Why a device could not be opened. `help` holds lines to print after the message (the udev rule
@@ -108,13 +109,21 @@ OpenedDevice open_device(const calibration::CalibrationSet& set, DeviceSpec spec
 struct DeviceChoice {
   std::string calibration;
   const char* family = "";
-  bool real = false;  // a device a person moves (USB), not a simulated one
+  bool real = false;     // a device a person moves (USB), not a simulated one
+  std::string warning;   // non-empty: say it before playing (profile_warning)
 };
 DeviceChoice choose_device(const calibration::CalibrationSet& set, const DeviceSpec& spec);
 
+// When `calibration` is one of `set`'s profiles (a device no calibration file names, played with
+// --uncalibrated), one sentence for every caller to show before it plays: the profile's scale,
+// travel and directions are assumptions, where its forces stop, and how to calibrate the device
+// (docs/DEVICES.md). Empty for a device's own file.
+std::string profile_warning(const calibration::CalibrationSet& set, const std::string& calibration);
+
 // What `run` plays on when no device is named: the hidraw node of a calibrated HID PID joystick
 // plugged in ("hidraw:/dev/hidraw0"), else its input event node ("evdev:/dev/input/event3"),
-// preferring a node this user may open; else "sim". `found` describes the joystick ("" for sim).
+// preferring a node this user may open; else the event node of any force-feedback device this user
+// may open (which then plays only with --uncalibrated); else "sim". `found` describes the joystick ("" for sim).
 // Opens nothing; never throws. libusb is only ever taken when asked for (--device usb).
 struct DefaultDevice {
   std::string device;
