@@ -77,14 +77,20 @@ def device_chain(device_file: Path):
     device file's scale, sense and limit as the driver uses them; and the newtons at the handle
     for a driver torque, through TORQUE_PER_COMMAND and the same scale."""
     device = tomllib.loads(Path(device_file).read_text())
-    newtons = [device["force"][a]["newtons_per_command_unit"] for a in ("x", "y")]
-    sense = [device["force"][a].get("command_sense", 1) for a in ("x", "y")]
+    # A wheel's file has [force.x] alone: nothing is ever sent or felt on its y.
+    axes = [a for a in ("x", "y") if a in device["force"]]
+    newtons = [device["force"][a]["newtons_per_command_unit"] for a in axes]
+    sense = [device["force"][a].get("command_sense", 1) for a in axes]
     limit = device["force"]["command_max"]
 
     def command(axis, f):
+        if axis >= len(axes):
+            return 0
         return max(-limit, min(limit, round_half_away(sense[axis] * f / newtons[axis])))
 
     def torque_N(axis, t):
+        if axis >= len(axes):
+            return 0.0
         return -t / TORQUE_PER_COMMAND * newtons[axis]  # a positive torque pushes toward -axis
 
     return command, torque_N
@@ -209,18 +215,19 @@ def device_ridge_peaks(starts, updates, shift_ns):
     return peaks
 
 
-def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_in_s=0.0):
+def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_in_s=0.0, axes=None):
     """`run`: the host's run JSON; `command(axis, F_N)`: the command units the driver sends for a
     force (the device calibration's scale, rounded and clamped as the driver does);
     `torque_N(axis, torque)`: newtons at the handle for a driver torque (the device file's chain);
-    `fade_in_s`: the firmware's fade-in, s, left out of the force figures."""
+    `fade_in_s`: the firmware's fade-in, s, left out of the force figures; `axes`: effect block ->
+    axis the host meant each effect for, when the Set Effect reports do not say it (effect_axes)."""
     start_ns = int(run["clock_start_ns"])
     ticks = [(start_ns + round(t * 1e9), (fx, fy)) for t, _, _, fx, fy in trace]
     if not ticks:
         raise ValueError("the host's trace has no ticks")
     play_start, play_end = ticks[0][0], ticks[-1][0]
     seconds = (play_end - play_start) * 1e-9
-    per_axis_reports = force_reports(reports, effect_axes(reports))
+    per_axis_reports = force_reports(reports, effect_axes(reports) if axes is None else axes)
     per_axis_torque = ([], [])
     for t, axis, torque in torques:
         if axis in (0, 1) and play_start <= t <= play_end + 50_000_000:

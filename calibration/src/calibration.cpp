@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <numbers>
 #include <set>
 
 #include "file_reading.hpp"
@@ -261,7 +262,7 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
     // From a haptic knob to a large steering wheel; outside it, a unit slipped.
     if (!(d.wheel_rim_radius_m >= 0.005 && d.wheel_rim_radius_m <= 1.0))
       problems.add(f, *c["wheel"]["rim_radius"].node(), "a wheel's rim radius is between 5 mm and 1 m", "");
-    if (!(d.wheel_rotation_range_rad <= 20 * 3.14159265358979323846))
+    if (!(d.wheel_rotation_range_rad <= 20 * std::numbers::pi))
       problems.add(f, *c["wheel"]["rotation_range"].node(), "a wheel's rotation range is at most 3600 deg (ten turns)", "");
     // The rim's arc over the rotation range is the wheel's travel: the width says the same in mm.
     const double arc_m = d.wheel_rim_radius_m * d.wheel_rotation_range_rad;
@@ -314,7 +315,7 @@ std::vector<std::filesystem::path> toml_files(const std::filesystem::path& dir) 
 
 double DeviceCalibration::wheel_deg_per_mm() const {
   if (!wheel() || !(wheel_rim_radius_m > 0)) return 0;
-  return 1e-3 / wheel_rim_radius_m * 180.0 / 3.14159265358979323846;
+  return 1e-3 / wheel_rim_radius_m * 180.0 / std::numbers::pi;
 }
 
 double PsychophysicalMap::percept_of(double x_si) const {

@@ -8,6 +8,7 @@ wrote to its /out folder. A guest that cannot boot is a failure, not a skip.
 from __future__ import annotations
 
 import argparse
+import bisect
 import json
 import math
 import os
@@ -153,6 +154,14 @@ def test_direction(build: Path, out: Path) -> None:
 # zero force on both effects, Effect Operation stop, Block Free, Device Control Stop All Effects,
 # then Disable Actuators (HidFFB.cpp: bit 0x02 stops its force feedback).
 SHUTDOWN = ["05010000", "05020000", "0a010300", "0a020300", "0b01", "0b02", "0c04", "0c02"]
+# The same on the wheel, whose file plays one effect (on X).
+WHEEL_SHUTDOWN = ["05010000", "0a010300", "0b01", "0c04", "0c02"]
+
+# The lab's wheel (usb-lab/scenarios: MAIN_CLASS=wheel) and the half range its encoder reports as full
+# scale: half the rim's arc over the wheel's rotation range (calibration/devices/openffboard-wheel.toml:
+# a 150 mm rim, 900 degrees lock to lock).
+WHEEL = "openffboard-wheel"
+WHEEL_PARAMS = {"MAIN_CLASS": "wheel", "HALF_RANGE_MM": f"{0.5 * 150 * 900 * math.pi / 180:.3f}"}
 
 
 def interrupt_out_reports(path: Path) -> list[str]:
@@ -175,10 +184,12 @@ FAULT_CAUSE = {"unplug": "device_unplugged", "reset": "device_reset", "stale": "
 RESET_GRACE_CS = 150
 
 
-def test_fault(fault: str, build: Path, out: Path, device: str = "usb") -> None:
-    """A fault while a run plays through `device`: usb (libusb, usbhid detached) or hidraw (usbhid
-    left bound). The same stop cause, zero force, no hang and the device back on either path."""
-    r = scenario.run("fault", build, out, params={
+def test_fault(fault: str, build: Path, out: Path, device: str = "usb", wheel: bool = False) -> None:
+    """A fault while a run plays through `device`: usb (libusb, usbhid detached), hidraw or evdev
+    (usbhid left bound), on the joystick or (`wheel`) the firmware's 1-axis wheel with its own file.
+    The same stop cause, zero force, no hang and the device back on every path."""
+    effects = ("01",) if wheel else ("01", "02")
+    r = scenario.run("fault", build, out, params={**(WHEEL_PARAMS if wheel else {}),
         "RUN_DEVICE": device, "FAULT": fault, "MATERIAL": str(REPO / "examples/corduroy.hmat"), "HAND": "scan",
         "AT_X_MM": "0", "AT_Y_MM": "0", "SPEED_MM_S": "10", "EXTENT_MM": "40", "REPLAY_SECONDS": "1",
         "SECONDS": "2" if fault == "late" else "30",
@@ -225,14 +236,19 @@ def test_fault(fault: str, build: Path, out: Path, device: str = "usb") -> None:
         # (sent only if it was not 0 already), the effects stopped and erased (Block Free), the gain
         # put back to full (Device Gain 0xff).
         sent = interrupt_out_reports(out / "reports.csv")
-        last_force = {k: [r for r in sent if r.startswith("05" + k)][-1:] for k in ("01", "02")}
-        check(all(v == ["05" + k + "0000"] for k, v in last_force.items()) and "0b01" in sent and "0b02" in sent
+        last_force = {k: [r for r in sent if r.startswith("05" + k)][-1:] for k in effects}
+        check(all(v == ["05" + k + "0000"] for k, v in last_force.items()) and all("0b" + k in sent for k in effects)
               and sent[-1:] == ["0dff"],
-              f"the firmware was left with zero force on both effects, both freed and the gain back at full "
-              f"(last forces {last_force}, last report {sent[-1:]})")
+              f"the firmware was left with zero force on its {len(effects)} effect(s), each freed, and the gain "
+              f"back at full (last forces {last_force}, last report {sent[-1:]})")
     elif fault in ("sigint", "stale"):
-        check(contains_run(interrupt_out_reports(out / "reports.csv"), SHUTDOWN),
-              "the firmware received the shutdown sequence: zero force, effects stopped and freed, actuators disabled")
+        sent = interrupt_out_reports(out / "reports.csv")
+        check(contains_run(sent, WHEEL_SHUTDOWN if wheel else SHUTDOWN),
+              f"the firmware received the shutdown sequence: zero force, {len(effects)} effect(s) stopped and "
+              f"freed, actuators disabled (last reports {sent[-8:]})")
+    if wheel:
+        state = json.loads((out / "state.json").read_text())
+        check(state["torque_updates"][1] == 0, f"no second motor was driven ({state['torque_updates']})")
     if fault in ("unplug", "reset"):
         # Linux 6.1's f_fs holds ffs->mutex while a read of ep0 waits for events, and unbinding
         # takes it after queueing UNBIND: a reader that comes back to wait first blocks the unbind
@@ -242,7 +258,9 @@ def test_fault(fault: str, build: Path, out: Path, device: str = "usb") -> None:
               f"ep0 read ({facts['poll_waiters']} thread(s) in poll, {facts['ep0_read_waiters']} in the read)")
     if fault == "unplug":
         devices = (out / "devices.txt").read_text()
-        check(facts["replug_devices_status"] == 0 and "1209:ffb0" in devices, "plugged in again, `devices` finds it")
+        check(facts["replug_devices_status"] == 0 and "1209:ffb0" in devices
+              and (not wheel or f"calibration {WHEEL}" in devices),
+              "plugged in again, `devices` finds it" + (" with the wheel's file" if wheel else ""))
         replay = json.loads((out / "replay.json").read_text())
         check(facts["replay_status"] == 0 and replay["stop_cause"] == "completed",
               f"and a new run plays to its end (stop cause {replay['stop_cause']})")
@@ -354,37 +372,145 @@ def test_kernel_path(through: str, build: Path, out: Path) -> None:
         check_measured(build, where, speed, run)
 
 
-def test_wheel(build: Path, out: Path) -> None:
-    """The firmware's own 1-axis wheel (FFBWheel, its 1-axis descriptor) played through hidraw by a
-    user without root (docs/DEVICES.md "A wheel"): `devices` and `run` without --device take its own
-    file, openffboard-wheel, though the board's USB ID is the joystick's (its descriptor's effects act
-    on X alone); corduroy along the rim reaches its one motor as explain predicts for the wheel, and
-    no second motor is ever driven."""
-    wheel = "openffboard-wheel"
-    # The encoder's half range is half the rim's arc over the wheel's 900 degrees (openffboard-wheel.toml).
-    half_range_mm = 0.5 * 150 * 900 * math.pi / 180
-    for speed in (50,):
-        where = out / f"{speed}mm_s"
-        if not scan_corduroy("kernel", build, where, speed, {"THROUGH": "hidraw", "MAIN_CLASS": "wheel",
-                                                             "HALF_RANGE_MM": f"{half_range_mm:.3f}"}):
-            continue
+def test_wheel(through: str, build: Path, out: Path) -> None:
+    """The firmware's own 1-axis wheel (FFBWheel, its 1-axis descriptor) played through `through`:
+    hidraw or evdev by a user without root, or usb (libusb, as root) (docs/DEVICES.md "A wheel").
+    `devices` and `run` without --device take its own file, openffboard-wheel, though the board's USB
+    ID is the joystick's (its descriptor's effects act on X alone); corduroy along the rim reaches its
+    one motor as explain predicts for the wheel, and no second motor is ever driven."""
+    speed = 50
+    where = out / f"{speed}mm_s"
+    if not scan_corduroy("play" if through == "usb" else "kernel", build, where, speed,
+                         {**WHEEL_PARAMS, **({} if through == "usb" else {"THROUGH": through})}):
+        return
+    run = json.loads((where / "run.json").read_text()) if (where / "run.json").stat().st_size else {}
+    state = json.loads((where / "state.json").read_text())
+    check(state["torque_updates"][0] > 0 and state["torque_updates"][1] == 0,
+          f"{speed} mm/s: the wheel's motor was driven and no second motor ({state['torque_updates']})")
+    if through == "usb":
+        play = json.loads((where / "play.json").read_text())
+        check(play["run_status"] == 0 and run.get("stop_cause") == "completed" and run.get("device") == WHEEL,
+              f"{speed} mm/s: played to its end on {WHEEL} (status {play['run_status']}, device {run.get('device')}, "
+              f"stop cause {run.get('stop_cause')}): {(where / 'run.err').read_text().strip()}")
+        check((play["driver_before"], play["driver_during"], play["driver_after"]) == ("usbhid", "usbfs", "usbhid"),
+              f"{speed} mm/s: usbhid detached for the run and attached again "
+              f"({play['driver_before']} -> {play['driver_during']} -> {play['driver_after']})")
+    else:
         h = json.loads((where / "path.json").read_text())
         listed = (where / "devices.txt").read_text()
-        check(f"calibration {wheel}" in listed and "calibration openffboard-2axis" not in listed
-              and "the kernel's force feedback, 1 axis (a wheel" in listed,
-              f"`sandpaper devices` names the wheel's own file, not the joystick's, and its one axis: {listed.strip()!r}")
-        run = json.loads((where / "run.json").read_text()) if (where / "run.json").stat().st_size else {}
-        check(h["run_status"] == 0 and run.get("stop_cause") == "completed",
-              f"{speed} mm/s: played to its end as uid 1000 (status {h['run_status']}, stop cause {run.get('stop_cause')}): "
+        axis_line = "the kernel's force feedback, 1 axis (a wheel" if through == "evdev" else f"--device {through}:"
+        check(f"calibration {WHEEL}" in listed and "calibration openffboard-2axis" not in listed and axis_line in listed,
+              f"`sandpaper devices` names the wheel's own file, not the joystick's, and its path: {listed.strip()!r}")
+        check(h["run_status"] == 0 and run.get("stop_cause") == "completed" and run.get("device") == WHEEL
+              and run.get("usb", {}).get("transport") == through,
+              f"{speed} mm/s: played to its end on {WHEEL} through {through} as uid 1000 (status {h['run_status']}, "
+              f"device {run.get('device')}, {run.get('usb')}, stop cause {run.get('stop_cause')}): "
               f"{(where / 'run.err').read_text().strip() if (where / 'run.err').exists() else ''}")
         chosen = (where / "default.err").read_text()
-        check(h["default_status"] == 0 and f"playing on {wheel}" in chosen,
-              f"{speed} mm/s: without --device, run took the wheel's file (status {h['default_status']}): {chosen.strip()!r}")
-        state = json.loads((where / "state.json").read_text())
-        check(state["torque_updates"][1] == 0, f"{speed} mm/s: no second motor was driven ({state['torque_updates']})")
+        check(h["default_status"] == 0 and f"playing on {WHEEL}" in chosen and f"(--device {through}:" in chosen,
+              f"{speed} mm/s: without --device, run took the wheel's file through {through} "
+              f"(status {h['default_status']}): {chosen.strip()!r}")
         check(h["output_queue_full"] == 0, f"{speed} mm/s: usbhid dropped no output report")
-        if run:
-            check_measured(build, where, speed, run, wheel)
+    if run and through == "evdev":
+        check_wheel_through_hid_pidff(build, where, speed, run)
+    elif run:
+        check_measured(build, where, speed, run, WHEEL)
+
+
+def check_wheel_through_hid_pidff(build: Path, where: Path, speed: int, run: dict) -> None:
+    """The wheel through evdev: the kernel's hid-pidff makes the reports. Sandpaper's part must hold
+    (every magnitude the firmware received is one a tick computed, through the wheel file's scale, on
+    the one effect), and the firmware's part is a finding (docs/DEVICES.md "A wheel"): hid-pidff sets
+    Direction Enable, which the firmware's own 1-axis descriptor puts at bit 1 of the Axes Enable byte
+    (0x02), while FFBWheel tells HidFFB it is bit 2 (FFBWheel.cpp: setDirectionEnableMask(0x04)); seeing
+    neither Direction Enable nor X enabled, HidFFB gives X no force (HidFFB.cpp's axisMagnitudes). This
+    check fails, and says so, the day a firmware plays it."""
+    reports = measure.read_reports(where / "reports.csv")
+    set_effects = [b for _, _, _, b in reports if len(b) >= 14 and b[0] == measure.SET_EFFECT]
+    blocks = {b[1] for b in set_effects}
+    check(len(blocks) == 1, f"{speed} mm/s: hid-pidff made one effect for the wheel's one axis (blocks {sorted(blocks)})")
+    m = measure.measure(run, measure.read_trace(where / "trace.csv"), reports, measure.read_torques(where / "torque.csv"),
+                        command=COMMAND, torque_N=HANDLE_FORCE_N, fade_in_s=FADE_IN_S, axes={b: 0 for b in blocks})
+    # (explain's prediction is not asked: it takes the firmware's update rate from this run, which a
+    # firmware that plays nothing barely updates.)
+    print(f"{speed} mm/s: " + json.dumps({k: m[k] for k in ("received_hz", "latency_ms", "firmware_peak_N", "ridges",
+                                                             "commanded_peak_N", "unmatched_reports")}), flush=True)
+    check(m["received_hz"][0] > 0 and m["unmatched_reports"] == [0, 0],
+          f"{speed} mm/s: every magnitude the firmware received ({m['received_hz'][0]:.0f}/s) is one a tick computed "
+          f"through the wheel file's scale (unmatched: {m['unmatched_reports']})")
+    enables = {b[13] for b in set_effects}
+    peak = m["firmware_peak_N"] or 0.0
+    check(enables == {0x02} and peak < 0.05 * m["commanded_peak_N"],
+          f"{speed} mm/s: finding: the firmware leaves hid-pidff's effect unplayed (Axes Enable byte {sorted(enables)}: "
+          f"Direction Enable at bit 1, which FFBWheel reads at bit 2), {peak:.3f} N at its motor against "
+          f"{m['commanded_peak_N']:.3f} N the ticks asked; if it now plays, the firmware changed: update docs/DEVICES.md")
+
+
+def test_sidewinder(build: Path, out: Path) -> None:
+    """The third lab device: the SideWinder Force Feedback 2's recorded report descriptor behind the
+    lab's HID PID 1.0 model (usb-lab/hid_pid; no firmware exists for it), through evdev by a user
+    without root. No calibration file names it, so it plays only with --uncalibrated (the
+    uncalibrated-evdev profile). The kernel's hid-pidff must take the recorded descriptor; corduroy
+    along x must reach the model as an x force whose size is the profile's (10 N over the level
+    range: hid-pidff rescales the level to the FF2's Magnitude of -255..255) and whose sense is
+    steady, with next to nothing on y."""
+    r = scenario.run("kernel", build, out, params={
+        "MATERIAL": str(REPO / "examples/corduroy.hmat"), "SECONDS": "4", "HAND": "scan", "SPEED_MM_S": "50",
+        "EXTENT_MM": "40", "THROUGH": "evdev", "UNCALIBRATED": "1", "MODEL": "sidewinder-ff2",
+        "CALIBRATION_SRC": str(REPO / "calibration")})
+    check(r.status == 0, f"the scenario ran to its end (status {r.status})")
+    if r.status != 0:
+        return
+    h = json.loads((out / "path.json").read_text())
+    check(h["pidff_bound"] >= 1, f"the kernel's hid-pidff bound the FF2's recorded descriptor ({h['pidff_bound']} "
+          f"\"Force feedback for USB HID PID devices\" in its log)")
+    refused = (out / "refused.err").read_text()
+    check(h["refused_status"] == 2 and "--uncalibrated" in refused,
+          f"without --uncalibrated the run is refused (status {h['refused_status']}): {refused.strip()!r}")
+    run = json.loads((out / "run.json").read_text()) if (out / "run.json").stat().st_size else {}
+    check(h["run_status"] == 0 and run.get("stop_cause") == "completed" and run.get("device") == "uncalibrated-evdev"
+          and run.get("usb", {}).get("id") == "045e:001b",
+          f"with --uncalibrated it played to its end through evdev on 045e:001b (status {h['run_status']}, "
+          f"{run.get('device')}, {run.get('usb')}, stop cause {run.get('stop_cause')}): {(out / 'run.err').read_text().strip()!r}")
+    check(h["output_queue_full"] == 0, f"usbhid dropped no output report ({h['output_queue_full']})")
+    chosen = (out / "default.err").read_text()
+    check(h["default_status"] == 2 and "no --device given: playing on 'Microsoft SideWinder Force Feedback 2 Joystick' "
+          "(045e:001b) through /dev/input/" in chosen and "--uncalibrated" in chosen,
+          f"without --device, run names the FF2 rather than playing the simulator, and is refused saying how to play it "
+          f"(status {h['default_status']}): {chosen.strip()!r}")
+    if not run:
+        return
+    trace = measure.read_trace(out / "trace.csv")
+    start_ns = int(run["clock_start_ns"])
+    ticks_ns = [start_ns + round(t * 1e9) for t, *_ in trace]
+    torques = measure.read_torques(out / "torque.csv")
+    # The steady play: after the first second (hid-pidff's open, the hand's first stroke).
+    steady = [(t, a, q) for t, a, q in torques if ticks_ns[0] + 1e9 <= t <= ticks_ns[-1]]
+    x = [q for _, a, q in steady if a == 0]
+    y = [q for _, a, q in steady if a == 1]
+    # The model's torque is a fraction of its full scale times 32767; the profile takes full scale as 10 N.
+    felt_N = max((abs(q) for q in x), default=0) / 32767 * 10.0
+    asked_N = max((abs(f[3]) for f in trace[len(trace) // 4:]), default=0)
+    print(json.dumps({"x_updates": len(x), "y_updates": len(y), "felt_peak_N": felt_N, "asked_peak_N": asked_N,
+                      "y_peak": max((abs(q) for q in y), default=0)}), flush=True)
+    check(x and abs(felt_N - asked_N) <= 0.10 * asked_N,
+          f"the model's x force, {felt_N:.3f} N as the profile reckons it, is the run's {asked_N:.3f} N within 10 %")
+    check(max((abs(q) for q in y), default=0) <= 0.05 * max((abs(q) for q in x), default=1),
+          "next to nothing on y (a grating along x)")
+    # The sense: each of the model's x updates against the force the last tick before it computed.
+    agree = disagree = 0
+    for t, a, q in steady:
+        i = bisect.bisect_right(ticks_ns, t) - 1
+        if a != 0 or i < 0 or abs(trace[i][3]) < 0.3 or abs(q) < 1000:
+            continue
+        if (q > 0) == (trace[i][3] > 0):
+            agree += 1
+        else:
+            disagree += 1
+    sense = "with" if agree > disagree else "against"
+    print(f"the model pushes {sense} the computed force: {agree} updates with it, {disagree} against", flush=True)
+    check(agree + disagree >= 20 and max(agree, disagree) >= 0.8 * (agree + disagree),
+          f"the model's x force keeps one sense against the computed force ({agree} with, {disagree} against)")
 
 
 def test_uncalibrated(build: Path, out: Path) -> None:
@@ -558,7 +684,10 @@ def test_bus(build: Path, out: Path) -> None:
 TESTS = {"enumerate": test_enumerate, "bus": test_bus, "direction": test_direction, "play": test_play, "hidraw": lambda build, out: test_kernel_path("hidraw", build, out),
          "evdev": lambda build, out: test_kernel_path("evdev", build, out),
          "evdev-uncalibrated": test_uncalibrated,
-         "wheel-hidraw": test_wheel,
+         "wheel-hidraw": lambda build, out: test_wheel("hidraw", build, out),
+         "wheel-evdev": lambda build, out: test_wheel("evdev", build, out),
+         "wheel-usb": lambda build, out: test_wheel("usb", build, out),
+         "sidewinder-evdev": test_sidewinder,
          "studio": test_studio,
          "experiment": test_experiment}
 for _fault in ("unplug", "reset", "stale", "sigint", "stall", "late"):
@@ -569,6 +698,9 @@ for _fault in ("unplug", "reset", "stale", "sigint"):
 # reporting cannot be told from a handle held still (docs/DEVICES.md).
 for _fault in ("unplug", "reset", "sigint"):
     TESTS[f"evdev-{_fault}"] = (lambda f: lambda build, out: test_fault(f, build, out, "evdev"))(_fault)
+# The wheel's faults: an unplug and Ctrl-C through evdev (the kernel's own close), a reset through hidraw.
+for _fault, _path in (("unplug", "evdev"), ("sigint", "evdev"), ("reset", "hidraw")):
+    TESTS[f"wheel-{_path}-{_fault}"] = (lambda f, d: lambda build, out: test_fault(f, build, out, d, wheel=True))(_fault, _path)
 
 
 def main() -> int:

@@ -14,13 +14,15 @@
 #           must open and play to its end
 # Writes /out/run.json, /out/run.err, the device's logs and /out/fault.json: the run's exit status,
 # the guest-clock time from the fault to the run's exit (centiseconds), and the kernel driver on
-# the joystick's interface before, during and after.
+# the joystick's interface before, during and after. MAIN_CLASS=wheel: the firmware's 1-axis wheel,
+# its encoder's half range HALF_RANGE_MM of rim.
 . /lab/ffboard.sh
 stall=
 [ "$FAULT" = stall ] && stall="--stall-feature $STALL_REPORT_ID"
 [ "$FAULT" = late ] && stall="--late-feature $STALL_REPORT_ID --late-ms $LATE_MS"
 # shellcheck disable=SC2086
-ffboard_plug --hand "$HAND" --at "$AT_X_MM" "$AT_Y_MM" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" $stall || exit 1
+ffboard_plug --hand "$HAND" --at "$AT_X_MM" "$AT_Y_MM" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" $stall \
+  --half-range "${HALF_RANGE_MM:-50}" || exit 1
 driver_before=$(ffboard_interface_driver)
 
 RUN_DEVICE=${RUN_DEVICE:-usb}

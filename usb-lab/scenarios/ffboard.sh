@@ -14,6 +14,15 @@ FFB_DEVICE_LOG=/tmp/ffboard-device.log
 # `run`, `studio` and `experiment run` take them alike (player/include/sandpaper/player/safety_guards.hpp).
 LAB_RUN_GUARDS="--deadline-guard 600000 --watchdog 1000"
 
+# The device the lab serves: MODEL=sidewinder-ff2, the lab's HID PID model behind the SideWinder
+# Force Feedback 2's recorded descriptor (usb-lab/hid_pid); else the OpenFFBoard firmware's main
+# class MAIN_CLASS (joystick, or wheel: the 1-axis FFBWheel).
+if [ "${MODEL:-openffboard}" = sidewinder-ff2 ]; then
+  FFB_MODEL_ARGS="--model sidewinder-ff2"
+else
+  FFB_MODEL_ARGS="--main-class ${MAIN_CLASS:-joystick}"
+fi
+
 # The gadget as the firmware describes itself (sandpaper-lab-device --identity: key=value lines).
 ffboard_create() {
   local k v vid pid bcd class subclass protocol manufacturer product serial
@@ -24,17 +33,24 @@ ffboard_create() {
       manufacturer) manufacturer=$v ;; product) product=$v ;; serial_number) serial=$v ;;
     esac
   done <<IDENTITY
-$("$LAB_DEVICE" --identity)
+$("$LAB_DEVICE" --identity $FFB_MODEL_ARGS)
 IDENTITY
   FFB_VID=$vid FFB_PID=$pid
+  # configfs takes bcdDevice only as binary-coded decimal; the FF2's recorded 0x0A00 is not (no
+  # driver Linux has matches on it).
+  case $bcd in
+    0x*[a-fA-F]*) echo "lab: bcdDevice $bcd is not BCD, which configfs requires: the gadget says 0x0100" >&2; bcd=0x0100 ;;
+  esac
+  # configfs takes no empty string; a device without a serial number (the FF2) gets the gadget's name.
   gadget_create ffboard "$vid" "$pid" bcd="$bcd" class="$class" subclass="$subclass" protocol="$protocol" \
-    manufacturer="$manufacturer" product="$product" serial="$serial" speed=full-speed &&
+    manufacturer="$manufacturer" product="$product" serial="${serial:-ffboard}" speed=full-speed &&
   gadget_add_ffs ffboard ffb
 }
 
 # Starts the device program with the given options; returns once it wrote its descriptors.
 ffboard_start() {
-  "$LAB_DEVICE" --ffs /dev/ffs-ffb --log "$LAB_OUT" "$@" > "$FFB_DEVICE_LOG" 2>&1 &
+  # shellcheck disable=SC2086
+  "$LAB_DEVICE" --ffs /dev/ffs-ffb --log "$LAB_OUT" $FFB_MODEL_ARGS "$@" > "$FFB_DEVICE_LOG" 2>&1 &
   FFB_DEVICE_PID=$!
   lab_wait_line "$FFB_DEVICE_LOG" "ready on" 60 || { cat "$FFB_DEVICE_LOG"; return 1; }
 }

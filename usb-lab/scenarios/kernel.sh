@@ -10,9 +10,9 @@
 # the OpenFFBoard's file, so the joystick is a device no calibration file names: a run without
 # --uncalibrated must be refused (/out/refused.err), and the run plays with --uncalibrated.
 . /lab/ffboard.sh
-# MAIN_CLASS=wheel: the firmware's 1-axis wheel, its encoder's half range HALF_RANGE_MM of rim.
-ffboard_plug --hand "$HAND" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" --main-class "${MAIN_CLASS:-joystick}" \
-  --half-range "${HALF_RANGE_MM:-50}" || exit 1
+# MAIN_CLASS=wheel: the firmware's 1-axis wheel, its encoder's half range HALF_RANGE_MM of rim;
+# MODEL=sidewinder-ff2: the HID PID model with the FF2's descriptor (ffboard.sh).
+ffboard_plug --hand "$HAND" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" --half-range "${HALF_RANGE_MM:-50}" || exit 1
 THROUGH=${THROUGH:-hidraw}
 driver_before=$(ffboard_interface_driver)
 lab_wait_input "$FFB_USB_DEV" 10
@@ -34,7 +34,8 @@ as_player=""
 uncalibrated=""
 refused_status=null
 if [ "${UNCALIBRATED:-0}" = 1 ]; then
-  cp -r "$CALIBRATION_SRC" /tmp/player/calibration && rm /tmp/player/calibration/devices/openffboard-2axis.toml || exit 1
+  # (the FF2 has no file to take away)
+  cp -r "$CALIBRATION_SRC" /tmp/player/calibration && rm -f /tmp/player/calibration/devices/openffboard-2axis.toml || exit 1
   chown -R 1000:1000 /tmp/player/calibration
   as_player="SANDPAPER_CALIBRATION=/tmp/player/calibration "
   uncalibrated="--uncalibrated"

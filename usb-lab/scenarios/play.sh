@@ -2,8 +2,9 @@
 # stick moved by the lab's scripted hand (HAND, SPEED_MM_S, EXTENT_MM). Writes /out/run.json (the
 # run's summary), /out/trace.csv (every tick), the device's logs (reports.csv, torque.csv,
 # state.json) and /out/play.json (the kernel driver before, during and after).
+# MAIN_CLASS=wheel: the firmware's 1-axis wheel, its encoder's half range HALF_RANGE_MM of rim.
 . /lab/ffboard.sh
-ffboard_plug --hand "$HAND" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" || exit 1
+ffboard_plug --hand "$HAND" --speed "$SPEED_MM_S" --extent "$EXTENT_MM" --half-range "${HALF_RANGE_MM:-50}" || exit 1
 driver_before=$(ffboard_interface_driver)
 
 "$SANDPAPER" run "$MATERIAL" --device usb --duration "$SECONDS" $LAB_RUN_GUARDS --json --trace /out/trace.csv \

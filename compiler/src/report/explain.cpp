@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <iomanip>
 #include <sstream>
@@ -44,7 +45,7 @@ std::string explain_text(const ResolvedMaterial& m, const schema::PatchProgram& 
      << "\n";
   if (device.wheel())
     os << "wheel     one axis along the rim: 1 mm of rim turns the wheel " << device.wheel_deg_per_mm() << " deg (rim radius "
-       << device.wheel_rim_radius_m * 1e3 << " mm, " << device.wheel_rotation_range_rad * 180 / 3.14159265358979323846
+       << device.wheel_rim_radius_m * 1e3 << " mm, " << device.wheel_rotation_range_rad * 180 / std::numbers::pi
        << " deg lock to lock); 1 N at the rim is " << device.wheel_rim_radius_m
        << " N*m; the patch's x lies along the rim, and forces across it (y) are not played\n";
   os << "\n";

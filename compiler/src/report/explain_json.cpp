@@ -2,6 +2,7 @@
 #include "sandpaper/compiler/explain_json.hpp"
 
 #include <algorithm>
+#include <numbers>
 #include <vector>
 
 #include "sandpaper/compiler/felt_at_speed.hpp"
@@ -56,7 +57,7 @@ nlohmann::json explain_json(const ResolvedMaterial& material, const schema::Patc
   // A wheel: how the patch's millimetres along x map onto its rotation.
   if (dev.wheel())
     j["wheel"] = {{"device", dev.name}, {"rim_radius_mm", dev.wheel_rim_radius_m * 1e3},
-                  {"rotation_range_deg", dev.wheel_rotation_range_rad * 180 / 3.14159265358979323846},
+                  {"rotation_range_deg", dev.wheel_rotation_range_rad * 180 / std::numbers::pi},
                   {"deg_per_mm", dev.wheel_deg_per_mm()}, {"torque_N_m_per_N", dev.wheel_rim_radius_m}};
   // An emulated device (sandpaper-1995): what its quantisation leaves of each force table.
   if (dev.emulated && dev.position_resolution_m > 0) {

@@ -268,20 +268,30 @@ void HidPidJoystick::create_effect(int axis) {
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, pid::kGain))
       write_field(b, ids_, *f, f->logical_max);
     // Trigger Button 0 lies outside its logical range 1..n: the null value, no trigger.
-    for (std::uint32_t zero : {pid::kTriggerButton, pid::kTriggerRepeatInterval, pid::kSamplePeriod, pid::kStartDelay,
-                               pid::kDirectionEnable})
+    for (std::uint32_t zero : {pid::kTriggerButton, pid::kTriggerRepeatInterval, pid::kSamplePeriod, pid::kStartDelay})
       if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, zero)) write_field(b, ids_, *f, 0);
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageX)) write_field(b, ids_, *f, axis == 0);
     if (const HidField* f = descriptor_.find(ReportType::Output, pid::kSetEffectReport, kUsageY)) write_field(b, ids_, *f, axis == 1);
-    // Direction Enable clear: Axes Enable picks the axis, and the OpenFFBoard scales the enabled axis
-    // linearly by its direction ordinal, X by (dir - 18000) / 18000 and Y by -(dir - 18000) / 18000
-    // (HidFFB.cpp:316-317, directions 0..36000). The X effect's ordinal 1 at its logical maximum
-    // (360 degrees) and the Y effect's ordinal 2 at 0 give both axes the factor +1, so a positive
-    // magnitude means the same sense on both. (All ordinals 0, as before, gave X -1 and Y +1.) For
-    // a device that reads the ordinals as an angle, 360 and 0 degrees are the same direction.
+    // Two axes: Direction Enable set and one polar direction, X's effect at 90 degrees and Y's at
+    // 180, as Linux's hid-pidff sends every effect, so every HID PID joystick Linux plays reads it
+    // alike: the OpenFFBoard gives X sin(angle) and Y -cos(angle) (HidFFB.cpp:320-321), +1 on each
+    // effect's own axis and 0 on the other. Per-axis directions with Direction Enable clear are read
+    // one way by the OpenFFBoard (linearly, HidFFB.cpp) and another by a device that takes them as
+    // angles (the lab's SideWinder model), which then gives X nothing.
+    // One axis (a wheel): Axes Enable X alone with Direction Enable clear, and the ordinal at its
+    // logical maximum, which the OpenFFBoard's wheel reads as the factor +1; its 1-axis descriptor
+    // puts Direction Enable where FFBWheel does not look for it (docs/DEVICES.md, "A wheel").
+    const HidField* direction_enable = descriptor_.find(ReportType::Output, pid::kSetEffectReport, pid::kDirectionEnable);
+    const bool polar = axes_ == 2 && direction_enable != nullptr && direction_enable->logical_max >= 1;
+    if (direction_enable) write_field(b, ids_, *direction_enable, polar ? 1 : 0);
     // The ordinals also name Type Specific Block Offset fields: only those under Direction count.
+    // Ordinal 1 spans a full turn over its logical range (as hid-pidff rescales 0..0xFFFF onto it).
     for (const HidField* f : descriptor_.find_all(ReportType::Output, pid::kSetEffectReport, usage(kOrdinalPage, 1)))
-      if (f->parent_usage == pid::kDirection) write_field(b, ids_, *f, axis == 0 ? f->logical_max : 0);
+      if (f->parent_usage == pid::kDirection) {
+        const double turn = static_cast<double>(f->logical_max - f->logical_min);
+        const auto angle = [&](double degrees) { return f->logical_min + static_cast<std::int64_t>(std::lround(turn * degrees / 360)); };
+        write_field(b, ids_, *f, polar ? angle(axis == 0 ? 90 : 180) : axis == 0 ? f->logical_max : 0);
+      }
     const UsbStatus s = write_open(report(b, descriptor_.report_bytes(ReportType::Output, index.report_id)));
     if (s != UsbStatus::Ok) fail_step(s, "Set Effect", ReportType::Output, index.report_id, pid::kSetEffectReport);
   }

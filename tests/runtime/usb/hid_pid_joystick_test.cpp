@@ -43,11 +43,12 @@ void expect_steps(const std::vector<Step>& got, const std::vector<Step>& want) {
 }
 
 // Set Effect (report 1): block, type 1 (Constant Force), duration 0xFFFF (infinite), trigger repeat,
-// sample period and start delay 0, gain 255, trigger button 0 (none), axes enable, direction
-// ordinals: the X effect's ordinal 1 at 36000 (0x8CA0), everything else 0.
+// sample period and start delay 0, gain 255, trigger button 0 (none), axes enable with Direction
+// Enable (0x04), and one polar direction in ordinal 1 (0..36000 hundredths of a degree): the X
+// effect at 90 degrees (9000, 0x2328), the Y effect at 180 (18000, 0x4650), as hid-pidff sends them.
 Bytes set_effect(std::uint8_t block, std::uint8_t axes) {
-  const std::uint8_t lo = axes == 0x01 ? 0xA0 : 0, hi = axes == 0x01 ? 0x8C : 0;
-  return {0x01, block, 0x01, 0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0xFF, 0x00, axes, lo, hi, 0, 0};
+  const std::uint8_t lo = axes == 0x01 ? 0x28 : 0x50, hi = axes == 0x01 ? 0x23 : 0x46;
+  return {0x01, block, 0x01, 0xFF, 0xFF, 0, 0, 0, 0, 0, 0, 0xFF, 0x00, static_cast<std::uint8_t>(axes | 0x04), lo, hi, 0, 0};
 }
 
 const std::vector<Step> kOpen = {

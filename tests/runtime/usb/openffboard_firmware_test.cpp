@@ -5,8 +5,10 @@
 // report ID as byte 0. The expectations are the firmware's, not the driver's.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -53,9 +55,15 @@ std::vector<Bytes> outputs_with_id(const FakeTransport& t, std::uint8_t id, Op o
   return out;
 }
 
-// The linear axis factor the firmware gives a Set Effect with Direction Enable clear (HidFFB.cpp:316-317).
+// The axis factor the firmware gives a Set Effect (HidFFB.cpp:320-321): with Direction Enable,
+// sin(angle) to X and -cos(angle) to Y of directionX (hundredths of a degree); without it, each
+// enabled axis linearly by its own direction, X (dir - 18000) / 18000, Y -(dir - 18000) / 18000.
 double axis_factor(const Bytes& set_effect, int axis) {
   const std::uint8_t enable = set_effect[13];
+  if (enable & 0x04) {
+    const double angle = u16(set_effect, 14) * std::numbers::pi / 18000;
+    return axis == 0 ? std::sin(angle) : -std::cos(angle);
+  }
   if (!(enable & (1 << axis))) return 0;
   const double dir = axis == 0 ? u16(set_effect, 14) : u16(set_effect, 16);
   return axis == 0 ? (dir - 18000) / 18000 : -(dir - 18000) / 18000;
@@ -109,15 +117,16 @@ TEST(OpenFFBoardFirmware, EffectsAreConstantForcesOnOneAxisEachWithTheSameSense)
     EXPECT_EQ(u16(e, 3), 0xFFFF);             // duration: infinite (:164; HidFFB.cpp:324-328)
     EXPECT_EQ(u16(e, 9), 0);                  // startDelay (:167)
     EXPECT_EQ(e[11], 255);                    // gain: x 255/255 (:168)
-    EXPECT_EQ(e[13] & 0x04, 0);               // Direction Enable clear: per-axis factors (:170)
-    EXPECT_EQ(e[13] & 0x03, 1 << a);          // enableAxis: this axis only (X = 1, Y = 2)
+    EXPECT_EQ(e[13] & 0x04, 0x04);            // Direction Enable: one polar direction (:170), as hid-pidff sends
+    EXPECT_EQ(e[13] & 0x03, 1 << a);          // enableAxis: this axis (ignored under Direction Enable)
+    EXPECT_EQ(u16(e, 14), a == 0 ? 9000 : 18000);  // directionX: 90 degrees for X, 180 for Y (:171)
   }
-  // The firmware's factor for each effect's own axis (HidFFB.cpp:316-317): +1 on both axes, so one
+  // The firmware's factor for each effect's own axis (HidFFB.cpp:320-321): +1 on both axes, so one
   // sign convention holds for X and Y; the other axis gets 0.
-  EXPECT_DOUBLE_EQ(axis_factor(effects[0], 0), 1.0);
-  EXPECT_DOUBLE_EQ(axis_factor(effects[0], 1), 0.0);
-  EXPECT_DOUBLE_EQ(axis_factor(effects[1], 1), 1.0);
-  EXPECT_DOUBLE_EQ(axis_factor(effects[1], 0), 0.0);
+  EXPECT_NEAR(axis_factor(effects[0], 0), 1.0, 1e-12);
+  EXPECT_NEAR(axis_factor(effects[0], 1), 0.0, 1e-12);
+  EXPECT_NEAR(axis_factor(effects[1], 1), 1.0, 1e-12);
+  EXPECT_NEAR(axis_factor(effects[1], 0), 0.0, 1e-12);
   // FFB_EffOp_Data_t (ffb_defs.h:264-267), HID_ID_EFOPREP 0x0A: state 1 = start (HidFFB.cpp:389-413).
   const auto ops = outputs_with_id(*t, 0x0A);
   ASSERT_GE(ops.size(), 2u);
