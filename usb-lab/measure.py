@@ -23,6 +23,16 @@ Definitions (docs/USB_PID.md "In the lab"):
 - commanded_peak_N: the same mean over the host's commanded forces alone.
 - position_rate_hz: how often the host's position changed during the steady play: the rate its
   ticks read the grating at (the lab's bus is slower than a real one; docs/USB_PID.md).
+- wall_gaps_m: [(gap, count)], the gaps along the scan axis between successive positions the ticks
+  read on a ridge's wall (either end commanded over a tenth of the run's largest |F| on that axis),
+  in the steady play, to 1 um. Where a wall's peak falls decides how much of it the ticks read, and
+  it falls in a gap with odds in proportion to the gap's length. The lab's positions are not evenly
+  spaced (they reach the ticks 1, 2 or 3 ms apart) and are farther apart on the walls than between
+  them (the lab's hand moves with the firmware's control steps, which the guest runs unevenly), so
+  no one rate stands for them: predicted_peaks_over_gaps weighs explain's figure for each gap.
+- changes_sent: of the changes of the ticks' command on the scan axis in the steady play, the
+  fraction that reached the device as a report (the driver sends the latest value when the bus
+  lets it, so a bus that keeps up sends each one, and one that does not sends fewer).
 - command_rate_hz: how often new magnitudes reached the firmware's motor while the ticks commanded
   a force on the scan axis: the reports of the steady play carrying a non-zero magnitude that the
   firmware applied (not overwritten by the next before its update), per second of ticks whose
@@ -294,6 +304,21 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
     positions = [(x, y) for _, x, y, _, _ in trace]
     steady_positions = [p for (t, _), p in zip(ticks, positions) if t >= steady_start]
     changes = sum(1 for p, q in zip(steady_positions, steady_positions[1:]) if p != q)
+    changed = sum(1 for a, b in zip(steady_ticks, steady_ticks[1:])
+                  if command(scan_axis, a[1][scan_axis]) != command(scan_axis, b[1][scan_axis]))
+    sent = sum(1 for t, _ in per_axis_reports[scan_axis] if steady_start <= t <= play_end)
+    # Gaps between successive positions the ticks read on the walls: from one change of position to
+    # the next, kept when the force at either end is a wall's.
+    on_wall = 0.1 * max((abs(f[scan_axis]) for _, f in steady_ticks), default=0.0)
+    wall_gaps = {}
+    read = [(p[scan_axis], f[scan_axis]) for (t, f), p in zip(ticks, positions) if t >= steady_start]
+    last = 0
+    for i in range(1, len(read)):
+        if read[i][0] != read[last][0]:
+            if on_wall > 0 and max(abs(read[i][1]), abs(read[last][1])) > on_wall:
+                um = round(abs(read[i][0] - read[last][0]) * 1e6)
+                wall_gaps[um] = wall_gaps.get(um, 0) + 1
+            last = i
     steady_s = (play_end - steady_start) * 1e-9
     # The hand's speed as the ticks saw it on the guest's clock: the median over 50 ms windows of
     # the steady play (a scan's turns are a few of them).
@@ -314,6 +339,8 @@ def measure(run, trace, reports, torques, command, torque_N, scan_axis=0, fade_i
         "ridges": len(ridges),
         "commanded_peak_N": mean_ridge_peak([f[scan_axis] for _, f in steady_ticks]),
         "position_rate_hz": changes / steady_s if steady_s > 0 else None,
+        "wall_gaps_m": sorted((um * 1e-6, n) for um, n in wall_gaps.items() if um > 0),
+        "changes_sent": sent / changed if changed else None,
         "command_rate_hz": forcing_applied / (forcing_ns * 1e-9) if forcing_ns > 0 else None,
         "command_median_gap_ms": command_gap_ns * 1e-6 if command_gap_ns else None,
         "hand_speed_m_s": percentile(speeds, 0.5),
@@ -332,6 +359,44 @@ def rates_on_the_firmwares_clock(m: dict, speed_mm_s: float) -> tuple:
     hand = m.get("hand_speed_m_s")
     scale = speed_mm_s * 1e-3 / hand if hand else 1.0
     return tuple(m[k] * scale if m.get(k) else None for k in ("position_rate_hz", "command_rate_hz"))
+
+
+def predicted_peaks_over_gaps(sandpaper: Path, material: Path, device: str, speed_mm_s: float, m: dict) -> dict:
+    """explain's prediction for the positions `m` (measure()'s result) read on the walls: for each
+    gap g of m["wall_gaps_m"], explain's entry with evenly spaced positions g apart (position rate
+    speed / g on the firmware's clock, where the hand moves at its nominal speed), averaged with
+    weights g x count (a wall's peak falls in a gap in proportion to its length). Without wall gaps,
+    explain's entry at the run's position rate. Commands: when the bus sent at least 95 % of the
+    ticks' changes (m["changes_sent"]), the device file's bus interval, as explain assumes (the
+    driver sends each change at the next frame, so commands follow the positions, not a clock of
+    their own); else the run's command rate. The mean of commanded_peak_N, device_peak_N and
+    damping_N; "gaps": how many gaps were weighed; "command_rate_hz": the rate given to explain
+    (None: the bus interval)."""
+    position_hz, command_hz = rates_on_the_firmwares_clock(m, speed_mm_s)
+    if (m.get("changes_sent") or 0) >= 0.95:
+        command_hz = None
+    gaps = m.get("wall_gaps_m") or []
+    if not gaps:
+        entry = predicted_device_peak(sandpaper, material, device, speed_mm_s, position_hz, command_hz)
+        return {**entry, "gaps": 0, "command_rate_hz": command_hz}
+    # Gaps within 2 % of each other are one class: explain's answer changes little across them,
+    # and each class is one explain run.
+    classes = []
+    for g, n in sorted(gaps):
+        if classes and g <= classes[-1][0] * 1.02:
+            c = classes[-1]
+            c[1] += g * n
+            c[2] += n
+        else:
+            classes.append([g, g * n, n])
+    total = sum(c[1] for c in classes)
+    mean = {"commanded_peak_N": 0.0, "device_peak_N": 0.0, "damping_N": 0.0}
+    for _, weight, n in classes:
+        g = weight / n  # the class's mean gap
+        entry = predicted_device_peak(sandpaper, material, device, speed_mm_s, speed_mm_s * 1e-3 / g, command_hz)
+        for k in mean:
+            mean[k] += weight / total * entry[k]
+    return {**mean, "gaps": sum(n for _, n in gaps), "command_rate_hz": command_hz}
 
 
 def predicted_device_peak(sandpaper: Path, material: Path, device: str, speed_mm_s: float,

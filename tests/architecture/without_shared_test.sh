@@ -44,7 +44,7 @@ grep 'USB lab: off' "$tmp/configure.log" | grep -q -- '-DSANDPAPER_OPENFFBOARD_D
 "$ctest" --test-dir "$copy/build" -R "^(usb-lab\.|architecture\.include_arrows$)" >"$tmp/ctest.log" 2>&1
 for t in enumerate bus play hidraw evdev direction studio experiment fault-unplug fault-reset fault-stale fault-sigint fault-stall fault-late \
     hidraw-unplug hidraw-reset hidraw-stale hidraw-sigint evdev-unplug evdev-reset evdev-sigint evdev-uncalibrated \
-    wheel-hidraw wheel-evdev wheel-usb wheel-evdev-unplug sidewinder-evdev firmware hid_pid_device; do
+    wheel-hidraw wheel-evdev wheel-usb wheel-evdev-unplug sidewinder-evdev firmware hid_pid_device scripted_hand; do
   grep -qE "usb-lab\.$t \(Disabled\)" "$tmp/ctest.log" && ok "the summary names usb-lab.$t as not run" \
     || bad "usb-lab.$t is not named as not run: $(tail -5 "$tmp/ctest.log")"
 done

@@ -299,18 +299,19 @@ def check_measured(build: Path, where: Path, speed: int, run: dict, device: str 
     m = measure.measure(run, measure.read_trace(where / "trace.csv"), measure.read_reports(where / "reports.csv"),
                         measure.read_torques(where / "torque.csv"), command=COMMAND, torque_N=HANDLE_FORCE_N,
                         fade_in_s=FADE_IN_S)
-    position_hz, command_hz = measure.rates_on_the_firmwares_clock(m, speed)
-    predicted = measure.predicted_device_peak(build / "bin/sandpaper", REPO / "examples/corduroy.hmat",
-                                              device, speed, position_hz, command_hz)
+    predicted = measure.predicted_peaks_over_gaps(build / "bin/sandpaper", REPO / "examples/corduroy.hmat",
+                                                  device, speed, m)
     missed, dropped = steps_missed(where), timer_dropped(where)
     print(f"{speed} mm/s: " + json.dumps({**{k: m[k] for k in (
         "received_hz", "updates_hz", "latency_ms", "firmware_peak_N", "ridges", "commanded_peak_N",
-        "position_rate_hz", "command_rate_hz", "command_median_gap_ms", "rms_error_N", "unmatched_reports", "hand_speed_m_s")},
+        "position_rate_hz", "command_rate_hz", "command_median_gap_ms", "changes_sent", "rms_error_N", "unmatched_reports",
+        "hand_speed_m_s")},
         "timer_dropped": dropped, "steps_missed": missed,
         "predicted": predicted}), flush=True)
-    # The "make it good" figure: explain's prediction through the device's chain (positions to
-    # the ticks, commands over the bus at the rates this run measured, on the firmware's clock;
-    # the firmware's update rate and damper from the device file's [firmware]).
+    # The "make it good" figure: explain's prediction through the device's chain for the positions
+    # this run's ticks read on the walls (measure.predicted_peaks_over_gaps: each gap between them
+    # weighed; commands at the bus's interval when the bus kept up, else at the rate it managed; the
+    # firmware's update rate and damper from the device file's [firmware]).
     # A mean over fewer than 20 ridges is not a measurement, and a starved guest's is of the host's
     # load (in one CI run: positions at 115-121 Hz, not ~750, and 11 % off at 50 mm/s).
     if dropped > STARVED_TIMER_DROPPED or missed > STARVED_STEPS_MISSED or m["ridges"] < 20:

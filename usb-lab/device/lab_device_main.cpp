@@ -35,8 +35,8 @@ namespace {
 // and calls `every_10ms` every 10 ms of the host's clock until `stop`.
 void drive_stick(OpenFFBoardFirmware& firmware, const HandPath& path, double half_range_m, const std::atomic<bool>& stop,
                  const std::function<void()>& every_10ms) {
-  firmware.move_stick([path, half_range_m](double t_s) {
-    const HandPosition p = hand_position(path, t_s);
+  firmware.move_stick([hand = ScriptedHand(path), half_range_m](double t_s) mutable {
+    const HandPosition p = hand.at(t_s);
     return std::array<double, 2>{p.x_m / half_range_m, p.y_m / half_range_m};
   });
   timespec next{};
@@ -58,6 +58,7 @@ void drive_stick(OpenFFBoardFirmware& firmware, const HandPath& path, double hal
 // hand), and `every_10ms` runs every tenth step, until `stop`.
 void drive_model_stick(HidPidDevice& model, const HandPath& path, double half_range_m, const std::atomic<bool>& stop,
                        const std::function<void()>& every_10ms) {
+  ScriptedHand hand(path);
   timespec start{}, next{};
   clock_gettime(CLOCK_MONOTONIC, &start);
   next = start;
@@ -65,7 +66,7 @@ void drive_model_stick(HidPidDevice& model, const HandPath& path, double half_ra
     timespec now{};
     clock_gettime(CLOCK_MONOTONIC, &now);
     const double t_s = static_cast<double>(now.tv_sec - start.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec - start.tv_nsec);
-    const HandPosition p = hand_position(path, t_s);
+    const HandPosition p = hand.at(t_s);
     model.set_position(0, p.x_m / half_range_m);
     model.set_position(1, p.y_m / half_range_m);
     if (step % 10 == 0) every_10ms();
