@@ -46,13 +46,13 @@ if [ -f "$core/CMakeCache.txt" ]; then
   for t in sandpaper sandpaper-play sandpaper_api sandpaper_player compiler_tests runtime_tests; do
     [ -n "$(find "$core" -type d -name "$t.dir" -print -quit)" ] && ok "core builds $t" || bad "core has no target $t"
   done
-  for t in sandpaper_curation sandpaper_catalog sandpaper_studio sandpaper_experiment sandpaper_lsp sandpaper_gltf sandpaper_http; do
+  for t in sandpaper_curation sandpaper_catalog sandpaper_studio sandpaper_experiment sandpaper_lsp sandpaper_gltf sandpaper_http sandpaper_shapes; do
     [ -n "$(find "$core" -type d -name "$t.dir" -print -quit)" ] && bad "core builds $t" || ok "core leaves out $t"
   done
 fi
 
 # Each option off alone; a room another needs takes that one with it (a note, not an error).
-for opt in CURATION LSP GLTF STUDIO EXPERIMENTS PYTHON USB_LAB; do
+for opt in CURATION LSP GLTF STUDIO EXPERIMENTS PYTHON USB_LAB SHAPES; do
   dir=$tmp/no-$opt
   if "$cmake" -S "$src" --preset release -B "$dir" "-DSANDPAPER_$opt=OFF" >"$dir.log" 2>&1; then
     ok "SANDPAPER_$opt=OFF alone configures and generates its build"
