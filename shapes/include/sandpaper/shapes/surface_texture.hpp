@@ -1,0 +1,45 @@
+#pragma once
+// A material's lateral-force texture laid on a surface through the mesh's UVs: the thesis' gradient
+// algorithm (F = -k grad h, Minsky 1995, 3.4) on the surface, "haptic texture mapping" (7.7.1).
+// A point p on a triangle has texture coordinates (u, v) and patch coordinates
+// s = ((u - 0.5) W, (0.5 - v) H) (m), the UV convention of the patch's glTF export (docs/GLTF.md),
+// W x H the patch metres per unit of u and v. The height field is h(s(p)), so its surface gradient
+// is (ds/dp)^T grad_s h and the force is F = (ds/dp)^T F_patch(s): the patch's own texture force,
+// carried onto the triangle's plane by the UV gradient (Mesh's TriangleFrame::grad_u, grad_v).
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/schema/patch_program.hpp"
+#include "sandpaper/shapes/mesh.hpp"
+
+namespace sandpaper::shapes {
+
+class SurfaceTexture {
+ public:
+  // The texture terms (gratings and height fields) of `program`, off the servo thread; uv_size_m:
+  // W and H (m, both > 0), by default the program's patch size. The texture goes on past the
+  // patch's rectangle as its own terms do (a grating by its period, a repeating height field by
+  // its repeat; a height field that does not repeat is flat there). Throws std::invalid_argument
+  // when the program has no texture term, or the evaluator refuses it (PatchEvaluator's list).
+  static SurfaceTexture for_program_nonrt(const schema::PatchProgram& program,
+                                          std::optional<glm::dvec2> uv_size_m = std::nullopt);
+
+  // Patch coordinates (m) of point_m (m), taken onto `triangle`'s plane, through its UVs.
+  glm::dvec2 patch_position_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) const noexcept;
+  // The texture's force (N) at point_m on `triangle`: in the triangle's plane; zero on a triangle
+  // without UVs (its UV gradient is zero). Real time: no allocation, lock, I/O or exception.
+  glm::dvec3 force_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) noexcept;
+
+ private:
+  SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, glm::dvec2 uv_size_m);
+  std::unique_ptr<schema::PatchProgram> texture_;  // owned, so that the evaluator's reference outlives moves
+  std::unique_ptr<runtime::PatchEvaluator> evaluator_;
+  glm::dvec2 uv_size_m_;
+};
+
+}  // namespace sandpaper::shapes

@@ -1,0 +1,53 @@
+#include "sandpaper/shapes/surface_texture.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <variant>
+
+#include <glm/geometric.hpp>
+
+namespace sandpaper::shapes {
+
+SurfaceTexture SurfaceTexture::for_program_nonrt(const schema::PatchProgram& program, std::optional<glm::dvec2> uv_size_m) {
+  const glm::dvec2 size = uv_size_m.value_or(glm::dvec2{program.size_m[0], program.size_m[1]});
+  if (!(size.x > 0 && size.y > 0 && std::isfinite(size.x) && std::isfinite(size.y)))
+    throw std::invalid_argument("surface texture: the patch metres per unit of u and v must be positive");
+  auto texture = std::make_unique<schema::PatchProgram>(program);
+  texture->terms.clear();
+  for (const auto& t : program.terms)
+    if (std::holds_alternative<schema::GratingTerm>(t) || std::holds_alternative<schema::HeightFieldTerm>(t))
+      texture->terms.push_back(t);
+  if (texture->terms.empty())
+    throw std::invalid_argument("surface texture: the material has no texture (grating or height field) to lay on a surface");
+  // The evaluator sends no force outside the patch's rectangle (one patch under the cursor,
+  // Appendix B); on a surface the texture goes on, as far as its own terms do.
+  texture->size_m[0] = texture->size_m[1] = 1e9;
+  return SurfaceTexture(std::move(texture), size);
+}
+
+SurfaceTexture::SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, glm::dvec2 uv_size_m)
+    : texture_(std::move(texture)),
+      evaluator_(std::make_unique<runtime::PatchEvaluator>(*texture_)),
+      uv_size_m_(uv_size_m) {}
+
+glm::dvec2 SurfaceTexture::patch_position_rt(const Mesh& mesh, std::uint32_t triangle,
+                                             const glm::dvec3& point_m) const noexcept {
+  const TriangleFrame& f = mesh.frame(triangle);
+  const glm::dvec2 uv0 = mesh.has_uvs() ? mesh.uvs()[mesh.triangles()[triangle][0]] : glm::dvec2{0.0};
+  // The UV gradient's rows lie in the plane, so the point's height above it does not count.
+  const glm::dvec3 w = point_m - mesh.vertex0(triangle);
+  const double u = uv0.x + glm::dot(f.grad_u, w), v = uv0.y + glm::dot(f.grad_v, w);
+  return {(u - 0.5) * uv_size_m_.x, (0.5 - v) * uv_size_m_.y};
+}
+
+glm::dvec3 SurfaceTexture::force_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) noexcept {
+  runtime::HandState hand;
+  hand.position_m = patch_position_rt(mesh, triangle, point_m);
+  const glm::dvec2 f = evaluator_->force_rt(hand, 0.0);
+  // (ds/dp)^T f, with ds/dp's rows W grad_u and -H grad_v.
+  const TriangleFrame& t = mesh.frame(triangle);
+  return f.x * uv_size_m_.x * t.grad_u - f.y * uv_size_m_.y * t.grad_v;
+}
+
+}  // namespace sandpaper::shapes
