@@ -1,5 +1,5 @@
-// Cost of one ProxyRenderer::update_rt on a sphere of about 1k, 10k and 100k triangles (issue 74:
-// it must grow at most logarithmically with the triangle count): the device moves on a circle of
+// Cost of one ProxyRenderer::update_rt on a sphere of about 1k, 10k and 100k triangles (it must grow
+// at most logarithmically with the triangle count; docs/performance.md): the device moves on a circle of
 // 5 mm radius pressed 1 mm into the surface, a turn every 1000 ticks (31 um a tick, 31 mm/s at
 // 1 kHz). BM_ProxyUpdate reports the mean; BM_ProxyUpdatePercentiles times each tick on its own
 // (steady_clock, ~20 ns of its own per reading) and reports p50 and p99 as counters.
