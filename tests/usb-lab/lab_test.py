@@ -317,7 +317,7 @@ def check_measured(build: Path, where: Path, speed: int, run: dict, device: str 
     if dropped > STARVED_TIMER_DROPPED or missed > STARVED_STEPS_MISSED or m["ridges"] < 20:
         print(f"{speed} mm/s: NOT COMPARED: the guest was starved (the firmware's timer dropped "
               f"{100 * dropped:.1f} % of its updates, {100 * missed:.1f} % of its periods ran no control step; "
-              f"positions at {m['position_rate_hz']:.0f} Hz; "
+              f"positions at {m['position_rate_hz'] or 0:.0f} Hz; "
               f"{m['ridges']} ridges in the steady play)", flush=True)
     else:
         check(m["firmware_peak_N"] is not None
