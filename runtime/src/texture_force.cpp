@@ -5,12 +5,17 @@
 
 namespace sandpaper::runtime {
 
-std::optional<TextureForce> TextureForce::for_program(const schema::PatchProgram& program) {
-  auto texture = std::make_unique<schema::PatchProgram>(program);
-  texture->terms.clear();
+schema::PatchProgram texture_terms_of(const schema::PatchProgram& program) {
+  schema::PatchProgram texture = program;
+  texture.terms.clear();
   for (const auto& t : program.terms)
     if (std::holds_alternative<schema::GratingTerm>(t) || std::holds_alternative<schema::HeightFieldTerm>(t))
-      texture->terms.push_back(t);
+      texture.terms.push_back(t);
+  return texture;
+}
+
+std::optional<TextureForce> TextureForce::for_program(const schema::PatchProgram& program) {
+  auto texture = std::make_unique<schema::PatchProgram>(texture_terms_of(program));
   if (texture->terms.empty()) return std::nullopt;
   return TextureForce(std::move(texture));
 }

@@ -3,9 +3,10 @@
 #include <cmath>
 #include <stdexcept>
 #include <utility>
-#include <variant>
 
 #include <glm/geometric.hpp>
+
+#include "sandpaper/runtime/texture_force.hpp"
 
 namespace sandpaper::shapes {
 
@@ -13,11 +14,7 @@ SurfaceTexture SurfaceTexture::for_program_nonrt(const schema::PatchProgram& pro
   const glm::dvec2 size = uv_size_m.value_or(glm::dvec2{program.size_m[0], program.size_m[1]});
   if (!(size.x > 0 && size.y > 0 && std::isfinite(size.x) && std::isfinite(size.y)))
     throw std::invalid_argument("surface texture: the patch metres per unit of u and v must be positive");
-  auto texture = std::make_unique<schema::PatchProgram>(program);
-  texture->terms.clear();
-  for (const auto& t : program.terms)
-    if (std::holds_alternative<schema::GratingTerm>(t) || std::holds_alternative<schema::HeightFieldTerm>(t))
-      texture->terms.push_back(t);
+  auto texture = std::make_unique<schema::PatchProgram>(runtime::texture_terms_of(program));
   if (texture->terms.empty())
     throw std::invalid_argument("surface texture: the material has no texture (grating or height field) to lay on a surface");
   // The evaluator sends no force outside the patch's rectangle (one patch under the cursor,

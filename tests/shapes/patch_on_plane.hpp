@@ -39,6 +39,13 @@ inline Mesh laid(const schema::PatchProgram& p, glm::dvec3 ex, glm::dvec3 ey, do
 // Which of laid()'s two triangles holds patch point s (the diagonal runs from corner to corner).
 inline std::uint32_t triangle_under(const schema::PatchProgram& p, glm::dvec2 s) { return s.y / p.size_m[1] > s.x / p.size_m[0] ? 1 : 0; }
 
+// The 2-D patch's force (N) with the hand still at s (m, from the patch centre).
+inline glm::dvec2 patch_force(runtime::PatchEvaluator& patch, glm::dvec2 s) {
+  runtime::HandState hand;
+  hand.position_m = s;
+  return patch.force_rt(hand, 0);
+}
+
 // 20 points of the patch where its force is more than a tenth of the compiled maximum (on the walls
 // of a grating, on the slopes of a height field), drawn with a fixed seed.
 inline std::vector<glm::dvec2> points_with_force(const schema::PatchProgram& p) {
@@ -47,9 +54,8 @@ inline std::vector<glm::dvec2> points_with_force(const schema::PatchProgram& p) 
   std::uniform_real_distribution<double> x(-0.45 * p.size_m[0], 0.45 * p.size_m[0]), y(-0.45 * p.size_m[1], 0.45 * p.size_m[1]);
   std::vector<glm::dvec2> out;
   while (out.size() < 20) {
-    runtime::HandState hand;
-    hand.position_m = {x(rng), y(rng)};
-    if (glm::length(patch.force_rt(hand, 0)) > 0.1 * p.max_lateral_force_N) out.push_back(hand.position_m);
+    const glm::dvec2 s{x(rng), y(rng)};
+    if (glm::length(patch_force(patch, s)) > 0.1 * p.max_lateral_force_N) out.push_back(s);
   }
   return out;
 }

@@ -28,9 +28,7 @@ TEST(SurfaceTexture, AFlatPlaneGivesThePatchsForceAtTwentyPoints) {
     auto texture = SurfaceTexture::for_program_nonrt(p);
     runtime::PatchEvaluator patch(p);
     for (const glm::dvec2 s : points_with_force(p)) {
-      runtime::HandState hand;
-      hand.position_m = s;
-      const glm::dvec2 f2 = patch.force_rt(hand, 0);
+      const glm::dvec2 f2 = patch_force(patch, s);
       const glm::dvec3 f3 = texture.force_rt(mesh, triangle_under(p, s), {s.x, s.y, 0.0});
       EXPECT_LE(glm::length(glm::dvec2{f3.x, f3.y} - f2), 0.01 * glm::length(f2)) << text << " at " << s.x << ", " << s.y;
       EXPECT_EQ(f3.z, 0.0);
@@ -48,9 +46,7 @@ TEST(SurfaceTexture, ATiltedPlaneCarriesTheForceInItsOwnAxes) {
   runtime::PatchEvaluator patch(p);
   const glm::dvec3 n = glm::cross(ex, ey);
   for (const glm::dvec2 s : points_with_force(p)) {
-    runtime::HandState hand;
-    hand.position_m = s;
-    const glm::dvec2 f2 = patch.force_rt(hand, 0);
+    const glm::dvec2 f2 = patch_force(patch, s);
     // Above the surface by 2 mm: the point's foot on the plane is what counts.
     const glm::dvec3 at = s.x * ex + s.y * ey + 0.002 * n;
     const glm::dvec3 f3 = texture.force_rt(mesh, triangle_under(p, s), at);
@@ -68,9 +64,7 @@ TEST(SurfaceTexture, AStretchedTextureHasTheGradientOfItsStretchedHeights) {
   auto texture = SurfaceTexture::for_program_nonrt(p);
   runtime::PatchEvaluator patch(p);
   for (const glm::dvec2 s : points_with_force(p)) {
-    runtime::HandState hand;
-    hand.position_m = s;
-    const glm::dvec2 f2 = patch.force_rt(hand, 0);
+    const glm::dvec2 f2 = patch_force(patch, s);
     const glm::dvec3 f3 = texture.force_rt(mesh, triangle_under(p, s), {2 * s.x, s.y, 0.0});
     EXPECT_NEAR(f3.x, 0.5 * f2.x, 1e-9 + 1e-6 * std::abs(f2.x));
     EXPECT_NEAR(f3.y, f2.y, 1e-9 + 1e-6 * std::abs(f2.y));

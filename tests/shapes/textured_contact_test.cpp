@@ -36,9 +36,7 @@ TEST(TexturedContact, PressedIntoATexturedPlaneTheLateralForceIsThePatchs) {
     for (const glm::dvec2 s : points_with_force(p)) {
       contact.reset_rt({s.x, s.y, 0.002});
       const glm::dvec3 f = contact.update_rt({s.x, s.y, -d});
-      runtime::HandState hand;
-      hand.position_m = s;
-      const glm::dvec2 f2 = patch.force_rt(hand, 0);
+      const glm::dvec2 f2 = patch_force(patch, s);
       EXPECT_LE(glm::length(glm::dvec2{f.x, f.y} - f2), 0.01 * glm::length(f2)) << text << " at " << s.x << ", " << s.y;
       EXPECT_NEAR(f.z, k * d, 0.01 * k * d);
     }

@@ -15,6 +15,10 @@
 
 namespace sandpaper::runtime {
 
+// `program` with its texture terms alone (gratings and height fields, in their order), the rest of
+// it (patch size, limits) kept; its terms are empty when it has none.
+schema::PatchProgram texture_terms_of(const schema::PatchProgram& program);
+
 class TextureForce {
  public:
   // For the texture terms of `program` (grating, height field); nullopt when it has none.
