@@ -46,7 +46,7 @@ bin=$build/bin/${target}_fuzz
 # every seed to this length, so it must be at least the largest seed in fuzz/corpus/TARGET (checked
 # below): a cut SQLite file or TOML table only tests the reader's first page.
 case $target in
-  patch|workspace_program|array|gltf|catalog_record) max_len=65536 ;;
+  patch|workspace_program|array|gltf|gltf_scene|catalog_record) max_len=65536 ;;
   experiment_results|lsp_message|calibration|calibration_set|image) max_len=16384 ;;
   *) max_len=4096 ;;
 esac
@@ -69,6 +69,9 @@ case $target in
   hid_descriptor) dict=hid_descriptor ;;
   calibration_csv) dict=calibration_csv ;;
   page_answer) dict=page_answer ;;
+  scene_program) dict=scene_program ;;
+  scene_file) dict=scene_file ;;
+  gltf_scene) dict=gltf_scene ;;
   *) dict= ;;
 esac
 

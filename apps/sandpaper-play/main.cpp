@@ -16,6 +16,10 @@
 #include "sandpaper/calibration/calibration.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/workspace_io.hpp"
+#if SANDPAPER_WITH_SHAPES
+#include "../scene_run_report.hpp"
+#include "sandpaper/shapes/scene_io.hpp"
+#endif
 
 namespace {
 
@@ -25,6 +29,24 @@ int play_file(const std::string& file, const std::string& device, const std::str
               cli::PlayRequest& r, const CLI::App& app, double crossfade_ms) {
   const auto set_dir = calibration_dir.empty() ? calibration::default_calibration_dir() : std::filesystem::path(calibration_dir);
   auto set = calibration::CalibrationSet::load(set_dir);
+#if SANDPAPER_WITH_SHAPES
+  if (shapes::looks_like_scene_program_file(file)) {
+    // A scene is felt through a device of three axes; the only one with a driver is simulated.
+    if (device != "sim3d") {
+      std::cerr << "sandpaper-play: error: a scene program plays on --device sim3d (the simulated 3-DOF device; "
+                   "docs/SHAPES.md), not '" << device << "'\n";
+      return cli::kExitUsage;
+    }
+    const auto scene = shapes::read_scene_program_file(file);  // PatchFormatError: exit 1, below
+    if (scene.device != device) {
+      std::cerr << "sandpaper: error: " << file << " was compiled for device '" << scene.device << "', not '" << device
+                << "'; recompile it with --device " << device << "\n";
+      return cli::kExitUsage;
+    }
+    const auto play = shapes::play_scene_on_sim3d(scene, r.rate_hz, r.duration_s, r.speed_mm_s * 1e-3);
+    return cli::report_scene_run(scene, device, play, r.speed_mm_s, r.json) ? cli::kExitOk : cli::kExitBadInput;
+  }
+#endif
   const bool workspace = schema::looks_like_workspace_program_file(file);
   if (!workspace && !schema::looks_like_patch_file(file)) {
     std::cerr << "sandpaper-play: error: " << file
@@ -85,7 +107,7 @@ int main(int argc, char** argv) {
   std::string file, device = "sim", calibration_dir, library_dir;
   cli::PlayRequest r;
   double crossfade_ms = 2;
-  app.add_option("file", file, "patch program (.patch) or workspace program (.wsp) to play")->required();
+  app.add_option("file", file, "patch program (.patch), workspace program (.wsp) or scene program (.sp3, on --device sim3d) to play")->required();
   app.add_option("--device", device, "device the patch was compiled for (sim), or usb: the first HID PID joystick found (through libusb), or hidraw[:PATH]: the same through its hidraw node, or evdev[:PATH]: through its input event node (docs/DEVICES.md)")
       ->capture_default_str();
   app.add_option("--calibration", calibration_dir, "calibration folder (default: $SANDPAPER_CALIBRATION, $SANDPAPER_DATA_DIR/calibration, or the shipped calibration)");

@@ -124,6 +124,25 @@ int cmd_compile_gltf(const CommonOptions& o, const std::string& output);
 // program (as `inspect` shows it) and place; the material's layers are not in an asset.
 int cmd_explain_gltf(const CommonOptions& o);
 inline bool is_gltf_input(const CommonOptions& o) { return o.expression.empty() && compiler::is_gltf_path(o.file); }
+// 3-D scenes (cmd_scene.cpp, docs/SHAPES.md): a scene file (.hsc), or a glTF asset that is not one
+// `sandpaper export` wrote (docs/GLTF.md: those are patches and workspaces, read by cmd_import.cpp).
+bool is_scene_input(const CommonOptions& o);
+// `sandpaper explain SCENE`: every object, its surfaces, their contact and where each value came
+// from, and how each material's layers resolved. `compile SCENE -o OUT.sp3`: the scene program.
+int cmd_scene_explain(const CommonOptions& o);
+int cmd_scene_compile(const CommonOptions& o, const std::string& output);
+// `sandpaper preview SCENE -o DIR`: scene.png (scenes/scene_preview.hpp) and preview.json.
+int cmd_scene_preview(const CommonOptions& o, const std::string& out_dir, int side);
+// `sandpaper run SCENE --device sim3d` (cmd_scene_run.cpp): the simulated hand strokes each object;
+// exit 1 when the run gains energy or is unstable.
+int cmd_scene_run(const CommonOptions& o, const PlayRequest& r);
+// `sandpaper probe SCENE --from X,Y,Z --to X,Y,Z --steps N`: the device point moved along a segment
+// (mm, the scene's frame), the proxy settled at each step, the force (N) printed at each.
+struct ProbeOptions {
+  std::string from, to;  // "X,Y,Z" in mm
+  int steps = 10;
+};
+int cmd_probe(const CommonOptions& o, const ProbeOptions& p);
 // `sandpaper lsp`: the language server on stdin/stdout (editors/lsp, docs/EDITORS.md) until the
 // client's `exit`; 0 after a clean shutdown, 1 otherwise.
 int cmd_lsp(const CommonOptions& o);

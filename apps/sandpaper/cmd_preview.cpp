@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "cli.hpp"
+#include "subsystems.hpp"
 #include "sandpaper/catalog/preview.hpp"
 #include "sandpaper/schema/json_text.hpp"
 
@@ -21,6 +22,14 @@ int cmd_preview(const CommonOptions& o, const std::string& out_dir, int side) {
   if (std::filesystem::exists(out_dir) && !std::filesystem::is_directory(out_dir)) {
     std::cerr << "sandpaper preview: " << out_dir << " exists and is not a folder\n";
     return kExitUsage;
+  }
+  if (is_scene_input(o)) {
+#if SANDPAPER_WITH_SHAPES
+    return cmd_scene_preview(o, out_dir, side);
+#else
+    say_unbuilt("sandpaper preview " + o.file, kShapes);
+    return kExitUsage;
+#endif
   }
   if (is_workspace_input(o)) {
     std::cerr << "sandpaper preview: takes one material (.hmat, .patch or -e); a workspace's patches are previewed one "

@@ -37,12 +37,12 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
   std::error_code ec;
   const fs::path given(so.path);
   if (!fs::exists(given, ec)) {
-    std::cerr << "sandpaper studio: " << so.path << " does not exist; give a material (.hmat), a workspace (.hws) or a folder\n";
+    std::cerr << "sandpaper studio: " << so.path << " does not exist; give a material (.hmat), a workspace (.hws), a scene (.hsc) or a folder\n";
     return kExitUsage;
   }
   const bool folder = fs::is_directory(given, ec);
-  if (!folder && given.extension() != ".hmat" && given.extension() != ".hws") {
-    std::cerr << "sandpaper studio: " << so.path << " is not a material (.hmat), a workspace (.hws) or a folder\n";
+  if (!folder && given.extension() != ".hmat" && given.extension() != ".hws" && given.extension() != ".hsc") {
+    std::cerr << "sandpaper studio: " << so.path << " is not a material (.hmat), a workspace (.hws), a scene (.hsc) or a folder\n";
     return kExitUsage;
   }
   const fs::path root = fs::canonical(folder ? given : fs::absolute(given).parent_path());
@@ -88,7 +88,15 @@ int cmd_studio(const CommonOptions& o_in, const StudioOptions& so) {
   studio::Session session(compiler, *loop, root, previews);
   loop->start_nonrt();
   if (!first.empty()) {
-    const auto opened = session.open(first);
+    nlohmann::json opened;
+    try {
+      opened = session.open(first);
+    } catch (const studio::RequestError& e) {
+      // A scene in a studio built without the shapes room, or a file it cannot open: said once, and
+      // the studio starts on the folder.
+      std::cerr << "sandpaper studio: " << first << ": " << e.what() << "\n";
+      opened = {{"ok", true}};
+    }
     if (!opened["ok"].get<bool>()) {
       for (const auto& d : opened["diagnostics"])
         std::cerr << d["location"].get<std::string>() << ": " << d["severity"].get<std::string>() << "["

@@ -8,6 +8,10 @@
 #include "sandpaper/player/play_patch.hpp"
 #include "sandpaper/compiler/compile_json.hpp"
 #include "sandpaper/compiler/gltf_import.hpp"
+#if SANDPAPER_WITH_SHAPES && SANDPAPER_WITH_GLTF
+#include "sandpaper/compiler/gltf_document.hpp"
+#include "sandpaper/schema/input_limits.hpp"
+#endif
 #include "sandpaper/compiler/display_paths.hpp"
 #include "sandpaper/schema/json_text.hpp"
 #include "sandpaper/schema/patch_io.hpp"
@@ -68,6 +72,51 @@ std::optional<LoadedInput> load_input(const CommonOptions& o, const compiler::Co
   in.program = *r.program;
   in.compile = std::move(r);
   return in;
+}
+
+#if SANDPAPER_WITH_SHAPES && SANDPAPER_WITH_GLTF
+namespace {
+
+// Sandpaper's own export marks every haptic material with `extras.sandpaper` (its version, the
+// compiled numbers) and every visual material with its index; a scene from another tool, or one
+// bound by name (`extras.sandpaper.material`), has neither. An
+// asset that does not parse is left to the patch importer, whose errors name the problem as before.
+bool is_exported_patch_asset(const std::filesystem::path& path) {
+  try {
+    const std::string bytes = schema::read_input_file(path, compiler::kMaxGltfBytes);
+    const auto doc = compiler::GltfDocument::parse(bytes, path.string(), path.parent_path());
+    const auto& root = doc.root();
+    if (root.contains("extras") && root["extras"].is_object() && root["extras"].contains("sandpaper")) return true;
+    const auto* ext = compiler::gltf_optional_member(root, "extensions");
+    const auto* mpeg = ext ? compiler::gltf_optional_member(*ext, "MPEG_haptic_material") : nullptr;
+    const auto* materials = mpeg ? compiler::gltf_optional_member(*mpeg, "materials") : nullptr;
+    if (materials && materials->is_array())
+      for (const auto& m : *materials)
+        if (m.is_object() && m.contains("extras") && m["extras"].is_object() && m["extras"].contains("sandpaper")) return true;
+    // Its visual materials name their haptic material by index (`extras.sandpaper.hapticMaterialIndex`):
+    // an exported asset whose extension a pipeline dropped, which the patch importer explains (E0713).
+    if (const auto* visual = compiler::gltf_optional_member(root, "materials"); visual && visual->is_array())
+      for (const auto& m : *visual)
+        if (m.is_object() && m.contains("extras") && m["extras"].is_object() && m["extras"].contains("sandpaper") &&
+            m["extras"]["sandpaper"].is_object() && m["extras"]["sandpaper"].contains("hapticMaterialIndex"))
+          return true;
+    return false;
+  } catch (...) {
+    return true;
+  }
+}
+
+}  // namespace
+#endif
+
+bool is_scene_input(const CommonOptions& o) {
+  if (!o.expression.empty()) return false;
+  const auto ext = std::filesystem::path(o.file).extension();
+  if (ext == ".hsc") return true;
+#if SANDPAPER_WITH_SHAPES && SANDPAPER_WITH_GLTF
+  if (ext == ".gltf" || ext == ".glb") return !is_exported_patch_asset(o.file);
+#endif
+  return false;
 }
 
 runtime::DeviceLimits limits_of(const compiler::Compiler& c) { return runtime::limits_of(c.device()); }

@@ -21,6 +21,9 @@
 #include "sandpaper/schema/input_limits.hpp"
 #include "sandpaper/schema/patch_io.hpp"
 #include "sandpaper/schema/workspace_io.hpp"
+#if SANDPAPER_WITH_SHAPES
+#include "sandpaper/shapes/scene_io.hpp"
+#endif
 
 namespace {
 
@@ -161,6 +164,17 @@ int main(int argc, char** argv) {
   add_unbuilt_command(app, "export", kGltf);
 #endif
 
+#if SANDPAPER_WITH_SHAPES
+  auto* probe = app.add_subcommand("probe", "move the device point along a segment through a 3-D scene and print the force at each step (docs/SHAPES.md)");
+  add_common(probe, o, true);
+  ProbeOptions probe_opts;
+  probe->add_option("--from", probe_opts.from, "start of the segment, X,Y,Z in mm (the scene's frame: x right, y up, z toward the user)")->required();
+  probe->add_option("--to", probe_opts.to, "end of the segment, X,Y,Z in mm")->required();
+  probe->add_option("--steps", probe_opts.steps, "steps along the segment (the force is printed at steps + 1 points)")->capture_default_str();
+#else
+  add_unbuilt_command(app, "probe", kShapes);
+#endif
+
 #if SANDPAPER_WITH_STUDIO
   auto* studio = app.add_subcommand("studio", "serve Sandpaper Studio: edit, see and feel a material while it plays (docs/STUDIO.md)");
   StudioOptions studio_opts;
@@ -232,6 +246,14 @@ int main(int argc, char** argv) {
         }
         return cmd_dump(o, dump_stage);
       }
+      if (is_scene_input(o)) {
+#if SANDPAPER_WITH_SHAPES
+        return cmd_scene_compile(o, output);
+#else
+        say_unbuilt("sandpaper compile " + o.file, kShapes);
+        return kExitUsage;
+#endif
+      }
       if (is_gltf_input(o)) {
 #if SANDPAPER_WITH_GLTF
         return cmd_compile_gltf(o, output);
@@ -244,6 +266,14 @@ int main(int argc, char** argv) {
     }
     if (explain->parsed()) {
       if (!needs_input(explain)) return kExitUsage;
+      if (is_scene_input(o)) {
+#if SANDPAPER_WITH_SHAPES
+        return cmd_scene_explain(o);
+#else
+        say_unbuilt("sandpaper explain " + o.file, kShapes);
+        return kExitUsage;
+#endif
+      }
       if (is_gltf_input(o)) {
 #if SANDPAPER_WITH_GLTF
         return cmd_explain_gltf(o);
@@ -256,6 +286,14 @@ int main(int argc, char** argv) {
     }
     if (run->parsed()) {
       if (!needs_input(run)) return kExitUsage;
+      if (is_scene_input(o)) {
+#if SANDPAPER_WITH_SHAPES
+        return cmd_scene_run(o, play_request);
+#else
+        say_unbuilt("sandpaper run " + o.file, kShapes);
+        return kExitUsage;
+#endif
+      }
       if (is_workspace_input(o)) {
         if (run->count("--hand-model") || run->count("--replay")) {
           std::cerr << "sandpaper run: --hand-model and --replay play single materials; workspaces use the scripted hand\n";
@@ -269,7 +307,11 @@ int main(int argc, char** argv) {
       // A compiled program needs no compiler: the runtime-only player plays it in a process that
       // never maps the compiler's libraries (docs/performance.md, "A player that is only a runtime").
       if (!watch && o.expression.empty() && argc > 1 && std::string_view(argv[1]) == "run" &&
-          (sandpaper::schema::looks_like_patch_file(o.file) || sandpaper::schema::looks_like_workspace_program_file(o.file)))
+          (sandpaper::schema::looks_like_patch_file(o.file) || sandpaper::schema::looks_like_workspace_program_file(o.file)
+#if SANDPAPER_WITH_SHAPES
+           || sandpaper::shapes::looks_like_scene_program_file(o.file)
+#endif
+               ))
         exec_player(argc, argv);
       if (watch && !run->count("--duration")) play_request.duration_s = 0;
       play_request.live = play_request.live || isatty(STDERR_FILENO);
@@ -303,6 +345,12 @@ int main(int argc, char** argv) {
     if (studio->parsed()) {
       studio_opts.listen_given = studio->count("--listen") > 0;
       return cmd_studio(o, studio_opts);
+    }
+#endif
+#if SANDPAPER_WITH_SHAPES
+    if (probe->parsed()) {
+      if (!needs_input(probe)) return kExitUsage;
+      return cmd_probe(o, probe_opts);
     }
 #endif
     if (devices->parsed()) return udev_rules ? cmd_devices_udev_rules(o) : cmd_devices(o);

@@ -21,6 +21,7 @@ inline constexpr Subsystem kGltf{"glTF 2.0 import and export", "SANDPAPER_GLTF",
 inline constexpr Subsystem kStudio{"Sandpaper Studio", "SANDPAPER_STUDIO", "studio/"};
 inline constexpr Subsystem kLsp{"the language server", "SANDPAPER_LSP", "editors/lsp/"};
 inline constexpr Subsystem kExperiments{"the experiments with people", "SANDPAPER_EXPERIMENTS", "experiments/"};
+inline constexpr Subsystem kShapes{"3-D scenes (scene files, glTF scenes, the proxy renderer)", "SANDPAPER_SHAPES", "shapes/, scenes/"};
 
 // Registers `name` on `app` as a command that takes any arguments and only reports that `room` is missing.
 void add_unbuilt_command(CLI::App& app, const char* name, const Subsystem& room);

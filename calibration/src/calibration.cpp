@@ -207,6 +207,58 @@ AxisScale read_axis(const toml::node_view<const toml::node>& v) {
   return a;
 }
 
+// [workspace]: a circle or rectangle for a one- or two-axis device, a sphere or box for a
+// three-axis one (axes already read from [force]); a solid for a flat device, or the reverse, is a
+// unit of design slipped, and is named as such.
+void read_workspace(const Toml& f, DeviceCalibration& d, Problems& problems) {
+  const toml::table& c = f.doc;
+  const auto ws = c["workspace"];
+  const std::string shape = *ws["shape"].value<std::string>();
+  const bool solid = shape == "box" || shape == "sphere";
+  d.workspace_circle = shape == "circle" || shape == "sphere";
+  if (d.three_axis() && !solid)
+    problems.add(f, *ws["shape"].node(),
+                 "a three-axis device ([force.z]) moves in a volume: its workspace is a box or a sphere, not a " + shape,
+                 "shape = \"box\" with width, height and depth, or shape = \"sphere\" with diameter");
+  if (!d.three_axis() && solid)
+    problems.add(f, *ws["shape"].node(),
+                 "a " + shape + " workspace is for a three-axis device, and this file gives no [force.z]",
+                 "add [force.z] for a 3-DOF device, or use shape = \"circle\" or \"rectangle\"");
+  if (shape != "box" && ws["depth"].node())
+    problems.add(f, *ws["depth"].node(), "`depth` is for a box workspace (width x height x depth); a " + shape + " has none",
+                 "remove depth, or use shape = \"box\"");
+  if (d.workspace_circle) {
+    if (auto dia = ws["diameter"].node()) {
+      double diameter = detail::quantity_si(*dia);
+      d.workspace_radius_m = diameter / 2;
+      d.workspace_size_m[0] = d.workspace_size_m[1] = diameter;
+      if (shape == "sphere") d.workspace_size_m[2] = diameter;
+    } else if (shape == "sphere") {
+      problems.add(f, *ws.node(), "a spherical workspace needs `diameter`", "add diameter = \"100 mm\"");
+    } else {
+      problems.add(f, *ws.node(), "a circular workspace needs `diameter`", "add diameter = \"9 in\"");
+    }
+  } else if (shape == "box") {
+    auto w = ws["width"].node(), h = ws["height"].node(), z = ws["depth"].node();
+    if (w && h && z) {
+      d.workspace_size_m[0] = detail::quantity_si(*w);
+      d.workspace_size_m[1] = detail::quantity_si(*h);
+      d.workspace_size_m[2] = detail::quantity_si(*z);
+      d.workspace_radius_m = std::min({d.workspace_size_m[0], d.workspace_size_m[1], d.workspace_size_m[2]}) / 2;
+    } else {
+      problems.add(f, *ws.node(), "a box workspace needs `width`, `height` and `depth` (along x, y and z)",
+                   "add the missing one(s), e.g. depth = \"100 mm\"");
+    }
+  } else {
+    auto w = ws["width"].node(), h = ws["height"].node();
+    if (w && h) {
+      d.workspace_size_m[0] = detail::quantity_si(*w);
+      d.workspace_size_m[1] = detail::quantity_si(*h);
+      d.workspace_radius_m = std::min(d.workspace_size_m[0], d.workspace_size_m[1]) / 2;
+    } else problems.add(f, *ws.node(), "a rectangular workspace needs `width` and `height`", "");
+  }
+}
+
 DeviceCalibration read_device(const Toml& f, Problems& problems) {
   const toml::table& c = f.doc;
   DeviceCalibration d;
@@ -229,12 +281,23 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
                    "remove [force.y]");
     d.axis[1] = d.axis[0];
   } else if (!c["force"]["y"].is_table()) {
-    problems.add(f, *c["force"].node(), "a two-axis device needs [force.y] as well as [force.x]",
-                 "add [force.y], or a [wheel] table for a one-axis device turned at its rim");
+    if (c["force"]["z"].is_table())
+      problems.add(f, *c["force"].node(), "a three-axis device needs [force.y] as well as [force.x] and [force.z]", "add [force.y]");
+    else
+      problems.add(f, *c["force"].node(), "a two-axis device needs [force.y] as well as [force.x]",
+                   "add [force.y], or a [wheel] table for a one-axis device turned at its rim");
   }
-  for (int a = 0; a < 2; ++a) {
+  if (c["force"]["z"].is_table()) {
+    if (d.wheel())
+      problems.add(f, *c["force"]["z"].node(), "a wheel ([wheel]) has one force axis: [force.x], at the rim", "remove [force.z]");
+    else {
+      d.axes = 3;
+      d.axis[2] = read_axis(c["force"]["z"]);
+    }
+  }
+  for (int a = 0; a < (d.three_axis() ? 3 : 2); ++a) {
     const auto& t = d.axis_scale(a).table;
-    const char* name = a == 0 ? "x" : "y";
+    const char* name = a == 0 ? "x" : a == 1 ? "y" : "z";
     for (std::size_t i = 1; i < t.size(); ++i)
       if (!(t[i].first > t[i - 1].first && t[i].second > t[i - 1].second)) {
         problems.add(f, *c["force"][name]["table"].node(),
@@ -243,21 +306,7 @@ DeviceCalibration read_device(const Toml& f, Problems& problems) {
       }
   }
   if (auto r = c["position"]["resolution"].node()) d.position_resolution_m = detail::quantity_si(*r);
-  d.workspace_circle = *c["workspace"]["shape"].value<std::string>() == "circle";
-  if (d.workspace_circle) {
-    if (auto dia = c["workspace"]["diameter"].node()) {
-      double diameter = detail::quantity_si(*dia);
-      d.workspace_radius_m = diameter / 2;
-      d.workspace_size_m[0] = d.workspace_size_m[1] = diameter;
-    } else problems.add(f, *c["workspace"].node(), "a circular workspace needs `diameter`", "add diameter = \"9 in\"");
-  } else {
-    auto w = c["workspace"]["width"].node(), h = c["workspace"]["height"].node();
-    if (w && h) {
-      d.workspace_size_m[0] = detail::quantity_si(*w);
-      d.workspace_size_m[1] = detail::quantity_si(*h);
-      d.workspace_radius_m = std::min(d.workspace_size_m[0], d.workspace_size_m[1]) / 2;
-    } else problems.add(f, *c["workspace"].node(), "a rectangular workspace needs `width` and `height`", "");
-  }
+  read_workspace(f, d, problems);
   if (d.wheel()) {
     // From a haptic knob to a large steering wheel; outside it, a unit slipped.
     if (!(d.wheel_rim_radius_m >= 0.005 && d.wheel_rim_radius_m <= 1.0))

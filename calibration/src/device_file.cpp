@@ -78,6 +78,13 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   }
   // A wheel ([wheel]) has one force axis, x along its rim: its readings need no y.
   if (base["wheel"].is_table() && ay == nullptr) ay = ax;
+  // A three-axis device ([force.z]): the readings name x and y only, so one fit for every axis
+  // (no axis column) is the only one that covers z.
+  const bool three_axis = base["force"]["z"].is_table();
+  if (three_axis && !(ax != nullptr && ax == ay && ax->axis == 0))
+    throw FitError(fit.path, 0,
+                   "the base device file has three force axes ([force.z]) and the readings name axes x and y only: "
+                   "drop the axis column to fit one scale for all three axes");
   for (auto [a, name] : {std::pair{ax, 'x'}, std::pair{ay, 'y'}})
     if (!a)
       throw FitError(fit.path, 0,
@@ -129,8 +136,9 @@ std::string device_file_text(const DeviceFit& fit, const toml::table& base, cons
   if (auto bits = base["force"]["resolution_bits"].value<std::int64_t>()) out += fmt::format("resolution_bits = {}\n", *bits);
   // The readings measure how hard a command pushes, not which way: the sense is the base's.
   const bool wheel = base["wheel"].is_table();
-  for (auto [a, axis] : {std::pair{ax, "x"}, std::pair{ay, "y"}}) {
+  for (auto [a, axis] : {std::pair{ax, "x"}, std::pair{ay, "y"}, std::pair{ax, "z"}}) {
     if (wheel && axis[0] == 'y') continue;  // ay is ax there
+    if (!three_axis && axis[0] == 'z') continue;  // ax is the one fit of all axes there
     out += fmt::format("[force.{}]\nnewtons_per_command_unit = {}\n", axis, toml_float(a->gain_N_per_unit, 9));
     if (auto sense = base["force"][axis]["command_sense"].value<std::int64_t>()) out += fmt::format("command_sense = {}\n", *sense);
   }

@@ -88,7 +88,24 @@ ProxyRenderer::Exit ProxyRenderer::exit_of(const ConstraintPlane& plane, const g
   return exit;
 }
 
-ProxyRenderer::Solved ProxyRenderer::solve(const glm::dvec3& start, const glm::dvec3& goal) const noexcept {
+std::optional<SegmentHit> ProxyRenderer::resting_hit(std::uint32_t triangle, const glm::dvec3& p,
+                                                     const glm::dvec3& target) const noexcept {
+  const TriangleFrame& f = mesh_->frame(triangle);
+  const double eps = options_.surface_offset_m;
+  // Heights above the triangle's own plane (not the raised one): the proxy rests about eps above it.
+  const double h0 = glm::dot(f.normal, p - mesh_->vertex0(triangle));
+  const double h1 = glm::dot(f.normal, target - mesh_->vertex0(triangle));
+  // Only from within the margin (any other surface between would be closer than the margin to this
+  // one) and only going through the plane; anything else is left to the cast.
+  if (!(h0 > 0.0 && h0 <= 2.0 * eps && h1 < 0.0)) return std::nullopt;
+  const double t = h0 / (h0 - h1);
+  const glm::dvec3 x = p + t * (target - p);
+  if (min_barycentric(triangle, x) < -kExitTolerance) return std::nullopt;
+  return SegmentHit{t, x, triangle};
+}
+
+ProxyRenderer::Solved ProxyRenderer::solve(const glm::dvec3& start, const glm::dvec3& goal,
+                                           std::uint32_t resting_on) const noexcept {
   const double eps = options_.surface_offset_m;
   Solved out;
   glm::dvec3 p = start;
@@ -111,7 +128,10 @@ ProxyRenderer::Solved ProxyRenderer::solve(const glm::dvec3& start, const glm::d
       std::uint32_t excluded[ConstraintSet::kMax + 1];
       std::size_t n_excluded = planes.size();
       std::copy(planes.triangles(), planes.triangles() + n_excluded, excluded);
-      auto hit = bvh_->first_hit_rt(p, target, std::span<const std::uint32_t>(excluded, n_excluded), Facing::front_only);
+      std::optional<SegmentHit> hit;
+      if (pass == 0 && iter == 0 && resting_on != Mesh::kNoNeighbour) hit = resting_hit(resting_on, p, target);
+      if (!hit)
+        hit = bvh_->first_hit_rt(p, target, std::span<const std::uint32_t>(excluded, n_excluded), Facing::front_only);
       if (first_cast && have_exited && hit && hit->triangle == exited &&
           min_barycentric(exited, hit->point_m) < kExitTolerance) {
         // From the edge it slid off, the path meets that triangle again only on its edge, by
@@ -189,7 +209,8 @@ glm::dvec3 ProxyRenderer::update_rt(const glm::dvec3& device_m, const glm::dvec3
     reset_rt(device_m);
     return glm::dvec3{0.0};
   }
-  const Solved free = solve(proxy_, device_m);
+  const std::uint32_t resting_on = contact_.in_contact ? contact_.triangle : Mesh::kNoNeighbour;
+  const Solved free = solve(proxy_, device_m, resting_on);
   if (!free.contact) {
     proxy_ = free.position;
     contact_ = ContactState{};
@@ -214,7 +235,7 @@ glm::dvec3 ProxyRenderer::update_rt(const glm::dvec3& device_m, const glm::dvec3
       p = free.anchor;
     } else {
       const glm::dvec3 trailing = free.position - tangential * (m.kinetic_friction * depth / slip);
-      p = solve(free.anchor, trailing).position;
+      p = solve(free.anchor, trailing, free.triangle).position;
       sliding = true;
     }
   }

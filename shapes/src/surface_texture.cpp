@@ -20,13 +20,15 @@ SurfaceTexture SurfaceTexture::for_program_nonrt(const schema::PatchProgram& pro
   // The evaluator sends no force outside the patch's rectangle (one patch under the cursor,
   // Appendix B); on a surface the texture goes on, as far as its own terms do.
   texture->size_m[0] = texture->size_m[1] = 1e9;
-  return SurfaceTexture(std::move(texture), size);
+  const double max_force = program.max_lateral_force_N > 0 ? program.max_lateral_force_N : INFINITY;
+  return SurfaceTexture(std::move(texture), size, max_force);
 }
 
-SurfaceTexture::SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, glm::dvec2 uv_size_m)
+SurfaceTexture::SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, glm::dvec2 uv_size_m, double max_force_N)
     : texture_(std::move(texture)),
       evaluator_(std::make_unique<runtime::PatchEvaluator>(*texture_)),
-      uv_size_m_(uv_size_m) {}
+      uv_size_m_(uv_size_m),
+      max_force_N_(max_force_N) {}
 
 glm::dvec2 SurfaceTexture::patch_position_rt(const Mesh& mesh, std::uint32_t triangle,
                                              const glm::dvec3& point_m) const noexcept {
@@ -44,7 +46,9 @@ glm::dvec3 SurfaceTexture::force_rt(const Mesh& mesh, std::uint32_t triangle, co
   const glm::dvec2 f = evaluator_->force_rt(hand, 0.0);
   // (ds/dp)^T f, with ds/dp's rows W grad_u and -H grad_v.
   const TriangleFrame& t = mesh.frame(triangle);
-  return f.x * uv_size_m_.x * t.grad_u - f.y * uv_size_m_.y * t.grad_v;
+  const glm::dvec3 force = f.x * uv_size_m_.x * t.grad_u - f.y * uv_size_m_.y * t.grad_v;
+  const double magnitude = glm::length(force);
+  return magnitude > max_force_N_ ? force * (max_force_N_ / magnitude) : force;
 }
 
 }  // namespace sandpaper::shapes

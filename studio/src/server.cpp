@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -49,6 +50,22 @@ std::string string_field(const nlohmann::json& j, const char* key, bool required
   }
   if (!j[key].is_string()) throw RequestError(400, std::string("\"") + key + "\" must be a string");
   return j[key].get<std::string>();
+}
+
+// A point of the scene (metres, its frame) as three finite numbers under `key`; nullopt when the key
+// is absent and not required.
+std::optional<SceneView::Point_m> point_field(const nlohmann::json& j, const char* key, bool required) {
+  if (!j.is_object() || !j.contains(key) || j[key].is_null()) {
+    if (required) throw RequestError(400, std::string("expected \"") + key + "\": [x, y, z] (metres) in the JSON body");
+    return std::nullopt;
+  }
+  const auto& a = j[key];
+  if (!a.is_array() || a.size() != 3 || !a[0].is_number() || !a[1].is_number() || !a[2].is_number())
+    throw RequestError(400, std::string("\"") + key + "\" is [x, y, z]: three numbers, metres");
+  SceneView::Point_m p{a[0].get<double>(), a[1].get<double>(), a[2].get<double>()};
+  for (const double v : p)
+    if (!std::isfinite(v)) throw RequestError(400, std::string("\"") + key + "\" must be finite");
+  return p;
 }
 
 // A length for a message: 4 significant figures, so 1e300 reads 1e+300 and 114.3 reads 114.3.
@@ -204,6 +221,19 @@ struct Server::Impl {
     });
     // Server-Sent Events: the state 30 times a second while the page is open.
     server.event_stream("/api/events", kEventPeriod, [this] { return event_json(); });
+    // Scenes in 3-D: the geometry to draw, and the 3-D Dummy mode's simulated device.
+    api.Get("/api/scene", [this](const httplib::Request&, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.scene()); });
+    });
+    api.Post("/api/scene/device", [this](const httplib::Request& req, httplib::Response& res) {
+      guarded(res, [&] {
+        const auto j = body_json(req);
+        send_json(res, session.scene_touch(*point_field(j, "device_m", true), point_field(j, "from_m", false)));
+      });
+    });
+    api.Get("/api/scene/device", [this](const httplib::Request&, httplib::Response& res) {
+      guarded(res, [&] { send_json(res, session.scene_device()); });
+    });
     api.Get("/api/workspace", [this](const httplib::Request&, httplib::Response& res) {
       guarded(res, [&] { send_json(res, session.workspace()); });
     });

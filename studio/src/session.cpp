@@ -108,8 +108,7 @@ nlohmann::json Session::files() const {
       it.disable_recursion_pending();
       continue;
     }
-    const auto ext = it->path().extension();
-    if ((ext == ".hmat" || ext == ".hws") && it->is_regular_file(ec)) {
+    if (file_kind(it->path()) && it->is_regular_file(ec)) {
       std::string relative = fs::relative(it->path(), root_).string();
       std::size_t bad = 0;
       (schema::is_valid_utf8(relative, bad) ? names : not_utf8).push_back(std::move(relative));
@@ -139,9 +138,10 @@ nlohmann::json Session::open(const std::string& relative) {
   } catch (const http::OutsideFolder& e) {
     throw RequestError(403, e.what());
   }
-  const auto ext = full.extension();
-  if (ext != ".hmat" && ext != ".hws")
-    throw RequestError(400, "'" + relative + "' is not a material (.hmat) or workspace (.hws) file");
+  const auto kind = file_kind(full);
+  if (!kind) throw RequestError(400, "'" + relative + "' is not " + kinds_text() + " file");
+  // Refused before the open file is left: a studio that cannot show the scene keeps what it had.
+  if (*kind == FileKind::Scene && !SceneView::built()) throw RequestError(501, SceneView::unbuilt_message());
   const std::string name = fs::relative(full, root_).string();
   std::lock_guard lock(mutex_);
   std::string text, saved;
@@ -172,7 +172,8 @@ nlohmann::json Session::open(const std::string& relative) {
   if (!file_.empty() && file_ != name && text_ != saved_text_) drafts_[file_] = {text_, saved_text_};
   if (draft != drafts_.end()) drafts_.erase(draft);
   file_ = name;
-  is_workspace_ = ext == ".hws";
+  kind_ = *kind;
+  scene_.reset();  // another file's scene is not this one's, even while this one does not compile
   saved_text_ = std::move(saved);
   nlohmann::json j = update_locked(text);
   j["file"] = file_;
@@ -188,7 +189,8 @@ nlohmann::json Session::current() const {
     recovered = {{"copy", r->second}, {"saved_text", saved_text_}};
   return {{"file", file_},
           {"recovered", recovered},
-          {"kind", is_workspace_ ? "workspace" : "material"},
+          {"kind", kind_name(kind_)},
+          {"scene_version", scene_version_},
           {"text", text_},
           {"text_version", text_version_},
           {"saved", text_ == saved_text_},
@@ -204,7 +206,9 @@ nlohmann::json Session::document_state() const {
           {"text_version", text_version_},
           {"saved", text_ == saved_text_},
           {"compiles", text_compiles_},
-          {"version", version_}};
+          {"version", version_},
+          {"kind", kind_name(kind_)},
+          {"scene_version", scene_version_}};
 }
 
 nlohmann::json Session::compile_only(const std::string& text) const {
@@ -215,7 +219,8 @@ nlohmann::json Session::compile_only(const std::string& text) const {
 
 nlohmann::json Session::parameters_locked() const {
   auto arr = nlohmann::json::array();
-  const auto params = is_workspace_ ? compiler::workspace_parameters(text_)
+  if (kind_ == FileKind::Scene) return arr;  // a scene's numbers have no sliders (yet)
+  const auto params = kind_ == FileKind::Workspace ? compiler::workspace_parameters(text_)
                                     : compiler::material_parameters(text_, compiler_.calibration(), loop_.limits().max_force_N);
   for (const auto& p : params) arr.push_back(parameter_json(p));
   return arr;
@@ -235,7 +240,17 @@ nlohmann::json Session::update_locked(const std::string& text) {
   text_ = text;
   ++text_version_;
   nlohmann::json j;
-  if (is_workspace_) {
+  if (kind_ == FileKind::Scene) {
+    // Nothing goes to the loop: the 2-axis joystick cannot feel a scene, and keeps what it plays.
+    auto c = SceneView::compile(compiler_, text, file_, (root_ / file_).parent_path());
+    j = std::move(c.answer);
+    mark_brought_in(j["diagnostics"], c.diagnostics, file_, text, compiler_.library());
+    if (c.view) {
+      scene_ = std::move(c.view);
+      ++scene_version_;
+    }
+    j["scene_version"] = scene_version_;
+  } else if (kind_ == FileKind::Workspace) {
     const auto base = (root_ / file_).parent_path();
     auto r = compiler::compile_workspace_text(compiler_, text, file_, base);
     j = {{"ok", r.ok()}, {"diagnostics", compiler::diagnostics_json(r.diagnostics)}};
@@ -262,11 +277,11 @@ nlohmann::json Session::update_locked(const std::string& text) {
     mark_brought_in(j["diagnostics"], r.diagnostics, file_, text, compiler_.library());
   }
   text_compiles_ = j["ok"].get<bool>();
-  if (text_compiles_) to_render_.notify_all();
+  if (text_compiles_ && kind_ != FileKind::Scene) to_render_.notify_all();
   last_compile_ = j;
   j["parameters"] = parameters_locked();
   j["version"] = version_;
-  j["playing_is_current"] = text_compiles_;
+  j["playing_is_current"] = text_compiles_ && kind_ != FileKind::Scene;
   j["saved"] = text_ == saved_text_;
   j["text_version"] = text_version_;
   return j;
@@ -276,7 +291,8 @@ nlohmann::json Session::set_parameter(const std::string& name, double value, con
   nlohmann::json j;
   {
   std::lock_guard lock(mutex_);
-  const auto params = is_workspace_ ? compiler::workspace_parameters(text_)
+  if (kind_ == FileKind::Scene) throw RequestError(400, "a scene's numbers have no parameters to set: edit its text");
+  const auto params = kind_ == FileKind::Workspace ? compiler::workspace_parameters(text_)
                                     : compiler::material_parameters(text_, compiler_.calibration(), loop_.limits().max_force_N);
   std::string edited;
   try {
@@ -350,8 +366,9 @@ fs::path Session::new_file_path(const std::string& relative) const {
   } catch (const http::OutsideFolder& e) {
     throw RequestError(403, e.what());
   }
-  if (full.extension() != ".hmat" && full.extension() != ".hws")
-    throw RequestError(400, "'" + relative + "': a material is a .hmat file, a workspace a .hws file");
+  const auto kind = file_kind(full);
+  if (!kind) throw RequestError(400, "'" + relative + "': a material is a .hmat file, a workspace a .hws file, a scene a .hsc file");
+  if (*kind == FileKind::Scene && !SceneView::built()) throw RequestError(501, SceneView::unbuilt_message());
   std::error_code ec;
   if (!fs::is_directory(full.parent_path(), ec))
     throw RequestError(404, "no folder " + fs::relative(full.parent_path(), root_).string() + " in the studio's folder");
@@ -367,9 +384,14 @@ nlohmann::json Session::create(const std::string& relative) {
   }
   const std::string stem = full.stem().string();
   // A start that compiles and plays: the text names its material after the file, as the library does.
+  const auto kind = file_kind(full);
   const std::string text =
-      full.extension() == ".hws"
+      kind == FileKind::Workspace
           ? "workspace \"" + stem + "\" {\n  size 228.6 mm x 228.6 mm\n}\n"
+      : kind == FileKind::Scene
+          ? "scene \"" + stem + "\" {\n  # a ball on a floor: left-drag on it in the studio's 3-D view to feel it\n"
+                                "  object \"ball\" sphere radius 40 mm at 0 mm, 40 mm, 0 mm {\n    material \"roughness 0.5\"\n  }\n"
+                                "  object \"floor\" plane 240 mm x 240 mm at 0 mm, 0 mm, 0 mm {\n    stiffness 1000 N/m\n  }\n}\n"
           : "material \"" + stem + "\" {\n  # felt on the library's reference texture until a texture is given\n"
                                    "  roughness 0.5\n}\n";
   try {
@@ -386,9 +408,9 @@ nlohmann::json Session::save_as(const std::string& relative) {
   std::lock_guard lock(mutex_);
   if (file_.empty()) throw RequestError(409, "no file is open");
   const fs::path full = new_file_path(relative);
-  if ((full.extension() == ".hws") != is_workspace_)
-    throw RequestError(400, std::string("the open file is a ") + (is_workspace_ ? "workspace: save it as a .hws file"
-                                                                                  : "material: save it as a .hmat file"));
+  if (file_kind(full) != kind_)
+    throw RequestError(400, std::string("the open file is a ") + kind_name(kind_) + ": save it as a " + kind_extension(kind_) +
+                                " file");
   try {
     schema::write_file_atomically(full, text_);
   } catch (const std::exception& e) {
@@ -406,13 +428,15 @@ nlohmann::json Session::language(const std::string& feature, int line, int chara
   std::lock_guard lock(mutex_);
   const long lines = std::count(text_.begin(), text_.end(), '\n') + 1;
   if (line < 0 || line >= lines || character < 0) throw RequestError(400, "the position is outside the text");
+  // The language server reads materials and workspaces; a scene's text it would misread.
+  if (kind_ == FileKind::Scene) return feature == "completion" ? nlohmann::json::array() : nlohmann::json(nullptr);
   // The document as the language server holds one: named by its absolute path, so that relative
   // image paths resolve against its folder, as they do when it plays.
   lsp::Document d;
   d.name = (root_ / (file_.empty() ? "untitled.hmat" : file_)).string();
   d.uri = lsp::uri_of_path(d.name);
-  d.workspace = is_workspace_;
-  if (!is_workspace_) d.compiled = compiler_.compile_text(text_, d.name);
+  d.workspace = kind_ == FileKind::Workspace;
+  if (kind_ == FileKind::Material) d.compiled = compiler_.compile_text(text_, d.name);
   d.source = std::make_shared<const compiler::SourceFile>(d.name, text_);
   const nlohmann::json position = {{"line", line}, {"character", character}};
   if (feature == "completion") return lsp::completion(d, position, compiler_);
@@ -422,7 +446,8 @@ nlohmann::json Session::language(const std::string& feature, int line, int chara
 
 nlohmann::json Session::workspace() const {
   std::lock_guard lock(mutex_);
-  if (!is_workspace_) throw RequestError(409, "the open file is a material, not a workspace");
+  if (kind_ != FileKind::Workspace)
+    throw RequestError(409, std::string("the open file is a ") + kind_name(kind_) + ", not a workspace");
   nlohmann::json j{{"file", file_}, {"version", version_}, {"patches", nlohmann::json::array()}};
   if (!workspace_) return j;
   j["name"] = workspace_->name;
@@ -444,7 +469,8 @@ nlohmann::json Session::place_patch(int index, double x_mm, double y_mm, double 
   nlohmann::json j;
   {
   std::lock_guard lock(mutex_);
-  if (!is_workspace_) throw RequestError(409, "the open file is a material, not a workspace");
+  if (kind_ != FileKind::Workspace)
+    throw RequestError(409, std::string("the open file is a ") + kind_name(kind_) + ", not a workspace");
   std::string edited;
   try {
     edited = compiler::place_workspace_patch(text_, index, x_mm, y_mm, width_mm, height_mm);
@@ -512,7 +538,8 @@ nlohmann::json Session::render_view(const std::string& kind, const double centre
   std::uint64_t version = 0;
   {
     std::lock_guard lock(mutex_);
-    if (is_workspace_) throw RequestError(409, "the open file is a workspace: its patches have pictures of their own");
+    if (kind_ == FileKind::Workspace) throw RequestError(409, "the open file is a workspace: its patches have pictures of their own");
+    if (kind_ == FileKind::Scene) throw RequestError(409, "the open file is a scene: the 3-D view shows it (GET /api/scene)");
     program = program_;
     version = version_;
   }
@@ -595,6 +622,50 @@ std::optional<fs::path> Session::preview_file(const std::string& name, std::uint
   std::error_code ec;
   if (!fs::is_regular_file(p, ec)) return std::nullopt;
   return p;
+}
+
+std::pair<std::shared_ptr<SceneView>, std::uint64_t> Session::scene_locked() const {
+  if (!SceneView::built()) throw RequestError(501, SceneView::unbuilt_message());
+  if (kind_ != FileKind::Scene) throw RequestError(409, std::string("the open file is a ") + kind_name(kind_) + ", not a scene");
+  if (!scene_) throw RequestError(409, "the scene has not compiled yet: there is nothing to draw or touch");
+  return {scene_, scene_version_};
+}
+
+nlohmann::json Session::scene() const {
+  std::pair<std::shared_ptr<SceneView>, std::uint64_t> s;
+  std::string file;
+  {
+    std::lock_guard lock(mutex_);
+    s = scene_locked();
+    file = file_;
+  }
+  // Built outside the session's lock: a large mesh's arrays must not hold up the editor's compiles.
+  nlohmann::json j = s.first->geometry();
+  j["file"] = file;
+  j["scene_version"] = s.second;
+  return j;
+}
+
+nlohmann::json Session::scene_touch(const SceneView::Point_m& device_m, const std::optional<SceneView::Point_m>& from_m) {
+  std::pair<std::shared_ptr<SceneView>, std::uint64_t> s;
+  {
+    std::lock_guard lock(mutex_);
+    s = scene_locked();
+  }
+  nlohmann::json j = s.first->touch(device_m, from_m);
+  j["scene_version"] = s.second;
+  return j;
+}
+
+nlohmann::json Session::scene_device() const {
+  std::pair<std::shared_ptr<SceneView>, std::uint64_t> s;
+  {
+    std::lock_guard lock(mutex_);
+    s = scene_locked();
+  }
+  nlohmann::json j = s.first->last_touch();
+  j["scene_version"] = s.second;
+  return j;
 }
 
 }  // namespace sandpaper::studio

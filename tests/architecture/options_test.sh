@@ -46,7 +46,7 @@ if [ -f "$core/CMakeCache.txt" ]; then
   for t in sandpaper sandpaper-play sandpaper_api sandpaper_player compiler_tests runtime_tests; do
     [ -n "$(find "$core" -type d -name "$t.dir" -print -quit)" ] && ok "core builds $t" || bad "core has no target $t"
   done
-  for t in sandpaper_curation sandpaper_catalog sandpaper_studio sandpaper_experiment sandpaper_lsp sandpaper_gltf sandpaper_http sandpaper_shapes; do
+  for t in sandpaper_curation sandpaper_catalog sandpaper_studio sandpaper_experiment sandpaper_lsp sandpaper_gltf sandpaper_http sandpaper_shapes sandpaper_scenes; do
     [ -n "$(find "$core" -type d -name "$t.dir" -print -quit)" ] && bad "core builds $t" || ok "core leaves out $t"
   done
 fi

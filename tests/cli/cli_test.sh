@@ -463,7 +463,7 @@ cp -r tests/curation/data/mini "$tmp/lib"
 L=(--library "$tmp/lib")
 I=(--index "$tmp/idx/library.sqlite")
 expect_exit 0 "library check passes on the mini library" -- "$sp" library check "${L[@]}"
-has "$tmp/err" '^checked 5 entries on 4 devices \(uncalibrated, W0331: openffboard-2axis, openffboard-wheel\): 0 errors, 0 warnings, 9 accepted$' "check prints its summary"
+has "$tmp/err" '^checked 5 entries on 7 devices \(uncalibrated, W0331: haply-inverse3, novint-falcon, openffboard-2axis, openffboard-wheel\): 0 errors, 0 warnings, 15 accepted$' "check prints its summary"
 expect_exit 0 "library check --quiet" -- "$sp" library check "${L[@]}" --quiet
 [ -s "$tmp/err" ] && bad "check --quiet printed progress" || ok
 expect_exit 0 "library check --json" -- "$sp" library check "${L[@]}" --json --quiet
@@ -544,7 +544,7 @@ printf 'material "ribbed-twin" {\n  describes "x"\n  family textiles\n  licence 
 expect_exit 0 "a JND collision is a warning" -- "$sp" library check "${L[@]}" --quiet
 has "$tmp/err" 'warning\[W0601\]: .ribbed-twin. may feel the same as .ribbed-cloth.' "W0601 names both"
 expect_exit 1 "--werror makes warnings fail" -- "$sp" library check "${L[@]}" --werror
-has "$tmp/err" '1 warning, 9 accepted \(--werror: warnings fail\)' "werror said"
+has "$tmp/err" '1 warning, 15 accepted \(--werror: warnings fail\)' "werror said"
 rm "$tmp/lib/textiles/ribbed-twin.hmat"
 sed -i 's/^  source derived "8 ribs per inch: 25.4 mm \/ 8"$//' "$tmp/lib/textiles/ribbed-cloth.hmat"
 expect_exit 1 "library check fails on a missing source" -- "$sp" library check "${L[@]}" --quiet

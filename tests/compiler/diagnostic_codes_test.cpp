@@ -38,7 +38,7 @@ std::map<std::string, std::string> codes_in_sources() {
   std::map<std::string, std::string> found;
   // Every room that raises diagnostics (docs/ARCHITECTURE.md), built or not.
   for (const char* dir : {"schema/src", "calibration", "compiler", "runtime", "player", "api", "apps", "http", "curation",
-                          "editors/lsp", "studio", "experiments", "bindings"}) {
+                          "editors/lsp", "studio", "experiments", "bindings", "scenes"}) {
     for (const auto& e : fs::recursive_directory_iterator(kSource / dir)) {
       const auto ext = e.path().extension();
       if (!e.is_regular_file() || (ext != ".cpp" && ext != ".hpp")) continue;

@@ -41,12 +41,13 @@ TEST(LibraryCheck, TheMiniLibraryPassesOnEveryShippedDevice) {
   EXPECT_EQ(r.errors(), 0u) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_EQ(r.warnings(), 0u) << compiler::format_diagnostics(r.diagnostics);
   EXPECT_EQ(r.entries, 5u);
-  EXPECT_EQ(r.devices.size(), 4u);
+  EXPECT_EQ(r.devices.size(), 7u);
   // The three gratings' W0350 (on each device where it holds: 2 on sim, 3 on sandpaper-1995's 900 Hz,
-  // 2 on each OpenFFBoard file, joystick and wheel, at 1000 Hz) are accepted in their files.
-  EXPECT_EQ(r.accepted.all().size(), 9u) << compiler::format_diagnostics(r.accepted);
-  EXPECT_EQ(r.summary(), "checked 5 entries on 4 devices (uncalibrated, W0331: openffboard-2axis, openffboard-wheel): "
-                         "0 errors, 0 warnings, 9 accepted");
+  // 2 on each OpenFFBoard file, joystick and wheel, at 1000 Hz, and 2 on each 3-DOF file, sim3d, the
+  // Falcon and the Inverse3) are accepted in their files.
+  EXPECT_EQ(r.accepted.all().size(), 15u) << compiler::format_diagnostics(r.accepted);
+  EXPECT_EQ(r.summary(), "checked 5 entries on 7 devices (uncalibrated, W0331: haply-inverse3, novint-falcon, openffboard-2axis, "
+                         "openffboard-wheel): 0 errors, 0 warnings, 15 accepted");
 }
 
 // Every warning the compiler gives an entry, on every device, as explain gives it: W0350 (a fine
@@ -59,16 +60,16 @@ TEST(LibraryCheck, ShowsEveryWarningTheCompilerGivesAnEntryOnEveryDevice) {
        "");
   const auto r = check(lib);
   const auto ws = with_code(r.diagnostics, "W0350");
-  ASSERT_EQ(ws.size(), 4u) << compiler::format_diagnostics(r.diagnostics);
+  ASSERT_EQ(ws.size(), 7u) << compiler::format_diagnostics(r.diagnostics);
   std::set<std::string> devices;
   for (const auto* w : ws) {
     EXPECT_TRUE(ends_with(w->location.str(), "textiles/fine-rib.hmat:6:3")) << w->location.str();
-    for (const char* d : {"sim", "sandpaper-1995", "openffboard-2axis", "openffboard-wheel"})
+    for (const char* d : {"sim", "sandpaper-1995", "openffboard-2axis", "openffboard-wheel", "sim3d", "novint-falcon", "haply-inverse3"})
       if (w->message.find(std::string("servo on ") + d + " reads") != std::string::npos) devices.insert(d);
   }
-  EXPECT_EQ(devices.size(), 4u);
-  EXPECT_EQ(r.warnings(), 4u) << compiler::format_diagnostics(r.diagnostics);
-  EXPECT_EQ(r.accepted.all().size(), 5u);
+  EXPECT_EQ(devices.size(), 7u);
+  EXPECT_EQ(r.warnings(), 7u) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_EQ(r.accepted.all().size(), 8u);
 }
 
 // `accept` with nothing to accept warns (W0614) where it stands; accepting an error or an unknown code is E0220.

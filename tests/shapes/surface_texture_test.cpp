@@ -140,3 +140,32 @@ TEST(SurfaceTexture, TheForceAllocatesNothingAndLocksNothing) {
 
 }  // namespace
 }  // namespace sandpaper::shapes
+
+namespace sandpaper::shapes {
+namespace {
+
+// Near a UV sphere's pole every line of longitude meets, the UVs squeeze the texture without bound
+// and so would its slope: the force is held to the material's compiled maximum there.
+TEST(SurfaceTexture, AtAUvSpheresPoleTheForceIsHeldToTheCompiledMaximum) {
+  const auto p = compiled("grating period 3.2 mm hill 60%; roughness 0.45");
+  const double r = 0.04;
+  const Mesh mesh = uv_sphere(r, 256, 128);
+  auto texture = SurfaceTexture::for_program_nonrt(p, glm::dvec2{2 * std::numbers::pi * r, std::numbers::pi * r});
+  double largest = 0, unclamped_would_be = 0;
+  for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
+    const auto& tri = mesh.triangles()[t];
+    const glm::dvec3 c = (mesh.vertices()[tri[0]] + mesh.vertices()[tri[1]] + mesh.vertices()[tri[2]]) / 3.0;
+    if (c.z < r * std::cos(0.05)) continue;  // within 0.05 rad of the north pole
+    largest = std::max(largest, glm::length(texture.force_rt(mesh, t, c)));
+    const TriangleFrame& f = mesh.frame(t);
+    unclamped_would_be = std::max(unclamped_would_be, 2 * std::numbers::pi * r * glm::length(f.grad_u) * p.max_lateral_force_N);
+  }
+  // The squeeze is real (the unclamped gradient would give more than ten times the maximum) ...
+  EXPECT_GT(unclamped_would_be, 10 * p.max_lateral_force_N);
+  // ... and the force stays within it.
+  EXPECT_LE(largest, p.max_lateral_force_N * (1 + 1e-12));
+  EXPECT_GT(largest, 0.5 * p.max_lateral_force_N);
+}
+
+}  // namespace
+}  // namespace sandpaper::shapes

@@ -18,7 +18,6 @@
 
 #include "gltf_support.hpp"
 #include "sandpaper/compiler/height_field_image.hpp"
-#include "sandpaper/schema/confined_path.hpp"
 #include "sandpaper/schema/input_limits.hpp"
 
 namespace sandpaper::compiler {
@@ -26,13 +25,11 @@ namespace {
 
 using nlohmann::json;
 
-// One refusal: the code, what, how to fix it. Thrown inside the reader, caught once at its top.
-struct Refusal {
-  std::string code, message, suggestion;
-};
-
+// One refusal: the code, what, how to fix it (gltf_document.hpp). Thrown inside the reader, caught
+// once at its top.
+using Refusal = GltfRefusal;
 [[noreturn]] void refuse(schema::Code code, std::string message, std::string suggestion = {}) {
-  throw Refusal{std::string(code.text()), std::move(message), std::move(suggestion)};
+  refuse_gltf(code, std::move(message), std::move(suggestion));
 }
 
 std::string num(double v) {
@@ -42,59 +39,13 @@ std::string num(double v) {
   return os.str();
 }
 
-// Counts values and depth while checking the syntax, so a hostile file is refused before a DOM of
-// millions of small values is built.
-struct Census : json::json_sax_t {
-  std::size_t values = 0, depth = 0;
-  bool over = false;
-  std::string error;
-  bool value() {
-    if (++values > kMaxGltfJsonValues) over = true;
-    return !over;
-  }
-  bool open() {
-    if (++depth > kMaxGltfJsonDepth) over = true;
-    return value();
-  }
-  bool null() override { return value(); }
-  bool boolean(bool) override { return value(); }
-  bool number_integer(number_integer_t) override { return value(); }
-  bool number_unsigned(number_unsigned_t) override { return value(); }
-  bool number_float(number_float_t, const string_t&) override { return value(); }
-  bool string(string_t&) override { return value(); }
-  bool binary(binary_t&) override { return value(); }
-  bool start_object(std::size_t) override { return open(); }
-  bool key(string_t&) override { return true; }
-  bool end_object() override { return --depth, true; }
-  bool start_array(std::size_t) override { return open(); }
-  bool end_array() override { return --depth, true; }
-  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
-    error = e.what();
-    return false;
-  }
-};
-
-// JSON access that names the place of anything missing or mistyped.
+// JSON access that names the place of anything missing or mistyped (gltf_document.hpp).
 const json& member(const json& j, const char* key, const std::string& where, schema::Code code = "E0712") {
-  if (!j.is_object()) refuse(code, where + " is not a JSON object");
-  auto it = j.find(key);
-  if (it == j.end()) refuse(code, where + " has no \"" + key + "\"");
-  return *it;
+  return gltf_member(j, key, where, code);
 }
-
-const json* optional_member(const json& j, const char* key) {
-  if (!j.is_object()) return nullptr;
-  auto it = j.find(key);
-  return it == j.end() ? nullptr : &*it;
-}
-
+const json* optional_member(const json& j, const char* key) { return gltf_optional_member(j, key); }
 std::size_t index_into(const json& j, const json& array, const std::string& where, schema::Code code) {
-  if (!j.is_number_unsigned()) refuse(code, where + " is not an index (a non-negative integer)");
-  const auto i = j.get<std::uint64_t>();
-  if (!array.is_array() || i >= array.size())
-    refuse(code, where + " is " + std::to_string(i) + ", past the end of its array (" +
-                     std::to_string(array.is_array() ? array.size() : 0) + " entries)");
-  return static_cast<std::size_t>(i);
+  return gltf_index(j, array, where, code);
 }
 
 // Sandpaper's extras: every key typed and in range, its unit in its name.
@@ -165,9 +116,8 @@ std::optional<std::string> reencoded(const std::vector<unsigned char>& b) {
 
 class Reader {
  public:
-  Reader(const Compiler& c, const json& root, std::string shown, std::optional<std::filesystem::path> folder,
-         const std::string* glb_bin, Diagnostics& diags)
-      : c_(c), root_(root), shown_(std::move(shown)), folder_(std::move(folder)), glb_bin_(glb_bin), diags_(diags) {}
+  Reader(const Compiler& c, const GltfDocument& doc, Diagnostics& diags)
+      : c_(c), doc_(doc), root_(doc.root()), shown_(doc.shown()), diags_(diags) {}
 
   // The program of haptic material `index` (built once, shared by every mesh naming it).
   std::shared_ptr<const schema::PatchProgram> program(std::size_t index) {
@@ -318,14 +268,14 @@ class Reader {
     std::optional<std::vector<unsigned char>> bytes;
     const std::string prefix = gltf::kPngDataUriPrefix;
     if (optional_member(images[ii], "bufferView") && !uri) {
-      bytes = buffer_view(images[ii]["bufferView"], iw + ".bufferView");
+      bytes = doc_.buffer_view(images[ii]["bufferView"], iw + ".bufferView");
     } else if (!uri || !uri->is_string()) {
       refuse("E0715", iw + " has neither a uri nor a bufferView", "export the material again with `sandpaper export --format gltf`");
     } else if (const std::string& u = uri->get_ref<const std::string&>(); u.compare(0, prefix.size(), prefix) == 0) {
       bytes = gltf::base64_decode(std::string_view(u).substr(prefix.size()));
       if (!bytes) refuse("E0715", iw + ".uri is not valid base64");
     } else {
-      bytes = image_file(u, iw);
+      bytes = doc_.folder_file(u, iw);
     }
     if (const auto what = reencoded(*bytes))
       refuse("E0720", "the haptic texture of " + where + " (" + iw + ") is " + *what +
@@ -340,86 +290,12 @@ class Reader {
     return std::move(*png);
   }
 
-  // The bytes of buffer view `index`: a slice of its buffer, which is a .glb's BIN chunk (the
-  // buffer without a uri), an embedded data URI, or a file in the asset's folder.
-  std::vector<unsigned char> buffer_view(const json& index, const std::string& where) const {
-    const json& views = member(root_, "bufferViews", "the asset", "E0715");
-    const std::size_t vi = index_into(index, views, where, "E0715");
-    const std::string vw = "bufferViews[" + std::to_string(vi) + "]";
-    const json& buffers = member(root_, "buffers", "the asset", "E0715");
-    const std::size_t bi = index_into(member(views[vi], "buffer", vw, "E0715"), buffers, vw + ".buffer", "E0715");
-    const std::string bw = "buffers[" + std::to_string(bi) + "]";
-    auto size_field = [&](const json& j, const char* key, const std::string& w, bool required) -> std::uint64_t {
-      const json* v = optional_member(j, key);
-      if (!v) {
-        if (required) refuse("E0715", w + " has no \"" + key + "\"");
-        return 0;
-      }
-      if (!v->is_number_unsigned() || v->get<std::uint64_t>() > kMaxGltfBytes)
-        refuse("E0715", w + "." + key + " is not a byte count up to " + std::to_string(kMaxGltfBytes >> 20) + " MiB");
-      return v->get<std::uint64_t>();
-    };
-    const std::uint64_t offset = size_field(views[vi], "byteOffset", vw, false);
-    const std::uint64_t length = size_field(views[vi], "byteLength", vw, true);
-    std::vector<unsigned char> data;
-    const json* uri = optional_member(buffers[bi], "uri");
-    if (!uri) {
-      if (bi != 0 || !glb_bin_) refuse("E0715", bw + " has no uri and is not a .glb's BIN chunk");
-      data.assign(glb_bin_->begin(), glb_bin_->end());
-    } else if (!uri->is_string()) {
-      refuse("E0715", bw + ".uri is not a string");
-    } else if (const std::string& u = uri->get_ref<const std::string&>(); u.rfind("data:", 0) == 0) {
-      const auto comma = u.find(',');
-      const auto header = u.substr(0, comma == std::string::npos ? 0 : comma);
-      auto bytes = comma == std::string::npos || header.find(";base64") == std::string::npos
-                       ? std::nullopt
-                       : gltf::base64_decode(std::string_view(u).substr(comma + 1));
-      if (!bytes) refuse("E0715", bw + ".uri is not a base64 data URI");
-      data = std::move(*bytes);
-    } else {
-      data = image_file(u, bw);
-    }
-    if (offset > data.size() || length > data.size() - offset)
-      refuse("E0715", vw + " (bytes " + std::to_string(offset) + " to " + std::to_string(offset + length) + ") passes the end of " +
-                          bw + " (" + std::to_string(data.size()) + " bytes)");
-    return std::vector<unsigned char>(data.begin() + static_cast<std::ptrdiff_t>(offset),
-                                      data.begin() + static_cast<std::ptrdiff_t>(offset + length));
-  }
-
-  // An image named by a relative URI (RFC 3986, percent-encoded): a file in the asset's own folder.
-  std::vector<unsigned char> image_file(const std::string& u, const std::string& iw) const {
-    const std::string shown = u.substr(0, 120);
-    const auto colon = u.find(':'), slash = u.find('/');
-    if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
-      refuse("E0715", iw + ".uri '" + shown + "' is neither a data:image/png;base64 URI nor a file in the asset's folder",
-             "embed the image, or put it beside the asset and name it by a relative path");
-    const auto path = gltf::percent_decode(u);
-    if (!path) refuse("E0715", iw + ".uri '" + shown + "' is not a valid relative URI (a stray '%')");
-    if (!folder_)
-      refuse("E0715", iw + ".uri names the file '" + shown + "', but the asset was read without its folder",
-             "read the asset from its file, with its images beside it");
-    std::filesystem::path full;
-    try {
-      full = schema::confined_path(*folder_, *path, "the asset's folder", "Sandpaper reads an asset's images from its own folder only");
-    } catch (const schema::OutsideFolder& e) {
-      refuse("E0715", iw + ".uri: " + e.what());
-    }
-    try {
-      const std::string data = schema::read_input_file(full, kMaxGltfBytes);
-      return std::vector<unsigned char>(data.begin(), data.end());
-    } catch (const schema::InputFileError& e) {
-      refuse("E0715", iw + ".uri: cannot read '" + shown + "' in the asset's folder: " + e.reason);
-    }
-    return {};
-  }
-
   SourceLocation at() const { return SourceLocation{std::make_shared<const SourceFile>(shown_, ""), 0, 0, 1}; }
 
   const Compiler& c_;
+  const GltfDocument& doc_;  // the asset's JSON and buffers
   const json& root_;
   std::string shown_;
-  std::optional<std::filesystem::path> folder_;
-  const std::string* glb_bin_;  // a .glb's BIN chunk, or null
   Diagnostics& diags_;
   json materials_;
   std::map<std::size_t, std::shared_ptr<const schema::PatchProgram>> built_;
@@ -629,59 +505,10 @@ void centre_of(const json& root, const Piece& piece, const double size_m[2], dou
   centre[1] = micrometre(-c[2]);
 }
 
-std::uint32_t u32_at(const std::string& b, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
-  return v;
-}
-
-// A binary glTF (glTF 2.0 section 4.4): a 12-byte header ("glTF", version 2, the file's length), a
-// JSON chunk, and an optional BIN chunk; later chunks are ignored, as the format allows.
-struct Glb {
-  std::string json, bin;
-  bool has_bin = false;
-};
-Glb split_glb(const std::string& b, const std::string& shown) {
-  const std::string what = "'" + shown + "' is a binary glTF (.glb) ";
-  if (b.size() < 20) refuse("E0711", what + "cut short: " + std::to_string(b.size()) + " bytes, less than its headers");
-  if (u32_at(b, 4) != 2) refuse("E0711", what + "of version " + std::to_string(u32_at(b, 4)) + ", not 2");
-  if (u32_at(b, 8) != b.size())
-    refuse("E0711", what + "whose header says " + std::to_string(u32_at(b, 8)) + " bytes, but it has " + std::to_string(b.size()),
-           "was it cut short?");
-  const std::uint64_t json_length = u32_at(b, 12);
-  if (u32_at(b, 16) != 0x4E4F534A) refuse("E0711", what + "whose first chunk is not JSON");
-  if (json_length > b.size() - 20) refuse("E0711", what + "whose JSON chunk passes the end of the file");
-  Glb g;
-  g.json = b.substr(20, json_length);
-  const std::uint64_t at = 20 + json_length;
-  if (b.size() - at >= 8 && u32_at(b, at + 4) == 0x004E4942) {
-    const std::uint64_t bin_length = u32_at(b, at);
-    if (bin_length > b.size() - at - 8) refuse("E0711", what + "whose BIN chunk passes the end of the file");
-    g.bin = b.substr(at + 8, bin_length);
-    g.has_bin = true;
-  }
-  return g;
-}
-
 void read(const Compiler& c, const std::string& file_bytes, const std::string& shown,
           const std::optional<std::filesystem::path>& folder, GltfImportResult& r) {
-  std::optional<Glb> glb;
-  if (file_bytes.size() >= 4 && file_bytes.compare(0, 4, "glTF") == 0) glb = split_glb(file_bytes, shown);
-  const std::string& bytes = glb ? glb->json : file_bytes;
-  Census census;
-  const bool parsed = json::sax_parse(bytes, &census);
-  if (census.over)
-    refuse("E0711", "'" + shown + "' has more than " + std::to_string(kMaxGltfJsonValues) + " JSON values or is nested deeper than " +
-                        std::to_string(kMaxGltfJsonDepth));
-  if (!parsed)
-    refuse("E0711", "'" + shown + "' is not JSON: " + (census.error.empty() ? std::string("parse error") : census.error),
-           "a .gltf file is JSON; was it cut short?");
-  const json root = json::parse(bytes);
-  if (!root.is_object()) refuse("E0712", "'" + shown + "' is JSON but not a glTF asset (not an object)");
-  const json& asset = member(root, "asset", "the asset");
-  const json& version = member(asset, "version", "asset");
-  if (!version.is_string() || version.get<std::string>() != "2.0")
-    refuse("E0712", "asset.version is not \"2.0\": Sandpaper reads glTF 2.0");
+  const GltfDocument doc = GltfDocument::parse(file_bytes, shown, folder);
+  const json& root = doc.root();
   const json* ext = optional_member(root, "extensions");
   const json* top = ext ? optional_member(*ext, gltf::kExtension) : nullptr;
   if (!top) refuse("E0713", "the asset has no MPEG_haptic_material extension, so nothing in it has haptics",
@@ -718,7 +545,7 @@ void read(const Compiler& c, const std::string& file_bytes, const std::string& s
                "]): their patches' meshes were merged into others or removed, as glTF-Transform's join (and optimize, which joins) does",
            "export the asset again from Sandpaper (its patches now have visual materials of their own, which join keeps apart), "
              "or join with meshes kept apart (gltf-transform optimize --join false)");
-  Reader reader(c, root, shown, folder, glb && glb->has_bin ? &glb->bin : nullptr, r.diagnostics);
+  Reader reader(c, doc, r.diagnostics);
   reader.set_materials(materials);
   const json* extras = optional_member(root, "extras");
   const json* ours = extras ? optional_member(*extras, gltf::kExtrasKey) : nullptr;
@@ -764,8 +591,6 @@ GltfImportResult import_gltf_text(const Compiler& compiler, const std::string& b
   GltfImportResult r;
   const SourceLocation at{std::make_shared<const SourceFile>(shown_name, ""), 0, 0, 1};
   try {
-    if (bytes.size() > kMaxGltfBytes)
-      refuse("E0710", "'" + shown_name + "' is larger than the limit of " + std::to_string(kMaxGltfBytes >> 20) + " MiB for a glTF file");
     read(compiler, bytes, shown_name, folder, r);
   } catch (const Refusal& e) {
     r.program.reset();

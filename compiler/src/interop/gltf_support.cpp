@@ -1,4 +1,5 @@
 #include "gltf_support.hpp"
+#include "sandpaper/compiler/gltf_document.hpp"
 #include "../codegen/png_chunks.hpp"
 
 #include "sandpaper/compiler/image_io.hpp"
@@ -86,11 +87,26 @@ std::vector<unsigned char> encode_png16(int nx, int ny, const std::vector<std::u
   return bytes;
 }
 
-std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long long max_pixels, std::string& why) {
-  // Decoded here rather than by libpng: libpng reports a corrupt stream by longjmp, which leaks
-  // inside OpenImageIO's reader, and the reader needs only what
-  // the writer writes. Every chunk's length and CRC are checked, and the image data inflates to
-  // exactly the bytes its header promises, into a buffer sized from the header after the limit.
+namespace {
+
+// A PNG inflated and unfiltered: height rows of width * bytes_per_pixel bytes, samples big-endian.
+struct PngRows {
+  std::uint32_t width = 0, height = 0;
+  int bit_depth = 0;
+  std::size_t bytes_per_pixel = 0;
+  std::vector<unsigned char> rows;
+};
+
+// The IHDR fields a decoder chooses by: bit depth, colour type, whether the compression and filter
+// methods are PNG's only ones (0), interlace method. Returns the bytes per pixel it reads, or 0 and
+// `why` for a kind it does not read.
+using HeaderCheck = std::size_t (*)(int depth, int colour, bool standard, int interlace, std::string& why);
+
+// Decoded here rather than by libpng: libpng reports a corrupt stream by longjmp, which leaks
+// inside OpenImageIO's reader, and the readers need only a few kinds of PNG. Every chunk's length
+// and CRC are checked, and the image data inflates to exactly the bytes its header promises, into a
+// buffer sized from the header after the limit.
+std::optional<PngRows> inflate_png(const std::vector<unsigned char>& bytes, long long max_pixels, HeaderCheck check, std::string& why) {
   auto fail = [&](std::string w) {
     why = std::move(w);
     return std::nullopt;
@@ -100,6 +116,8 @@ std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long 
   auto be32 = [&](std::size_t at) { return png_be32(bytes.data() + at); };
   std::size_t at = kPngSignature.size();
   std::uint32_t width = 0, height = 0;
+  std::size_t bpp = 0;
+  int depth = 0;
   std::vector<unsigned char> raw;  // the filtered rows, inflated
   z_stream z{};
   bool inflating = false, ended = false, seen_header = false;
@@ -129,10 +147,11 @@ std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long 
       if (static_cast<std::uint64_t>(width) * height > static_cast<std::uint64_t>(max_pixels))
         return fail("the PNG claims " + std::to_string(width) + " x " + std::to_string(height) +
                     " px, over the limit of " + std::to_string(max_pixels) + " px");
-      if (data[8] != 16 || data[9] != 0 || data[10] != 0 || data[11] != 0 || data[12] != 0)
-        return fail("the PNG is not 16-bit greyscale without interlacing (bit depth " + std::to_string(data[8]) +
-                    ", colour type " + std::to_string(data[9]) + "), the form Sandpaper writes haptic textures in");
-      raw.resize(static_cast<std::size_t>(height) * (1 + 2 * static_cast<std::size_t>(width)));
+      std::string kind;
+      bpp = check(data[8], data[9], data[10] == 0 && data[11] == 0, data[12], kind);
+      if (bpp == 0) return fail(kind);
+      depth = data[8];
+      raw.resize(static_cast<std::size_t>(height) * (1 + bpp * static_cast<std::size_t>(width)));
       if (inflateInit(&z) != Z_OK) return fail("zlib cannot start");
       inflating = true;
       z.next_out = raw.data();
@@ -155,18 +174,21 @@ std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long 
     at += 12 + length;
   }
   if (!inflating || z.avail_out != 0) return fail("the PNG's image data is shorter than its header says");
-  // Undo the row filters (PNG spec 9.2), two bytes per texel, then big-endian samples.
-  const std::size_t stride = 2 * static_cast<std::size_t>(width);
-  std::vector<unsigned char> prior(stride, 0), row(stride);
-  Png16 png;
-  png.nx = static_cast<int>(width);
-  png.ny = static_cast<int>(height);
-  png.texels.resize(static_cast<std::size_t>(width) * height);
+  // Undo the row filters (PNG spec 9.2), in place: each row's filter byte is dropped.
+  const std::size_t stride = bpp * static_cast<std::size_t>(width);
+  PngRows out;
+  out.width = width;
+  out.height = height;
+  out.bit_depth = depth;
+  out.bytes_per_pixel = bpp;
+  out.rows.resize(static_cast<std::size_t>(height) * stride);
+  std::vector<unsigned char> prior(stride, 0);
   for (std::size_t y = 0; y < height; ++y) {
     const unsigned char* in = raw.data() + y * (stride + 1);
+    unsigned char* row = out.rows.data() + y * stride;
     const unsigned filter = in[0];
     for (std::size_t i = 0; i < stride; ++i) {
-      const int a = i >= 2 ? row[i - 2] : 0, b = prior[i], c = i >= 2 ? prior[i - 2] : 0;
+      const int a = i >= bpp ? row[i - bpp] : 0, b = prior[i], c = i >= bpp ? prior[i - bpp] : 0;
       int predicted;
       switch (filter) {
         case 0: predicted = 0; break;
@@ -182,14 +204,64 @@ std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long 
       }
       row[i] = static_cast<unsigned char>(in[1 + i] + predicted);
     }
-    for (std::size_t x = 0; x < width; ++x)
-      png.texels[y * width + x] = static_cast<std::uint16_t>((row[2 * x] << 8) | row[2 * x + 1]);
-    prior.swap(row);
+    std::copy(row, row + stride, prior.begin());
   }
+  return out;
+}
+
+// Channels per pixel of a colour type (PNG spec 11.2.2): grey, RGB, grey-alpha, RGBA; 0 otherwise.
+int channels_of(int colour) { return colour == 0 ? 1 : colour == 2 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 0; }
+
+}  // namespace
+
+std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long long max_pixels, std::string& why) {
+  auto rows = inflate_png(bytes, max_pixels, [](int depth, int colour, bool standard, int interlace, std::string& kind) -> std::size_t {
+    if (depth == 16 && colour == 0 && standard && interlace == 0) return 2;
+    kind = "the PNG is not 16-bit greyscale without interlacing (bit depth " + std::to_string(depth) +
+           ", colour type " + std::to_string(colour) + "), the form Sandpaper writes haptic textures in";
+    return 0;
+  }, why);
+  if (!rows) return std::nullopt;
+  Png16 png;
+  png.nx = static_cast<int>(rows->width);
+  png.ny = static_cast<int>(rows->height);
+  png.texels.resize(rows->rows.size() / 2);
+  for (std::size_t i = 0; i < png.texels.size(); ++i)
+    png.texels[i] = static_cast<std::uint16_t>((rows->rows[2 * i] << 8) | rows->rows[2 * i + 1]);
   return png;
 }
 
 }  // namespace sandpaper::compiler::gltf
+
+namespace sandpaper::compiler {
+
+std::optional<GltfValueImage> decode_gltf_value_png(const std::vector<unsigned char>& bytes, long long max_pixels, std::string& why) {
+  using namespace gltf;
+  auto rows = inflate_png(bytes, max_pixels, [](int depth, int colour, bool standard, int interlace, std::string& kind) -> std::size_t {
+    const int channels = channels_of(colour);
+    if ((depth == 8 || depth == 16) && channels > 0 && standard && interlace == 0)
+      return static_cast<std::size_t>(channels * depth / 8);
+    kind = "the PNG is of bit depth " + std::to_string(depth) + ", colour type " + std::to_string(colour) +
+           (interlace != 0 ? ", interlaced" : "") +
+           "; a texture of values is read from an 8- or 16-bit greyscale, grey-alpha, RGB or RGBA PNG without interlacing";
+    return 0;
+  }, why);
+  if (!rows) return std::nullopt;
+  // The first channel of each pixel: grey, or red.
+  GltfValueImage out;
+  out.nx = static_cast<int>(rows->width);
+  out.ny = static_cast<int>(rows->height);
+  out.bit_depth = rows->bit_depth;
+  const std::size_t n = static_cast<std::size_t>(rows->width) * rows->height, bpp = rows->bytes_per_pixel;
+  out.values.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned char* px = rows->rows.data() + i * bpp;
+    out.values[i] = rows->bit_depth == 16 ? static_cast<float>(((px[0] << 8) | px[1]) / 65535.0) : static_cast<float>(px[0] / 255.0);
+  }
+  return out;
+}
+
+}  // namespace sandpaper::compiler
 
 namespace sandpaper::compiler::gltf {
 

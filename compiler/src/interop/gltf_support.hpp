@@ -42,6 +42,8 @@ struct Png16 {
 // with `why` (one line) for anything else: another PNG kind, a bad CRC, a cut or corrupt stream.
 std::optional<Png16> decode_png16(const std::vector<unsigned char>& bytes, long long max_pixels, std::string& why);
 
+// decode_gltf_value_png (gltf_document.hpp) is defined beside decode_png16, with which it shares the decoder.
+
 }  // namespace sandpaper::compiler::gltf
 
 namespace sandpaper::compiler::gltf {

@@ -5,6 +5,7 @@ import { editor } from "./editor.js";
 import { markUnsaved } from "./file-list.js";
 import { $, roughnessText, setStatus } from "./page.js";
 import { refreshPreview } from "./preview.js";
+import { refreshScene } from "./scene.js";
 import { renderSliders } from "./sliders.js";
 import { state } from "./state.js";
 
@@ -42,16 +43,23 @@ export function applyCompile(r) {
     ? `the last good picture (v${r.version}, still playing): this text does not compile`
     : "nothing has compiled yet: this text does not compile";
   $("#compile-state").title = $("#compile-state").textContent = r.ok
-    ? `compiled: ${r.material || workspaceSummary(r.workspace)}` +
+    ? `compiled: ${r.material || (r.scene ? sceneSummary(r.scene) : workspaceSummary(r.workspace))}` +
       (r.compiled_max_lateral_force_N !== undefined ? ` · ${r.compiled_max_lateral_force_N.toFixed(3)} N, roughness ${roughnessText(r.compiled_roughness)}` : "")
+    : state.kind === "scene" ? "does not compile: the view shows the last good scene"
     : "does not compile: the last good program keeps playing";
   $("#saved").textContent = r.saved ? "saved" : "unsaved";
   markUnsaved(state.file, !r.saved);
   state.version = r.version;
   if (r.ok && r.size_m) state.patchMm = [r.size_m[0] * 1e3, r.size_m[1] * 1e3];
   if (r.text_version !== undefined) state.textVersion = Math.max(state.textVersion || 0, r.text_version);
+  if (r.scene_version !== undefined) state.sceneVersion = r.scene_version;
   renderSliders(r.parameters || []);
-  if (r.ok) refreshPreview();
+  if (r.ok) (state.kind === "scene" ? refreshScene() : refreshPreview());
+}
+
+// A scene's compile (GET /api/current, POST /api/material): its name, objects and triangles.
+function sceneSummary(s) {
+  return `scene ${s.scene} · ${s.objects} object${s.objects === 1 ? "" : "s"}, ${s.triangles} triangles`;
 }
 
 // A workspace's compile (schema::to_json of the program): its name, patches and size.

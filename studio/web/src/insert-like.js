@@ -14,6 +14,8 @@ function code(line) {
 export function likeEdit(text, head, name, kind = "material") {
   if (kind === "workspace")
     return { why: `a workspace places patches: write patch "${name}" at X, Y, or open a material to start it from ${name}` };
+  if (kind === "scene")
+    return { why: `a scene names a material on each object: write material "${name}" in the object's block` };
   const lines = text.split("\n");
   const starts = [];
   let at = 0;

@@ -54,7 +54,9 @@ function onState(s) {
   // Which program plays, beside the text: a text that does not compile leaves an older one playing.
   const d = s.document;
   document.body.dataset.playingVersion = s.material_version;
-  $("#playing-what").textContent = d && s.material_version
+  $("#playing-what").textContent = state.kind === "scene"
+    ? "felt by the simulated 3-D device: drag on the view"
+    : d && s.material_version
     ? (d.compiles && d.version === s.material_version ? `playing this text (v${s.material_version})`
                                                       : `playing v${s.material_version}, an earlier text`)
     : "";
@@ -69,7 +71,7 @@ function onState(s) {
   if (state.strip.length > 300) state.strip.shift();
   drawStrip();
   if (state.kind === "material") drawOverlay();
-  else drawWorkspaceHand();
+  else if (state.kind === "workspace") drawWorkspaceHand();
 }
 
 function drawWorkspaceHand() {

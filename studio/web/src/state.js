@@ -8,4 +8,6 @@ export const state = {
   languageAsked: 0, // questions to the language server (completion, hover, F12) not yet answered
   zoom: null,       // null: the preview's own window; else {cx, cy, w, h}, mm, a window over the patch
   patchMm: null,    // the playing material's patch [width, height], mm
+  sceneVersion: 0,  // the open scene's last good compile (GET /api/current "scene_version"); 0 none
+  sceneTouch: null, // the 3-D Dummy mode's last answer (POST /api/scene/device)
 };

@@ -1,6 +1,6 @@
 // Sandpaper Studio's page (docs/STUDIO.md): the editor with the compiler's diagnostics, the preview of
 // what plays, sliders for its numbers, Dummy mode (the mouse moves the simulated hand), the live servo
-// figures, and the workspace canvas. Everything it knows comes from the studio's JSON API.
+// figures, the workspace canvas, and a scene's 3-D view (scene.js). Everything it knows comes from the studio's JSON API.
 // This file wires the page's modules together and starts it.
 import { api } from "./api.js";
 import { applyCompile, compileNow, flushCompile } from "./compile.js";
@@ -14,6 +14,7 @@ import { drawOverlay } from "./overlay.js";
 import { $, setStatus } from "./page.js";
 import { setupStage } from "./pointer.js";
 import { refreshPreview } from "./preview.js";
+import { setupScene } from "./scene.js";
 import { state } from "./state.js";
 import { drawWorkspace } from "./workspace.js";
 import { setupZoom } from "./zoom.js";
@@ -40,6 +41,7 @@ async function init() {
   $("#arrows").addEventListener("change", () => refreshPreview());  // the caption says what the arrows stand for
   setupStage();
   setupZoom();
+  setupScene();
   // Started on a folder, nothing plays until a file is chosen.
   const cur = await api("GET", "/api/current");
   if (cur.file) {
@@ -49,7 +51,8 @@ async function init() {
     setStatus("choose a file to play from the list");
   }
   connectEvents();
-  window.addEventListener("resize", () => (state.kind === "workspace" ? drawWorkspace() : drawOverlay()));
+  // A scene's view follows its pane's size by itself (scene3d/view.js).
+  window.addEventListener("resize", () => (state.kind === "workspace" ? drawWorkspace() : state.kind === "material" && drawOverlay()));
   document.body.dataset.ready = "yes";
 }
 

@@ -119,18 +119,24 @@ struct DeviceCalibration {
   double max_force_N = 0;            // maximum continuous lateral force per axis
   long command_max = 0;              // largest command magnitude; 0: continuous commands (no quantization)
   int resolution_bits = 0;           // 0 if not stated
-  std::array<AxisScale, 2> axis;     // x, y
+  // x, y, and z for a three-axis device ([force.z]); z is unused (a default scale) otherwise.
+  std::array<AxisScale, 3> axis;
   double position_resolution_m = 0;  // 0 if continuous or not stated
-  bool workspace_circle = true;
-  double workspace_radius_m = 0;     // circle: radius; rectangle: half the smaller side
-  double workspace_size_m[2] = {0, 0};  // rectangle width, height (circle: the diameter twice)
+  bool workspace_circle = true;      // round: a circle, or a sphere for a three-axis device
+  double workspace_radius_m = 0;     // circle, sphere: radius; rectangle, box: half the smallest side
+  // Width (x), height (y) and depth (z) of a rectangle or box; round: the diameter on each. Depth is
+  // 0 for a one- or two-axis device's workspace, which is flat.
+  double workspace_size_m[3] = {0, 0, 0};
   double min_rate_hz = 0, max_rate_hz = 0;
   // [wheel]: a one-axis device turned at its rim. Its x is metres of rim arc from the centre, its
-  // force the force at the rim (N); y is always 0 and takes no force. axes 2 without [wheel].
+  // force the force at the rim (N); y is always 0 and takes no force. [force.z]: a three-axis
+  // device (a 3-DOF haptic device, felt on shapes/ scenes: x right, y up, z toward the user), with
+  // a box or sphere workspace. axes 2 with neither.
   int axes = 2;
   double wheel_rim_radius_m = 0;        // 0: not a wheel
   double wheel_rotation_range_rad = 0;  // lock to lock
   bool wheel() const { return axes == 1; }
+  bool three_axis() const { return axes == 3; }
   // Degrees the wheel turns for 1 mm along its rim (0 when not a wheel).
   double wheel_deg_per_mm() const;
   int usb_vendor_id = -1, usb_product_id = -1;  // [usb] table of a USB HID PID device; -1: not a USB device
@@ -162,7 +168,7 @@ struct DeviceCalibration {
 
   bool quantized() const { return command_max > 0; }
   bool calibrated() const { return status != CalibrationStatus::Uncalibrated; }
-  // Newtons of one command unit on axis `a` (0 = x, 1 = y) near `newtons`; 0 for a continuous device.
+  // Newtons of one command unit on axis `a` (0 = x, 1 = y, 2 = z) near `newtons`; 0 for a continuous device.
   double force_step_N(int a, double newtons = 0) const;
   // `newtons` on axis `a` rounded to the nearest force the device can command (unchanged when continuous).
   double quantize_N(int a, double newtons) const;

@@ -10,15 +10,11 @@
 #include <string>
 
 #include "sandpaper/compiler/compiler.hpp"
+#include "sandpaper/compiler/gltf_document.hpp"  // the file's limits (kMaxGltfBytes, ...) and its reading
 #include "sandpaper/schema/workspace_program.hpp"
 
 namespace sandpaper::compiler {
 
-// A glTF file: 128 MiB (a 4096 x 4096 16-bit texture is at most 43 MiB of base64).
-inline constexpr std::size_t kMaxGltfBytes = std::size_t{128} << 20;
-// JSON values in the asset (a shipped workspace has a few hundred) and their nesting depth.
-inline constexpr std::size_t kMaxGltfJsonValues = std::size_t{1} << 20;
-inline constexpr std::size_t kMaxGltfJsonDepth = 64;
 // Texels decoded over the whole asset: two of the largest height maps (compiler kMaxImagePixels).
 inline constexpr long long kMaxGltfTexels = 2 * 4096LL * 4096LL;
 

@@ -19,7 +19,7 @@ inline constexpr std::string_view kGltf = "docs/GLTF.md";
 
 // Kept sorted by code (checked by the test DiagnosticCodes.SortedAndUnique). The phases: 00 files
 // and limits, 01 lexer, 02 parser, 03 resolver, 04 images, 05 workspaces, movies and shuffles,
-// 06 `library check`.
+// 06 `library check`, 07 glTF, 08 scenes.
 inline constexpr std::array kDiagnosticCodes = {
     DiagnosticCode{"E0001", table::E, "the material file cannot be opened, is not a regular file (a device or FIFO), or is over 4 MiB", table::kLang},
     DiagnosticCode{"E0009", table::E, "too many errors (more than 50): the rest are counted, not shown (docs/RELIABILITY.md)", table::kLang},
@@ -126,6 +126,31 @@ inline constexpr std::array kDiagnosticCodes = {
     DiagnosticCode{"E0719", table::E, "more than 65536 haptic meshes in one asset", table::kGltf},
     DiagnosticCode{"E0720", table::E, "a haptic texture a pipeline re-encoded (8-bit or colour PNG, WebP, JPEG, AVIF, KTX2): the 16-bit heights are lost", table::kGltf},
     DiagnosticCode{"E0721", table::E, "fewer haptic meshes than the patches the asset was written with: a pipeline merged or removed them (glTF-Transform join, optimize)", table::kGltf},
+    DiagnosticCode{"E0800", table::E, "the scene file cannot be opened", table::kLang},
+    DiagnosticCode{"E0801", table::E, "scene syntax: expected `scene`, the `{` after a name, an `object`, or `size` after `texture`", table::kLang},
+    DiagnosticCode{"E0802", table::E, "unknown statement in a scene or an object (with \"did you mean\")", table::kLang},
+    DiagnosticCode{"E0803", table::E, "a scene or object block not closed", table::kLang},
+    DiagnosticCode{"E0804", table::E, "text after the scene block", table::kLang},
+    DiagnosticCode{"E0805", table::E, "an object statement given twice (`stiffness`, `damping`, `friction`, `texture size`, or a `material` for one side)", table::kLang},
+    DiagnosticCode{"E0806", table::E, "a radius, a box, plane or texture size that is not positive", table::kLang},
+    DiagnosticCode{"E0807", table::E, "unknown shape (with \"did you mean\"), or a shape without its sizes: `sphere radius R`, `box W x H x D`, `plane W x D`", table::kLang},
+    DiagnosticCode{"E0808", table::E, "an object with an empty name or an empty material", table::kLang},
+    DiagnosticCode{"E0809", table::E, "more than 1,024 objects in one scene", table::kLang},
+    DiagnosticCode{"E0810", table::E, "unknown side (with \"did you mean\"): top, bottom, right, left, front, back", table::kLang},
+    DiagnosticCode{"E0811", table::E, "an option of another shape: `inside` or `on SIDE` on a sphere or plane, `facing` on a sphere or box", table::kLang},
+    DiagnosticCode{"E0812", table::E, "a contact value out of range: a stiffness that is not positive, a negative damping or friction, kinetic friction above static", table::kLang},
+    DiagnosticCode{"E0813", table::E, "two objects of one scene with the same name", table::kLang},
+    DiagnosticCode{"E0831", table::E, "scene: expected a quoted text, the scene's name, an object's name or a material", table::kLang},
+    DiagnosticCode{"E0832", table::E, "scene: an `object` without `at X, Y, Z`, or without the commas between them", table::kLang},
+    DiagnosticCode{"E0833", table::E, "scene: expected a number, a length, stiffness or damping with its unit or a friction coefficient", table::kLang},
+    DiagnosticCode{"E0834", table::E, "scene: more text after a complete statement", table::kLang},
+    DiagnosticCode{"E0860", table::E, "glTF scene: a node hierarchy that is not a tree (a node reached twice), or a node transform that cannot be read: a matrix not 16 finite numbers or not affine, translation, rotation or scale not 3, 4, 3 finite numbers, a zero rotation, a matrix beside TRS", table::kGltf},
+    DiagnosticCode{"E0861", table::E, "glTF scene: a mesh without primitives, or a primitive without POSITION or of a mode that is not 0-6", table::kGltf},
+    DiagnosticCode{"E0862", table::E, "glTF scene: an accessor that cannot be read (type, component type, count, offset, stride or sparse values passing its buffer view), TEXCOORD_0 of another count, a vertex not finite or over 1,000 km from the origin, a UV not finite or beyond 1e12", table::kGltf},
+    DiagnosticCode{"E0863", table::E, "glTF scene: a vertex index past its primitive's vertices, or indices that are not unsigned 8-, 16- or 32-bit scalars", table::kGltf},
+    DiagnosticCode{"E0864", table::E, "glTF scene over its limits (a scene program's): 2^20 triangles, 3 x 2^20 vertices, 65,536 objects or surfaces; 1,024 distinct materials", table::kGltf},
+    DiagnosticCode{"E0865", table::E, "glTF scene: a binding that cannot be used: `extras.sandpaper` not an object, its material not one line of text or a .hmat outside the asset's folder, a contact value of the wrong type or range, a haptic material index past MPEG_haptic_material's materials", table::kGltf},
+    DiagnosticCode{"E0866", table::E, "glTF scene: the asset requires geometry compression Sandpaper does not decode (KHR_draco_mesh_compression, EXT_meshopt_compression)", table::kGltf},
     DiagnosticCode{"W0009", table::W, "too many warnings (more than 200): the rest are counted, not shown", table::kLang},
     DiagnosticCode{"W0301", table::W, "roughness extrapolated below 18 gf, or another perceptual word below the bottom of its map's domain", table::kLang},
     DiagnosticCode{"W0302", table::W, "roughness extrapolated: period outside 0.7-10 mm", table::kLang},
@@ -154,6 +179,14 @@ inline constexpr std::array kDiagnosticCodes = {
     DiagnosticCode{"W0701", table::W, "`export --format gltf`: parts of the material glTF cannot carry (force laws, state, energy budgets) were left out", table::kGltf},
     DiagnosticCode{"W0702", table::W, "`export --format gltf`: the 16-bit heights give the forces back less closely than 0.5 % of the maximum lateral force", table::kGltf},
     DiagnosticCode{"W0703", table::W, "glTF import: the asset says parts of its material were left out when it was exported", table::kGltf},
+    DiagnosticCode{"W0851", table::W, "scene: parts of a surface's material a shape does not carry (force laws and physics models other than its texture, spring, damper and friction) were left out", table::kLang},
+    DiagnosticCode{"W0852", table::W, "scene: no objects", table::kLang},
+    DiagnosticCode{"W0853", table::W, "scene: a height-map texture that does not repeat covers only part of its surface (flat elsewhere)", table::kLang},
+    DiagnosticCode{"W0860", table::W, "glTF scene: primitives of points or lines skipped (no surface to touch)", table::kGltf},
+    DiagnosticCode{"W0861", table::W, "glTF scene: degenerate triangles (sine of the smallest angle at most 1e-12) dropped", table::kGltf},
+    DiagnosticCode{"W0862", table::W, "glTF scene: parts of the asset not read: animations, skins, morph targets, GPU instances, required extensions Sandpaper does not know", table::kGltf},
+    DiagnosticCode{"W0863", table::W, "glTF scene: parts of an MPEG_haptic_material a surface does not use (another tool's vibrotactile texture, temperature, vibration, custom, Reference textures, a stiffness or friction that varies over its texture)", table::kGltf},
+    DiagnosticCode{"W0864", table::W, "glTF scene: MPEG_haptic_material stiffness texels, which the extension gives no unit, read as a fraction of 2,000 N/m (or zero, not used)", table::kGltf},
 };
 
 }  // namespace sandpaper::schema

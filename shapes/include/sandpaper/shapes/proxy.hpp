@@ -4,6 +4,7 @@
 // Ruspini, Kolarov & Khatib 1997). Built off the servo thread; update_rt runs on it.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -68,8 +69,14 @@ class ProxyRenderer {
     std::uint32_t triangle = 0;
     std::size_t constraints = 0;
   };
-  // The frictionless constrained move from start toward goal (m).
-  Solved solve(const glm::dvec3& start, const glm::dvec3& goal) const noexcept;
+  // The frictionless constrained move from start toward goal (m). `resting_on`: the triangle start
+  // rests on (the last update's contact), or Mesh::kNoNeighbour; the first segment then meets its
+  // plane without a cast through the hierarchy when it crosses within the triangle.
+  Solved solve(const glm::dvec3& start, const glm::dvec3& goal, std::uint32_t resting_on = Mesh::kNoNeighbour) const noexcept;
+  // The first segment's crossing of the plane of the triangle it starts on, when that is where it
+  // leaves the margin: within the triangle (barycentric tolerance) and from no more than the margin
+  // above it. Saves the cast (a third of an update's cost at 100k triangles; docs/performance.md).
+  std::optional<SegmentHit> resting_hit(std::uint32_t triangle, const glm::dvec3& p, const glm::dvec3& target) const noexcept;
   // The plane of a triangle raised by the surface offset.
   ConstraintPlane raised_plane(std::uint32_t triangle) const noexcept;
   // Where a path p -> target running along a plane's surface leaves its triangle: the parameter

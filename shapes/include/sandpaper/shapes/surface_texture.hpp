@@ -32,14 +32,18 @@ class SurfaceTexture {
   // Patch coordinates (m) of point_m (m), taken onto `triangle`'s plane, through its UVs.
   glm::dvec2 patch_position_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) const noexcept;
   // The texture's force (N) at point_m on `triangle`: in the triangle's plane; zero on a triangle
-  // without UVs (its UV gradient is zero). Real time: no allocation, lock, I/O or exception.
+  // without UVs (its UV gradient is zero). Where the UVs squeeze the texture the slope grows with
+  // the squeeze, without bound at a UV sphere's pole; the force is held to the material's compiled
+  // maximum lateral force, the figure its roughness was compiled to (thesis 5: roughness follows the
+  // peak lateral force). Real time: no allocation, lock, I/O or exception.
   glm::dvec3 force_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) noexcept;
 
  private:
-  SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, glm::dvec2 uv_size_m);
+  SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, glm::dvec2 uv_size_m, double max_force_N);
   std::unique_ptr<schema::PatchProgram> texture_;  // owned, so that the evaluator's reference outlives moves
   std::unique_ptr<runtime::PatchEvaluator> evaluator_;
   glm::dvec2 uv_size_m_;
+  double max_force_N_;  // the compiled maximum lateral force; infinite when the program states none
 };
 
 }  // namespace sandpaper::shapes

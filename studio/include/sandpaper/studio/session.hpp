@@ -1,6 +1,7 @@
 #pragma once
-// What the studio has open: a folder, one file in it (a material or a workspace), its text as edited
-// (saved or not), and the last program that compiled, which is what plays. Every method is called
+// What the studio has open: a folder, one file in it (a material, a workspace or a 3-D scene), its
+// text as edited (saved or not), and the last program that compiled, which is what plays (a scene is
+// felt in the page's 3-D Dummy mode instead, through its SceneView). Every method is called
 // from the HTTP threads and serialised by the session's own mutex; none touches the servo thread
 // except through LiveLoop's non-blocking hand-over (docs/STUDIO.md).
 #include <atomic>
@@ -20,7 +21,9 @@
 #include "sandpaper/http/local_server.hpp"
 #include "sandpaper/compiler/parameters.hpp"
 #include "sandpaper/schema/workspace_program.hpp"
+#include "sandpaper/studio/file_kind.hpp"
 #include "sandpaper/studio/live_loop.hpp"
+#include "sandpaper/studio/scene_view.hpp"
 
 namespace sandpaper::studio {
 
@@ -38,7 +41,7 @@ class Session {
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
-  // The .hmat and .hws files in the folder, 8 levels deep, at most 2000: {"files": [relative paths,
+  // The .hmat, .hws and .hsc files in the folder, 8 levels deep, at most 2000: {"files": [relative paths,
   // sorted], "not_listed": [{"file", "why"}], "unsaved": [files with edits not yet saved]}, the
   // second for names that are not UTF-8 (shown with U+FFFD), which a request could not name.
   nlohmann::json files() const;
@@ -46,15 +49,17 @@ class Session {
   // edits here, and opening it again brings them back ("restored_unsaved": true) rather than the
   // disk's text: switching files never drops a designer's text. So does a recovery copy that a
   // stopped studio left beside the file, when it differs from the file ("recovered": its name). RequestError 403 outside the
-  // folder, 404 missing, 413 too large, 400 not a .hmat or .hws.
+  // folder, 404 missing, 413 too large, 400 not a .hmat, .hws or .hsc; 501 a scene in a studio built
+  // without SANDPAPER_SHAPES (SceneView::built()).
   nlohmann::json open(const std::string& relative);
-  // The open file: {"file", "kind": "material"|"workspace", "text", "text_version", "saved": bool,
+  // The open file: {"file", "kind": "material"|"workspace"|"scene", "text", "text_version", "saved": bool,
   // "version", ...}, and "recovered": {"copy", "saved_text"} while its text is a recovery copy's
   // (keep_unsaved()) not yet saved, "saved_text" being the file's text on disk.
   nlohmann::json current() const;
   // What every page is told with each state event, so that a change made anywhere (this page, another
   // tab, the HTTP API) reaches them all: {"file", "text_version" (rises with every change of the
-  // text), "saved", "compiles", "version" (of the program that text compiled to, when it did)}.
+  // text), "saved", "compiles", "version" (of the program that text compiled to, when it did), "kind",
+  // "scene_version" (of the last scene that compiled: rises with each, 0 before any)}.
   nlohmann::json document_state() const;
 
   // POST /api/compile: compiles `text` as a material, as `sandpaper compile --json` would; plays nothing.
@@ -68,9 +73,9 @@ class Session {
   nlohmann::json set_parameter(const std::string& name, double value, const std::string& unit);
   // Writes the text to the open file atomically (temporary file + rename). Returns {"saved", "bytes"}.
   nlohmann::json save();
-  // POST /api/new: creates `relative` (a .hmat or .hws name inside the folder, in a folder that
+  // POST /api/new: creates `relative` (a .hmat, .hws or .hsc name inside the folder, in a folder that
   // exists, not yet a file) with a starting text that compiles (a material felt on the library's
-  // reference texture; an empty workspace), then opens it; the file left keeps its unsaved edits.
+  // reference texture; an empty workspace; a ball on a floor), then opens it; the file left keeps its unsaved edits.
   // RequestError 403 outside the folder, 400 another extension, 404 no such folder, 409 it exists.
   nlohmann::json create(const std::string& relative);
   // POST /api/save-as: writes the text to `relative` (as create() checks it) and makes that the open
@@ -100,6 +105,15 @@ class Session {
   nlohmann::json workspace() const;
   nlohmann::json place_patch(int index, double x_mm, double y_mm, double width_mm, double height_mm);
 
+  // Scenes (docs/STUDIO.md, "Scenes in 3-D"): the open scene's geometry for the page to draw
+  // (SceneView::geometry() plus "file" and "scene_version"); the 3-D Dummy mode's device moved
+  // (SceneView::touch(), plus "scene_version"); its last position and force (SceneView::last_touch()).
+  // RequestError 409 when the open file is not a scene or has not compiled yet, 501 in a studio
+  // built without SANDPAPER_SHAPES. The renderer runs outside the session's mutex, under the scene's.
+  nlohmann::json scene() const;
+  nlohmann::json scene_touch(const SceneView::Point_m& device_m, const std::optional<SceneView::Point_m>& from_m);
+  nlohmann::json scene_device() const;
+
   // The preview file `name` (height.png, field.png, scan.svg, preview.json, field.json, or
   // patch-<i>.png / patch-<i>-field.png for a workspace's patch) of the playing program, or nullopt if
   // there is none. Waits (up to `wait`) until the program of load `min_version` or a later one is drawn;
@@ -124,6 +138,8 @@ class Session {
   nlohmann::json update_locked(const std::string& text);
   std::filesystem::path new_file_path(const std::string& relative) const;
   nlohmann::json parameters_locked() const;
+  // The open scene's view, or why there is none (RequestError 409/501).
+  std::pair<std::shared_ptr<SceneView>, std::uint64_t> scene_locked() const;
   // The preview renderer's thread: draws the newest program that compiled, off the request path, so an
   // edit is answered (and swapped in) as soon as it compiles.
   void render_loop();
@@ -140,7 +156,7 @@ class Session {
   bool quit_ = false;
   std::thread renderer_;
   std::string file_;           // relative to root_
-  bool is_workspace_ = false;
+  FileKind kind_ = FileKind::Material;
   std::string text_;           // as edited
   std::string saved_text_;     // as on disk
   // Files opened, edited and left unsaved: their edited and on-disk texts, by relative path.
@@ -156,6 +172,10 @@ class Session {
   std::shared_ptr<const schema::PatchProgram> program_;
   std::atomic<std::uint64_t> views_drawn_{0};
   std::shared_ptr<const schema::WorkspaceProgram> workspace_;
+  // The open scene's last good compile (null while none, or the open file is not a scene), and a
+  // number that rises with each, for the page to know when to fetch the geometry again.
+  std::shared_ptr<SceneView> scene_;
+  std::uint64_t scene_version_ = 0;
   nlohmann::json last_compile_;
 };
 

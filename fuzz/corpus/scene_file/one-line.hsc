@@ -1,0 +1,1 @@
+scene "one line" { object "a" sphere radius 1 cm at 0 mm, 0 mm, 0 mm { material "a10p25"; friction 0.2 } ; object "b" plane 1 m x 1 m facing back at 0 mm, 0 mm, -1 m }
