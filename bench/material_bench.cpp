@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "compiled_material.hpp"
 #include "sandpaper/compiler/compiler.hpp"
 #include "sandpaper/runtime/patch_evaluator.hpp"
 
@@ -20,27 +21,14 @@ namespace {
 namespace fs = std::filesystem;
 const fs::path kSource = SANDPAPER_SOURCE_DIR;
 
-// Compiled on first use (compiling every material at start-up would slow a filtered run).
-const schema::PatchProgram& program_for(const fs::path& file) {
-  static std::map<fs::path, std::unique_ptr<schema::PatchProgram>> cache;
-  auto& slot = cache[file];
-  if (!slot) {
-    compiler::CompileOptions o;
-    o.library_dir = kSource / "library";
-    o.calibration_dir = kSource / "calibration";
-    static const compiler::Compiler c(o);
-    auto r = c.compile_file(file);
-    slot = std::make_unique<schema::PatchProgram>(r.ok() ? *r.program : schema::PatchProgram{});
-  }
-  return *slot;
-}
 
 void BM_Material(benchmark::State& state, fs::path file) {
-  const auto& program = program_for(file);
-  if (program.terms.empty()) {
+  const auto compiled = bench::compiled_material(file);
+  if (!compiled) {
     state.SkipWithError("did not compile");
     return;
   }
+  const schema::PatchProgram& program = *compiled;
   runtime::PatchEvaluator evaluator(program);
   runtime::HandState hand;
   hand.velocity_m_s = {0.05, -0.02};

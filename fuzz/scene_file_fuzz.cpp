@@ -68,6 +68,8 @@ void check_object(const ObjectSyntax& o) {
                 who + "friction out of range");
   fuzz::check(!o.texture_width || positive(o.texture_width), who + "a texture width kept that is not positive");
   fuzz::check(!o.texture_height || (o.texture_width && positive(o.texture_height)), who + "a texture height kept without a positive width");
+  fuzz::check(!o.relief_depth || (positive(o.relief_depth) && o.relief_depth->si <= 0.01), who + "a relief depth kept out of (0, 10 mm]");
+  fuzz::check(!o.relief_only || o.relief_depth, who + "`only` kept without a relief");
 }
 
 // A number as the lexer reads it back to the same double.
@@ -109,6 +111,7 @@ std::string write(const SceneSyntax& scene) {
     if (o.static_friction) t += "friction " + number(*o.static_friction) + " " + number(*o.kinetic_friction) + "\n";
     if (o.texture_width)
       t += "texture size " + quantity(*o.texture_width) + (o.texture_height ? " x " + quantity(*o.texture_height) : "") + "\n";
+    if (o.relief_depth) t += "texture relief " + quantity(*o.relief_depth) + (o.relief_only ? " only" : "") + "\n";
     t += "}\n";
   }
   return t + "}\n";
@@ -127,7 +130,7 @@ bool same(const ObjectSyntax& a, const ObjectSyntax& b) {
       a.facing != b.facing || !same(a.x, b.x) || !same(a.y, b.y) || !same(a.z, b.z) || !same(a.stiffness, b.stiffness) ||
       !same(a.damping, b.damping) || a.static_friction != b.static_friction || a.kinetic_friction != b.kinetic_friction ||
       !same(a.texture_width, b.texture_width) || !same(a.texture_height, b.texture_height) ||
-      a.surfaces.size() != b.surfaces.size())
+      !same(a.relief_depth, b.relief_depth) || a.relief_only != b.relief_only || a.surfaces.size() != b.surfaces.size())
     return false;
   for (int i = 0; i < 3; ++i)
     if (!same(a.size[i], b.size[i])) return false;

@@ -3,7 +3,8 @@
 // mutations reach the field parser; the bytes as given also through read_scene_program_file,
 // which must agree. An accepted scene must be one the writer writes and whose bytes read back and
 // write again unchanged, and one a SceneRenderer is built from (the reader's promise): the
-// renderer is then pressed into a few of its triangles, every force finite. Seeds: the small
+// renderer is then pressed into a few of its triangles, every force finite, every relief's carve
+// within its depth. Seeds: the small
 // scenes of tests/shapes/scene_io_test.cpp, written by the writer
 // (SceneIo.TheFuzzSeedsAreTheWritersBytes).
 #include <algorithm>
@@ -51,6 +52,12 @@ void press(const shapes::SceneProgram& scene, std::uint32_t variant) {
       const glm::dvec3 force = renderer.update_rt(p, (to - from) * 125.0);
       fuzz::check(finite(force), "a scene the reader accepted gave a force that is not finite");
       fuzz::check(finite(renderer.texture_force_rt()), "a scene the reader accepted gave a texture force that is not finite");
+      fuzz::check(finite(renderer.relief_force_rt()) && std::isfinite(renderer.relief_depth_rt()),
+                  "a scene the reader accepted gave a relief that is not finite");
+      const int surface = renderer.surface_rt();
+      if (surface >= 0)
+        fuzz::check(renderer.relief_depth_rt() >= 0 && renderer.relief_depth_rt() <= scene.surfaces[surface].relief_depth_m * (1 + 1e-9),
+                    "a relief carved outside 0 to its depth");
       const int s = renderer.surface_rt();
       fuzz::check(s >= -1 && s < static_cast<int>(scene.surfaces.size()), "the renderer named a surface out of range");
     }

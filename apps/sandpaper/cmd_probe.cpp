@@ -87,6 +87,12 @@ int cmd_probe(const CommonOptions& o, const ProbeOptions& p) {
         row["normal"] = {contact.normal.x, contact.normal.y, contact.normal.z};
         row["normal_force_N"] = contact.normal_force_N;
         row["sliding"] = contact.sliding;
+        if (s.relief_depth_m > 0) {
+          // normal_force_N is the mesh surface's press; the relief takes the carve's share back.
+          const glm::dvec3 relief = renderer.relief_force_rt();
+          row["relief_force_N"] = {relief.x, relief.y, relief.z};
+          row["relief_carve_mm"] = renderer.relief_depth_rt() * 1e3;
+        }
       }
       rows.push_back(std::move(row));
     } else {

@@ -49,6 +49,8 @@ nlohmann::json surface_json(const shapes::SceneProgram& scene, std::size_t i, co
     j["texture_uv_size_m"] = {s.uv_size_m.x, s.uv_size_m.y};
     j["compiled_max_lateral_force_N"] = p.max_lateral_force_N;
     j["compiled_roughness"] = p.roughness;
+    j["relief_depth_m"] = s.relief_depth_m;
+    j["lateral_texture"] = s.lateral_texture;
   }
   return j;
 }
@@ -123,6 +125,10 @@ int cmd_scene_explain(const CommonOptions& o) {
       std::cout << fmt::format("      texture {}: maximum lateral force {:.4g} N, roughness {:.3g}; laid through the UVs at "
                                "{:g} mm x {:g} mm per unit of u, v\n",
                                p.name, p.max_lateral_force_N, p.roughness, s.uv_size_m.x * 1e3, s.uv_size_m.y * 1e3);
+      if (s.relief_depth_m > 0)
+        std::cout << fmt::format("      relief {:g} mm deep: the surface carved along its normal by the texture (hills on the "
+                                 "surface, valleys below it); lateral texture {}\n",
+                                 s.relief_depth_m * 1e3, s.lateral_texture ? "kept" : "dropped (`only`): felt through the relief alone");
     } else if (!s.material.empty()) {
       std::cout << "      no texture\n";
     }

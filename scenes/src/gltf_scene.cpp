@@ -414,6 +414,7 @@ std::optional<SceneSource> read_gltf_scene_bytes(const std::string& bytes, const
     s.name = walker.scene_name().empty() ? fs::path(shown_name).stem().string() : walker.scene_name().substr(0, 200);
     s.name_location = at;
     s.base_dir = folder.value_or(fs::path());
+    s.from_gltf = true;
     return s;
   } catch (const compiler::GltfRefusal& e) {
     diags.error(schema::Code::of(e.code), at, e.message, e.suggestion);

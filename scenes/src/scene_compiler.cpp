@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 #include <type_traits>
 #include <variant>
@@ -155,6 +156,7 @@ SceneResult compile_scene_source(const compiler::Compiler& compiler, const Scene
   for (std::size_t i = 0; i < source.objects.size(); ++i) {
     const ObjectSource& o = source.objects[i];
     const auto first_surface = static_cast<std::uint32_t>(scene.surfaces.size());
+    std::set<std::string> warned_relief;  // once per object and material
     for (std::size_t k = 0; k < o.surfaces.size(); ++k) {
       const SurfaceSource& s = o.surfaces[k];
       const Compiled* c = material_of[i][k] < compiled.size() ? &compiled[material_of[i][k]] : nullptr;
@@ -193,6 +195,22 @@ SceneResult compile_scene_source(const compiler::Compiler& compiler, const Scene
             }
         }
       }
+      if (s.relief_depth_m) {
+        if (out.program >= 0) {
+          out.relief_depth_m = *s.relief_depth_m;
+          out.lateral_texture = s.lateral_texture;
+        } else if ((!c || c->contact) && warned_relief.insert(s.material).second) {
+          // (A material that did not compile has said so already.)
+          const SourceLocation at = s.relief_location.file ? s.relief_location : s.location;
+          diags.warning("W0854", at,
+                        "the relief on " + who(o, s) + " has nothing to follow: " +
+                            (s.material.empty() ? std::string("it has no material")
+                                                : "its material \"" + s.material + "\" has no texture (no grating or height field)") +
+                            "; no relief",
+                        "a relief carves the material's texture into the surface: give it a material with a grating or a height "
+                        "map, or remove `texture relief`");
+        }
+      }
       scene.surfaces.push_back(std::move(out));
       r.origins.push_back(origin);
       if (c) compiled[material_of[i][k]].material.surfaces.push_back(scene.surfaces.size() - 1);
@@ -219,7 +237,8 @@ SceneResult compile_scene_source(const compiler::Compiler& compiler, const Scene
   }
   if (source.objects.empty())
     diags.warning("W0852", scene_location(source), "the scene has no objects",
-                  "add object \"NAME\" sphere radius R at X, Y, Z lines");
+                  source.from_gltf ? "give the asset's scene nodes with meshes of triangles (docs/GLTF.md, \"Scenes (3-D)\")"
+                                   : "add object \"NAME\" sphere radius R at X, Y, Z lines");
 
   for (Compiled& c : compiled) r.materials.push_back(std::move(c.material));
   r.diagnostics = std::move(diags);

@@ -52,6 +52,11 @@ SurfaceSource surface_of(const ObjectSyntax& o, const SurfaceSyntax* s) {
   }
   if (o.texture_width)
     out.uv_size_m = glm::dvec2{o.texture_width->si, o.texture_height ? o.texture_height->si : o.texture_width->si};
+  if (o.relief_depth) {
+    out.relief_depth_m = o.relief_depth->si;
+    out.lateral_texture = !o.relief_only;
+    out.relief_location = o.relief_location;
+  }
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "sandpaper/schema/units.hpp"
+#include "sandpaper/shapes/scene_io.hpp"
 
 namespace sandpaper::scenes {
 namespace {
@@ -396,11 +397,12 @@ class SceneParser : TokenCursor {
 
   // object_stmt := 'material' STRING ['on' SIDE] | 'stiffness' STIFFNESS | 'damping' DAMPING
   //              | 'friction' NUMBER [NUMBER] | 'texture' 'size' LENGTH ['x' LENGTH]
+  //              | 'texture' 'relief' LENGTH ['only']
   void object_statement(ObjectSyntax& obj) {
     const Token& kw = peek();
     if (kw.kind != TokenKind::Word) {
       diags_.error("E0801", kw.location, "expected an object statement, found " + describe(kw),
-                   "an object's block holds material, stiffness, damping, friction and texture size lines");
+                   "an object's block holds material, stiffness, damping, friction, texture size and texture relief lines");
       throw StatementError{};
     }
     next();
@@ -424,7 +426,7 @@ class SceneParser : TokenCursor {
     } else {
       const std::string guess = closest_match(kw.text, object_keywords());
       diags_.error("E0802", kw.location, "unknown object statement '" + kw.text + "'",
-                   guess.empty() ? "an object holds material, stiffness, damping, friction and texture size lines"
+                   guess.empty() ? "an object holds material, stiffness, damping, friction, texture size and texture relief lines"
                                  : "did you mean `" + guess + "`?");
       throw StatementError{};
     }
@@ -531,14 +533,23 @@ class SceneParser : TokenCursor {
     return n.number;
   }
 
-  // 'texture' 'size' LENGTH ['x' LENGTH]   -- metres of surface per unit of u and v; H absent: W
+  // 'texture' ('size' ... | 'relief' ...)
   void texture(ObjectSyntax& obj, const Token& kw) {
-    if (!at_word("size")) {
-      diags_.error("E0801", peek().location, "expected `size` after `texture`, found " + describe(peek()),
-                   "write texture size 40 mm, or texture size 40 mm x 20 mm");
+    if (at_word("size")) {
+      next();
+      texture_size(obj, kw);
+    } else if (at_word("relief")) {
+      next();
+      texture_relief(obj, kw);
+    } else {
+      diags_.error("E0801", peek().location, "expected `size` or `relief` after `texture`, found " + describe(peek()),
+                   "write texture size 40 mm (x 20 mm), or texture relief 0.5 mm (only)");
       throw StatementError{};
     }
-    next();
+  }
+
+  // 'texture' 'size' LENGTH ['x' LENGTH]   -- metres of surface per unit of u and v; H absent: W
+  void texture_size(ObjectSyntax& obj, const Token& kw) {
     once(obj.texture_width ? &obj.texture_location : nullptr, kw, "texture size");
     const Quantity w = positive(quantity(Dimension::Length, "the texture's width"), "the texture's width");
     std::optional<Quantity> h;
@@ -549,6 +560,31 @@ class SceneParser : TokenCursor {
     obj.texture_width = w;
     obj.texture_height = h;
     obj.texture_location = kw.location;
+  }
+
+  // 'texture' 'relief' LENGTH ['only']   -- the surface carved along its normal by its texture, at
+  // most LENGTH deep (Minsky 1995, 7.7.2); `only`: without the lateral-force texture
+  void texture_relief(ObjectSyntax& obj, const Token& kw) {
+    once(obj.relief_depth ? &obj.relief_location : nullptr, kw, "texture relief");
+    const Quantity d = quantity(Dimension::Length, "the relief's depth");
+    if (!(d.si > 0)) {
+      diags_.error("E0806", d.location, "the relief's depth must be positive, not " + d.text(),
+                   "give the depth of the texture's valleys below its hills, e.g. texture relief 0.5 mm");
+      throw StatementError{};
+    }
+    if (d.si > shapes::scene_limits::kMaxReliefDepth_m) {
+      diags_.error("E0814", d.location, "a relief of " + d.text() + " is deeper than 10 mm",
+                   "a relief is a texture pressed into the surface: give 10 mm or less, or model deeper features as shapes");
+      throw StatementError{};
+    }
+    bool only = false;
+    if (at_word("only")) {
+      next();
+      only = true;
+    }
+    obj.relief_depth = d;
+    obj.relief_only = only;
+    obj.relief_location = kw.location;
   }
 
   // SIDE := 'top' | 'bottom' | 'right' | 'left' | 'front' | 'back'

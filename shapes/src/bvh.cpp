@@ -85,6 +85,7 @@ Bvh Bvh::build_nonrt(const Mesh& mesh) {
   // The edge tolerance reaches 1e-10 of a triangle's size outside it; 1e-9 of the whole mesh
   // covers that, and the absolute term covers a mesh of one point-sized region.
   b.pad = 1e-9 * glm::length(hi - lo) + 1e-15;
+  bvh.pad_ = b.pad;
   bvh.nodes_.reserve(2 * (n / kMaxLeafTriangles + 1));
   bvh.triangles_.reserve(n);
   bvh.depth_ = b.build(0, n);
@@ -106,7 +107,41 @@ inline double enter_box(const glm::dvec3& lo, const glm::dvec3& hi, const glm::d
   return t_in <= t_out ? t_in : std::numeric_limits<double>::infinity();
 }
 
+inline bool boxes_overlap(const glm::dvec3& lo1, const glm::dvec3& hi1, const glm::dvec3& lo2,
+                          const glm::dvec3& hi2) noexcept {
+  return lo1.x <= hi2.x && lo2.x <= hi1.x && lo1.y <= hi2.y && lo2.y <= hi1.y && lo1.z <= hi2.z && lo2.z <= hi1.z;
+}
+
 }  // namespace
+
+std::optional<std::size_t> Bvh::gather_rt(const glm::dvec3& lo, const glm::dvec3& hi,
+                                          std::span<LeafTriangle> out) const noexcept {
+  std::size_t count = 0;
+  if (nodes_.empty()) return count;
+  std::uint32_t stack[kStackSize];
+  std::size_t sp = 0;
+  stack[sp++] = 0;
+  while (sp > 0) {
+    const Node& n = nodes_[stack[--sp]];
+    if (!boxes_overlap(n.lo, n.hi, lo, hi)) continue;
+    if (n.count == 0) {
+      if (sp + 2 > kStackSize) return std::nullopt;  // deeper than the build allows; never for a built tree
+      stack[sp++] = n.first;
+      stack[sp++] = static_cast<std::uint32_t>(&n - nodes_.data()) + 1;
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      const LeafTriangle& t = triangles_[i];
+      const glm::dvec3 p1 = t.v0 + t.e1, p2 = t.v0 + t.e2;
+      const glm::dvec3 t_lo = glm::min(t.v0, glm::min(p1, p2)) - pad_;
+      const glm::dvec3 t_hi = glm::max(t.v0, glm::max(p1, p2)) + pad_;
+      if (!boxes_overlap(t_lo, t_hi, lo, hi)) continue;
+      if (count == out.size()) return std::nullopt;
+      out[count++] = t;
+    }
+  }
+  return count;
+}
 
 std::optional<SegmentHit> Bvh::first_hit_rt(const glm::dvec3& a, const glm::dvec3& b,
                                             std::span<const std::uint32_t> excluded, Facing facing,

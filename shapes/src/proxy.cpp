@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 namespace sandpaper::shapes {
@@ -30,15 +31,23 @@ ProxyRenderer::ProxyRenderer(const Mesh& mesh, const Bvh& bvh, std::vector<Surfa
     throw std::invalid_argument("proxy: the BVH was not built from this mesh");
   }
   if (std::string problem = material_problem(materials_); !problem.empty()) throw std::invalid_argument("proxy: " + problem);
-  if (!(options_.surface_offset_m > 0.0) || options_.max_iterations == 0 || options_.max_passes == 0) {
-    throw std::invalid_argument("proxy: the surface offset, iterations and passes must be positive");
+  if (!(options_.surface_offset_m > 0.0) || options_.max_iterations == 0 || options_.max_passes == 0 ||
+      !(options_.neighbourhood_m > 0.0) || !std::isfinite(options_.neighbourhood_m)) {
+    throw std::invalid_argument("proxy: the surface offset, iterations, passes and neighbourhood must be positive");
   }
 }
 
 void ProxyRenderer::reset_rt(const glm::dvec3& position_m) noexcept {
   proxy_ = position_m;
   placed_ = true;
+  resting_on_ = Mesh::kNoNeighbour;
   contact_ = ContactState{};
+}
+
+std::optional<SegmentHit> ProxyRenderer::cast(const glm::dvec3& a, const glm::dvec3& b,
+                                              std::span<const std::uint32_t> excluded) const noexcept {
+  if (nearby_.covers_rt(a, b)) return nearby_.first_hit_rt(a, b, excluded, Facing::front_only);
+  return bvh_->first_hit_rt(a, b, excluded, Facing::front_only);
 }
 
 ConstraintPlane ProxyRenderer::raised_plane(std::uint32_t triangle) const noexcept {
@@ -130,14 +139,13 @@ ProxyRenderer::Solved ProxyRenderer::solve(const glm::dvec3& start, const glm::d
       std::copy(planes.triangles(), planes.triangles() + n_excluded, excluded);
       std::optional<SegmentHit> hit;
       if (pass == 0 && iter == 0 && resting_on != Mesh::kNoNeighbour) hit = resting_hit(resting_on, p, target);
-      if (!hit)
-        hit = bvh_->first_hit_rt(p, target, std::span<const std::uint32_t>(excluded, n_excluded), Facing::front_only);
+      if (!hit) hit = cast(p, target, std::span<const std::uint32_t>(excluded, n_excluded));
       if (first_cast && have_exited && hit && hit->triangle == exited &&
           min_barycentric(exited, hit->point_m) < kExitTolerance) {
         // From the edge it slid off, the path meets that triangle again only on its edge, by
         // rounding: the surface there is its neighbour's, if any is in the way.
         excluded[n_excluded++] = exited;
-        hit = bvh_->first_hit_rt(p, target, std::span<const std::uint32_t>(excluded, n_excluded), Facing::front_only);
+        hit = cast(p, target, std::span<const std::uint32_t>(excluded, n_excluded));
       }
       first_cast = false;
       Exit exit;
@@ -161,6 +169,7 @@ ProxyRenderer::Solved ProxyRenderer::solve(const glm::dvec3& start, const glm::d
         if (!out.touched) {
           out.touched = true;
           out.anchor = p;
+          out.anchor_triangle = hit->triangle;
         }
         if (planes.full()) break;  // three planes hold a point already; a fourth: stay here
         planes.add(raised_plane(hit->triangle));
@@ -209,10 +218,19 @@ glm::dvec3 ProxyRenderer::update_rt(const glm::dvec3& device_m, const glm::dvec3
     reset_rt(device_m);
     return glm::dvec3{0.0};
   }
-  const std::uint32_t resting_on = contact_.in_contact ? contact_.triangle : Mesh::kNoNeighbour;
-  const Solved free = solve(proxy_, device_m, resting_on);
+  // The neighbourhood holds the proxy and the device (the first segment runs from one to the
+  // other), so most ticks' casts stay in it; it is gathered again, about both, when either comes
+  // near its side, and after a gather that failed (too crowded) only when the proxy has moved on.
+  if (nearby_.valid() ? !(nearby_.inside_rt(proxy_, 0.9) && nearby_.inside_rt(device_m, 0.9))
+                      : !nearby_.inside_rt(proxy_, 0.5)) {
+    const glm::dvec3 apart = glm::abs(device_m - proxy_);
+    const double reach = std::max({apart.x, apart.y, apart.z});
+    nearby_.gather_rt(*bvh_, 0.5 * (proxy_ + device_m), std::max(options_.neighbourhood_m, reach));
+  }
+  const Solved free = solve(proxy_, device_m, resting_on_);
   if (!free.contact) {
     proxy_ = free.position;
+    resting_on_ = Mesh::kNoNeighbour;
     contact_ = ContactState{};
     return glm::dvec3{0.0};
   }
@@ -221,6 +239,7 @@ glm::dvec3 ProxyRenderer::update_rt(const glm::dvec3& device_m, const glm::dvec3
   const double depth = glm::length(push);
   const glm::dvec3 n = depth > 0.0 ? push / depth : mesh_->frame(free.triangle).normal;
   glm::dvec3 p = free.position;
+  std::uint32_t resting_on = free.triangle;
   bool sliding = false;
   if ((m.static_friction > 0.0 || m.kinetic_friction > 0.0) && free.touched) {
     // Ruspini, Kolarov & Khatib 1997: the frictionless proxy is where the goal would drag a proxy with no
@@ -233,13 +252,17 @@ glm::dvec3 ProxyRenderer::update_rt(const glm::dvec3& device_m, const glm::dvec3
     const double mu = was_sliding ? m.kinetic_friction : m.static_friction;
     if (slip <= mu * depth * (1.0 + 1e-9) + 1e-15) {
       p = free.anchor;
+      resting_on = free.anchor_triangle;
     } else {
       const glm::dvec3 trailing = free.position - tangential * (m.kinetic_friction * depth / slip);
-      p = solve(free.anchor, trailing, free.triangle).position;
+      const Solved trailed = solve(free.anchor, trailing, free.anchor_triangle);
+      p = trailed.position;
+      resting_on = trailed.contact ? trailed.triangle : Mesh::kNoNeighbour;
       sliding = true;
     }
   }
   proxy_ = p;
+  resting_on_ = resting_on;
   glm::dvec3 force = m.stiffness_N_per_m * (p - device_m);
   if (m.damping_Ns_per_m > 0.0) {
     force -= m.damping_Ns_per_m * glm::dot(device_velocity_mps, n) * n;

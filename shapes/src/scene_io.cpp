@@ -15,6 +15,7 @@
 
 #include "sandpaper/schema/atomic_file.hpp"
 #include "sandpaper/schema/input_limits.hpp"
+#include "sandpaper/shapes/surface_relief.hpp"
 #include "sandpaper/shapes/surface_texture.hpp"
 
 namespace sandpaper::shapes {
@@ -34,7 +35,7 @@ static_assert(sizeof(glm::dvec3) == 24 && sizeof(glm::dvec2) == 16 && sizeof(Tri
 // the payload before anything is allocated.
 constexpr std::uint64_t kVertexBytes = 24, kUvBytes = 16, kTriangleBytes = 12, kMaterialBytes = 2;
 constexpr std::uint64_t kObjectBytes = 4 + 4 + 4 + 4;
-constexpr std::uint64_t kSurfaceBytes = 3 * 4 + 4 * 8 + 4 + 2 * 8;
+constexpr std::uint64_t kSurfaceBytes = 3 * 4 + 4 * 8 + 4 + 2 * 8 + 8 + 1;
 constexpr std::uint64_t kProgramBytes = 8;
 
 // ---- writing ----
@@ -166,6 +167,10 @@ std::string scene_problem(const SceneProgram& scene) {
         !zero_or_quantity(c.kinetic_friction))
       return surface_name(i, s) +
              ": its stiffness must be 1e-12 to 1e12 N/m, and its damping and friction 0 or 1e-12 to 1e12";
+    if (!(s.relief_depth_m == 0.0 || (std::isfinite(s.relief_depth_m) && s.relief_depth_m >= lim::kMinQuantity &&
+                                       s.relief_depth_m <= lim::kMaxReliefDepth_m)))
+      return surface_name(i, s) + ": its relief depth must be 0 or between 1e-12 m and 10 mm";
+    if (s.relief_depth_m != 0.0 && s.program < 0) return surface_name(i, s) + " has a relief but no texture for it to follow";
     contacts.push_back(c);
   }
   if (std::string p = material_problem(contacts); !p.empty()) return "surfaces: " + p;
@@ -173,6 +178,9 @@ std::string scene_problem(const SceneProgram& scene) {
   for (std::size_t i = 0; i < scene.programs.size(); ++i) {
     try {
       (void)SurfaceTexture::for_program_nonrt(scene.programs[i]);
+      if (std::any_of(scene.surfaces.begin(), scene.surfaces.end(),
+                      [&](const SceneSurface& s) { return s.program == static_cast<int>(i) && s.relief_depth_m != 0.0; }))
+        (void)SurfaceRelief::for_program_nonrt(scene.programs[i], lim::kMaxReliefDepth_m);
     } catch (const std::invalid_argument& e) {
       return "material program " + std::to_string(i) + " (" + shown(scene.programs[i].name) + "): " + e.what();
     }
@@ -299,6 +307,8 @@ std::vector<unsigned char> serialize_scene(const SceneProgram& scene, const sche
     put(out, static_cast<std::int32_t>(s.program));
     put(out, s.uv_size_m.x);
     put(out, s.uv_size_m.y);
+    put(out, s.relief_depth_m);
+    put(out, static_cast<std::uint8_t>(s.lateral_texture ? 1 : 0));
   }
   for (const schema::PatchProgram& p : scene.programs) {
     const std::vector<unsigned char> program = schema::serialize(p, options);
@@ -363,6 +373,12 @@ SceneProgram deserialize_scene(const std::vector<unsigned char>& bytes) {
     s.program = c.pod<std::int32_t>();
     s.uv_size_m.x = c.pod<double>();
     s.uv_size_m.y = c.pod<double>();
+    s.relief_depth_m = c.pod<double>();
+    const auto lateral = c.pod<std::uint8_t>();
+    if (lateral > 1)
+      throw PatchFormatError("scene program has a surface whose lateral-texture flag is " + std::to_string(lateral) +
+                             ", not 0 or 1");
+    s.lateral_texture = lateral == 1;
   }
   scene.programs.reserve(np);
   for (std::uint64_t i = 0; i < np; ++i) {

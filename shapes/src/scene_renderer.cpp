@@ -23,19 +23,31 @@ SceneRenderer::SceneRenderer(const SceneProgram& scene, ProxyOptions options) {
                                   std::to_string(scene.surfaces.size()));
   std::vector<SurfaceMaterial> contacts;
   std::vector<std::optional<SurfaceTexture>> textures;
+  std::vector<std::optional<SurfaceRelief>> reliefs;
   contacts.reserve(scene.surfaces.size());
   textures.reserve(scene.surfaces.size());
+  reliefs.reserve(scene.surfaces.size());
   for (const SceneSurface& s : scene.surfaces) {
     contacts.push_back(s.contact);
     if (s.program < 0) {
+      if (s.relief_depth_m != 0)
+        throw std::invalid_argument("scene: surface " + surface_name(s) + " has a relief but no texture for it to follow");
       textures.emplace_back();
+      reliefs.emplace_back();
       continue;
     }
     if (static_cast<std::size_t>(s.program) >= scene.programs.size())
       throw std::invalid_argument("scene: surface " + surface_name(s) + " names material program " +
                                   std::to_string(s.program) + " of " + std::to_string(scene.programs.size()));
     try {
-      textures.emplace_back(SurfaceTexture::for_program_nonrt(scene.programs[s.program], s.uv_size_m));
+      if (s.lateral_texture)
+        textures.emplace_back(SurfaceTexture::for_program_nonrt(scene.programs[s.program], s.uv_size_m));
+      else
+        textures.emplace_back();
+      if (s.relief_depth_m != 0)
+        reliefs.emplace_back(SurfaceRelief::for_program_nonrt(scene.programs[s.program], s.relief_depth_m, s.uv_size_m));
+      else
+        reliefs.emplace_back();
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("scene: surface " + surface_name(s) + ": " + e.what());
     }
@@ -44,7 +56,8 @@ SceneRenderer::SceneRenderer(const SceneProgram& scene, ProxyOptions options) {
     throw std::invalid_argument("scene: " + problem);
   mesh_ = std::make_unique<Mesh>(Mesh::build_nonrt(scene.mesh));
   bvh_ = std::make_unique<Bvh>(Bvh::build_nonrt(*mesh_));
-  contact_ = std::make_unique<TexturedContact>(*mesh_, *bvh_, std::move(contacts), std::move(textures), options);
+  contact_ = std::make_unique<TexturedContact>(*mesh_, *bvh_, std::move(contacts), std::move(textures), std::move(reliefs),
+                                               options);
 }
 
 glm::dvec3 SceneRenderer::update_rt(const glm::dvec3& device_m, const glm::dvec3& device_velocity_mps) noexcept {

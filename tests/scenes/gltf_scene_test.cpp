@@ -660,6 +660,26 @@ TEST(GltfScene, WhatIsNotReadIsSaid) {
   EXPECT_EQ(text.find("KHR_materials_unlit"), std::string::npos);
 }
 
+// A glTF asset whose scene holds no mesh compiles to an empty scene, and W0852 speaks of the asset,
+// not of scene-file lines.
+TEST(GltfScene, AnAssetWithNoMeshWarnsInGltfsWords) {
+  json scene = json::object(), asset = json::object();
+  scene["nodes"] = json::array({0});
+  asset["asset"]["version"] = "2.0";
+  asset["scene"] = 0;
+  asset["scenes"] = json::array({scene});
+  asset["nodes"] = json::array({json::object({{"name", "an empty node"}})});
+  Read r = read(asset);
+  ASSERT_TRUE(r.scene.has_value()) << compiler::format_diagnostics(r.diags);
+  const auto result = scenes::compile_scene_source(C(), *r.scene, r.diags);
+  const compiler::Diagnostic* w = nullptr;
+  for (const auto& d : result.diagnostics.all())
+    if (d.code == "W0852") w = &d;
+  ASSERT_NE(w, nullptr) << compiler::format_diagnostics(result.diagnostics);
+  EXPECT_NE(w->suggestion.find("meshes of triangles"), std::string::npos) << w->suggestion;
+  EXPECT_EQ(w->suggestion.find("sphere radius"), std::string::npos) << w->suggestion;
+}
+
 }  // namespace
 
 #endif  // SANDPAPER_SCENES_GLTF

@@ -32,6 +32,7 @@ def run(*argv, expect=0):
 
 
 sphere, box = "examples/3d/textured-sphere.hsc", "examples/3d/material-box.hsc"
+relief = "examples/3d/relief-plane.hsc"
 
 # explain: each face's material and where each contact value came from.
 p = run(args.sandpaper, "explain", box, "--json")
@@ -50,6 +51,26 @@ bound = [s for s in e["surfaces"] if s["material"] == "corduroy"]
 check(bound and bound[0]["textured"], "explain a glTF scene: the library entry named in extras is bound and textured")
 check(any(abs(s["stiffness_N_per_m"] - 1200) < 1e-3 and s["stiffness_from"] == "scene" for s in e["surfaces"]),
       "explain a glTF scene: MPEG_haptic_material's stiffness texture gives 0.6 x 2000 N/m")
+
+# explain: a relief's depth and whether the lateral texture is kept, in JSON and in text.
+p = run(args.sandpaper, "explain", relief, "--json")
+e = json.loads(p.stdout)
+faces = {(s["object"], s["side"]): s for s in e["surfaces"]}
+floor = faces[("floor", "")]
+block = [s for s in e["surfaces"] if s["object"] == "block"]
+check(floor["relief_depth_m"] == 0.0005 and floor["lateral_texture"], "explain: the floor's relief is 0.5 mm, its lateral texture kept")
+check(block and all(s["relief_depth_m"] == 0.0005 and not s["lateral_texture"] for s in block),
+      "explain: the block is felt through its relief alone (`only`)")
+p = run(args.sandpaper, "explain", relief)
+check("relief 0.5 mm deep" in p.stdout and "lateral texture kept" in p.stdout and "lateral texture dropped" in p.stdout,
+      "explain (text): the relief in mm and whether the lateral texture is kept")
+
+# probe down onto the floor: pressed 2 mm, the normal force is k (d - c) with the carve c in [0, 0.5 mm].
+p = run(args.sandpaper, "probe", relief, "--from", "1,10,3", "--to", "1,-2,3", "--steps", "12", "--json")
+last = json.loads(p.stdout)["steps"][-1]
+c = last.get("relief_carve_mm", -1) * 1e-3
+check(0 <= c <= 0.0005 and abs(last["force_N"][1] - 1000 * (0.002 + 1e-6 - c)) <= 0.01 * 1000 * (0.002 - c),
+      f"probe a relief: 2 mm in, the force is k (d - c) within 1 % (c = {c * 1e3:.4f} mm, got {last['force_N'][1]:.4f} N)")
 
 # probe: straight down onto the top of the ball (y = 80 mm), 5 mm in at the last step.
 p = run(args.sandpaper, "probe", sphere, "--from", "0,100,0", "--to", "0,75,0", "--steps", "25", "--json")
@@ -73,9 +94,15 @@ with tempfile.TemporaryDirectory() as tmp:
     j = json.loads(p.stdout)
     check(j["ok"] and j["ticks"] == 2000 and j["ticks_in_contact"] > 0, "sandpaper-play: plays the scene program on sim3d, 2000 ticks, some in contact")
     run(args.player, sp3, "--device", "sim", expect=2)
+    # A relief travels in the scene program (format version 2): compiled, then played by the player.
+    relief_sp3 = os.path.join(tmp, "relief.sp3")
+    run(args.sandpaper, "compile", relief, "--device", "sim3d", "-o", relief_sp3)
+    p = run(args.player, relief_sp3, "--device", "sim3d", "--duration", "2", "--json")
+    j = json.loads(p.stdout)
+    check(j["ok"] and j["ticks_in_contact"] > 0, "sandpaper-play: plays the relief scene's program on sim3d, some ticks in contact")
 
-    # run: both shipped scenes, 10 s at 1 kHz, no energy gained.
-    for scene in (sphere, box, "examples/3d/gltf-scene/scene.gltf"):
+    # run: the shipped scenes, 10 s at 1 kHz, no energy gained.
+    for scene in (sphere, box, relief, "examples/3d/gltf-scene/scene.gltf"):
         p = run(args.sandpaper, "run", scene, "--device", "sim3d", "--duration", "10", "--json")
         j = json.loads(p.stdout)
         check(j["ok"] and j["energy"]["no_energy_gained"] and j["hand"]["stable"] and not j["not_reached"],

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -157,6 +158,76 @@ TEST(SceneCompiler, AFloorGivesThePatchsLateralForcesAtTwentyPoints) {
   }
 }
 
+// The version-2 grating's height (docs/TEXTURES.md; compiler/src/codegen/grating.cpp): a square wave,
+// 1 on the hill |u| < hill P / 2 and 0 in the valley, smoothed by a Gaussian of sigma, so
+// h(u) = sum_k [Phi((u + hill P / 2 + k P) / sigma) - Phi((u - hill P / 2 + k P) / sigma)].
+double grating_height(double u, double period, double hill, double sigma) {
+  auto phi = [](double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); };
+  double h = 0;
+  for (int k = -4; k <= 4; ++k)
+    h += phi((u + 0.5 * hill * period + k * period) / sigma) - phi((u - 0.5 * hill * period + k * period) / sigma);
+  return h;
+}
+
+// `texture relief 0.5 mm only` on a floor of a compiled grating (hill 40 %, smoothing 0.2 mm):
+// pressed 1 mm, the normal force at 20 points across a period is k (delta - c) within 1 %, c the
+// closed-form height carved D deep: c = D (h(0) - h(u)) / (h(0) - h(P / 2)); and no lateral force
+// but the relief's.
+TEST(SceneCompiler, AReliefOnAFloorIsTheGratingsHeightCarvedIntoIt) {
+  const auto r = compile(R"(scene "s" {
+    object "floor" plane 80 mm x 80 mm at 0 mm, 0 mm, 0 mm {
+      material "grating period 4 mm hill 40% smoothing 0.2 mm; roughness 0.5"
+      stiffness 1000 N/m
+      texture relief 0.5 mm only
+    }
+  })");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  const auto& floor = surface_named(*r.program, "floor");
+  EXPECT_EQ(floor.relief_depth_m, 0.0005);
+  EXPECT_FALSE(floor.lateral_texture);
+  shapes::SceneRenderer renderer(*r.program);
+  const double P = 0.004, D = 0.0005, k = 1000, press = 0.001, delta = press + shapes::ProxyOptions{}.surface_offset_m;
+  const double top = grating_height(0, P, 0.4, 0.0002), bottom = grating_height(P / 2, P, 0.4, 0.0002);
+  for (int i = 0; i < 20; ++i) {
+    const double u = -P / 2 + P * (i + 0.25) / 20;
+    renderer.reset_rt({u, 0.01, 0.005});
+    const glm::dvec3 f = settled_force(renderer, {u, -press, 0.005});
+    const double c = D * (top - grating_height(u, P, 0.4, 0.0002)) / (top - bottom);
+    EXPECT_NEAR(f.y, k * (delta - c), 0.01 * k * (delta - c)) << "u = " << u * 1e3 << " mm";
+    EXPECT_EQ(renderer.texture_force_rt(), glm::dvec3{0.0});
+    EXPECT_NEAR(f.x, renderer.relief_force_rt().x, 1e-12);
+  }
+}
+
+// A relief on a surface whose material has no texture, or no material: W0854 at the relief, once
+// an object and material, and no relief; the scene still compiles.
+TEST(SceneCompiler, AReliefWithNoTextureToFollowIsAWarningAndNoRelief) {
+  const auto r = compile(R"(scene "s" {
+    object "a" box 20 mm x 20 mm x 20 mm at 0 mm, 0 mm, 0 mm {
+      material "spring 300 N/m"
+      material "corduroy" on top
+      texture relief 0.5 mm
+    }
+    object "b" sphere radius 20 mm at 100 mm, 0 mm, 0 mm {
+      texture relief 0.2 mm only
+    }
+  })");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  std::vector<std::string> warnings;
+  for (const auto& d : r.diagnostics.all())
+    if (d.code == "W0854") warnings.push_back(std::to_string(d.location.line) + ": " + d.message);
+  ASSERT_EQ(warnings.size(), 2u) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NE(warnings[0].find("5: the relief on object \"a\""), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("\"spring 300 N/m\" has no texture"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[1].find("8: the relief on object \"b\" has nothing to follow: it has no material"), std::string::npos)
+      << warnings[1];
+  EXPECT_EQ(surface_named(*r.program, "a", "top").relief_depth_m, 0.0005);
+  EXPECT_TRUE(surface_named(*r.program, "a", "top").lateral_texture);
+  EXPECT_EQ(surface_named(*r.program, "a").relief_depth_m, 0.0);  // the faces but the top
+  EXPECT_EQ(surface_named(*r.program, "b").relief_depth_m, 0.0);
+  shapes::SceneRenderer renderer(*r.program);  // and it can be felt
+}
+
 TEST(SceneCompiler, ContactComesFromTheSceneElseTheMaterialElseTheDefault) {
   const auto r = compile(R"(scene "s" {
     object "a" sphere radius 20 mm at 0 mm, 0 mm, 0 mm {
@@ -224,6 +295,17 @@ TEST(SceneCompiler, AMissingFileIsE0800) {
   const auto r = compile_scene_file(test::shipped_compiler(), "no/such/scene.hsc");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.diagnostics.all().front().code, "E0800");
+}
+
+// An empty scene compiles, with W0852 saying how to add an object in the scene file's own words.
+TEST(SceneCompiler, AnEmptySceneWarnsHowToAddAnObject) {
+  const auto r = compile("scene \"empty\" {\n}\n");
+  ASSERT_TRUE(r.ok()) << compiler::format_diagnostics(r.diagnostics);
+  const compiler::Diagnostic* w = nullptr;
+  for (const auto& d : r.diagnostics.all())
+    if (d.code == "W0852") w = &d;
+  ASSERT_NE(w, nullptr) << compiler::format_diagnostics(r.diagnostics);
+  EXPECT_NE(w->suggestion.find("object \"NAME\" sphere radius R"), std::string::npos) << w->suggestion;
 }
 
 }  // namespace

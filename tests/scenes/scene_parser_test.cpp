@@ -240,7 +240,8 @@ TEST(SceneParser, EachErrorAtItsPlace) {
       {"scene \"s\"\n" + sphere + "\n}", {"E0801 1:10"}, "expected '{'"},
       {in_scene("42"), {"E0801 2:1"}, "expected an object"},
       {in_object(kBox, "\"x\""), {"E0801 3:1"}, "expected an object statement"},
-      {in_object(kBox, "texture 5 mm"), {"E0801 3:9"}, "expected `size` after `texture`"},
+      {in_object(kBox, "texture 5 mm"), {"E0801 3:9"}, "expected `size` or `relief` after `texture`"},
+      {in_object(kBox, "texture depth 5 mm"), {"E0801 3:9"}, "texture relief 0.5 mm (only)"},
       // E0802: unknown statements, with "did you mean"; an object statement outside an object
       {in_scene("objekt \"o\" sphere radius 5 mm at 0 mm, 0 mm, 0 mm"), {"E0802 2:1"}, "did you mean `object`?"},
       {in_scene("stiffness 800 N/m"), {"E0802 2:1"}, "belongs in an object's block"},
@@ -257,6 +258,7 @@ TEST(SceneParser, EachErrorAtItsPlace) {
       {in_object(kBox, "damping 1 N*s/m\ndamping 1 N*s/m"), {"E0805 4:1"}, "damping is given twice"},
       {in_object(kBox, "friction 0.5\nfriction 0.5"), {"E0805 4:1"}, "friction is given twice"},
       {in_object(kBox, "texture size 5 mm\ntexture size 5 mm"), {"E0805 4:1"}, "texture size is given twice"},
+      {in_object(kBox, "texture relief 0.5 mm\ntexture relief 0.3 mm only"), {"E0805 4:1"}, "texture relief is given twice"},
       {in_object(kBox, "material \"a\"\nmaterial \"b\""), {"E0805 4:1"}, "for all its surfaces twice"},
       {in_object(kBox, "material \"a\" on top\nmaterial \"b\" on bottom\nmaterial \"c\" on top"), {"E0805 5:1"},
        "top side is given a material twice"},
@@ -265,6 +267,12 @@ TEST(SceneParser, EachErrorAtItsPlace) {
       {in_scene("object \"o\" box 10 mm x 0 mm x 10 mm at 0 mm, 0 mm, 0 mm"), {"E0806 2:24"}, "height (y) must be positive"},
       {in_scene("object \"o\" plane 10 mm x -1 mm at 0 mm, 0 mm, 0 mm"), {"E0806 2:26"}, "the plane's depth must be positive"},
       {in_object(kBox, "texture size 0 mm"), {"E0806 3:14"}, "the texture's width must be positive"},
+      {in_object(kBox, "texture relief 0 mm"), {"E0806 3:16"}, "the relief's depth must be positive, not 0 mm"},
+      {in_object(kBox, "texture relief -0.5 mm only"), {"E0806 3:16"}, "the relief's depth must be positive"},
+      // E0814: a relief deeper than 10 mm
+      {in_object(kBox, "texture relief 11 mm"), {"E0814 3:16"}, "a relief of 11 mm is deeper than 10 mm"},
+      {in_object(kBox, "texture relief 1 cm only"), {}, ""},
+      {in_object(kBox, "texture relief 1.01 cm"), {"E0814 3:16"}, "deeper than 10 mm"},
       // E0807: unknown or incomplete shapes
       {in_scene("object \"o\" sphear radius 5 mm at 0 mm, 0 mm, 0 mm"), {"E0807 2:12"}, "did you mean `sphere`?"},
       {in_scene("object \"o\" cylinder at 0 mm, 0 mm, 0 mm"), {"E0807 2:12"}, "the shapes are sphere, box and plane"},
@@ -310,6 +318,7 @@ TEST(SceneParser, EachErrorAtItsPlace) {
       {in_scene(sphere + " extra"), {"E0834 2:51"}, "after the statement"},
       {in_scene(sphere + " inside"), {"E0834 2:51"}, "write `inside` after the shape's sizes, before `at`"},
       {in_object(kBox, "friction 0.5 0.3 0.1"), {"E0834 3:18"}, "after the statement"},
+      {in_object(kBox, "texture relief 0.5 mm all"), {"E0834 3:23"}, "after the statement"},
       {in_object(kBox, "material \"a\" on top bottom"), {"E0834 3:21"}, "after the statement"},
       {in_scene(sphere + " {\n} x"), {"E0834 3:3"}, "after the statement"},
       // The material language's unit errors and bounds
@@ -318,6 +327,9 @@ TEST(SceneParser, EachErrorAtItsPlace) {
       {in_scene("object \"o\" sphere radius 5 N at 0 mm, 0 mm, 0 mm"), {"E0205 2:28"}, "is a force unit"},
       {in_object(kBox, "stiffness 800 N*s/m"), {"E0205 3:15"}, "is a damping unit"},
       {in_object(kBox, "friction 0.5 N"), {"E0205 3:14"}, "takes no unit"},
+      {in_object(kBox, "texture relief 0.5"), {"E0203 3:16"}, "the relief's depth is a length"},
+      {in_object(kBox, "texture relief 0.5 N"), {"E0205 3:20"}, "is a force unit"},
+      {in_object(kBox, "texture relief only"), {"E0833 3:16"}, "expected the relief's depth"},
       {in_scene("object \"o\" sphere radius 1e300 m at 0 mm, 0 mm, 0 mm"), {"E0103 2:26"}, "between 1e-12 and 1e12 m"},
       {in_scene("object \"o\" sphere radius 1 m at 1e-20 m, 0 mm, 0 mm"), {"E0103 2:33"}, "the centre's x"},
       {in_object(kBox, "friction 1e20"), {"E0103 3:10"}, "the static friction"},
@@ -330,6 +342,36 @@ TEST(SceneParser, EachErrorAtItsPlace) {
     EXPECT_NE((d.message + " | " + d.suggestion).find(c.in_message_or_help), std::string::npos)
         << c.text << "\n" << d.message << " | " << d.suggestion;
   }
+}
+
+// `texture relief D [only]`: the depth in SI units, `only` read, beside `texture size`; without
+// `only` the lateral texture is kept.
+TEST(SceneParser, TextureReliefReadsItsDepthAndOnly) {
+  const auto p = parse(in_scene("object \"a\" plane 1 m x 1 m at 0 mm, 0 mm, 0 mm {\n"
+                                "  texture size 40 mm\n  texture relief 0.5 mm only\n}\n"
+                                "object \"b\" sphere radius 5 cm at 0 mm, 0 mm, 0 mm {\n  texture relief 200 um; material \"m\"\n}\n"
+                                "object \"c\" sphere radius 5 cm at 0 mm, 0 mm, 0 mm"));
+  ASSERT_TRUE(p.diags.all().empty()) << compiler::format_diagnostics(p.diags);
+  ASSERT_EQ(p.scene.objects.size(), 3u);
+  const auto& a = p.scene.objects[0];
+  ASSERT_TRUE(a.relief_depth);
+  EXPECT_DOUBLE_EQ(a.relief_depth->si, 0.0005);
+  EXPECT_TRUE(a.relief_only);
+  EXPECT_EQ(a.relief_location.line, 4);
+  EXPECT_EQ(a.relief_location.column, 3);
+  ASSERT_TRUE(a.texture_width);
+  EXPECT_DOUBLE_EQ(a.texture_width->si, 0.04);
+  const auto& b = p.scene.objects[1];
+  ASSERT_TRUE(b.relief_depth);
+  EXPECT_DOUBLE_EQ(b.relief_depth->si, 0.0002);
+  EXPECT_FALSE(b.relief_only);
+  EXPECT_EQ(b.surfaces.size(), 1u);
+  EXPECT_FALSE(p.scene.objects[2].relief_depth);
+  // A relief with an error leaves none behind.
+  const auto bad = parse(in_object(kBox, "texture relief 20 mm only"));
+  ASSERT_EQ(bad.scene.objects.size(), 1u);
+  EXPECT_FALSE(bad.scene.objects[0].relief_depth);
+  EXPECT_FALSE(bad.scene.objects[0].relief_only);
 }
 
 TEST(SceneParser, RepeatsNameTheFirstInANote) {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -12,6 +14,8 @@
 #include "sandpaper/shapes/bvh.hpp"
 #include "sandpaper/shapes/primitives.hpp"
 #include "sandpaper/shapes/proxy.hpp"
+#include "sandpaper/shapes/surface_relief.hpp"
+#include "sandpaper/shapes/textured_contact.hpp"
 
 namespace sandpaper::shapes {
 namespace {
@@ -51,6 +55,57 @@ TEST(ProxyRealTime, TenThousandUpdatesAllocateNothingAndLockNothing) {
   EXPECT_GT(max_force, 0.4);
   EXPECT_GT(sliding, 1000);
   EXPECT_LT(sliding, 9000);
+}
+
+// The same with a relief and the lateral texture on the sphere (a grating and a repeating height
+// field, laid by its UVs), so that the relief's lookups and its slope's hold at the poles are in it.
+TEST(ProxyRealTime, TenThousandUpdatesWithAReliefAllocateNothingAndLockNothing) {
+  const double r = 0.05;
+  const Mesh mesh = uv_sphere(r, 256, 128);
+  const Bvh bvh = Bvh::build_nonrt(mesh);
+  schema::PatchProgram p;
+  p.size_m[0] = p.size_m[1] = 0.06;
+  schema::GratingTerm g;
+  g.period_m = 0.004;
+  g.orientation_rad = 0.4;
+  for (int i = 0; i < 64; ++i) g.force_N.push_back(static_cast<float>(-0.3 * std::sin(2 * std::numbers::pi * i / 64)));
+  p.terms.push_back(g);
+  schema::HeightFieldTerm h;
+  h.nx = h.ny = 8;
+  h.spacing_m[0] = h.spacing_m[1] = 0.001;
+  h.repeat = true;
+  for (int i = 0; i < 64; ++i) {
+    h.force_x_N.push_back(static_cast<float>(0.1 * std::sin(i)));
+    h.force_y_N.push_back(static_cast<float>(0.1 * std::cos(i)));
+  }
+  p.terms.push_back(h);
+  p.max_lateral_force_N = 0.4;
+  const glm::dvec2 uv_size{2 * std::numbers::pi * r, std::numbers::pi * r};
+  std::vector<std::optional<SurfaceTexture>> textures(1);
+  textures[0] = SurfaceTexture::for_program_nonrt(p, uv_size);
+  std::vector<std::optional<SurfaceRelief>> reliefs(1);
+  reliefs[0] = SurfaceRelief::for_program_nonrt(p, 0.0005, uv_size);
+  TexturedContact contact(mesh, bvh, {SurfaceMaterial{800.0, 0.5, 0.3, 0.2}}, std::move(textures), std::move(reliefs));
+  // Round the sphere near a pole (polar angle 0.1 to 0.3 rad), pressed 1 mm in.
+  auto device_at = [&](int i) {
+    const double polar = 0.2 + 0.1 * std::sin(i * 0.01), azimuth = i * 0.003;
+    return (r - 0.001) * glm::dvec3{std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), std::cos(polar)};
+  };
+  contact.reset_rt(device_at(0) * 1.1);
+  contact.update_rt(device_at(0));
+  double largest_relief = 0;
+  sandpaper::test::RtViolations violations;
+  {
+    sandpaper::test::CountedRtViolations counted;
+    for (int i = 1; i <= 10000; ++i) {
+      contact.update_rt(device_at(i), glm::dvec3{0.01, 0.0, 0.0});
+      largest_relief = std::max(largest_relief, glm::length(contact.relief_force_rt()));
+    }
+    violations = counted.stop();
+  }
+  EXPECT_EQ(violations.allocations, 0u);
+  EXPECT_EQ(violations.locks, 0u);
+  EXPECT_GT(largest_relief, 0.05);  // the relief was felt
 }
 
 }  // namespace

@@ -67,6 +67,7 @@ const SceneProgram& ball_on_table() {
     s.surfaces.push_back({"ball", "", "like corduroy", {600, 0.5, 0, 0}, 0,
                           {2 * std::numbers::pi * kRadius, std::numbers::pi * kRadius}});
     s.surfaces.push_back({"table", "", "wood", {800, 0, 0.6, 0.4}, -1, {0.1, 0.1}});
+    s.surfaces[0].relief_depth_m = 0.0004;  // corduroy's ribs carved into the ball as well
     s.programs.push_back(compiled("like corduroy"));
     return s;
   }();
@@ -146,6 +147,11 @@ SceneProgram checkered_floor() {
   add_object(s, "pebble", "sphere", uv_sphere_data(0.01, 4, 3, {0, 0, 0.012}), 1);
   s.surfaces.push_back({"floor", "", "grating", {900, 1.0, 0.3, 0.2}, 0, {0.08, 0.08}});
   s.surfaces.push_back({"floor", "", "bumps", {400, 0, 0, 0}, 1, {0.02, 0.03}});
+  // The grating carved 0.3 mm deep and felt through that alone; the bumps carved 0.1 mm under their
+  // lateral force (format version 2).
+  s.surfaces[0].relief_depth_m = 0.0003;
+  s.surfaces[0].lateral_texture = false;
+  s.surfaces[1].relief_depth_m = 0.0001;
   s.programs.push_back(grating_program());
   s.programs.push_back(bumps_program());
   return s;
@@ -222,6 +228,8 @@ void expect_same_scene(const SceneProgram& a, const SceneProgram& b) {
     EXPECT_EQ(x.contact.kinetic_friction, y.contact.kinetic_friction);
     EXPECT_EQ(x.program, y.program);
     EXPECT_EQ(x.uv_size_m, y.uv_size_m);
+    EXPECT_EQ(x.relief_depth_m, y.relief_depth_m);
+    EXPECT_EQ(x.lateral_texture, y.lateral_texture);
   }
   ASSERT_EQ(a.programs.size(), b.programs.size());
   for (std::size_t i = 0; i < a.programs.size(); ++i) EXPECT_EQ(schema::serialize(a.programs[i]), schema::serialize(b.programs[i]));
@@ -307,7 +315,10 @@ TEST(SceneIo, ABadMagicAnotherVersionReservedBitsOrACorruptPayloadAreRefused) {
   Bytes b = good;
   b[0] = 'X';
   EXPECT_NE(refusal(b).find("no SNDSCENE header"), std::string::npos);
-  EXPECT_NE(refusal(with<std::uint32_t>(good, 8, 2)).find("format version 2, this build reads version 1"), std::string::npos);
+  // A file of version 1 (before the relief) is refused with what to do; so is a later one.
+  EXPECT_NE(refusal(with<std::uint32_t>(good, 8, 1)).find("format version 1, this build reads version 2: recompile the scene"),
+            std::string::npos);
+  EXPECT_NE(refusal(with<std::uint32_t>(good, 8, 3)).find("format version 3, this build reads version 2"), std::string::npos);
   EXPECT_NE(refusal(with<std::uint32_t>(good, 12, 1)).find("reserved"), std::string::npos);
   EXPECT_NE(refusal(with<std::uint32_t>(good, 28, 1)).find("reserved"), std::string::npos);
   b = good;
@@ -453,6 +464,16 @@ TEST(SceneIo, SurfacesTheRendererCouldNotUseAreRefused) {
   bad = scene;
   bad.surfaces[0].object = "\xff";
   EXPECT_NE(refused(bad).find("not UTF-8"), std::string::npos);
+  bad = scene;
+  bad.surfaces[0].relief_depth_m = 0.0101;
+  EXPECT_NE(refused(bad).find("relief depth must be 0 or between 1e-12 m and 10 mm"), std::string::npos);
+  bad.surfaces[0].relief_depth_m = -1e-4;
+  EXPECT_NE(refused(bad).find("relief depth"), std::string::npos);
+  bad.surfaces[0].relief_depth_m = NAN;
+  EXPECT_NE(refused(bad).find("relief depth"), std::string::npos);
+  bad = scene;
+  bad.surfaces[1].relief_depth_m = 0.0005;  // the table has no texture
+  EXPECT_NE(refused(bad).find("surface 1 (\"table\") has a relief but no texture"), std::string::npos);
   bad = plain_tetrahedron();
   bad.surfaces.clear();
   EXPECT_NE(refused(bad).find("names surface 0 of 0"), std::string::npos);
@@ -463,6 +484,12 @@ TEST(SceneIo, SurfacesTheRendererCouldNotUseAreRefused) {
   const Bytes good = serialize_scene(scene);
   EXPECT_NE(refusal(with<std::int32_t>(good, program0, 1)).find("surface 0 (\"ball\") names material program 1 of 1"),
             std::string::npos);
+  // After the program index and the UV size: the relief depth (8 bytes) and the lateral flag (1).
+  const std::size_t relief0 = program0 + 4 + 2 * 8, lateral0 = relief0 + 8;
+  EXPECT_EQ(refusal(with<double>(good, relief0, 0.005)), "");
+  EXPECT_NE(refusal(with<double>(good, relief0, 0.02)).find("relief depth"), std::string::npos);
+  EXPECT_EQ(refusal(with<std::uint8_t>(good, lateral0, 0)), "");
+  EXPECT_NE(refusal(with<std::uint8_t>(good, lateral0, 2)).find("lateral-texture flag is 2"), std::string::npos);
 }
 
 // The seeds of the scene_program fuzz target are what the writer writes for the small scenes

@@ -26,6 +26,9 @@ struct SurfaceSource {
   std::optional<double> damping_Ns_per_m;
   std::optional<double> static_friction, kinetic_friction;
   std::optional<glm::dvec2> uv_size_m;       // metres of surface per unit of u, v; absent: the object's
+  std::optional<double> relief_depth_m;      // `texture relief D`: the carve's depth (m); absent: none
+  bool lateral_texture = true;               // false (`only`): the texture felt through the relief alone
+  compiler::SourceLocation relief_location;  // the `texture` keyword of the relief (W0854)
 };
 
 // One object: its triangles (scene frame, m) with MeshData::materials indexing `surfaces`.
@@ -47,6 +50,7 @@ struct SceneSource {
   compiler::SourceLocation name_location;
   std::filesystem::path base_dir;            // .hmat paths are relative to it
   std::vector<ObjectSource> objects;
+  bool from_gltf = false;                    // read from a glTF asset, not a scene file
 };
 
 // Where each of a surface's contact values came from: "scene", "material" or "default".

@@ -49,6 +49,9 @@ struct ObjectSyntax {
   SourceLocation friction_location;
   std::optional<Quantity> texture_width, texture_height;  // `texture size W [x H]`: metres per unit of u, v
   SourceLocation texture_location;
+  std::optional<Quantity> relief_depth;         // `texture relief D [only]`: carve depth (m), normal-force texture
+  bool relief_only = false;                     // `only`: no lateral-force texture beside the relief
+  SourceLocation relief_location;
   SourceLocation location;                      // the `object` keyword
 };
 

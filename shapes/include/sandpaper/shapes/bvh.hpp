@@ -25,6 +25,14 @@ struct SegmentHit {
 
 class Bvh {
  public:
+  // A triangle as the leaves keep it: corner v0 and edges e1, e2 (m), and its mesh index.
+  struct LeafTriangle {
+    glm::dvec3 v0{0.0};
+    glm::dvec3 e1{0.0};
+    glm::dvec3 e2{0.0};
+    std::uint32_t index = 0;
+  };
+
   static constexpr std::size_t kMaxLeafTriangles = 4;
   // The traversal stack; a median split keeps the depth near log2(triangles / 4) + 1, so 64
   // levels hold any mesh that fits in memory (the build checks it).
@@ -44,6 +52,14 @@ class Bvh {
                                           Facing facing = Facing::both,
                                           std::uint32_t* nodes_visited = nullptr) const noexcept;
 
+  // The triangles whose own box, padded as the nodes' are, overlaps the box lo..hi (m), in leaf
+  // order, written to out: their count, or nullopt when there are more than out holds (out's
+  // contents are then unspecified). Any segment within lo..hi that crosses a triangle crosses one
+  // of these, so a query over them alone answers as first_hit_rt would. Real time.
+  std::optional<std::size_t> gather_rt(const glm::dvec3& lo, const glm::dvec3& hi, std::span<LeafTriangle> out) const noexcept;
+
+  // How far every box reaches past what it bounds (m): the edge tolerance's reach, and rounding.
+  double pad_m() const noexcept { return pad_; }
   std::size_t node_count() const noexcept { return nodes_.size(); }
   std::size_t depth() const noexcept { return depth_; }
   std::size_t triangle_count() const noexcept { return triangles_.size(); }
@@ -55,17 +71,12 @@ class Bvh {
     glm::dvec3 hi{0.0};
     std::uint32_t count = 0;  // triangles in a leaf; 0 for an inner node
   };
-  struct LeafTriangle {
-    glm::dvec3 v0{0.0};
-    glm::dvec3 e1{0.0};
-    glm::dvec3 e2{0.0};
-    std::uint32_t index = 0;
-  };
   struct Builder;
 
   std::vector<Node> nodes_;
   std::vector<LeafTriangle> triangles_;
   std::size_t depth_ = 0;
+  double pad_ = 0.0;  // how far every box reaches past what it bounds (m)
 };
 
 }  // namespace sandpaper::shapes

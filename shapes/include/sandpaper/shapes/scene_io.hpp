@@ -19,7 +19,8 @@
 
 namespace sandpaper::shapes {
 
-inline constexpr std::uint32_t kSceneFormatVersion = 1;
+// 2: each surface carries its relief depth and whether its lateral texture is kept.
+inline constexpr std::uint32_t kSceneFormatVersion = 2;
 
 // What a scene program may hold; each is checked from the counts, before anything is allocated
 // for them (docs/RELIABILITY.md, "Limits").
@@ -47,6 +48,9 @@ inline constexpr std::uint64_t kMaxPayloadBytes = std::uint64_t{1} << 30;
 inline constexpr double kMaxCoordinate = 1e12;
 inline constexpr double kMinQuantity = 1e-12;
 inline constexpr double kMaxQuantity = 1e12;
+// A relief (SceneSurface::relief_depth_m) of at most 10 mm: a deeper carve is a shape, not a
+// texture, and the proxy's spring would have to press that far to feel its valleys' floors.
+inline constexpr double kMaxReliefDepth_m = 0.01;
 }  // namespace scene_limits
 
 // Empty when `scene` is one the reader accepts and SceneRenderer builds, else the first thing wrong
@@ -54,9 +58,10 @@ inline constexpr double kMaxQuantity = 1e12;
 // counts and string lengths against scene_limits, every string is UTF-8, vertices and UVs finite
 // and within range, uvs empty or one per vertex, materials empty or one per triangle, every index
 // in range (a triangle's vertices and surface, an object's triangles, a surface's program, or -1),
-// each surface's contact (material_problem, and its range) and uv size, each program's texture
-// (SurfaceTexture::for_program_nonrt), and builds the Mesh (a degenerate triangle). O(n log n) in
-// the triangles, off the servo thread.
+// each surface's contact (material_problem, and its range), uv size and relief (0, or within
+// 1e-12 m to kMaxReliefDepth_m on a surface with a program), each program's texture
+// (SurfaceTexture::for_program_nonrt, and SurfaceRelief's for those a relief follows), and builds
+// the Mesh (a degenerate triangle). O(n log n) in the triangles, off the servo thread.
 std::string scene_problem(const SceneProgram& scene);
 
 // The whole file, header included. `options` applies to the programs' height fields (--compact).

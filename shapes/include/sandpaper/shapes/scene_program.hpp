@@ -24,6 +24,10 @@ struct SceneSurface {
   SurfaceMaterial contact;         // stiffness, normal damping, Coulomb friction
   int program = -1;                // index into SceneProgram::programs of its texture; -1: untextured
   glm::dvec2 uv_size_m{0.1, 0.1};  // metres of surface per unit of u and v
+  // The relief's depth D (m): the surface carved along its normal by its texture, at most D deep
+  // (surface_relief.hpp; Minsky 1995, 7.7.2); 0: none. Needs a program.
+  double relief_depth_m = 0;
+  bool lateral_texture = true;     // false: the texture is felt through the relief alone
 };
 
 // One object's triangles: [first_triangle, first_triangle + triangle_count) of the mesh.

@@ -17,8 +17,9 @@ namespace sandpaper::shapes {
 class SceneRenderer {
  public:
   // Throws std::invalid_argument when the scene cannot be felt: a bad mesh (Mesh::build_nonrt), a
-  // surface index or program index out of range, an unusable surface (material_problem), or a
-  // texture the evaluator refuses. `scene` is copied what is needed of; it need not outlive this.
+  // surface index or program index out of range, an unusable surface (material_problem), a
+  // texture the evaluator refuses, or a relief without a texture or of a depth SurfaceRelief
+  // refuses. `scene` is copied what is needed of; it need not outlive this.
   explicit SceneRenderer(const SceneProgram& scene, ProxyOptions options = {});
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -31,6 +32,9 @@ class SceneRenderer {
 
   const ProxyRenderer& proxy_rt() const noexcept { return contact_->proxy_rt(); }
   const glm::dvec3& texture_force_rt() const noexcept { return contact_->texture_force_rt(); }
+  // The relief's share of the last update's force (N) and the carve under the proxy (m).
+  const glm::dvec3& relief_force_rt() const noexcept { return contact_->relief_force_rt(); }
+  double relief_depth_rt() const noexcept { return contact_->relief_depth_rt(); }
   // The surface the proxy rests on (index into the scene's surfaces), or -1 out of contact.
   int surface_rt() const noexcept;
   const Mesh& mesh() const noexcept { return *mesh_; }

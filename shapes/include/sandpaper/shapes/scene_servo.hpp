@@ -83,8 +83,9 @@ const char* scene_stop_name(SceneStop stop) noexcept;
 
 // The energy at the device's port over a run (J). With F_k the force written at tick k (held until
 // the next read: a zero-order hold) and x_k the position read at tick k, the force split into the
-// contact's share C_k (the proxy's spring, damper and friction: a passive law) and the texture's
-// T_k (texture_force_rt: the thesis' lateral-force texture, F = -k grad h at the proxy):
+// contact's share C_k (the proxy's spring, damper and friction, and a surface's relief: a passive
+// law) and the texture's T_k (texture_force_rt: the thesis' lateral-force texture, F = -k grad h at
+// the proxy):
 //
 //   W = sum_k F_k . (x_{k+1} - x_k)                      the device force's work on the handle (exact
 //                                                        for a held force)

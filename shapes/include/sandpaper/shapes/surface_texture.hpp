@@ -13,11 +13,18 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "sandpaper/runtime/patch_evaluator.hpp"
+#include "sandpaper/runtime/texture_terms.hpp"
 #include "sandpaper/schema/patch_program.hpp"
 #include "sandpaper/shapes/mesh.hpp"
 
 namespace sandpaper::shapes {
+
+// Patch coordinates s = ((u - 0.5) W, (0.5 - v) H) (m) of point_m, taken onto `triangle`'s plane,
+// through its UVs; W x H = uv_size_m. The one convention of SurfaceTexture and SurfaceRelief.
+glm::dvec2 uv_patch_position_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m,
+                                glm::dvec2 uv_size_m) noexcept;
+// (ds/dp)^T g: a gradient (or force) along the patch carried onto `triangle`'s plane.
+glm::dvec3 uv_pull_back_rt(const Mesh& mesh, std::uint32_t triangle, glm::dvec2 g, glm::dvec2 uv_size_m) noexcept;
 
 class SurfaceTexture {
  public:
@@ -41,7 +48,7 @@ class SurfaceTexture {
  private:
   SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, glm::dvec2 uv_size_m, double max_force_N);
   std::unique_ptr<schema::PatchProgram> texture_;  // owned, so that the evaluator's reference outlives moves
-  std::unique_ptr<runtime::PatchEvaluator> evaluator_;
+  runtime::TextureTerms terms_;  // the runtime's tables over *texture_, as the 2-D patch plays them
   glm::dvec2 uv_size_m_;
   double max_force_N_;  // the compiled maximum lateral force; infinite when the program states none
 };
