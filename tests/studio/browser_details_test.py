@@ -173,15 +173,18 @@ def main():
         b.send("Fetch.enable", {"patterns": [{"urlPattern": "*/api/preview/preview.json*"}]})
         b.evaluate("(() => { const s = document.querySelector('#file'); s.value = 'board.hmat';"
                    " s.dispatchEvent(new Event('change')); })()")
-        first = b.wait_event("Fetch.requestPaused", 60)["params"]
+        # The page refreshes one preview at a time (preview.js): it asks for the photograph's only
+        # once the workspace's pictures, asked for just before, are drawn. Beside stress-ng that took
+        # longer than 60 s, so the wait is long: it waits for the event, not for a pace.
+        first = b.wait_event("Fetch.requestPaused", 240)["params"]
         b.send("Fetch.fulfillRequest", {"requestId": first["requestId"], "responseCode": 503,
                                         "responseHeaders": [{"name": "Content-Type", "value": "application/json"}],
                                         "body": base64.b64encode(b'{"error": "still being drawn"}').decode()})
         try:
-            again = b.wait_event("Fetch.requestPaused", 30)["params"]
+            again = b.wait_event("Fetch.requestPaused", 120)["params"]
             b.send("Fetch.continueRequest", {"requestId": again["requestId"]})
         except Exception:
-            again = {"request": {"url": "(nothing within 30 s)"}}
+            again = {"request": {"url": "(nothing within 120 s)"}}
         b.send("Fetch.disable")
         check(again["request"]["url"] == first["request"]["url"],
               f"answered 503, the page asks again for the same load's preview: {first['request']['url']} then "
