@@ -2,9 +2,10 @@
 // give a SceneSource or diagnostics, never a crash or an unbounded allocation. A scene it accepts
 // must hold together: every object's mesh is one shapes::Mesh accepts (the reader drops exactly the
 // degenerate triangles the mesh refuses, and no vertex or UV is out of range or not finite), every
-// triangle names one of its object's surfaces, every contact value is in range, and the scene
-// assembles into a SceneProgram whose one mesh builds too. Materials bound by name are not compiled
-// here (the material target fuzzes the compiler): the surfaces are assembled without them.
+// triangle names one of its object's surfaces, every contact value is in range (a relief's depth in
+// (0, 10 mm], `relief_only` never kept without one), and the scene assembles into a SceneProgram
+// whose one mesh builds too. Materials bound by name are not compiled here (the material target
+// fuzzes the compiler): the surfaces are assembled without them.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -41,6 +42,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       fuzz::check(!s.stiffness_N_per_m || (*s.stiffness_N_per_m > 0 && std::isfinite(*s.stiffness_N_per_m)), "a stiffness out of range");
       fuzz::check(!s.static_friction || (s.kinetic_friction && *s.kinetic_friction <= *s.static_friction + 1e-12),
                   "kinetic friction missing or above static");
+      fuzz::check(!s.relief_depth_m || (*s.relief_depth_m > 0 && *s.relief_depth_m <= 0.01), "a relief depth outside (0, 10 mm]");
+      fuzz::check(s.lateral_texture || s.relief_depth_m, "relief_only kept without a relief depth");
       s.material.clear();  // not compiled here
     }
     surfaces += o.surfaces.size();

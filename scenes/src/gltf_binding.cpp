@@ -263,6 +263,14 @@ SurfaceSource Binder::surface(std::optional<std::size_t> material, std::size_t m
       refuse_gltf("E0865", where + " is not two sizes of 1e-12 to 100 m");
     s.uv_size_m = size;
   }
+  // The scene file's `texture relief D [only]`: the carve's depth, at most 10 mm as there (E0814).
+  s.relief_depth_m = number(places, "relief_depth_m", 0, 0.01, true);
+  if (const json* only = first(places, "relief_only", where)) {
+    if (!only->is_boolean()) refuse_gltf("E0865", where + " is " + only->type_name() + ", not true or false");
+    if (!s.relief_depth_m)
+      refuse_gltf("E0865", where + " is given without relief_depth_m", "give the relief's depth in metres, e.g. \"relief_depth_m\": 0.0005");
+    s.lateral_texture = !only->get<bool>();
+  }
   // MPEG_haptic_material: its stiffness and friction where extras state none; a Sandpaper-written
   // one's material where no name is bound.
   if (const auto h = haptic_index(material, mesh)) {

@@ -42,13 +42,13 @@ bool project_three(const ConstraintPlane& p, const ConstraintPlane& q, const Con
 
 void ConstraintSet::add(const ConstraintPlane& plane) noexcept {
   if (count_ == kMax) return;
-  planes_[count_] = plane;
+  planes_[count_].plane = plane;
   triangles_[count_] = plane.triangle;
   ++count_;
 }
 
 void ConstraintSet::replace(std::size_t i, const ConstraintPlane& plane) noexcept {
-  planes_[i] = plane;
+  planes_[i].plane = plane;
   triangles_[i] = plane.triangle;
 }
 
@@ -57,7 +57,7 @@ bool ConstraintSet::project(const glm::dvec3& goal, glm::dvec3& out) const noexc
   bool any = false;
   auto consider = [&](const glm::dvec3& x) {
     for (std::size_t i = 0; i < count_; ++i) {
-      if (glm::dot(planes_[i].normal, x) < planes_[i].offset - kFeasible) return;
+      if (glm::dot(planes_[i].plane.normal, x) < planes_[i].plane.offset - kFeasible) return;
     }
     const glm::dvec3 diff = x - goal;
     const double dist2 = glm::dot(diff, diff);
@@ -73,14 +73,14 @@ bool ConstraintSet::project(const glm::dvec3& goal, glm::dvec3& out) const noexc
   if (any) return true;  // the goal itself is allowed: nothing nearer exists
   glm::dvec3 x;
   for (std::size_t i = 0; i < count_; ++i) {
-    if (project_one(planes_[i], goal, x)) consider(x);
+    if (project_one(planes_[i].plane, goal, x)) consider(x);
   }
   for (std::size_t i = 0; i < count_; ++i) {
     for (std::size_t j = i + 1; j < count_; ++j) {
-      if (project_two(planes_[i], planes_[j], goal, x)) consider(x);
+      if (project_two(planes_[i].plane, planes_[j].plane, goal, x)) consider(x);
     }
   }
-  if (count_ == 3 && project_three(planes_[0], planes_[1], planes_[2], x)) consider(x);
+  if (count_ == 3 && project_three(planes_[0].plane, planes_[1].plane, planes_[2].plane, x)) consider(x);
   return any;
 }
 

@@ -66,6 +66,7 @@ Mesh Mesh::build_nonrt(MeshData data) {
     }
     TriangleFrame& f = mesh.frames_[t];
     const glm::dvec3& v0 = data.vertices[tri[0]];
+    f.v0 = v0;
     f.e1 = data.vertices[tri[1]] - v0;
     f.e2 = data.vertices[tri[2]] - v0;
     const glm::dvec3 e3 = data.vertices[tri[2]] - data.vertices[tri[1]];
@@ -85,6 +86,7 @@ Mesh Mesh::build_nonrt(MeshData data) {
     if (!data.uvs.empty()) {
       const glm::dvec2& uv0 = data.uvs[tri[0]];
       uv_gradient(f.dual1, f.dual2, data.uvs[tri[1]] - uv0, data.uvs[tri[2]] - uv0, f.grad_u, f.grad_v);
+      f.uv_at_origin = uv0 - glm::dvec2{glm::dot(f.grad_u, v0), glm::dot(f.grad_v, v0)};
     }
   }
   // Edge adjacency by position: the proxy walks from a triangle to its neighbour when it slides

@@ -86,14 +86,16 @@ std::optional<SegmentHit> NearbyTriangles::first_hit_rt(const glm::dvec3& a, con
 #if defined(__SSE2__)
   const __m128 seg_lx = _mm_set1_ps(lx), seg_ly = _mm_set1_ps(ly), seg_lz = _mm_set1_ps(lz);
   const __m128 seg_hx = _mm_set1_ps(hx), seg_hy = _mm_set1_ps(hy), seg_hz = _mm_set1_ps(hz);
-  for (std::size_t g = 0; g < kCapacity; g += 4) {
+  // Up to the last group holding a triangle: the slots after count_ hold empty boxes.
+  const std::size_t groups_end = (count_ + 3) & ~std::size_t{3};
+  for (std::size_t g = 0; g < groups_end; g += 4) {
     __m128 o = _mm_and_ps(_mm_cmple_ps(_mm_loadu_ps(&lo_x_[g]), seg_hx), _mm_cmple_ps(seg_lx, _mm_loadu_ps(&hi_x_[g])));
     o = _mm_and_ps(o, _mm_and_ps(_mm_cmple_ps(_mm_loadu_ps(&lo_y_[g]), seg_hy), _mm_cmple_ps(seg_ly, _mm_loadu_ps(&hi_y_[g]))));
     o = _mm_and_ps(o, _mm_and_ps(_mm_cmple_ps(_mm_loadu_ps(&lo_z_[g]), seg_hz), _mm_cmple_ps(seg_lz, _mm_loadu_ps(&hi_z_[g]))));
     overlapping |= static_cast<std::uint64_t>(_mm_movemask_ps(o)) << g;
   }
 #else
-  for (std::size_t i = 0; i < kCapacity; ++i) {
+  for (std::size_t i = 0; i < count_; ++i) {
     const bool o = lo_x_[i] <= hx && lx <= hi_x_[i] && lo_y_[i] <= hy && ly <= hi_y_[i] && lo_z_[i] <= hz && lz <= hi_z_[i];
     overlapping |= static_cast<std::uint64_t>(o) << i;
   }

@@ -18,6 +18,10 @@ namespace {
 // as leaving: above the hit test's edge tolerance, so a proxy put on an edge by a hit is still on.
 constexpr double kExitTolerance = 1e-9;
 
+// The farthest the device may be from the proxy (per axis, in neighbourhoods) for one cube to be
+// gathered about both: beyond it the cube about the proxy alone is the one worth keeping.
+constexpr double kBothReach = 4.0;
+
 }  // namespace
 
 ProxyRenderer::ProxyRenderer(const Mesh& mesh, const Bvh& bvh, std::vector<SurfaceMaterial> materials,
@@ -219,13 +223,20 @@ glm::dvec3 ProxyRenderer::update_rt(const glm::dvec3& device_m, const glm::dvec3
     return glm::dvec3{0.0};
   }
   // The neighbourhood holds the proxy and the device (the first segment runs from one to the
-  // other), so most ticks' casts stay in it; it is gathered again, about both, when either comes
-  // near its side, and after a gather that failed (too crowded) only when the proxy has moved on.
-  if (nearby_.valid() ? !(nearby_.inside_rt(proxy_, 0.9) && nearby_.inside_rt(device_m, 0.9))
+  // other), so most ticks' casts stay in it; it is gathered again when the proxy comes near its
+  // side, or the device does while it was meant to hold it, and after a gather that failed (too
+  // crowded) only when the proxy has moved on. Where a cube about both would be too crowded to
+  // hold them (a deep press on a dense mesh), it is kept about the proxy alone: the first cast
+  // goes to the tree, the casts along the surface stay in it, and it follows the proxy, not every
+  // tick's device.
+  if (nearby_.valid() ? !(nearby_.inside_rt(proxy_, 0.9) && (!holds_device_ || nearby_.inside_rt(device_m, 0.9)))
                       : !nearby_.inside_rt(proxy_, 0.5)) {
     const glm::dvec3 apart = glm::abs(device_m - proxy_);
     const double reach = std::max({apart.x, apart.y, apart.z});
-    nearby_.gather_rt(*bvh_, 0.5 * (proxy_ + device_m), std::max(options_.neighbourhood_m, reach));
+    holds_device_ = reach <= kBothReach * options_.neighbourhood_m &&
+                    nearby_.gather_rt(*bvh_, 0.5 * (proxy_ + device_m), std::max(options_.neighbourhood_m, reach)) &&
+                    nearby_.inside_rt(proxy_, 0.9) && nearby_.inside_rt(device_m, 0.9);
+    if (!holds_device_) nearby_.gather_rt(*bvh_, proxy_, options_.neighbourhood_m);
   }
   const Solved free = solve(proxy_, device_m, resting_on_);
   if (!free.contact) {

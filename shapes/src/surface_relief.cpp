@@ -190,16 +190,14 @@ double SurfaceRelief::depth_at_rt(glm::dvec2 s, glm::dvec2* gradient) const noex
   return c;
 }
 
-double SurfaceRelief::depth_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) const noexcept {
-  return depth_at_rt(uv_patch_position_rt(mesh, triangle, point_m, uv_size_m_));
-}
-
-glm::dvec3 SurfaceRelief::gradient_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) const noexcept {
+double SurfaceRelief::carve_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m,
+                               glm::dvec3& slope) const noexcept {
   glm::dvec2 g{0.0};
-  (void)depth_at_rt(uv_patch_position_rt(mesh, triangle, point_m, uv_size_m_), &g);
-  const glm::dvec3 slope = uv_pull_back_rt(mesh, triangle, g, uv_size_m_);
-  const double magnitude = glm::length(slope);
-  return magnitude > 1.0 ? slope / magnitude : slope;
+  const double c = depth_at_rt(uv_patch_position_rt(mesh, triangle, point_m, uv_size_m_), &g);
+  slope = uv_pull_back_rt(mesh, triangle, g, uv_size_m_);
+  const double squared = glm::dot(slope, slope);
+  if (squared > 1.0) slope /= std::sqrt(squared);
+  return c;
 }
 
 }  // namespace sandpaper::shapes

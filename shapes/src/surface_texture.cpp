@@ -30,22 +30,6 @@ SurfaceTexture::SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, gl
       uv_size_m_(uv_size_m),
       max_force_N_(max_force_N) {}
 
-glm::dvec2 uv_patch_position_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m,
-                                glm::dvec2 uv_size_m) noexcept {
-  const TriangleFrame& f = mesh.frame(triangle);
-  const glm::dvec2 uv0 = mesh.has_uvs() ? mesh.uvs()[mesh.triangles()[triangle][0]] : glm::dvec2{0.0};
-  // The UV gradient's rows lie in the plane, so the point's height above it does not count.
-  const glm::dvec3 w = point_m - mesh.vertex0(triangle);
-  const double u = uv0.x + glm::dot(f.grad_u, w), v = uv0.y + glm::dot(f.grad_v, w);
-  return {(u - 0.5) * uv_size_m.x, (0.5 - v) * uv_size_m.y};
-}
-
-glm::dvec3 uv_pull_back_rt(const Mesh& mesh, std::uint32_t triangle, glm::dvec2 g, glm::dvec2 uv_size_m) noexcept {
-  // ds/dp's rows are W grad_u and -H grad_v.
-  const TriangleFrame& t = mesh.frame(triangle);
-  return g.x * uv_size_m.x * t.grad_u - g.y * uv_size_m.y * t.grad_v;
-}
-
 glm::dvec2 SurfaceTexture::patch_position_rt(const Mesh& mesh, std::uint32_t triangle,
                                              const glm::dvec3& point_m) const noexcept {
   return uv_patch_position_rt(mesh, triangle, point_m, uv_size_m_);
@@ -54,8 +38,10 @@ glm::dvec2 SurfaceTexture::patch_position_rt(const Mesh& mesh, std::uint32_t tri
 glm::dvec3 SurfaceTexture::force_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) noexcept {
   const glm::dvec2 f = terms_.force_rt(patch_position_rt(mesh, triangle, point_m));
   const glm::dvec3 force = uv_pull_back_rt(mesh, triangle, f, uv_size_m_);
-  const double magnitude = glm::length(force);
-  return magnitude > max_force_N_ ? force * (max_force_N_ / magnitude) : force;
+  // Squared first: the square root only where the hold is needed.
+  const double squared = glm::dot(force, force);
+  if (!(squared > max_force_N_ * max_force_N_)) return force;
+  return force * (max_force_N_ / std::sqrt(squared));
 }
 
 }  // namespace sandpaper::shapes

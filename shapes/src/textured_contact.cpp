@@ -40,8 +40,8 @@ glm::dvec3 TexturedContact::update_rt(const glm::dvec3& device_m, const glm::dve
     if (const auto& relief = reliefs_[material]) {
       const double k = stiffness_N_per_m_[material];
       const double press = c.normal_force_N / k;
-      relief_depth_m_ = relief->depth_rt(*mesh_, c.triangle, proxy_.proxy_rt());
-      const glm::dvec3 slope = relief->gradient_rt(*mesh_, c.triangle, proxy_.proxy_rt());
+      glm::dvec3 slope{0.0};
+      relief_depth_m_ = relief->carve_rt(*mesh_, c.triangle, proxy_.proxy_rt(), slope);
       // The spring now ends on the carved surface: the part of the press that only reaches into
       // the carve is taken back, and what is left pushes along the carved surface's normal.
       relief_force_ = -k * std::min(press, relief_depth_m_) * c.normal + k * std::max(0.0, press - relief_depth_m_) * slope;

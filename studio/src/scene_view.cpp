@@ -61,6 +61,8 @@ struct SceneView::Impl {
                      {"force_N", vec_json(force)},
                      {"force_magnitude_N", glm::length(force)},
                      {"texture_force_N", vec_json(renderer->texture_force_rt())},
+                     {"relief_force_N", vec_json(renderer->relief_force_rt())},
+                     {"relief_carve_m", nullptr},
                      {"in_contact", surface >= 0},
                      {"surface", nullptr},
                      {"object", nullptr},
@@ -84,6 +86,9 @@ struct SceneView::Impl {
       j["normal_force_N"] = contact.normal_force_N;
       j["sliding"] = contact.sliding;
       j["constraints"] = contact.constraints;
+      // normal_force_N is the mesh surface's press, as `probe` gives it; a relief takes the carve's
+      // share of it back, in relief_force_N.
+      if (s.relief_depth_m > 0) j["relief_carve_m"] = renderer->relief_depth_rt();
     }
     return j;
   }

@@ -383,6 +383,42 @@ TEST(GltfScene, ExtrasSandpaperMaterialBindsTheLibraryEntry) {
   EXPECT_NO_THROW(shapes::Mesh::build_nonrt(program.mesh));
 }
 
+// A scene file's `texture relief 0.5 mm only`, in a glTF asset's extras: the compiled surface
+// carries the carve and drops the lateral texture, and bad values are refused.
+TEST(GltfScene, ExtrasSandpaperReliefCarvesTheTexture) {
+  auto asset = [](const json& extras) {
+    Asset a;
+    const int pos = a.positions({{-0.05, 0, 0.05}, {0.05, 0, 0.05}, {0.05, 0, -0.05}, {-0.05, 0, -0.05}});
+    const int tex = a.uvs({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+    const int fabric = a.material({{"name", "fabric"}, {"extras", {{"sandpaper", extras}}}});
+    const int idx = a.indices({0, 1, 2, 0, 2, 3}, 5123);
+    const int m = a.mesh(json::array({{{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", tex}}}, {"indices", idx}, {"material", fabric}}}));
+    return a.done({a.node({{"mesh", m}})});
+  };
+  {
+    const auto r = read(asset({{"material", "corduroy"}, {"relief_depth_m", 0.0005}, {"relief_only", true}}));
+    ASSERT_TRUE(r.scene) << compiler::format_diagnostics(r.diags);
+    const auto result = scenes::compile_scene_source(C(), *r.scene);
+    ASSERT_TRUE(result.ok()) << compiler::format_diagnostics(result.diagnostics);
+    ASSERT_EQ(result.program->surfaces.size(), 1u);
+    EXPECT_EQ(result.program->surfaces[0].relief_depth_m, 0.0005);
+    EXPECT_FALSE(result.program->surfaces[0].lateral_texture);
+  }
+  {
+    const auto r = read(asset({{"material", "corduroy"}, {"relief_depth_m", 0.001}}));
+    ASSERT_TRUE(r.scene) << compiler::format_diagnostics(r.diags);
+    const auto result = scenes::compile_scene_source(C(), *r.scene);
+    ASSERT_TRUE(result.ok()) << compiler::format_diagnostics(result.diagnostics);
+    EXPECT_EQ(result.program->surfaces[0].relief_depth_m, 0.001);
+    EXPECT_TRUE(result.program->surfaces[0].lateral_texture);
+  }
+  // Deeper than 10 mm, not a number, `only` not a boolean, `only` without a depth.
+  EXPECT_EQ(only_error(read(asset({{"material", "corduroy"}, {"relief_depth_m", 0.02}}))), "E0865");
+  EXPECT_EQ(only_error(read(asset({{"material", "corduroy"}, {"relief_depth_m", "0.5 mm"}}))), "E0865");
+  EXPECT_EQ(only_error(read(asset({{"material", "corduroy"}, {"relief_depth_m", 0.0005}, {"relief_only", "yes"}}))), "E0865");
+  EXPECT_EQ(only_error(read(asset({{"material", "corduroy"}, {"relief_only", true}}))), "E0865");
+}
+
 TEST(GltfScene, TheMaterialsExtrasWinOverTheNodesAndTheNodesOverTheMeshs) {
   Asset a;
   const int pos = a.positions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});

@@ -2,6 +2,7 @@
 // u changes by 1 per 2 pi r of equator and its normals point along the radius.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -50,6 +51,28 @@ TEST(Mesh, SphereNormalsPointOutAndUMeasuresArcLength) {
       EXPECT_NEAR(glm::dot(f.grad_v, glm::dvec3{0, 0, -1}), 1.0 / (std::numbers::pi * r), 1e-3 / (std::numbers::pi * r));
     }
   }
+}
+
+// The servo tick reads a point's UVs from the frame alone (uv_at_origin + grad . p) and the first
+// vertex from its copy: at each corner of every triangle of a sphere moved 3 m from the origin, that
+// gives the corner's own UVs, from the mesh's data.
+TEST(Mesh, TheFrameGivesEachCornersUvsWithoutTheVertexArrays) {
+  MeshData data = uv_sphere_data(0.05, 64, 33);
+  for (glm::dvec3& v : data.vertices) v += glm::dvec3{3.0, -1.0, 2.0};
+  const Mesh mesh = Mesh::build_nonrt(data);
+  double worst = 0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const TriangleFrame& f = mesh.frame(t);
+    const auto& tri = data.triangles[t];
+    EXPECT_EQ(mesh.vertex0(t), data.vertices[tri[0]]);
+    if (glm::length(f.grad_u) == 0.0) continue;  // a pole's degenerate UVs: no gradient
+    for (std::uint32_t corner : tri) {
+      const glm::dvec2 uv{f.uv_at_origin.x + glm::dot(f.grad_u, data.vertices[corner]),
+                          f.uv_at_origin.y + glm::dot(f.grad_v, data.vertices[corner])};
+      worst = std::max(worst, glm::length(uv - data.uvs[corner]));
+    }
+  }
+  EXPECT_LT(worst, 1e-12);
 }
 
 TEST(Mesh, BoxFacesPointOutOrIn) {

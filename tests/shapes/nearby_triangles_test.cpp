@@ -169,5 +169,42 @@ TEST(NearbyTriangles, TheProxyFeelsTheSameWithItAndWithout) {
   }
 }
 
+
+// A deep press on a dense mesh: the device 10 mm inside a 100k-triangle ball, sliding. A cube
+// about the proxy and the device would hold hundreds of triangles, so the neighbourhood is kept
+// about the proxy alone and gathered again only as the proxy moves on, not on every tick; the
+// forces are the tree's all the same.
+TEST(NearbyTriangles, ADeepPressKeepsTheNeighbourhoodAboutTheProxy) {
+  const Mesh mesh = uv_sphere(kRadius, 320, 157);
+  const Bvh bvh = Bvh::build_nonrt(mesh);
+  ProxyOptions tree_only;
+  tree_only.neighbourhood_m = 1e-15;
+  ProxyRenderer with(mesh, bvh, {SurfaceMaterial{500.0}});
+  ProxyRenderer without(mesh, bvh, {SurfaceMaterial{500.0}}, tree_only);
+  const glm::dvec3 centre = glm::normalize(glm::dvec3{0.3, 0.5, 0.8});
+  const glm::dvec3 u = glm::normalize(glm::cross(centre, glm::dvec3{0, 0, 1})), v = glm::cross(centre, u);
+  with.reset_rt(centre * (kRadius + 0.001));
+  without.reset_rt(centre * (kRadius + 0.001));
+  constexpr int kPress = 200, kTicks = 3200;
+  std::uint64_t gathers_while_pressed = 0;
+  for (int k = 0; k < kTicks; ++k) {
+    // In to 10 mm over 200 ticks, then 3,000 ticks round a circle of 5 mm radius (10 um a tick).
+    const double depth = k < kPress ? 0.001 - 0.011 * k / kPress : -0.010;
+    const double a = k < kPress ? 0.0 : 2.0 * std::numbers::pi * (k - kPress) / 3000.0;
+    const glm::dvec3 device = glm::normalize(centre * kRadius + 0.005 * (std::cos(a) - 1.0) * u + 0.005 * std::sin(a) * v) *
+                              (kRadius + depth);
+    const std::uint64_t before = with.nearby_rt().gathers();
+    ASSERT_EQ(with.update_rt(device), without.update_rt(device)) << "tick " << k;
+    ASSERT_EQ(with.proxy_rt(), without.proxy_rt()) << "tick " << k;
+    ASSERT_TRUE(with.contact_rt().in_contact || k < kPress) << "tick " << k;
+    if (k >= kPress) gathers_while_pressed += with.nearby_rt().gathers() - before;
+  }
+  // The proxy slides 31 mm over triangles about 1 mm across: one gather every few ticks at most.
+  std::printf("deep press: %llu gathers in %d ticks\n", static_cast<unsigned long long>(gathers_while_pressed),
+              kTicks - kPress);
+  EXPECT_LT(gathers_while_pressed, static_cast<std::uint64_t>((kTicks - kPress) / 5));
+  EXPECT_TRUE(with.nearby_rt().valid());
+}
+
 }  // namespace
 }  // namespace sandpaper::shapes

@@ -2,6 +2,7 @@
 // material, compiled by the scenes room, touched by the 3-D Dummy mode's simulated device (the force
 // is the spring of the press depth, k d, worked by hand from the scene's own numbers), and kept while
 // an edit does not compile. Built without the shapes room, opening a scene says so and changes nothing.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -96,6 +97,42 @@ TEST(StudioScene, ATouchIsTheSpringOfItsPressAndTheJoystickKeepsItsMaterial) {
 
   EXPECT_EQ(status_of([&] { s.session->scene_touch({0, 50, 0}, std::nullopt); }), 400);  // far off the scene
   EXPECT_EQ(status_of([&] { s.session->render_view("height", std::array{0.0, 0.0}.data(), std::array{1.0, 1.0}.data()); }), 409);
+}
+
+// A relief (a normal-force texture): across one period of a 6 mm grating carved 0.5 mm deep, the
+// carve under the proxy runs from the hills (0) to the valleys (0.5 mm), and the felt normal force
+// is the spring pressed into the carved surface, k (d - c), with the relief's share k min(d, c).
+TEST(StudioScene, ATouchOnAReliefGivesItsCarveAndItsShare) {
+  SceneSession s;
+  std::ofstream(s.root / "relief.hsc") << "scene \"r\" {\n"
+                                          "  object \"floor\" plane 100 mm x 100 mm at 0 mm, 0 mm, 0 mm {\n"
+                                          "    material \"grating period 6 mm; roughness 0.4\"\n"
+                                          "    stiffness 1000 N/m\n"
+                                          "    texture relief 0.5 mm only\n"
+                                          "  }\n"
+                                          "}\n";
+  ASSERT_TRUE(s.session->open("relief.hsc")["ok"].get<bool>());
+  const double k = 1000, d = 0.001;
+  double lo = 1, hi = -1;
+  for (int i = 0; i <= 60; ++i) {
+    const double x = 0.0001 * i;  // 6 mm in 0.1 mm steps
+    const auto t = s.session->scene_touch({x, -d, 0.0}, studio::SceneView::Point_m{x, 0.01, 0.0});
+    ASSERT_TRUE(t["in_contact"].get<bool>()) << t.dump(2);
+    ASSERT_TRUE(t["relief_carve_m"].is_number()) << t.dump(2);
+    const double c = t["relief_carve_m"].get<double>();
+    lo = std::min(lo, c);
+    hi = std::max(hi, c);
+    EXPECT_NEAR(t["normal_force_N"].get<double>(), k * d, 0.01 * k * d);  // the mesh surface's press
+    EXPECT_NEAR(t["relief_force_N"][1].get<double>(), -k * std::min(d, c), 1e-3) << "at x = " << x;
+    EXPECT_NEAR(t["force_N"][1].get<double>(), k * std::max(0.0, d - c), 0.01 * k * d) << "at x = " << x;
+  }
+  EXPECT_NEAR(lo, 0.0, 0.02e-3);
+  EXPECT_NEAR(hi, 0.5e-3, 0.02e-3);
+  // Without a relief the carve is null and the share zero.
+  ASSERT_TRUE(s.session->open("ball.hsc")["ok"].get<bool>());
+  const auto top = s.session->scene_touch({0, 0.078, 0}, studio::SceneView::Point_m{0, 0.1, 0});
+  EXPECT_TRUE(top["relief_carve_m"].is_null());
+  EXPECT_EQ(top["relief_force_N"], nlohmann::json::array({0.0, 0.0, 0.0}));
 }
 
 TEST(StudioScene, AnEditThatDoesNotCompileKeepsTheLastGoodScene) {

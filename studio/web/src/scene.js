@@ -32,6 +32,9 @@ function showTouch(t, mmPerN) {
   $("#scene-force").textContent = t.force_magnitude_N.toFixed(3);
   $("#scene-normal-force").textContent = t.normal_force_N.toFixed(3);
   $("#scene-texture-force").textContent = Math.hypot(...t.texture_force_N).toFixed(3);
+  // The relief (a normal-force texture) takes back the carve's share of the surface's press.
+  $("#scene-relief").textContent = t.relief_carve_m === null || t.relief_carve_m === undefined ? "none"
+    : `${Math.hypot(...t.relief_force_N).toFixed(3)} N, carve ${(t.relief_carve_m * 1e3).toFixed(3)} mm`;
   const where = t.in_contact ? `"${t.object}"${t.side ? ` ${t.side}` : ""}${t.sliding ? ", sliding" : ""}` : "free (no contact)";
   $("#scene-surface").textContent = where;
   $("#scene-material").textContent = !t.in_contact ? "" : t.material

@@ -27,6 +27,7 @@ class TextureTerms {
   struct Term {
     const schema::GratingTerm* grating = nullptr;  // one of the two
     const schema::HeightFieldTerm* field = nullptr;
+    glm::dvec2 direction{0.0};  // a grating's unit normal (cos, sin of its orientation), taken once
   };
   std::vector<Term> terms_;
 };

@@ -25,7 +25,7 @@ class ConstraintSet {
 
   std::size_t size() const noexcept { return count_; }
   bool full() const noexcept { return count_ == kMax; }
-  const ConstraintPlane& operator[](std::size_t i) const noexcept { return planes_[i]; }
+  const ConstraintPlane& operator[](std::size_t i) const noexcept { return planes_[i].plane; }
   // The triangle indices, for the BVH's exclusion list.
   const std::uint32_t* triangles() const noexcept { return triangles_.data(); }
   void clear() noexcept { count_ = 0; }
@@ -41,7 +41,13 @@ class ConstraintSet {
   bool project(const glm::dvec3& goal, glm::dvec3& out) const noexcept;
 
  private:
-  std::array<ConstraintPlane, kMax> planes_{};
+  // Left unset until add() fills one: a set is made on every servo tick, and clearing its slots
+  // (a string store) cost more than the arithmetic that uses them.
+  union Slot {
+    Slot() noexcept {}
+    ConstraintPlane plane;
+  };
+  std::array<Slot, kMax> planes_;
   std::array<std::uint32_t, kMax> triangles_{};
   std::size_t count_ = 0;
 };

@@ -116,6 +116,7 @@ class ProxyRenderer {
   // frictionless proxy's.
   std::uint32_t resting_on_ = Mesh::kNoNeighbour;
   NearbyTriangles nearby_;
+  bool holds_device_ = false;  // the neighbourhood was gathered about the proxy and the device
 };
 
 }  // namespace sandpaper::shapes

@@ -36,12 +36,11 @@ class SurfaceRelief {
 
   // c (m) at patch coordinates s (m), and its gradient along s when `gradient` is given.
   double depth_at_rt(glm::dvec2 s_m, glm::dvec2* gradient = nullptr) const noexcept;
-  // c (m) at point_m on `triangle`, taken onto the triangle's plane through its UVs.
-  double depth_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) const noexcept;
-  // grad_p c = (ds/dp)^T grad_s c, in the triangle's plane (dimensionless: a slope). Where the UVs
-  // squeeze the texture (a UV sphere's pole) the slope grows with the squeeze; it is held to 1
-  // (45 degrees), so the relief's tangential force never exceeds its normal force.
-  glm::dvec3 gradient_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) const noexcept;
+  // c (m) at point_m on `triangle`, taken onto the triangle's plane through its UVs, and in `slope`
+  // grad_p c = (ds/dp)^T grad_s c, in the triangle's plane (dimensionless). Where the UVs squeeze
+  // the texture (a UV sphere's pole) the slope grows with the squeeze; it is held to 1 (45
+  // degrees), so the relief's tangential force never exceeds its normal force.
+  double carve_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m, glm::dvec3& slope) const noexcept;
 
   double relief_depth_m() const noexcept { return depth_m_; }
 

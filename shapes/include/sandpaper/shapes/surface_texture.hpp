@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -21,10 +22,21 @@ namespace sandpaper::shapes {
 
 // Patch coordinates s = ((u - 0.5) W, (0.5 - v) H) (m) of point_m, taken onto `triangle`'s plane,
 // through its UVs; W x H = uv_size_m. The one convention of SurfaceTexture and SurfaceRelief.
-glm::dvec2 uv_patch_position_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m,
-                                glm::dvec2 uv_size_m) noexcept;
-// (ds/dp)^T g: a gradient (or force) along the patch carried onto `triangle`'s plane.
-glm::dvec3 uv_pull_back_rt(const Mesh& mesh, std::uint32_t triangle, glm::dvec2 g, glm::dvec2 uv_size_m) noexcept;
+// Inline: both run it on every tick in contact.
+inline glm::dvec2 uv_patch_position_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m,
+                                       glm::dvec2 uv_size_m) noexcept {
+  // The UV gradient's rows lie in the plane, so the point's height above it does not count.
+  const TriangleFrame& f = mesh.frame(triangle);
+  const double u = f.uv_at_origin.x + glm::dot(f.grad_u, point_m);
+  const double v = f.uv_at_origin.y + glm::dot(f.grad_v, point_m);
+  return {(u - 0.5) * uv_size_m.x, (0.5 - v) * uv_size_m.y};
+}
+// (ds/dp)^T g: a gradient (or force) along the patch carried onto `triangle`'s plane; ds/dp's rows
+// are W grad_u and -H grad_v.
+inline glm::dvec3 uv_pull_back_rt(const Mesh& mesh, std::uint32_t triangle, glm::dvec2 g, glm::dvec2 uv_size_m) noexcept {
+  const TriangleFrame& f = mesh.frame(triangle);
+  return (g.x * uv_size_m.x) * f.grad_u - (g.y * uv_size_m.y) * f.grad_v;
+}
 
 class SurfaceTexture {
  public:
