@@ -30,13 +30,8 @@ SurfaceTexture::SurfaceTexture(std::unique_ptr<schema::PatchProgram> texture, gl
       uv_size_m_(uv_size_m),
       max_force_N_(max_force_N) {}
 
-glm::dvec2 SurfaceTexture::patch_position_rt(const Mesh& mesh, std::uint32_t triangle,
-                                             const glm::dvec3& point_m) const noexcept {
-  return uv_patch_position_rt(mesh, triangle, point_m, uv_size_m_);
-}
-
 glm::dvec3 SurfaceTexture::force_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) noexcept {
-  const glm::dvec2 f = terms_.force_rt(patch_position_rt(mesh, triangle, point_m));
+  const glm::dvec2 f = terms_.force_rt(uv_patch_position_rt(mesh, triangle, point_m, uv_size_m_));
   const glm::dvec3 force = uv_pull_back_rt(mesh, triangle, f, uv_size_m_);
   // Squared first: the square root only where the hold is needed.
   const double squared = glm::dot(force, force);

@@ -48,8 +48,6 @@ class SurfaceTexture {
   static SurfaceTexture for_program_nonrt(const schema::PatchProgram& program,
                                           std::optional<glm::dvec2> uv_size_m = std::nullopt);
 
-  // Patch coordinates (m) of point_m (m), taken onto `triangle`'s plane, through its UVs.
-  glm::dvec2 patch_position_rt(const Mesh& mesh, std::uint32_t triangle, const glm::dvec3& point_m) const noexcept;
   // The texture's force (N) at point_m on `triangle`: in the triangle's plane; zero on a triangle
   // without UVs (its UV gradient is zero). Where the UVs squeeze the texture the slope grows with
   // the squeeze, without bound at a UV sphere's pole; the force is held to the material's compiled
